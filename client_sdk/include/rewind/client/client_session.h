@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// A game client's side of a hosted match: join, submit inputs, predict the
+// other players and roll back when their real inputs arrive, compare our
+// checksum with the server's for every final tick, report a desync and
+// resynchronize from the server's snapshot.
+//
+// Threading: everything runs on the caller's io_context thread. Call
+// update(now) regularly (every frame, or every millisecond or so from a
+// timer); it steps as many ticks as the tick clock says are due.
+#include <asio/io_context.hpp>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "rewind/client/client_config.h"
+#include "rewind/client/client_event.h"
+#include "rewind/game/player_input.h"
+#include "rewind/net/connection.h"
+#include "rewind/net/fault_injector.h"
+#include "rewind/net/rollback_session.h"
+#include "rewind/net/time_sync.h"
+#include "rewind/net/udp_endpoint.h"
+#include "rewind/v1/envelope.pb.h"
+
+namespace rwd::client {
+
+using TimePoint = net::TimePoint;
+
+class ClientSession {
+ public:
+  /// Supplies our input for a tick, once per tick, when that tick is first
+  /// simulated.
+  using InputProvider = std::function<game::PlayerInput(Tick tick)>;
+  enum class Phase : uint8_t { kIdle, kJoining, kLobby, kRunning, kEnded };
+
+  /// Opens a UDP socket on an ephemeral port. Errors: bad address, socket.
+  static Result<std::unique_ptr<ClientSession>> create(asio::io_context& io,
+                                                       const ClientConfig& config);
+
+  /// Starts joining (JoinRequest resent until answered).
+  void connect(TimePoint now);
+  /// Sets the input provider; by default the last set_input() value is held.
+  void set_input_provider(InputProvider provider) { provider_ = std::move(provider); }
+  /// The input used for every tick from now on (when no provider is set).
+  void set_input(const game::PlayerInput& input) { held_input_ = input; }
+  /// Advances the tick clock, steps due ticks, verifies final ticks, sends
+  /// what is due. Returns the number of ticks stepped.
+  int update(TimePoint now);
+  /// Pops the oldest pending event.
+  bool poll_event(ClientEvent& out);
+  /// Sends a Disconnect and stops.
+  void disconnect(const std::string& reason, TimePoint now);
+
+  Phase phase() const { return phase_; }
+  uint32_t player() const { return player_; }
+  ClientStats stats() const;
+  /// The local simulation (predicted present), or nullptr before joining.
+  const game::Simulation* simulation() const {
+    return session_ ? &session_->simulation() : nullptr;
+  }
+  const net::RollbackSession* rollback() const { return session_.get(); }
+  uint16_t local_port() const { return socket_->local_port(); }
+
+  ClientSession(asio::io_context& io, const ClientConfig& config, net::UdpEndpoint socket,
+                asio::ip::udp::endpoint server);
+  ~ClientSession();
+
+ private:
+  void on_datagram(std::span<const uint8_t> bytes, const asio::ip::udp::endpoint& from);
+  void handle(const v1::Envelope& envelope, TimePoint now);
+  void on_join_accept(const v1::JoinAccept& accept, TimePoint now);
+  void on_match_start(const v1::MatchStart& start, TimePoint now);
+  void on_final_ticks(const v1::FinalTicks& finals);
+  void on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now);
+  void step_due_ticks(TimePoint now);
+  void verify_finals(TimePoint now);
+  void send_inputs(TimePoint now);
+  void send_desync_report(TimePoint now);
+  void send(v1::Envelope& envelope, TimePoint now);
+  void emit(ClientEvent event) { events_.push_back(std::move(event)); }
+  double period_s() const { return 1.0 / tick_rate_hz_; }
+
+  asio::io_context& io_;
+  ClientConfig config_;
+  std::optional<net::UdpEndpoint> socket_;
+  asio::ip::udp::endpoint server_;
+  std::optional<net::FaultyLink> outbound_faults_;
+  std::optional<net::FaultyLink> inbound_faults_;
+  net::Connection connection_;
+  Phase phase_ = Phase::kIdle;
+  uint64_t nonce_ = 0;
+  uint32_t player_ = 0;
+  uint32_t player_count_ = 0;
+  uint32_t tick_rate_hz_ = 60;
+  uint32_t window_ticks_ = 8;
+  std::unique_ptr<net::RollbackSession> session_;
+  net::TimeSync time_sync_;
+  InputProvider provider_;
+  game::PlayerInput held_input_;
+
+  // The tick clock: fractional ticks, advanced by wall time scaled by the
+  // time sync, so steps happen at the right moments.
+  double tick_clock_ = 0.0;
+  TimePoint last_update_;
+  TimePoint joined_at_;
+  TimePoint last_join_sent_;
+  TimePoint last_ping_;
+  Tick next_input_tick_ = 0;       // first tick whose input is not yet taken
+  std::deque<std::pair<Tick, game::PlayerInput>> unacked_;
+  Tick input_ack_ = kNoTick;
+  Tick last_final_received_ = kNoTick;
+  std::deque<std::pair<Tick, uint64_t>> pending_finals_;  // (tick, server checksum)
+  int32_t server_tick_ = 0;
+  bool awaiting_resync_ = false;
+  Tick desync_tick_ = kNoTick;
+  uint64_t desync_server_checksum_ = 0;
+  uint64_t desync_local_checksum_ = 0;
+  uint32_t report_id_ = 0;
+  TimePoint last_report_sent_;
+  struct ResyncAssembly {
+    uint32_t snapshot_id = 0;
+    Tick tick = kNoTick;
+    uint64_t checksum = 0;
+    uint32_t total_size = 0;
+    uint32_t received = 0;
+    std::vector<std::string> chunks;
+  } resync_;
+
+  std::deque<ClientEvent> events_;
+  ClientStats stats_;
+  std::vector<uint8_t> encode_buffer_;
+  std::vector<uint8_t> state_buffer_;
+};
+
+}  // namespace rwd::client

@@ -1,0 +1,509 @@
+// SPDX-License-Identifier: MIT
+#include "rewind/client/client_session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "rewind/net/envelope_codec.h"
+
+namespace rwd::client {
+namespace {
+
+constexpr auto kJoinResend = std::chrono::milliseconds(250);
+constexpr auto kLobbyPing = std::chrono::milliseconds(100);
+constexpr auto kMatchPing = std::chrono::milliseconds(250);
+constexpr auto kReportResend = std::chrono::milliseconds(500);
+constexpr int kMaxStepsPerUpdate = 30;     // bounds a catch-up burst
+constexpr size_t kMaxInputsPerPacket = 64; // redundancy: every unacked input, up to this
+constexpr size_t kReportChunkBytes = 1000;
+constexpr size_t kMaxQueuedEvents = 4096;
+
+double seconds(std::chrono::steady_clock::duration d) {
+  return std::chrono::duration<double>(d).count();
+}
+
+uint64_t micros_since_epoch(TimePoint t) {
+  return static_cast<uint64_t>(
+      std::chrono::duration_cast<std::chrono::microseconds>(t.time_since_epoch()).count());
+}
+
+game::PlayerInput from_proto(const v1::Input& in) {
+  game::PlayerInput out;
+  out.axis_x = static_cast<int16_t>(std::clamp<int32_t>(in.axis_x(), -game::kAxisMax, game::kAxisMax));
+  out.axis_y = static_cast<int16_t>(std::clamp<int32_t>(in.axis_y(), -game::kAxisMax, game::kAxisMax));
+  out.buttons = in.buttons();
+  return out;
+}
+
+void to_proto(const game::PlayerInput& in, v1::Input* out) {
+  out->set_axis_x(in.axis_x);
+  out->set_axis_y(in.axis_y);
+  out->set_buttons(in.buttons);
+}
+
+}  // namespace
+
+Result<std::unique_ptr<ClientSession>> ClientSession::create(asio::io_context& io,
+                                                             const ClientConfig& config) {
+  std::error_code error;
+  const asio::ip::address address = asio::ip::make_address(config.server_address, error);
+  if (error) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "bad server address '" + config.server_address + "': " + error.message());
+  }
+  if (config.snapshot_ticks < 16 || config.snapshot_ticks > 1024) {
+    return Status::Error(ErrorCode::kInvalidArgument, "snapshot_ticks must be in [16, 1024]");
+  }
+  if (config.faults) {
+    if (Status status = net::validate_fault_config(*config.faults); !status.ok()) return status;
+  }
+  auto socket = net::UdpEndpoint::open(io, address.is_v6() ? "::" : "0.0.0.0", 0);
+  if (!socket.ok()) return socket.status();
+  return std::make_unique<ClientSession>(io, config, std::move(*socket),
+                                         asio::ip::udp::endpoint(address, config.server_port));
+}
+
+ClientSession::ClientSession(asio::io_context& io, const ClientConfig& config,
+                             net::UdpEndpoint socket, asio::ip::udp::endpoint server)
+    : io_(io),
+      config_(config),
+      socket_(std::move(socket)),
+      server_(server),
+      connection_(net::SteadyClock::now()),
+      time_sync_(net::TimeSyncConfig{config.target_lead_ticks}) {
+  if (config_.faults) {
+    // Both directions see the configured conditions, with independent streams.
+    net::FaultConfig out = *config_.faults;
+    net::FaultConfig in = *config_.faults;
+    in.seed = out.seed ^ 0xA5A5A5A5DEADBEEFull;
+    outbound_faults_.emplace(std::move(*net::FaultyLink::create(
+        io_, out, [this](std::span<const uint8_t> bytes, const asio::ip::udp::endpoint& to) {
+          socket_->send_to(bytes, to);
+        })));
+    inbound_faults_.emplace(std::move(*net::FaultyLink::create(
+        io_, in, [this](std::span<const uint8_t> bytes, const asio::ip::udp::endpoint& from) {
+          on_datagram(bytes, from);
+        })));
+  }
+  socket_->start_receiving([this](std::span<const uint8_t> bytes, const asio::ip::udp::endpoint& from) {
+    if (inbound_faults_) {
+      inbound_faults_->send(bytes, from);
+    } else {
+      on_datagram(bytes, from);
+    }
+  });
+  std::random_device device;
+  nonce_ = (uint64_t{device()} << 32) | device();
+}
+
+ClientSession::~ClientSession() {
+  // Close first so no receive handler can reach a half-destroyed session.
+  if (socket_) socket_->close();
+}
+
+void ClientSession::connect(TimePoint now) {
+  if (phase_ != Phase::kIdle) return;
+  phase_ = Phase::kJoining;
+  joined_at_ = now;
+  last_update_ = now;
+  last_join_sent_ = now - kJoinResend;  // send on the first update
+  update(now);
+}
+
+void ClientSession::disconnect(const std::string& reason, TimePoint now) {
+  if (phase_ == Phase::kEnded || phase_ == Phase::kIdle) return;
+  v1::Envelope envelope;
+  envelope.mutable_disconnect()->set_reason(reason);
+  if (connection_.connection_id() != 0) send(envelope, now);
+  phase_ = Phase::kEnded;
+}
+
+bool ClientSession::poll_event(ClientEvent& out) {
+  if (events_.empty()) return false;
+  out = std::move(events_.front());
+  events_.pop_front();
+  return true;
+}
+
+ClientStats ClientSession::stats() const {
+  ClientStats out = stats_;
+  if (session_) {
+    out.rollbacks = session_->stats().rollbacks;
+    out.resimulated_ticks = session_->stats().resimulated_ticks;
+    const double one_way_ticks = out.rtt_ms / 2000.0 * tick_rate_hz_;
+    out.ticks_ahead = static_cast<int32_t>(
+        std::lround(session_->current_tick() - (server_tick_ + one_way_ticks)));
+  }
+  out.input_lead_ticks = time_sync_.smoothed_lead();
+  return out;
+}
+
+int ClientSession::update(TimePoint now) {
+  const double dt = std::max(0.0, seconds(now - last_update_));
+  last_update_ = now;
+  switch (phase_) {
+    case Phase::kIdle:
+    case Phase::kEnded:
+      return 0;
+    case Phase::kJoining:
+      if (seconds(now - joined_at_) > config_.join_timeout_s) {
+        phase_ = Phase::kEnded;
+        emit({ClientEventType::kDisconnected, kNoTick, 0, 0, 0, "no answer to join"});
+        return 0;
+      }
+      if (now - last_join_sent_ >= kJoinResend) {
+        last_join_sent_ = now;
+        v1::Envelope envelope;
+        v1::JoinRequest* request = envelope.mutable_join_request();
+        request->set_game(config_.game);
+        request->set_token(std::string(config_.join_token.begin(), config_.join_token.end()));
+        request->set_client_name(config_.name.substr(0, net::kMaxClientNameBytes));
+        request->set_nonce(nonce_);
+        send(envelope, now);
+      }
+      return 0;
+    case Phase::kLobby:
+    case Phase::kRunning:
+      break;
+  }
+  if (seconds(now - connection_.last_receive_time()) > config_.server_timeout_s) {
+    phase_ = Phase::kEnded;
+    emit({ClientEventType::kDisconnected, session_->current_tick(), player_, 0, 0,
+          "server silent for " + std::to_string(config_.server_timeout_s) + " s"});
+    return 0;
+  }
+  if (now - last_ping_ >= (phase_ == Phase::kLobby ? kLobbyPing : kMatchPing)) {
+    last_ping_ = now;
+    v1::Envelope envelope;
+    envelope.mutable_ping()->set_client_time_us(micros_since_epoch(now));
+    send(envelope, now);
+  }
+  if (phase_ != Phase::kRunning) return 0;
+
+  // The tick clock runs a little fast or slow to keep our inputs arriving
+  // just ahead of the server's need.
+  tick_clock_ += dt / (period_s() * time_sync_.period_scale());
+  const Tick before = session_->current_tick();
+  step_due_ticks(now);
+  verify_finals(now);
+  if (awaiting_resync_ && now - last_report_sent_ >= kReportResend) send_desync_report(now);
+  return session_->current_tick() - before;
+}
+
+void ClientSession::step_due_ticks(TimePoint now) {
+  const Tick target = static_cast<Tick>(std::floor(tick_clock_));
+  // Never predict further than the snapshot ring can roll back from.
+  const Tick barrier = last_final_received_ + config_.snapshot_ticks - 8;
+  bool new_input = false;
+  for (int steps = 0; steps < kMaxStepsPerUpdate && session_->current_tick() < target &&
+                      session_->current_tick() < barrier;
+       ++steps) {
+    const Tick t = session_->current_tick();
+    if (t >= next_input_tick_) {
+      game::PlayerInput input = provider_ ? provider_(t) : held_input_;
+      input.axis_x = static_cast<int16_t>(std::clamp<int>(input.axis_x, -game::kAxisMax, game::kAxisMax));
+      input.axis_y = static_cast<int16_t>(std::clamp<int>(input.axis_y, -game::kAxisMax, game::kAxisMax));
+      (void)session_->add_input(player_, t, input);
+      unacked_.emplace_back(t, input);
+      next_input_tick_ = t + 1;
+      new_input = true;
+    }
+    if (!session_->advance()) {
+      // The misprediction reaches past our snapshots: only the server can fix it.
+      awaiting_resync_ = true;
+      send_desync_report(now);
+    }
+  }
+  if (new_input) send_inputs(now);
+}
+
+void ClientSession::send_inputs(TimePoint now) {
+  while (!unacked_.empty() &&
+         (unacked_.front().first <= input_ack_ || unacked_.size() > kMaxInputsPerPacket)) {
+    unacked_.pop_front();
+  }
+  if (unacked_.empty()) return;
+  v1::Envelope envelope;
+  v1::InputFrame* frame = envelope.mutable_input_frame();
+  frame->set_player(player_);
+  frame->set_first_tick(unacked_.front().first);
+  frame->set_last_final_tick_seen(last_final_received_);
+  for (const auto& [tick, input] : unacked_) to_proto(input, frame->add_inputs());
+  send(envelope, now);
+}
+
+void ClientSession::on_datagram(std::span<const uint8_t> bytes, const asio::ip::udp::endpoint& from) {
+  ++stats_.packets_received;
+  if (from != server_) {
+    ++stats_.packets_rejected;
+    return;
+  }
+  auto decoded = net::decode_envelope(bytes);
+  if (!decoded.ok()) {
+    ++stats_.packets_rejected;
+    return;
+  }
+  handle(*decoded, net::SteadyClock::now());
+}
+
+void ClientSession::handle(const v1::Envelope& envelope, TimePoint now) {
+  if (envelope.has_join_reject()) {
+    if (phase_ == Phase::kJoining && envelope.join_reject().nonce() == nonce_) {
+      phase_ = Phase::kEnded;
+      emit({ClientEventType::kRejected, kNoTick, 0, 0, 0, envelope.join_reject().reason()});
+    }
+    return;
+  }
+  if (envelope.has_join_accept()) {
+    if (phase_ != Phase::kJoining || envelope.join_accept().nonce() != nonce_) return;
+    connection_.set_connection_id(envelope.join_accept().connection_id());
+  }
+  if (connection_.connection_id() == 0 || envelope.connection_id() != connection_.connection_id()) {
+    ++stats_.packets_rejected;
+    return;
+  }
+  if (!connection_.on_receive(envelope, now).is_new()) return;
+
+  switch (envelope.payload_case()) {
+    case v1::Envelope::kJoinAccept:
+      on_join_accept(envelope.join_accept(), now);
+      break;
+    case v1::Envelope::kMatchStart:
+      if (phase_ == Phase::kLobby) on_match_start(envelope.match_start(), now);
+      break;
+    case v1::Envelope::kMatchEnd:
+      if (phase_ != Phase::kEnded) {
+        phase_ = Phase::kEnded;
+        verify_finals(now);  // finals received with the end are still checked
+        emit({ClientEventType::kMatchEnded, envelope.match_end().last_final_tick(), player_, 0, 0,
+              envelope.match_end().reason()});
+      }
+      break;
+    case v1::Envelope::kPong: {
+      const double rtt_ms =
+          (static_cast<double>(micros_since_epoch(now)) -
+           static_cast<double>(envelope.pong().client_time_us())) / 1000.0;
+      if (rtt_ms >= 0 && rtt_ms < 10000) {
+        stats_.rtt_ms = stats_.rtt_ms == 0.0 ? rtt_ms : stats_.rtt_ms + 0.125 * (rtt_ms - stats_.rtt_ms);
+      }
+      server_tick_ = std::max(server_tick_, envelope.pong().server_tick());
+      break;
+    }
+    case v1::Envelope::kRelayedInputs: {
+      if (!session_) break;
+      const v1::RelayedInputs& relayed = envelope.relayed_inputs();
+      if (relayed.player() >= player_count_ || relayed.player() == player_) break;
+      for (int i = 0; i < relayed.inputs_size(); ++i) {
+        (void)session_->add_input(relayed.player(), relayed.first_tick() + i,
+                                  from_proto(relayed.inputs(i)));
+      }
+      break;
+    }
+    case v1::Envelope::kFinalTicks:
+      if (session_) on_final_ticks(envelope.final_ticks());
+      break;
+    case v1::Envelope::kResyncChunk:
+      if (session_ && phase_ == Phase::kRunning) on_resync_chunk(envelope.resync_chunk(), now);
+      break;
+    case v1::Envelope::kDisconnect:
+      phase_ = Phase::kEnded;
+      emit({ClientEventType::kDisconnected, kNoTick, player_, 0, 0, envelope.disconnect().reason()});
+      break;
+    default:
+      ++stats_.packets_rejected;
+      break;
+  }
+}
+
+void ClientSession::on_join_accept(const v1::JoinAccept& accept, TimePoint now) {
+  auto sim = game::Simulation::create(accept.game(), {accept.player_count(), accept.seed()});
+  if (!sim.ok() || accept.player() >= accept.player_count() || accept.tick_rate_hz() == 0) {
+    phase_ = Phase::kEnded;
+    emit({ClientEventType::kRejected, kNoTick, 0, 0, 0,
+          "cannot build the server's match: " + sim.status().message()});
+    return;
+  }
+  player_ = accept.player();
+  player_count_ = accept.player_count();
+  tick_rate_hz_ = accept.tick_rate_hz();
+  window_ticks_ = accept.window_ticks();
+  net::RollbackConfig rollback;
+  rollback.snapshot_ticks = config_.snapshot_ticks;
+  rollback.input_ticks = 256;
+  session_ = std::make_unique<net::RollbackSession>(std::move(*sim), rollback);
+  if (config_.debug_corrupt_at_tick != kNoTick) {
+    const Tick corrupt_at = config_.debug_corrupt_at_tick;
+    session_->set_step_hook([corrupt_at](game::Simulation& simulation, Tick tick) {
+      if (tick != corrupt_at) return;
+      // Nudge the highest-index dynamic body by a millimetre: small enough
+      // to look like a real float divergence, big enough to matter.
+      std::vector<sim::BodyId> ids;
+      simulation.world().body_ids(ids);
+      for (auto it = ids.rbegin(); it != ids.rend(); ++it) {
+        if (simulation.world().kind(*it) != sim::BodyKind::kDynamic) continue;
+        sim::Vec3 p = simulation.world().position(*it);
+        p.x += 0.001f;
+        (void)simulation.world().set_transform(*it, p, simulation.world().rotation(*it));
+        break;
+      }
+    });
+  }
+  phase_ = Phase::kLobby;
+  last_ping_ = now - kLobbyPing;
+  emit({ClientEventType::kJoined, kNoTick, player_, 0, 0, {}});
+}
+
+void ClientSession::on_match_start(const v1::MatchStart& start, TimePoint now) {
+  phase_ = Phase::kRunning;
+  server_tick_ = start.server_tick();
+  // Start ahead of the server by the one-way delay plus the target lead so
+  // our first inputs already arrive in time.
+  const double one_way_ticks = stats_.rtt_ms / 2000.0 * tick_rate_hz_;
+  tick_clock_ = start.server_tick() + one_way_ticks + config_.target_lead_ticks;
+  last_update_ = now;
+  emit({ClientEventType::kMatchStarted, start.server_tick(), player_, 0, 0, {}});
+}
+
+void ClientSession::on_final_ticks(const v1::FinalTicks& finals) {
+  server_tick_ = std::max(server_tick_, finals.server_tick());
+  input_ack_ = std::max(input_ack_, finals.input_ack_tick());
+  if (next_input_tick_ > 0) time_sync_.on_lead_report(finals.input_lead_ticks());
+  // While desynced, final ticks are neither applied nor acknowledged: the
+  // server resends them from the resync snapshot's tick on.
+  if (awaiting_resync_) return;
+  for (const v1::FinalTick& final_tick : finals.ticks()) {
+    if (final_tick.tick() != last_final_received_ + 1) continue;  // duplicate, or a gap to wait out
+    if (final_tick.inputs_size() != static_cast<int>(player_count_)) {
+      ++stats_.packets_rejected;
+      return;
+    }
+    for (uint32_t p = 0; p < player_count_; ++p) {
+      (void)session_->add_final_input(p, final_tick.tick(),
+                                      from_proto(final_tick.inputs(static_cast<int>(p))));
+    }
+    pending_finals_.emplace_back(final_tick.tick(), final_tick.checksum());
+    last_final_received_ = final_tick.tick();
+  }
+}
+
+void ClientSession::verify_finals(TimePoint now) {
+  while (!pending_finals_.empty() && !awaiting_resync_) {
+    const auto [tick, server_checksum] = pending_finals_.front();
+    if (tick >= session_->current_tick()) break;  // not simulated yet
+    std::optional<uint64_t> local;
+    if (session_->finalize_through(tick)) local = session_->checksum_after(tick);
+    if (!local) {
+      awaiting_resync_ = true;  // history we can no longer re-simulate
+      desync_tick_ = tick;
+      send_desync_report(now);
+      break;
+    }
+    pending_finals_.pop_front();
+    if (*local == server_checksum) {
+      ++stats_.final_ticks_verified;
+      stats_.last_final_tick = tick;
+      if (events_.size() < kMaxQueuedEvents) {
+        emit({ClientEventType::kFinalTick, tick, player_, *local, server_checksum, {}});
+      }
+      continue;
+    }
+    ++stats_.desyncs;
+    emit({ClientEventType::kDesync, tick, player_, *local, server_checksum, {}});
+    awaiting_resync_ = true;
+    desync_tick_ = tick;
+    desync_server_checksum_ = server_checksum;
+    desync_local_checksum_ = *local;
+    ++report_id_;
+    state_buffer_.clear();
+    (void)session_->serialize_state_at(tick + 1, state_buffer_);
+    send_desync_report(now);
+  }
+}
+
+void ClientSession::send_desync_report(TimePoint now) {
+  last_report_sent_ = now;
+  const size_t count = (state_buffer_.size() + kReportChunkBytes - 1) / kReportChunkBytes;
+  if (desync_tick_ == kNoTick || count == 0 || count > net::kMaxDesyncChunks) {
+    v1::Envelope envelope;  // nothing to show: just ask for the snapshot
+    envelope.mutable_resync_request()->set_desync_tick(std::max<Tick>(desync_tick_, 0));
+    send(envelope, now);
+    return;
+  }
+  for (size_t i = 0; i < count; ++i) {
+    v1::Envelope envelope;
+    v1::DesyncReport* report = envelope.mutable_desync_report();
+    report->set_tick(desync_tick_);
+    report->set_client_checksum(desync_local_checksum_);
+    report->set_server_checksum(desync_server_checksum_);
+    report->set_report_id(report_id_);
+    report->set_chunk_index(static_cast<uint32_t>(i));
+    report->set_chunk_count(static_cast<uint32_t>(count));
+    report->set_total_size(static_cast<uint32_t>(state_buffer_.size()));
+    const size_t begin = i * kReportChunkBytes;
+    const size_t end = std::min(state_buffer_.size(), begin + kReportChunkBytes);
+    report->set_chunk(std::string(state_buffer_.begin() + static_cast<std::ptrdiff_t>(begin),
+                                  state_buffer_.begin() + static_cast<std::ptrdiff_t>(end)));
+    send(envelope, now);
+  }
+}
+
+void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now) {
+  if (!awaiting_resync_ && chunk.tick() <= last_final_received_ + 1) return;  // stale
+  if (resync_.snapshot_id != chunk.snapshot_id() || resync_.chunks.size() != chunk.chunk_count()) {
+    resync_ = ResyncAssembly{};
+    resync_.snapshot_id = chunk.snapshot_id();
+    resync_.tick = chunk.tick();
+    resync_.checksum = chunk.checksum();
+    resync_.total_size = chunk.total_size();
+    resync_.chunks.assign(chunk.chunk_count(), {});
+  }
+  std::string& part = resync_.chunks[chunk.chunk_index()];
+  if (part.empty() && !chunk.chunk().empty()) {
+    part = chunk.chunk();
+    ++resync_.received;
+  }
+  if (resync_.received < resync_.chunks.size()) return;
+
+  std::vector<uint8_t> bytes;
+  bytes.reserve(resync_.total_size);
+  for (const std::string& p : resync_.chunks) bytes.insert(bytes.end(), p.begin(), p.end());
+  const ResyncAssembly done = std::move(resync_);
+  resync_ = ResyncAssembly{};
+  if (bytes.size() != done.total_size) {
+    ++stats_.packets_rejected;
+    return;
+  }
+  if (Status status = session_->reset_from(bytes); !status.ok()) {
+    ++stats_.packets_rejected;
+    return;
+  }
+  if (session_->simulation().checksum() != done.checksum) {
+    // The snapshot does not reproduce the server's checksum: ask again.
+    ++stats_.packets_rejected;
+    return;
+  }
+  const Tick tick = done.tick;
+  last_final_received_ = tick - 1;  // the server resends final ticks from here
+  pending_finals_.clear();
+  next_input_tick_ = std::max(next_input_tick_, tick);
+  tick_clock_ = std::max(tick_clock_, static_cast<double>(tick));
+  awaiting_resync_ = false;
+  desync_tick_ = kNoTick;
+  ++stats_.resyncs;
+  emit({ClientEventType::kResynced, tick, player_, session_->simulation().checksum(), done.checksum, {}});
+  step_due_ticks(now);
+}
+
+void ClientSession::send(v1::Envelope& envelope, TimePoint now) {
+  connection_.stamp(envelope, now);
+  if (!net::encode_envelope(envelope, encode_buffer_).ok()) return;
+  ++stats_.packets_sent;
+  if (outbound_faults_) {
+    outbound_faults_->send(encode_buffer_, server_);
+  } else {
+    socket_->send_to(encode_buffer_, server_);
+  }
+}
+
+}  // namespace rwd::client

@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: MIT
+#include "rewind/replay/replay_rewrite.h"
+
+#include <filesystem>
+#include <vector>
+
+#include "rewind/replay/replay_format.h"
+#include "rewind/replay/replay_reader.h"
+#include "rewind/replay/replay_writer.h"
+
+namespace rwd::replay {
+namespace {
+
+// Streams every record through a ReplayWriter, so the forgery obeys exactly
+// the rules a real recording does.
+Result<game::PlayerInput> copy_with_edit(ReplayReader& reader, ReplayWriter& writer,
+                                         const InputEdit& edit) {
+  std::optional<game::PlayerInput> original;
+  std::vector<game::PlayerInput> inputs;
+  while (true) {
+    Result<std::optional<v1::ReplayRecord>> record = reader.next();
+    if (!record.ok()) return record.status();
+    if (!record->has_value()) break;
+    const v1::ReplayRecord& r = **record;
+    Status s;
+    if (r.has_tick()) {
+      const v1::ReplayTick& t = r.tick();
+      inputs.clear();
+      for (const v1::Input& in : t.inputs()) {
+        // The reader already checked every input converts.
+        inputs.push_back(*from_proto(in));
+      }
+      if (t.tick() == edit.tick) {
+        game::PlayerInput& target = inputs[edit.player];
+        original = target;
+        if (edit.axis_x) target.axis_x = *edit.axis_x;
+        if (edit.axis_y) target.axis_y = *edit.axis_y;
+        if (edit.buttons) target.buttons = *edit.buttons;
+      }
+      s = writer.append_tick(t.tick(), inputs, t.substituted_mask(), t.checksum());
+    } else if (r.has_keyframe()) {
+      const std::string& state = r.keyframe().state();
+      s = writer.append_keyframe(r.keyframe().tick(),
+                                 {reinterpret_cast<const uint8_t*>(state.data()), state.size()});
+    } else if (r.has_end()) {
+      s = writer.finish(r.end().last_final_tick(), r.end().reason());
+    }
+    if (!s.ok()) return s;
+  }
+  if (!original) {
+    return Status::Error(ErrorCode::kNotFound, "tick " + std::to_string(edit.tick) +
+                                                   " is not in the replay (last tick " +
+                                                   std::to_string(reader.last_tick()) + ")");
+  }
+  if (!writer.finished()) {
+    if (Status s = writer.flush(); !s.ok()) return s;
+  }
+  return *original;
+}
+
+}  // namespace
+
+Result<game::PlayerInput> rewrite_replay_input(const std::string& in_path,
+                                               const std::string& out_path, const InputEdit& edit,
+                                               bool overwrite) {
+  Result<ReplayReader> reader = ReplayReader::open(in_path);
+  if (!reader.ok()) return reader.status();
+  if (edit.player >= reader->header().player_count()) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "player " + std::to_string(edit.player) + " is not in the replay (" +
+                             std::to_string(reader->header().player_count()) + " players)");
+  }
+  std::error_code ec;
+  if (std::filesystem::equivalent(in_path, out_path, ec)) {
+    return Status::Error(ErrorCode::kInvalidArgument, "output must differ from the input file");
+  }
+  ReplayWriterOptions options;
+  options.overwrite = overwrite;
+  v1::ReplayHeader header = reader->header();
+  Result<ReplayWriter> writer = ReplayWriter::open(out_path, header, options);
+  if (!writer.ok()) return writer.status();
+  Result<game::PlayerInput> original = copy_with_edit(*reader, *writer, edit);
+  if (!original.ok()) {
+    // Close before removing so the destructor's flush cannot recreate it.
+    { ReplayWriter closing = std::move(*writer); }
+    std::filesystem::remove(out_path, ec);
+  }
+  return original;
+}
+
+}  // namespace rwd::replay

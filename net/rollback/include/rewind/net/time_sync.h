@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Keeps a client's inputs arriving just ahead of the server's need. The
+// server reports, with every batch of final ticks, how many ticks early the
+// client's newest input arrived ("lead"). The client runs its tick clock a
+// little faster when the lead is below target and a little slower above it,
+// so it converges without ever jumping (which would waste or skip inputs).
+#include <cstdint>
+
+namespace rwd::net {
+
+struct TimeSyncConfig {
+  double target_lead_ticks = 2.0;  ///< desired arrival margin; covers jitter
+  double max_adjust = 0.08;        ///< tick period scale stays in [1 - max, 1 + max]
+  double gain = 0.02;              ///< scale change per tick of lead error
+  double smoothing = 0.1;          ///< weight of a new lead sample in the average
+};
+
+class TimeSync {
+ public:
+  explicit TimeSync(const TimeSyncConfig& config = {}) : config_(config) {}
+
+  /// A lead report from the server (negative: the input arrived late).
+  void on_lead_report(int32_t lead_ticks);
+  /// Multiplier for the local tick period: > 1 slows the client down.
+  double period_scale() const;
+  double smoothed_lead() const { return lead_; }
+  bool has_samples() const { return samples_ > 0; }
+
+ private:
+  TimeSyncConfig config_;
+  double lead_ = 0.0;
+  uint64_t samples_ = 0;
+};
+
+}  // namespace rwd::net

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "rewind/sim/status.h"
+#include "rewind/v1/envelope.pb.h"
+
+namespace rwd::net {
+
+/// Wire protocol version carried in every Envelope; a receiver drops any other.
+inline constexpr uint32_t kProtocolVersion = 1;
+/// Largest datagram Rewind sends or accepts, in bytes. Chosen to stay below
+/// the common 1280-byte IPv6 minimum MTU minus IP/UDP headers, so datagrams
+/// are never fragmented.
+inline constexpr size_t kMaxDatagramBytes = 1200;
+
+/// Per-message sanity limits enforced by decode_envelope and encode_envelope.
+inline constexpr size_t kMaxInputsPerFrame = 128;           ///< InputFrame / RelayedInputs inputs
+inline constexpr size_t kMaxFinalTicksPerPacket = 64;       ///< FinalTicks.ticks
+inline constexpr uint32_t kMaxPlayerSlots = 64;             ///< substituted_mask has 64 bits
+inline constexpr size_t kMaxStringBytes = 256;              ///< any string field
+inline constexpr size_t kMaxClientNameBytes = 64;           ///< JoinRequest.client_name
+inline constexpr size_t kMaxTokenBytes = 256;               ///< JoinRequest.token
+inline constexpr size_t kMaxChunkBytes = 1100;              ///< DesyncReport / ResyncChunk chunk
+inline constexpr uint32_t kMaxDesyncChunks = 256;           ///< DesyncReport.chunk_count
+inline constexpr uint32_t kMaxResyncChunks = 1024;          ///< ResyncChunk.chunk_count
+inline constexpr uint32_t kMaxDesyncDumpBytes = 1u << 20;   ///< DesyncReport.total_size
+inline constexpr uint32_t kMaxResyncStateBytes = 4u << 20;  ///< ResyncChunk.total_size
+inline constexpr int32_t kMaxAxis = 1000;                   ///< |Input.axis_x|, |Input.axis_y|
+inline constexpr uint32_t kMaxTickRateHz = 1000;            ///< JoinAccept.tick_rate_hz, >= 1
+
+/// Parses one datagram. Never throws and never crashes, whatever the bytes.
+/// Errors (all ErrorCode::kCorrupt, with a message naming the field): empty,
+/// larger than kMaxDatagramBytes, not a protobuf Envelope, protocol_version
+/// != kProtocolVersion, no payload, connection_id 0 on a payload other than
+/// JoinRequest/JoinReject, or a payload that breaks validate_envelope().
+Result<rwd::v1::Envelope> decode_envelope(std::span<const uint8_t> bytes);
+
+/// Checks the header and per-payload sanity limits listed above (sizes,
+/// counts, axis ranges, chunk indices, non-negative ticks). Returns kCorrupt
+/// with a message on the first violation. Does not check the encoded size.
+Status validate_envelope(const rwd::v1::Envelope& envelope);
+
+/// Serializes `envelope` into `out` (replacing its contents). Refuses, leaving
+/// `out` empty, anything decode_envelope would reject: an invalid envelope
+/// (kInvalidArgument) or one larger than kMaxDatagramBytes (kCapacity).
+Status encode_envelope(const rwd::v1::Envelope& envelope, std::vector<uint8_t>& out);
+
+}  // namespace rwd::net

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "rewind/sim/status.h"
+
+namespace rwd::server {
+
+/// Everything one hosted match is configured with.
+struct MatchConfig {
+  std::string game = "crates";     ///< a built-in game name
+  uint32_t players = 2;            ///< slots; the match starts when all are joined
+  uint32_t tick_rate_hz = 60;      ///< [1, 1000]
+  int32_t window_ticks = 8;        ///< finalization deadline, [1, 120]
+  int64_t max_ticks = 0;           ///< end after this many final ticks; 0 = until stopped
+  uint64_t seed = 1;               ///< the game's RNG seed
+  std::string match_id = "match";  ///< bound into join tokens
+  std::string token_secret;        ///< empty: no join tokens required
+  std::string replay_path;         ///< empty: no replay file
+  bool replay_overwrite = true;
+  int32_t keyframe_interval = 300; ///< ticks between replay keyframes, 0 = none
+  std::string desync_dir;          ///< empty: desync reports are counted, not stored
+  double join_timeout_s = 60.0;    ///< give up when the lobby is not full by then
+  double peer_timeout_s = 5.0;     ///< a silent peer is dropped; its inputs are substituted
+  /// Inputs this many ticks ahead of the server's tick are rejected.
+  int32_t max_input_lead_ticks = 120;
+
+  /// Snapshot ring size needed: deepest rollback is the window plus slack.
+  int32_t snapshot_ticks() const { return window_ticks + 8; }
+  /// Checks ranges and that the game exists.
+  Status validate() const;
+};
+
+}  // namespace rwd::server

@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// One hosted match: lobby, tick loop body, input intake and relay,
+// finalization with substitution, final-tick broadcast, desync reports,
+// resync snapshots and the replay file. It never touches a socket or a
+// clock: the server shell hands it datagrams and the time, and it sends
+// through a callback. That keeps every rule here testable on its own.
+#include <asio/ip/udp.hpp>
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "rewind/net/connection.h"
+#include "rewind/net/connection_id.h"
+#include "rewind/net/rollback_session.h"
+#include "rewind/replay/replay_writer.h"
+#include "rewind/server/match_config.h"
+#include "rewind/server/match_stats.h"
+#include "rewind/v1/envelope.pb.h"
+
+namespace rwd::server {
+
+using Endpoint = asio::ip::udp::endpoint;
+using TimePoint = net::TimePoint;
+
+class MatchHost {
+ public:
+  using SendFn = std::function<void(const Endpoint&, std::span<const uint8_t>)>;
+  enum class Phase : uint8_t { kLobby, kRunning, kEnded };
+
+  /// Validates the config, builds the simulation and opens the replay file.
+  static Result<std::unique_ptr<MatchHost>> create(const MatchConfig& config, SendFn send,
+                                                   TimePoint now);
+
+  /// Handles one received datagram. Anything malformed, spoofed or not
+  /// allowed is counted and dropped; nothing a client sends can stop the
+  /// match or act for another player.
+  void on_datagram(std::span<const uint8_t> bytes, const Endpoint& from, TimePoint now);
+  /// Runs one tick of the loop: re-simulate on late input, finalize, step,
+  /// broadcast. Call at the tick's scheduled time.
+  void on_tick(TimePoint now);
+  /// Ends the match (shutdown, timeout, or the tick budget): tells the
+  /// clients, finishes the replay.
+  void end(const std::string& reason, TimePoint now);
+
+  Phase phase() const { return phase_; }
+  const MatchConfig& config() const { return config_; }
+  /// Counters, with the rollback figures folded in.
+  MatchStats stats() const;
+  Tick current_tick() const { return session_->current_tick(); }
+  Tick last_final_tick() const { return next_final_ - 1; }
+  const net::RollbackSession& session() const { return *session_; }
+  /// Final ticks still held for resending, oldest first.
+  const std::deque<v1::FinalTick>& recent_finals() const { return finals_; }
+
+  MatchHost(const MatchConfig& config, SendFn send, std::unique_ptr<net::RollbackSession> session,
+            std::optional<replay::ReplayWriter> replay, TimePoint now);
+
+ private:
+  struct DesyncAssembly {
+    uint32_t report_id = 0;
+    Tick tick = kNoTick;
+    uint64_t client_checksum = 0;
+    uint32_t total_size = 0;
+    uint32_t received = 0;
+    std::vector<std::vector<uint8_t>> chunks;
+  };
+  struct Peer {
+    bool joined = false;
+    bool connected = false;
+    Endpoint endpoint;
+    uint64_t join_nonce = 0;
+    std::optional<net::Connection> connection;
+    Tick final_seen = kNoTick;      // newest final tick the client has acknowledged
+    int32_t last_lead = 0;
+    bool sent_input = false;
+    TimePoint last_receive;
+    std::string name;
+    DesyncAssembly desync;
+    std::vector<uint32_t> handled_reports;  // recent report ids, to count each once
+    TimePoint last_resync;
+    bool resynced_once = false;
+  };
+
+  void handle_join(const v1::Envelope& envelope, const Endpoint& from, TimePoint now);
+  void handle_input(Peer& peer, uint32_t player, const v1::InputFrame& frame, TimePoint now);
+  void handle_desync(Peer& peer, uint32_t player, const v1::DesyncReport& report, TimePoint now);
+  void store_desync_report(uint32_t player, const DesyncAssembly& assembly,
+                           const std::vector<uint8_t>& dump);
+  void send_resync(Peer& peer, TimePoint now);
+  void start_match(TimePoint now);
+  void finalize_ready_ticks();
+  void broadcast(TimePoint now);
+  void send(Peer& peer, v1::Envelope& envelope, TimePoint now);
+  void send_unconnected(const Endpoint& to, v1::Envelope& envelope);
+  Peer* find_peer(uint64_t connection_id, uint32_t* player);
+  void record_replay_error(const Status& status);
+
+  MatchConfig config_;
+  SendFn send_;
+  std::unique_ptr<net::RollbackSession> session_;
+  std::optional<replay::ReplayWriter> replay_;
+  Phase phase_ = Phase::kLobby;
+  std::vector<Peer> peers_;
+  std::deque<v1::FinalTick> finals_;
+  Tick next_final_ = 0;
+  TimePoint created_;
+  TimePoint started_;
+  TimePoint tick_started_;
+  TimePoint ended_;
+  MatchStats stats_;
+  uint32_t next_snapshot_id_ = 1;
+  net::ConnectionIdGenerator ids_;  // unguessable by other clients
+  std::vector<uint8_t> encode_buffer_;
+  std::vector<uint8_t> state_buffer_;
+  std::vector<game::PlayerInput> final_inputs_;
+  bool replay_failed_ = false;
+};
+
+}  // namespace rwd::server

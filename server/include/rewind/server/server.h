@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The process shell around a MatchHost: owns the io_context, the UDP
+// socket, the tick timer and the signal set (Asio's layered-server shape).
+#include <asio/io_context.hpp>
+#include <asio/signal_set.hpp>
+#include <asio/steady_timer.hpp>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "rewind/net/udp_endpoint.h"
+#include "rewind/server/match_host.h"
+
+namespace rwd::server {
+
+struct ServerConfig {
+  MatchConfig match;
+  std::string bind_address = "0.0.0.0";
+  uint16_t port = 7777;
+};
+
+class Server {
+ public:
+  /// Binds the socket and prepares the match. Errors name what failed
+  /// (bad config, port in use, replay path not writable).
+  static Result<std::unique_ptr<Server>> create(const ServerConfig& config);
+  /// Runs until the match ends (tick budget, lobby timeout, SIGINT/SIGTERM).
+  void run();
+  MatchStats stats() const { return host_->stats(); }
+  uint16_t port() const { return socket_->local_port(); }
+
+  Server(const ServerConfig& config, std::unique_ptr<asio::io_context> io,
+         std::optional<net::UdpEndpoint> socket);
+
+ private:
+  void schedule_tick();
+  void on_tick_timer();
+
+  ServerConfig config_;
+  std::unique_ptr<asio::io_context> io_;
+  std::optional<net::UdpEndpoint> socket_;
+  std::unique_ptr<MatchHost> host_;
+  asio::steady_timer timer_;
+  asio::signal_set signals_;
+  std::chrono::nanoseconds period_;
+  TimePoint next_tick_;
+};
+
+}  // namespace rwd::server

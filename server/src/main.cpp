@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: MIT
+// rewind-server: flags -> config -> run -> summary.
+#include <cstdio>
+#include <string>
+
+#include "rewind/cli/flag_parser.h"
+#include "rewind/server/server.h"
+
+int main(int argc, char** argv) {
+  using rwd::cli::FlagParser;
+  rwd::server::ServerConfig config;
+  std::string game = config.match.game;
+  std::string bind = config.bind_address;
+  int64_t port = config.port, players = config.match.players,
+          tick_rate = config.match.tick_rate_hz, window = config.match.window_ticks,
+          ticks = config.match.max_ticks, seed = static_cast<int64_t>(config.match.seed),
+          keyframe = config.match.keyframe_interval;
+  double join_timeout = config.match.join_timeout_s, peer_timeout = config.match.peer_timeout_s;
+  std::string replay, desync_dir, token_secret, match_id = config.match.match_id;
+  bool summary_json = false;
+  std::string port_file;
+
+  FlagParser flags("rewind-server", "rewind-server [flags]",
+                   "Hosts one authoritative rollback match over UDP: ticks the deterministic "
+                   "simulation, finalizes ticks,\nbroadcasts their inputs and checksums, records "
+                   "a replay. Logs go to stderr.");
+  flags.add_string("game", &game, "built-in game to host");
+  flags.add_string("bind", &bind, "address to bind (IPv4 or IPv6 literal)");
+  flags.add_int("port", &port, 0, 65535, "UDP port (0 = any free port)");
+  flags.add_int("players", &players, 1, 32, "player slots; the match starts when all are joined");
+  flags.add_int("tick-rate", &tick_rate, 1, 1000, "ticks per second");
+  flags.add_int("window", &window, 1, 120, "ticks before a missing input is substituted");
+  flags.add_int("ticks", &ticks, 0, int64_t{1} << 31, "exit after N final ticks (0 = run until signalled)");
+  flags.add_int("seed", &seed, 0, INT64_MAX, "game RNG seed");
+  flags.add_string("replay", &replay, "write the replay file here (empty = none)");
+  flags.add_int("keyframe-interval", &keyframe, 0, 1 << 20, "ticks between replay keyframes (0 = none)");
+  flags.add_string("desync-dir", &desync_dir, "store desync reports in this directory (empty = count only)");
+  flags.add_string("token-secret", &token_secret, "require join tokens signed with this secret");
+  flags.add_string("match-id", &match_id, "match id bound into join tokens");
+  flags.add_double("join-timeout", &join_timeout, 0.1, 86400, "seconds to wait for all players");
+  flags.add_double("peer-timeout", &peer_timeout, 0.1, 3600, "seconds of silence before a player is dropped");
+  flags.add_string("port-file", &port_file, "write the bound UDP port to this file once listening");
+  flags.add_bool("summary-json", &summary_json, "print one JSON summary line on stdout at exit");
+
+  if (rwd::Status status = flags.parse(argc, argv); !status.ok()) {
+    std::fprintf(stderr, "rewind-server: %s\n", status.message().c_str());
+    return rwd::cli::kExitUsage;
+  }
+  if (flags.help_requested()) {
+    std::fputs(flags.help_text().c_str(), stdout);
+    return 0;
+  }
+  config.match.game = game;
+  config.bind_address = bind;
+  config.port = static_cast<uint16_t>(port);
+  config.match.players = static_cast<uint32_t>(players);
+  config.match.tick_rate_hz = static_cast<uint32_t>(tick_rate);
+  config.match.window_ticks = static_cast<int32_t>(window);
+  config.match.max_ticks = ticks;
+  config.match.seed = static_cast<uint64_t>(seed);
+  config.match.replay_path = replay;
+  config.match.keyframe_interval = static_cast<int32_t>(keyframe);
+  config.match.desync_dir = desync_dir;
+  config.match.token_secret = token_secret;
+  config.match.match_id = match_id;
+  config.match.join_timeout_s = join_timeout;
+  config.match.peer_timeout_s = peer_timeout;
+
+  auto server = rwd::server::Server::create(config);
+  if (!server.ok()) {
+    std::fprintf(stderr, "rewind-server: %s\n", server.status().message().c_str());
+    return 1;
+  }
+  if (!port_file.empty()) {
+    // Written to a temporary name and renamed, so a reader never sees half a number.
+    const std::string temporary = port_file + ".tmp";
+    std::FILE* file = std::fopen(temporary.c_str(), "w");
+    if (file == nullptr || std::fprintf(file, "%u\n", static_cast<unsigned>((*server)->port())) < 0 ||
+        std::fclose(file) != 0 || std::rename(temporary.c_str(), port_file.c_str()) != 0) {
+      std::fprintf(stderr, "rewind-server: cannot write --port-file %s\n", port_file.c_str());
+      return 1;
+    }
+  }
+  (*server)->run();
+  const rwd::server::MatchStats stats = (*server)->stats();
+  if (summary_json) std::printf("%s\n", stats.to_json().c_str());
+  std::fflush(stdout);
+  // A lobby that never filled is a failed match for scripts.
+  return stats.end_reason.rfind("lobby timeout", 0) == 0 ? 2 : 0;
+}

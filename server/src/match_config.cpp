@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+#include "rewind/server/match_config.h"
+
+#include "rewind/game/simulation.h"
+
+namespace rwd::server {
+
+Status MatchConfig::validate() const {
+  auto bad = [](const std::string& message) {
+    return Status::Error(ErrorCode::kInvalidArgument, message);
+  };
+  if (!game::make_builtin_game(game)) {
+    std::string known;
+    for (std::string_view name : game::builtin_game_names()) known += " " + std::string(name);
+    return bad("unknown game '" + game + "' (known:" + known + ")");
+  }
+  if (players < 1 || players > game::kMaxPlayers) {
+    return bad("players must be in [1, " + std::to_string(game::kMaxPlayers) + "]");
+  }
+  if (tick_rate_hz < 1 || tick_rate_hz > 1000) return bad("tick rate must be in [1, 1000] Hz");
+  if (window_ticks < 1 || window_ticks > 120) return bad("window must be in [1, 120] ticks");
+  if (max_ticks < 0) return bad("ticks must be >= 0");
+  if (keyframe_interval < 0) return bad("keyframe interval must be >= 0");
+  if (!(join_timeout_s > 0) || !(peer_timeout_s > 0)) return bad("timeouts must be > 0");
+  if (max_input_lead_ticks < 1 || max_input_lead_ticks > 200) {
+    return bad("max input lead must be in [1, 200] ticks");
+  }
+  return Status::Ok();
+}
+
+}  // namespace rwd::server

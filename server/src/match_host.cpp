@@ -1,0 +1,659 @@
+// SPDX-License-Identifier: MIT
+#include "rewind/server/match_host.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "rewind/net/connection_id.h"
+#include "rewind/net/envelope_codec.h"
+#include "rewind/net/join_token.h"
+#include "rewind/replay/replay_format.h"
+#include "rewind/sim/body_record.h"
+
+namespace rwd::server {
+namespace {
+
+constexpr size_t kFinalTicksBudgetBytes = 1000;  // leaves room for the envelope header
+constexpr size_t kMaxFinalHistory = 1024;         // ticks kept for clients that fall behind
+constexpr size_t kResyncChunkBytes = 1000;
+constexpr auto kResyncMinInterval = std::chrono::milliseconds(250);
+
+double seconds_between(TimePoint a, TimePoint b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+void log_line(const std::string& text) { std::fprintf(stderr, "[rewind-server] %s\n", text.c_str()); }
+
+}  // namespace
+
+Result<std::unique_ptr<MatchHost>> MatchHost::create(const MatchConfig& config, SendFn send,
+                                                     TimePoint now) {
+  if (Status status = config.validate(); !status.ok()) return status;
+  auto sim = game::Simulation::create(config.game, {config.players, config.seed});
+  if (!sim.ok()) return sim.status();
+
+  net::RollbackConfig rollback;
+  rollback.snapshot_ticks = config.snapshot_ticks();
+  rollback.input_ticks = 256;
+  auto session = std::make_unique<net::RollbackSession>(std::move(*sim), rollback);
+
+  std::optional<replay::ReplayWriter> writer;
+  if (!config.replay_path.empty()) {
+    v1::ReplayHeader header;
+    header.set_game(config.game);
+    header.set_player_count(config.players);
+    header.set_seed(config.seed);
+    header.set_tick_rate_hz(config.tick_rate_hz);
+    header.set_window_ticks(static_cast<uint32_t>(config.window_ticks));
+    header.set_server_version("rewind-server 0.1.0");
+    header.set_started_unix_ms(std::chrono::duration_cast<std::chrono::milliseconds>(
+                                   std::chrono::system_clock::now().time_since_epoch())
+                                   .count());
+    header.set_keyframe_interval(static_cast<uint32_t>(config.keyframe_interval));
+    replay::ReplayWriterOptions options;
+    options.overwrite = config.replay_overwrite;
+    auto opened = replay::ReplayWriter::open(config.replay_path, header, options);
+    if (!opened.ok()) return opened.status();
+    writer.emplace(std::move(*opened));
+    // The initial state as a keyframe lets a verifier check the scene itself.
+    std::vector<uint8_t> state;
+    session->simulation().serialize(state);
+    if (Status status = writer->append_keyframe(kNoTick, state); !status.ok()) return status;
+  }
+  if (!config.desync_dir.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(config.desync_dir, error);
+    if (error) {
+      return Status::Error(ErrorCode::kIo, "cannot create desync directory '" +
+                                               config.desync_dir + "': " + error.message());
+    }
+  }
+  return std::make_unique<MatchHost>(config, std::move(send), std::move(session),
+                                     std::move(writer), now);
+}
+
+MatchHost::MatchHost(const MatchConfig& config, SendFn send,
+                     std::unique_ptr<net::RollbackSession> session,
+                     std::optional<replay::ReplayWriter> replay, TimePoint now)
+    : config_(config),
+      send_(std::move(send)),
+      session_(std::move(session)),
+      replay_(std::move(replay)),
+      peers_(config.players),
+      created_(now),
+      started_(now),
+      tick_started_(now),
+      ended_(now),
+      ids_(net::ConnectionIdGenerator::from_os_entropy()) {
+  final_inputs_.resize(config.players);
+}
+
+MatchStats MatchHost::stats() const {
+  MatchStats out = stats_;
+  out.rollbacks = session_->stats().rollbacks;
+  out.resimulated_ticks = session_->stats().resimulated_ticks;
+  out.last_final_tick = next_final_ - 1;
+  out.ticks_final = next_final_;
+  out.duration_s = phase_ == Phase::kLobby ? 0.0 : seconds_between(started_, ended_);
+  return out;
+}
+
+MatchHost::Peer* MatchHost::find_peer(uint64_t connection_id, uint32_t* player) {
+  for (uint32_t p = 0; p < peers_.size(); ++p) {
+    Peer& peer = peers_[p];
+    if (peer.joined && peer.connection && peer.connection->connection_id() == connection_id) {
+      *player = p;
+      return &peer;
+    }
+  }
+  return nullptr;
+}
+
+void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from, TimePoint now) {
+  ++stats_.packets_in;
+  stats_.bytes_in += bytes.size();
+  if (phase_ == Phase::kEnded) return;
+  auto decoded = net::decode_envelope(bytes);
+  if (!decoded.ok()) {
+    ++stats_.rejected_packets;
+    return;
+  }
+  const v1::Envelope& envelope = *decoded;
+  if (envelope.has_join_request()) {
+    handle_join(envelope, from, now);
+    return;
+  }
+  uint32_t player = 0;
+  Peer* peer = find_peer(envelope.connection_id(), &player);
+  // An unknown id, or a known id from another address (spoofed or stolen),
+  // is dropped before it can touch any state.
+  if (peer == nullptr || peer->endpoint != from) {
+    ++stats_.rejected_packets;
+    return;
+  }
+  net::ReceiveResult received = peer->connection->on_receive(envelope, now);
+  if (!received.is_new()) {
+    ++stats_.duplicate_packets;
+    return;
+  }
+  peer->last_receive = now;
+  if (!peer->connected) {
+    peer->connected = true;
+    log_line("player " + std::to_string(player) + " is back");
+  }
+
+  switch (envelope.payload_case()) {
+    case v1::Envelope::kInputFrame:
+      if (phase_ == Phase::kRunning) handle_input(*peer, player, envelope.input_frame(), now);
+      break;
+    case v1::Envelope::kPing: {
+      v1::Envelope reply;
+      v1::Pong* pong = reply.mutable_pong();
+      pong->set_client_time_us(envelope.ping().client_time_us());
+      pong->set_server_tick(session_->current_tick());
+      pong->set_server_tick_elapsed_us(static_cast<uint32_t>(
+          std::chrono::duration_cast<std::chrono::microseconds>(now - tick_started_).count()));
+      send(*peer, reply, now);
+      break;
+    }
+    case v1::Envelope::kDesyncReport:
+      handle_desync(*peer, player, envelope.desync_report(), now);
+      break;
+    case v1::Envelope::kResyncRequest:
+      if (phase_ == Phase::kRunning) send_resync(*peer, now);
+      break;
+    case v1::Envelope::kDisconnect:
+      peer->connected = false;
+      log_line("player " + std::to_string(player) + " left: " + envelope.disconnect().reason());
+      break;
+    default:
+      // Server-to-client messages have no business arriving here.
+      ++stats_.rejected_packets;
+      break;
+  }
+}
+
+void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, TimePoint now) {
+  const v1::JoinRequest& request = envelope.join_request();
+  auto reject = [&](const std::string& reason) {
+    ++stats_.rejected_packets;
+    v1::Envelope reply;
+    reply.mutable_join_reject()->set_nonce(request.nonce());
+    reply.mutable_join_reject()->set_reason(reason);
+    send_unconnected(from, reply);
+  };
+  auto accept = [&](uint32_t player) {
+    Peer& peer = peers_[player];
+    v1::Envelope reply;
+    v1::JoinAccept* answer = reply.mutable_join_accept();
+    answer->set_nonce(request.nonce());
+    answer->set_connection_id(peer.connection->connection_id());
+    answer->set_player(player);
+    answer->set_player_count(config_.players);
+    answer->set_game(config_.game);
+    answer->set_seed(config_.seed);
+    answer->set_tick_rate_hz(config_.tick_rate_hz);
+    answer->set_window_ticks(static_cast<uint32_t>(config_.window_ticks));
+    send(peer, reply, now);
+    if (phase_ == Phase::kRunning) {
+      v1::Envelope start;
+      start.mutable_match_start()->set_start_tick(0);
+      start.mutable_match_start()->set_server_tick(session_->current_tick());
+      send(peer, start, now);
+    }
+  };
+
+  // A repeated request from a joined address lost our answer: answer again.
+  for (uint32_t p = 0; p < peers_.size(); ++p) {
+    if (peers_[p].joined && peers_[p].endpoint == from) {
+      if (peers_[p].join_nonce == request.nonce()) {
+        accept(p);
+      } else {
+        reject("this address already holds player slot " + std::to_string(p));
+      }
+      return;
+    }
+  }
+  if (request.game() != config_.game) {
+    reject("this server hosts '" + config_.game + "', not '" + request.game() + "'");
+    return;
+  }
+  std::optional<uint32_t> slot;
+  if (!config_.token_secret.empty()) {
+    const auto now_unix = std::chrono::duration_cast<std::chrono::seconds>(
+                              std::chrono::system_clock::now().time_since_epoch())
+                              .count();
+    const std::string& token = request.token();
+    auto verified = net::verify_join_token(
+        config_.token_secret,
+        std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(token.data()), token.size()),
+        config_.match_id, static_cast<int64_t>(now_unix));
+    if (!verified.ok()) {
+      reject("join token refused: " + verified.status().message());
+      return;
+    }
+    if (*verified >= config_.players || peers_[*verified].joined) {
+      reject("player slot " + std::to_string(*verified) + " is not available");
+      return;
+    }
+    slot = *verified;
+  } else if (phase_ == Phase::kLobby) {
+    for (uint32_t p = 0; p < peers_.size() && !slot; ++p) {
+      if (!peers_[p].joined) slot = p;
+    }
+  }
+  if (!slot) {
+    reject(phase_ == Phase::kLobby ? "match is full" : "match already running");
+    return;
+  }
+  if (phase_ != Phase::kLobby) {
+    reject("match already running");
+    return;
+  }
+  Peer& peer = peers_[*slot];
+  const uint64_t id = ids_.next();
+  peer.joined = true;
+  peer.connected = true;
+  peer.endpoint = from;
+  peer.join_nonce = request.nonce();
+  peer.connection.emplace(now, id);
+  peer.last_receive = now;
+  peer.name = request.client_name();
+  ++stats_.players_joined;
+  log_line("player " + std::to_string(*slot) + " joined from " + from.address().to_string() + ":" +
+           std::to_string(from.port()) + " (" + peer.name + ")");
+  accept(*slot);
+  const bool full = std::all_of(peers_.begin(), peers_.end(), [](const Peer& p) { return p.joined; });
+  if (full) start_match(now);
+}
+
+void MatchHost::start_match(TimePoint now) {
+  phase_ = Phase::kRunning;
+  started_ = now;
+  tick_started_ = now;
+  log_line("all " + std::to_string(config_.players) + " players joined; match starts");
+  for (Peer& peer : peers_) {
+    v1::Envelope start;
+    start.mutable_match_start()->set_start_tick(0);
+    start.mutable_match_start()->set_server_tick(session_->current_tick());
+    send(peer, start, now);
+  }
+}
+
+void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& frame,
+                             TimePoint now) {
+  if (frame.player() != player) {
+    // Inputs for another slot: never applied, whoever sent them.
+    ++stats_.rejected_packets;
+    stats_.rejected_inputs += static_cast<uint64_t>(frame.inputs_size());
+    return;
+  }
+  peer.sent_input = true;
+  if (frame.last_final_tick_seen() > peer.final_seen) {
+    peer.final_seen = std::min(frame.last_final_tick_seen(), next_final_ - 1);
+  }
+  const Tick now_tick = session_->current_tick();
+  const Tick confirmed_before = session_->queue(player).contiguous_through();
+  v1::Envelope relay;
+  v1::RelayedInputs* relayed = relay.mutable_relayed_inputs();
+  relayed->set_player(player);
+  Tick relay_next = kNoTick;
+  Tick newest = kNoTick;
+
+  auto flush_relay = [&]() {
+    if (relayed->inputs_size() == 0) return;
+    for (uint32_t p = 0; p < peers_.size(); ++p) {
+      if (p != player && peers_[p].joined && peers_[p].connected) {
+        v1::Envelope copy = relay;
+        send(peers_[p], copy, now);
+      }
+    }
+    stats_.relayed_inputs += static_cast<uint64_t>(relayed->inputs_size());
+    relayed->clear_inputs();
+  };
+
+  for (int i = 0; i < frame.inputs_size(); ++i) {
+    const Tick tick = frame.first_tick() + i;
+    newest = std::max(newest, tick);
+    auto input = replay::from_proto(frame.inputs(i));
+    if (!input.ok() || tick > now_tick + config_.max_input_lead_ticks) {
+      ++stats_.rejected_inputs;
+      continue;
+    }
+    switch (session_->add_input(player, tick, *input)) {
+      case net::InputResult::kAccepted:
+        if (tick < now_tick) ++stats_.late_inputs;
+        if (relay_next != tick) {
+          flush_relay();
+          relayed->set_first_tick(tick);
+        }
+        *relayed->add_inputs() = frame.inputs(i);
+        relay_next = tick + 1;
+        break;
+      case net::InputResult::kDuplicate:
+        break;
+      case net::InputResult::kFinal:
+        // Resends of inputs the server had are normal; an input that only
+        // arrives after its tick was finalized without it is rejected.
+        if (tick > confirmed_before) ++stats_.rejected_inputs;
+        break;
+      case net::InputResult::kConflict:
+      case net::InputResult::kTooFar:
+      case net::InputResult::kBadPlayer:
+        ++stats_.rejected_inputs;
+        break;
+    }
+  }
+  flush_relay();
+  if (newest != kNoTick) peer.last_lead = newest - now_tick;
+}
+
+void MatchHost::on_tick(TimePoint now) {
+  if (phase_ == Phase::kEnded) return;
+  if (phase_ == Phase::kLobby) {
+    if (seconds_between(created_, now) > config_.join_timeout_s) {
+      end("lobby timeout: " + std::to_string(stats_.players_joined) + " of " +
+              std::to_string(config_.players) + " players joined",
+          now);
+    }
+    return;
+  }
+  tick_started_ = now;
+  for (uint32_t p = 0; p < peers_.size(); ++p) {
+    Peer& peer = peers_[p];
+    if (peer.connected && seconds_between(peer.last_receive, now) > config_.peer_timeout_s) {
+      peer.connected = false;
+      log_line("player " + std::to_string(p) + " timed out; substituting its inputs");
+    }
+  }
+
+  if (!session_->synchronize()) {
+    // Cannot happen while the window is smaller than the snapshot ring;
+    // reported loudly because it would mean a broken invariant.
+    log_line("internal error: rollback target outside the snapshot ring");
+  }
+  finalize_ready_ticks();
+  if (config_.max_ticks > 0 && next_final_ >= config_.max_ticks) {
+    broadcast(now);
+    end("tick budget reached", now);
+    return;
+  }
+  session_->advance();
+  broadcast(now);
+  if (replay_ && !replay_failed_) {
+    if (Status status = replay_->flush_if_due(); !status.ok()) record_replay_error(status);
+  }
+}
+
+void MatchHost::finalize_ready_ticks() {
+  const Tick current = session_->current_tick();
+  while (next_final_ < current) {
+    if (config_.max_ticks > 0 && next_final_ >= config_.max_ticks) break;
+    const Tick t = next_final_;
+    bool all_known = true;
+    for (uint32_t p = 0; p < peers_.size(); ++p) {
+      all_known = all_known && session_->queue(p).is_confirmed(t);
+    }
+    if (!all_known && current - t < config_.window_ticks) break;
+
+    // The deadline passed: missing inputs become the prediction the
+    // simulation already used, so finalizing never re-simulates.
+    uint64_t substituted = 0;
+    v1::FinalTick final_tick;
+    final_tick.set_tick(t);
+    for (uint32_t p = 0; p < peers_.size(); ++p) {
+      if (!session_->queue(p).is_confirmed(t)) {
+        substituted |= uint64_t{1} << p;
+        (void)session_->add_final_input(p, t, session_->input_for(p, t));
+        ++stats_.substituted_inputs;
+      }
+      final_inputs_[p] = session_->input_for(p, t);
+      *final_tick.add_inputs() = replay::to_proto(final_inputs_[p]);
+    }
+    const std::optional<uint64_t> checksum = session_->checksum_after(t);
+    final_tick.set_substituted_mask(substituted);
+    final_tick.set_checksum(checksum.value_or(0));
+    stats_.final_checksum = final_tick.checksum();
+
+    if (replay_ && !replay_failed_) {
+      Status status = replay_->append_tick(t, final_inputs_, substituted, final_tick.checksum());
+      if (status.ok() && config_.keyframe_interval > 0 && (t + 1) % config_.keyframe_interval == 0 &&
+          session_->serialize_state_at(t + 1, state_buffer_)) {
+        status = replay_->append_keyframe(t, state_buffer_);
+      }
+      if (!status.ok()) record_replay_error(status);
+    }
+    (void)session_->finalize_through(t);
+    finals_.push_back(std::move(final_tick));
+    ++next_final_;
+  }
+  // Drop history every connected client has; keep a bounded tail for the rest.
+  Tick acked_by_all = next_final_ - 1;
+  for (const Peer& peer : peers_) {
+    if (peer.joined && peer.connected) acked_by_all = std::min(acked_by_all, peer.final_seen);
+  }
+  while (!finals_.empty() &&
+         (finals_.front().tick() <= acked_by_all || finals_.size() > kMaxFinalHistory)) {
+    finals_.pop_front();
+  }
+}
+
+void MatchHost::broadcast(TimePoint now) {
+  for (uint32_t p = 0; p < peers_.size(); ++p) {
+    Peer& peer = peers_[p];
+    if (!peer.joined || !peer.connected) continue;
+    if (!peer.sent_input && session_->current_tick() % 10 == 0) {
+      v1::Envelope start;  // MatchStart may have been lost
+      start.mutable_match_start()->set_start_tick(0);
+      start.mutable_match_start()->set_server_tick(session_->current_tick());
+      send(peer, start, now);
+    }
+    // A client that fell behind the history we keep can only catch up from
+    // a snapshot.
+    if (!finals_.empty() && peer.final_seen + 1 < finals_.front().tick()) {
+      send_resync(peer, now);
+      continue;
+    }
+    v1::Envelope envelope;
+    v1::FinalTicks* out = envelope.mutable_final_ticks();
+    out->set_input_ack_tick(session_->queue(p).contiguous_through());
+    out->set_input_lead_ticks(peer.last_lead);
+    out->set_server_tick(session_->current_tick());
+    size_t budget = kFinalTicksBudgetBytes;
+    for (const v1::FinalTick& final_tick : finals_) {
+      if (final_tick.tick() <= peer.final_seen) continue;
+      const size_t size = final_tick.ByteSizeLong() + 3;
+      if (size > budget || out->ticks_size() >= static_cast<int>(net::kMaxFinalTicksPerPacket)) break;
+      budget -= size;
+      *out->add_ticks() = final_tick;
+    }
+    send(peer, envelope, now);
+  }
+}
+
+void MatchHost::handle_desync(Peer& peer, uint32_t player, const v1::DesyncReport& report,
+                              TimePoint now) {
+  if (report.tick() > next_final_ - 1 || report.tick() < 0) {
+    ++stats_.rejected_packets;  // only final ticks can desync
+    return;
+  }
+  for (uint32_t id : peer.handled_reports) {
+    if (id == report.report_id()) {
+      send_resync(peer, now);  // the client is still waiting: our snapshot was lost
+      return;
+    }
+  }
+  DesyncAssembly& assembly = peer.desync;
+  if (assembly.report_id != report.report_id() || assembly.chunks.size() != report.chunk_count() ||
+      assembly.total_size != report.total_size()) {
+    assembly = DesyncAssembly{};
+    assembly.report_id = report.report_id();
+    assembly.tick = report.tick();
+    assembly.client_checksum = report.client_checksum();
+    assembly.total_size = report.total_size();
+    assembly.chunks.assign(report.chunk_count(), {});
+  }
+  std::vector<uint8_t>& chunk = assembly.chunks[report.chunk_index()];
+  if (chunk.empty() && !report.chunk().empty()) {
+    chunk.assign(report.chunk().begin(), report.chunk().end());
+    ++assembly.received;
+  }
+  if (assembly.received < assembly.chunks.size()) return;
+
+  std::vector<uint8_t> dump;
+  dump.reserve(assembly.total_size);
+  for (const auto& part : assembly.chunks) dump.insert(dump.end(), part.begin(), part.end());
+  if (dump.size() != assembly.total_size) {
+    ++stats_.rejected_packets;  // inconsistent chunk set; the client will retry
+    assembly = DesyncAssembly{};
+    return;
+  }
+  ++stats_.desync_reports;
+  peer.handled_reports.push_back(assembly.report_id);
+  if (peer.handled_reports.size() > 16) peer.handled_reports.erase(peer.handled_reports.begin());
+  log_line("player " + std::to_string(player) + " reports a desync at tick " +
+           std::to_string(assembly.tick));
+  store_desync_report(player, assembly, dump);
+  assembly = DesyncAssembly{};
+  send_resync(peer, now);
+}
+
+void MatchHost::store_desync_report(uint32_t player, const DesyncAssembly& assembly,
+                                    const std::vector<uint8_t>& dump) {
+  if (config_.desync_dir.empty()) return;
+  const std::string base = config_.desync_dir + "/desync_p" + std::to_string(player) + "_t" +
+                           std::to_string(assembly.tick) + "_r" +
+                           std::to_string(assembly.report_id);
+  std::ofstream text(base + ".txt");
+  std::ofstream raw(base + ".bin", std::ios::binary);
+  raw.write(reinterpret_cast<const char*>(dump.data()), static_cast<std::streamsize>(dump.size()));
+
+  uint64_t server_checksum = 0;
+  for (const v1::FinalTick& final_tick : finals_) {
+    if (final_tick.tick() == assembly.tick) server_checksum = final_tick.checksum();
+  }
+  char line[160];
+  std::snprintf(line, sizeof(line), "player %u desync at tick %d: client 0x%016llx server 0x%016llx\n",
+                player, assembly.tick, static_cast<unsigned long long>(assembly.client_checksum),
+                static_cast<unsigned long long>(server_checksum));
+  text << line;
+
+  // Name the bodies that differ: the client's state after the tick against
+  // ours, when the ring still holds it.
+  auto client_sim = game::Simulation::create(config_.game, {config_.players, config_.seed});
+  auto server_sim = game::Simulation::create(config_.game, {config_.players, config_.seed});
+  std::vector<uint8_t> server_state;
+  if (!client_sim.ok() || !server_sim.ok()) return;
+  if (Status status = (*client_sim)->deserialize(dump); !status.ok()) {
+    text << "client dump unreadable: " << status.message() << "\n";
+    return;
+  }
+  if (!session_->serialize_state_at(assembly.tick + 1, server_state) ||
+      !(*server_sim)->deserialize(server_state).ok()) {
+    text << "server state for tick " << assembly.tick << " is no longer held\n";
+    return;
+  }
+  std::vector<sim::BodyRecord> expected, actual;
+  (*server_sim)->dump_bodies(expected);
+  (*client_sim)->dump_bodies(actual);
+  const auto differences = sim::diff_body_records(expected, actual);
+  text << differences.size() << " differing fields (server = expected, client = actual):\n";
+  for (const sim::FieldDifference& d : differences) {
+    std::snprintf(line, sizeof(line), "  body %u %s: expected %.9g actual %.9g\n", d.body_index,
+                  d.field.c_str(), d.expected, d.actual);
+    text << line;
+  }
+}
+
+void MatchHost::send_resync(Peer& peer, TimePoint now) {
+  if (peer.resynced_once && now - peer.last_resync < kResyncMinInterval) return;
+  peer.resynced_once = true;
+  peer.last_resync = now;
+  const Tick tick = next_final_;  // the state after the last final tick
+  const std::optional<uint64_t> checksum =
+      tick == 0 ? std::optional<uint64_t>(session_->simulation().checksum())
+                : session_->checksum_after(tick - 1);
+  if (!checksum || !session_->serialize_state_at(tick, state_buffer_)) {
+    log_line("cannot build a resync snapshot for tick " + std::to_string(tick));
+    return;
+  }
+  const uint32_t count =
+      static_cast<uint32_t>((state_buffer_.size() + kResyncChunkBytes - 1) / kResyncChunkBytes);
+  if (count == 0 || count > net::kMaxResyncChunks) {
+    log_line("resync snapshot too large: " + std::to_string(state_buffer_.size()) + " bytes");
+    return;
+  }
+  const uint32_t id = next_snapshot_id_++;
+  for (uint32_t i = 0; i < count; ++i) {
+    v1::Envelope envelope;
+    v1::ResyncChunk* chunk = envelope.mutable_resync_chunk();
+    chunk->set_snapshot_id(id);
+    chunk->set_tick(tick);
+    chunk->set_checksum(*checksum);
+    chunk->set_chunk_index(i);
+    chunk->set_chunk_count(count);
+    chunk->set_total_size(static_cast<uint32_t>(state_buffer_.size()));
+    const size_t begin = i * kResyncChunkBytes;
+    const size_t end = std::min(state_buffer_.size(), begin + kResyncChunkBytes);
+    chunk->set_chunk(std::string(state_buffer_.begin() + static_cast<std::ptrdiff_t>(begin),
+                                 state_buffer_.begin() + static_cast<std::ptrdiff_t>(end)));
+    send(peer, envelope, now);
+  }
+  // The client restarts from `tick`; final ticks before it are settled.
+  peer.final_seen = std::max(peer.final_seen, tick - 1);
+  ++stats_.resyncs_sent;
+}
+
+void MatchHost::end(const std::string& reason, TimePoint now) {
+  if (phase_ == Phase::kEnded) return;
+  const bool was_running = phase_ == Phase::kRunning;
+  phase_ = Phase::kEnded;
+  ended_ = now;
+  stats_.end_reason = reason;
+  log_line("match ends: " + reason);
+  // Three copies: there is no later packet to carry an ack for it.
+  for (int copy = 0; copy < 3; ++copy) {
+    for (Peer& peer : peers_) {
+      if (!peer.joined) continue;
+      v1::Envelope envelope;
+      envelope.mutable_match_end()->set_last_final_tick(next_final_ - 1);
+      envelope.mutable_match_end()->set_reason(reason);
+      send(peer, envelope, now);
+    }
+  }
+  if (replay_ && !replay_failed_) {
+    Status status = replay_->finish(next_final_ - 1, reason);
+    if (!status.ok()) record_replay_error(status);
+  }
+  if (!was_running) started_ = now;
+}
+
+void MatchHost::send(Peer& peer, v1::Envelope& envelope, TimePoint now) {
+  if (!peer.connection) return;
+  peer.connection->stamp(envelope, now);
+  if (Status status = net::encode_envelope(envelope, encode_buffer_); !status.ok()) {
+    log_line("dropping an unencodable message: " + status.message());
+    return;
+  }
+  ++stats_.packets_out;
+  stats_.bytes_out += encode_buffer_.size();
+  send_(peer.endpoint, encode_buffer_);
+}
+
+void MatchHost::send_unconnected(const Endpoint& to, v1::Envelope& envelope) {
+  envelope.set_protocol_version(net::kProtocolVersion);
+  if (Status status = net::encode_envelope(envelope, encode_buffer_); !status.ok()) return;
+  ++stats_.packets_out;
+  stats_.bytes_out += encode_buffer_.size();
+  send_(to, encode_buffer_);
+}
+
+void MatchHost::record_replay_error(const Status& status) {
+  replay_failed_ = true;
+  log_line("replay writing stopped: " + status.message() +
+           " (the file keeps its verified prefix; the match goes on)");
+}
+
+}  // namespace rwd::server

@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+#include "rewind/server/server.h"
+
+#include <csignal>
+#include <cstdio>
+
+namespace rwd::server {
+
+Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
+  if (Status status = config.match.validate(); !status.ok()) return status;
+  auto io = std::make_unique<asio::io_context>(1);
+  auto socket = net::UdpEndpoint::open(*io, config.bind_address, config.port);
+  if (!socket.ok()) return socket.status();
+  auto server = std::make_unique<Server>(config, std::move(io), std::move(*socket));
+  Server* self = server.get();
+  auto host = MatchHost::create(
+      config.match,
+      [self](const Endpoint& to, std::span<const uint8_t> bytes) { self->socket_->send_to(bytes, to); },
+      net::SteadyClock::now());
+  if (!host.ok()) return host.status();
+  server->host_ = std::move(*host);
+  return server;
+}
+
+Server::Server(const ServerConfig& config, std::unique_ptr<asio::io_context> io,
+               std::optional<net::UdpEndpoint> socket)
+    : config_(config),
+      io_(std::move(io)),
+      socket_(std::move(socket)),
+      timer_(*io_),
+      signals_(*io_, SIGINT, SIGTERM),
+      period_(std::chrono::nanoseconds(1'000'000'000LL / config.match.tick_rate_hz)) {}
+
+void Server::run() {
+  socket_->start_receiving([this](std::span<const uint8_t> bytes, const Endpoint& from) {
+    host_->on_datagram(bytes, from, net::SteadyClock::now());
+  });
+  signals_.async_wait([this](const std::error_code& error, int signal) {
+    if (error) return;
+    host_->end(std::string("stopped by signal ") + (signal == SIGINT ? "SIGINT" : "SIGTERM"),
+               net::SteadyClock::now());
+  });
+  std::fprintf(stderr, "[rewind-server] hosting '%s' for %u players on %s:%u at %u Hz, window %d\n",
+               config_.match.game.c_str(), config_.match.players, config_.bind_address.c_str(),
+               static_cast<unsigned>(socket_->local_port()), config_.match.tick_rate_hz,
+               config_.match.window_ticks);
+  next_tick_ = net::SteadyClock::now() + period_;
+  schedule_tick();
+  io_->run();
+}
+
+void Server::schedule_tick() {
+  timer_.expires_at(next_tick_);
+  timer_.async_wait([this](const std::error_code& error) {
+    if (!error) on_tick_timer();
+  });
+}
+
+void Server::on_tick_timer() {
+  const TimePoint now = net::SteadyClock::now();
+  host_->on_tick(now);
+  if (host_->phase() == MatchHost::Phase::kEnded) {
+    // Let the last datagrams leave, then stop everything.
+    signals_.cancel();
+    socket_->close();
+    io_->stop();
+    return;
+  }
+  // Ticks are scheduled on an absolute grid so they never drift; after a
+  // long stall (a stopped process) the grid restarts instead of bursting.
+  next_tick_ += period_;
+  if (now - next_tick_ > 10 * period_) {
+    std::fprintf(stderr, "[rewind-server] tick loop stalled; resetting the schedule\n");
+    next_tick_ = now + period_;
+  }
+  schedule_tick();
+}
+
+}  // namespace rwd::server

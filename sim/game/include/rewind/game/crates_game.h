@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// "crates": each player steers a heavy ball (the pusher) around a walled
+// arena whose centre holds a tower of crates. A player scores when their
+// pusher is the last to touch a crate that lands outside the centre ring.
+#include <array>
+#include <cstdint>
+
+#include "rewind/game/game.h"
+
+namespace rwd::game {
+
+/// Button bits of PlayerInput::buttons in crates.
+inline constexpr uint32_t kCratesJump = 1u << 0;
+inline constexpr uint32_t kCratesDash = 1u << 1;
+
+struct CratesState {
+  uint32_t player_count = 0;
+  uint32_t crate_count = 0;
+  std::array<sim::BodyId, kMaxPlayers> pushers{};
+  std::array<uint32_t, kMaxPlayers> score{};
+  std::array<int32_t, kMaxPlayers> cooldown_ticks{};  ///< jump/dash cooldown
+  std::array<sim::BodyId, 64> crates{};
+  std::array<uint8_t, 64> crate_last_toucher{};       ///< player + 1, 0 = nobody
+  std::array<uint8_t, 64> crate_scored{};             ///< 1 once it counted
+};
+
+class CratesGame final : public GameWithState<CratesState> {
+ public:
+  std::string_view name() const override { return "crates"; }
+  sim::WorldConfig world_config() const override;
+
+ protected:
+  void build_typed(const MatchSetup& setup, sim::World3D& world, CratesState& state) const override;
+  void apply_typed(Tick tick, std::span<const PlayerInput> inputs, sim::World3D& world,
+                   CratesState& state) const override;
+  void after_step_typed(Tick tick, sim::World3D& world, CratesState& state) const override;
+  void hash_typed(const CratesState& state, sim::StateHasher& hasher) const override;
+};
+
+}  // namespace rwd::game

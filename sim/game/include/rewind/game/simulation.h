@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// A match's deterministic simulation: world + game state + tick. This is the
+// unit that rollback saves, restores, steps and checksums.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "rewind/game/game.h"
+#include "rewind/sim/status.h"
+#include "rewind/sim/tick.h"
+#include "rewind/sim/world3d.h"
+
+namespace rwd::game {
+
+/// Everything a Simulation is, copied by value. Reusing one snapshot object
+/// reuses its buffers, so steady-state save() does not allocate.
+struct SimSnapshot {
+  sim::WorldState world;
+  std::vector<std::byte> game_state;
+  Tick tick = 0;
+};
+
+class Simulation {
+ public:
+  /// Creates the named game's match. Unknown names and invalid setups are
+  /// kInvalidArgument.
+  static Result<std::unique_ptr<Simulation>> create(std::string_view game_name,
+                                                   const MatchSetup& setup);
+  Simulation(std::unique_ptr<Game> game, const MatchSetup& setup);
+
+  /// The next tick step() will simulate.
+  Tick tick() const { return tick_; }
+  const MatchSetup& setup() const { return setup_; }
+  const Game& game() const { return *game_; }
+  sim::World3D& world() { return world_; }
+  const sim::World3D& world() const { return world_; }
+  std::span<const std::byte> game_state() const { return game_state_; }
+
+  /// Simulates tick(): applies `inputs` (exactly player_count, index = player
+  /// slot), steps the world, runs the game's after-step rules, then tick()+1.
+  void step(std::span<const PlayerInput> inputs);
+
+  void save(SimSnapshot& out) const;
+  void restore(const SimSnapshot& in);
+
+  /// XXH3-64 over tick, world and game state (canonical fields).
+  uint64_t checksum() const;
+  /// checksum() of a saved snapshot of this match, without restoring it.
+  uint64_t checksum_of(const SimSnapshot& snapshot) const;
+  /// Readable body dump, for desync reports and replay diffs.
+  void dump_bodies(std::vector<sim::BodyRecord>& out) const { world_.dump_bodies(out); }
+
+  /// Portable encoding of the whole simulation (resync snapshots).
+  void serialize(std::vector<uint8_t>& out) const;
+  /// Replaces the state from serialize()'s bytes; kCorrupt leaves it intact.
+  Status deserialize(std::span<const uint8_t> bytes);
+
+ private:
+  std::unique_ptr<Game> game_;
+  MatchSetup setup_;
+  sim::World3D world_;
+  std::vector<std::byte> game_state_;
+  Tick tick_ = 0;
+};
+
+/// Names of the built-in games, for --help texts.
+std::vector<std::string_view> builtin_game_names();
+/// Creates a built-in game by name, or nullptr.
+std::unique_ptr<Game> make_builtin_game(std::string_view name);
+
+}  // namespace rwd::game

@@ -1,0 +1,185 @@
+// SPDX-License-Identifier: MIT
+#include "rewind/game/crates_game.h"
+
+#include <algorithm>
+
+#include "rewind/sim/det_math.h"
+
+namespace rwd::game {
+namespace {
+
+constexpr float kArenaHalf = 10.0f;     // m, inner half width of the arena
+constexpr float kWallHeight = 1.5f;     // m
+constexpr float kCrateHalf = 0.4f;      // m
+constexpr int kTowerLevels = 4;         // 2x2 crates per level
+constexpr float kPusherRadius = 0.5f;   // m
+constexpr float kPusherDensity = 3000;  // kg/m^3: heavy enough to shove a crate
+constexpr float kMaxSpeed = 6.0f;       // m/s at full deflection
+constexpr float kSteerGain = 8.0f;      // 1/s: how fast velocity tracks the stick
+constexpr float kJumpSpeed = 5.0f;      // m/s
+constexpr float kDashSpeed = 10.0f;     // m/s
+constexpr int32_t kCooldownTicks = 30;
+constexpr float kScoreRing = 4.0f;      // m from the centre
+constexpr uint32_t kLayerWorld = 1u << 0;
+constexpr uint32_t kLayerPusher = 1u << 1;
+constexpr uint64_t kTagPusher = 0x100;
+constexpr uint64_t kTagCrate = 0x200;
+
+sim::BodyDef static_box(sim::Vec3 centre, sim::Vec3 half) {
+  sim::BodyDef def;
+  def.kind = sim::BodyKind::kStatic;
+  def.shape = sim::Shape::make_box(half);
+  def.position = centre;
+  def.material.friction = 0.8f;
+  def.layer = kLayerWorld;
+  return def;
+}
+
+// Spawn points spread evenly on a circle; the angle comes from det_cos/det_sin
+// so every machine places pushers on the same bits.
+sim::Vec3 spawn_point(uint32_t player, uint32_t player_count) {
+  float angle = 2.0f * sim::kPi * static_cast<float>(player) / static_cast<float>(player_count);
+  float r = kArenaHalf - 2.0f;
+  return {r * sim::det_cos(angle), kPusherRadius + 0.01f, r * sim::det_sin(angle)};
+}
+
+}  // namespace
+
+sim::WorldConfig CratesGame::world_config() const {
+  sim::WorldConfig config;
+  config.tick_seconds = 1.0f / 60.0f;
+  config.substeps = 4;
+  return config;
+}
+
+void CratesGame::build_typed(const MatchSetup& setup, sim::World3D& world,
+                             CratesState& state) const {
+  state.player_count = setup.player_count;
+
+  // Arena: floor with its top at y = 0, four walls.
+  (void)world.create_body(static_box({0, -0.5f, 0}, {kArenaHalf + 1, 0.5f, kArenaHalf + 1}));
+  const float wall_y = kWallHeight * 0.5f;
+  (void)world.create_body(static_box({kArenaHalf + 0.5f, wall_y, 0}, {0.5f, wall_y, kArenaHalf}));
+  (void)world.create_body(static_box({-kArenaHalf - 0.5f, wall_y, 0}, {0.5f, wall_y, kArenaHalf}));
+  (void)world.create_body(static_box({0, wall_y, kArenaHalf + 0.5f}, {kArenaHalf, wall_y, 0.5f}));
+  (void)world.create_body(static_box({0, wall_y, -kArenaHalf - 0.5f}, {kArenaHalf, wall_y, 0.5f}));
+
+  // The tower: kTowerLevels levels of 2x2 crates, resting exactly on each other.
+  uint32_t crate = 0;
+  for (int level = 0; level < kTowerLevels; ++level) {
+    for (int i = 0; i < 4; ++i) {
+      sim::BodyDef def;
+      def.shape = sim::Shape::make_box({kCrateHalf, kCrateHalf, kCrateHalf});
+      def.position = {(i & 1) ? kCrateHalf : -kCrateHalf, kCrateHalf + 2.0f * kCrateHalf * level,
+                      (i & 2) ? kCrateHalf : -kCrateHalf};
+      def.density = 300.0f;  // wood
+      def.material.friction = 0.6f;
+      def.layer = kLayerWorld;
+      def.user_data = kTagCrate + crate;
+      Result<sim::BodyId> id = world.create_body(def);
+      state.crates[crate++] = id.ok() ? *id : sim::BodyId{};
+    }
+  }
+  state.crate_count = crate;
+
+  for (uint32_t p = 0; p < setup.player_count; ++p) {
+    sim::BodyDef def;
+    def.shape = sim::Shape::make_sphere(kPusherRadius);
+    def.position = spawn_point(p, setup.player_count);
+    def.density = kPusherDensity;
+    def.angular_damping = 2.0f;
+    def.material.friction = 0.4f;
+    def.layer = kLayerPusher;
+    def.user_data = kTagPusher + p;
+    Result<sim::BodyId> id = world.create_body(def);
+    state.pushers[p] = id.ok() ? *id : sim::BodyId{};
+  }
+}
+
+void CratesGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs,
+                             sim::World3D& world, CratesState& state) const {
+  const float dt = world.config().tick_seconds;
+  const uint32_t players = std::min<uint32_t>(state.player_count, uint32_t(inputs.size()));
+  for (uint32_t p = 0; p < players; ++p) {
+    const sim::BodyId pusher = state.pushers[p];
+    if (!world.is_valid(pusher)) continue;
+    const PlayerInput& in = inputs[p];
+    const float ax = static_cast<float>(std::clamp<int>(in.axis_x, -kAxisMax, kAxisMax)) / kAxisMax;
+    const float az = static_cast<float>(std::clamp<int>(in.axis_y, -kAxisMax, kAxisMax)) / kAxisMax;
+    const float mass = world.mass(pusher);
+    const sim::Vec3 v = world.linear_velocity(pusher);
+
+    // Steer the horizontal velocity toward the stick with a first-order lag,
+    // as an impulse so contacts still push back on the pusher.
+    const sim::Vec3 target{ax * kMaxSpeed, 0.0f, az * kMaxSpeed};
+    const float blend = std::min(1.0f, kSteerGain * dt);
+    sim::Vec3 dv{(target.x - v.x) * blend, 0.0f, (target.z - v.z) * blend};
+
+    if (state.cooldown_ticks[p] > 0) {
+      --state.cooldown_ticks[p];
+    } else if (in.buttons & (kCratesJump | kCratesDash)) {
+      const sim::Vec3 pos = world.position(pusher);
+      sim::QueryFilter ground;
+      ground.layer_mask = kLayerWorld;
+      const bool grounded =
+          world.raycast({pos, {0, -1, 0}, kPusherRadius + 0.05f}, ground).has_value();
+      if ((in.buttons & kCratesJump) && grounded) {
+        dv.y = kJumpSpeed - v.y;
+        state.cooldown_ticks[p] = kCooldownTicks;
+      }
+      if (in.buttons & kCratesDash) {
+        const sim::Vec3 dir = sim::normalize_or_zero({ax, 0.0f, az});
+        dv += dir * kDashSpeed;
+        state.cooldown_ticks[p] = kCooldownTicks;
+      }
+    }
+    if (!(dv == sim::Vec3{})) {
+      (void)world.apply_linear_impulse(pusher, dv * mass, world.position(pusher));
+    }
+  }
+}
+
+void CratesGame::after_step_typed(Tick /*tick*/, sim::World3D& world, CratesState& state) const {
+  // Remember who touched each crate last; events are ordered by body index,
+  // so when two pushers touch one crate in the same tick the later in that
+  // order wins on every machine alike.
+  for (const sim::ContactEvent& event : world.events()) {
+    if (event.type == sim::ContactEventType::kExit) continue;
+    const uint64_t ua = world.user_data(event.a);
+    const uint64_t ub = world.user_data(event.b);
+    const bool a_pusher = ua >= kTagPusher && ua < kTagPusher + kMaxPlayers;
+    const bool b_pusher = ub >= kTagPusher && ub < kTagPusher + kMaxPlayers;
+    const bool a_crate = ua >= kTagCrate && ua < kTagCrate + state.crate_count;
+    const bool b_crate = ub >= kTagCrate && ub < kTagCrate + state.crate_count;
+    if (a_pusher && b_crate) state.crate_last_toucher[ub - kTagCrate] = uint8_t(ua - kTagPusher + 1);
+    if (b_pusher && a_crate) state.crate_last_toucher[ua - kTagCrate] = uint8_t(ub - kTagPusher + 1);
+  }
+  // A crate resting outside the centre ring scores once for its last toucher.
+  for (uint32_t c = 0; c < state.crate_count; ++c) {
+    if (state.crate_scored[c] || state.crate_last_toucher[c] == 0) continue;
+    const sim::Vec3 pos = world.position(state.crates[c]);
+    if (pos.x * pos.x + pos.z * pos.z > kScoreRing * kScoreRing) {
+      state.crate_scored[c] = 1;
+      ++state.score[state.crate_last_toucher[c] - 1];
+    }
+  }
+}
+
+void CratesGame::hash_typed(const CratesState& state, sim::StateHasher& hasher) const {
+  hasher.add_u32(state.player_count);
+  hasher.add_u32(state.crate_count);
+  for (uint32_t p = 0; p < state.player_count; ++p) {
+    hasher.add_u32(state.pushers[p].index);
+    hasher.add_u32(state.pushers[p].generation);
+    hasher.add_u32(state.score[p]);
+    hasher.add_i32(state.cooldown_ticks[p]);
+  }
+  for (uint32_t c = 0; c < state.crate_count; ++c) {
+    hasher.add_u32(state.crates[c].index);
+    hasher.add_u32(state.crates[c].generation);
+    hasher.add_u8(state.crate_last_toucher[c]);
+    hasher.add_u8(state.crate_scored[c]);
+  }
+}
+
+}  // namespace rwd::game

@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: MIT
+#include "rewind/game/simulation.h"
+
+#include <cstring>
+#include <string>
+
+namespace rwd::game {
+namespace {
+
+// Resync snapshots are "RWSIM" + version, then the sections below. A
+// version bump is needed whenever the layout changes.
+constexpr uint8_t kMagic[5] = {'R', 'W', 'S', 'I', 'M'};
+constexpr uint8_t kVersion = 1;
+
+void put_u32(std::vector<uint8_t>& out, uint32_t v) {
+  for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));
+}
+
+uint32_t get_u32(const uint8_t* p) {
+  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Simulation>> Simulation::create(std::string_view game_name,
+                                                       const MatchSetup& setup) {
+  if (setup.player_count < 1 || setup.player_count > kMaxPlayers) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "player_count must be in [1, " + std::to_string(kMaxPlayers) + "], got " +
+                             std::to_string(setup.player_count));
+  }
+  std::unique_ptr<Game> game = make_builtin_game(game_name);
+  if (!game) {
+    std::string known;
+    for (std::string_view name : builtin_game_names()) {
+      if (!known.empty()) known += ", ";
+      known += name;
+    }
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "unknown game '" + std::string(game_name) + "' (known: " + known + ")");
+  }
+  return std::make_unique<Simulation>(std::move(game), setup);
+}
+
+Simulation::Simulation(std::unique_ptr<Game> game, const MatchSetup& setup)
+    : game_(std::move(game)), setup_(setup), world_(game_->world_config()) {
+  game_state_.assign(game_->state_size(), std::byte{0});
+  game_->build(setup_, world_, game_state_);
+}
+
+void Simulation::step(std::span<const PlayerInput> inputs) {
+  game_->apply_inputs(tick_, inputs, world_, game_state_);
+  world_.step();
+  game_->after_step(tick_, world_, game_state_);
+  ++tick_;
+}
+
+void Simulation::save(SimSnapshot& out) const {
+  world_.save(out.world);
+  out.game_state = game_state_;
+  out.tick = tick_;
+}
+
+void Simulation::restore(const SimSnapshot& in) {
+  world_.restore(in.world);
+  game_state_ = in.game_state;
+  tick_ = in.tick;
+}
+
+uint64_t Simulation::checksum() const {
+  sim::StateHasher hasher;
+  hasher.add_i32(tick_);
+  world_.hash(hasher);
+  game_->hash_state(game_state_, hasher);
+  return hasher.digest();
+}
+
+uint64_t Simulation::checksum_of(const SimSnapshot& snapshot) const {
+  sim::StateHasher hasher;
+  hasher.add_i32(snapshot.tick);
+  sim::World3D::hash_state(snapshot.world, hasher);
+  game_->hash_state(snapshot.game_state, hasher);
+  return hasher.digest();
+}
+
+void Simulation::serialize(std::vector<uint8_t>& out) const {
+  std::vector<uint8_t> world_bytes;
+  world_.serialize(world_bytes);
+  out.clear();
+  out.reserve(sizeof(kMagic) + 1 + 12 + game_state_.size() + world_bytes.size());
+  for (uint8_t b : kMagic) out.push_back(b);
+  out.push_back(kVersion);
+  put_u32(out, static_cast<uint32_t>(tick_));
+  put_u32(out, static_cast<uint32_t>(game_state_.size()));
+  for (std::byte b : game_state_) out.push_back(static_cast<uint8_t>(b));
+  put_u32(out, static_cast<uint32_t>(world_bytes.size()));
+  out.insert(out.end(), world_bytes.begin(), world_bytes.end());
+}
+
+Status Simulation::deserialize(std::span<const uint8_t> bytes) {
+  constexpr size_t kHeader = sizeof(kMagic) + 1 + 4 + 4;
+  if (bytes.size() < kHeader || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0) {
+    return Status::Error(ErrorCode::kCorrupt, "simulation snapshot: bad magic or too short");
+  }
+  if (bytes[sizeof(kMagic)] != kVersion) {
+    return Status::Error(ErrorCode::kCorrupt, "simulation snapshot: unsupported version " +
+                                                  std::to_string(bytes[sizeof(kMagic)]));
+  }
+  const uint8_t* p = bytes.data() + sizeof(kMagic) + 1;
+  const auto tick = static_cast<Tick>(get_u32(p));
+  const uint32_t game_size = get_u32(p + 4);
+  if (tick < 0) return Status::Error(ErrorCode::kCorrupt, "simulation snapshot: negative tick");
+  if (game_size != game_state_.size()) {
+    return Status::Error(ErrorCode::kCorrupt,
+                         "simulation snapshot: game state is " + std::to_string(game_size) +
+                             " bytes, this game uses " + std::to_string(game_state_.size()));
+  }
+  size_t offset = kHeader;
+  if (bytes.size() - offset < size_t{game_size} + 4) {
+    return Status::Error(ErrorCode::kCorrupt, "simulation snapshot: truncated game state");
+  }
+  std::span<const uint8_t> game_bytes = bytes.subspan(offset, game_size);
+  offset += game_size;
+  const uint32_t world_size = get_u32(bytes.data() + offset);
+  offset += 4;
+  if (bytes.size() - offset != world_size) {
+    return Status::Error(ErrorCode::kCorrupt, "simulation snapshot: world section is " +
+                                                  std::to_string(bytes.size() - offset) +
+                                                  " bytes, header says " +
+                                                  std::to_string(world_size));
+  }
+  // The world validates its own section and stays untouched on error, so
+  // nothing here changes until it has accepted the bytes.
+  Status status = world_.deserialize(bytes.subspan(offset, world_size));
+  if (!status.ok()) return status;
+  std::memcpy(game_state_.data(), game_bytes.data(), game_size);
+  tick_ = tick;
+  return Status::Ok();
+}
+
+}  // namespace rwd::game

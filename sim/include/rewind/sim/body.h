@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+
+#include "rewind/sim/math.h"
+#include "rewind/sim/shape.h"
+
+namespace rwd::sim {
+
+/// Handle to a body. `index` is the body's slot, `generation` tells a live
+/// body from a destroyed one that used the same slot. Generation 0 is the
+/// null handle. Slots are allocated deterministically (lowest free slot
+/// first), so the same sequence of create/destroy calls yields the same ids
+/// on every machine, and every result-affecting order derives from `index`.
+struct BodyId {
+  uint32_t index = 0;
+  uint32_t generation = 0;
+  bool is_null() const { return generation == 0; }
+  friend bool operator==(BodyId, BodyId) = default;
+};
+
+enum class BodyKind : uint8_t {
+  kStatic = 0,     ///< never moves; infinite mass
+  kKinematic = 1,  ///< moves by the velocity you set; infinite mass, unaffected by contacts
+  kDynamic = 2,    ///< moved by gravity, contacts and impulses
+};
+
+/// Surface response, combined per contact: friction by geometric mean,
+/// restitution by maximum.
+struct Material {
+  float friction = 0.6f;     ///< Coulomb coefficient, [0, 10]
+  float restitution = 0.0f;  ///< bounce, [0, 1]
+};
+
+/// Everything needed to create a body. Values are validated (finite, in
+/// range) and quantized to the canonical grid on creation.
+struct BodyDef {
+  BodyKind kind = BodyKind::kDynamic;
+  Shape shape = Shape::make_box({0.5f, 0.5f, 0.5f});
+  Vec3 position;          ///< metres, of the shape's centre
+  Quat rotation;          ///< normalized on creation
+  Vec3 linear_velocity;   ///< m/s
+  Vec3 angular_velocity;  ///< rad/s, world frame
+  float density = 1000.0f;       ///< kg/m^3, > 0; dynamic bodies only
+  float linear_damping = 0.0f;   ///< 1/s, >= 0
+  float angular_damping = 0.05f; ///< 1/s, >= 0
+  float gravity_scale = 1.0f;    ///< multiplies world gravity
+  Material material;
+  uint32_t layer = 1;            ///< collision layer bits this body is on
+  uint32_t mask = 0xFFFFFFFFu;   ///< layers this body collides with (both sides must agree)
+  bool sensor = false;           ///< reports overlap events, never pushes
+  uint64_t user_data = 0;        ///< game tag; part of state and the checksum
+};
+
+}  // namespace rwd::sim

@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+
+#include "rewind/sim/body.h"
+
+namespace rwd::sim {
+
+/// Which bodies a query may report.
+struct QueryFilter {
+  uint32_t layer_mask = 0xFFFFFFFFu;  ///< body.layer & layer_mask must be non-zero
+  bool include_sensors = false;
+};
+
+/// A ray from `origin` along `direction` (normalized by the query; a zero
+/// direction is an invalid argument) up to `max_distance` metres.
+struct Ray {
+  Vec3 origin;
+  Vec3 direction{0.0f, -1.0f, 0.0f};
+  float max_distance = 1000.0f;
+};
+
+struct RayHit {
+  BodyId body;
+  float distance = 0.0f;  ///< metres along the normalized direction
+  Vec3 point;             ///< world position of the hit
+  Vec3 normal;            ///< outward surface normal at the hit
+};
+
+}  // namespace rwd::sim

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <cstring>
+#include <span>
+#include <string_view>
+
+#define XXH_INLINE_ALL
+#include <xxhash.h>
+
+#include "rewind/sim/math.h"
+
+namespace rwd::sim {
+
+/// Streams chosen state fields, in a fixed order and a fixed little-endian
+/// encoding, into XXH3-64. Never feed raw structs: padding is not state.
+/// Floats are hashed by their bits, with -0 folded onto +0 so that two
+/// equal values always hash alike.
+class StateHasher {
+ public:
+  StateHasher() { XXH3_64bits_reset(&state_); }
+
+  void add_u8(uint8_t v) { add_bytes(&v, 1); }
+  void add_u32(uint32_t v) {
+    uint8_t b[4] = {uint8_t(v), uint8_t(v >> 8), uint8_t(v >> 16), uint8_t(v >> 24)};
+    add_bytes(b, 4);
+  }
+  void add_i32(int32_t v) { add_u32(static_cast<uint32_t>(v)); }
+  void add_u64(uint64_t v) {
+    add_u32(static_cast<uint32_t>(v));
+    add_u32(static_cast<uint32_t>(v >> 32));
+  }
+  void add_f32(float v) {
+    if (v == 0.0f) v = 0.0f;  // fold -0 onto +0
+    uint32_t bits;
+    std::memcpy(&bits, &v, 4);
+    add_u32(bits);
+  }
+  void add_vec3(const Vec3& v) {
+    add_f32(v.x);
+    add_f32(v.y);
+    add_f32(v.z);
+  }
+  void add_quat(const Quat& q) {
+    add_f32(q.x);
+    add_f32(q.y);
+    add_f32(q.z);
+    add_f32(q.w);
+  }
+  void add_bytes(const void* data, size_t size) { XXH3_64bits_update(&state_, data, size); }
+
+  uint64_t digest() const { return XXH3_64bits_digest(&state_); }
+
+ private:
+  XXH3_state_t state_;
+};
+
+}  // namespace rwd::sim

@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The 3D lane: IEEE float32 rigid bodies, TGS-Soft solver. The world is a
+// value: all persistent state lives in WorldState (flat arrays of trivially
+// copyable records, no pointers), so save/restore are bulk copies and
+// restore-then-step equals continuing-to-step bit for bit.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "rewind/sim/body.h"
+#include "rewind/sim/body_record.h"
+#include "rewind/sim/contact_event.h"
+#include "rewind/sim/query.h"
+#include "rewind/sim/state_hasher.h"
+#include "rewind/sim/status.h"
+#include "rewind/sim/world_config.h"
+#include "rewind/sim/world_state.h"
+
+namespace rwd::sim {
+
+/// Diagnostics of the last step (not state, not checksummed).
+struct StepStats {
+  uint32_t awake_bodies = 0;
+  uint32_t broadphase_pairs = 0;
+  uint32_t touching_manifolds = 0;
+  uint32_t contact_points = 0;
+};
+
+class WorldScratch;  // per-step working memory; not state
+
+class World3D {
+ public:
+  /// Creates an empty world. An invalid config is replaced field by field
+  /// with defaults; use validate_config() first to report errors.
+  explicit World3D(const WorldConfig& config = {});
+  ~World3D();
+  World3D(const World3D&) = delete;
+  World3D& operator=(const World3D&) = delete;
+  World3D(World3D&&) noexcept;
+  World3D& operator=(World3D&&) noexcept;
+
+  /// Checks every field of a config for range and finiteness.
+  static Status validate_config(const WorldConfig& config);
+
+  // --- bodies -------------------------------------------------------------
+
+  /// Creates a body. Rejects non-finite or out-of-range values and full
+  /// worlds with a Status; the world is unchanged on error.
+  Result<BodyId> create_body(const BodyDef& def);
+  /// Destroys a body and its contacts (exit events are emitted on the next
+  /// step). Unknown or stale ids are kNotFound.
+  Status destroy_body(BodyId id);
+  bool is_valid(BodyId id) const;
+  /// Number of live bodies.
+  uint32_t body_count() const;
+  /// Live body ids in ascending index order.
+  void body_ids(std::vector<BodyId>& out) const;
+
+  // Accessors return zero values for invalid ids.
+  BodyKind kind(BodyId id) const;
+  Vec3 position(BodyId id) const;
+  Quat rotation(BodyId id) const;
+  Vec3 linear_velocity(BodyId id) const;
+  Vec3 angular_velocity(BodyId id) const;
+  float mass(BodyId id) const;  ///< kg; 0 for static and kinematic
+  uint64_t user_data(BodyId id) const;
+  bool is_awake(BodyId id) const;
+  const Shape* shape(BodyId id) const;
+
+  // Setters validate (finite values, live id), quantize, and wake the body.
+  Status set_transform(BodyId id, Vec3 position, Quat rotation);
+  Status set_linear_velocity(BodyId id, Vec3 velocity_mps);
+  Status set_angular_velocity(BodyId id, Vec3 velocity_radps);
+  /// Applies an impulse (N*s) at a world point to a dynamic body.
+  Status apply_linear_impulse(BodyId id, Vec3 impulse, Vec3 world_point);
+  /// Adds a force (N) at the centre of mass for the next step only.
+  Status apply_force(BodyId id, Vec3 force_n);
+  Status set_user_data(BodyId id, uint64_t user_data);
+
+  // --- stepping -----------------------------------------------------------
+
+  /// Advances the world by config().tick_seconds.
+  void step();
+  /// Contact events of the last step, ordered by (a.index, b.index).
+  std::span<const ContactEvent> events() const;
+  const StepStats& stats() const;
+  const WorldConfig& config() const;
+  /// Number of steps taken since creation.
+  uint64_t step_count() const;
+
+  // --- queries ------------------------------------------------------------
+
+  /// The closest hit along the ray, or nullopt. Ties go to the lower index.
+  std::optional<RayHit> raycast(const Ray& ray, const QueryFilter& filter = {}) const;
+  /// Every hit along the ray, sorted near to far (ties by index).
+  void raycast_all(const Ray& ray, const QueryFilter& filter, std::vector<RayHit>& out) const;
+
+  // --- state --------------------------------------------------------------
+
+  /// Bulk copy of all persistent state. No allocation once `out` has grown.
+  void save(WorldState& out) const;
+  /// Bulk copy back. Subsequent steps equal those of the saved world bit for bit.
+  void restore(const WorldState& in);
+  const WorldState& state() const;
+  /// Feeds the canonical serialization of chosen state fields to `hasher`.
+  void hash(StateHasher& hasher) const;
+  /// XXH3-64 over the canonical serialization.
+  uint64_t checksum() const;
+  /// Same as hash() but for a saved state, without restoring it.
+  static void hash_state(const WorldState& state, StateHasher& hasher);
+  /// Readable dump of every live body in index order.
+  void dump_bodies(std::vector<BodyRecord>& out) const;
+
+  /// Portable byte encoding of the full state (little-endian, field by field),
+  /// for resync snapshots sent over the network.
+  void serialize(std::vector<uint8_t>& out) const;
+  /// Replaces the state from serialize()'s bytes. Malformed input (bad sizes,
+  /// indices out of range, non-finite values) is kCorrupt and leaves the
+  /// world unchanged.
+  Status deserialize(std::span<const uint8_t> bytes);
+
+ private:
+  WorldState state_;
+  std::unique_ptr<WorldScratch> scratch_;
+};
+
+/// Snaps an outside value onto the canonical grid (multiples of 2^-20 for
+/// values of magnitude < 2^11; otherwise unchanged) so every client starts
+/// from the same bits whatever parser produced the value.
+float quantize(float value);
+Vec3 quantize(Vec3 value);
+
+}  // namespace rwd::sim

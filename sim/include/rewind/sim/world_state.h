@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The persistent state of a World3D, as plain data. Everything a future step
+// depends on lives here, in flat vectors of trivially copyable records
+// addressed by body index; nothing here points anywhere. Saving is
+// `snapshot = world.state()`, restoring is the reverse, and because vector
+// copy-assignment reuses capacity, a reused snapshot does not allocate once it
+// has grown to the world's size.
+#include <cstdint>
+#include <type_traits>
+#include <vector>
+
+#include "rewind/sim/body.h"
+#include "rewind/sim/math.h"
+#include "rewind/sim/shape.h"
+#include "rewind/sim/world_config.h"
+
+namespace rwd::sim {
+
+/// Bookkeeping of one body slot: identity, shape, material and filtering.
+/// Cold data: read by the broadphase and narrowphase, written only by the API.
+struct BodyInfo {
+  uint32_t generation = 0;  ///< of the live body, or of the last one in a dead slot
+  uint8_t alive = 0;        ///< 1 when the slot holds a live body
+  BodyKind kind = BodyKind::kStatic;
+  uint8_t sensor = 0;  ///< 1: reports overlaps, never solved
+  uint8_t awake = 0;   ///< 1: simulated this step (static bodies are never awake)
+  Shape shape;
+  Material material;
+  uint32_t layer = 1;
+  uint32_t mask = 0xFFFFFFFFu;
+  uint64_t user_data = 0;
+  float density = 0.0f;          ///< kg/m^3
+  float linear_damping = 0.0f;   ///< 1/s
+  float angular_damping = 0.0f;  ///< 1/s
+  float gravity_scale = 1.0f;
+};
+
+/// Hot simulation state of one body slot, written every step while awake.
+struct BodySim {
+  Vec3 position;  ///< metres, shape centre (= centre of mass)
+  Quat rotation;
+  Vec3 linear_velocity;   ///< m/s
+  Vec3 angular_velocity;  ///< rad/s, world frame
+  Vec3 force;             ///< N, accumulated for the next step only
+  float sleep_time = 0.0f;  ///< seconds spent below the sleep threshold
+};
+
+/// Mass properties of one body slot, derived from shape, density and kind.
+/// Stored (not recomputed per step) because they are read every substep.
+struct BodyMass {
+  float mass = 0.0f;      ///< kg; 0 for static and kinematic
+  float inv_mass = 0.0f;  ///< 1/kg
+  Vec3 inv_inertia_local;  ///< principal inverse inertia in the body frame, 1/(kg m^2)
+  float extent = 0.0f;    ///< metres, largest distance from the centre to the surface
+};
+
+/// Maximum contact points in one manifold.
+inline constexpr uint32_t kMaxManifoldPoints = 4;
+
+/// The persistent part of one contact point: its feature id and the
+/// impulses it ended the last step with (warm start).
+struct CachedContactPoint {
+  uint32_t feature_id = 0;       ///< which features produced the point (see manifold.h)
+  float normal_impulse = 0.0f;   ///< N*s per substep
+  float tangent_impulse1 = 0.0f; ///< N*s per substep, along the first tangent of the normal
+  float tangent_impulse2 = 0.0f; ///< N*s per substep, along the second tangent
+};
+
+/// One pair of bodies whose fat bounds overlapped last step. Records are kept
+/// sorted by (index_a, index_b) with index_a < index_b. Generations make a
+/// record of a destroyed body distinct from one of its slot's next occupant.
+struct ContactRecord {
+  uint32_t index_a = 0;
+  uint32_t generation_a = 0;
+  uint32_t index_b = 0;
+  uint32_t generation_b = 0;
+  uint8_t touching = 0;  ///< 1: manifold had points (solid) or shapes overlapped (sensor)
+  uint8_t sensor = 0;    ///< 1: at least one body is a sensor
+  uint8_t point_count = 0;
+  CachedContactPoint points[kMaxManifoldPoints];
+};
+
+/// All persistent state of a World3D.
+struct WorldState {
+  WorldConfig config;
+  uint64_t step_count = 0;
+  uint32_t live_count = 0;
+  std::vector<BodyInfo> infos;  ///< one per slot, live or dead
+  std::vector<BodySim> sims;    ///< one per slot
+  std::vector<BodyMass> masses; ///< one per slot
+  /// Dead slot indices, sorted descending so back() is the lowest free slot.
+  std::vector<uint32_t> free_slots;
+  /// Contact cache sorted by (index_a, index_b); source of warm starting,
+  /// contact events (previous touching pairs) and sleeping contacts.
+  std::vector<ContactRecord> contacts;
+};
+
+static_assert(std::is_trivially_copyable_v<BodyInfo>);
+static_assert(std::is_trivially_copyable_v<BodySim>);
+static_assert(std::is_trivially_copyable_v<BodyMass>);
+static_assert(std::is_trivially_copyable_v<ContactRecord>);
+static_assert(std::is_copy_assignable_v<WorldState>);
+
+}  // namespace rwd::sim

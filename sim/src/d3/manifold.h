@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Contact manifolds: the narrowphase routines for each shape pair. Every
+// routine is a pure function of its inputs' bits (no state, no allocation).
+//
+// Conventions: the normal points from shape A to shape B; separation is
+// negative when the shapes overlap; each point lies midway between the two
+// surfaces; points farther apart than `speculative_m` are dropped.
+//
+// Feature ids name the features that produced a point, so a point keeps its
+// id from one step to the next while the contact configuration persists and
+// its impulse can be warm-started:
+//   sphere-sphere:   0
+//   box-sphere:      region of the sphere centre in the box frame: outside,
+//                    cx + 3cy + 9cz with c = 0 (below), 1 (within), 2 (above);
+//                    inside, 27 + closest face (axis * 2 + (positive ? 1 : 0))
+//   box-box face:    bit 16 = reference is box B, bits 12-15 reference face,
+//                    bits 8-11 incident face, bits 0-3 incident edges the point
+//                    lies on, bits 4-7 reference side planes it lies on
+//   box-box edge:    bit 31 set, bits 8-15 edge of A, bits 0-7 edge of B
+#include <cstdint>
+
+#include "rewind/sim/math.h"
+#include "rewind/sim/shape.h"
+#include "rewind/sim/world_state.h"
+
+namespace rwd::sim::d3 {
+
+struct ManifoldPoint {
+  Vec3 point;        ///< world position, midway between the surfaces
+  Vec3 anchor_a;     ///< point - centre of A (filled by collide_shapes)
+  Vec3 anchor_b;     ///< point - centre of B (filled by collide_shapes)
+  float separation;  ///< metres, negative when overlapping
+  uint32_t feature_id;
+};
+
+struct Manifold {
+  Vec3 normal;  ///< unit, from A to B
+  uint32_t point_count = 0;
+  ManifoldPoint points[kMaxManifoldPoints];
+};
+
+/// A box pose: centre, rotation and half extents.
+struct BoxPose {
+  Vec3 center;
+  Quat rotation;
+  Vec3 half_extents;
+};
+
+void collide_spheres(Vec3 center_a, float radius_a, Vec3 center_b, float radius_b,
+                     float speculative_m, Manifold& out);
+/// Box A against sphere B (normal from the box to the sphere).
+void collide_box_sphere(const BoxPose& box, Vec3 center, float radius, float speculative_m,
+                        Manifold& out);
+/// SAT over the 15 axes, then reference/incident face clipping (up to four
+/// points) or a single edge-edge point.
+void collide_boxes(const BoxPose& a, const BoxPose& b, float speculative_m, Manifold& out);
+
+/// Dispatches on the shape types; fills anchors. Normal always from A to B.
+void collide_shapes(const Shape& shape_a, Vec3 position_a, Quat rotation_a, const Shape& shape_b,
+                    Vec3 position_b, Quat rotation_b, float speculative_m, Manifold& out);
+
+}  // namespace rwd::sim::d3

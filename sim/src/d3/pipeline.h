@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The stages of World3D::step(), one file each, in the order they run:
+//   broadphase.cpp     find_pairs: candidate pairs from fat bounds
+//   narrowphase.cpp    update_contacts: manifolds, feature-id warm starting,
+//                      sleeping contacts carried over
+//   island_sleep.cpp   wake_touched_islands: sleeping islands touched by an
+//                      awake body wake before solving
+//   contact_events.cpp build_events: enter/stay/exit from old vs new cache
+//   contact_solver.cpp solve: TGS-Soft substeps, restitution, write back
+//   island_sleep.cpp   update_sleep: islands at rest fall asleep
+#include "d3/world_scratch.h"
+#include "rewind/sim/world_state.h"
+
+namespace rwd::sim::d3 {
+
+/// Fills scratch.pairs with candidate pairs sorted by (a, b).
+void find_pairs(const WorldState& state, WorldScratch& scratch);
+/// Marks the passive broadphase list for rebuilding (sleep, wake, create,
+/// destroy, teleport, restore).
+inline void mark_passive_dirty(WorldScratch& scratch) { scratch.passive_dirty = true; }
+
+/// Replaces state.contacts with this step's cache (old one kept in
+/// scratch.other_contacts) and fills scratch.geometry.
+void update_contacts(WorldState& state, WorldScratch& scratch);
+/// Computes the manifold of record `index` (used when a sleeping contact
+/// wakes up) and refreshes its points, keeping impulses of matching ids.
+void refresh_contact(WorldState& state, WorldScratch& scratch, uint32_t index);
+
+/// Wakes every sleeping island that touches an awake body.
+void wake_touched_islands(WorldState& state, WorldScratch& scratch);
+/// Advances sleep timers and puts islands at rest to sleep.
+void update_sleep(WorldState& state, WorldScratch& scratch);
+/// Wakes one body (no island propagation: the next step does that).
+void wake_body(WorldState& state, WorldScratch& scratch, uint32_t index);
+/// Wakes every live body with a touching contact with `id`.
+void wake_touching(WorldState& state, WorldScratch& scratch, BodyId id);
+
+/// Fills scratch.events from scratch.other_contacts (last step) and
+/// state.contacts (this step).
+void build_events(const WorldState& state, WorldScratch& scratch);
+
+/// Runs the TGS-Soft solver over all awake bodies for one tick.
+void solve(WorldState& state, WorldScratch& scratch);
+
+}  // namespace rwd::sim::d3

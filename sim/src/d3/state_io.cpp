@@ -1,0 +1,359 @@
+// SPDX-License-Identifier: MIT
+// Canonical views of WorldState: the checksum (fields fed to StateHasher in
+// a fixed order) and the portable byte encoding (little-endian, field by
+// field, magic + version). Both walk the same fields in the same order, so
+// a deserialized world has the checksum of the serialized one. Derived data
+// (mass properties, live count, free list) is neither hashed nor encoded:
+// it is a function of what is.
+#include <cmath>
+#include <cstring>
+
+#include "d3/body_storage.h"
+#include "d3/pipeline.h"
+#include "rewind/sim/world3d.h"
+
+namespace rwd::sim {
+namespace {
+
+constexpr uint8_t kMagic[4] = {'R', 'W', 'D', '3'};
+constexpr uint32_t kVersion = 1;
+// Bounds the allocation a hostile header can request.
+constexpr uint32_t kMaxSlots = 1u << 24;
+
+// Streams the canonical fields into either a hasher or a byte buffer.
+class Sink {
+ public:
+  explicit Sink(StateHasher* h) : hasher_(h) {}
+  explicit Sink(std::vector<uint8_t>* b) : bytes_(b) {}
+  void u8(uint8_t v) {
+    if (hasher_ != nullptr) {
+      hasher_->add_u8(v);
+    } else {
+      bytes_->push_back(v);
+    }
+  }
+  void u32(uint32_t v) {
+    if (hasher_ != nullptr) {
+      hasher_->add_u32(v);
+    } else {
+      for (int i = 0; i < 4; ++i) bytes_->push_back(static_cast<uint8_t>(v >> (8 * i)));
+    }
+  }
+  void u64(uint64_t v) {
+    u32(static_cast<uint32_t>(v));
+    u32(static_cast<uint32_t>(v >> 32));
+  }
+  void f32(float v) {
+    if (hasher_ != nullptr) {
+      hasher_->add_f32(v);  // folds -0 onto +0
+    } else {
+      uint32_t bits = 0;
+      std::memcpy(&bits, &v, 4);
+      u32(bits);
+    }
+  }
+  void vec3(Vec3 v) {
+    f32(v.x);
+    f32(v.y);
+    f32(v.z);
+  }
+  void quat(Quat q) {
+    f32(q.x);
+    f32(q.y);
+    f32(q.z);
+    f32(q.w);
+  }
+
+ private:
+  StateHasher* hasher_ = nullptr;
+  std::vector<uint8_t>* bytes_ = nullptr;
+};
+
+void write_config(Sink& s, const WorldConfig& c) {
+  s.vec3(c.gravity);
+  s.f32(c.tick_seconds);
+  s.u32(static_cast<uint32_t>(c.substeps));
+  s.u32(static_cast<uint32_t>(c.relax_iterations));
+  s.f32(c.contact_hertz);
+  s.f32(c.contact_damping_ratio);
+  s.f32(c.contact_push_max_mps);
+  s.f32(c.restitution_threshold_mps);
+  s.f32(c.linear_slop_m);
+  s.f32(c.speculative_distance_m);
+  s.u8(c.enable_sleep ? 1 : 0);
+  s.f32(c.sleep_threshold_mps);
+  s.f32(c.time_to_sleep_s);
+  s.u32(c.max_bodies);
+}
+
+void write_state(Sink& s, const WorldState& st) {
+  write_config(s, st.config);
+  s.u64(st.step_count);
+  s.u32(static_cast<uint32_t>(st.infos.size()));
+  for (size_t i = 0; i < st.infos.size(); ++i) {
+    const BodyInfo& b = st.infos[i];
+    // Dead slots matter too: their generation decides the next id there.
+    s.u32(b.generation);
+    s.u8(b.alive);
+    if (b.alive == 0) continue;
+    const BodySim& m = st.sims[i];
+    s.u8(static_cast<uint8_t>(b.kind));
+    s.u8(b.sensor);
+    s.u8(b.awake);
+    s.u8(static_cast<uint8_t>(b.shape.type));
+    s.f32(b.shape.radius);
+    s.vec3(b.shape.half_extents);
+    s.f32(b.material.friction);
+    s.f32(b.material.restitution);
+    s.u32(b.layer);
+    s.u32(b.mask);
+    s.u64(b.user_data);
+    s.f32(b.density);
+    s.f32(b.linear_damping);
+    s.f32(b.angular_damping);
+    s.f32(b.gravity_scale);
+    s.vec3(m.position);
+    s.quat(m.rotation);
+    s.vec3(m.linear_velocity);
+    s.vec3(m.angular_velocity);
+    s.vec3(m.force);
+    s.f32(m.sleep_time);
+  }
+  s.u32(static_cast<uint32_t>(st.contacts.size()));
+  for (const ContactRecord& r : st.contacts) {
+    s.u32(r.index_a);
+    s.u32(r.generation_a);
+    s.u32(r.index_b);
+    s.u32(r.generation_b);
+    s.u8(r.touching);
+    s.u8(r.sensor);
+    s.u8(r.point_count);
+    for (uint32_t p = 0; p < r.point_count; ++p) {
+      s.u32(r.points[p].feature_id);
+      s.f32(r.points[p].normal_impulse);
+      s.f32(r.points[p].tangent_impulse1);
+      s.f32(r.points[p].tangent_impulse2);
+    }
+  }
+}
+
+class Reader {
+ public:
+  explicit Reader(std::span<const uint8_t> b) : bytes_(b) {}
+  bool ok() const { return ok_; }
+  bool at_end() const { return pos_ == bytes_.size(); }
+  size_t remaining() const { return bytes_.size() - pos_; }
+  uint8_t u8() {
+    if (pos_ + 1 > bytes_.size()) return fail();
+    return bytes_[pos_++];
+  }
+  uint32_t u32() {
+    if (pos_ + 4 > bytes_.size()) return fail();
+    uint32_t v = 0;
+    for (int i = 0; i < 4; ++i) v |= static_cast<uint32_t>(bytes_[pos_ + i]) << (8 * i);
+    pos_ += 4;
+    return v;
+  }
+  uint64_t u64() {
+    uint64_t lo = u32();
+    uint64_t hi = u32();
+    return lo | (hi << 32);
+  }
+  float f32() {
+    uint32_t bits = u32();
+    float v = 0.0f;
+    std::memcpy(&v, &bits, 4);
+    if (!std::isfinite(v)) ok_ = false;
+    return v;
+  }
+  Vec3 vec3() {
+    Vec3 v;
+    v.x = f32();
+    v.y = f32();
+    v.z = f32();
+    return v;
+  }
+  Quat quat() {
+    Quat q;
+    q.x = f32();
+    q.y = f32();
+    q.z = f32();
+    q.w = f32();
+    return q;
+  }
+  uint8_t flag() {
+    uint8_t v = u8();
+    if (v > 1) ok_ = false;
+    return v;
+  }
+  void require(bool condition) {
+    if (!condition) ok_ = false;
+  }
+
+ private:
+  uint8_t fail() {
+    ok_ = false;
+    pos_ = bytes_.size();
+    return 0;
+  }
+  std::span<const uint8_t> bytes_;
+  size_t pos_ = 0;
+  bool ok_ = true;
+};
+
+Status corrupt(const char* what) { return Status::Error(ErrorCode::kCorrupt, what); }
+
+bool read_body(Reader& r, BodyInfo& b, BodySim& m) {
+  uint8_t kind = r.u8();
+  r.require(kind <= 2);
+  b.kind = static_cast<BodyKind>(kind);
+  b.sensor = r.flag();
+  b.awake = r.flag();
+  uint8_t type = r.u8();
+  r.require(type <= 1);
+  b.shape.type = static_cast<ShapeType>(type);
+  b.shape.radius = r.f32();
+  b.shape.half_extents = r.vec3();
+  b.material.friction = r.f32();
+  b.material.restitution = r.f32();
+  b.layer = r.u32();
+  b.mask = r.u32();
+  b.user_data = r.u64();
+  b.density = r.f32();
+  b.linear_damping = r.f32();
+  b.angular_damping = r.f32();
+  b.gravity_scale = r.f32();
+  m.position = r.vec3();
+  m.rotation = r.quat();
+  m.linear_velocity = r.vec3();
+  m.angular_velocity = r.vec3();
+  m.force = r.vec3();
+  m.sleep_time = r.f32();
+  if (!r.ok()) return false;
+  // Reuse create_body's rules so a snapshot cannot hold what the API refuses.
+  BodyDef def;
+  def.kind = b.kind;
+  def.shape = b.shape;
+  def.position = m.position;
+  def.rotation = m.rotation;
+  def.linear_velocity = m.linear_velocity;
+  def.angular_velocity = m.angular_velocity;
+  def.density = b.density;
+  def.linear_damping = b.linear_damping;
+  def.angular_damping = b.angular_damping;
+  def.gravity_scale = b.gravity_scale;
+  def.material = b.material;
+  if (!d3::validate_body_def(def).ok()) return false;
+  if (std::fabs(length_squared(m.rotation) - 1.0f) > 1e-3f) return false;
+  if (b.kind == BodyKind::kStatic && b.awake != 0) return false;
+  if (!(m.sleep_time >= 0.0f)) return false;
+  return true;
+}
+
+}  // namespace
+
+void World3D::hash_state(const WorldState& state, StateHasher& hasher) {
+  Sink sink(&hasher);
+  write_state(sink, state);
+}
+
+void World3D::serialize(std::vector<uint8_t>& out) const {
+  out.clear();
+  for (uint8_t b : kMagic) out.push_back(b);
+  Sink sink(&out);
+  sink.u32(kVersion);
+  write_state(sink, state_);
+}
+
+Status World3D::deserialize(std::span<const uint8_t> bytes) {
+  if (bytes.size() < 8 || std::memcmp(bytes.data(), kMagic, 4) != 0) {
+    return corrupt("not a Rewind 3D world snapshot (bad magic)");
+  }
+  Reader r(bytes.subspan(4));
+  if (r.u32() != kVersion) return corrupt("unsupported snapshot version");
+  WorldState st;  // built aside: the live state changes only on success
+  WorldConfig& c = st.config;
+  c.gravity = r.vec3();
+  c.tick_seconds = r.f32();
+  c.substeps = static_cast<int32_t>(r.u32());
+  c.relax_iterations = static_cast<int32_t>(r.u32());
+  c.contact_hertz = r.f32();
+  c.contact_damping_ratio = r.f32();
+  c.contact_push_max_mps = r.f32();
+  c.restitution_threshold_mps = r.f32();
+  c.linear_slop_m = r.f32();
+  c.speculative_distance_m = r.f32();
+  c.enable_sleep = r.flag() != 0;
+  c.sleep_threshold_mps = r.f32();
+  c.time_to_sleep_s = r.f32();
+  c.max_bodies = r.u32();
+  if (!r.ok() || !validate_config(c).ok()) return corrupt("invalid world config");
+  st.step_count = r.u64();
+  uint32_t slots = r.u32();
+  // Every slot takes at least 5 bytes; reject counts the input cannot hold.
+  if (!r.ok() || slots > kMaxSlots || slots > r.remaining() / 5) {
+    return corrupt("bad body slot count");
+  }
+  st.infos.resize(slots);
+  st.sims.resize(slots);
+  st.masses.resize(slots);
+  for (uint32_t i = 0; i < slots; ++i) {
+    BodyInfo& b = st.infos[i];
+    b.generation = r.u32();
+    b.alive = r.flag();
+    if (!r.ok()) return corrupt("truncated body");
+    if (b.alive == 0) continue;
+    if (b.generation == 0 || !read_body(r, b, st.sims[i])) return corrupt("invalid body");
+    st.masses[i] = d3::compute_mass(b.kind, b.shape, b.density);
+    if (b.kind == BodyKind::kDynamic &&
+        !(std::isfinite(st.masses[i].inv_mass) && st.masses[i].mass > 0.0f &&
+          is_finite(st.masses[i].inv_inertia_local))) {
+      return corrupt("degenerate body mass");
+    }
+    ++st.live_count;
+  }
+  if (st.live_count > c.max_bodies) return corrupt("more bodies than max_bodies");
+  for (uint32_t i = slots; i-- > 0;) {
+    if (st.infos[i].alive == 0) st.free_slots.push_back(i);
+  }
+  uint32_t contacts = r.u32();
+  if (!r.ok() || contacts > r.remaining() / 19) return corrupt("bad contact count");
+  st.contacts.resize(contacts);
+  for (uint32_t k = 0; k < contacts; ++k) {
+    ContactRecord& rec = st.contacts[k];
+    rec.index_a = r.u32();
+    rec.generation_a = r.u32();
+    rec.index_b = r.u32();
+    rec.generation_b = r.u32();
+    rec.touching = r.flag();
+    rec.sensor = r.flag();
+    rec.point_count = r.u8();
+    if (!r.ok() || rec.index_a >= rec.index_b || rec.index_b >= slots ||
+        rec.point_count > kMaxManifoldPoints || rec.generation_a == 0 || rec.generation_b == 0 ||
+        rec.generation_a > st.infos[rec.index_a].generation ||
+        rec.generation_b > st.infos[rec.index_b].generation ||
+        (rec.sensor != 0 && rec.point_count != 0)) {
+      return corrupt("invalid contact record");
+    }
+    if (k > 0) {
+      const ContactRecord& prev = st.contacts[k - 1];
+      if (prev.index_a > rec.index_a || (prev.index_a == rec.index_a && prev.index_b >= rec.index_b)) {
+        return corrupt("contact records out of order");
+      }
+    }
+    for (uint32_t p = 0; p < rec.point_count; ++p) {
+      rec.points[p].feature_id = r.u32();
+      rec.points[p].normal_impulse = r.f32();
+      rec.points[p].tangent_impulse1 = r.f32();
+      rec.points[p].tangent_impulse2 = r.f32();
+    }
+    if (!r.ok()) return corrupt("invalid contact point");
+  }
+  if (!r.at_end()) return corrupt("trailing bytes after snapshot");
+  state_ = std::move(st);
+  d3::mark_passive_dirty(*scratch_);
+  scratch_->events.clear();
+  return Status::Ok();
+}
+
+}  // namespace rwd::sim

@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Per-step working memory of a World3D. Nothing here is state: every array is
+// rebuilt from WorldState during a step (or, for the passive broadphase list,
+// rebuilt whenever it is marked dirty, which restore() does), so a restored
+// world steps exactly like the one that was saved. The vectors keep their
+// capacity between steps, so a warmed-up world does not allocate.
+#include <cstdint>
+#include <vector>
+
+#include "d3/manifold.h"
+#include "rewind/sim/contact_event.h"
+#include "rewind/sim/world3d.h"
+
+namespace rwd::sim::d3 {
+
+struct Aabb {
+  Vec3 lower;
+  Vec3 upper;
+};
+
+/// One body in a broadphase list, sorted by (min_x, body).
+struct SweepEntry {
+  float min_x;
+  uint32_t body;
+};
+
+struct BodyPair {
+  uint32_t a;  ///< lower index
+  uint32_t b;  ///< higher index
+};
+
+/// This step's manifold for one contact record, parallel to
+/// WorldState::contacts. `valid` is 0 for records carried over unchanged
+/// because both bodies sleep (their geometry is not needed).
+struct ContactGeometry {
+  Manifold manifold;
+  float friction;
+  float restitution;
+  uint8_t valid;
+};
+
+/// A body as the solver sees it: velocities and the pose change since the
+/// start of the step. Index 0 is a shared immovable body standing in for
+/// every static or sleeping body.
+struct SolverBody {
+  Vec3 linear_velocity;
+  Vec3 angular_velocity;
+  Vec3 delta_position;
+  Quat delta_rotation;
+  float inv_mass;
+  Mat3 inv_inertia;            ///< world frame, fixed for the step
+  Vec3 linear_acceleration;    ///< gravity plus applied force, m/s^2
+  float linear_damping_factor; ///< 1 / (1 + h * damping), per substep
+  float angular_damping_factor;
+};
+
+struct Softness {
+  float bias_rate;
+  float mass_scale;
+  float impulse_scale;
+};
+
+struct ConstraintPoint {
+  Vec3 anchor_a;  ///< from A's centre at step start, world frame (fixed)
+  Vec3 anchor_b;
+  float base_separation;    ///< separation minus the anchors' normal offset
+  float relative_velocity;  ///< normal approach speed before the step (restitution)
+  float normal_mass;
+  float tangent_mass1;
+  float tangent_mass2;
+  float normal_impulse;
+  float tangent_impulse1;
+  float tangent_impulse2;
+  float max_normal_impulse;
+};
+
+struct ContactConstraint {
+  uint32_t body_a;  ///< solver body index
+  uint32_t body_b;
+  uint32_t record;  ///< index into WorldState::contacts
+  uint32_t point_count;
+  Vec3 normal;
+  Vec3 tangent1;
+  Vec3 tangent2;
+  float friction;
+  float restitution;
+  Softness softness;
+  ConstraintPoint points[kMaxManifoldPoints];
+};
+
+}  // namespace rwd::sim::d3
+
+namespace rwd::sim {
+
+/// Declared in world3d.h; defined here so the public header stays small.
+class WorldScratch {
+ public:
+  using Aabb = d3::Aabb;
+  using SweepEntry = d3::SweepEntry;
+  using BodyPair = d3::BodyPair;
+  using ContactGeometry = d3::ContactGeometry;
+  using SolverBody = d3::SolverBody;
+  using ContactConstraint = d3::ContactConstraint;
+
+  // broadphase
+  std::vector<Aabb> aabbs;  ///< by body index; valid for active bodies and the passive list
+  std::vector<SweepEntry> active;
+  std::vector<SweepEntry> passive;
+  bool passive_dirty = true;
+  std::vector<BodyPair> pairs;
+  // narrowphase
+  std::vector<ContactRecord> other_contacts;  ///< last step's cache after the swap
+  std::vector<ContactGeometry> geometry;
+  // solver
+  std::vector<uint32_t> solver_index;  ///< by body index; 0 = immovable
+  std::vector<uint32_t> solver_body_ids;
+  std::vector<SolverBody> solver_bodies;
+  std::vector<ContactConstraint> constraints;
+  // islands
+  std::vector<uint32_t> island_parent;
+  std::vector<float> island_sleep_time;
+  std::vector<uint8_t> island_flag;
+  // output
+  std::vector<ContactEvent> events;
+  StepStats stats;
+};
+
+}  // namespace rwd::sim

@@ -1,0 +1,244 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+#
+# Determinism matrix: builds det_checksums.cpp together with every source of
+# the engine (sim/src/**/*.cpp) and the game seam (sim/game/src/*.cpp)
+# directly with each compiler -- no CMake, so no project flag can hide a
+# difference -- runs every build and diffs its per-tick checksums against the
+# g++ -O0 build.
+#
+#   gcc-O0         g++ -O0                          (the reference)
+#   gcc-O3-native  g++ -O3 -march=native
+#   clang-O3       clang++ -O3
+#   aarch64-O3     aarch64-linux-gnu-g++ -O3 -static, run under qemu-aarch64
+#
+# Usage: run_matrix.sh [--source DIR] [--ticks N] [--jobs N] BUILD_DIR
+#   --source DIR  repository root (default: two levels above this script)
+#   --ticks N     ticks to simulate (default 600)
+#   --jobs N      parallel compile jobs (default 2, at most 2)
+#   BUILD_DIR     where objects, binaries and outputs go (reused between runs:
+#                 objects are rebuilt only when a source or header changed)
+#
+# Exit codes: 0 every build printed identical checksums; 1 a build differs,
+# failed to compile or failed to run; 2 bad usage or a missing toolchain.
+set -euo pipefail
+
+script_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+source_dir=$(cd "$script_dir/../.." && pwd)
+ticks=600
+jobs=2
+build_dir=""
+
+usage() { sed -n '4,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"; }
+
+while (($#)); do
+  case "$1" in
+    --source) source_dir=$(cd "${2:?--source needs a directory}" && pwd); shift 2 ;;
+    --ticks) ticks=${2:?--ticks needs a number}; shift 2 ;;
+    --jobs) jobs=${2:?--jobs needs a number}; shift 2 ;;
+    -h|--help) usage; exit 0 ;;
+    -*) echo "run_matrix: unknown option '$1'" >&2; usage >&2; exit 2 ;;
+    *) [[ -z $build_dir ]] || { echo "run_matrix: one BUILD_DIR only" >&2; exit 2; }
+       build_dir=$1; shift ;;
+  esac
+done
+[[ -n $build_dir ]] || { echo "run_matrix: BUILD_DIR is required" >&2; usage >&2; exit 2; }
+[[ $ticks =~ ^[1-9][0-9]*$ ]] || { echo "run_matrix: --ticks must be a positive integer" >&2; exit 2; }
+[[ $jobs =~ ^[1-9][0-9]*$ ]] || { echo "run_matrix: --jobs must be a positive integer" >&2; exit 2; }
+((jobs <= 2)) || jobs=2   # the machines this runs on have 2 cores, shared
+
+# --- toolchains: a missing one is a failure, never a skip -------------------
+missing=0
+need() {  # need COMMAND DEBIAN-PACKAGE
+  if ! command -v "$1" >/dev/null 2>&1; then
+    echo "run_matrix: FAIL: '$1' not found; install the Debian package '$2'" \
+         "(sudo bash scripts/setup.sh installs everything)" >&2
+    missing=1
+  fi
+}
+need g++ g++
+need clang++ clang
+need aarch64-linux-gnu-g++ g++-aarch64-linux-gnu
+need qemu-aarch64 qemu-user
+need ninja ninja-build
+[[ -f /usr/include/xxhash.h ]] || {
+  echo "run_matrix: FAIL: /usr/include/xxhash.h not found; install the Debian package 'libxxhash-dev'" >&2
+  missing=1
+}
+((missing == 0)) || exit 2
+
+# --- sources ------------------------------------------------------------------
+cd "$source_dir"
+mapfile -t sim_sources < <(find sim/src -name '*.cpp' -type f 2>/dev/null | LC_ALL=C sort)
+mapfile -t game_sources < <(find sim/game/src -maxdepth 1 -name '*.cpp' -type f 2>/dev/null | LC_ALL=C sort)
+if ((${#sim_sources[@]} == 0 || ${#game_sources[@]} == 0)); then
+  echo "run_matrix: FAIL: no engine or game sources under $source_dir/sim/src and" \
+       "$source_dir/sim/game/src" >&2
+  exit 1
+fi
+det_source="$script_dir/det_checksums.cpp"
+sources=("$det_source" "${sim_sources[@]/#/$source_dir/}" "${game_sources[@]/#/$source_dir/}")
+
+mkdir -p "$build_dir"
+build_dir=$(cd "$build_dir" && pwd)
+
+# The cross compiler does not search /usr/include (it holds the host's
+# headers), so xxhash.h -- used header-only -- is offered through a directory
+# that holds nothing else. Every build uses it, so all see the same header.
+mkdir -p "$build_dir/include"
+ln -sf /usr/include/xxhash.h "$build_dir/include/xxhash.h"
+
+common_flags="-std=c++20 -ffp-contract=off -fno-fast-math -I$source_dir/sim/include"
+common_flags+=" -I$source_dir/sim/src -I$source_dir/sim/game/include -I$source_dir/sim/game/src"
+common_flags+=" -isystem $build_dir/include"
+# -fexcess-precision=standard keeps float math in float where x87 exists. GCC
+# accepts it for C++ only from GCC 13 on; GCC 12 (Debian 12) refuses it, and
+# there x86-64 (SSE) and aarch64 have no excess precision to begin with
+# (FLT_EVAL_METHOD == 0), so the flag is passed only where it is accepted.
+gcc_flag_if_supported() {  # gcc_flag_if_supported COMPILER FLAG
+  if echo 'int main() { return 0; }' | "$1" "$2" -x c++ -fsyntax-only - >/dev/null 2>&1; then
+    printf '%s' "$2"
+  fi
+}
+gcc_flags=$(gcc_flag_if_supported g++ -fexcess-precision=standard)
+cross_flags=$(gcc_flag_if_supported aarch64-linux-gnu-g++ -fexcess-precision=standard)
+
+# name | compiler | flags | link flags | runner
+builds=(
+  "gcc-O0|g++|-O0${gcc_flags:+ $gcc_flags}||"
+  "gcc-O3-native|g++|-O3 -march=native${gcc_flags:+ $gcc_flags}||"
+  "clang-O3|clang++|-O3||"
+  "aarch64-O3|aarch64-linux-gnu-g++|-O3${cross_flags:+ $cross_flags}|-static|qemu-aarch64"
+)
+
+# --- compile: one generated ninja file; it reuses objects whose inputs are
+# unchanged (depfiles track headers) and runs at most $jobs compilers --------
+ninja_file="$build_dir/build.ninja"
+{
+  echo "# Generated by tests/determinism/run_matrix.sh; do not edit."
+  echo "ninja_required_version = 1.10"
+  echo "common = $common_flags"
+  for entry in "${builds[@]}"; do
+    IFS='|' read -r name cxx flags ldflags _runner <<<"$entry"
+    echo
+    echo "rule cxx_$name"
+    echo "  command = $cxx \$common $flags -MD -MF \$out.d -c \$in -o \$out"
+    echo "  depfile = \$out.d"
+    echo "  deps = gcc"
+    echo "  description = $name: \$in"
+    echo "rule link_$name"
+    echo "  command = $cxx $flags \$in -o \$out $ldflags"
+    echo "  description = $name: link \$out"
+    objects=()
+    for src in "${sources[@]}"; do
+      rel=${src#"$source_dir"/}
+      [[ $src == "$det_source" ]] && rel=det_checksums.cpp
+      obj="$name/obj/${rel//\//__}.o"
+      objects+=("$obj")
+      echo "build $obj: cxx_$name $src"
+    done
+    echo "build $name/det_checksums: link_$name ${objects[*]}"
+  done
+} >"$ninja_file.tmp"
+# Only replace the file when it changed, so ninja's own bookkeeping stays valid.
+if ! cmp -s "$ninja_file.tmp" "$ninja_file" 2>/dev/null; then
+  mv "$ninja_file.tmp" "$ninja_file"
+else
+  rm -f "$ninja_file.tmp"
+fi
+
+echo "run_matrix: ${#sources[@]} sources x ${#builds[@]} builds, $ticks ticks, $jobs compile jobs"
+echo "run_matrix: build directory $build_dir"
+t_start=$SECONDS
+if ! ninja -C "$build_dir" -j "$jobs"; then
+  echo "run_matrix: FAIL: a build of the matrix did not compile (see above)" >&2
+  exit 1
+fi
+t_compiled=$SECONDS
+
+# --- run: every build, at most 2 at a time -----------------------------------
+run_one() {  # run_one NAME RUNNER
+  local name=$1 runner=$2 out="$build_dir/$1.out" err="$build_dir/$1.err" start=$SECONDS rc=0
+  if [[ -n $runner ]]; then
+    "$runner" "$build_dir/$name/det_checksums" "$ticks" >"$out" 2>"$err" || rc=$?
+  else
+    "$build_dir/$name/det_checksums" "$ticks" >"$out" 2>"$err" || rc=$?
+  fi
+  echo "$rc $((SECONDS - start))" >"$build_dir/$name.status"
+}
+running=0
+for entry in "${builds[@]}"; do
+  IFS='|' read -r name _cxx _flags _ldflags runner <<<"$entry"
+  rm -f "$build_dir/$name.out" "$build_dir/$name.err" "$build_dir/$name.status"
+  run_one "$name" "$runner" &
+  running=$((running + 1))
+  if ((running >= 2)); then
+    wait -n || true
+    running=$((running - 1))
+  fi
+done
+wait || true
+t_ran=$SECONDS
+
+# --- compare -------------------------------------------------------------------
+reference=gcc-O0
+ref_out="$build_dir/$reference.out"
+failed=0
+rows=()
+for entry in "${builds[@]}"; do
+  IFS='|' read -r name cxx flags ldflags runner <<<"$entry"
+  out="$build_dir/$name.out"
+  read -r rc secs <"$build_dir/$name.status" || { rc=255; secs=0; }
+  lines=$(grep -c -E '^-?[0-9]+ [0-9a-f]{16}$' "$out" || true)
+  last=$(tail -n 1 "$out" 2>/dev/null || true)
+  final_sum=${last#* }
+  [[ $last =~ ^-?[0-9]+\ [0-9a-f]{16}$ ]] || final_sum="-"
+  verdict=ok
+  if [[ $rc != 0 ]]; then
+    verdict="EXIT $rc"
+    failed=1
+    echo "run_matrix: $name exited with status $rc; last lines of its output and stderr:"
+    tail -n 3 "$out" || true
+    tail -n 10 "$build_dir/$name.err" || true
+  elif [[ $lines != "$ticks" ]]; then
+    verdict="$lines/$ticks ticks"
+    failed=1
+    echo "run_matrix: $name printed $lines checksum lines, expected $ticks"
+  fi
+  if [[ $name != "$reference" ]] && ! cmp -s "$ref_out" "$out"; then
+    [[ $verdict == ok ]] && verdict=DIFFERS
+    failed=1
+    # First differing line: its tick and both checksums.
+    awk -v ref="$reference" -v cur="$name" '
+      FILENAME == ARGV[1] { a[FNR] = $0; na = FNR; next }
+      { b[FNR] = $0; nb = FNR }
+      END {
+        na += 0; nb += 0
+        n = (na > nb) ? na : nb
+        for (i = 1; i <= n; ++i) {
+          if (a[i] != b[i]) {
+            split(a[i], x, " "); split(b[i], y, " ")
+            tick = (x[1] != "") ? x[1] : y[1]
+            printf "run_matrix: FIRST DIFFERENCE at tick %s (line %d)\n", tick, i
+            printf "  %-14s %s\n", ref ":", (i <= na) ? a[i] : "<no line>"
+            printf "  %-14s %s\n", cur ":", (i <= nb) ? b[i] : "<no line>"
+            exit
+          }
+        }
+      }' "$ref_out" "$out"
+  fi
+  rows+=("$(printf '%-14s %-22s %-36s %6s  %-16s  %5ss  %s' "$name" "$cxx" \
+    "$flags${ldflags:+ $ldflags}" "$lines" "$final_sum" "$secs" "$verdict")")
+done
+
+echo
+printf '%-14s %-22s %-36s %6s  %-16s  %6s  %s\n' build compiler flags ticks "final checksum" run result
+printf '%s\n' "${rows[@]}"
+echo
+echo "run_matrix: compile $((t_compiled - t_start))s, run $((t_ran - t_compiled))s" \
+     "(common flags: -std=c++20 -ffp-contract=off -fno-fast-math)"
+if ((failed)); then
+  echo "run_matrix: FAIL: the builds do not agree with $reference (outputs in $build_dir/*.out)"
+  exit 1
+fi
+echo "run_matrix: PASS: all ${#builds[@]} builds printed identical checksums for $ticks ticks"

@@ -1,0 +1,12 @@
+// SPDX-License-Identifier: MIT
+// Fuzz entry points. Each `fuzz_<name>_one` takes arbitrary bytes, must
+// never crash, and aborts when a parser invariant is broken. libFuzzer
+// binaries call them through a generated LLVMFuzzerTestOneInput wrapper
+// (libfuzzer_main.cpp.in); fuzz_corpus_tests calls them over a deterministic
+// corpus. Add one declaration per new entry file.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+/// Envelope datagrams: decode_envelope, then re-encode what it accepts.
+int fuzz_envelope_one(const uint8_t* data, size_t size);

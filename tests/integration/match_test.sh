@@ -1,0 +1,122 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# End-to-end matches on loopback with the real programs.
+#   match_test.sh MODE BIN_DIR WORK_DIR
+# MODE:
+#   faults   4 bots with latency, jitter, 5% loss, duplication, reordering:
+#            rollbacks happen, no desync, the replay verifies, and a replay
+#            with one input changed fails verification at that tick.
+#   desync   one bot corrupts its state at tick 120: it is detected at that
+#            tick, reported (the server stores the report) and resynced.
+#   garbage  random datagrams are fired at the server during a match: the
+#            players see nothing of it, the server counts them.
+set -euo pipefail
+mode=$1
+bin=$2
+work=$3
+rm -rf "$work"
+mkdir -p "$work"
+cd "$work"
+
+fail() { echo "FAIL [$mode]: $*" >&2; exit 1; }
+json() { python3 -c "import json,sys; print(json.loads(open(sys.argv[1]).read().strip().splitlines()[-1])[sys.argv[2]])" "$1" "$2"; }
+
+server_pid=""
+cleanup() { [ -n "$server_pid" ] && kill "$server_pid" 2>/dev/null || true; }
+trap cleanup EXIT
+
+ticks=480
+"$bin/rewind-server" --game crates --bind 127.0.0.1 --port 0 --port-file port --players 4 \
+  --tick-rate 60 --window 8 --ticks "$ticks" --replay match.rwr --keyframe-interval 60 \
+  --desync-dir desyncs --join-timeout 30 --summary-json >server.json 2>server.log &
+server_pid=$!
+for _ in $(seq 1 100); do [ -s port ] && break; sleep 0.1; done
+[ -s port ] || fail "server did not start: $(cat server.log)"
+port=$(cat port)
+
+bots_args=(--bots 4 --connect "127.0.0.1:$port" --game crates --summary-json --duration 60)
+case "$mode" in
+  faults)  bots_args+=(--latency-ms 30 --jitter-ms 10 --loss 0.05 --duplicate 0.02 --reorder 0.02) ;;
+  desync)  bots_args+=(--latency-ms 10 --corrupt-bot 2 --corrupt-at-tick 120) ;;
+  garbage) bots_args+=(--latency-ms 10) ;;
+  *) fail "unknown mode" ;;
+esac
+
+if [ "$mode" = garbage ]; then
+  # Fire random datagrams (random sizes, random bytes, plus mangled copies of
+  # a valid-looking header) at the server for the first seconds of the match.
+  python3 - "$port" <<'PY' &
+import os, random, socket, sys, time
+port = int(sys.argv[1])
+rng = random.Random(42)
+s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+end = time.time() + 6
+sent = 0
+while time.time() < end and sent < 20000:
+    size = rng.choice([0, 1, 5, 40, 300, 1199, 1200, 1201, 1500, 9000])
+    payload = bytes(rng.getrandbits(8) for _ in range(size))
+    if rng.random() < 0.3:
+        # protocol_version 1, a random connection id, a random sequence, then junk
+        payload = b"\x08\x01\x11" + os.urandom(8) + b"\x18" + bytes([rng.randrange(1, 127)]) + payload[:50]
+    try:
+        s.sendto(payload, ("127.0.0.1", port))
+    except OSError:
+        pass
+    sent += 1
+    time.sleep(0.0005)
+print(sent)
+PY
+  flood_pid=$!
+fi
+
+set +e
+"$bin/rewind-bots" "${bots_args[@]}" >bots.json 2>bots.log
+bots_status=$?
+set -e
+wait "$server_pid"
+server_pid=""
+[ "$mode" = garbage ] && wait "$flood_pid"
+
+echo "server: $(cat server.json)"
+echo "bots:   $(cat bots.json)"
+[ "$(json server.json ticks_final)" = "$ticks" ] || fail "server finalized $(json server.json ticks_final) of $ticks ticks"
+[ "$(json bots.json finished)" = 4 ] || fail "not every bot finished the match: $(tail -5 bots.log)"
+
+case "$mode" in
+  faults)
+    [ "$bots_status" = 0 ] || fail "rewind-bots exited $bots_status"
+    [ "$(json bots.json desyncs)" = 0 ] || fail "desyncs under faults"
+    rollbacks=$(( $(json server.json rollbacks) + $(json bots.json rollbacks) ))
+    [ "$rollbacks" -gt 0 ] || fail "no rollbacks happened: the test did not exercise them"
+    [ "$(json bots.json final_ticks_verified)" -ge $(( 4 * (ticks - 20) )) ] || fail "too few verified final ticks"
+    "$bin/rewind-replay" verify match.rwr >verify.txt 2>&1 || fail "replay did not verify: $(cat verify.txt)"
+    grep -q "verified $ticks ticks" verify.txt || fail "unexpected verify output: $(cat verify.txt)"
+    "$bin/rewind-replay" tamper match.rwr --tick 200 --player 1 --axis-x 1000 --axis-y -1000 --out tampered.rwr >/dev/null
+    set +e
+    "$bin/rewind-replay" verify tampered.rwr >tampered.txt 2>&1
+    status=$?
+    set -e
+    [ "$status" = 1 ] || fail "tampered replay: exit $status, expected 1: $(cat tampered.txt)"
+    grep -q "tick 200" tampered.txt || fail "tampered replay did not name tick 200: $(cat tampered.txt)"
+    ;;
+  desync)
+    [ "$bots_status" = 1 ] || fail "rewind-bots exited $bots_status, expected 1 (desync detected)"
+    [ "$(json bots.json desyncs)" = 1 ] || fail "expected exactly one desync, got $(json bots.json desyncs)"
+    [ "$(json bots.json resyncs)" -ge 1 ] || fail "the corrupted bot was not resynced"
+    grep -q "bot 2: DESYNC at tick 120 " bots.log || fail "desync not detected at tick 120: $(grep DESYNC bots.log)"
+    [ "$(json server.json desync_reports)" -ge 1 ] || fail "server stored no desync report"
+    report=$(ls desyncs/desync_p*_t120_*.txt 2>/dev/null | head -1)
+    [ -n "$report" ] || fail "no desync report file for tick 120: $(ls desyncs)"
+    grep -q "differing fields" "$report" || fail "report does not name the differing fields: $(cat "$report")"
+    grep -q "position.x" "$report" || fail "report does not name position.x: $(cat "$report")"
+    "$bin/rewind-replay" verify match.rwr >verify.txt 2>&1 || fail "replay did not verify: $(cat verify.txt)"
+    ;;
+  garbage)
+    [ "$bots_status" = 0 ] || fail "rewind-bots exited $bots_status"
+    [ "$(json bots.json desyncs)" = 0 ] || fail "desyncs under garbage"
+    [ "$(json server.json rejected_packets)" -gt 1000 ] || fail "server counted too few rejected packets"
+    [ "$(json server.json substituted_inputs)" -lt 40 ] || fail "garbage starved real inputs"
+    "$bin/rewind-replay" verify match.rwr >verify.txt 2>&1 || fail "replay did not verify: $(cat verify.txt)"
+    ;;
+esac
+echo "PASS [$mode]"

@@ -1,0 +1,252 @@
+// SPDX-License-Identifier: MIT
+// MatchHost driven without sockets: scripted clients build envelopes by
+// hand, and the clock is whatever the test says.
+#include "rewind/server/match_host.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+
+#include "rewind/net/envelope_codec.h"
+
+namespace rwd::server {
+namespace {
+
+using asio::ip::make_address;
+
+struct Outbox {
+  std::map<Endpoint, std::vector<v1::Envelope>> received;
+  void deliver(const Endpoint& to, std::span<const uint8_t> bytes) {
+    auto decoded = net::decode_envelope(bytes);
+    ASSERT_TRUE(decoded.ok()) << decoded.status().message();
+    received[to].push_back(*decoded);
+  }
+};
+
+struct FakeClient {
+  Endpoint endpoint;
+  uint64_t connection_id = 0;
+  uint32_t player = 0;
+  uint32_t sequence = 1;
+};
+
+game::PlayerInput scripted(uint32_t player, Tick tick) {
+  return {static_cast<int16_t>(((tick / 5 + player) % 3 - 1) * 900),
+          static_cast<int16_t>(((tick / 7 + player) % 3 - 1) * 700), 0};
+}
+
+class HostHarness {
+ public:
+  explicit HostHarness(MatchConfig config) {
+    now_ = net::SteadyClock::now();
+    auto host = MatchHost::create(
+        config, [this](const Endpoint& to, std::span<const uint8_t> b) { outbox_.deliver(to, b); },
+        now_);
+    EXPECT_TRUE(host.ok()) << host.status().message();
+    host_ = std::move(*host);
+  }
+
+  std::vector<uint8_t> encode(v1::Envelope envelope) {
+    envelope.set_protocol_version(net::kProtocolVersion);
+    std::vector<uint8_t> bytes;
+    EXPECT_TRUE(net::encode_envelope(envelope, bytes).ok());
+    return bytes;
+  }
+  void raw(const Endpoint& from, std::span<const uint8_t> bytes) {
+    host_->on_datagram(bytes, from, now_);
+  }
+  void send(FakeClient& client, v1::Envelope envelope) {
+    envelope.set_connection_id(client.connection_id);
+    envelope.set_sequence(client.sequence++);
+    raw(client.endpoint, encode(envelope));
+  }
+  FakeClient join(uint16_t port) {
+    FakeClient client;
+    client.endpoint = Endpoint(make_address("127.0.0.1"), port);
+    v1::Envelope envelope;
+    envelope.mutable_join_request()->set_game("crates");
+    envelope.mutable_join_request()->set_nonce(port);
+    raw(client.endpoint, encode(envelope));
+    for (const v1::Envelope& answer : outbox_.received[client.endpoint]) {
+      if (answer.has_join_accept()) {
+        client.connection_id = answer.join_accept().connection_id();
+        client.player = answer.join_accept().player();
+      }
+    }
+    EXPECT_NE(client.connection_id, 0u);
+    return client;
+  }
+  void send_input(FakeClient& client, Tick tick, game::PlayerInput input, uint32_t as_player) {
+    v1::Envelope envelope;
+    v1::InputFrame* frame = envelope.mutable_input_frame();
+    frame->set_player(as_player);
+    frame->set_first_tick(tick);
+    v1::Input* in = frame->add_inputs();
+    in->set_axis_x(input.axis_x);
+    in->set_axis_y(input.axis_y);
+    in->set_buttons(input.buttons);
+    send(client, envelope);
+  }
+  void tick() {
+    now_ += std::chrono::milliseconds(16);
+    host_->on_tick(now_);
+  }
+  MatchHost& host() { return *host_; }
+  Outbox& outbox() { return outbox_; }
+
+ private:
+  Outbox outbox_;
+  TimePoint now_;
+  std::unique_ptr<MatchHost> host_;
+};
+
+MatchConfig test_config() {
+  MatchConfig config;
+  config.players = 2;
+  config.window_ticks = 4;
+  config.keyframe_interval = 0;
+  return config;
+}
+
+// Plays `ticks` ticks with both players sending on time (player 1's input
+// two ticks late, to exercise rollback); `attack` runs before every tick.
+std::map<Tick, uint64_t> play(HostHarness& h, Tick ticks,
+                              const std::function<void(HostHarness&, FakeClient&, FakeClient&, Tick)>& attack) {
+  FakeClient a = h.join(4001);
+  FakeClient b = h.join(4002);
+  EXPECT_EQ(h.host().phase(), MatchHost::Phase::kRunning);
+  std::map<Tick, uint64_t> finals;
+  for (Tick t = 0; t < ticks; ++t) {
+    h.send_input(a, t, scripted(a.player, t), a.player);
+    if (t >= 2) h.send_input(b, t - 2, scripted(b.player, t - 2), b.player);
+    if (attack) attack(h, a, b, t);
+    h.tick();
+    for (const v1::FinalTick& f : h.host().recent_finals()) finals[f.tick()] = f.checksum();
+  }
+  return finals;
+}
+
+TEST(MatchHost, FinalizesWithLateInputsAndRollsBack) {
+  HostHarness h(test_config());
+  auto finals = play(h, 60, nullptr);
+  EXPECT_GE(finals.size(), 50u);
+  const MatchStats stats = h.host().stats();
+  EXPECT_GT(stats.rollbacks, 0u);
+  EXPECT_GT(stats.late_inputs, 0u);
+  EXPECT_EQ(stats.substituted_inputs, 0u);
+  EXPECT_EQ(stats.rejected_packets, 0u);
+}
+
+TEST(MatchHost, MissingInputsAreSubstitutedAtTheDeadline) {
+  HostHarness h(test_config());
+  FakeClient a = h.join(4001);
+  FakeClient b = h.join(4002);
+  for (Tick t = 0; t < 20; ++t) {
+    h.send_input(a, t, scripted(a.player, t), a.player);  // b never sends
+    h.tick();
+  }
+  const MatchStats stats = h.host().stats();
+  EXPECT_GE(stats.ticks_final, 14);
+  EXPECT_EQ(stats.substituted_inputs, static_cast<uint64_t>(stats.ticks_final));
+  for (const v1::FinalTick& f : h.host().recent_finals()) EXPECT_EQ(f.substituted_mask(), 2u);
+  // b's input for a final tick arrives now: rejected and counted.
+  h.send_input(b, 0, {1000, 0, 0}, b.player);
+  EXPECT_EQ(h.host().stats().rejected_inputs, 1u);
+}
+
+TEST(MatchHost, HostileDatagramsChangeNothingForThePlayers) {
+  HostHarness clean(test_config());
+  const auto expected = play(clean, 90, nullptr);
+
+  HostHarness h(test_config());
+  std::mt19937 rng(1234);
+  uint64_t attacks = 0;
+  const Endpoint attacker(make_address("127.0.0.1"), 6666);
+  auto attack = [&](HostHarness& host, FakeClient& a, FakeClient& b, Tick t) {
+    // Random bytes of every size, including oversize.
+    std::vector<uint8_t> junk(rng() % 1500 + 1);
+    for (uint8_t& byte : junk) byte = static_cast<uint8_t>(rng());
+    host.raw(attacker, junk);
+    // A valid input frame, truncated.
+    v1::Envelope frame;
+    frame.set_connection_id(a.connection_id);
+    frame.set_sequence(999999);
+    frame.mutable_input_frame()->set_player(a.player);
+    frame.mutable_input_frame()->set_first_tick(t);
+    frame.mutable_input_frame()->add_inputs()->set_axis_x(5);
+    std::vector<uint8_t> bytes = host.encode(frame);
+    bytes.resize(bytes.size() - 3);
+    host.raw(a.endpoint, bytes);
+    // Wrong protocol version.
+    v1::Envelope wrong = frame;
+    wrong.set_protocol_version(7);
+    std::string text;
+    wrong.SerializeToString(&text);
+    host.raw(a.endpoint, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+    // Player a's connection id from another address (spoofed).
+    v1::Envelope spoof;
+    spoof.set_connection_id(a.connection_id);
+    spoof.set_sequence(a.sequence + 5);
+    spoof.mutable_input_frame()->set_player(a.player);
+    spoof.mutable_input_frame()->set_first_tick(t + 1);
+    spoof.mutable_input_frame()->add_inputs()->set_axis_x(-1000);
+    host.raw(attacker, host.encode(spoof));
+    // An unknown connection id.
+    spoof.set_connection_id(a.connection_id ^ 0x5555);
+    host.raw(a.endpoint, host.encode(spoof));
+    // Player a claiming to be player b.
+    host.send_input(a, t + 1, {-1000, -1000, 3}, b.player);
+    // Far in the future, and for a final tick.
+    host.send_input(a, t + 100000, {1000, 0, 0}, a.player);
+    if (t > 10) host.send_input(b, t - 9, {-999, 999, 1}, b.player);
+    // A server-to-client message from a client.
+    v1::Envelope bogus;
+    bogus.mutable_final_ticks()->set_server_tick(t);
+    host.send(a, bogus);
+    attacks += 9;
+  };
+  const auto actual = play(h, 90, attack);
+
+  ASSERT_EQ(actual.size(), expected.size());
+  for (const auto& [tick, checksum] : expected) {
+    ASSERT_EQ(actual.at(tick), checksum) << "final tick " << tick;
+  }
+  const MatchStats stats = h.host().stats();
+  EXPECT_EQ(stats.substituted_inputs, 0u);
+  EXPECT_GE(stats.rejected_packets, 90u * 6);
+  EXPECT_GE(stats.rejected_inputs, 90u * 2);
+  EXPECT_GT(attacks, 0u);
+}
+
+TEST(MatchHost, RepeatedJoinIsIdempotentAndExtraPlayersAreRefused) {
+  HostHarness h(test_config());
+  FakeClient a = h.join(4001);
+  FakeClient again = h.join(4001);
+  EXPECT_EQ(again.connection_id, a.connection_id);
+  h.join(4002);
+  const Endpoint late(make_address("127.0.0.1"), 4003);
+  v1::Envelope envelope;
+  envelope.mutable_join_request()->set_game("crates");
+  envelope.mutable_join_request()->set_nonce(9);
+  h.raw(late, h.encode(envelope));
+  ASSERT_FALSE(h.outbox().received[late].empty());
+  EXPECT_TRUE(h.outbox().received[late].back().has_join_reject());
+}
+
+TEST(MatchHost, ConfigErrorsAreReported) {
+  MatchConfig config = test_config();
+  config.game = "chess";
+  auto host = MatchHost::create(config, [](const Endpoint&, std::span<const uint8_t>) {},
+                                net::SteadyClock::now());
+  ASSERT_FALSE(host.ok());
+  EXPECT_NE(host.status().message().find("unknown game"), std::string::npos);
+  config = test_config();
+  config.window_ticks = 0;
+  EXPECT_FALSE(MatchHost::create(config, [](const Endpoint&, std::span<const uint8_t>) {},
+                                 net::SteadyClock::now())
+                   .ok());
+}
+
+}  // namespace
+}  // namespace rwd::server

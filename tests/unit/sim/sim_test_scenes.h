@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Small scene builders shared by the 3D lane's tests.
+#include <gtest/gtest.h>
+
+#include "rewind/sim/world3d.h"
+
+namespace rwd::sim::test {
+
+/// A static ground box whose top face is at y = 0.
+inline BodyId add_ground(World3D& world, float friction = 0.6f) {
+  BodyDef def;
+  def.kind = BodyKind::kStatic;
+  def.shape = Shape::make_box({50.0f, 0.5f, 50.0f});
+  def.position = {0.0f, -0.5f, 0.0f};
+  def.material.friction = friction;
+  auto id = world.create_body(def);
+  EXPECT_TRUE(id.ok());
+  return *id;
+}
+
+inline BodyId add_box(World3D& world, Vec3 position, Vec3 half = {0.5f, 0.5f, 0.5f},
+                      float restitution = 0.0f, float friction = 0.6f) {
+  BodyDef def;
+  def.shape = Shape::make_box(half);
+  def.position = position;
+  def.material.restitution = restitution;
+  def.material.friction = friction;
+  auto id = world.create_body(def);
+  EXPECT_TRUE(id.ok());
+  return *id;
+}
+
+inline BodyId add_sphere(World3D& world, Vec3 position, float radius = 0.5f,
+                         float restitution = 0.0f) {
+  BodyDef def;
+  def.shape = Shape::make_sphere(radius);
+  def.position = position;
+  def.material.restitution = restitution;
+  auto id = world.create_body(def);
+  EXPECT_TRUE(id.ok());
+  return *id;
+}
+
+inline void step_seconds(World3D& world, float seconds) {
+  int steps = static_cast<int>(seconds / world.config().tick_seconds + 0.5f);
+  for (int i = 0; i < steps; ++i) world.step();
+}
+
+}  // namespace rwd::sim::test

@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: MIT
+// Contact events: enter / stay / exit sequences and their order.
+#include <gtest/gtest.h>
+
+#include "rewind/sim/world3d.h"
+#include "sim_test_scenes.h"
+
+namespace rwd::sim {
+namespace {
+
+using test::add_box;
+using test::add_ground;
+
+int count(const World3D& w, ContactEventType type) {
+  int n = 0;
+  for (const ContactEvent& e : w.events()) n += e.type == type ? 1 : 0;
+  return n;
+}
+
+TEST(ContactEvents, FallingBoxEntersStaysAndExits) {
+  World3D world;
+  BodyId ground = add_ground(world);
+  BodyId box = add_box(world, {0.0f, 1.5f, 0.0f});
+  int enter_step = -1;
+  for (int i = 0; i < 120 && enter_step < 0; ++i) {
+    world.step();
+    if (count(world, ContactEventType::kEnter) > 0) enter_step = i;
+    EXPECT_EQ(count(world, ContactEventType::kExit), 0);
+  }
+  ASSERT_GE(enter_step, 0);
+  // Falls 1 m: about 0.45 s.
+  EXPECT_NEAR(enter_step, 27, 3);
+  const ContactEvent e = world.events()[0];
+  EXPECT_EQ(e.a, ground);
+  EXPECT_EQ(e.b, box);
+  EXPECT_FALSE(e.sensor);
+  for (int i = 0; i < 10; ++i) {
+    world.step();
+    ASSERT_EQ(world.events().size(), 1u);
+    EXPECT_EQ(world.events()[0].type, ContactEventType::kStay);
+  }
+  // Lift it away: exit once, then silence.
+  ASSERT_TRUE(world.set_transform(box, {0.0f, 5.0f, 0.0f}, Quat{}).ok());
+  world.step();
+  ASSERT_EQ(world.events().size(), 1u);
+  EXPECT_EQ(world.events()[0].type, ContactEventType::kExit);
+  world.step();
+  EXPECT_TRUE(world.events().empty());
+}
+
+TEST(ContactEvents, DestroyEmitsExitOnTheNextStep) {
+  World3D world;
+  BodyId ground = add_ground(world);
+  BodyId box = add_box(world, {0.0f, 0.5f, 0.0f});
+  world.step();
+  ASSERT_EQ(count(world, ContactEventType::kEnter), 1);
+  ASSERT_TRUE(world.destroy_body(box).ok());
+  world.step();
+  ASSERT_EQ(world.events().size(), 1u);
+  const ContactEvent e = world.events()[0];
+  EXPECT_EQ(e.type, ContactEventType::kExit);
+  EXPECT_EQ(e.a, ground);
+  EXPECT_EQ(e.b, box);  // the destroyed id, generation included
+  world.step();
+  EXPECT_TRUE(world.events().empty());
+}
+
+TEST(ContactEvents, SlotReuseGivesExitOfOldAndEnterOfNew) {
+  World3D world;
+  add_ground(world);
+  BodyId old_box = add_box(world, {0.0f, 0.5f, 0.0f});
+  world.step();
+  ASSERT_TRUE(world.destroy_body(old_box).ok());
+  BodyId new_box = add_box(world, {0.0f, 0.5f, 0.0f});
+  ASSERT_EQ(new_box.index, old_box.index);
+  ASSERT_EQ(new_box.generation, old_box.generation + 1);
+  world.step();
+  ASSERT_EQ(world.events().size(), 2u);
+  EXPECT_EQ(world.events()[0].type, ContactEventType::kEnter);
+  EXPECT_EQ(world.events()[0].b, new_box);
+  EXPECT_EQ(world.events()[1].type, ContactEventType::kExit);
+  EXPECT_EQ(world.events()[1].b, old_box);
+}
+
+TEST(ContactEvents, OrderedByIndexPairAndSensorsReportButDoNotPush) {
+  World3D world;
+  add_ground(world);
+  BodyDef sensor;
+  sensor.kind = BodyKind::kStatic;
+  sensor.sensor = true;
+  sensor.shape = Shape::make_box({3.0f, 1.0f, 3.0f});
+  sensor.position = {0.0f, 1.0f, 0.0f};
+  BodyId zone = *world.create_body(sensor);
+  BodyId b1 = add_box(world, {1.0f, 0.5f, 0.0f});
+  BodyId b2 = add_box(world, {-1.0f, 0.5f, 0.0f});
+  world.step();
+  auto events = world.events();
+  ASSERT_EQ(events.size(), 4u);  // ground-b1, ground-b2, zone-b1, zone-b2
+  for (size_t i = 1; i < events.size(); ++i) {
+    bool ordered = events[i - 1].a.index < events[i].a.index ||
+                   (events[i - 1].a.index == events[i].a.index &&
+                    events[i - 1].b.index < events[i].b.index);
+    EXPECT_TRUE(ordered) << i;
+  }
+  EXPECT_EQ(events[2].a, zone);
+  EXPECT_EQ(events[2].b, b1);
+  EXPECT_TRUE(events[2].sensor);
+  EXPECT_EQ(events[3].b, b2);
+  // A dynamic box inside a sensor is not pushed: it rests on the ground.
+  for (int i = 0; i < 60; ++i) world.step();
+  EXPECT_NEAR(world.position(b1).y, 0.5f, 0.01f);
+  EXPECT_NEAR(world.position(b1).x, 1.0f, 0.01f);
+}
+
+}  // namespace
+}  // namespace rwd::sim

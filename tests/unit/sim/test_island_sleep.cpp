@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: MIT
+// Sleep: bodies at rest fall asleep after time_to_sleep, whole islands
+// together; contacts and setters wake them.
+#include <gtest/gtest.h>
+
+#include "rewind/sim/world3d.h"
+#include "sim_test_scenes.h"
+
+namespace rwd::sim {
+namespace {
+
+using test::add_box;
+using test::add_ground;
+using test::step_seconds;
+
+TEST(IslandSleep, RestingStackSleepsTogether) {
+  World3D world;
+  add_ground(world);
+  BodyId a = add_box(world, {0.0f, 0.5f, 0.0f});
+  BodyId b = add_box(world, {0.0f, 1.5f, 0.0f});
+  step_seconds(world, 0.25f);
+  EXPECT_TRUE(world.is_awake(a));
+  step_seconds(world, 3.0f);
+  EXPECT_FALSE(world.is_awake(a));
+  EXPECT_FALSE(world.is_awake(b));
+  EXPECT_EQ(world.stats().awake_bodies, 0u);
+  // Asleep means frozen: position does not change and velocity is zero.
+  Vec3 p = world.position(b);
+  step_seconds(world, 1.0f);
+  EXPECT_EQ(world.position(b), p);
+  EXPECT_EQ(world.linear_velocity(b), Vec3{});
+  // Touching contacts persist while asleep (stay events keep coming).
+  EXPECT_EQ(world.events().size(), 2u);
+}
+
+TEST(IslandSleep, SetterWakesBodyAndImpactWakesIsland) {
+  World3D world;
+  add_ground(world);
+  BodyId a = add_box(world, {0.0f, 0.5f, 0.0f});
+  BodyId b = add_box(world, {0.0f, 1.5f, 0.0f});
+  step_seconds(world, 3.0f);
+  ASSERT_FALSE(world.is_awake(a));
+  ASSERT_TRUE(world.set_linear_velocity(a, {0.0f, 0.0f, 0.0f}).ok());
+  EXPECT_TRUE(world.is_awake(a));
+  world.step();
+  EXPECT_TRUE(world.is_awake(b));  // same island
+  step_seconds(world, 3.0f);
+  ASSERT_FALSE(world.is_awake(b));
+  // Drop a box on the sleeping stack: the whole island wakes.
+  BodyId c = add_box(world, {0.0f, 4.0f, 0.0f});
+  bool woke_a = false;
+  for (int i = 0; i < 90; ++i) {
+    world.step();
+    woke_a = woke_a || world.is_awake(a);
+  }
+  EXPECT_TRUE(woke_a);
+  EXPECT_NEAR(world.position(c).y, 2.5f, 0.03f);  // landed on top, not through
+}
+
+TEST(IslandSleep, DisabledSleepKeepsBodiesAwake) {
+  WorldConfig config;
+  config.enable_sleep = false;
+  World3D world(config);
+  add_ground(world);
+  BodyId a = add_box(world, {0.0f, 0.5f, 0.0f});
+  step_seconds(world, 3.0f);
+  EXPECT_TRUE(world.is_awake(a));
+}
+
+TEST(IslandSleep, DestroyingSupportWakesRestingBody) {
+  World3D world;
+  add_ground(world);
+  BodyId a = add_box(world, {0.0f, 0.5f, 0.0f});
+  BodyId b = add_box(world, {0.0f, 1.5f, 0.0f});
+  step_seconds(world, 3.0f);
+  ASSERT_FALSE(world.is_awake(b));
+  ASSERT_TRUE(world.destroy_body(a).ok());
+  EXPECT_TRUE(world.is_awake(b));
+  step_seconds(world, 1.0f);
+  EXPECT_NEAR(world.position(b).y, 0.5f, 0.02f);  // fell onto the ground
+}
+
+}  // namespace
+}  // namespace rwd::sim

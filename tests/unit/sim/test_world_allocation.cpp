@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: MIT
+// A warmed-up world steps, saves and restores without touching the heap
+// (DESIGN.md section 2: snapshots every tick must not allocate). Counts
+// global operator new calls between two markers.
+#include <cstdlib>
+#include <new>
+
+#include <gtest/gtest.h>
+
+#include "rewind/sim/world3d.h"
+#include "sim_test_scenes.h"
+
+namespace {
+bool g_counting = false;
+long g_allocations = 0;
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (g_counting) ++g_allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace rwd::sim {
+namespace {
+
+TEST(WorldAllocation, WarmStepSaveRestoreDoNotAllocate) {
+  WorldConfig config;
+  config.enable_sleep = false;  // keep the whole pipeline running
+  World3D world(config);
+  test::add_ground(world);
+  for (int i = 0; i < 16; ++i) {
+    float x = 1.1f * static_cast<float>(i % 4) - 1.6f;
+    float y = 0.5f + 1.2f * static_cast<float>(i / 4);
+    if (i % 2 == 0) {
+      test::add_box(world, {x, y, 0.1f * static_cast<float>(i % 3)});
+    } else {
+      test::add_sphere(world, {x, y, 0.0f}, 0.45f);
+    }
+  }
+  for (int i = 0; i < 60; ++i) world.step();
+  WorldState start;
+  WorldState slot;
+  world.save(start);
+  // First pass grows every buffer to what these steps need.
+  for (int i = 0; i < 120; ++i) {
+    world.step();
+    world.save(slot);
+  }
+  world.restore(start);
+  g_allocations = 0;
+  g_counting = true;
+  for (int i = 0; i < 120; ++i) {
+    world.step();
+    world.save(slot);
+  }
+  world.restore(start);
+  g_counting = false;
+  EXPECT_EQ(g_allocations, 0);
+}
+
+}  // namespace
+}  // namespace rwd::sim

@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: MIT
+#include "replay_cli.h"
+
+#include <cerrno>
+#include <cstdlib>
+#include <limits>
+#include <string_view>
+#include <vector>
+
+#include "rewind/cli/flag_parser.h"
+#include "rewind/game/player_input.h"
+
+namespace rwd::replay_tool {
+namespace {
+
+constexpr const char* kProgram = "rewind-replay";
+
+constexpr const char* kToolHelp =
+    "usage: rewind-replay COMMAND [args]\n"
+    "\n"
+    "Checks and examines Rewind replay files.\n"
+    "\n"
+    "commands:\n"
+    "  verify FILE [--json]   re-simulate the match and compare every checksum\n"
+    "  inspect FILE           print header, tick range, keyframes, substitutions\n"
+    "  tamper FILE ...        rewrite one input with valid framing (for tests)\n"
+    "\n"
+    "Run 'rewind-replay COMMAND --help' for a command's flags.\n"
+    "exit codes: 0 ok, 1 diverged or failed, 2 file broken or unverifiable, 64 usage\n";
+
+Status usage_error(const std::string& message) {
+  return Status::Error(ErrorCode::kInvalidArgument, message);
+}
+
+// Exactly one FILE positional.
+Result<std::string> single_file(const std::vector<std::string>& positionals,
+                                const std::string& command) {
+  if (positionals.size() != 1) {
+    return usage_error(command + ": expected one FILE, got " + std::to_string(positionals.size()) +
+                       " (see " + kProgram + " " + command + " --help)");
+  }
+  return positionals.front();
+}
+
+// Optional integer flags are taken as strings so "not given" needs no
+// sentinel value; the number is then held to the same strictness as
+// FlagParser's own.
+Result<std::optional<int64_t>> optional_int(const std::string& flag, const std::string& text,
+                                            int64_t min, int64_t max) {
+  if (text.empty()) return std::optional<int64_t>();
+  // Decimal, or hex with 0x; never octal, so "-010" is not -8.
+  const bool hex = text.rfind("0x", 0) == 0 || text.rfind("0X", 0) == 0;
+  errno = 0;
+  char* end = nullptr;
+  const long long v = std::strtoll(text.c_str(), &end, hex ? 16 : 10);
+  if (errno != 0 || end == text.c_str() || *end != '\0') {
+    return usage_error("--" + flag + ": expected an integer, got '" + text + "'");
+  }
+  if (v < min || v > max) {
+    return usage_error("--" + flag + ": " + text + " is outside [" + std::to_string(min) + ", " +
+                       std::to_string(max) + "]");
+  }
+  return std::optional<int64_t>(v);
+}
+
+Result<Command> parse_verify(int argc, const char* const* argv) {
+  VerifyCommand cmd;
+  cli::FlagParser flags(std::string(kProgram) + " verify", "rewind-replay verify FILE [--json]",
+                        "Re-simulates the replay headless and compares the checksum of every "
+                        "tick and the state of every keyframe.\nexit codes: 0 verified, 1 "
+                        "diverged (prints the tick and the differing fields), 2 file broken or "
+                        "unverifiable (the valid prefix is still verified), 64 usage");
+  flags.add_bool("json", &cmd.json, "print the report as JSON");
+  std::vector<std::string> positionals;
+  if (Status s = flags.parse(argc, argv, 2, &positionals); !s.ok()) return s;
+  if (flags.help_requested()) return Command(HelpRequest{flags.help_text()});
+  Result<std::string> file = single_file(positionals, "verify");
+  if (!file.ok()) return file.status();
+  cmd.file = *file;
+  return Command(cmd);
+}
+
+Result<Command> parse_inspect(int argc, const char* const* argv) {
+  InspectCommand cmd;
+  cli::FlagParser flags(std::string(kProgram) + " inspect", "rewind-replay inspect FILE",
+                        "Prints the header, tick range, record counts, substituted inputs per "
+                        "player and keyframes, without re-simulating.\nexit codes: 0 intact, "
+                        "2 file broken (the valid prefix is still summarized), 64 usage");
+  std::vector<std::string> positionals;
+  if (Status s = flags.parse(argc, argv, 2, &positionals); !s.ok()) return s;
+  if (flags.help_requested()) return Command(HelpRequest{flags.help_text()});
+  Result<std::string> file = single_file(positionals, "inspect");
+  if (!file.ok()) return file.status();
+  cmd.file = *file;
+  return Command(cmd);
+}
+
+Result<Command> parse_tamper(int argc, const char* const* argv) {
+  TamperCommand cmd;
+  int64_t tick = -1;
+  int64_t player = -1;
+  std::string axis_x;
+  std::string axis_y;
+  std::string buttons;
+  cli::FlagParser flags(std::string(kProgram) + " tamper",
+                        "rewind-replay tamper FILE --tick T --player P [--axis-x V] [--axis-y V] "
+                        "[--buttons B] --out OUT",
+                        "Writes a copy of FILE with one recorded input changed and every frame "
+                        "hashed correctly: a consistent forgery that only re-simulation catches "
+                        "(used to test 'verify').\nexit codes: 0 written, 1 failed, 64 usage");
+  flags.add_int("tick", &tick, 0, std::numeric_limits<int32_t>::max(), "tick to change (required)");
+  flags.add_int("player", &player, 0, 63, "player slot to change (required)");
+  flags.add_string("axis-x", &axis_x, "new axis_x in [-1000, 1000]");
+  flags.add_string("axis-y", &axis_y, "new axis_y in [-1000, 1000]");
+  flags.add_string("buttons", &buttons, "new button bits (decimal or 0x hex)");
+  flags.add_string("out", &cmd.out, "file to write (required)");
+  flags.add_bool("overwrite", &cmd.overwrite, "replace OUT if it exists");
+  std::vector<std::string> positionals;
+  if (Status s = flags.parse(argc, argv, 2, &positionals); !s.ok()) return s;
+  if (flags.help_requested()) return Command(HelpRequest{flags.help_text()});
+  Result<std::string> file = single_file(positionals, "tamper");
+  if (!file.ok()) return file.status();
+  cmd.file = *file;
+  if (tick < 0) return usage_error("tamper: --tick is required");
+  if (player < 0) return usage_error("tamper: --player is required");
+  if (cmd.out.empty()) return usage_error("tamper: --out is required");
+  cmd.edit.tick = static_cast<Tick>(tick);
+  cmd.edit.player = static_cast<uint32_t>(player);
+
+  Result<std::optional<int64_t>> x =
+      optional_int("axis-x", axis_x, -game::kAxisMax, game::kAxisMax);
+  if (!x.ok()) return x.status();
+  Result<std::optional<int64_t>> y =
+      optional_int("axis-y", axis_y, -game::kAxisMax, game::kAxisMax);
+  if (!y.ok()) return y.status();
+  Result<std::optional<int64_t>> b =
+      optional_int("buttons", buttons, 0, std::numeric_limits<uint32_t>::max());
+  if (!b.ok()) return b.status();
+  if (!*x && !*y && !*b) {
+    return usage_error("tamper: give at least one of --axis-x, --axis-y, --buttons");
+  }
+  if (*x) cmd.edit.axis_x = static_cast<int16_t>(**x);
+  if (*y) cmd.edit.axis_y = static_cast<int16_t>(**y);
+  if (*b) cmd.edit.buttons = static_cast<uint32_t>(**b);
+  return Command(cmd);
+}
+
+}  // namespace
+
+Result<Command> parse_command_line(int argc, const char* const* argv) {
+  if (argc < 2) return usage_error(std::string("missing command\n\n") + kToolHelp);
+  const std::string_view command = argv[1];
+  if (command == "--help" || command == "-h" || command == "help") {
+    return Command(HelpRequest{kToolHelp});
+  }
+  if (command == "verify") return parse_verify(argc, argv);
+  if (command == "inspect") return parse_inspect(argc, argv);
+  if (command == "tamper") return parse_tamper(argc, argv);
+  return usage_error("unknown command '" + std::string(command) + "' (see " + kProgram +
+                     " --help)");
+}
+
+}  // namespace rwd::replay_tool
