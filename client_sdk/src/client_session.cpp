@@ -165,6 +165,7 @@ int ClientSession::update(TimePoint now) {
       return 0;
     case Phase::kLobby:
     case Phase::kRunning:
+    case Phase::kEnding:
       break;
   }
   if (seconds(now - connection_.last_receive_time()) > config_.server_timeout_s) {
@@ -179,7 +180,7 @@ int ClientSession::update(TimePoint now) {
     envelope.mutable_ping()->set_client_time_us(micros_since_epoch(now));
     send(envelope, now);
   }
-  if (phase_ != Phase::kRunning) return 0;
+  if (phase_ != Phase::kRunning && phase_ != Phase::kEnding) return 0;
 
   // The tick clock runs a little fast or slow to keep our inputs arriving
   // just ahead of the server's need.
@@ -188,6 +189,11 @@ int ClientSession::update(TimePoint now) {
   step_due_ticks(now);
   verify_finals(now);
   if (awaiting_resync_ && now - last_report_sent_ >= kReportResend) send_desync_report(now);
+  if (phase_ == Phase::kEnding &&
+      (stats_.last_final_tick >= end_tick_ || awaiting_resync_ || now >= ending_deadline_)) {
+    phase_ = Phase::kEnded;
+    emit({ClientEventType::kMatchEnded, end_tick_, player_, 0, 0, end_reason_});
+  }
   return session_->current_tick() - before;
 }
 
@@ -273,9 +279,15 @@ void ClientSession::handle(const v1::Envelope& envelope, TimePoint now) {
       if (phase_ == Phase::kLobby) on_match_start(envelope.match_start(), now);
       break;
     case v1::Envelope::kMatchEnd:
-      if (phase_ != Phase::kEnded) {
+      if (phase_ == Phase::kRunning) {
+        // Keep verifying until the last final tick is checked (or a moment
+        // has passed), then report the end.
+        phase_ = Phase::kEnding;
+        end_tick_ = envelope.match_end().last_final_tick();
+        end_reason_ = envelope.match_end().reason();
+        ending_deadline_ = now + std::chrono::milliseconds(1500);
+      } else if (phase_ == Phase::kLobby || phase_ == Phase::kJoining) {
         phase_ = Phase::kEnded;
-        verify_finals(now);  // finals received with the end are still checked
         emit({ClientEventType::kMatchEnded, envelope.match_end().last_final_tick(), player_, 0, 0,
               envelope.match_end().reason()});
       }
@@ -304,7 +316,7 @@ void ClientSession::handle(const v1::Envelope& envelope, TimePoint now) {
       if (session_) on_final_ticks(envelope.final_ticks());
       break;
     case v1::Envelope::kResyncChunk:
-      if (session_ && phase_ == Phase::kRunning) on_resync_chunk(envelope.resync_chunk(), now);
+      if (session_ && (phase_ == Phase::kRunning || phase_ == Phase::kEnding)) on_resync_chunk(envelope.resync_chunk(), now);
       break;
     case v1::Envelope::kDisconnect:
       phase_ = Phase::kEnded;

@@ -22,6 +22,8 @@ Status MatchConfig::validate() const {
   if (max_ticks < 0) return bad("ticks must be >= 0");
   if (keyframe_interval < 0) return bad("keyframe interval must be >= 0");
   if (!(join_timeout_s > 0) || !(peer_timeout_s > 0)) return bad("timeouts must be > 0");
+  if (!(start_delay_s >= 0 && start_delay_s <= 10)) return bad("start delay must be in [0, 10] s");
+  if (!(closing_s >= 0 && closing_s <= 10)) return bad("closing time must be in [0, 10] s");
   if (max_input_lead_ticks < 1 || max_input_lead_ticks > 200) {
     return bad("max input lead must be in [1, 200] ticks");
   }

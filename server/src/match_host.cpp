@@ -2,6 +2,7 @@
 #include "rewind/server/match_host.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -146,13 +147,19 @@ void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from
 
   switch (envelope.payload_case()) {
     case v1::Envelope::kInputFrame:
-      if (phase_ == Phase::kRunning) handle_input(*peer, player, envelope.input_frame(), now);
+      if (phase_ == Phase::kRunning) {
+        handle_input(*peer, player, envelope.input_frame(), now);
+      } else if (envelope.input_frame().player() == player) {
+        // Closing: only the acknowledgement of final ticks still matters.
+        peer->final_seen = std::max(peer->final_seen, std::min(envelope.input_frame().last_final_tick_seen(),
+                                                               next_final_ - 1));
+      }
       break;
     case v1::Envelope::kPing: {
       v1::Envelope reply;
       v1::Pong* pong = reply.mutable_pong();
       pong->set_client_time_us(envelope.ping().client_time_us());
-      pong->set_server_tick(session_->current_tick());
+      pong->set_server_tick(server_tick());
       pong->set_server_tick_elapsed_us(static_cast<uint32_t>(
           std::chrono::duration_cast<std::chrono::microseconds>(now - tick_started_).count()));
       send(*peer, reply, now);
@@ -197,12 +204,7 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
     answer->set_tick_rate_hz(config_.tick_rate_hz);
     answer->set_window_ticks(static_cast<uint32_t>(config_.window_ticks));
     send(peer, reply, now);
-    if (phase_ == Phase::kRunning) {
-      v1::Envelope start;
-      start.mutable_match_start()->set_start_tick(0);
-      start.mutable_match_start()->set_server_tick(session_->current_tick());
-      send(peer, start, now);
-    }
+    if (phase_ == Phase::kRunning) send_match_start(peer, now);
   };
 
   // A repeated request from a joined address lost our answer: answer again.
@@ -273,13 +275,17 @@ void MatchHost::start_match(TimePoint now) {
   phase_ = Phase::kRunning;
   started_ = now;
   tick_started_ = now;
-  log_line("all " + std::to_string(config_.players) + " players joined; match starts");
-  for (Peer& peer : peers_) {
-    v1::Envelope start;
-    start.mutable_match_start()->set_start_tick(0);
-    start.mutable_match_start()->set_server_tick(session_->current_tick());
-    send(peer, start, now);
-  }
+  countdown_ticks_ = static_cast<int32_t>(std::ceil(config_.start_delay_s * config_.tick_rate_hz));
+  log_line("all " + std::to_string(config_.players) + " players joined; tick 0 in " +
+           std::to_string(countdown_ticks_) + " ticks");
+  for (Peer& peer : peers_) send_match_start(peer, now);
+}
+
+void MatchHost::send_match_start(Peer& peer, TimePoint now) {
+  v1::Envelope start;
+  start.mutable_match_start()->set_start_tick(0);
+  start.mutable_match_start()->set_server_tick(server_tick());
+  send(peer, start, now);
 }
 
 void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& frame,
@@ -295,6 +301,7 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
     peer.final_seen = std::min(frame.last_final_tick_seen(), next_final_ - 1);
   }
   const Tick now_tick = session_->current_tick();
+  const Tick clock_tick = server_tick();
   const Tick confirmed_before = session_->queue(player).contiguous_through();
   v1::Envelope relay;
   v1::RelayedInputs* relayed = relay.mutable_relayed_inputs();
@@ -318,7 +325,7 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
     const Tick tick = frame.first_tick() + i;
     newest = std::max(newest, tick);
     auto input = replay::from_proto(frame.inputs(i));
-    if (!input.ok() || tick > now_tick + config_.max_input_lead_ticks) {
+    if (!input.ok() || tick > clock_tick + config_.max_input_lead_ticks) {
       ++stats_.rejected_inputs;
       continue;
     }
@@ -347,7 +354,7 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
     }
   }
   flush_relay();
-  if (newest != kNoTick) peer.last_lead = newest - now_tick;
+  if (newest != kNoTick) peer.last_lead = newest - clock_tick;
 }
 
 void MatchHost::on_tick(TimePoint now) {
@@ -360,7 +367,18 @@ void MatchHost::on_tick(TimePoint now) {
     }
     return;
   }
+  if (phase_ == Phase::kClosing) {
+    broadcast(now);
+    if (session_->current_tick() % 10 == 0) send_match_end(now);
+    close_if_done(now);
+    return;
+  }
   tick_started_ = now;
+  if (countdown_ticks_ > 0) {
+    --countdown_ticks_;
+    for (Peer& peer : peers_) send_match_start(peer, now);
+    return;
+  }
   for (uint32_t p = 0; p < peers_.size(); ++p) {
     Peer& peer = peers_[p];
     if (peer.connected && seconds_between(peer.last_receive, now) > config_.peer_timeout_s) {
@@ -444,11 +462,8 @@ void MatchHost::broadcast(TimePoint now) {
   for (uint32_t p = 0; p < peers_.size(); ++p) {
     Peer& peer = peers_[p];
     if (!peer.joined || !peer.connected) continue;
-    if (!peer.sent_input && session_->current_tick() % 10 == 0) {
-      v1::Envelope start;  // MatchStart may have been lost
-      start.mutable_match_start()->set_start_tick(0);
-      start.mutable_match_start()->set_server_tick(session_->current_tick());
-      send(peer, start, now);
+    if (!peer.sent_input && phase_ == Phase::kRunning && session_->current_tick() % 10 == 0) {
+      send_match_start(peer, now);  // every MatchStart so far may have been lost
     }
     // A client that fell behind the history we keep can only catch up from
     // a snapshot.
@@ -460,7 +475,7 @@ void MatchHost::broadcast(TimePoint now) {
     v1::FinalTicks* out = envelope.mutable_final_ticks();
     out->set_input_ack_tick(session_->queue(p).contiguous_through());
     out->set_input_lead_ticks(peer.last_lead);
-    out->set_server_tick(session_->current_tick());
+    out->set_server_tick(server_tick());
     size_t budget = kFinalTicksBudgetBytes;
     for (const v1::FinalTick& final_tick : finals_) {
       if (final_tick.tick() <= peer.final_seen) continue;
@@ -607,27 +622,44 @@ void MatchHost::send_resync(Peer& peer, TimePoint now) {
 }
 
 void MatchHost::end(const std::string& reason, TimePoint now) {
-  if (phase_ == Phase::kEnded) return;
+  if (phase_ == Phase::kEnded || phase_ == Phase::kClosing) return;
   const bool was_running = phase_ == Phase::kRunning;
-  phase_ = Phase::kEnded;
   ended_ = now;
   stats_.end_reason = reason;
   log_line("match ends: " + reason);
-  // Three copies: there is no later packet to carry an ack for it.
-  for (int copy = 0; copy < 3; ++copy) {
-    for (Peer& peer : peers_) {
-      if (!peer.joined) continue;
-      v1::Envelope envelope;
-      envelope.mutable_match_end()->set_last_final_tick(next_final_ - 1);
-      envelope.mutable_match_end()->set_reason(reason);
-      send(peer, envelope, now);
-    }
-  }
   if (replay_ && !replay_failed_) {
     Status status = replay_->finish(next_final_ - 1, reason);
     if (!status.ok()) record_replay_error(status);
   }
-  if (!was_running) started_ = now;
+  if (!was_running) {
+    started_ = now;
+    phase_ = Phase::kEnded;
+    send_match_end(now);
+    return;
+  }
+  phase_ = Phase::kClosing;
+  closing_deadline_ = now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                std::chrono::duration<double>(config_.closing_s));
+  send_match_end(now);
+  close_if_done(now);
+}
+
+void MatchHost::send_match_end(TimePoint now) {
+  for (Peer& peer : peers_) {
+    if (!peer.joined || !peer.connected) continue;
+    v1::Envelope envelope;
+    envelope.mutable_match_end()->set_last_final_tick(next_final_ - 1);
+    envelope.mutable_match_end()->set_reason(stats_.end_reason);
+    send(peer, envelope, now);
+  }
+}
+
+void MatchHost::close_if_done(TimePoint now) {
+  bool all_acked = true;
+  for (const Peer& peer : peers_) {
+    if (peer.joined && peer.connected) all_acked = all_acked && peer.final_seen >= next_final_ - 1;
+  }
+  if (all_acked || now >= closing_deadline_) phase_ = Phase::kEnded;
 }
 
 void MatchHost::send(Peer& peer, v1::Envelope& envelope, TimePoint now) {

@@ -10,3 +10,7 @@
 
 /// Envelope datagrams: decode_envelope, then re-encode what it accepts.
 int fuzz_envelope_one(const uint8_t* data, size_t size);
+
+/// Replay files (first byte: 1 = repair frame hashes first): ReplayReader,
+/// then re-frame what it accepts and read it again.
+int fuzz_replay_reader_one(const uint8_t* data, size_t size);

@@ -2,13 +2,13 @@
 // Fuzz entry for the replay reader: arbitrary bytes must give records or a
 // Status, never a crash, and whatever reads cleanly must survive being
 // framed again and re-read unchanged.
-#include <cstddef>
-#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <optional>
 #include <span>
-#include <string>
 #include <vector>
 
+#include "fuzz_entries.h"
 #include "rewind/replay/replay_format.h"
 #include "rewind/replay/replay_reader.h"
 
@@ -18,16 +18,20 @@ using rwd::Result;
 using rwd::replay::ReplayReader;
 using rwd::v1::ReplayRecord;
 
+[[noreturn]] void invariant_broken(const char* what) {
+  std::fprintf(stderr, "fuzz_replay_reader: invariant broken: %s\n", what);
+  std::abort();
+}
+
 // Reads every record after the header; false when the reader reported an
-// error. Traps when the reader breaks one of its own promises.
+// error.
 bool read_all(ReplayReader& reader, size_t size, std::vector<ReplayRecord>& records) {
   while (true) {
     Result<std::optional<ReplayRecord>> next = reader.next();
-    if (reader.offset() > size) __builtin_trap();
+    if (reader.offset() > size) invariant_broken("offset past the end of the input");
     if (!next.ok()) {
-      if (next.status().message().empty()) __builtin_trap();
-      // Errors are sticky.
-      if (reader.next().ok()) __builtin_trap();
+      if (next.status().message().empty()) invariant_broken("error without message");
+      if (reader.next().ok()) invariant_broken("error did not stick");
       return false;
     }
     if (!next->has_value()) return true;
@@ -53,37 +57,36 @@ void fix_hashes(std::vector<uint8_t>& bytes) {
 
 }  // namespace
 
-/// The first byte picks the mode (odd: repair frame hashes first); the rest
-/// is the file.
 int fuzz_replay_reader_one(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
   std::vector<uint8_t> file(data + 1, data + size);
   if (data[0] & 1u) fix_hashes(file);
-  size = file.size();
   Result<ReplayReader> reader = ReplayReader::from_bytes(file);
   if (!reader.ok()) {
-    if (reader.status().message().empty()) __builtin_trap();
+    if (reader.status().message().empty()) invariant_broken("open error without message");
     return 0;
   }
   std::vector<ReplayRecord> records;
-  if (!read_all(*reader, size, records)) return 0;
+  if (!read_all(*reader, file.size(), records)) return 0;
 
   // Round trip: frame the header and records again and read them back.
   std::vector<uint8_t> bytes(rwd::replay::kMagic.begin(), rwd::replay::kMagic.end());
   ReplayRecord header;
   *header.mutable_header() = reader->header();
-  if (!rwd::replay::append_frame(header, bytes).ok()) __builtin_trap();
+  if (!rwd::replay::append_frame(header, bytes).ok()) invariant_broken("header does not frame");
   for (const ReplayRecord& r : records) {
-    if (!rwd::replay::append_frame(r, bytes).ok()) __builtin_trap();
+    if (!rwd::replay::append_frame(r, bytes).ok()) invariant_broken("record does not frame");
   }
   Result<ReplayReader> again = ReplayReader::from_bytes(bytes);
-  if (!again.ok()) __builtin_trap();
+  if (!again.ok()) invariant_broken("re-framed header does not read");
   std::vector<ReplayRecord> reread;
-  if (!read_all(*again, bytes.size(), reread)) __builtin_trap();
-  if (reread.size() != records.size()) __builtin_trap();
+  if (!read_all(*again, bytes.size(), reread)) invariant_broken("re-framed records do not read");
+  if (reread.size() != records.size()) invariant_broken("record count changed");
   for (size_t i = 0; i < records.size(); ++i) {
-    if (reread[i].SerializeAsString() != records[i].SerializeAsString()) __builtin_trap();
+    if (reread[i].SerializeAsString() != records[i].SerializeAsString()) {
+      invariant_broken("record changed in the round trip");
+    }
   }
-  if (again->ended() != reader->ended()) __builtin_trap();
+  if (again->ended() != reader->ended()) invariant_broken("end record lost");
   return 0;
 }

@@ -118,11 +118,6 @@ Status ReplayWriter::usable() const {
   return Status::Ok();
 }
 
-Status ReplayWriter::append_record(const v1::ReplayRecord& record) {
-  if (Status s = append_frame(record, buffer_); !s.ok()) return s;
-  return Status::Ok();
-}
-
 Status ReplayWriter::append_tick(Tick tick, std::span<const game::PlayerInput> inputs,
                                  uint64_t substituted_mask, uint64_t checksum) {
   if (Status s = usable(); !s.ok()) return s;
@@ -150,7 +145,7 @@ Status ReplayWriter::append_tick(Tick tick, std::span<const game::PlayerInput> i
   for (const game::PlayerInput& input : inputs) *out->add_inputs() = to_proto(input);
   out->set_substituted_mask(substituted_mask);
   out->set_checksum(checksum);
-  if (Status s = append_record(record); !s.ok()) return s;
+  if (Status s = append_frame(record, buffer_); !s.ok()) return s;
   last_tick_ = tick;
   return maybe_flush();
 }
@@ -167,7 +162,7 @@ Status ReplayWriter::append_keyframe(Tick tick, std::span<const uint8_t> seriali
   v1::ReplayKeyframe* out = record.mutable_keyframe();
   out->set_tick(tick);
   out->set_state(serialized_state.data(), serialized_state.size());
-  if (Status s = append_record(record); !s.ok()) return s;
+  if (Status s = append_frame(record, buffer_); !s.ok()) return s;
   last_keyframe_tick_ = tick;
   return flush();
 }
@@ -182,7 +177,7 @@ Status ReplayWriter::finish(Tick last_final_tick, std::string_view reason) {
   v1::ReplayRecord record;
   record.mutable_end()->set_last_final_tick(last_final_tick);
   record.mutable_end()->set_reason(std::string(reason));
-  if (Status s = append_record(record); !s.ok()) return s;
+  if (Status s = append_frame(record, buffer_); !s.ok()) return s;
   if (Status s = flush(); !s.ok()) return s;
   // Character devices and pipes cannot be synced; that is not a lost record.
   if (::fsync(fd_) != 0 && errno != EINVAL && errno != EROFS) {

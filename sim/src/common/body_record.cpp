@@ -63,8 +63,7 @@ std::vector<FieldDifference> diff_body_records(const std::vector<BodyRecord>& ex
   size_t i = 0;
   size_t j = 0;
   while (i < expected.size() || j < actual.size()) {
-    if (j == actual.size() ||
-        (i < expected.size() && expected[i].id.index < actual[j].id.index)) {
+    if (j == actual.size() || (i < expected.size() && expected[i].id.index < actual[j].id.index)) {
       out.push_back({expected[i].id.index, "exists", 1.0, 0.0});
       ++i;
     } else if (i == expected.size() || actual[j].id.index < expected[i].id.index) {

@@ -33,25 +33,25 @@ int64_t round_to_int(double v) {
 // next term is below 3e-14 (sin, x^15/15!) and 1e-15 (cos, x^16/16!).
 double sin_poly(double r) {
   double r2 = r * r;
-  double p = -1.0 / 1307674368000.0;               // -1/15!
-  p = p * r2 + 1.0 / 6227020800.0;                 // 1/13!
-  p = p * r2 - 1.0 / 39916800.0;                   // -1/11!
-  p = p * r2 + 1.0 / 362880.0;                     // 1/9!
-  p = p * r2 - 1.0 / 5040.0;                       // -1/7!
-  p = p * r2 + 1.0 / 120.0;                        // 1/5!
-  p = p * r2 - 1.0 / 6.0;                          // -1/3!
+  double p = -1.0 / 1307674368000.0;  // -1/15!
+  p = p * r2 + 1.0 / 6227020800.0;    // 1/13!
+  p = p * r2 - 1.0 / 39916800.0;      // -1/11!
+  p = p * r2 + 1.0 / 362880.0;        // 1/9!
+  p = p * r2 - 1.0 / 5040.0;          // -1/7!
+  p = p * r2 + 1.0 / 120.0;           // 1/5!
+  p = p * r2 - 1.0 / 6.0;             // -1/3!
   return r + r * r2 * p;
 }
 double cos_poly(double r) {
   double r2 = r * r;
-  double p = 1.0 / 20922789888000.0;   // 1/16!
-  p = p * r2 - 1.0 / 87178291200.0;    // -1/14!
-  p = p * r2 + 1.0 / 479001600.0;      // 1/12!
-  p = p * r2 - 1.0 / 3628800.0;        // -1/10!
-  p = p * r2 + 1.0 / 40320.0;          // 1/8!
-  p = p * r2 - 1.0 / 720.0;            // -1/6!
-  p = p * r2 + 1.0 / 24.0;             // 1/4!
-  p = p * r2 - 0.5;                    // -1/2!
+  double p = 1.0 / 20922789888000.0;  // 1/16!
+  p = p * r2 - 1.0 / 87178291200.0;   // -1/14!
+  p = p * r2 + 1.0 / 479001600.0;     // 1/12!
+  p = p * r2 - 1.0 / 3628800.0;       // -1/10!
+  p = p * r2 + 1.0 / 40320.0;         // 1/8!
+  p = p * r2 - 1.0 / 720.0;           // -1/6!
+  p = p * r2 + 1.0 / 24.0;            // 1/4!
+  p = p * r2 - 0.5;                   // -1/2!
   return 1.0 + r2 * p;
 }
 
@@ -94,20 +94,28 @@ double atan2_d(double y, double x) {
 float det_sin(float x) {
   double r = 0.0;
   switch (reduce_quadrant(static_cast<double>(x), r)) {
-    case 0: return static_cast<float>(sin_poly(r));
-    case 1: return static_cast<float>(cos_poly(r));
-    case 2: return static_cast<float>(-sin_poly(r));
-    default: return static_cast<float>(-cos_poly(r));
+    case 0:
+      return static_cast<float>(sin_poly(r));
+    case 1:
+      return static_cast<float>(cos_poly(r));
+    case 2:
+      return static_cast<float>(-sin_poly(r));
+    default:
+      return static_cast<float>(-cos_poly(r));
   }
 }
 
 float det_cos(float x) {
   double r = 0.0;
   switch (reduce_quadrant(static_cast<double>(x), r)) {
-    case 0: return static_cast<float>(cos_poly(r));
-    case 1: return static_cast<float>(-sin_poly(r));
-    case 2: return static_cast<float>(-cos_poly(r));
-    default: return static_cast<float>(sin_poly(r));
+    case 0:
+      return static_cast<float>(cos_poly(r));
+    case 1:
+      return static_cast<float>(-sin_poly(r));
+    case 2:
+      return static_cast<float>(-cos_poly(r));
+    default:
+      return static_cast<float>(sin_poly(r));
   }
 }
 

@@ -25,6 +25,8 @@ float quantize(float value) {
   return static_cast<float>(truncated) * (1.0f / 1048576.0f);
 }
 
-Vec3 quantize(Vec3 value) { return {quantize(value.x), quantize(value.y), quantize(value.z)}; }
+Vec3 quantize(Vec3 value) {
+  return {quantize(value.x), quantize(value.y), quantize(value.z)};
+}
 
 }  // namespace rwd::sim

@@ -7,7 +7,9 @@
 namespace rwd::sim::d3 {
 namespace {
 
-bool in_size_range(float v) { return std::isfinite(v) && v > 0.0f && v <= kMaxShapeSize; }
+bool in_size_range(float v) {
+  return std::isfinite(v) && v > 0.0f && v <= kMaxShapeSize;
+}
 bool in_coordinate_range(Vec3 v) {
   return is_finite(v) && std::fabs(v.x) < kMaxCoordinate && std::fabs(v.y) < kMaxCoordinate &&
          std::fabs(v.z) < kMaxCoordinate;
@@ -16,7 +18,9 @@ bool in_speed_range(Vec3 v) {
   return is_finite(v) && std::fabs(v.x) <= kMaxSpeed && std::fabs(v.y) <= kMaxSpeed &&
          std::fabs(v.z) <= kMaxSpeed;
 }
-Status invalid(const char* what) { return Status::Error(ErrorCode::kInvalidArgument, what); }
+Status invalid(const char* what) {
+  return Status::Error(ErrorCode::kInvalidArgument, what);
+}
 
 }  // namespace
 

@@ -58,8 +58,8 @@ void find_pairs(const WorldState& state, WorldScratch& scratch) {
     if (!is_active(info)) continue;
     const BodySim& sim = state.sims[i];
     Aabb box = shape_aabb(info.shape, sim.position, sim.rotation);
-    float reach = length(sim.linear_velocity) +
-                  length(sim.angular_velocity) * state.masses[i].extent;
+    float reach =
+        length(sim.linear_velocity) + length(sim.angular_velocity) * state.masses[i].extent;
     float margin = speculative + tick * reach;
     Vec3 m{margin, margin, margin};
     box.lower -= m;

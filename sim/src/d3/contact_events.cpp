@@ -8,7 +8,9 @@
 namespace rwd::sim::d3 {
 namespace {
 
-uint64_t key(const ContactRecord& r) { return (static_cast<uint64_t>(r.index_a) << 32) | r.index_b; }
+uint64_t key(const ContactRecord& r) {
+  return (static_cast<uint64_t>(r.index_a) << 32) | r.index_b;
+}
 
 ContactEvent make_event(ContactEventType type, const ContactRecord& r) {
   ContactEvent e;
@@ -51,7 +53,8 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
       bool was = o.touching != 0;
       bool is = c.touching != 0;
       if (same_bodies(o, c)) {
-        if (is) events.push_back(make_event(was ? ContactEventType::kStay : ContactEventType::kEnter, c));
+        if (is)
+          events.push_back(make_event(was ? ContactEventType::kStay : ContactEventType::kEnter, c));
         if (was && !is) events.push_back(make_event(ContactEventType::kExit, o));
       } else {
         // Type order within a key: enter (0) before exit (2).

@@ -17,8 +17,8 @@
 #include <cmath>
 
 #include "d3/body_storage.h"
-#include "rewind/sim/det_math.h"
 #include "d3/pipeline.h"
+#include "rewind/sim/det_math.h"
 
 namespace rwd::sim::d3 {
 namespace {
@@ -217,7 +217,8 @@ void solve_contacts(WorldScratch& scratch, const WorldConfig& config, float inv_
         impulse_scale = c.softness.impulse_scale;
       }
       float vn = dot(relative_velocity(a, b, cp.anchor_a, cp.anchor_b), c.normal);
-      float impulse = -cp.normal_mass * mass_scale * (vn + bias) - impulse_scale * cp.normal_impulse;
+      float impulse =
+          -cp.normal_mass * mass_scale * (vn + bias) - impulse_scale * cp.normal_impulse;
       float total = cp.normal_impulse + impulse;
       if (total < 0.0f) total = 0.0f;
       impulse = total - cp.normal_impulse;
@@ -304,7 +305,8 @@ void finalize(WorldState& state, const WorldScratch& scratch, float tick) {
     // Kinematic bodies rest only when they are not driven at all.
     bool resting = false;
     if (state.infos[index].kind == BodyKind::kDynamic) {
-      float speed = length(b.linear_velocity) + state.masses[index].extent * length(b.angular_velocity);
+      float speed =
+          length(b.linear_velocity) + state.masses[index].extent * length(b.angular_velocity);
       resting = speed < config.sleep_threshold_mps;
     } else {
       resting = b.linear_velocity == Vec3{} && b.angular_velocity == Vec3{};

@@ -160,10 +160,12 @@ void update_sleep(WorldState& state, WorldScratch& scratch) {
   }
   for (const ContactRecord& r : state.contacts) {
     if (r.touching == 0 || r.sensor != 0 || !live_record(state, r)) continue;
-    if (is_moving_kinematic(state, r.index_a) && state.infos[r.index_b].kind == BodyKind::kDynamic) {
+    if (is_moving_kinematic(state, r.index_a) &&
+        state.infos[r.index_b].kind == BodyKind::kDynamic) {
       min_time[find_root(parent, r.index_b)] = 0.0f;
     }
-    if (is_moving_kinematic(state, r.index_b) && state.infos[r.index_a].kind == BodyKind::kDynamic) {
+    if (is_moving_kinematic(state, r.index_b) &&
+        state.infos[r.index_a].kind == BodyKind::kDynamic) {
       min_time[find_root(parent, r.index_a)] = 0.0f;
     }
   }

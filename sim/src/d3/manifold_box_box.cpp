@@ -53,8 +53,8 @@ float project_radius(const BoxFrame& b, Vec3 l) {
 
 struct ClipVertex {
   Vec3 p;
-  uint8_t incident_edges;  // bit e: lies on incident edge e
-  uint8_t reference_sides; // bit s: lies on reference side plane s
+  uint8_t incident_edges;   // bit e: lies on incident edge e
+  uint8_t reference_sides;  // bit s: lies on reference side plane s
 };
 
 constexpr int kMaxClip = 12;
@@ -205,8 +205,8 @@ void face_contact(const BoxFrame& ref, const BoxFrame& inc, int ref_axis, bool r
     if (sep > speculative_m) continue;
     cand[n_cand].point = src[m].p - n * (0.5f * sep);
     cand[n_cand].separation = sep;
-    cand[n_cand].id = base_id | (static_cast<uint32_t>(src[m].reference_sides) << 4) |
-                      src[m].incident_edges;
+    cand[n_cand].id =
+        base_id | (static_cast<uint32_t>(src[m].reference_sides) << 4) | src[m].incident_edges;
     ++n_cand;
   }
   bool keep[kMaxClip];
@@ -226,7 +226,9 @@ void face_contact(const BoxFrame& ref, const BoxFrame& inc, int ref_axis, bool r
   }
 }
 
-float clampf(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
+float clampf(float v, float lo, float hi) {
+  return v < lo ? lo : (v > hi ? hi : v);
+}
 
 void edge_contact(const BoxFrame& a, const BoxFrame& b, int ia, int ib, Vec3 l, float separation,
                   Manifold& out) {

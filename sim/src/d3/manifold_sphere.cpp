@@ -45,7 +45,9 @@ void collide_box_sphere(const BoxPose& box, Vec3 center, float radius, float spe
     n_local = d * (1.0f / dist);
     separation = dist - radius;
     box_point_local = clamped;
-    auto region = [](float v, float half) -> uint32_t { return v < -half ? 0u : (v > half ? 2u : 1u); };
+    auto region = [](float v, float half) -> uint32_t {
+      return v < -half ? 0u : (v > half ? 2u : 1u);
+    };
     id = region(c.x, h.x) + 3u * region(c.y, h.y) + 9u * region(c.z, h.z);
   } else {
     // Centre inside the box: push out through the nearest face (ties go to

@@ -13,7 +13,9 @@
 namespace rwd::sim::d3 {
 namespace {
 
-uint64_t key(uint32_t a, uint32_t b) { return (static_cast<uint64_t>(a) << 32) | b; }
+uint64_t key(uint32_t a, uint32_t b) {
+  return (static_cast<uint64_t>(a) << 32) | b;
+}
 
 // Extra speculative reach for a pair: how far the two bodies can close in
 // one tick. The config's speculative distance alone would let a body faster
@@ -39,7 +41,7 @@ void evaluate(const WorldState& state, ContactRecord& rec, const ContactRecord* 
                  pair_speculative(state, rec.index_a, rec.index_b), geo.manifold);
   geo.friction = std::sqrt(ia.material.friction * ib.material.friction);
   geo.restitution = ia.material.restitution > ib.material.restitution ? ia.material.restitution
-                                                                     : ib.material.restitution;
+                                                                      : ib.material.restitution;
   geo.valid = 1;
   rec.sensor = (ia.sensor != 0 || ib.sensor != 0) ? 1 : 0;
   // Touching is geometric and independent of speed: sensors need a real

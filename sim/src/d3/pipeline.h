@@ -18,7 +18,9 @@ namespace rwd::sim::d3 {
 void find_pairs(const WorldState& state, WorldScratch& scratch);
 /// Marks the passive broadphase list for rebuilding (sleep, wake, create,
 /// destroy, teleport, restore).
-inline void mark_passive_dirty(WorldScratch& scratch) { scratch.passive_dirty = true; }
+inline void mark_passive_dirty(WorldScratch& scratch) {
+  scratch.passive_dirty = true;
+}
 
 /// Replaces state.contacts with this step's cache (old one kept in
 /// scratch.other_contacts) and fills scratch.geometry.

@@ -201,7 +201,9 @@ class Reader {
   bool ok_ = true;
 };
 
-Status corrupt(const char* what) { return Status::Error(ErrorCode::kCorrupt, what); }
+Status corrupt(const char* what) {
+  return Status::Error(ErrorCode::kCorrupt, what);
+}
 
 bool read_body(Reader& r, BodyInfo& b, BodySim& m) {
   uint8_t kind = r.u8();
@@ -337,7 +339,8 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
     }
     if (k > 0) {
       const ContactRecord& prev = st.contacts[k - 1];
-      if (prev.index_a > rec.index_a || (prev.index_a == rec.index_a && prev.index_b >= rec.index_b)) {
+      if (prev.index_a > rec.index_a ||
+          (prev.index_a == rec.index_a && prev.index_b >= rec.index_b)) {
         return corrupt("contact records out of order");
       }
     }

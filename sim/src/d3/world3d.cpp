@@ -16,10 +16,16 @@ using d3::is_live;
 
 namespace {
 
-Status invalid(const char* what) { return Status::Error(ErrorCode::kInvalidArgument, what); }
-Status not_found() { return Status::Error(ErrorCode::kNotFound, "unknown or stale body id"); }
+Status invalid(const char* what) {
+  return Status::Error(ErrorCode::kInvalidArgument, what);
+}
+Status not_found() {
+  return Status::Error(ErrorCode::kNotFound, "unknown or stale body id");
+}
 
-bool finite_in(float v, float lo, float hi) { return std::isfinite(v) && v >= lo && v <= hi; }
+bool finite_in(float v, float lo, float hi) {
+  return std::isfinite(v) && v >= lo && v <= hi;
+}
 
 WorldConfig sanitize(const WorldConfig& c) {
   WorldConfig d;
@@ -45,7 +51,8 @@ WorldConfig sanitize(const WorldConfig& c) {
   if (!finite_in(c.speculative_distance_m, 0.0f, 10.0f)) {
     out.speculative_distance_m = d.speculative_distance_m;
   }
-  if (!finite_in(c.sleep_threshold_mps, 0.0f, 1e4f)) out.sleep_threshold_mps = d.sleep_threshold_mps;
+  if (!finite_in(c.sleep_threshold_mps, 0.0f, 1e4f))
+    out.sleep_threshold_mps = d.sleep_threshold_mps;
   if (!finite_in(c.time_to_sleep_s, 0.0f, 1e6f)) out.time_to_sleep_s = d.time_to_sleep_s;
   if (c.max_bodies < 1 || c.max_bodies > (1u << 24)) out.max_bodies = d.max_bodies;
   // Values enter the canonical grid like every other outside value.
@@ -87,7 +94,8 @@ Status World3D::validate_config(const WorldConfig& c) {
   if (c.relax_iterations < 0 || c.relax_iterations > 16) {
     return invalid("relax_iterations must be in [0, 16]");
   }
-  if (!finite_in(c.contact_hertz, 1e-3f, 1e4f)) return invalid("contact_hertz must be in [1e-3, 1e4]");
+  if (!finite_in(c.contact_hertz, 1e-3f, 1e4f))
+    return invalid("contact_hertz must be in [1e-3, 1e4]");
   if (!finite_in(c.contact_damping_ratio, 0.0f, 1e4f)) {
     return invalid("contact_damping_ratio must be in [0, 1e4]");
   }
@@ -104,8 +112,10 @@ Status World3D::validate_config(const WorldConfig& c) {
   if (!finite_in(c.sleep_threshold_mps, 0.0f, 1e4f)) {
     return invalid("sleep_threshold_mps must be in [0, 1e4]");
   }
-  if (!finite_in(c.time_to_sleep_s, 0.0f, 1e6f)) return invalid("time_to_sleep_s must be in [0, 1e6]");
-  if (c.max_bodies < 1 || c.max_bodies > (1u << 24)) return invalid("max_bodies must be in [1, 2^24]");
+  if (!finite_in(c.time_to_sleep_s, 0.0f, 1e6f))
+    return invalid("time_to_sleep_s must be in [0, 1e6]");
+  if (c.max_bodies < 1 || c.max_bodies > (1u << 24))
+    return invalid("max_bodies must be in [1, 2^24]");
   return Status::Ok();
 }
 
@@ -199,8 +209,12 @@ Status World3D::destroy_body(BodyId id) {
   return Status::Ok();
 }
 
-bool World3D::is_valid(BodyId id) const { return is_live(state_, id); }
-uint32_t World3D::body_count() const { return state_.live_count; }
+bool World3D::is_valid(BodyId id) const {
+  return is_live(state_, id);
+}
+uint32_t World3D::body_count() const {
+  return state_.live_count;
+}
 
 void World3D::body_ids(std::vector<BodyId>& out) const {
   out.clear();
@@ -342,14 +356,24 @@ void World3D::step() {
   ++state_.step_count;
 }
 
-std::span<const ContactEvent> World3D::events() const { return scratch_->events; }
-const StepStats& World3D::stats() const { return scratch_->stats; }
-const WorldConfig& World3D::config() const { return state_.config; }
-uint64_t World3D::step_count() const { return state_.step_count; }
+std::span<const ContactEvent> World3D::events() const {
+  return scratch_->events;
+}
+const StepStats& World3D::stats() const {
+  return scratch_->stats;
+}
+const WorldConfig& World3D::config() const {
+  return state_.config;
+}
+uint64_t World3D::step_count() const {
+  return state_.step_count;
+}
 
 // --- state ------------------------------------------------------------------
 
-void World3D::save(WorldState& out) const { out = state_; }
+void World3D::save(WorldState& out) const {
+  out = state_;
+}
 
 void World3D::restore(const WorldState& in) {
   state_ = in;
@@ -358,7 +382,9 @@ void World3D::restore(const WorldState& in) {
   scratch_->events.clear();
 }
 
-const WorldState& World3D::state() const { return state_; }
+const WorldState& World3D::state() const {
+  return state_;
+}
 
 uint64_t World3D::checksum() const {
   StateHasher hasher;
@@ -366,7 +392,9 @@ uint64_t World3D::checksum() const {
   return hasher.digest();
 }
 
-void World3D::hash(StateHasher& hasher) const { hash_state(state_, hasher); }
+void World3D::hash(StateHasher& hasher) const {
+  hash_state(state_, hasher);
+}
 
 void World3D::dump_bodies(std::vector<BodyRecord>& out) const {
   out.clear();

@@ -49,9 +49,9 @@ struct SolverBody {
   Vec3 delta_position;
   Quat delta_rotation;
   float inv_mass;
-  Mat3 inv_inertia;            ///< world frame, fixed for the step
-  Vec3 linear_acceleration;    ///< gravity plus applied force, m/s^2
-  float linear_damping_factor; ///< 1 / (1 + h * damping), per substep
+  Mat3 inv_inertia;             ///< world frame, fixed for the step
+  Vec3 linear_acceleration;     ///< gravity plus applied force, m/s^2
+  float linear_damping_factor;  ///< 1 / (1 + h * damping), per substep
   float angular_damping_factor;
 };
 

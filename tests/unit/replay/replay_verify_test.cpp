@@ -89,6 +89,18 @@ TEST(ReplayVerify, ForgedInputDivergesAtThatTickAndNamesFieldsAtTheNextKeyframe)
   EXPECT_TRUE(names_a_moving_field(report));
   EXPECT_EQ(report.differences_total, report.differences.size());
   EXPECT_FALSE(report.framing_error.has_value());
+  EXPECT_TRUE(report.ended_cleanly);  // the rest of the file is still read
+
+  // Cut the forged file after its next keyframe: the divergence and the
+  // break are both reported.
+  testing_support::cut_inside_frame(forged.path(), 0.9);
+  const VerifyReport cut = verify_replay(forged.path());
+  ASSERT_TRUE(cut.diverged());
+  EXPECT_EQ(*cut.first_divergent_tick, 100);
+  EXPECT_EQ(cut.differences_tick, report.differences_tick);
+  ASSERT_TRUE(cut.framing_error.has_value());
+  EXPECT_NE(cut.framing_error->find("truncated frame at byte"), std::string::npos);
+  EXPECT_FALSE(cut.ended_cleanly);
 }
 
 TEST(ReplayVerify, ForgedInputOnAKeyframeTickIsComparedRightThere) {

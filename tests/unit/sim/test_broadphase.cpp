@@ -24,8 +24,8 @@ TEST(Broadphase, MatchesBruteForceAndIsSorted) {
     BodyDef def;
     def.kind = i % 4 == 0 ? BodyKind::kStatic : BodyKind::kDynamic;
     def.position = {next() * 10.0f, next() * 10.0f, next() * 10.0f};
-    def.shape = i % 2 == 0 ? Shape::make_sphere(0.3f + next()) :
-                             Shape::make_box({0.2f + next(), 0.2f + next(), 0.2f + next()});
+    def.shape = i % 2 == 0 ? Shape::make_sphere(0.3f + next())
+                           : Shape::make_box({0.2f + next(), 0.2f + next(), 0.2f + next()});
     def.rotation = normalize(Quat{next(), next(), next(), 1.0f});
     ASSERT_TRUE(world.create_body(def).ok());
   }

@@ -97,9 +97,9 @@ TEST(ContactEvents, OrderedByIndexPairAndSensorsReportButDoNotPush) {
   auto events = world.events();
   ASSERT_EQ(events.size(), 4u);  // ground-b1, ground-b2, zone-b1, zone-b2
   for (size_t i = 1; i < events.size(); ++i) {
-    bool ordered = events[i - 1].a.index < events[i].a.index ||
-                   (events[i - 1].a.index == events[i].a.index &&
-                    events[i - 1].b.index < events[i].b.index);
+    bool ordered =
+        events[i - 1].a.index < events[i].a.index ||
+        (events[i - 1].a.index == events[i].a.index && events[i - 1].b.index < events[i].b.index);
     EXPECT_TRUE(ordered) << i;
   }
   EXPECT_EQ(events[2].a, zone);

@@ -19,7 +19,9 @@ constexpr float kTol = 1e-5f;
 constexpr float kSpec = 0.02f;
 const float kHalfSqrt2 = std::sqrt(0.5f);
 
-Quat about_y(float c, float s) { return {0.0f, s, 0.0f, c}; }  // c = cos(a/2), s = sin(a/2)
+Quat about_y(float c, float s) {
+  return {0.0f, s, 0.0f, c};
+}  // c = cos(a/2), s = sin(a/2)
 
 bool has_point(const Manifold& m, Vec3 p, float tol) {
   for (uint32_t i = 0; i < m.point_count; ++i) {
@@ -38,7 +40,7 @@ TEST(ManifoldBoxBox, FaceFaceGivesFourCorners) {
   EXPECT_NEAR(m.normal.y, 1.0f, kTol);
   for (uint32_t i = 0; i < 4; ++i) {
     EXPECT_NEAR(m.points[i].separation, -0.1f, kTol);
-    EXPECT_NEAR(m.points[i].point.y, 0.45f, kTol);  // midway between y = 0.5 and 0.4
+    EXPECT_NEAR(m.points[i].point.y, 0.45f, kTol);           // midway between y = 0.5 and 0.4
     EXPECT_EQ(m.points[i].feature_id >> 8, (3u << 4) | 2u);  // ref face +y of A, inc face -y of B
   }
   for (float x : {-0.5f, 0.5f}) {
@@ -52,8 +54,7 @@ TEST(ManifoldBoxBox, FaceFaceGivesFourCorners) {
 
 TEST(ManifoldBoxBox, BoxTurned45DegreesOnLargerBox) {
   BoxPose ground{{0.0f, 0.0f, 0.0f}, Quat{}, {1.0f, 0.5f, 1.0f}};
-  BoxPose box{{0.0f, 0.95f, 0.0f}, about_y(det_cos(kPi / 8), det_sin(kPi / 8)),
-              {0.5f, 0.5f, 0.5f}};
+  BoxPose box{{0.0f, 0.95f, 0.0f}, about_y(det_cos(kPi / 8), det_sin(kPi / 8)), {0.5f, 0.5f, 0.5f}};
   Manifold m;
   collide_boxes(ground, box, kSpec, m);
   ASSERT_EQ(m.point_count, 4u);
@@ -69,8 +70,8 @@ TEST(ManifoldBoxBox, BoxTurned45DegreesOnLargerBox) {
 TEST(ManifoldBoxBox, OctagonIsReducedToFourWellSpreadPoints) {
   // Equal boxes, one turned 45 degrees: the overlap is an octagon.
   BoxPose lower{{0.0f, 0.0f, 0.0f}, Quat{}, {0.5f, 0.5f, 0.5f}};
-  BoxPose upper{{0.0f, 0.95f, 0.0f}, about_y(det_cos(kPi / 8), det_sin(kPi / 8)),
-                {0.5f, 0.5f, 0.5f}};
+  BoxPose upper{
+      {0.0f, 0.95f, 0.0f}, about_y(det_cos(kPi / 8), det_sin(kPi / 8)), {0.5f, 0.5f, 0.5f}};
   Manifold m;
   collide_boxes(lower, upper, kSpec, m);
   ASSERT_EQ(m.point_count, 4u);

@@ -45,7 +45,9 @@ TEST(ManifoldSphere, SphereSphereSpeculativeAndApart) {
   EXPECT_NEAR(m.points[0].separation, -1.0f, kTol);
 }
 
-BoxPose unit_box() { return {{0.0f, 0.0f, 0.0f}, Quat{}, {1.0f, 1.0f, 1.0f}}; }
+BoxPose unit_box() {
+  return {{0.0f, 0.0f, 0.0f}, Quat{}, {1.0f, 1.0f, 1.0f}};
+}
 
 TEST(ManifoldSphere, SphereOnBoxFace) {
   Manifold m;

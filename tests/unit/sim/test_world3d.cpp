@@ -155,8 +155,10 @@ TEST(World3D, SettersValidateQuantizeAndWake) {
   EXPECT_NEAR(world.linear_velocity(box).z, 0.5f, 1e-6f);
   EXPECT_EQ(world.angular_velocity(box), Vec3{});
   // Off centre it also spins the box.
-  ASSERT_TRUE(world.apply_linear_impulse(box, {0.0f, 0.0f, 500.0f},
-                                         world.position(box) + Vec3{0.5f, 0.0f, 0.0f}).ok());
+  ASSERT_TRUE(world
+                  .apply_linear_impulse(box, {0.0f, 0.0f, 500.0f},
+                                        world.position(box) + Vec3{0.5f, 0.0f, 0.0f})
+                  .ok());
   EXPECT_LT(world.angular_velocity(box).y, 0.0f);
 }
 

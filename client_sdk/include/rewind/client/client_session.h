@@ -12,6 +12,7 @@
 #include <deque>
 #include <functional>
 #include <memory>
+#include <string>
 #include <optional>
 #include <span>
 #include <vector>
@@ -35,7 +36,9 @@ class ClientSession {
   /// Supplies our input for a tick, once per tick, when that tick is first
   /// simulated.
   using InputProvider = std::function<game::PlayerInput(Tick tick)>;
-  enum class Phase : uint8_t { kIdle, kJoining, kLobby, kRunning, kEnded };
+  /// kEnding: the server ended the match; the last final ticks are still
+  /// being received and verified before kMatchEnded is reported.
+  enum class Phase : uint8_t { kIdle, kJoining, kLobby, kRunning, kEnding, kEnded };
 
   /// Opens a UDP socket on an ephemeral port. Errors: bad address, socket.
   static Result<std::unique_ptr<ClientSession>> create(asio::io_context& io,
@@ -116,6 +119,9 @@ class ClientSession {
   std::deque<std::pair<Tick, uint64_t>> pending_finals_;  // (tick, server checksum)
   int32_t server_tick_ = 0;
   bool awaiting_resync_ = false;
+  Tick end_tick_ = kNoTick;
+  std::string end_reason_;
+  TimePoint ending_deadline_;
   Tick desync_tick_ = kNoTick;
   uint64_t desync_server_checksum_ = 0;
   uint64_t desync_local_checksum_ = 0;

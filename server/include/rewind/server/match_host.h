@@ -32,7 +32,10 @@ using TimePoint = net::TimePoint;
 class MatchHost {
  public:
   using SendFn = std::function<void(const Endpoint&, std::span<const uint8_t>)>;
-  enum class Phase : uint8_t { kLobby, kRunning, kEnded };
+  /// kLobby: waiting for every slot. kRunning: counting down to tick 0,
+  /// then ticking. kClosing: the match is over; final ticks are still
+  /// resent until acknowledged. kEnded: nothing more to do.
+  enum class Phase : uint8_t { kLobby, kRunning, kClosing, kEnded };
 
   /// Validates the config, builds the simulation and opens the replay file.
   static Result<std::unique_ptr<MatchHost>> create(const MatchConfig& config, SendFn send,
@@ -54,6 +57,8 @@ class MatchHost {
   /// Counters, with the rollback figures folded in.
   MatchStats stats() const;
   Tick current_tick() const { return session_->current_tick(); }
+  /// The server's clock in ticks: negative during the start countdown.
+  Tick server_tick() const { return session_->current_tick() - countdown_ticks_; }
   Tick last_final_tick() const { return next_final_ - 1; }
   const net::RollbackSession& session() const { return *session_; }
   /// Final ticks still held for resending, oldest first.
@@ -95,6 +100,9 @@ class MatchHost {
                            const std::vector<uint8_t>& dump);
   void send_resync(Peer& peer, TimePoint now);
   void start_match(TimePoint now);
+  void send_match_start(Peer& peer, TimePoint now);
+  void send_match_end(TimePoint now);
+  void close_if_done(TimePoint now);
   void finalize_ready_ticks();
   void broadcast(TimePoint now);
   void send(Peer& peer, v1::Envelope& envelope, TimePoint now);
@@ -110,6 +118,8 @@ class MatchHost {
   std::vector<Peer> peers_;
   std::deque<v1::FinalTick> finals_;
   Tick next_final_ = 0;
+  int32_t countdown_ticks_ = 0;
+  TimePoint closing_deadline_;
   TimePoint created_;
   TimePoint started_;
   TimePoint tick_started_;

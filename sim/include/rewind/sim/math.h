@@ -17,20 +17,42 @@ struct Vec3 {
   float z = 0.0f;
 };
 
-inline Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline Vec3 operator-(Vec3 a) { return {-a.x, -a.y, -a.z}; }
-inline Vec3 operator*(Vec3 a, float s) { return {a.x * s, a.y * s, a.z * s}; }
-inline Vec3 operator*(float s, Vec3 a) { return {a.x * s, a.y * s, a.z * s}; }
-inline Vec3& operator+=(Vec3& a, Vec3 b) { return a = a + b; }
-inline Vec3& operator-=(Vec3& a, Vec3 b) { return a = a - b; }
-inline bool operator==(Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
-inline float dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 operator+(Vec3 a, Vec3 b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+inline Vec3 operator-(Vec3 a, Vec3 b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+inline Vec3 operator-(Vec3 a) {
+  return {-a.x, -a.y, -a.z};
+}
+inline Vec3 operator*(Vec3 a, float s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+inline Vec3 operator*(float s, Vec3 a) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+inline Vec3& operator+=(Vec3& a, Vec3 b) {
+  return a = a + b;
+}
+inline Vec3& operator-=(Vec3& a, Vec3 b) {
+  return a = a - b;
+}
+inline bool operator==(Vec3 a, Vec3 b) {
+  return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+inline float dot(Vec3 a, Vec3 b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 inline Vec3 cross(Vec3 a, Vec3 b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline float length_squared(Vec3 a) { return dot(a, a); }
-inline float length(Vec3 a) { return std::sqrt(dot(a, a)); }
+inline float length_squared(Vec3 a) {
+  return dot(a, a);
+}
+inline float length(Vec3 a) {
+  return std::sqrt(dot(a, a));
+}
 /// Unit vector along a, or zero when a is (nearly) zero.
 inline Vec3 normalize_or_zero(Vec3 a) {
   float len = length(a);
@@ -45,14 +67,17 @@ struct Quat {
   float w = 1.0f;
 };
 
-inline bool operator==(Quat a, Quat b) { return a.x == b.x && a.y == b.y && a.z == b.z && a.w == b.w; }
-inline Quat operator*(Quat a, Quat b) {
-  return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
-          a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
-          a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
+inline bool operator==(Quat a, Quat b) {
+  return a.x == b.x && a.y == b.y && a.z == b.z && a.w == b.w;
 }
-inline Quat conjugate(Quat q) { return {-q.x, -q.y, -q.z, q.w}; }
+inline Quat operator*(Quat a, Quat b) {
+  return {
+      a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y, a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+      a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w, a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
+}
+inline Quat conjugate(Quat q) {
+  return {-q.x, -q.y, -q.z, q.w};
+}
 inline Quat normalize(Quat q) {
   float len = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
   if (len < 1e-12f) return Quat{};
@@ -66,11 +91,17 @@ inline Vec3 rotate(Quat q, Vec3 v) {
   return v + q.w * t + cross(u, t);
 }
 /// Rotates v by the inverse of the unit quaternion q.
-inline Vec3 inv_rotate(Quat q, Vec3 v) { return rotate(conjugate(q), v); }
+inline Vec3 inv_rotate(Quat q, Vec3 v) {
+  return rotate(conjugate(q), v);
+}
 
 /// Component-wise product.
-inline Vec3 mul_elements(Vec3 a, Vec3 b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
-inline Vec3 abs(Vec3 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
+inline Vec3 mul_elements(Vec3 a, Vec3 b) {
+  return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+inline Vec3 abs(Vec3 a) {
+  return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)};
+}
 inline Vec3 min(Vec3 a, Vec3 b) {
   return {a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y, a.z < b.z ? a.z : b.z};
 }
@@ -78,13 +109,21 @@ inline Vec3 max(Vec3 a, Vec3 b) {
   return {a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y, a.z > b.z ? a.z : b.z};
 }
 /// Component i (0 = x, 1 = y, 2 = z) of v.
-inline float component(Vec3 v, int i) { return i == 0 ? v.x : (i == 1 ? v.y : v.z); }
-inline bool is_finite(float v) { return std::isfinite(v); }
-inline bool is_finite(Vec3 v) { return is_finite(v.x) && is_finite(v.y) && is_finite(v.z); }
+inline float component(Vec3 v, int i) {
+  return i == 0 ? v.x : (i == 1 ? v.y : v.z);
+}
+inline bool is_finite(float v) {
+  return std::isfinite(v);
+}
+inline bool is_finite(Vec3 v) {
+  return is_finite(v.x) && is_finite(v.y) && is_finite(v.z);
+}
 inline bool is_finite(Quat q) {
   return is_finite(q.x) && is_finite(q.y) && is_finite(q.z) && is_finite(q.w);
 }
-inline float length_squared(Quat q) { return q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w; }
+inline float length_squared(Quat q) {
+  return q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
+}
 
 /// Two unit vectors that complete the unit vector n to a right-handed
 /// orthonormal basis (n, t1, t2). Branch on the larger component so the
@@ -115,8 +154,12 @@ struct Mat3 {
   Vec3 c2{0.0f, 0.0f, 1.0f};
 };
 
-inline Mat3 mat3_zero() { return {Vec3{}, Vec3{}, Vec3{}}; }
-inline Vec3 operator*(const Mat3& m, Vec3 v) { return m.c0 * v.x + m.c1 * v.y + m.c2 * v.z; }
+inline Mat3 mat3_zero() {
+  return {Vec3{}, Vec3{}, Vec3{}};
+}
+inline Vec3 operator*(const Mat3& m, Vec3 v) {
+  return m.c0 * v.x + m.c1 * v.y + m.c2 * v.z;
+}
 /// Rotation matrix of the unit quaternion q (columns are the rotated axes).
 inline Mat3 mat3_from_quat(Quat q) {
   return {rotate(q, Vec3{1.0f, 0.0f, 0.0f}), rotate(q, Vec3{0.0f, 1.0f, 0.0f}),

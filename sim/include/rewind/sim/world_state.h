@@ -40,19 +40,19 @@ struct BodyInfo {
 struct BodySim {
   Vec3 position;  ///< metres, shape centre (= centre of mass)
   Quat rotation;
-  Vec3 linear_velocity;   ///< m/s
-  Vec3 angular_velocity;  ///< rad/s, world frame
-  Vec3 force;             ///< N, accumulated for the next step only
+  Vec3 linear_velocity;     ///< m/s
+  Vec3 angular_velocity;    ///< rad/s, world frame
+  Vec3 force;               ///< N, accumulated for the next step only
   float sleep_time = 0.0f;  ///< seconds spent below the sleep threshold
 };
 
 /// Mass properties of one body slot, derived from shape, density and kind.
 /// Stored (not recomputed per step) because they are read every substep.
 struct BodyMass {
-  float mass = 0.0f;      ///< kg; 0 for static and kinematic
-  float inv_mass = 0.0f;  ///< 1/kg
+  float mass = 0.0f;       ///< kg; 0 for static and kinematic
+  float inv_mass = 0.0f;   ///< 1/kg
   Vec3 inv_inertia_local;  ///< principal inverse inertia in the body frame, 1/(kg m^2)
-  float extent = 0.0f;    ///< metres, largest distance from the centre to the surface
+  float extent = 0.0f;     ///< metres, largest distance from the centre to the surface
 };
 
 /// Maximum contact points in one manifold.
@@ -61,10 +61,10 @@ inline constexpr uint32_t kMaxManifoldPoints = 4;
 /// The persistent part of one contact point: its feature id and the
 /// impulses it ended the last step with (warm start).
 struct CachedContactPoint {
-  uint32_t feature_id = 0;       ///< which features produced the point (see manifold.h)
-  float normal_impulse = 0.0f;   ///< N*s per substep
-  float tangent_impulse1 = 0.0f; ///< N*s per substep, along the first tangent of the normal
-  float tangent_impulse2 = 0.0f; ///< N*s per substep, along the second tangent
+  uint32_t feature_id = 0;        ///< which features produced the point (see manifold.h)
+  float normal_impulse = 0.0f;    ///< N*s per substep
+  float tangent_impulse1 = 0.0f;  ///< N*s per substep, along the first tangent of the normal
+  float tangent_impulse2 = 0.0f;  ///< N*s per substep, along the second tangent
 };
 
 /// One pair of bodies whose fat bounds overlapped last step. Records are kept
@@ -86,9 +86,9 @@ struct WorldState {
   WorldConfig config;
   uint64_t step_count = 0;
   uint32_t live_count = 0;
-  std::vector<BodyInfo> infos;  ///< one per slot, live or dead
-  std::vector<BodySim> sims;    ///< one per slot
-  std::vector<BodyMass> masses; ///< one per slot
+  std::vector<BodyInfo> infos;   ///< one per slot, live or dead
+  std::vector<BodySim> sims;     ///< one per slot
+  std::vector<BodyMass> masses;  ///< one per slot
   /// Dead slot indices, sorted descending so back() is the lowest free slot.
   std::vector<uint32_t> free_slots;
   /// Contact cache sorted by (index_a, index_b); source of warm starting,

@@ -19,6 +19,7 @@
 
 namespace rwd::replay {
 
+/// Reads a replay file record by record, checking framing, hashes and order.
 class ReplayReader {
  public:
   /// Opens `path` and reads the magic and the header record. kIo when the

@@ -17,6 +17,7 @@
 
 namespace rwd::replay {
 
+/// How much work verify_replay does after a divergence.
 struct VerifyOptions {
   /// After a divergence, read ahead to the next keyframe to name fields.
   bool name_fields = true;

@@ -91,7 +91,6 @@ class ReplayWriter {
   ReplayWriter(std::string path, int fd, const v1::ReplayHeader& header,
                ReplayWriterOptions options);
   Status usable() const;
-  Status append_record(const v1::ReplayRecord& record);
   Status maybe_flush();
   void close_fd();
 
