@@ -89,6 +89,7 @@ MatchHost::MatchHost(const MatchConfig& config, SendFn send,
       ended_(now),
       ids_(net::ConnectionIdGenerator::from_os_entropy()) {
   final_inputs_.resize(config.players);
+  substitution_history_.assign(kSubstitutionHistory, {kNoTick, 0});
 }
 
 MatchStats MatchHost::stats() const {
@@ -302,7 +303,6 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
   }
   const Tick now_tick = session_->current_tick();
   const Tick clock_tick = server_tick();
-  const Tick confirmed_before = session_->queue(player).contiguous_through();
   v1::Envelope relay;
   v1::RelayedInputs* relayed = relay.mutable_relayed_inputs();
   relayed->set_player(player);
@@ -341,11 +341,14 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
         break;
       case net::InputResult::kDuplicate:
         break;
-      case net::InputResult::kFinal:
+      case net::InputResult::kFinal: {
         // Resends of inputs the server had are normal; an input that only
         // arrives after its tick was finalized without it is rejected.
-        if (tick > confirmed_before) ++stats_.rejected_inputs;
+        const auto& [held_tick, mask] =
+            substitution_history_[static_cast<size_t>(tick) % kSubstitutionHistory];
+        if (held_tick == tick && (mask >> player) & 1u) ++stats_.rejected_inputs;
         break;
+      }
       case net::InputResult::kConflict:
       case net::InputResult::kTooFar:
       case net::InputResult::kBadPlayer:
@@ -432,6 +435,7 @@ void MatchHost::finalize_ready_ticks() {
     }
     const std::optional<uint64_t> checksum = session_->checksum_after(t);
     final_tick.set_substituted_mask(substituted);
+    substitution_history_[static_cast<size_t>(t) % kSubstitutionHistory] = {t, substituted};
     final_tick.set_checksum(checksum.value_or(0));
     stats_.final_checksum = final_tick.checksum();
 

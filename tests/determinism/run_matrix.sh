@@ -100,8 +100,13 @@ gcc_flag_if_supported() {  # gcc_flag_if_supported COMPILER FLAG
     printf '%s' "$2"
   fi
 }
-gcc_flags=$(gcc_flag_if_supported g++ -fexcess-precision=standard)
-cross_flags=$(gcc_flag_if_supported aarch64-linux-gnu-g++ -fexcess-precision=standard)
+# -fno-tree-slp-vectorize: the same guard the CMake build puts on every GCC
+# target (rewind_determinism in the top-level CMakeLists.txt): GCC 12's SLP
+# vectorizer forms vfmsubadd on FMA targets despite -ffp-contract=off.
+gcc_flags="-fno-tree-slp-vectorize $(gcc_flag_if_supported g++ -fexcess-precision=standard)"
+cross_flags="-fno-tree-slp-vectorize $(gcc_flag_if_supported aarch64-linux-gnu-g++ -fexcess-precision=standard)"
+gcc_flags=${gcc_flags% }
+cross_flags=${cross_flags% }
 
 # name | compiler | flags | link flags | runner
 builds=(
@@ -236,7 +241,7 @@ printf '%-14s %-22s %-36s %6s  %-16s  %6s  %s\n' build compiler flags ticks "fin
 printf '%s\n' "${rows[@]}"
 echo
 echo "run_matrix: compile $((t_compiled - t_start))s, run $((t_ran - t_compiled))s" \
-     "(common flags: -std=c++20 -ffp-contract=off -fno-fast-math)"
+     "(common flags: -std=c++20 -ffp-contract=off -fno-fast-math; GCC also -fno-tree-slp-vectorize)"
 if ((failed)); then
   echo "run_matrix: FAIL: the builds do not agree with $reference (outputs in $build_dir/*.out)"
   exit 1

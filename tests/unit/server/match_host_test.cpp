@@ -106,6 +106,7 @@ MatchConfig test_config() {
   config.players = 2;
   config.window_ticks = 4;
   config.keyframe_interval = 0;
+  config.start_delay_s = 0;
   return config;
 }
 
@@ -232,6 +233,52 @@ TEST(MatchHost, RepeatedJoinIsIdempotentAndExtraPlayersAreRefused) {
   h.raw(late, h.encode(envelope));
   ASSERT_FALSE(h.outbox().received[late].empty());
   EXPECT_TRUE(h.outbox().received[late].back().has_join_reject());
+}
+
+TEST(MatchHost, CountsDownToTickZeroRepeatingMatchStart) {
+  MatchConfig config = test_config();
+  config.start_delay_s = 0.1;  // 6 ticks at 60 Hz
+  HostHarness h(config);
+  FakeClient a = h.join(4001);
+  h.join(4002);
+  EXPECT_EQ(h.host().server_tick(), -6);
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_EQ(h.host().current_tick(), 0);
+    h.tick();
+  }
+  EXPECT_EQ(h.host().server_tick(), 0);
+  std::vector<int32_t> announced;
+  for (const v1::Envelope& e : h.outbox().received[a.endpoint]) {
+    if (e.has_match_start()) announced.push_back(e.match_start().server_tick());
+  }
+  EXPECT_EQ(announced, (std::vector<int32_t>{-6, -5, -4, -3, -2, -1, 0}));
+  h.tick();
+  EXPECT_EQ(h.host().current_tick(), 1);
+}
+
+TEST(MatchHost, ClosingResendsFinalsUntilAcknowledged) {
+  MatchConfig config = test_config();
+  config.max_ticks = 10;
+  HostHarness h(config);
+  FakeClient a = h.join(4001);
+  FakeClient b = h.join(4002);
+  for (Tick t = 0; t < 12 && h.host().phase() == MatchHost::Phase::kRunning; ++t) {
+    h.send_input(a, t, {}, a.player);
+    h.send_input(b, t, {}, b.player);
+    h.tick();
+  }
+  ASSERT_EQ(h.host().phase(), MatchHost::Phase::kClosing);
+  EXPECT_EQ(h.host().last_final_tick(), 9);
+  // Both clients acknowledge the last final tick: the match is over.
+  for (FakeClient* c : {&a, &b}) {
+    v1::Envelope ack;
+    ack.mutable_input_frame()->set_player(c->player);
+    ack.mutable_input_frame()->set_first_tick(10);
+    ack.mutable_input_frame()->set_last_final_tick_seen(9);
+    h.send(*c, ack);
+  }
+  h.tick();
+  EXPECT_EQ(h.host().phase(), MatchHost::Phase::kEnded);
 }
 
 TEST(MatchHost, ConfigErrorsAreReported) {

@@ -178,8 +178,8 @@ namespace {
 
 // The same scene must give the same bits on every compiler, optimization
 // level and architecture (DESIGN.md section 3). The pinned value was
-// produced by gcc 12 -O3 and matched by clang 14 -O3 and gcc -O0 with
-// sanitizers; a change here means the simulation's results changed (a
+// produced by gcc 12 -O3 and matched by clang 14 -O3, gcc -O3 -march=native
+// and gcc -O0 with sanitizers; a change here means the simulation's results changed (a
 // deliberate solver change updates it, with a note saying why).
 constexpr uint64_t kPinnedPileChecksum = 0xc76985873a832689ull;
 

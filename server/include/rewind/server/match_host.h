@@ -119,6 +119,10 @@ class MatchHost {
   std::deque<v1::FinalTick> finals_;
   Tick next_final_ = 0;
   int32_t countdown_ticks_ = 0;
+  // Substitution masks of the last kSubstitutionHistory final ticks, to
+  // tell a resend of an input the server had from one that came too late.
+  static constexpr size_t kSubstitutionHistory = 1024;
+  std::vector<std::pair<Tick, uint64_t>> substitution_history_;
   TimePoint closing_deadline_;
   TimePoint created_;
   TimePoint started_;

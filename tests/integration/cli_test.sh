@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Every program answers --help (exit 0) and refuses unknown or malformed
+# flags with a message naming the flag (exit 64).
+#   cli_test.sh BIN_DIR
+set -uo pipefail
+bin=$1
+failures=0
+check() {  # expected_status expected_text program args...
+  local want=$1 text=$2 prog=$3
+  shift 3
+  local out status
+  out=$("$bin/$prog" "$@" 2>&1)
+  status=$?
+  if [ "$status" != "$want" ] || ! grep -qF -- "$text" <<<"$out"; then
+    echo "FAIL: $prog $*: exit $status (want $want), output: $out"
+    failures=$((failures + 1))
+  fi
+}
+for prog in rewind-server rewind-bots rewind-replay; do
+  check 0 "usage: $prog" "$prog" --help
+done
+check 64 "unknown flag --frobnicate" rewind-server --frobnicate
+check 64 "unknown flag --frobnicate" rewind-bots --frobnicate
+check 64 "unknown command '--frobnicate'" rewind-replay --frobnicate
+check 64 "unknown flag --frobnicate" rewind-replay verify x.rwr --frobnicate
+check 64 "--port: 70000 is outside [0, 65535]" rewind-server --port 70000
+check 64 "--players: expected an integer, got 'four'" rewind-server --players four
+check 64 "--window: missing value" rewind-server --window
+check 64 "--tick-rate: 0 is outside [1, 1000]" rewind-server --tick-rate 0
+check 1 "unknown game 'chess'" rewind-server --game chess --port 0
+check 64 "--loss: 1.5 is outside [0, 1]" rewind-bots --loss 1.5
+check 64 "--connect: expected HOST:PORT" rewind-bots --connect nowhere
+check 64 "--script: expected random, circle or idle" rewind-bots --script dance
+check 64 "--corrupt-bot and --corrupt-at-tick go together" rewind-bots --corrupt-bot 1
+check 64 "usage" rewind-replay
+check 2 "" rewind-replay verify /nonexistent/file.rwr
+[ "$failures" = 0 ] && echo "PASS: cli" || exit 1
