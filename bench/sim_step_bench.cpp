@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// What one tick of the sample match costs, and what rollback adds on top:
+// save, restore, checksum, and re-simulating a window of ticks.
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "rewind/game/simulation.h"
+#include "rewind/net/rollback_session.h"
+
+namespace {
+
+using rwd::game::PlayerInput;
+using rwd::game::Simulation;
+
+std::vector<PlayerInput> inputs_for(uint32_t players, rwd::Tick tick) {
+  std::vector<PlayerInput> inputs(players);
+  for (uint32_t p = 0; p < players; ++p) {
+    inputs[p].axis_x = static_cast<int16_t>(((tick / 30 + p) % 3 - 1) * 1000);
+    inputs[p].axis_y = static_cast<int16_t>(((tick / 45 + 2 * p) % 3 - 1) * 1000);
+  }
+  return inputs;
+}
+
+std::unique_ptr<Simulation> warmed_up(uint32_t players, int ticks) {
+  auto sim = std::move(*Simulation::create("crates", {players, 1}));
+  for (int t = 0; t < ticks; ++t) sim->step(inputs_for(players, t));
+  return sim;
+}
+
+void BM_CratesTick(benchmark::State& state) {
+  const auto players = static_cast<uint32_t>(state.range(0));
+  auto sim = warmed_up(players, 120);
+  for (auto _ : state) sim->step(inputs_for(players, sim->tick()));
+  state.counters["bodies"] = sim->world().body_count();
+}
+BENCHMARK(BM_CratesTick)->Arg(2)->Arg(8)->Arg(32);
+
+void BM_SaveRestore(benchmark::State& state) {
+  auto sim = warmed_up(8, 120);
+  rwd::game::SimSnapshot snapshot;
+  sim->save(snapshot);
+  for (auto _ : state) {
+    sim->save(snapshot);
+    sim->restore(snapshot);
+  }
+}
+BENCHMARK(BM_SaveRestore);
+
+void BM_Checksum(benchmark::State& state) {
+  auto sim = warmed_up(8, 120);
+  for (auto _ : state) benchmark::DoNotOptimize(sim->checksum());
+}
+BENCHMARK(BM_Checksum);
+
+// A misprediction 8 ticks back: restore and re-simulate 8 ticks.
+void BM_Rollback8(benchmark::State& state) {
+  rwd::net::RollbackSession session(warmed_up(8, 0), {});
+  for (int t = 0; t < 120; ++t) session.advance();
+  uint32_t flip = 0;
+  for (auto _ : state) {
+    const rwd::Tick target = session.current_tick() - 8;
+    (void)session.add_final_input(0, target, {static_cast<int16_t>(++flip % 2 ? 1000 : -1000), 0, 0});
+    session.synchronize();
+    session.finalize_through(target);
+    session.advance();
+  }
+  state.counters["rollbacks"] = static_cast<double>(session.stats().rollbacks);
+}
+BENCHMARK(BM_Rollback8);
+
+}  // namespace
