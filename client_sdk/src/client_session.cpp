@@ -185,22 +185,27 @@ int ClientSession::update(TimePoint now) {
   // The tick clock runs a little fast or slow to keep our inputs arriving
   // just ahead of the server's need.
   tick_clock_ += dt / (period_s() * time_sync_.period_scale());
+  tick_clock_ += time_sync_.take_jump();
   const Tick before = session_->current_tick();
   step_due_ticks(now);
   verify_finals(now);
   if (awaiting_resync_ && now - last_report_sent_ >= kReportResend) send_desync_report(now);
   if (phase_ == Phase::kEnding &&
       (stats_.last_final_tick >= end_tick_ || awaiting_resync_ || now >= ending_deadline_)) {
-    phase_ = Phase::kEnded;
-    emit({ClientEventType::kMatchEnded, end_tick_, player_, 0, 0, end_reason_});
+    finish_ending(now);
   }
+  // Acknowledge new final ticks even when no tick was stepped (at the
+  // prediction barrier nothing else would carry the acknowledgement).
+  if (phase_ != Phase::kEnded && last_final_received_ > last_final_acked_) send_inputs(now);
   return session_->current_tick() - before;
 }
 
 void ClientSession::step_due_ticks(TimePoint now) {
-  const Tick target = static_cast<Tick>(std::floor(tick_clock_));
-  // Never predict further than the snapshot ring can roll back from.
+  // Never predict further than the snapshot ring can roll back from; the
+  // clock waits at the barrier instead of running on and bursting later.
   const Tick barrier = last_final_received_ + config_.snapshot_ticks - 8;
+  tick_clock_ = std::min(tick_clock_, static_cast<double>(barrier) + 1.0);
+  const Tick target = static_cast<Tick>(std::floor(tick_clock_));
   bool new_input = false;
   for (int steps = 0; steps < kMaxStepsPerUpdate && session_->current_tick() < target &&
                       session_->current_tick() < barrier;
@@ -217,8 +222,7 @@ void ClientSession::step_due_ticks(TimePoint now) {
     }
     if (!session_->advance()) {
       // The misprediction reaches past our snapshots: only the server can fix it.
-      awaiting_resync_ = true;
-      send_desync_report(now);
+      request_resync(now);
     }
   }
   if (new_input) send_inputs(now);
@@ -229,12 +233,12 @@ void ClientSession::send_inputs(TimePoint now) {
          (unacked_.front().first <= input_ack_ || unacked_.size() > kMaxInputsPerPacket)) {
     unacked_.pop_front();
   }
-  if (unacked_.empty()) return;
   v1::Envelope envelope;
   v1::InputFrame* frame = envelope.mutable_input_frame();
   frame->set_player(player_);
-  frame->set_first_tick(unacked_.front().first);
+  frame->set_first_tick(unacked_.empty() ? std::max<Tick>(next_input_tick_, 0) : unacked_.front().first);
   frame->set_last_final_tick_seen(last_final_received_);
+  last_final_acked_ = last_final_received_;
   for (const auto& [tick, input] : unacked_) to_proto(input, frame->add_inputs());
   send(envelope, now);
 }
@@ -286,10 +290,14 @@ void ClientSession::handle(const v1::Envelope& envelope, TimePoint now) {
         end_tick_ = envelope.match_end().last_final_tick();
         end_reason_ = envelope.match_end().reason();
         ending_deadline_ = now + std::chrono::milliseconds(1500);
-      } else if (phase_ == Phase::kLobby || phase_ == Phase::kJoining) {
-        phase_ = Phase::kEnded;
-        emit({ClientEventType::kMatchEnded, envelope.match_end().last_final_tick(), player_, 0, 0,
-              envelope.match_end().reason()});
+      } else if (phase_ == Phase::kLobby) {
+        end_tick_ = envelope.match_end().last_final_tick();
+        end_reason_ = envelope.match_end().reason();
+        finish_ending(now);
+      } else if (phase_ == Phase::kEnded) {
+        v1::Envelope bye;  // our goodbye was lost: the server is still waiting
+        bye.mutable_disconnect()->set_reason("match over");
+        send(bye, now);
       }
       break;
     case v1::Envelope::kPong: {
@@ -313,7 +321,7 @@ void ClientSession::handle(const v1::Envelope& envelope, TimePoint now) {
       break;
     }
     case v1::Envelope::kFinalTicks:
-      if (session_) on_final_ticks(envelope.final_ticks());
+      if (session_) on_final_ticks(envelope.final_ticks(), now);
       break;
     case v1::Envelope::kResyncChunk:
       if (session_ && (phase_ == Phase::kRunning || phase_ == Phase::kEnding)) on_resync_chunk(envelope.resync_chunk(), now);
@@ -340,9 +348,17 @@ void ClientSession::on_join_accept(const v1::JoinAccept& accept, TimePoint now) 
   player_count_ = accept.player_count();
   tick_rate_hz_ = accept.tick_rate_hz();
   window_ticks_ = accept.window_ticks();
+  if (static_cast<int64_t>(accept.window_ticks()) + 16 > config_.snapshot_ticks) {
+    phase_ = Phase::kEnded;
+    emit({ClientEventType::kRejected, kNoTick, 0, 0, 0,
+          "the server's window of " + std::to_string(accept.window_ticks()) +
+              " ticks needs snapshot_ticks >= window + 16"});
+    return;
+  }
   net::RollbackConfig rollback;
   rollback.snapshot_ticks = config_.snapshot_ticks;
-  rollback.input_ticks = 256;
+  // Inputs are held from the last final tick to as far as we predict.
+  rollback.input_ticks = config_.snapshot_ticks + 256;
   session_ = std::make_unique<net::RollbackSession>(std::move(*sim), rollback);
   if (config_.debug_corrupt_at_tick != kNoTick) {
     const Tick corrupt_at = config_.debug_corrupt_at_tick;
@@ -377,7 +393,7 @@ void ClientSession::on_match_start(const v1::MatchStart& start, TimePoint now) {
   emit({ClientEventType::kMatchStarted, start.server_tick(), player_, 0, 0, {}});
 }
 
-void ClientSession::on_final_ticks(const v1::FinalTicks& finals) {
+void ClientSession::on_final_ticks(const v1::FinalTicks& finals, TimePoint now) {
   server_tick_ = std::max(server_tick_, finals.server_tick());
   input_ack_ = std::max(input_ack_, finals.input_ack_tick());
   if (next_input_tick_ > 0) time_sync_.on_lead_report(finals.input_lead_ticks());
@@ -385,18 +401,57 @@ void ClientSession::on_final_ticks(const v1::FinalTicks& finals) {
   // server resends them from the resync snapshot's tick on.
   if (awaiting_resync_) return;
   for (const v1::FinalTick& final_tick : finals.ticks()) {
-    if (final_tick.tick() != last_final_received_ + 1) continue;  // duplicate, or a gap to wait out
-    if (final_tick.inputs_size() != static_cast<int>(player_count_)) {
-      ++stats_.packets_rejected;
-      return;
+    const Tick tick = final_tick.tick();
+    if (tick <= last_final_received_) continue;  // duplicate
+    if (tick == last_final_received_ + 1) {
+      if (!apply_final_tick(final_tick, now)) return;
+      // Ticks that arrived ahead of this one can follow now.
+      for (auto it = early_finals_.begin();
+           it != early_finals_.end() && it->first == last_final_received_ + 1;
+           it = early_finals_.erase(it)) {
+        if (!apply_final_tick(it->second, now)) return;
+      }
+    } else if (tick <= last_final_received_ + config_.snapshot_ticks &&
+               early_finals_.size() < static_cast<size_t>(config_.snapshot_ticks)) {
+      early_finals_.emplace(tick, final_tick);  // a gap: keep it for later
     }
-    for (uint32_t p = 0; p < player_count_; ++p) {
-      (void)session_->add_final_input(p, final_tick.tick(),
-                                      from_proto(final_tick.inputs(static_cast<int>(p))));
-    }
-    pending_finals_.emplace_back(final_tick.tick(), final_tick.checksum());
-    last_final_received_ = final_tick.tick();
   }
+}
+
+bool ClientSession::apply_final_tick(const v1::FinalTick& final_tick, TimePoint now) {
+  if (final_tick.inputs_size() != static_cast<int>(player_count_)) {
+    ++stats_.packets_rejected;
+    return false;
+  }
+  for (uint32_t p = 0; p < player_count_; ++p) {
+    const net::InputResult result = session_->add_final_input(
+        p, final_tick.tick(), from_proto(final_tick.inputs(static_cast<int>(p))));
+    if (result == net::InputResult::kTooFar) {
+      // Beyond our input window: we cannot apply it, so we cannot verify it.
+      request_resync(now);
+      return false;
+    }
+  }
+  pending_finals_.emplace_back(final_tick.tick(), final_tick.checksum());
+  last_final_received_ = final_tick.tick();
+  return true;
+}
+
+void ClientSession::request_resync(TimePoint now) {
+  if (awaiting_resync_) return;
+  awaiting_resync_ = true;
+  desync_tick_ = kNoTick;  // nothing to report, just ask
+  state_buffer_.clear();
+  report_sends_ = 0;
+  send_desync_report(now);
+}
+
+void ClientSession::finish_ending(TimePoint now) {
+  phase_ = Phase::kEnded;
+  emit({ClientEventType::kMatchEnded, end_tick_, player_, 0, 0, end_reason_});
+  v1::Envelope bye;
+  bye.mutable_disconnect()->set_reason("match over");
+  send(bye, now);
 }
 
 void ClientSession::verify_finals(TimePoint now) {
@@ -406,9 +461,7 @@ void ClientSession::verify_finals(TimePoint now) {
     std::optional<uint64_t> local;
     if (session_->finalize_through(tick)) local = session_->checksum_after(tick);
     if (!local) {
-      awaiting_resync_ = true;  // history we can no longer re-simulate
-      desync_tick_ = tick;
-      send_desync_report(now);
+      request_resync(now);  // history we can no longer re-simulate
       break;
     }
     pending_finals_.pop_front();
@@ -427,6 +480,7 @@ void ClientSession::verify_finals(TimePoint now) {
     desync_server_checksum_ = server_checksum;
     desync_local_checksum_ = *local;
     ++report_id_;
+    report_sends_ = 0;
     state_buffer_.clear();
     (void)session_->serialize_state_at(tick + 1, state_buffer_);
     send_desync_report(now);
@@ -436,7 +490,9 @@ void ClientSession::verify_finals(TimePoint now) {
 void ClientSession::send_desync_report(TimePoint now) {
   last_report_sent_ = now;
   const size_t count = (state_buffer_.size() + kReportChunkBytes - 1) / kReportChunkBytes;
-  if (desync_tick_ == kNoTick || count == 0 || count > net::kMaxDesyncChunks) {
+  // The whole report goes out a few times; after that only a short request,
+  // so a server that is slow to answer is not buried in chunks.
+  if (desync_tick_ == kNoTick || count == 0 || count > net::kMaxDesyncChunks || report_sends_++ >= 3) {
     v1::Envelope envelope;  // nothing to show: just ask for the snapshot
     envelope.mutable_resync_request()->set_desync_tick(std::max<Tick>(desync_tick_, 0));
     send(envelope, now);
@@ -461,7 +517,10 @@ void ClientSession::send_desync_report(TimePoint now) {
 }
 
 void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now) {
-  if (!awaiting_resync_ && chunk.tick() <= last_final_received_ + 1) return;  // stale
+  // Only a snapshot past everything we already settled can help: older ones
+  // are delayed duplicates of an earlier episode.
+  if (chunk.tick() <= session_->final_tick()) return;
+  if (!awaiting_resync_ && chunk.tick() <= last_final_received_ + 1) return;
   if (resync_.snapshot_id != chunk.snapshot_id() || resync_.chunks.size() != chunk.chunk_count()) {
     resync_ = ResyncAssembly{};
     resync_.snapshot_id = chunk.snapshot_id();
@@ -486,22 +545,25 @@ void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now)
     ++stats_.packets_rejected;
     return;
   }
-  if (Status status = session_->reset_from(bytes); !status.ok()) {
-    ++stats_.packets_rejected;
-    return;
-  }
-  if (session_->simulation().checksum() != done.checksum) {
-    // The snapshot does not reproduce the server's checksum: ask again.
+  // Decoded and checked against the server's checksum before it replaces
+  // anything; a bad snapshot is dropped and the server sends another.
+  if (Status status = session_->reset_from(bytes, done.checksum); !status.ok()) {
     ++stats_.packets_rejected;
     return;
   }
   const Tick tick = done.tick;
   last_final_received_ = tick - 1;  // the server resends final ticks from here
   pending_finals_.clear();
+  early_finals_.clear();
   next_input_tick_ = std::max(next_input_tick_, tick);
-  tick_clock_ = std::max(tick_clock_, static_cast<double>(tick));
+  // Re-anchor the clock on the server's instead of bursting through the
+  // ticks the clock ran ahead while we waited.
+  const double one_way_ticks = stats_.rtt_ms / 2000.0 * tick_rate_hz_;
+  tick_clock_ = std::max(static_cast<double>(tick), server_tick_ + one_way_ticks + config_.target_lead_ticks);
   awaiting_resync_ = false;
   desync_tick_ = kNoTick;
+  state_buffer_.clear();
+  report_sends_ = 0;
   ++stats_.resyncs;
   emit({ClientEventType::kResynced, tick, player_, session_->simulation().checksum(), done.checksum, {}});
   step_due_ticks(now);

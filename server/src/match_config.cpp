@@ -24,8 +24,10 @@ Status MatchConfig::validate() const {
   if (!(join_timeout_s > 0) || !(peer_timeout_s > 0)) return bad("timeouts must be > 0");
   if (!(start_delay_s >= 0 && start_delay_s <= 10)) return bad("start delay must be in [0, 10] s");
   if (!(closing_s >= 0 && closing_s <= 10)) return bad("closing time must be in [0, 10] s");
-  if (max_input_lead_ticks < 1 || max_input_lead_ticks > 200) {
-    return bad("max input lead must be in [1, 200] ticks");
+  // Inputs are held from the last final tick up to the lead ahead of now:
+  // together they must fit the 256-tick input queues.
+  if (max_input_lead_ticks < 1 || window_ticks + max_input_lead_ticks > 240) {
+    return bad("window + max input lead must be at most 240 ticks");
   }
   return Status::Ok();
 }

@@ -27,6 +27,17 @@ double seconds_between(TimePoint a, TimePoint b) {
 
 void log_line(const std::string& text) { std::fprintf(stderr, "[rewind-server] %s\n", text.c_str()); }
 
+// Text that came from a client goes into our logs only printable and short,
+// so nobody can forge log lines or flood them with one long string.
+std::string printable(const std::string& text) {
+  std::string out;
+  for (char c : text.substr(0, 64)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
+  return out;
+}
+
+constexpr auto kReportMinInterval = std::chrono::seconds(2);
+constexpr uint32_t kMaxReportsPerPeer = 8;
+
 }  // namespace
 
 Result<std::unique_ptr<MatchHost>> MatchHost::create(const MatchConfig& config, SendFn send,
@@ -141,7 +152,7 @@ void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from
     return;
   }
   peer->last_receive = now;
-  if (!peer->connected) {
+  if (!peer->connected && phase_ == Phase::kRunning && !envelope.has_disconnect()) {
     peer->connected = true;
     log_line("player " + std::to_string(player) + " is back");
   }
@@ -170,11 +181,13 @@ void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from
       handle_desync(*peer, player, envelope.desync_report(), now);
       break;
     case v1::Envelope::kResyncRequest:
-      if (phase_ == Phase::kRunning) send_resync(*peer, now);
+      if (phase_ == Phase::kRunning || phase_ == Phase::kClosing) send_resync(*peer, now);
       break;
     case v1::Envelope::kDisconnect:
+      if (peer->connected && phase_ == Phase::kRunning) {
+        log_line("player " + std::to_string(player) + " left: " + printable(envelope.disconnect().reason()));
+      }
       peer->connected = false;
-      log_line("player " + std::to_string(player) + " left: " + envelope.disconnect().reason());
       break;
     default:
       // Server-to-client messages have no business arriving here.
@@ -266,7 +279,7 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
   peer.name = request.client_name();
   ++stats_.players_joined;
   log_line("player " + std::to_string(*slot) + " joined from " + from.address().to_string() + ":" +
-           std::to_string(from.port()) + " (" + peer.name + ")");
+           std::to_string(from.port()) + " (" + printable(peer.name) + ")");
   accept(*slot);
   const bool full = std::all_of(peers_.begin(), peers_.end(), [](const Peer& p) { return p.joined; });
   if (full) start_match(now);
@@ -323,7 +336,6 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
 
   for (int i = 0; i < frame.inputs_size(); ++i) {
     const Tick tick = frame.first_tick() + i;
-    newest = std::max(newest, tick);
     auto input = replay::from_proto(frame.inputs(i));
     if (!input.ok() || tick > clock_tick + config_.max_input_lead_ticks) {
       ++stats_.rejected_inputs;
@@ -331,6 +343,7 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
     }
     switch (session_->add_input(player, tick, *input)) {
       case net::InputResult::kAccepted:
+        newest = std::max(newest, tick);
         if (tick < now_tick) ++stats_.late_inputs;
         if (relay_next != tick) {
           flush_relay();
@@ -340,6 +353,7 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
         relay_next = tick + 1;
         break;
       case net::InputResult::kDuplicate:
+        newest = std::max(newest, tick);
         break;
       case net::InputResult::kFinal: {
         // Resends of inputs the server had are normal; an input that only
@@ -357,7 +371,13 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
     }
   }
   flush_relay();
-  if (newest != kNoTick) peer.last_lead = newest - clock_tick;
+  if (newest != kNoTick) {
+    // 64-bit and clamped: ticks near INT32_MAX minus a negative countdown
+    // clock must not overflow.
+    const int64_t lead = int64_t{newest} - int64_t{clock_tick};
+    const int64_t limit = config_.max_input_lead_ticks;
+    peer.last_lead = static_cast<int32_t>(std::clamp<int64_t>(lead, -limit, limit));
+  }
 }
 
 void MatchHost::on_tick(TimePoint now) {
@@ -372,7 +392,7 @@ void MatchHost::on_tick(TimePoint now) {
   }
   if (phase_ == Phase::kClosing) {
     broadcast(now);
-    if (session_->current_tick() % 10 == 0) send_match_end(now);
+    send_match_end(now);  // until each client says goodbye
     close_if_done(now);
     return;
   }
@@ -448,6 +468,7 @@ void MatchHost::finalize_ready_ticks() {
       if (!status.ok()) record_replay_error(status);
     }
     (void)session_->finalize_through(t);
+    final_sizes_.push_back(static_cast<uint32_t>(final_tick.ByteSizeLong()));
     finals_.push_back(std::move(final_tick));
     ++next_final_;
   }
@@ -459,10 +480,12 @@ void MatchHost::finalize_ready_ticks() {
   while (!finals_.empty() &&
          (finals_.front().tick() <= acked_by_all || finals_.size() > kMaxFinalHistory)) {
     finals_.pop_front();
+    final_sizes_.pop_front();
   }
 }
 
 void MatchHost::broadcast(TimePoint now) {
+  const Tick oldest_held = finals_.empty() ? next_final_ : finals_.front().tick();
   for (uint32_t p = 0; p < peers_.size(); ++p) {
     Peer& peer = peers_[p];
     if (!peer.joined || !peer.connected) continue;
@@ -470,25 +493,50 @@ void MatchHost::broadcast(TimePoint now) {
       send_match_start(peer, now);  // every MatchStart so far may have been lost
     }
     // A client that fell behind the history we keep can only catch up from
-    // a snapshot.
-    if (!finals_.empty() && peer.final_seen + 1 < finals_.front().tick()) {
-      send_resync(peer, now);
-      continue;
+    // a snapshot; one with a snapshot on the way gets it again until it
+    // acknowledges the snapshot's tick.
+    if (peer.final_seen + 1 < oldest_held && peer.resync_tick == kNoTick) send_resync(peer, now);
+    if (peer.resync_tick != kNoTick) {
+      if (peer.final_seen >= peer.resync_tick - 1) {
+        peer.resync_tick = kNoTick;
+      } else {
+        send_resync(peer, now);
+        continue;
+      }
     }
     v1::Envelope envelope;
     v1::FinalTicks* out = envelope.mutable_final_ticks();
     out->set_input_ack_tick(session_->queue(p).contiguous_through());
     out->set_input_lead_ticks(peer.last_lead);
     out->set_server_tick(server_tick());
-    size_t budget = kFinalTicksBudgetBytes;
-    for (const v1::FinalTick& final_tick : finals_) {
-      if (final_tick.tick() <= peer.final_seen) continue;
-      const size_t size = final_tick.ByteSizeLong() + 3;
-      if (size > budget || out->ticks_size() >= static_cast<int>(net::kMaxFinalTicksPerPacket)) break;
-      budget -= size;
-      *out->add_ticks() = final_tick;
-    }
+    add_final_ticks(peer, *out);
     send(peer, envelope, now);
+  }
+}
+
+void MatchHost::add_final_ticks(Peer& peer, v1::FinalTicks& out) {
+  if (finals_.empty()) return;
+  const Tick oldest_held = finals_.front().tick();
+  const Tick newest = next_final_ - 1;
+  size_t budget = kFinalTicksBudgetBytes;
+  auto add = [&](Tick t) {
+    const size_t index = static_cast<size_t>(t - oldest_held);
+    const size_t size = final_sizes_[index] + 3;  // tag + length prefix
+    if (size > budget || out.ticks_size() >= static_cast<int>(net::kMaxFinalTicksPerPacket)) {
+      return false;
+    }
+    budget -= size;
+    *out.add_ticks() = finals_[index];
+    return true;
+  };
+  // New ticks first, so a round trip never limits how fast finals flow;
+  // then the oldest unacknowledged ones again, for loss. Clients accept
+  // them in any order.
+  const Tick first_new = std::max({peer.final_sent + 1, peer.final_seen + 1, oldest_held});
+  Tick t = first_new;
+  while (t <= newest && add(t)) ++t;
+  peer.final_sent = std::max(peer.final_sent, t - 1);
+  for (Tick r = std::max(peer.final_seen + 1, oldest_held); r < first_new && add(r); ++r) {
   }
 }
 
@@ -532,9 +580,17 @@ void MatchHost::handle_desync(Peer& peer, uint32_t player, const v1::DesyncRepor
   ++stats_.desync_reports;
   peer.handled_reports.push_back(assembly.report_id);
   if (peer.handled_reports.size() > 16) peer.handled_reports.erase(peer.handled_reports.begin());
-  log_line("player " + std::to_string(player) + " reports a desync at tick " +
-           std::to_string(assembly.tick));
-  store_desync_report(player, assembly, dump);
+  // Storing a report (disk, two simulations, a diff) is the expensive part:
+  // a few per player, spaced out, so a client cannot stall the match or
+  // fill the disk by inventing desyncs.
+  if (peer.reports_stored < kMaxReportsPerPeer &&
+      (peer.reports_stored == 0 || now - peer.last_report_stored >= kReportMinInterval)) {
+    ++peer.reports_stored;
+    peer.last_report_stored = now;
+    log_line("player " + std::to_string(player) + " reports a desync at tick " +
+             std::to_string(assembly.tick));
+    store_desync_report(player, assembly, dump);
+  }
   assembly = DesyncAssembly{};
   send_resync(peer, now);
 }
@@ -620,8 +676,10 @@ void MatchHost::send_resync(Peer& peer, TimePoint now) {
                                  state_buffer_.begin() + static_cast<std::ptrdiff_t>(end)));
     send(peer, envelope, now);
   }
-  // The client restarts from `tick`; final ticks before it are settled.
-  peer.final_seen = std::max(peer.final_seen, tick - 1);
+  // The client restarts from `tick`; it acknowledges tick - 1 once it has
+  // the whole snapshot, and until then gets it again (rate-limited).
+  peer.resync_tick = tick;
+  peer.final_sent = std::max(peer.final_sent, tick - 1);
   ++stats_.resyncs_sent;
 }
 
@@ -659,11 +717,11 @@ void MatchHost::send_match_end(TimePoint now) {
 }
 
 void MatchHost::close_if_done(TimePoint now) {
-  bool all_acked = true;
-  for (const Peer& peer : peers_) {
-    if (peer.joined && peer.connected) all_acked = all_acked && peer.final_seen >= next_final_ - 1;
-  }
-  if (all_acked || now >= closing_deadline_) phase_ = Phase::kEnded;
+  // Done when every client still with us has said goodbye (it does once it
+  // has verified the last final tick), or when the closing time is up.
+  bool all_gone = true;
+  for (const Peer& peer : peers_) all_gone = all_gone && (!peer.joined || !peer.connected);
+  if (all_gone || now >= closing_deadline_) phase_ = Phase::kEnded;
 }
 
 void MatchHost::send(Peer& peer, v1::Envelope& envelope, TimePoint now) {

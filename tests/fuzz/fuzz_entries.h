@@ -14,3 +14,7 @@ int fuzz_envelope_one(const uint8_t* data, size_t size);
 /// Replay files (first byte: 1 = repair frame hashes first): ReplayReader,
 /// then re-frame what it accepts and read it again.
 int fuzz_replay_reader_one(const uint8_t* data, size_t size);
+
+/// Serialized simulations (resync snapshots, desync dumps):
+/// Simulation::deserialize, then round trip and step what it accepts.
+int fuzz_sim_snapshot_one(const uint8_t* data, size_t size);

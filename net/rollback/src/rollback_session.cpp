@@ -141,9 +141,15 @@ bool RollbackSession::finalize_through(Tick t) {
   return in_sync;
 }
 
-Status RollbackSession::reset_from(std::span<const uint8_t> serialized) {
-  Status status = sim_->deserialize(serialized);
-  if (!status.ok()) return status;
+Status RollbackSession::reset_from(std::span<const uint8_t> serialized,
+                                   std::optional<uint64_t> expected_checksum) {
+  auto scratch = game::Simulation::create(sim_->game().name(), sim_->setup());
+  if (!scratch.ok()) return scratch.status();
+  if (Status status = (*scratch)->deserialize(serialized); !status.ok()) return status;
+  if (expected_checksum && (*scratch)->checksum() != *expected_checksum) {
+    return Status::Error(ErrorCode::kCorrupt, "snapshot does not reproduce its checksum");
+  }
+  sim_ = std::move(*scratch);
   const Tick t = sim_->tick();
   ring_.clear();
   final_tick_ = t - 1;

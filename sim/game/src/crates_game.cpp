@@ -182,4 +182,22 @@ void CratesGame::hash_typed(const CratesState& state, sim::StateHasher& hasher) 
   }
 }
 
+Status CratesGame::validate_typed(const MatchSetup& setup, const CratesState& state) const {
+  auto bad = [](const std::string& what) {
+    return Status::Error(ErrorCode::kCorrupt, "crates state: " + what);
+  };
+  if (state.player_count != setup.player_count) return bad("player count differs from the match");
+  if (state.crate_count > state.crates.size()) return bad("crate count out of range");
+  for (uint32_t p = 0; p < state.player_count; ++p) {
+    if (state.cooldown_ticks[p] < 0 || state.cooldown_ticks[p] > kCooldownTicks) {
+      return bad("cooldown out of range");
+    }
+  }
+  for (uint32_t c = 0; c < state.crate_count; ++c) {
+    if (state.crate_last_toucher[c] > state.player_count) return bad("crate toucher out of range");
+    if (state.crate_scored[c] > 1) return bad("crate scored flag out of range");
+  }
+  return Status::Ok();
+}
+
 }  // namespace rwd::game

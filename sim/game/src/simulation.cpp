@@ -120,6 +120,9 @@ Status Simulation::deserialize(std::span<const uint8_t> bytes) {
     return Status::Error(ErrorCode::kCorrupt, "simulation snapshot: truncated game state");
   }
   std::span<const uint8_t> game_bytes = bytes.subspan(offset, game_size);
+  if (Status status = game_->validate_state(setup_, std::as_bytes(game_bytes)); !status.ok()) {
+    return status;
+  }
   offset += game_size;
   const uint32_t world_size = get_u32(bytes.data() + offset);
   offset += 4;

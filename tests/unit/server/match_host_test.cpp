@@ -256,7 +256,7 @@ TEST(MatchHost, CountsDownToTickZeroRepeatingMatchStart) {
   EXPECT_EQ(h.host().current_tick(), 1);
 }
 
-TEST(MatchHost, ClosingResendsFinalsUntilAcknowledged) {
+TEST(MatchHost, ClosingResendsMatchEndUntilEveryClientSaysGoodbye) {
   MatchConfig config = test_config();
   config.max_ticks = 10;
   HostHarness h(config);
@@ -269,13 +269,21 @@ TEST(MatchHost, ClosingResendsFinalsUntilAcknowledged) {
   }
   ASSERT_EQ(h.host().phase(), MatchHost::Phase::kClosing);
   EXPECT_EQ(h.host().last_final_tick(), 9);
-  // Both clients acknowledge the last final tick: the match is over.
+  auto match_ends = [&](const FakeClient& c) {
+    int n = 0;
+    for (const v1::Envelope& e : h.outbox().received[c.endpoint]) n += e.has_match_end();
+    return n;
+  };
+  const int ends_before = match_ends(a);
+  h.tick();
+  h.tick();
+  EXPECT_EQ(match_ends(a), ends_before + 2) << "MatchEnd is repeated every closing tick";
+  ASSERT_EQ(h.host().phase(), MatchHost::Phase::kClosing);
+  // Both clients say goodbye: the match is over.
   for (FakeClient* c : {&a, &b}) {
-    v1::Envelope ack;
-    ack.mutable_input_frame()->set_player(c->player);
-    ack.mutable_input_frame()->set_first_tick(10);
-    ack.mutable_input_frame()->set_last_final_tick_seen(9);
-    h.send(*c, ack);
+    v1::Envelope bye;
+    bye.mutable_disconnect()->set_reason("match over");
+    h.send(*c, bye);
   }
   h.tick();
   EXPECT_EQ(h.host().phase(), MatchHost::Phase::kEnded);

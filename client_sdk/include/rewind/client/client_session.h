@@ -10,6 +10,7 @@
 // timer); it steps as many ticks as the tick clock says are due.
 #include <asio/io_context.hpp>
 #include <deque>
+#include <map>
 #include <functional>
 #include <memory>
 #include <string>
@@ -77,7 +78,10 @@ class ClientSession {
   void handle(const v1::Envelope& envelope, TimePoint now);
   void on_join_accept(const v1::JoinAccept& accept, TimePoint now);
   void on_match_start(const v1::MatchStart& start, TimePoint now);
-  void on_final_ticks(const v1::FinalTicks& finals);
+  void on_final_ticks(const v1::FinalTicks& finals, TimePoint now);
+  bool apply_final_tick(const v1::FinalTick& final_tick, TimePoint now);
+  void request_resync(TimePoint now);
+  void finish_ending(TimePoint now);
   void on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now);
   void step_due_ticks(TimePoint now);
   void verify_finals(TimePoint now);
@@ -117,6 +121,9 @@ class ClientSession {
   Tick input_ack_ = kNoTick;
   Tick last_final_received_ = kNoTick;
   std::deque<std::pair<Tick, uint64_t>> pending_finals_;  // (tick, server checksum)
+  std::map<Tick, v1::FinalTick> early_finals_;  // arrived ahead of a gap, bounded
+  Tick last_final_acked_ = kNoTick;             // last_final_received_ as last sent
+  int report_sends_ = 0;
   int32_t server_tick_ = 0;
   bool awaiting_resync_ = false;
   Tick end_tick_ = kNoTick;

@@ -83,6 +83,8 @@ class MatchHost {
     uint64_t join_nonce = 0;
     std::optional<net::Connection> connection;
     Tick final_seen = kNoTick;      // newest final tick the client has acknowledged
+    Tick final_sent = kNoTick;      // newest final tick sent at least once
+    Tick resync_tick = kNoTick;     // a resync snapshot at this tick awaits acknowledgement
     int32_t last_lead = 0;
     bool sent_input = false;
     TimePoint last_receive;
@@ -91,6 +93,8 @@ class MatchHost {
     std::vector<uint32_t> handled_reports;  // recent report ids, to count each once
     TimePoint last_resync;
     bool resynced_once = false;
+    TimePoint last_report_stored;
+    uint32_t reports_stored = 0;
   };
 
   void handle_join(const v1::Envelope& envelope, const Endpoint& from, TimePoint now);
@@ -99,6 +103,7 @@ class MatchHost {
   void store_desync_report(uint32_t player, const DesyncAssembly& assembly,
                            const std::vector<uint8_t>& dump);
   void send_resync(Peer& peer, TimePoint now);
+  void add_final_ticks(Peer& peer, v1::FinalTicks& out);
   void start_match(TimePoint now);
   void send_match_start(Peer& peer, TimePoint now);
   void send_match_end(TimePoint now);
@@ -116,7 +121,8 @@ class MatchHost {
   std::optional<replay::ReplayWriter> replay_;
   Phase phase_ = Phase::kLobby;
   std::vector<Peer> peers_;
-  std::deque<v1::FinalTick> finals_;
+  std::deque<v1::FinalTick> finals_;     // contiguous ticks, oldest first
+  std::deque<uint32_t> final_sizes_;      // encoded size of each, in step with finals_
   Tick next_final_ = 0;
   int32_t countdown_ticks_ = 0;
   // Substitution masks of the last kSubstitutionHistory final ticks, to

@@ -98,10 +98,13 @@ class RollbackSession {
   using StepHook = std::function<void(game::Simulation&, Tick)>;
   void set_step_hook(StepHook hook) { step_hook_ = std::move(hook); }
 
-  /// Replaces the state from a serialized simulation (a resync). The
-  /// ticks before the snapshot become final; input queues keep what they
-  /// know for later ticks. On error nothing changes.
-  Status reset_from(std::span<const uint8_t> serialized);
+  /// Replaces the state from a serialized simulation (a resync). The bytes
+  /// are decoded into a scratch simulation and, when `expected_checksum` is
+  /// given, must reproduce it before anything is replaced. The ticks before
+  /// the snapshot become final; input queues keep what they know for later
+  /// ticks. On error nothing changes.
+  Status reset_from(std::span<const uint8_t> serialized,
+                    std::optional<uint64_t> expected_checksum = std::nullopt);
 
  private:
   game::PlayerInput* used_row(Tick tick) {

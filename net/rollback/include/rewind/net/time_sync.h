@@ -14,6 +14,8 @@ struct TimeSyncConfig {
   double max_adjust = 0.08;        ///< tick period scale stays in [1 - max, 1 + max]
   double gain = 0.02;              ///< scale change per tick of lead error
   double smoothing = 0.1;          ///< weight of a new lead sample in the average
+  int32_t late_threshold_ticks = 0; ///< a report below this lead triggers a jump
+  int32_t jump_cooldown_reports = 12; ///< reports ignored after a jump (~ a round trip)
 };
 
 class TimeSync {
@@ -22,6 +24,8 @@ class TimeSync {
 
   /// A lead report from the server (negative: the input arrived late).
   void on_lead_report(int32_t lead_ticks);
+  /// Whole ticks the clock should jump forward now (0 = none); resets.
+  int32_t take_jump();
   /// Multiplier for the local tick period: > 1 slows the client down.
   double period_scale() const;
   double smoothed_lead() const { return lead_; }
@@ -31,6 +35,8 @@ class TimeSync {
   TimeSyncConfig config_;
   double lead_ = 0.0;
   uint64_t samples_ = 0;
+  int32_t jump_ = 0;
+  int32_t cooldown_ = 0;
 };
 
 }  // namespace rwd::net

@@ -36,6 +36,7 @@ class CratesGame final : public GameWithState<CratesState> {
                    CratesState& state) const override;
   void after_step_typed(Tick tick, sim::World3D& world, CratesState& state) const override;
   void hash_typed(const CratesState& state, sim::StateHasher& hasher) const override;
+  Status validate_typed(const MatchSetup& setup, const CratesState& state) const override;
 };
 
 }  // namespace rwd::game

@@ -45,6 +45,10 @@ class Game {
   virtual void after_step(Tick tick, sim::World3D& world, std::span<std::byte> state) const = 0;
   /// Feeds the canonical fields of the state block to the hasher.
   virtual void hash_state(std::span<const std::byte> state, sim::StateHasher& hasher) const = 0;
+  /// Checks a state block that arrived from outside (a resync snapshot, a
+  /// desync dump) before it is used: counts, indices and ranges the rules
+  /// rely on. Returns kCorrupt naming the bad field.
+  virtual Status validate_state(const MatchSetup& setup, std::span<const std::byte> state) const = 0;
 };
 
 /// Convenience base for games whose state is one trivially copyable struct.
@@ -73,6 +77,12 @@ class GameWithState : public Game {
   void hash_state(std::span<const std::byte> state, sim::StateHasher& hasher) const final {
     hash_typed(load(state), hasher);
   }
+  Status validate_state(const MatchSetup& setup, std::span<const std::byte> state) const final {
+    if (state.size() != sizeof(State)) {
+      return Status::Error(ErrorCode::kCorrupt, "game state block has the wrong size");
+    }
+    return validate_typed(setup, load(state));
+  }
 
  protected:
   virtual void build_typed(const MatchSetup& setup, sim::World3D& world, State& state) const = 0;
@@ -80,6 +90,7 @@ class GameWithState : public Game {
                            State& state) const = 0;
   virtual void after_step_typed(Tick tick, sim::World3D& world, State& state) const = 0;
   virtual void hash_typed(const State& state, sim::StateHasher& hasher) const = 0;
+  virtual Status validate_typed(const MatchSetup& setup, const State& state) const = 0;
 
  private:
   static State load(std::span<const std::byte> bytes) {
