@@ -10,6 +10,9 @@
 #            tick, reported (the server stores the report) and resynced.
 #   garbage  random datagrams are fired at the server during a match: the
 #            players see nothing of it, the server counts them.
+#   signal   the server (no tick budget) gets SIGINT mid-match: it ends the
+#            match cleanly, the bots finish, the replay verifies and ends
+#            with its end record.
 set -euo pipefail
 mode=$1
 bin=$2
@@ -25,20 +28,26 @@ server_pid=""
 cleanup() { [ -n "$server_pid" ] && kill "$server_pid" 2>/dev/null || true; }
 trap cleanup EXIT
 
-ticks=480
+# Sanitizer builds run several times slower than the real-time budget of a
+# 60 Hz match; they play the same match at a pace they can keep.
+tick_rate=${REWIND_TEST_TICK_RATE:-60}
+ticks=${REWIND_TEST_TICKS:-480}
+budget=$ticks
+[ "$mode" = signal ] && budget=0
 "$bin/rewind-server" --game crates --bind 127.0.0.1 --port 0 --port-file port --players 4 \
-  --tick-rate 60 --window 8 --ticks "$ticks" --replay match.rwr --keyframe-interval 60 \
+  --tick-rate "$tick_rate" --window 8 --ticks "$budget" --replay match.rwr --keyframe-interval 60 \
   --desync-dir desyncs --join-timeout 30 --summary-json >server.json 2>server.log &
 server_pid=$!
 for _ in $(seq 1 100); do [ -s port ] && break; sleep 0.1; done
 [ -s port ] || fail "server did not start: $(cat server.log)"
 port=$(cat port)
 
-bots_args=(--bots 4 --connect "127.0.0.1:$port" --game crates --summary-json --duration 60)
+bots_args=(--bots 4 --connect "localhost:$port" --game crates --summary-json --duration 60)
 case "$mode" in
   faults)  bots_args+=(--latency-ms 30 --jitter-ms 10 --loss 0.05 --duplicate 0.02 --reorder 0.02) ;;
   desync)  bots_args+=(--latency-ms 10 --corrupt-bot 2 --corrupt-at-tick 120) ;;
   garbage) bots_args+=(--latency-ms 10) ;;
+  signal)  bots_args+=(--latency-ms 10) ;;
   *) fail "unknown mode" ;;
 esac
 
@@ -69,6 +78,10 @@ PY
   flood_pid=$!
 fi
 
+if [ "$mode" = signal ]; then
+  # Interrupt the server once the match has been running for a while.
+  ( sleep $(( ticks / tick_rate / 2 + 1 )); kill -INT "$server_pid" ) &
+fi
 set +e
 "$bin/rewind-bots" "${bots_args[@]}" >bots.json 2>bots.log
 bots_status=$?
@@ -79,6 +92,18 @@ server_pid=""
 
 echo "server: $(cat server.json)"
 echo "bots:   $(cat bots.json)"
+if [ "$mode" = signal ]; then
+  [ "$bots_status" = 0 ] || fail "rewind-bots exited $bots_status"
+  grep -q '"end_reason":"stopped by signal SIGINT"' server.json || fail "server did not end on SIGINT"
+  final=$(json server.json ticks_final)
+  [ "$final" -gt 30 ] || fail "too few final ticks before the signal: $final"
+  [ "$(json bots.json finished)" = 4 ] || fail "not every bot saw the end: $(tail -5 bots.log)"
+  "$bin/rewind-replay" verify match.rwr >verify.txt 2>&1 || fail "replay did not verify: $(cat verify.txt)"
+  grep -q "verified $final ticks" verify.txt || fail "unexpected verify output: $(cat verify.txt)"
+  "$bin/rewind-replay" inspect match.rwr | grep -q 'reason "stopped by signal SIGINT"' || fail "replay has no end record"
+  echo "PASS [$mode]"
+  exit 0
+fi
 [ "$(json server.json ticks_final)" = "$ticks" ] || fail "server finalized $(json server.json ticks_final) of $ticks ticks"
 [ "$(json bots.json finished)" = 4 ] || fail "not every bot finished the match: $(tail -5 bots.log)"
 

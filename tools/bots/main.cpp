@@ -2,6 +2,7 @@
 // rewind-bots: N full SDK clients in one process, for load tests and the demo.
 #include <algorithm>
 #include <asio/io_context.hpp>
+#include <asio/ip/udp.hpp>
 #include <asio/steady_timer.hpp>
 #include <cstdio>
 #include <memory>
@@ -35,8 +36,29 @@ bool split_host_port(const std::string& text, std::string* host, uint16_t* port)
   if (p.find_first_not_of("0123456789") != std::string::npos || p.size() > 5) return false;
   const long value = std::stol(p);
   if (value < 1 || value > 65535) return false;
-  *host = h == "localhost" ? "127.0.0.1" : h;
+  *host = h;
   *port = static_cast<uint16_t>(value);
+  return true;
+}
+
+// Names (e.g. "server" on a compose network) are resolved once, up front;
+// the sessions take an address literal.
+bool resolve(asio::io_context& io, const std::string& host, std::string* address, std::string* error) {
+  asio::ip::udp::resolver resolver(io);
+  std::error_code ec;
+  const auto results = resolver.resolve(host, "", ec);
+  if (ec || results.empty()) {
+    *error = ec ? ec.message() : "no addresses";
+    return false;
+  }
+  // Prefer IPv4, as loopback examples and most game hosts are.
+  for (const auto& entry : results) {
+    if (entry.endpoint().address().is_v4()) {
+      *address = entry.endpoint().address().to_string();
+      return true;
+    }
+  }
+  *address = results.begin()->endpoint().address().to_string();
   return true;
 }
 
@@ -56,7 +78,7 @@ int main(int argc, char** argv) {
       "Exit status: 0 = every bot played the match to its end with no desync; 1 = a desync\n"
       "was detected; 2 = a bot could not join or lost the server.");
   flags.add_int("bots", &bots, 1, 1000, "number of bot clients");
-  flags.add_string("connect", &connect, "server HOST:PORT (IPv4/IPv6 literal or localhost)");
+  flags.add_string("connect", &connect, "server HOST:PORT (a name, an IPv4 literal or [IPv6])");
   flags.add_string("game", &game, "game the server hosts");
   flags.add_string("script", &script_name, "input script: random, circle or idle");
   flags.add_int("seed", &seed, 0, INT64_MAX, "seed of the input scripts and fault streams");
@@ -97,11 +119,17 @@ int main(int argc, char** argv) {
   }
 
   asio::io_context io(1);
+  std::string address, resolve_error;
+  if (!resolve(io, host, &address, &resolve_error)) {
+    std::fprintf(stderr, "rewind-bots: --connect: cannot resolve '%s': %s\n", host.c_str(),
+                 resolve_error.c_str());
+    return 2;
+  }
   std::vector<Bot> fleet(static_cast<size_t>(bots));
   const auto start = rwd::net::SteadyClock::now();
   for (size_t i = 0; i < fleet.size(); ++i) {
     rwd::client::ClientConfig config;
-    config.server_address = host;
+    config.server_address = address;
     config.server_port = port;
     config.game = game;
     config.name = "bot-" + std::to_string(i);
