@@ -60,7 +60,8 @@ void BM_Rollback8(benchmark::State& state) {
   uint32_t flip = 0;
   for (auto _ : state) {
     const rwd::Tick target = session.current_tick() - 8;
-    (void)session.add_final_input(0, target, {static_cast<int16_t>(++flip % 2 ? 1000 : -1000), 0, 0});
+    (void)session.add_final_input(0, target,
+                                  {static_cast<int16_t>(++flip % 2 ? 1000 : -1000), 0, 0});
     session.synchronize();
     session.finalize_through(target);
     session.advance();

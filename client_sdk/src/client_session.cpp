@@ -14,8 +14,8 @@ constexpr auto kJoinResend = std::chrono::milliseconds(250);
 constexpr auto kLobbyPing = std::chrono::milliseconds(100);
 constexpr auto kMatchPing = std::chrono::milliseconds(250);
 constexpr auto kReportResend = std::chrono::milliseconds(500);
-constexpr int kMaxStepsPerUpdate = 30;     // bounds a catch-up burst
-constexpr size_t kMaxInputsPerPacket = 64; // redundancy: every unacked input, up to this
+constexpr int kMaxStepsPerUpdate = 30;      // bounds a catch-up burst
+constexpr size_t kMaxInputsPerPacket = 64;  // redundancy: every unacked input, up to this
 constexpr size_t kReportChunkBytes = 1000;
 constexpr size_t kMaxQueuedEvents = 4096;
 
@@ -30,8 +30,10 @@ uint64_t micros_since_epoch(TimePoint t) {
 
 game::PlayerInput from_proto(const v1::Input& in) {
   game::PlayerInput out;
-  out.axis_x = static_cast<int16_t>(std::clamp<int32_t>(in.axis_x(), -game::kAxisMax, game::kAxisMax));
-  out.axis_y = static_cast<int16_t>(std::clamp<int32_t>(in.axis_y(), -game::kAxisMax, game::kAxisMax));
+  out.axis_x =
+      static_cast<int16_t>(std::clamp<int32_t>(in.axis_x(), -game::kAxisMax, game::kAxisMax));
+  out.axis_y =
+      static_cast<int16_t>(std::clamp<int32_t>(in.axis_y(), -game::kAxisMax, game::kAxisMax));
   out.buttons = in.buttons();
   return out;
 }
@@ -86,13 +88,14 @@ ClientSession::ClientSession(asio::io_context& io, const ClientConfig& config,
           on_datagram(bytes, from);
         })));
   }
-  socket_->start_receiving([this](std::span<const uint8_t> bytes, const asio::ip::udp::endpoint& from) {
-    if (inbound_faults_) {
-      inbound_faults_->send(bytes, from);
-    } else {
-      on_datagram(bytes, from);
-    }
-  });
+  socket_->start_receiving(
+      [this](std::span<const uint8_t> bytes, const asio::ip::udp::endpoint& from) {
+        if (inbound_faults_) {
+          inbound_faults_->send(bytes, from);
+        } else {
+          on_datagram(bytes, from);
+        }
+      });
   std::random_device device;
   nonce_ = (uint64_t{device()} << 32) | device();
 }
@@ -213,8 +216,10 @@ void ClientSession::step_due_ticks(TimePoint now) {
     const Tick t = session_->current_tick();
     if (t >= next_input_tick_) {
       game::PlayerInput input = provider_ ? provider_(t) : held_input_;
-      input.axis_x = static_cast<int16_t>(std::clamp<int>(input.axis_x, -game::kAxisMax, game::kAxisMax));
-      input.axis_y = static_cast<int16_t>(std::clamp<int>(input.axis_y, -game::kAxisMax, game::kAxisMax));
+      input.axis_x =
+          static_cast<int16_t>(std::clamp<int>(input.axis_x, -game::kAxisMax, game::kAxisMax));
+      input.axis_y =
+          static_cast<int16_t>(std::clamp<int>(input.axis_y, -game::kAxisMax, game::kAxisMax));
       (void)session_->add_input(player_, t, input);
       unacked_.emplace_back(t, input);
       next_input_tick_ = t + 1;
@@ -236,14 +241,16 @@ void ClientSession::send_inputs(TimePoint now) {
   v1::Envelope envelope;
   v1::InputFrame* frame = envelope.mutable_input_frame();
   frame->set_player(player_);
-  frame->set_first_tick(unacked_.empty() ? std::max<Tick>(next_input_tick_, 0) : unacked_.front().first);
+  frame->set_first_tick(unacked_.empty() ? std::max<Tick>(next_input_tick_, 0)
+                                         : unacked_.front().first);
   frame->set_last_final_tick_seen(last_final_received_);
   last_final_acked_ = last_final_received_;
   for (const auto& [tick, input] : unacked_) to_proto(input, frame->add_inputs());
   send(envelope, now);
 }
 
-void ClientSession::on_datagram(std::span<const uint8_t> bytes, const asio::ip::udp::endpoint& from) {
+void ClientSession::on_datagram(std::span<const uint8_t> bytes,
+                                const asio::ip::udp::endpoint& from) {
   ++stats_.packets_received;
   if (from != server_) {
     ++stats_.packets_rejected;
@@ -301,11 +308,12 @@ void ClientSession::handle(const v1::Envelope& envelope, TimePoint now) {
       }
       break;
     case v1::Envelope::kPong: {
-      const double rtt_ms =
-          (static_cast<double>(micros_since_epoch(now)) -
-           static_cast<double>(envelope.pong().client_time_us())) / 1000.0;
+      const double rtt_ms = (static_cast<double>(micros_since_epoch(now)) -
+                             static_cast<double>(envelope.pong().client_time_us())) /
+                            1000.0;
       if (rtt_ms >= 0 && rtt_ms < 10000) {
-        stats_.rtt_ms = stats_.rtt_ms == 0.0 ? rtt_ms : stats_.rtt_ms + 0.125 * (rtt_ms - stats_.rtt_ms);
+        stats_.rtt_ms =
+            stats_.rtt_ms == 0.0 ? rtt_ms : stats_.rtt_ms + 0.125 * (rtt_ms - stats_.rtt_ms);
       }
       server_tick_ = std::max(server_tick_, envelope.pong().server_tick());
       break;
@@ -324,11 +332,13 @@ void ClientSession::handle(const v1::Envelope& envelope, TimePoint now) {
       if (session_) on_final_ticks(envelope.final_ticks(), now);
       break;
     case v1::Envelope::kResyncChunk:
-      if (session_ && (phase_ == Phase::kRunning || phase_ == Phase::kEnding)) on_resync_chunk(envelope.resync_chunk(), now);
+      if (session_ && (phase_ == Phase::kRunning || phase_ == Phase::kEnding))
+        on_resync_chunk(envelope.resync_chunk(), now);
       break;
     case v1::Envelope::kDisconnect:
       phase_ = Phase::kEnded;
-      emit({ClientEventType::kDisconnected, kNoTick, player_, 0, 0, envelope.disconnect().reason()});
+      emit(
+          {ClientEventType::kDisconnected, kNoTick, player_, 0, 0, envelope.disconnect().reason()});
       break;
     default:
       ++stats_.packets_rejected;
@@ -492,7 +502,8 @@ void ClientSession::send_desync_report(TimePoint now) {
   const size_t count = (state_buffer_.size() + kReportChunkBytes - 1) / kReportChunkBytes;
   // The whole report goes out a few times; after that only a short request,
   // so a server that is slow to answer is not buried in chunks.
-  if (desync_tick_ == kNoTick || count == 0 || count > net::kMaxDesyncChunks || report_sends_++ >= 3) {
+  if (desync_tick_ == kNoTick || count == 0 || count > net::kMaxDesyncChunks ||
+      report_sends_++ >= 3) {
     v1::Envelope envelope;  // nothing to show: just ask for the snapshot
     envelope.mutable_resync_request()->set_desync_tick(std::max<Tick>(desync_tick_, 0));
     send(envelope, now);
@@ -559,13 +570,19 @@ void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now)
   // Re-anchor the clock on the server's instead of bursting through the
   // ticks the clock ran ahead while we waited.
   const double one_way_ticks = stats_.rtt_ms / 2000.0 * tick_rate_hz_;
-  tick_clock_ = std::max(static_cast<double>(tick), server_tick_ + one_way_ticks + config_.target_lead_ticks);
+  tick_clock_ =
+      std::max(static_cast<double>(tick), server_tick_ + one_way_ticks + config_.target_lead_ticks);
   awaiting_resync_ = false;
   desync_tick_ = kNoTick;
   state_buffer_.clear();
   report_sends_ = 0;
   ++stats_.resyncs;
-  emit({ClientEventType::kResynced, tick, player_, session_->simulation().checksum(), done.checksum, {}});
+  emit({ClientEventType::kResynced,
+        tick,
+        player_,
+        session_->simulation().checksum(),
+        done.checksum,
+        {}});
   step_due_ticks(now);
 }
 

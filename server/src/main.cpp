@@ -11,10 +11,9 @@ int main(int argc, char** argv) {
   rwd::server::ServerConfig config;
   std::string game = config.match.game;
   std::string bind = config.bind_address;
-  int64_t port = config.port, players = config.match.players,
-          tick_rate = config.match.tick_rate_hz, window = config.match.window_ticks,
-          ticks = config.match.max_ticks, seed = static_cast<int64_t>(config.match.seed),
-          keyframe = config.match.keyframe_interval;
+  int64_t port = config.port, players = config.match.players, tick_rate = config.match.tick_rate_hz,
+          window = config.match.window_ticks, ticks = config.match.max_ticks,
+          seed = static_cast<int64_t>(config.match.seed), keyframe = config.match.keyframe_interval;
   double join_timeout = config.match.join_timeout_s, peer_timeout = config.match.peer_timeout_s;
   std::string replay, desync_dir, token_secret, match_id = config.match.match_id;
   bool summary_json = false;
@@ -30,15 +29,19 @@ int main(int argc, char** argv) {
   flags.add_int("players", &players, 1, 32, "player slots; the match starts when all are joined");
   flags.add_int("tick-rate", &tick_rate, 1, 1000, "ticks per second");
   flags.add_int("window", &window, 1, 120, "ticks before a missing input is substituted");
-  flags.add_int("ticks", &ticks, 0, int64_t{1} << 31, "exit after N final ticks (0 = run until signalled)");
+  flags.add_int("ticks", &ticks, 0, int64_t{1} << 31,
+                "exit after N final ticks (0 = run until signalled)");
   flags.add_int("seed", &seed, 0, INT64_MAX, "game RNG seed");
   flags.add_string("replay", &replay, "write the replay file here (empty = none)");
-  flags.add_int("keyframe-interval", &keyframe, 0, 1 << 20, "ticks between replay keyframes (0 = none)");
-  flags.add_string("desync-dir", &desync_dir, "store desync reports in this directory (empty = count only)");
+  flags.add_int("keyframe-interval", &keyframe, 0, 1 << 20,
+                "ticks between replay keyframes (0 = none)");
+  flags.add_string("desync-dir", &desync_dir,
+                   "store desync reports in this directory (empty = count only)");
   flags.add_string("token-secret", &token_secret, "require join tokens signed with this secret");
   flags.add_string("match-id", &match_id, "match id bound into join tokens");
   flags.add_double("join-timeout", &join_timeout, 0.1, 86400, "seconds to wait for all players");
-  flags.add_double("peer-timeout", &peer_timeout, 0.1, 3600, "seconds of silence before a player is dropped");
+  flags.add_double("peer-timeout", &peer_timeout, 0.1, 3600,
+                   "seconds of silence before a player is dropped");
   flags.add_string("port-file", &port_file, "write the bound UDP port to this file once listening");
   flags.add_bool("summary-json", &summary_json, "print one JSON summary line on stdout at exit");
 
@@ -75,7 +78,8 @@ int main(int argc, char** argv) {
     // Written to a temporary name and renamed, so a reader never sees half a number.
     const std::string temporary = port_file + ".tmp";
     std::FILE* file = std::fopen(temporary.c_str(), "w");
-    if (file == nullptr || std::fprintf(file, "%u\n", static_cast<unsigned>((*server)->port())) < 0 ||
+    if (file == nullptr ||
+        std::fprintf(file, "%u\n", static_cast<unsigned>((*server)->port())) < 0 ||
         std::fclose(file) != 0 || std::rename(temporary.c_str(), port_file.c_str()) != 0) {
       std::fprintf(stderr, "rewind-server: cannot write --port-file %s\n", port_file.c_str());
       return 1;

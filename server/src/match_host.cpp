@@ -17,7 +17,7 @@ namespace rwd::server {
 namespace {
 
 constexpr size_t kFinalTicksBudgetBytes = 1000;  // leaves room for the envelope header
-constexpr size_t kMaxFinalHistory = 1024;         // ticks kept for clients that fall behind
+constexpr size_t kMaxFinalHistory = 1024;        // ticks kept for clients that fall behind
 constexpr size_t kResyncChunkBytes = 1000;
 constexpr auto kResyncMinInterval = std::chrono::milliseconds(250);
 
@@ -25,7 +25,9 @@ double seconds_between(TimePoint a, TimePoint b) {
   return std::chrono::duration<double>(b - a).count();
 }
 
-void log_line(const std::string& text) { std::fprintf(stderr, "[rewind-server] %s\n", text.c_str()); }
+void log_line(const std::string& text) {
+  std::fprintf(stderr, "[rewind-server] %s\n", text.c_str());
+}
 
 // Text that came from a client goes into our logs only printable and short,
 // so nobody can forge log lines or flood them with one long string.
@@ -78,12 +80,12 @@ Result<std::unique_ptr<MatchHost>> MatchHost::create(const MatchConfig& config, 
     std::error_code error;
     std::filesystem::create_directories(config.desync_dir, error);
     if (error) {
-      return Status::Error(ErrorCode::kIo, "cannot create desync directory '" +
-                                               config.desync_dir + "': " + error.message());
+      return Status::Error(ErrorCode::kIo, "cannot create desync directory '" + config.desync_dir +
+                                               "': " + error.message());
     }
   }
-  return std::make_unique<MatchHost>(config, std::move(send), std::move(session),
-                                     std::move(writer), now);
+  return std::make_unique<MatchHost>(config, std::move(send), std::move(session), std::move(writer),
+                                     now);
 }
 
 MatchHost::MatchHost(const MatchConfig& config, SendFn send,
@@ -163,8 +165,9 @@ void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from
         handle_input(*peer, player, envelope.input_frame(), now);
       } else if (envelope.input_frame().player() == player) {
         // Closing: only the acknowledgement of final ticks still matters.
-        peer->final_seen = std::max(peer->final_seen, std::min(envelope.input_frame().last_final_tick_seen(),
-                                                               next_final_ - 1));
+        peer->final_seen =
+            std::max(peer->final_seen,
+                     std::min(envelope.input_frame().last_final_tick_seen(), next_final_ - 1));
       }
       break;
     case v1::Envelope::kPing: {
@@ -185,7 +188,8 @@ void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from
       break;
     case v1::Envelope::kDisconnect:
       if (peer->connected && phase_ == Phase::kRunning) {
-        log_line("player " + std::to_string(player) + " left: " + printable(envelope.disconnect().reason()));
+        log_line("player " + std::to_string(player) +
+                 " left: " + printable(envelope.disconnect().reason()));
       }
       peer->connected = false;
       break;
@@ -281,7 +285,8 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
   log_line("player " + std::to_string(*slot) + " joined from " + from.address().to_string() + ":" +
            std::to_string(from.port()) + " (" + printable(peer.name) + ")");
   accept(*slot);
-  const bool full = std::all_of(peers_.begin(), peers_.end(), [](const Peer& p) { return p.joined; });
+  const bool full =
+      std::all_of(peers_.begin(), peers_.end(), [](const Peer& p) { return p.joined; });
   if (full) start_match(now);
 }
 
@@ -461,7 +466,8 @@ void MatchHost::finalize_ready_ticks() {
 
     if (replay_ && !replay_failed_) {
       Status status = replay_->append_tick(t, final_inputs_, substituted, final_tick.checksum());
-      if (status.ok() && config_.keyframe_interval > 0 && (t + 1) % config_.keyframe_interval == 0 &&
+      if (status.ok() && config_.keyframe_interval > 0 &&
+          (t + 1) % config_.keyframe_interval == 0 &&
           session_->serialize_state_at(t + 1, state_buffer_)) {
         status = replay_->append_keyframe(t, state_buffer_);
       }
@@ -610,8 +616,9 @@ void MatchHost::store_desync_report(uint32_t player, const DesyncAssembly& assem
     if (final_tick.tick() == assembly.tick) server_checksum = final_tick.checksum();
   }
   char line[160];
-  std::snprintf(line, sizeof(line), "player %u desync at tick %d: client 0x%016llx server 0x%016llx\n",
-                player, assembly.tick, static_cast<unsigned long long>(assembly.client_checksum),
+  std::snprintf(line, sizeof(line),
+                "player %u desync at tick %d: client 0x%016llx server 0x%016llx\n", player,
+                assembly.tick, static_cast<unsigned long long>(assembly.client_checksum),
                 static_cast<unsigned long long>(server_checksum));
   text << line;
 

@@ -15,7 +15,9 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   Server* self = server.get();
   auto host = MatchHost::create(
       config.match,
-      [self](const Endpoint& to, std::span<const uint8_t> bytes) { self->socket_->send_to(bytes, to); },
+      [self](const Endpoint& to, std::span<const uint8_t> bytes) {
+        self->socket_->send_to(bytes, to);
+      },
       net::SteadyClock::now());
   if (!host.ok()) return host.status();
   server->host_ = std::move(*host);

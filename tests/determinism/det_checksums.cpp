@@ -143,7 +143,8 @@ int main(int argc, char** argv) {
       sim.restore(snapshot);
       if (sim.tick() != t || sim.checksum() != saved_checksum) {
         std::printf("ROLLBACK-MISMATCH %d\n", static_cast<int>(t));
-        std::fprintf(stderr, "det_checksums: restore() at tick %d did not bring back the saved state\n",
+        std::fprintf(stderr,
+                     "det_checksums: restore() at tick %d did not bring back the saved state\n",
                      static_cast<int>(t));
         return 3;
       }

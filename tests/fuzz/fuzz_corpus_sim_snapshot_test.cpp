@@ -21,7 +21,8 @@ std::vector<uint8_t> snapshot_after(int ticks) {
   auto sim = std::move(*rwd::game::Simulation::create("crates", {4, 7}));
   std::vector<rwd::game::PlayerInput> inputs(4);
   for (int t = 0; t < ticks; ++t) {
-    for (int p = 0; p < 4; ++p) inputs[static_cast<size_t>(p)] = {int16_t((t * 37 + p * 500) % 2001 - 1000), 0, 0};
+    for (int p = 0; p < 4; ++p)
+      inputs[static_cast<size_t>(p)] = {int16_t((t * 37 + p * 500) % 2001 - 1000), 0, 0};
     sim->step(inputs);
   }
   std::vector<uint8_t> bytes;
@@ -45,7 +46,8 @@ TEST(FuzzCorpusSimSnapshot, TruncationsMutationsAndNoise) {
   for (int i = 0; i < 3000; ++i) {
     std::vector<uint8_t> bytes = base;
     const int flips = 1 + static_cast<int>(next(rng) % 4);
-    for (int f = 0; f < flips; ++f) bytes[next(rng) % bytes.size()] = static_cast<uint8_t>(next(rng));
+    for (int f = 0; f < flips; ++f)
+      bytes[next(rng) % bytes.size()] = static_cast<uint8_t>(next(rng));
     fuzz_sim_snapshot_one(bytes.data(), bytes.size());
   }
   for (int i = 0; i < 300; ++i) {

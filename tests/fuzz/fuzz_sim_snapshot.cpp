@@ -23,7 +23,8 @@ int fuzz_sim_snapshot_one(const uint8_t* data, size_t size) {
   const rwd::Status status = sim->deserialize({data, size});
   if (!status.ok()) {
     if (sim->checksum() != before || sim->tick() != 0) {
-      std::fprintf(stderr, "fuzz_sim_snapshot: refused input changed the simulation: %s\n", status.message().c_str());
+      std::fprintf(stderr, "fuzz_sim_snapshot: refused input changed the simulation: %s\n",
+                   status.message().c_str());
       std::abort();  // must be untouched
     }
     return 0;
@@ -32,8 +33,10 @@ int fuzz_sim_snapshot_one(const uint8_t* data, size_t size) {
   std::vector<uint8_t> again;
   sim->serialize(again);
   auto copy = std::move(*rwd::game::Simulation::create("crates", {4, 7}));
-  if (rwd::Status again_status = copy->deserialize(again); !again_status.ok() || copy->checksum() != sim->checksum()) {
-    std::fprintf(stderr, "fuzz_sim_snapshot: accepted snapshot does not round-trip: %s\n", again_status.message().c_str());
+  if (rwd::Status again_status = copy->deserialize(again);
+      !again_status.ok() || copy->checksum() != sim->checksum()) {
+    std::fprintf(stderr, "fuzz_sim_snapshot: accepted snapshot does not round-trip: %s\n",
+                 again_status.message().c_str());
     std::abort();
   }
   std::vector<rwd::game::PlayerInput> inputs(4);

@@ -18,10 +18,14 @@ int16_t axis_from(uint64_t bits) {
 }  // namespace
 
 bool parse_bot_script(std::string_view text, BotScript* out) {
-  if (text == "random") *out = BotScript::kRandom;
-  else if (text == "circle") *out = BotScript::kCircle;
-  else if (text == "idle") *out = BotScript::kIdle;
-  else return false;
+  if (text == "random")
+    *out = BotScript::kRandom;
+  else if (text == "circle")
+    *out = BotScript::kCircle;
+  else if (text == "idle")
+    *out = BotScript::kIdle;
+  else
+    return false;
   return true;
 }
 
@@ -46,8 +50,8 @@ game::PlayerInput bot_input(BotScript script, uint64_t seed, uint32_t bot, Tick 
       input.axis_x = axis_from(h);
       input.axis_y = axis_from(h >> 16);
       const uint64_t b = mix(h ^ static_cast<uint64_t>(tick));
-      if (b % 97 == 0) input.buttons |= 1u;  // jump
-      if (b % 131 == 0) input.buttons |= 2u; // dash
+      if (b % 97 == 0) input.buttons |= 1u;   // jump
+      if (b % 131 == 0) input.buttons |= 2u;  // dash
       break;
     }
   }

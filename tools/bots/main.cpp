@@ -43,7 +43,8 @@ bool split_host_port(const std::string& text, std::string* host, uint16_t* port)
 
 // Names (e.g. "server" on a compose network) are resolved once, up front;
 // the sessions take an address literal.
-bool resolve(asio::io_context& io, const std::string& host, std::string* address, std::string* error) {
+bool resolve(asio::io_context& io, const std::string& host, std::string* address,
+             std::string* error) {
   asio::ip::udp::resolver resolver(io);
   std::error_code ec;
   const auto results = resolver.resolve(host, "", ec);
@@ -89,8 +90,10 @@ int main(int argc, char** argv) {
   flags.add_double("reorder", &reorder, 0, 1, "probability a datagram is held back and overtaken");
   flags.add_double("duration", &duration_s, 0.1, 86400, "give up after this many seconds");
   flags.add_int("snapshot-ticks", &snapshot_ticks, 16, 1024, "rollback depth of each bot");
-  flags.add_int("corrupt-bot", &corrupt_bot, -1, 999, "test: this bot corrupts its state (-1 = none)");
-  flags.add_int("corrupt-at-tick", &corrupt_at, -1, INT32_MAX, "test: tick at which --corrupt-bot corrupts");
+  flags.add_int("corrupt-bot", &corrupt_bot, -1, 999,
+                "test: this bot corrupts its state (-1 = none)");
+  flags.add_int("corrupt-at-tick", &corrupt_at, -1, INT32_MAX,
+                "test: tick at which --corrupt-bot corrupts");
   flags.add_bool("summary-json", &summary_json, "print one JSON summary line on stdout at exit");
 
   if (rwd::Status status = flags.parse(argc, argv); !status.ok()) {
@@ -144,7 +147,8 @@ int main(int argc, char** argv) {
       faults.seed = static_cast<uint64_t>(seed) * 1000003u + i;
       config.faults = faults;
     }
-    if (static_cast<int64_t>(i) == corrupt_bot) config.debug_corrupt_at_tick = static_cast<int32_t>(corrupt_at);
+    if (static_cast<int64_t>(i) == corrupt_bot)
+      config.debug_corrupt_at_tick = static_cast<int32_t>(corrupt_at);
     auto session = ClientSession::create(io, config);
     if (!session.ok()) {
       std::fprintf(stderr, "rewind-bots: bot %zu: %s\n", i, session.status().message().c_str());
@@ -173,9 +177,11 @@ int main(int argc, char** argv) {
         switch (event.type) {
           case ClientEventType::kDesync:
             ++desync_events;
-            std::fprintf(stderr, "[rewind-bots] bot %zu: DESYNC at tick %d (local %016llx, server %016llx)\n",
-                         i, event.tick, static_cast<unsigned long long>(event.local_checksum),
-                         static_cast<unsigned long long>(event.server_checksum));
+            std::fprintf(
+                stderr,
+                "[rewind-bots] bot %zu: DESYNC at tick %d (local %016llx, server %016llx)\n", i,
+                event.tick, static_cast<unsigned long long>(event.local_checksum),
+                static_cast<unsigned long long>(event.server_checksum));
             break;
           case ClientEventType::kResynced:
             ++resync_events;
@@ -224,10 +230,12 @@ int main(int argc, char** argv) {
     ended_ok += bot.match_ended;
     failed += bot.failed || !bot.ended;
   }
-  const double elapsed = std::chrono::duration<double>(rwd::net::SteadyClock::now() - start).count();
-  std::fprintf(stderr, "[rewind-bots] %lld bots: %llu finished the match, %llu desyncs, %llu rollbacks\n",
-               static_cast<long long>(bots), static_cast<unsigned long long>(ended_ok),
-               static_cast<unsigned long long>(desync_events), static_cast<unsigned long long>(rollbacks));
+  const double elapsed =
+      std::chrono::duration<double>(rwd::net::SteadyClock::now() - start).count();
+  std::fprintf(
+      stderr, "[rewind-bots] %lld bots: %llu finished the match, %llu desyncs, %llu rollbacks\n",
+      static_cast<long long>(bots), static_cast<unsigned long long>(ended_ok),
+      static_cast<unsigned long long>(desync_events), static_cast<unsigned long long>(rollbacks));
   if (summary_json) {
     std::printf(
         "{\"bots\":%lld,\"joined\":%llu,\"finished\":%llu,\"failed\":%llu,\"desyncs\":%llu,"
@@ -235,8 +243,9 @@ int main(int argc, char** argv) {
         "\"final_ticks_verified\":%llu,\"rtt_ms_avg\":%.2f,\"duration_s\":%.2f}\n",
         static_cast<long long>(bots), static_cast<unsigned long long>(joined_ok),
         static_cast<unsigned long long>(ended_ok), static_cast<unsigned long long>(failed),
-        static_cast<unsigned long long>(desync_events), static_cast<unsigned long long>(resync_events),
-        static_cast<unsigned long long>(rollbacks), static_cast<unsigned long long>(resimulated),
+        static_cast<unsigned long long>(desync_events),
+        static_cast<unsigned long long>(resync_events), static_cast<unsigned long long>(rollbacks),
+        static_cast<unsigned long long>(resimulated),
         static_cast<long long>(min_final == INT64_MAX ? 0 : min_final),
         static_cast<unsigned long long>(verified), rtt_sum / static_cast<double>(bots), elapsed);
   }

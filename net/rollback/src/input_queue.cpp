@@ -33,7 +33,9 @@ InputQueue::AddOutcome InputQueue::set_authoritative(Tick tick, const game::Play
   return AddOutcome::kNew;
 }
 
-bool InputQueue::is_confirmed(Tick tick) const { return in_range(tick) && slot(tick).tick == tick; }
+bool InputQueue::is_confirmed(Tick tick) const {
+  return in_range(tick) && slot(tick).tick == tick;
+}
 
 game::PlayerInput InputQueue::input_for(Tick tick) const {
   // Walk back to the newest confirmed input before `tick`. The walk is

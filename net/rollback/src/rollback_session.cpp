@@ -22,10 +22,14 @@ RollbackSession::RollbackSession(std::unique_ptr<game::Simulation> sim,
 
 InputResult RollbackSession::classify(InputQueue::AddOutcome outcome) const {
   switch (outcome) {
-    case InputQueue::AddOutcome::kNew: return InputResult::kAccepted;
-    case InputQueue::AddOutcome::kDuplicate: return InputResult::kDuplicate;
-    case InputQueue::AddOutcome::kConflict: return InputResult::kConflict;
-    case InputQueue::AddOutcome::kOutOfRange: return InputResult::kTooFar;
+    case InputQueue::AddOutcome::kNew:
+      return InputResult::kAccepted;
+    case InputQueue::AddOutcome::kDuplicate:
+      return InputResult::kDuplicate;
+    case InputQueue::AddOutcome::kConflict:
+      return InputResult::kConflict;
+    case InputQueue::AddOutcome::kOutOfRange:
+      return InputResult::kTooFar;
   }
   return InputResult::kTooFar;
 }
@@ -35,8 +39,7 @@ void RollbackSession::note_changed(Tick tick) {
   dirty_from_ = dirty_from_ == kNoTick ? tick : std::min(dirty_from_, tick);
 }
 
-InputResult RollbackSession::add_input(uint32_t player, Tick tick,
-                                       const game::PlayerInput& input) {
+InputResult RollbackSession::add_input(uint32_t player, Tick tick, const game::PlayerInput& input) {
   if (player >= player_count_) return InputResult::kBadPlayer;
   if (tick <= final_tick_) return InputResult::kFinal;
   const InputQueue::AddOutcome outcome = queues_[player].add(tick, input);

@@ -19,7 +19,7 @@ constexpr float kSteerGain = 8.0f;      // 1/s: how fast velocity tracks the sti
 constexpr float kJumpSpeed = 5.0f;      // m/s
 constexpr float kDashSpeed = 10.0f;     // m/s
 constexpr int32_t kCooldownTicks = 30;
-constexpr float kScoreRing = 4.0f;      // m from the centre
+constexpr float kScoreRing = 4.0f;  // m from the centre
 constexpr uint32_t kLayerWorld = 1u << 0;
 constexpr uint32_t kLayerPusher = 1u << 1;
 constexpr uint64_t kTagPusher = 0x100;
@@ -151,8 +151,10 @@ void CratesGame::after_step_typed(Tick /*tick*/, sim::World3D& world, CratesStat
     const bool b_pusher = ub >= kTagPusher && ub < kTagPusher + kMaxPlayers;
     const bool a_crate = ua >= kTagCrate && ua < kTagCrate + state.crate_count;
     const bool b_crate = ub >= kTagCrate && ub < kTagCrate + state.crate_count;
-    if (a_pusher && b_crate) state.crate_last_toucher[ub - kTagCrate] = uint8_t(ua - kTagPusher + 1);
-    if (b_pusher && a_crate) state.crate_last_toucher[ua - kTagCrate] = uint8_t(ub - kTagPusher + 1);
+    if (a_pusher && b_crate)
+      state.crate_last_toucher[ub - kTagCrate] = uint8_t(ua - kTagPusher + 1);
+    if (b_pusher && a_crate)
+      state.crate_last_toucher[ua - kTagCrate] = uint8_t(ub - kTagPusher + 1);
   }
   // A crate resting outside the centre ring scores once for its last toucher.
   for (uint32_t c = 0; c < state.crate_count; ++c) {

@@ -25,9 +25,9 @@ uint32_t get_u32(const uint8_t* p) {
 Result<std::unique_ptr<Simulation>> Simulation::create(std::string_view game_name,
                                                        const MatchSetup& setup) {
   if (setup.player_count < 1 || setup.player_count > kMaxPlayers) {
-    return Status::Error(ErrorCode::kInvalidArgument,
-                         "player_count must be in [1, " + std::to_string(kMaxPlayers) + "], got " +
-                             std::to_string(setup.player_count));
+    return Status::Error(ErrorCode::kInvalidArgument, "player_count must be in [1, " +
+                                                          std::to_string(kMaxPlayers) + "], got " +
+                                                          std::to_string(setup.player_count));
   }
   std::unique_ptr<Game> game = make_builtin_game(game_name);
   if (!game) {

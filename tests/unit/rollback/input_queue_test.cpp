@@ -6,7 +6,9 @@
 namespace rwd::net {
 namespace {
 
-game::PlayerInput in(int16_t x, uint32_t buttons = 0) { return {x, 0, buttons}; }
+game::PlayerInput in(int16_t x, uint32_t buttons = 0) {
+  return {x, 0, buttons};
+}
 
 TEST(InputQueue, PredictsNeutralBeforeAnyInput) {
   InputQueue q(16);
@@ -63,7 +65,7 @@ TEST(InputQueue, DiscardKeepsPredictionSeedAndFreesSpace) {
   for (Tick t = 0; t < 6; ++t) (void)q.add(t, in(static_cast<int16_t>(t + 1)));
   q.discard_before(6);
   EXPECT_EQ(q.base(), 6);
-  EXPECT_EQ(q.input_for(7), in(6));  // seed = input of tick 5
+  EXPECT_EQ(q.input_for(7), in(6));                            // seed = input of tick 5
   EXPECT_EQ(q.add(13, in(40)), InputQueue::AddOutcome::kNew);  // space freed
   EXPECT_EQ(q.contiguous_through(), 5);
 }

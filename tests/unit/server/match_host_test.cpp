@@ -112,8 +112,9 @@ MatchConfig test_config() {
 
 // Plays `ticks` ticks with both players sending on time (player 1's input
 // two ticks late, to exercise rollback); `attack` runs before every tick.
-std::map<Tick, uint64_t> play(HostHarness& h, Tick ticks,
-                              const std::function<void(HostHarness&, FakeClient&, FakeClient&, Tick)>& attack) {
+std::map<Tick, uint64_t> play(
+    HostHarness& h, Tick ticks,
+    const std::function<void(HostHarness&, FakeClient&, FakeClient&, Tick)>& attack) {
   FakeClient a = h.join(4001);
   FakeClient b = h.join(4002);
   EXPECT_EQ(h.host().phase(), MatchHost::Phase::kRunning);
@@ -184,7 +185,8 @@ TEST(MatchHost, HostileDatagramsChangeNothingForThePlayers) {
     wrong.set_protocol_version(7);
     std::string text;
     wrong.SerializeToString(&text);
-    host.raw(a.endpoint, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+    host.raw(a.endpoint,
+             std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
     // Player a's connection id from another address (spoofed).
     v1::Envelope spoof;
     spoof.set_connection_id(a.connection_id);
@@ -292,15 +294,16 @@ TEST(MatchHost, ClosingResendsMatchEndUntilEveryClientSaysGoodbye) {
 TEST(MatchHost, ConfigErrorsAreReported) {
   MatchConfig config = test_config();
   config.game = "chess";
-  auto host = MatchHost::create(config, [](const Endpoint&, std::span<const uint8_t>) {},
-                                net::SteadyClock::now());
+  auto host = MatchHost::create(
+      config, [](const Endpoint&, std::span<const uint8_t>) {}, net::SteadyClock::now());
   ASSERT_FALSE(host.ok());
   EXPECT_NE(host.status().message().find("unknown game"), std::string::npos);
   config = test_config();
   config.window_ticks = 0;
-  EXPECT_FALSE(MatchHost::create(config, [](const Endpoint&, std::span<const uint8_t>) {},
-                                 net::SteadyClock::now())
-                   .ok());
+  EXPECT_FALSE(
+      MatchHost::create(
+          config, [](const Endpoint&, std::span<const uint8_t>) {}, net::SteadyClock::now())
+          .ok());
 }
 
 }  // namespace

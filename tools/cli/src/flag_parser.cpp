@@ -9,7 +9,9 @@
 namespace rwd::cli {
 
 FlagParser::FlagParser(std::string program, std::string usage, std::string description)
-    : program_(std::move(program)), usage_(std::move(usage)), description_(std::move(description)) {}
+    : program_(std::move(program)),
+      usage_(std::move(usage)),
+      description_(std::move(description)) {}
 
 void FlagParser::add_string(const std::string& name, std::string* target, const std::string& help) {
   flags_.push_back({name, Kind::kString, target, 0, 0, 0, 0, help, "\"" + *target + "\""});
@@ -136,10 +138,17 @@ std::string FlagParser::help_text() const {
   for (const Flag& f : flags_) {
     std::string left = "  --" + f.name;
     switch (f.kind) {
-      case Kind::kString: left += " STR"; break;
-      case Kind::kInt: left += " N"; break;
-      case Kind::kDouble: left += " X"; break;
-      case Kind::kBool: break;
+      case Kind::kString:
+        left += " STR";
+        break;
+      case Kind::kInt:
+        left += " N";
+        break;
+      case Kind::kDouble:
+        left += " X";
+        break;
+      case Kind::kBool:
+        break;
     }
     if (left.size() < 26) left.resize(26, ' ');
     out << left << " " << f.help << " (default " << f.default_text << ")\n";

@@ -29,17 +29,17 @@ struct ClientEvent {
 
 /// Running figures of one client session.
 struct ClientStats {
-  double rtt_ms = 0.0;               ///< smoothed round-trip time
+  double rtt_ms = 0.0;  ///< smoothed round-trip time
   uint64_t rollbacks = 0;
   uint64_t resimulated_ticks = 0;
-  int32_t ticks_ahead = 0;           ///< our tick minus the server's estimated tick
-  double input_lead_ticks = 0.0;     ///< smoothed arrival margin reported by the server
-  uint64_t final_ticks_verified = 0; ///< final ticks whose checksum matched
+  int32_t ticks_ahead = 0;            ///< our tick minus the server's estimated tick
+  double input_lead_ticks = 0.0;      ///< smoothed arrival margin reported by the server
+  uint64_t final_ticks_verified = 0;  ///< final ticks whose checksum matched
   uint64_t desyncs = 0;
   uint64_t resyncs = 0;
   uint64_t packets_sent = 0;
   uint64_t packets_received = 0;
-  uint64_t packets_rejected = 0;     ///< undecodable or not from our server
+  uint64_t packets_rejected = 0;  ///< undecodable or not from our server
   Tick last_final_tick = kNoTick;
 };
 

@@ -10,12 +10,12 @@
 // timer); it steps as many ticks as the tick clock says are due.
 #include <asio/io_context.hpp>
 #include <deque>
-#include <map>
 #include <functional>
+#include <map>
 #include <memory>
-#include <string>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "rewind/client/client_config.h"
@@ -116,13 +116,13 @@ class ClientSession {
   TimePoint joined_at_;
   TimePoint last_join_sent_;
   TimePoint last_ping_;
-  Tick next_input_tick_ = 0;       // first tick whose input is not yet taken
+  Tick next_input_tick_ = 0;  // first tick whose input is not yet taken
   std::deque<std::pair<Tick, game::PlayerInput>> unacked_;
   Tick input_ack_ = kNoTick;
   Tick last_final_received_ = kNoTick;
   std::deque<std::pair<Tick, uint64_t>> pending_finals_;  // (tick, server checksum)
-  std::map<Tick, v1::FinalTick> early_finals_;  // arrived ahead of a gap, bounded
-  Tick last_final_acked_ = kNoTick;             // last_final_received_ as last sent
+  std::map<Tick, v1::FinalTick> early_finals_;            // arrived ahead of a gap, bounded
+  Tick last_final_acked_ = kNoTick;                       // last_final_received_ as last sent
   int report_sends_ = 0;
   int32_t server_tick_ = 0;
   bool awaiting_resync_ = false;

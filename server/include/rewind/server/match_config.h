@@ -19,16 +19,16 @@ struct MatchConfig {
   std::string token_secret;        ///< empty: no join tokens required
   std::string replay_path;         ///< empty: no replay file
   bool replay_overwrite = true;
-  int32_t keyframe_interval = 300; ///< ticks between replay keyframes, 0 = none
-  std::string desync_dir;          ///< empty: desync reports are counted, not stored
-  double join_timeout_s = 60.0;    ///< give up when the lobby is not full by then
+  int32_t keyframe_interval = 300;  ///< ticks between replay keyframes, 0 = none
+  std::string desync_dir;           ///< empty: desync reports are counted, not stored
+  double join_timeout_s = 60.0;     ///< give up when the lobby is not full by then
   /// Countdown between "everyone joined" and tick 0, so that every client
   /// hears MatchStart (repeated each tick) and starts its clock in time.
   double start_delay_s = 0.25;
   /// After the match ends, final ticks are still resent this long, until
   /// every client has acknowledged the last one.
   double closing_s = 1.0;
-  double peer_timeout_s = 5.0;     ///< a silent peer is dropped; its inputs are substituted
+  double peer_timeout_s = 5.0;  ///< a silent peer is dropped; its inputs are substituted
   /// Inputs this many ticks ahead of the server's tick are rejected.
   int32_t max_input_lead_ticks = 120;
 

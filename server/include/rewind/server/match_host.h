@@ -82,9 +82,9 @@ class MatchHost {
     Endpoint endpoint;
     uint64_t join_nonce = 0;
     std::optional<net::Connection> connection;
-    Tick final_seen = kNoTick;      // newest final tick the client has acknowledged
-    Tick final_sent = kNoTick;      // newest final tick sent at least once
-    Tick resync_tick = kNoTick;     // a resync snapshot at this tick awaits acknowledgement
+    Tick final_seen = kNoTick;   // newest final tick the client has acknowledged
+    Tick final_sent = kNoTick;   // newest final tick sent at least once
+    Tick resync_tick = kNoTick;  // a resync snapshot at this tick awaits acknowledgement
     int32_t last_lead = 0;
     bool sent_input = false;
     TimePoint last_receive;
@@ -121,8 +121,8 @@ class MatchHost {
   std::optional<replay::ReplayWriter> replay_;
   Phase phase_ = Phase::kLobby;
   std::vector<Peer> peers_;
-  std::deque<v1::FinalTick> finals_;     // contiguous ticks, oldest first
-  std::deque<uint32_t> final_sizes_;      // encoded size of each, in step with finals_
+  std::deque<v1::FinalTick> finals_;  // contiguous ticks, oldest first
+  std::deque<uint32_t> final_sizes_;  // encoded size of each, in step with finals_
   Tick next_final_ = 0;
   int32_t countdown_ticks_ = 0;
   // Substitution masks of the last kSubstitutionHistory final ticks, to

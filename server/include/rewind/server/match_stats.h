@@ -12,10 +12,10 @@ struct MatchStats {
   int64_t ticks_final = 0;
   uint64_t rollbacks = 0;
   uint64_t resimulated_ticks = 0;
-  uint64_t late_inputs = 0;          ///< arrived after their tick was simulated (in time for final)
-  uint64_t substituted_inputs = 0;   ///< missing at the deadline; prediction recorded instead
-  uint64_t rejected_inputs = 0;      ///< for final ticks, too far ahead, conflicting, or another slot
-  uint64_t rejected_packets = 0;     ///< undecodable, unknown connection, spoofed address, ...
+  uint64_t late_inputs = 0;         ///< arrived after their tick was simulated (in time for final)
+  uint64_t substituted_inputs = 0;  ///< missing at the deadline; prediction recorded instead
+  uint64_t rejected_inputs = 0;   ///< for final ticks, too far ahead, conflicting, or another slot
+  uint64_t rejected_packets = 0;  ///< undecodable, unknown connection, spoofed address, ...
   uint64_t duplicate_packets = 0;
   uint64_t relayed_inputs = 0;
   uint64_t desync_reports = 0;
@@ -24,7 +24,7 @@ struct MatchStats {
   uint64_t packets_out = 0;
   uint64_t bytes_in = 0;
   uint64_t bytes_out = 0;
-  uint64_t final_checksum = 0;       ///< checksum of the last final tick
+  uint64_t final_checksum = 0;  ///< checksum of the last final tick
   Tick last_final_tick = kNoTick;
   uint32_t players_joined = 0;
   double duration_s = 0.0;

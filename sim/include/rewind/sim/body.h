@@ -37,19 +37,19 @@ struct Material {
 struct BodyDef {
   BodyKind kind = BodyKind::kDynamic;
   Shape shape = Shape::make_box({0.5f, 0.5f, 0.5f});
-  Vec3 position;          ///< metres, of the shape's centre
-  Quat rotation;          ///< normalized on creation
-  Vec3 linear_velocity;   ///< m/s
-  Vec3 angular_velocity;  ///< rad/s, world frame
-  float density = 1000.0f;       ///< kg/m^3, > 0; dynamic bodies only
-  float linear_damping = 0.0f;   ///< 1/s, >= 0
-  float angular_damping = 0.05f; ///< 1/s, >= 0
-  float gravity_scale = 1.0f;    ///< multiplies world gravity
+  Vec3 position;                  ///< metres, of the shape's centre
+  Quat rotation;                  ///< normalized on creation
+  Vec3 linear_velocity;           ///< m/s
+  Vec3 angular_velocity;          ///< rad/s, world frame
+  float density = 1000.0f;        ///< kg/m^3, > 0; dynamic bodies only
+  float linear_damping = 0.0f;    ///< 1/s, >= 0
+  float angular_damping = 0.05f;  ///< 1/s, >= 0
+  float gravity_scale = 1.0f;     ///< multiplies world gravity
   Material material;
-  uint32_t layer = 1;            ///< collision layer bits this body is on
-  uint32_t mask = 0xFFFFFFFFu;   ///< layers this body collides with (both sides must agree)
-  bool sensor = false;           ///< reports overlap events, never pushes
-  uint64_t user_data = 0;        ///< game tag; part of state and the checksum
+  uint32_t layer = 1;           ///< collision layer bits this body is on
+  uint32_t mask = 0xFFFFFFFFu;  ///< layers this body collides with (both sides must agree)
+  bool sensor = false;          ///< reports overlap events, never pushes
+  uint64_t user_data = 0;       ///< game tag; part of state and the checksum
 };
 
 }  // namespace rwd::sim

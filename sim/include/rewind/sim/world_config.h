@@ -9,20 +9,20 @@ namespace rwd::sim {
 /// Tuning of the 3D world. Part of world state (a restored world steps with
 /// the configuration it was saved with) and of the checksum.
 struct WorldConfig {
-  Vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s^2
-  float tick_seconds = 1.0f / 60.0f;  ///< length of one step(), (0, 0.1]
-  int32_t substeps = 4;               ///< TGS-Soft substeps per tick, [1, 64]
-  int32_t relax_iterations = 1;       ///< rigid relax passes per substep, [0, 16]
-  float contact_hertz = 30.0f;        ///< contact softness stiffness, > 0
-  float contact_damping_ratio = 10.0f;   ///< contact softness damping ratio, >= 0
-  float contact_push_max_mps = 3.0f;     ///< cap on penetration recovery speed, m/s
+  Vec3 gravity{0.0f, -9.81f, 0.0f};        ///< m/s^2
+  float tick_seconds = 1.0f / 60.0f;       ///< length of one step(), (0, 0.1]
+  int32_t substeps = 4;                    ///< TGS-Soft substeps per tick, [1, 64]
+  int32_t relax_iterations = 1;            ///< rigid relax passes per substep, [0, 16]
+  float contact_hertz = 30.0f;             ///< contact softness stiffness, > 0
+  float contact_damping_ratio = 10.0f;     ///< contact softness damping ratio, >= 0
+  float contact_push_max_mps = 3.0f;       ///< cap on penetration recovery speed, m/s
   float restitution_threshold_mps = 1.0f;  ///< no bounce below this approach speed
-  float linear_slop_m = 0.005f;          ///< allowed penetration, m
-  float speculative_distance_m = 0.02f;  ///< contacts are kept this far apart, m
+  float linear_slop_m = 0.005f;            ///< allowed penetration, m
+  float speculative_distance_m = 0.02f;    ///< contacts are kept this far apart, m
   bool enable_sleep = true;
-  float sleep_threshold_mps = 0.05f;     ///< body speed below which it may sleep
-  float time_to_sleep_s = 0.5f;          ///< seconds below the threshold before sleeping
-  uint32_t max_bodies = 4096;            ///< create_body refuses beyond this
+  float sleep_threshold_mps = 0.05f;  ///< body speed below which it may sleep
+  float time_to_sleep_s = 0.5f;       ///< seconds below the threshold before sleeping
+  uint32_t max_bodies = 4096;         ///< create_body refuses beyond this
 };
 
 }  // namespace rwd::sim

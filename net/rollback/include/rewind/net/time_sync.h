@@ -10,12 +10,12 @@
 namespace rwd::net {
 
 struct TimeSyncConfig {
-  double target_lead_ticks = 2.0;  ///< desired arrival margin; covers jitter
-  double max_adjust = 0.08;        ///< tick period scale stays in [1 - max, 1 + max]
-  double gain = 0.02;              ///< scale change per tick of lead error
-  double smoothing = 0.1;          ///< weight of a new lead sample in the average
-  int32_t late_threshold_ticks = 0; ///< a report below this lead triggers a jump
-  int32_t jump_cooldown_reports = 12; ///< reports ignored after a jump (~ a round trip)
+  double target_lead_ticks = 2.0;      ///< desired arrival margin; covers jitter
+  double max_adjust = 0.08;            ///< tick period scale stays in [1 - max, 1 + max]
+  double gain = 0.02;                  ///< scale change per tick of lead error
+  double smoothing = 0.1;              ///< weight of a new lead sample in the average
+  int32_t late_threshold_ticks = 0;    ///< a report below this lead triggers a jump
+  int32_t jump_cooldown_reports = 12;  ///< reports ignored after a jump (~ a round trip)
 };
 
 class TimeSync {

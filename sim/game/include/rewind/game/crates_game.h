@@ -21,8 +21,8 @@ struct CratesState {
   std::array<uint32_t, kMaxPlayers> score{};
   std::array<int32_t, kMaxPlayers> cooldown_ticks{};  ///< jump/dash cooldown
   std::array<sim::BodyId, 64> crates{};
-  std::array<uint8_t, 64> crate_last_toucher{};       ///< player + 1, 0 = nobody
-  std::array<uint8_t, 64> crate_scored{};             ///< 1 once it counted
+  std::array<uint8_t, 64> crate_last_toucher{};  ///< player + 1, 0 = nobody
+  std::array<uint8_t, 64> crate_scored{};        ///< 1 once it counted
 };
 
 class CratesGame final : public GameWithState<CratesState> {

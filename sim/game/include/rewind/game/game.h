@@ -48,7 +48,8 @@ class Game {
   /// Checks a state block that arrived from outside (a resync snapshot, a
   /// desync dump) before it is used: counts, indices and ranges the rules
   /// rely on. Returns kCorrupt naming the bad field.
-  virtual Status validate_state(const MatchSetup& setup, std::span<const std::byte> state) const = 0;
+  virtual Status validate_state(const MatchSetup& setup,
+                                std::span<const std::byte> state) const = 0;
 };
 
 /// Convenience base for games whose state is one trivially copyable struct.

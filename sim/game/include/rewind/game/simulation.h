@@ -28,7 +28,7 @@ class Simulation {
   /// Creates the named game's match. Unknown names and invalid setups are
   /// kInvalidArgument.
   static Result<std::unique_ptr<Simulation>> create(std::string_view game_name,
-                                                   const MatchSetup& setup);
+                                                    const MatchSetup& setup);
   Simulation(std::unique_ptr<Game> game, const MatchSetup& setup);
 
   /// The next tick step() will simulate.
