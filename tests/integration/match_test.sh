@@ -54,9 +54,10 @@ esac
 if [ "$mode" = garbage ]; then
   # Fire random datagrams (random sizes, random bytes, plus mangled copies of
   # a valid-looking header) at the server for the first seconds of the match.
-  python3 - "$port" <<'PY' &
+  python3 - "$port" "${REWIND_TEST_FLOOD_GAP_S:-0.0005}" <<'PY' &
 import os, random, socket, sys, time
 port = int(sys.argv[1])
+gap = float(sys.argv[2])
 rng = random.Random(42)
 s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
 end = time.time() + 6
@@ -72,7 +73,7 @@ while time.time() < end and sent < 20000:
     except OSError:
         pass
     sent += 1
-    time.sleep(0.0005)
+    time.sleep(gap)
 print(sent)
 PY
   flood_pid=$!
