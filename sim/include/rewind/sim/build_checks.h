@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // Refuse to build the deterministic engine with flags that let the compiler
-// change float results between targets. -ffast-math reassociates and drops
+// change float results between targets. Fast-math reassociates and drops
 // NaN/inf semantics; it defines __FAST_MATH__ on gcc and clang.
 #if defined(__FAST_MATH__)
 #error "rewind_sim must not be compiled with -ffast-math: it breaks cross-machine determinism"
