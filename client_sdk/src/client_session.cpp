@@ -194,7 +194,8 @@ int ClientSession::update(TimePoint now) {
   verify_finals(now);
   if (awaiting_resync_ && now - last_report_sent_ >= kReportResend) send_desync_report(now);
   if (phase_ == Phase::kEnding &&
-      (stats_.last_final_tick >= end_tick_ || awaiting_resync_ || now >= ending_deadline_)) {
+      (stats_.last_final_tick >= end_tick_ || session_->final_tick() >= end_tick_ ||
+       awaiting_resync_ || now >= ending_deadline_)) {
     finish_ending(now);
   }
   // Acknowledge new final ticks even when no tick was stepped (at the
@@ -531,6 +532,9 @@ void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now)
   // Only a snapshot past everything we already settled can help: older ones
   // are delayed duplicates of an earlier episode.
   if (chunk.tick() <= session_->final_tick()) return;
+  // Nor one before what we told the server we have: it would never resend
+  // the final ticks in between.
+  if (chunk.tick() - 1 < last_final_acked_) return;
   if (!awaiting_resync_ && chunk.tick() <= last_final_received_ + 1) return;
   if (resync_.snapshot_id != chunk.snapshot_id() || resync_.chunks.size() != chunk.chunk_count()) {
     resync_ = ResyncAssembly{};
@@ -572,6 +576,7 @@ void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now)
   const double one_way_ticks = stats_.rtt_ms / 2000.0 * tick_rate_hz_;
   tick_clock_ =
       std::max(static_cast<double>(tick), server_tick_ + one_way_ticks + config_.target_lead_ticks);
+  time_sync_.clear_jump();
   awaiting_resync_ = false;
   desync_tick_ = kNoTick;
   state_buffer_.clear();

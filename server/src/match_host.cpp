@@ -148,6 +148,12 @@ void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from
     ++stats_.rejected_packets;
     return;
   }
+  if (peer->left) {
+    // A goodbye is final for this connection. Repeated goodbyes while the
+    // match closes are normal; anything else is counted.
+    if (phase_ == Phase::kRunning) ++stats_.rejected_packets;
+    return;
+  }
   net::ReceiveResult received = peer->connection->on_receive(envelope, now);
   if (!received.is_new()) {
     ++stats_.duplicate_packets;
@@ -192,6 +198,7 @@ void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from
                  " left: " + printable(envelope.disconnect().reason()));
       }
       peer->connected = false;
+      peer->left = true;
       break;
     default:
       // Server-to-client messages have no business arriving here.
@@ -502,12 +509,14 @@ void MatchHost::broadcast(TimePoint now) {
     // a snapshot; one with a snapshot on the way gets it again until it
     // acknowledges the snapshot's tick.
     if (peer.final_seen + 1 < oldest_held && peer.resync_tick == kNoTick) send_resync(peer, now);
+    bool resync_pending = false;
     if (peer.resync_tick != kNoTick) {
       if (peer.final_seen >= peer.resync_tick - 1) {
         peer.resync_tick = kNoTick;
+        peer.resync_bytes.clear();
       } else {
         send_resync(peer, now);
-        continue;
+        resync_pending = true;
       }
     }
     v1::Envelope envelope;
@@ -515,7 +524,9 @@ void MatchHost::broadcast(TimePoint now) {
     out->set_input_ack_tick(session_->queue(p).contiguous_through());
     out->set_input_lead_ticks(peer.last_lead);
     out->set_server_tick(server_tick());
-    add_final_ticks(peer, *out);
+    // While a snapshot is on its way the client ignores final ticks, but
+    // still needs the server's clock and its input acknowledgements.
+    if (!resync_pending) add_final_ticks(peer, *out);
     send(peer, envelope, now);
   }
 }
@@ -542,8 +553,16 @@ void MatchHost::add_final_ticks(Peer& peer, v1::FinalTicks& out) {
   Tick t = first_new;
   while (t <= newest && add(t)) ++t;
   peer.final_sent = std::max(peer.final_sent, t - 1);
-  for (Tick r = std::max(peer.final_seen + 1, oldest_held); r < first_new && add(r); ++r) {
+  // The resend cursor walks round-robin through the unacknowledged range,
+  // so after a loss burst every missing tick comes back within a few
+  // packets instead of the oldest few being resent over and over.
+  const Tick lowest = std::max(peer.final_seen + 1, oldest_held);
+  if (lowest >= first_new) return;
+  Tick r = std::clamp(peer.resend_cursor, lowest, first_new - 1);
+  for (Tick sent = 0; sent < first_new - lowest && add(r); ++sent) {
+    r = r + 1 < first_new ? r + 1 : lowest;
   }
+  peer.resend_cursor = r;
 }
 
 void MatchHost::handle_desync(Peer& peer, uint32_t player, const v1::DesyncReport& report,
@@ -653,41 +672,51 @@ void MatchHost::send_resync(Peer& peer, TimePoint now) {
   if (peer.resynced_once && now - peer.last_resync < kResyncMinInterval) return;
   peer.resynced_once = true;
   peer.last_resync = now;
-  const Tick tick = next_final_;  // the state after the last final tick
-  const std::optional<uint64_t> checksum =
-      tick == 0 ? std::optional<uint64_t>(session_->simulation().checksum())
-                : session_->checksum_after(tick - 1);
-  if (!checksum || !session_->serialize_state_at(tick, state_buffer_)) {
-    log_line("cannot build a resync snapshot for tick " + std::to_string(tick));
-    return;
+  // One snapshot per episode: resends repeat the same tick, bytes and id, so
+  // an acknowledgement slower than the resend interval still matches, and
+  // the client can complete it from chunks of several sends.
+  if (peer.resync_tick == kNoTick) {
+    const Tick tick = next_final_;  // the state after the last final tick
+    const std::optional<uint64_t> checksum = session_->checksum_at(tick);
+    if (!checksum || !session_->serialize_state_at(tick, peer.resync_bytes)) {
+      log_line("cannot build a resync snapshot for tick " + std::to_string(tick));
+      return;
+    }
+    const size_t count = (peer.resync_bytes.size() + kResyncChunkBytes - 1) / kResyncChunkBytes;
+    if (count == 0 || count > net::kMaxResyncChunks) {
+      log_line("resync snapshot too large: " + std::to_string(peer.resync_bytes.size()) + " bytes");
+      return;
+    }
+    peer.resync_tick = tick;
+    peer.resync_checksum = *checksum;
+    peer.resync_id = next_snapshot_id_++;
+    // The client restarts from `tick` and acknowledges tick - 1 once it has
+    // the whole snapshot.
+    peer.final_sent = std::max(peer.final_sent, tick - 1);
+    ++stats_.resyncs_sent;
   }
-  const uint32_t count =
-      static_cast<uint32_t>((state_buffer_.size() + kResyncChunkBytes - 1) / kResyncChunkBytes);
-  if (count == 0 || count > net::kMaxResyncChunks) {
-    log_line("resync snapshot too large: " + std::to_string(state_buffer_.size()) + " bytes");
-    return;
-  }
-  const uint32_t id = next_snapshot_id_++;
+  send_resync_chunks(peer, now);
+}
+
+void MatchHost::send_resync_chunks(Peer& peer, TimePoint now) {
+  const std::vector<uint8_t>& bytes = peer.resync_bytes;
+  const auto count =
+      static_cast<uint32_t>((bytes.size() + kResyncChunkBytes - 1) / kResyncChunkBytes);
   for (uint32_t i = 0; i < count; ++i) {
     v1::Envelope envelope;
     v1::ResyncChunk* chunk = envelope.mutable_resync_chunk();
-    chunk->set_snapshot_id(id);
-    chunk->set_tick(tick);
-    chunk->set_checksum(*checksum);
+    chunk->set_snapshot_id(peer.resync_id);
+    chunk->set_tick(peer.resync_tick);
+    chunk->set_checksum(peer.resync_checksum);
     chunk->set_chunk_index(i);
     chunk->set_chunk_count(count);
-    chunk->set_total_size(static_cast<uint32_t>(state_buffer_.size()));
+    chunk->set_total_size(static_cast<uint32_t>(bytes.size()));
     const size_t begin = i * kResyncChunkBytes;
-    const size_t end = std::min(state_buffer_.size(), begin + kResyncChunkBytes);
-    chunk->set_chunk(std::string(state_buffer_.begin() + static_cast<std::ptrdiff_t>(begin),
-                                 state_buffer_.begin() + static_cast<std::ptrdiff_t>(end)));
+    const size_t end = std::min(bytes.size(), begin + kResyncChunkBytes);
+    chunk->set_chunk(std::string(bytes.begin() + static_cast<std::ptrdiff_t>(begin),
+                                 bytes.begin() + static_cast<std::ptrdiff_t>(end)));
     send(peer, envelope, now);
   }
-  // The client restarts from `tick`; it acknowledges tick - 1 once it has
-  // the whole snapshot, and until then gets it again (rate-limited).
-  peer.resync_tick = tick;
-  peer.final_sent = std::max(peer.final_sent, tick - 1);
-  ++stats_.resyncs_sent;
 }
 
 void MatchHost::end(const std::string& reason, TimePoint now) {

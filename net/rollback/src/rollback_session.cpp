@@ -119,6 +119,13 @@ std::optional<uint64_t> RollbackSession::checksum_after(Tick t) const {
   return sim_->checksum_of(*snapshot);
 }
 
+std::optional<uint64_t> RollbackSession::checksum_at(Tick tick) const {
+  if (tick == current_tick()) return sim_->checksum();
+  const game::SimSnapshot* snapshot = ring_.find(tick);
+  if (snapshot == nullptr) return std::nullopt;
+  return sim_->checksum_of(*snapshot);
+}
+
 bool RollbackSession::serialize_state_at(Tick tick, std::vector<uint8_t>& out) {
   if (tick == current_tick()) {
     sim_->serialize(out);

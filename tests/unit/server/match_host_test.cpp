@@ -291,6 +291,59 @@ TEST(MatchHost, ClosingResendsMatchEndUntilEveryClientSaysGoodbye) {
   EXPECT_EQ(h.host().phase(), MatchHost::Phase::kEnded);
 }
 
+TEST(MatchHost, ResyncRepeatsOneSnapshotUntilAcknowledged) {
+  HostHarness h(test_config());
+  FakeClient a = h.join(4001);
+  FakeClient b = h.join(4002);
+  for (Tick t = 0; t < 20; ++t) {
+    h.send_input(a, t, scripted(a.player, t), a.player);
+    h.send_input(b, t, scripted(b.player, t), b.player);
+    h.tick();
+  }
+  auto resyncs = [&]() {
+    std::vector<std::pair<uint32_t, Tick>> out;  // (snapshot id, tick) of chunk 0s
+    for (const v1::Envelope& e : h.outbox().received[a.endpoint]) {
+      if (e.has_resync_chunk() && e.resync_chunk().chunk_index() == 0) {
+        out.emplace_back(e.resync_chunk().snapshot_id(), e.resync_chunk().tick());
+      }
+    }
+    return out;
+  };
+  v1::Envelope request;
+  request.mutable_resync_request()->set_desync_tick(5);
+  h.send(a, request);
+  ASSERT_EQ(resyncs().size(), 1u);
+  const auto [id, tick] = resyncs().front();
+  // No acknowledgement for a while: the same snapshot comes again, and the
+  // server's clock keeps flowing in FinalTicks without ticks.
+  size_t finals_before = h.outbox().received[a.endpoint].size();
+  for (int i = 0; i < 40; ++i) {
+    h.send_input(b, 20 + i, {}, b.player);
+    h.tick();
+  }
+  const auto repeated = resyncs();
+  ASSERT_GE(repeated.size(), 2u);
+  for (const auto& r : repeated) EXPECT_EQ(r, std::make_pair(id, tick));
+  bool saw_empty_finals = false;
+  for (size_t i = finals_before; i < h.outbox().received[a.endpoint].size(); ++i) {
+    const v1::Envelope& e = h.outbox().received[a.endpoint][i];
+    if (e.has_final_ticks()) saw_empty_finals = e.final_ticks().ticks_size() == 0;
+  }
+  EXPECT_TRUE(saw_empty_finals);
+  // The client acknowledges tick - 1: the episode ends, final ticks resume.
+  v1::Envelope ack;
+  ack.mutable_input_frame()->set_player(a.player);
+  ack.mutable_input_frame()->set_first_tick(60);
+  ack.mutable_input_frame()->set_last_final_tick_seen(tick - 1);
+  h.send(a, ack);
+  h.tick();
+  const v1::Envelope& last = h.outbox().received[a.endpoint].back();
+  ASSERT_TRUE(last.has_final_ticks());
+  ASSERT_GT(last.final_ticks().ticks_size(), 0);
+  EXPECT_EQ(last.final_ticks().ticks(0).tick(), tick);
+  EXPECT_EQ(h.host().stats().resyncs_sent, 1u);
+}
+
 TEST(MatchHost, ConfigErrorsAreReported) {
   MatchConfig config = test_config();
   config.game = "chess";

@@ -82,9 +82,14 @@ class MatchHost {
     Endpoint endpoint;
     uint64_t join_nonce = 0;
     std::optional<net::Connection> connection;
-    Tick final_seen = kNoTick;   // newest final tick the client has acknowledged
-    Tick final_sent = kNoTick;   // newest final tick sent at least once
-    Tick resync_tick = kNoTick;  // a resync snapshot at this tick awaits acknowledgement
+    Tick final_seen = kNoTick;          // newest final tick the client has acknowledged
+    Tick final_sent = kNoTick;          // newest final tick sent at least once
+    Tick resync_tick = kNoTick;         // a resync snapshot at this tick awaits acknowledgement
+    std::vector<uint8_t> resync_bytes;  // that snapshot, resent as is until acknowledged
+    uint64_t resync_checksum = 0;
+    uint32_t resync_id = 0;
+    Tick resend_cursor = kNoTick;  // round-robin position among unacknowledged finals
+    bool left = false;             // sent Disconnect: nothing more is taken from it
     int32_t last_lead = 0;
     bool sent_input = false;
     TimePoint last_receive;
@@ -103,6 +108,7 @@ class MatchHost {
   void store_desync_report(uint32_t player, const DesyncAssembly& assembly,
                            const std::vector<uint8_t>& dump);
   void send_resync(Peer& peer, TimePoint now);
+  void send_resync_chunks(Peer& peer, TimePoint now);
   void add_final_ticks(Peer& peer, v1::FinalTicks& out);
   void start_match(TimePoint now);
   void send_match_start(Peer& peer, TimePoint now);

@@ -81,6 +81,9 @@ class RollbackSession {
   /// Checksum of the state after tick `t` (t < current_tick(), within the
   /// ring). Call synchronize() first so it reflects every known input.
   std::optional<uint64_t> checksum_after(Tick t) const;
+  /// Checksum of the state at the start of `tick` (tick <= current_tick(),
+  /// within the ring): the one that goes with serialize_state_at(tick).
+  std::optional<uint64_t> checksum_at(Tick tick) const;
   /// The serialized state at the start of `tick`, for resync snapshots.
   /// Briefly restores that snapshot into the simulation and puts the
   /// present back, hence non-const.

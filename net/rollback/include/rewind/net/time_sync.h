@@ -26,6 +26,11 @@ class TimeSync {
   void on_lead_report(int32_t lead_ticks);
   /// Whole ticks the clock should jump forward now (0 = none); resets.
   int32_t take_jump();
+  /// Forgets pending jumps and the cooldown (the clock was re-anchored).
+  void clear_jump() {
+    jump_ = 0;
+    cooldown_ = 0;
+  }
   /// Multiplier for the local tick period: > 1 slows the client down.
   double period_scale() const;
   double smoothed_lead() const { return lead_; }
