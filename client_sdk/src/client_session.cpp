@@ -315,6 +315,7 @@ void ClientSession::handle(const v1::Envelope& envelope, TimePoint now) {
       if (rtt_ms >= 0 && rtt_ms < 10000) {
         stats_.rtt_ms =
             stats_.rtt_ms == 0.0 ? rtt_ms : stats_.rtt_ms + 0.125 * (rtt_ms - stats_.rtt_ms);
+        time_sync_.set_round_trip_ticks(stats_.rtt_ms / 1000.0 * tick_rate_hz_);
       }
       server_tick_ = std::max(server_tick_, envelope.pong().server_tick());
       break;
@@ -354,6 +355,13 @@ void ClientSession::on_join_accept(const v1::JoinAccept& accept, TimePoint now) 
     emit({ClientEventType::kRejected, kNoTick, 0, 0, 0,
           "cannot build the server's match: " + sim.status().message()});
     return;
+  }
+  // The join exchange is itself a round trip, and the match may start the
+  // moment we join, before any ping returns: take it as the first RTT
+  // sample. Measured from the first request, so a lost request makes it an
+  // overestimate (a little extra lead), never an underestimate (late inputs).
+  if (stats_.rtt_ms == 0.0) {
+    stats_.rtt_ms = std::chrono::duration<double, std::milli>(now - joined_at_).count();
   }
   player_ = accept.player();
   player_count_ = accept.player_count();
@@ -396,10 +404,12 @@ void ClientSession::on_join_accept(const v1::JoinAccept& accept, TimePoint now) 
 void ClientSession::on_match_start(const v1::MatchStart& start, TimePoint now) {
   phase_ = Phase::kRunning;
   server_tick_ = start.server_tick();
-  // Start ahead of the server by the one-way delay plus the target lead so
-  // our first inputs already arrive in time.
-  const double one_way_ticks = stats_.rtt_ms / 2000.0 * tick_rate_hz_;
-  tick_clock_ = start.server_tick() + one_way_ticks + config_.target_lead_ticks;
+  // The announced server tick is a one-way delay old when it arrives, and
+  // our inputs take another one-way delay to reach the server: start a
+  // round trip plus the target lead ahead of the announced tick.
+  const double rtt_ticks = stats_.rtt_ms / 1000.0 * tick_rate_hz_;
+  tick_clock_ = start.server_tick() + rtt_ticks + config_.target_lead_ticks;
+  time_sync_.set_round_trip_ticks(rtt_ticks);
   last_update_ = now;
   emit({ClientEventType::kMatchStarted, start.server_tick(), player_, 0, 0, {}});
 }
@@ -573,9 +583,9 @@ void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now)
   next_input_tick_ = std::max(next_input_tick_, tick);
   // Re-anchor the clock on the server's instead of bursting through the
   // ticks the clock ran ahead while we waited.
-  const double one_way_ticks = stats_.rtt_ms / 2000.0 * tick_rate_hz_;
+  const double rtt_ticks = stats_.rtt_ms / 1000.0 * tick_rate_hz_;
   tick_clock_ =
-      std::max(static_cast<double>(tick), server_tick_ + one_way_ticks + config_.target_lead_ticks);
+      std::max(static_cast<double>(tick), server_tick_ + rtt_ticks + config_.target_lead_ticks);
   time_sync_.clear_jump();
   awaiting_resync_ = false;
   desync_tick_ = kNoTick;

@@ -368,6 +368,9 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
         newest = std::max(newest, tick);
         break;
       case net::InputResult::kFinal: {
+        // Late inputs still say how late the client runs: its time sync
+        // needs exactly that (negative) lead to jump ahead.
+        newest = std::max(newest, tick);
         // Resends of inputs the server had are normal; an input that only
         // arrives after its tick was finalized without it is rejected.
         const auto& [held_tick, mask] =

@@ -13,7 +13,8 @@ void TimeSync::on_lead_report(int32_t lead_ticks) {
   }
   if (lead_ticks < config_.late_threshold_ticks) {
     jump_ += static_cast<int32_t>(std::ceil(config_.target_lead_ticks)) - lead_ticks;
-    cooldown_ = config_.jump_cooldown_reports;
+    cooldown_ =
+        std::max(config_.jump_cooldown_reports, static_cast<int32_t>(std::ceil(rtt_ticks_)) + 4);
     lead_ = config_.target_lead_ticks;  // the jump lands on target
     ++samples_;
     return;

@@ -24,6 +24,9 @@ class TimeSync {
 
   /// A lead report from the server (negative: the input arrived late).
   void on_lead_report(int32_t lead_ticks);
+  /// Reports keep describing the clock from before a jump for a round trip:
+  /// the cooldown after a jump covers at least that many reports.
+  void set_round_trip_ticks(double rtt_ticks) { rtt_ticks_ = rtt_ticks; }
   /// Whole ticks the clock should jump forward now (0 = none); resets.
   int32_t take_jump();
   /// Forgets pending jumps and the cooldown (the clock was re-anchored).
@@ -42,6 +45,7 @@ class TimeSync {
   uint64_t samples_ = 0;
   int32_t jump_ = 0;
   int32_t cooldown_ = 0;
+  double rtt_ticks_ = 0.0;
 };
 
 }  // namespace rwd::net
