@@ -10,6 +10,9 @@
 #            tick, reported (the server stores the report) and resynced.
 #   garbage  random datagrams are fired at the server during a match: the
 #            players see nothing of it, the server counts them.
+#   latency  150 ms each way (a 300 ms round trip, longer than the 133 ms
+#            window): clients run far enough ahead that almost no input
+#            has to be substituted, and nobody desyncs.
 #   signal   the server (no tick budget) gets SIGINT mid-match: it ends the
 #            match cleanly, the bots finish, the replay verifies and ends
 #            with its end record.
@@ -48,6 +51,7 @@ case "$mode" in
   desync)  bots_args+=(--latency-ms 10 --corrupt-bot 2 --corrupt-at-tick 120) ;;
   garbage) bots_args+=(--latency-ms 10) ;;
   signal)  bots_args+=(--latency-ms 10) ;;
+  latency) bots_args+=(--latency-ms 150 --jitter-ms 10 --loss 0.02) ;;
   *) fail "unknown mode" ;;
 esac
 
@@ -136,6 +140,13 @@ case "$mode" in
     grep -q "differing fields" "$report" || fail "report does not name the differing fields: $(cat "$report")"
     grep -q "position.x" "$report" || fail "report does not name position.x: $(cat "$report")"
     "$bin/rewind-replay" verify match.rwr >verify.txt 2>&1 || fail "replay did not verify: $(cat verify.txt)"
+    ;;
+  latency)
+    [ "$bots_status" = 0 ] || fail "rewind-bots exited $bots_status"
+    [ "$(json bots.json desyncs)" = 0 ] || fail "desyncs at high latency"
+    # Only the first ticks, before the clocks have settled, may miss inputs.
+    [ "$(json server.json substituted_inputs)" -lt 60 ] || fail "clients ran too late: $(json server.json substituted_inputs) inputs substituted"
+    [ "$(json bots.json final_ticks_verified)" -ge $(( 4 * (ticks - 20) )) ] || fail "too few verified final ticks"
     ;;
   garbage)
     [ "$bots_status" = 0 ] || fail "rewind-bots exited $bots_status"
