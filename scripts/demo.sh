@@ -189,6 +189,17 @@ if ((verify_status != 0)); then
   exit "$verify_status"
 fi
 
+# One line a person can read: the figures that say the match went right.
+printf '%s\n%s\n' "$server_summary" "$bots_summary" | python3 -c '
+import json, sys
+server, bots = (json.loads(line) for line in sys.stdin.read().splitlines()[:2])
+print("match: %d final ticks, %d players; rollbacks: server %d, clients %d (%d ticks re-simulated); "
+      "late inputs %d, substituted %d; desyncs %d; final checksums verified by the clients: %d"
+      % (server["ticks_final"], server["players_joined"], server["rollbacks"], bots["rollbacks"],
+         server["resimulated_ticks"] + bots["resimulated_ticks"], server["late_inputs"],
+         server["substituted_inputs"], bots["desyncs"], bots["final_ticks_verified"]))
+'
+
 echo
 echo "demo: OK: match played on 127.0.0.1:$port, summaries above, replay verified" \
      "(files in build/demo/)"
