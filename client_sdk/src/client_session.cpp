@@ -6,6 +6,7 @@
 #include <random>
 
 #include "rewind/net/envelope_codec.h"
+#include "rewind/proto/input_wire.h"
 
 namespace rwd::client {
 namespace {
@@ -26,22 +27,6 @@ double seconds(std::chrono::steady_clock::duration d) {
 uint64_t micros_since_epoch(TimePoint t) {
   return static_cast<uint64_t>(
       std::chrono::duration_cast<std::chrono::microseconds>(t.time_since_epoch()).count());
-}
-
-game::PlayerInput from_proto(const v1::Input& in) {
-  game::PlayerInput out;
-  out.axis_x =
-      static_cast<int16_t>(std::clamp<int32_t>(in.axis_x(), -game::kAxisMax, game::kAxisMax));
-  out.axis_y =
-      static_cast<int16_t>(std::clamp<int32_t>(in.axis_y(), -game::kAxisMax, game::kAxisMax));
-  out.buttons = in.buttons();
-  return out;
-}
-
-void to_proto(const game::PlayerInput& in, v1::Input* out) {
-  out->set_axis_x(in.axis_x);
-  out->set_axis_y(in.axis_y);
-  out->set_buttons(in.buttons);
 }
 
 }  // namespace
@@ -246,7 +231,7 @@ void ClientSession::send_inputs(TimePoint now) {
                                          : unacked_.front().first);
   frame->set_last_final_tick_seen(last_final_received_);
   last_final_acked_ = last_final_received_;
-  for (const auto& [tick, input] : unacked_) to_proto(input, frame->add_inputs());
+  for (const auto& [tick, input] : unacked_) *frame->add_inputs() = proto::to_wire(input);
   send(envelope, now);
 }
 
@@ -324,9 +309,11 @@ void ClientSession::handle(const v1::Envelope& envelope, TimePoint now) {
       if (!session_) break;
       const v1::RelayedInputs& relayed = envelope.relayed_inputs();
       if (relayed.player() >= player_count_ || relayed.player() == player_) break;
+      // decode_envelope has checked every axis, so conversion cannot fail.
       for (int i = 0; i < relayed.inputs_size(); ++i) {
-        (void)session_->add_input(relayed.player(), relayed.first_tick() + i,
-                                  from_proto(relayed.inputs(i)));
+        if (auto input = proto::from_wire(relayed.inputs(i)); input.ok()) {
+          (void)session_->add_input(relayed.player(), relayed.first_tick() + i, *input);
+        }
       }
       break;
     }
@@ -366,7 +353,6 @@ void ClientSession::on_join_accept(const v1::JoinAccept& accept, TimePoint now) 
   player_ = accept.player();
   player_count_ = accept.player_count();
   tick_rate_hz_ = accept.tick_rate_hz();
-  window_ticks_ = accept.window_ticks();
   if (static_cast<int64_t>(accept.window_ticks()) + 16 > config_.snapshot_ticks) {
     phase_ = Phase::kEnded;
     emit({ClientEventType::kRejected, kNoTick, 0, 0, 0,
@@ -445,8 +431,12 @@ bool ClientSession::apply_final_tick(const v1::FinalTick& final_tick, TimePoint 
     return false;
   }
   for (uint32_t p = 0; p < player_count_; ++p) {
-    const net::InputResult result = session_->add_final_input(
-        p, final_tick.tick(), from_proto(final_tick.inputs(static_cast<int>(p))));
+    auto input = proto::from_wire(final_tick.inputs(static_cast<int>(p)));
+    if (!input.ok()) {
+      ++stats_.packets_rejected;
+      return false;
+    }
+    const net::InputResult result = session_->add_final_input(p, final_tick.tick(), *input);
     if (result == net::InputResult::kTooFar) {
       // Beyond our input window: we cannot apply it, so we cannot verify it.
       request_resync(now);

@@ -10,7 +10,7 @@
 #include "rewind/net/connection_id.h"
 #include "rewind/net/envelope_codec.h"
 #include "rewind/net/join_token.h"
-#include "rewind/replay/replay_format.h"
+#include "rewind/proto/input_wire.h"
 #include "rewind/sim/body_record.h"
 
 namespace rwd::server {
@@ -348,7 +348,7 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
 
   for (int i = 0; i < frame.inputs_size(); ++i) {
     const Tick tick = frame.first_tick() + i;
-    auto input = replay::from_proto(frame.inputs(i));
+    auto input = proto::from_wire(frame.inputs(i));
     if (!input.ok() || tick > clock_tick + config_.max_input_lead_ticks) {
       ++stats_.rejected_inputs;
       continue;
@@ -466,7 +466,7 @@ void MatchHost::finalize_ready_ticks() {
         ++stats_.substituted_inputs;
       }
       final_inputs_[p] = session_->input_for(p, t);
-      *final_tick.add_inputs() = replay::to_proto(final_inputs_[p]);
+      *final_tick.add_inputs() = proto::to_wire(final_inputs_[p]);
     }
     const std::optional<uint64_t> checksum = session_->checksum_after(t);
     final_tick.set_substituted_mask(substituted);

@@ -34,29 +34,6 @@ Status append_frame(const v1::ReplayRecord& record, std::vector<uint8_t>& out) {
   return Status::Ok();
 }
 
-v1::Input to_proto(const game::PlayerInput& input) {
-  v1::Input out;
-  out.set_axis_x(input.axis_x);
-  out.set_axis_y(input.axis_y);
-  out.set_buttons(input.buttons);
-  return out;
-}
-
-Result<game::PlayerInput> from_proto(const v1::Input& input) {
-  constexpr int32_t lo = std::numeric_limits<int16_t>::min();
-  constexpr int32_t hi = std::numeric_limits<int16_t>::max();
-  if (input.axis_x() < lo || input.axis_x() > hi || input.axis_y() < lo || input.axis_y() > hi) {
-    return Status::Error(ErrorCode::kCorrupt, "input axis (" + std::to_string(input.axis_x()) +
-                                                  ", " + std::to_string(input.axis_y()) +
-                                                  ") does not fit 16 bits");
-  }
-  game::PlayerInput out;
-  out.axis_x = static_cast<int16_t>(input.axis_x());
-  out.axis_y = static_cast<int16_t>(input.axis_y());
-  out.buttons = input.buttons();
-  return out;
-}
-
 Status validate_header(const v1::ReplayHeader& header) {
   if (header.format_version() != kFormatVersion) {
     return Status::Error(ErrorCode::kUnsupported,

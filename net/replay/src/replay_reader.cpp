@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/replay/replay_reader.h"
+#include "rewind/proto/input_wire.h"
 
 #include <cerrno>
 #include <cstring>
@@ -182,7 +183,7 @@ Status ReplayReader::check_order(const v1::ReplayRecord& record) const {
                                                       " players");
       }
       for (const v1::Input& input : t.inputs()) {
-        Result<game::PlayerInput> converted = from_proto(input);
+        Result<game::PlayerInput> converted = proto::from_wire(input);
         if (!converted.ok()) {
           return Status::Error(ErrorCode::kCorrupt, "tick " + std::to_string(t.tick()) + ": " +
                                                         converted.status().message());

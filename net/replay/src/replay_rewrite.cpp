@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/replay/replay_rewrite.h"
+#include "rewind/proto/input_wire.h"
 
 #include <filesystem>
 #include <vector>
@@ -28,7 +29,7 @@ Result<game::PlayerInput> copy_with_edit(ReplayReader& reader, ReplayWriter& wri
       inputs.clear();
       for (const v1::Input& in : t.inputs()) {
         // The reader already checked every input converts.
-        inputs.push_back(*from_proto(in));
+        inputs.push_back(*proto::from_wire(in));
       }
       if (t.tick() == edit.tick) {
         game::PlayerInput& target = inputs[edit.player];

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/replay/replay_verifier.h"
+#include "rewind/proto/input_wire.h"
 
 #include <memory>
 #include <span>
@@ -23,7 +24,7 @@ std::vector<game::PlayerInput> inputs_of(const v1::ReplayTick& tick) {
   std::vector<game::PlayerInput> inputs;
   inputs.reserve(static_cast<size_t>(tick.inputs_size()));
   // The reader already refused inputs that do not convert.
-  for (const v1::Input& in : tick.inputs()) inputs.push_back(*from_proto(in));
+  for (const v1::Input& in : tick.inputs()) inputs.push_back(*proto::from_wire(in));
   return inputs;
 }
 

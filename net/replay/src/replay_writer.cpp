@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/replay/replay_writer.h"
+#include "rewind/proto/input_wire.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -142,7 +143,7 @@ Status ReplayWriter::append_tick(Tick tick, std::span<const game::PlayerInput> i
   v1::ReplayRecord record;
   v1::ReplayTick* out = record.mutable_tick();
   out->set_tick(tick);
-  for (const game::PlayerInput& input : inputs) *out->add_inputs() = to_proto(input);
+  for (const game::PlayerInput& input : inputs) *out->add_inputs() = proto::to_wire(input);
   out->set_substituted_mask(substituted_mask);
   out->set_checksum(checksum);
   if (Status s = append_frame(record, buffer_); !s.ok()) return s;

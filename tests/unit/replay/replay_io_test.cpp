@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "rewind/proto/input_wire.h"
 #include "rewind/replay/replay_format.h"
 #include "rewind/replay/replay_reader.h"
 #include "rewind/replay/replay_rewrite.h"
@@ -139,7 +140,7 @@ struct FileBuilder {
     v1::ReplayRecord r;
     r.mutable_tick()->set_tick(t);
     for (const game::PlayerInput& in : inputs_for(t, players)) {
-      *r.mutable_tick()->add_inputs() = to_proto(in);
+      *r.mutable_tick()->add_inputs() = proto::to_wire(in);
     }
     return add(r);
   }
@@ -182,7 +183,7 @@ TEST(ReplayIo, WriterReaderRoundTrip) {
       const std::vector<game::PlayerInput> want = inputs_for(expected_tick, 3);
       ASSERT_EQ(r.tick().inputs_size(), 3);
       for (int p = 0; p < 3; ++p) {
-        EXPECT_EQ(*from_proto(r.tick().inputs(p)), want[static_cast<size_t>(p)]);
+        EXPECT_EQ(*proto::from_wire(r.tick().inputs(p)), want[static_cast<size_t>(p)]);
       }
       ++expected_tick;
     } else if (r.has_keyframe()) {

@@ -103,7 +103,6 @@ class ClientSession {
   uint32_t player_ = 0;
   uint32_t player_count_ = 0;
   uint32_t tick_rate_hz_ = 60;
-  uint32_t window_ticks_ = 8;
   std::unique_ptr<net::RollbackSession> session_;
   net::TimeSync time_sync_;
   InputProvider provider_;

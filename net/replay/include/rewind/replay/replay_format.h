@@ -37,12 +37,6 @@ uint64_t payload_hash(std::span<const uint8_t> payload);
 /// payload would exceed kMaxRecordBytes; `out` is untouched on error.
 Status append_frame(const v1::ReplayRecord& record, std::vector<uint8_t>& out);
 
-/// Wire form of one input.
-v1::Input to_proto(const game::PlayerInput& input);
-
-/// Reads one recorded input; kCorrupt when an axis does not fit PlayerInput.
-Result<game::PlayerInput> from_proto(const v1::Input& input);
-
 /// Checks the fields a reader and a verifier rely on (format version, game
 /// name, player count).
 Status validate_header(const v1::ReplayHeader& header);
