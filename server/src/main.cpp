@@ -78,9 +78,12 @@ int main(int argc, char** argv) {
     // Written to a temporary name and renamed, so a reader never sees half a number.
     const std::string temporary = port_file + ".tmp";
     std::FILE* file = std::fopen(temporary.c_str(), "w");
-    if (file == nullptr ||
-        std::fprintf(file, "%u\n", static_cast<unsigned>((*server)->port())) < 0 ||
-        std::fclose(file) != 0 || std::rename(temporary.c_str(), port_file.c_str()) != 0) {
+    bool written = file != nullptr;
+    if (written) {
+      written = std::fprintf(file, "%u\n", static_cast<unsigned>((*server)->port())) >= 0;
+      written = std::fclose(file) == 0 && written;  // closed whatever happened
+    }
+    if (!written || std::rename(temporary.c_str(), port_file.c_str()) != 0) {
       std::fprintf(stderr, "rewind-server: cannot write --port-file %s\n", port_file.c_str());
       return 1;
     }

@@ -163,7 +163,6 @@ TEST(MatchHost, HostileDatagramsChangeNothingForThePlayers) {
 
   HostHarness h(test_config());
   std::mt19937 rng(1234);
-  uint64_t attacks = 0;
   const Endpoint attacker(make_address("127.0.0.1"), 6666);
   auto attack = [&](HostHarness& host, FakeClient& a, FakeClient& b, Tick t) {
     // Random bytes of every size, including oversize.
@@ -207,7 +206,6 @@ TEST(MatchHost, HostileDatagramsChangeNothingForThePlayers) {
     v1::Envelope bogus;
     bogus.mutable_final_ticks()->set_server_tick(t);
     host.send(a, bogus);
-    attacks += 9;
   };
   const auto actual = play(h, 90, attack);
 
@@ -219,7 +217,6 @@ TEST(MatchHost, HostileDatagramsChangeNothingForThePlayers) {
   EXPECT_EQ(stats.substituted_inputs, 0u);
   EXPECT_GE(stats.rejected_packets, 90u * 6);
   EXPECT_GE(stats.rejected_inputs, 90u * 2);
-  EXPECT_GT(attacks, 0u);
 }
 
 TEST(MatchHost, RepeatedJoinIsIdempotentAndExtraPlayersAreRefused) {
