@@ -51,6 +51,7 @@ void compare_records(const BodyRecord& e, const BodyRecord& a, std::vector<Field
   compare_vec(i, "linear_velocity", e.linear_velocity, a.linear_velocity, out);
   compare_vec(i, "angular_velocity", e.angular_velocity, a.angular_velocity, out);
   compare_u64(i, "awake", e.awake ? 1 : 0, a.awake ? 1 : 0, out);
+  compare_u64(i, "enabled", e.enabled ? 1 : 0, a.enabled ? 1 : 0, out);
 }
 
 }  // namespace

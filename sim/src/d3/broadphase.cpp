@@ -73,7 +73,7 @@ void find_pairs(const WorldState& state, WorldScratch& scratch) {
     scratch.passive.clear();
     for (uint32_t i = 0; i < n; ++i) {
       const BodyInfo& info = state.infos[i];
-      if (info.alive == 0 || is_active(info)) continue;
+      if (!is_simulated(info) || is_active(info)) continue;
       const BodySim& sim = state.sims[i];
       scratch.aabbs[i] = shape_aabb(info.shape, sim.position, sim.rotation);
       scratch.passive.push_back({scratch.aabbs[i].lower.x, i});

@@ -9,6 +9,9 @@
 //     relax      (rigid contacts, no push-out: removes the bias velocity)
 //   restitution (bounce from the pre-step approach speed)
 //   store impulses in the contact cache for next tick's warm start
+//   write back, settling every body under the state rule (state_rules.h):
+//   speed limits, finite poses, world bounds (bodies that left are disabled
+//   and reported)
 // Contact anchors stay fixed relative to the body centres for the whole tick;
 // each substep recomputes the separation from how far the bodies have moved
 // and turned since the tick began, so the narrowphase runs once per tick.
@@ -18,6 +21,7 @@
 
 #include "d3/body_storage.h"
 #include "d3/pipeline.h"
+#include "d3/state_rules.h"
 #include "rewind/sim/det_math.h"
 
 namespace rwd::sim::d3 {
@@ -282,19 +286,20 @@ void store_impulses(WorldState& state, const WorldScratch& scratch) {
   for (const ContactConstraint& c : scratch.constraints) {
     ContactRecord& rec = state.contacts[c.record];
     for (uint32_t p = 0; p < c.point_count; ++p) {
-      rec.points[p].normal_impulse = c.points[p].normal_impulse;
-      rec.points[p].tangent_impulse1 = c.points[p].tangent_impulse1;
-      rec.points[p].tangent_impulse2 = c.points[p].tangent_impulse2;
+      rec.points[p].normal_impulse = settle_impulse(c.points[p].normal_impulse);
+      rec.points[p].tangent_impulse1 = settle_impulse(c.points[p].tangent_impulse1);
+      rec.points[p].tangent_impulse2 = settle_impulse(c.points[p].tangent_impulse2);
     }
   }
 }
 
-void finalize(WorldState& state, const WorldScratch& scratch, float tick) {
+void finalize(WorldState& state, WorldScratch& scratch, float tick) {
   const WorldConfig& config = state.config;
   for (size_t i = 1; i < scratch.solver_bodies.size(); ++i) {
     const SolverBody& b = scratch.solver_bodies[i];
     uint32_t index = scratch.solver_body_ids[i];
     BodySim& sim = state.sims[index];
+    const BodySim before = sim;
     sim.position += b.delta_position;
     sim.rotation = normalize(b.delta_rotation * sim.rotation);
     sim.linear_velocity = b.linear_velocity;
@@ -312,6 +317,12 @@ void finalize(WorldState& state, const WorldScratch& scratch, float tick) {
       resting = b.linear_velocity == Vec3{} && b.angular_velocity == Vec3{};
     }
     sim.sleep_time = resting ? sim.sleep_time + tick : 0.0f;
+    // Solver bodies are in ascending body index, so events are too.
+    if (settle_body(config, before, state.infos[index], sim)) {
+      scratch.body_events.push_back(
+          {BodyEventType::kLeftBounds, {index, state.infos[index].generation}, sim.position});
+      mark_passive_dirty(scratch);
+    }
   }
 }
 

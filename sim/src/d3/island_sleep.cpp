@@ -34,7 +34,7 @@ void unite(std::vector<uint32_t>& parent, uint32_t a, uint32_t b) {
 bool live_record(const WorldState& state, const ContactRecord& r) {
   const BodyInfo& a = state.infos[r.index_a];
   const BodyInfo& b = state.infos[r.index_b];
-  return a.alive != 0 && b.alive != 0 && a.generation == r.generation_a &&
+  return is_simulated(a) && is_simulated(b) && a.generation == r.generation_a &&
          b.generation == r.generation_b;
 }
 
@@ -63,7 +63,7 @@ bool is_moving_kinematic(const WorldState& state, uint32_t i) {
 
 void wake_body(WorldState& state, WorldScratch& scratch, uint32_t index) {
   BodyInfo& info = state.infos[index];
-  if (info.alive == 0 || info.kind == BodyKind::kStatic) return;
+  if (!is_simulated(info) || info.kind == BodyKind::kStatic) return;
   state.sims[index].sleep_time = 0.0f;
   if (info.awake == 0) {
     info.awake = 1;
@@ -121,7 +121,7 @@ void wake_touched_islands(WorldState& state, WorldScratch& scratch) {
   bool woke = false;
   for (uint32_t i = 0; i < n; ++i) {
     BodyInfo& info = state.infos[i];
-    if (info.alive == 0 || info.kind != BodyKind::kDynamic || info.awake != 0) continue;
+    if (!is_simulated(info) || info.kind != BodyKind::kDynamic || info.awake != 0) continue;
     if (scratch.island_flag[find_root(scratch.island_parent, i)] == 0) continue;
     wake_body(state, scratch, i);
     woke = true;

@@ -74,7 +74,7 @@ void evaluate(const WorldState& state, ContactRecord& rec, const ContactRecord* 
 bool both_resting(const WorldState& state, const ContactRecord& r) {
   const BodyInfo& a = state.infos[r.index_a];
   const BodyInfo& b = state.infos[r.index_b];
-  return a.alive != 0 && b.alive != 0 && a.generation == r.generation_a &&
+  return is_simulated(a) && is_simulated(b) && a.generation == r.generation_a &&
          b.generation == r.generation_b && !is_active(a) && !is_active(b);
 }
 

@@ -94,7 +94,7 @@ void cast(const WorldState& state, const Ray& ray, Vec3 dir, const QueryFilter& 
           Visit&& visit) {
   for (uint32_t i = 0; i < state.infos.size(); ++i) {
     const BodyInfo& info = state.infos[i];
-    if (info.alive == 0 || (info.layer & filter.layer_mask) == 0) continue;
+    if (!d3::is_simulated(info) || (info.layer & filter.layer_mask) == 0) continue;
     if (info.sensor != 0 && !filter.include_sensors) continue;
     const BodySim& sim = state.sims[i];
     float t = 0.0f;

@@ -4,19 +4,23 @@
 // field, magic + version). Both walk the same fields in the same order, so
 // a deserialized world has the checksum of the serialized one. Derived data
 // (mass properties, live count, free list) is neither hashed nor encoded:
-// it is a function of what is.
+// it is a function of what is. What a valid body is comes from
+// state_rules.h, the rule the step keeps too.
 #include <cmath>
 #include <cstring>
+#include <string>
 
 #include "d3/body_storage.h"
 #include "d3/pipeline.h"
+#include "d3/state_rules.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim {
 namespace {
 
 constexpr uint8_t kMagic[4] = {'R', 'W', 'D', '3'};
-constexpr uint32_t kVersion = 1;
+// 2: world bounds in the config, the enabled flag per body.
+constexpr uint32_t kVersion = 2;
 // Bounds the allocation a hostile header can request.
 constexpr uint32_t kMaxSlots = 1u << 24;
 
@@ -84,6 +88,8 @@ void write_config(Sink& s, const WorldConfig& c) {
   s.f32(c.sleep_threshold_mps);
   s.f32(c.time_to_sleep_s);
   s.u32(c.max_bodies);
+  s.vec3(c.bounds_lower);
+  s.vec3(c.bounds_upper);
 }
 
 void write_state(Sink& s, const WorldState& st) {
@@ -100,6 +106,7 @@ void write_state(Sink& s, const WorldState& st) {
     s.u8(static_cast<uint8_t>(b.kind));
     s.u8(b.sensor);
     s.u8(b.awake);
+    s.u8(b.enabled);
     s.u8(static_cast<uint8_t>(b.shape.type));
     s.f32(b.shape.radius);
     s.vec3(b.shape.half_extents);
@@ -205,12 +212,14 @@ Status corrupt(const char* what) {
   return Status::Error(ErrorCode::kCorrupt, what);
 }
 
+// Reads the fields of a live body; the state rule judges them afterwards.
 bool read_body(Reader& r, BodyInfo& b, BodySim& m) {
   uint8_t kind = r.u8();
   r.require(kind <= 2);
   b.kind = static_cast<BodyKind>(kind);
   b.sensor = r.flag();
   b.awake = r.flag();
+  b.enabled = r.flag();
   uint8_t type = r.u8();
   r.require(type <= 1);
   b.shape.type = static_cast<ShapeType>(type);
@@ -231,25 +240,32 @@ bool read_body(Reader& r, BodyInfo& b, BodySim& m) {
   m.angular_velocity = r.vec3();
   m.force = r.vec3();
   m.sleep_time = r.f32();
-  if (!r.ok()) return false;
-  // Reuse create_body's rules so a snapshot cannot hold what the API refuses.
-  BodyDef def;
-  def.kind = b.kind;
-  def.shape = b.shape;
-  def.position = m.position;
-  def.rotation = m.rotation;
-  def.linear_velocity = m.linear_velocity;
-  def.angular_velocity = m.angular_velocity;
-  def.density = b.density;
-  def.linear_damping = b.linear_damping;
-  def.angular_damping = b.angular_damping;
-  def.gravity_scale = b.gravity_scale;
-  def.material = b.material;
-  if (!d3::validate_body_def(def).ok()) return false;
-  if (std::fabs(length_squared(m.rotation) - 1.0f) > 1e-3f) return false;
-  if (b.kind == BodyKind::kStatic && b.awake != 0) return false;
-  if (!(m.sleep_time >= 0.0f)) return false;
-  return true;
+  return r.ok();
+}
+
+WorldConfig read_config(Reader& r) {
+  WorldConfig c;
+  c.gravity = r.vec3();
+  c.tick_seconds = r.f32();
+  c.substeps = static_cast<int32_t>(r.u32());
+  c.relax_iterations = static_cast<int32_t>(r.u32());
+  c.contact_hertz = r.f32();
+  c.contact_damping_ratio = r.f32();
+  c.contact_push_max_mps = r.f32();
+  c.restitution_threshold_mps = r.f32();
+  c.linear_slop_m = r.f32();
+  c.speculative_distance_m = r.f32();
+  c.enable_sleep = r.flag() != 0;
+  c.sleep_threshold_mps = r.f32();
+  c.time_to_sleep_s = r.f32();
+  c.max_bodies = r.u32();
+  c.bounds_lower = r.vec3();
+  c.bounds_upper = r.vec3();
+  return c;
+}
+
+Status corrupt_body(uint32_t index, const std::string& why) {
+  return Status::Error(ErrorCode::kCorrupt, "invalid body " + std::to_string(index) + ": " + why);
 }
 
 }  // namespace
@@ -267,6 +283,22 @@ void World3D::serialize(std::vector<uint8_t>& out) const {
   write_state(sink, state_);
 }
 
+void World3D::encode_config(const WorldConfig& config, std::vector<uint8_t>& out) {
+  out.clear();
+  Sink sink(&out);
+  write_config(sink, config);
+}
+
+Result<WorldConfig> World3D::decode_config(std::span<const uint8_t> bytes) {
+  Reader r(bytes);
+  WorldConfig c = read_config(r);
+  if (!r.ok() || !r.at_end()) return corrupt("malformed world config bytes");
+  if (Status s = validate_config(c); !s.ok()) {
+    return Status::Error(ErrorCode::kCorrupt, "invalid world config: " + s.message());
+  }
+  return c;
+}
+
 Status World3D::deserialize(std::span<const uint8_t> bytes) {
   if (bytes.size() < 8 || std::memcmp(bytes.data(), kMagic, 4) != 0) {
     return corrupt("not a Rewind 3D world snapshot (bad magic)");
@@ -274,22 +306,12 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
   Reader r(bytes.subspan(4));
   if (r.u32() != kVersion) return corrupt("unsupported snapshot version");
   WorldState st;  // built aside: the live state changes only on success
-  WorldConfig& c = st.config;
-  c.gravity = r.vec3();
-  c.tick_seconds = r.f32();
-  c.substeps = static_cast<int32_t>(r.u32());
-  c.relax_iterations = static_cast<int32_t>(r.u32());
-  c.contact_hertz = r.f32();
-  c.contact_damping_ratio = r.f32();
-  c.contact_push_max_mps = r.f32();
-  c.restitution_threshold_mps = r.f32();
-  c.linear_slop_m = r.f32();
-  c.speculative_distance_m = r.f32();
-  c.enable_sleep = r.flag() != 0;
-  c.sleep_threshold_mps = r.f32();
-  c.time_to_sleep_s = r.f32();
-  c.max_bodies = r.u32();
-  if (!r.ok() || !validate_config(c).ok()) return corrupt("invalid world config");
+  st.config = read_config(r);
+  const WorldConfig& c = st.config;
+  if (!r.ok()) return corrupt("truncated world config");
+  if (Status s = validate_config(c); !s.ok()) {
+    return Status::Error(ErrorCode::kCorrupt, "invalid world config: " + s.message());
+  }
   st.step_count = r.u64();
   uint32_t slots = r.u32();
   // Every slot takes at least 5 bytes; reject counts the input cannot hold.
@@ -305,12 +327,11 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
     b.alive = r.flag();
     if (!r.ok()) return corrupt("truncated body");
     if (b.alive == 0) continue;
-    if (b.generation == 0 || !read_body(r, b, st.sims[i])) return corrupt("invalid body");
+    if (!read_body(r, b, st.sims[i])) return corrupt_body(i, "truncated or malformed fields");
+    if (Status s = d3::check_body(c, b, st.sims[i]); !s.ok()) return corrupt_body(i, s.message());
     st.masses[i] = d3::compute_mass(b.kind, b.shape, b.density);
-    if (b.kind == BodyKind::kDynamic &&
-        !(std::isfinite(st.masses[i].inv_mass) && st.masses[i].mass > 0.0f &&
-          is_finite(st.masses[i].inv_inertia_local))) {
-      return corrupt("degenerate body mass");
+    if (Status s = d3::check_mass(b.kind, st.masses[i]); !s.ok()) {
+      return corrupt_body(i, s.message());
     }
     ++st.live_count;
   }
@@ -356,6 +377,7 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
   state_ = std::move(st);
   d3::mark_passive_dirty(*scratch_);
   scratch_->events.clear();
+  scratch_->body_events.clear();
   return Status::Ok();
 }
 

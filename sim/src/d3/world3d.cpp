@@ -8,6 +8,7 @@
 
 #include "d3/body_storage.h"
 #include "d3/pipeline.h"
+#include "d3/state_rules.h"
 #include "d3/world_scratch.h"
 
 namespace rwd::sim {
@@ -23,38 +24,39 @@ Status not_found() {
   return Status::Error(ErrorCode::kNotFound, "unknown or stale body id");
 }
 
-bool finite_in(float v, float lo, float hi) {
-  return std::isfinite(v) && v >= lo && v <= hi;
-}
-
+// Field by field: a bad field takes its default, the rest are kept.
 WorldConfig sanitize(const WorldConfig& c) {
-  WorldConfig d;
-  WorldConfig out = c;
-  if (!is_finite(c.gravity) || std::fabs(c.gravity.x) > 1e4f || std::fabs(c.gravity.y) > 1e4f ||
-      std::fabs(c.gravity.z) > 1e4f) {
-    out.gravity = d.gravity;
+  const WorldConfig d;
+  WorldConfig out = d;
+  auto keep = [&](auto WorldConfig::*field) {
+    WorldConfig probe = d;
+    probe.*field = c.*field;
+    if (d3::check_config(probe).ok()) out.*field = c.*field;
+  };
+  keep(&WorldConfig::gravity);
+  keep(&WorldConfig::tick_seconds);
+  keep(&WorldConfig::substeps);
+  keep(&WorldConfig::relax_iterations);
+  keep(&WorldConfig::contact_hertz);
+  keep(&WorldConfig::contact_damping_ratio);
+  keep(&WorldConfig::contact_push_max_mps);
+  keep(&WorldConfig::restitution_threshold_mps);
+  keep(&WorldConfig::linear_slop_m);
+  keep(&WorldConfig::speculative_distance_m);
+  keep(&WorldConfig::enable_sleep);
+  keep(&WorldConfig::sleep_threshold_mps);
+  keep(&WorldConfig::time_to_sleep_s);
+  keep(&WorldConfig::max_bodies);
+  // The bounds are one value: both corners or neither.
+  {
+    WorldConfig probe = d;
+    probe.bounds_lower = c.bounds_lower;
+    probe.bounds_upper = c.bounds_upper;
+    if (d3::check_config(probe).ok()) {
+      out.bounds_lower = c.bounds_lower;
+      out.bounds_upper = c.bounds_upper;
+    }
   }
-  if (!(c.tick_seconds > 0.0f && c.tick_seconds <= 0.1f)) out.tick_seconds = d.tick_seconds;
-  if (c.substeps < 1 || c.substeps > 64) out.substeps = d.substeps;
-  if (c.relax_iterations < 0 || c.relax_iterations > 16) out.relax_iterations = d.relax_iterations;
-  if (!finite_in(c.contact_hertz, 1e-3f, 1e4f)) out.contact_hertz = d.contact_hertz;
-  if (!finite_in(c.contact_damping_ratio, 0.0f, 1e4f)) {
-    out.contact_damping_ratio = d.contact_damping_ratio;
-  }
-  if (!finite_in(c.contact_push_max_mps, 0.0f, 1e4f)) {
-    out.contact_push_max_mps = d.contact_push_max_mps;
-  }
-  if (!finite_in(c.restitution_threshold_mps, 0.0f, 1e4f)) {
-    out.restitution_threshold_mps = d.restitution_threshold_mps;
-  }
-  if (!finite_in(c.linear_slop_m, 0.0f, 1.0f)) out.linear_slop_m = d.linear_slop_m;
-  if (!finite_in(c.speculative_distance_m, 0.0f, 10.0f)) {
-    out.speculative_distance_m = d.speculative_distance_m;
-  }
-  if (!finite_in(c.sleep_threshold_mps, 0.0f, 1e4f))
-    out.sleep_threshold_mps = d.sleep_threshold_mps;
-  if (!finite_in(c.time_to_sleep_s, 0.0f, 1e6f)) out.time_to_sleep_s = d.time_to_sleep_s;
-  if (c.max_bodies < 1 || c.max_bodies > (1u << 24)) out.max_bodies = d.max_bodies;
   // Values enter the canonical grid like every other outside value.
   out.gravity = quantize(out.gravity);
   out.tick_seconds = quantize(out.tick_seconds);
@@ -66,6 +68,14 @@ WorldConfig sanitize(const WorldConfig& c) {
   out.speculative_distance_m = quantize(out.speculative_distance_m);
   out.sleep_threshold_mps = quantize(out.sleep_threshold_mps);
   out.time_to_sleep_s = quantize(out.time_to_sleep_s);
+  out.bounds_lower = quantize(out.bounds_lower);
+  out.bounds_upper = quantize(out.bounds_upper);
+  // Quantizing can only move a value onto the grid, but a degenerate box
+  // (corners closer than the grid) would collapse: keep the rule exact.
+  if (!d3::check_config(out).ok()) {
+    out.bounds_lower = d.bounds_lower;
+    out.bounds_upper = d.bounds_upper;
+  }
   return out;
 }
 
@@ -83,72 +93,52 @@ World3D::World3D(World3D&&) noexcept = default;
 World3D& World3D::operator=(World3D&&) noexcept = default;
 
 Status World3D::validate_config(const WorldConfig& c) {
-  if (!is_finite(c.gravity) || std::fabs(c.gravity.x) > 1e4f || std::fabs(c.gravity.y) > 1e4f ||
-      std::fabs(c.gravity.z) > 1e4f) {
-    return invalid("gravity must be finite, |g| <= 1e4 m/s^2");
-  }
-  if (!(c.tick_seconds > 0.0f && c.tick_seconds <= 0.1f)) {
-    return invalid("tick_seconds must be in (0, 0.1]");
-  }
-  if (c.substeps < 1 || c.substeps > 64) return invalid("substeps must be in [1, 64]");
-  if (c.relax_iterations < 0 || c.relax_iterations > 16) {
-    return invalid("relax_iterations must be in [0, 16]");
-  }
-  if (!finite_in(c.contact_hertz, 1e-3f, 1e4f))
-    return invalid("contact_hertz must be in [1e-3, 1e4]");
-  if (!finite_in(c.contact_damping_ratio, 0.0f, 1e4f)) {
-    return invalid("contact_damping_ratio must be in [0, 1e4]");
-  }
-  if (!finite_in(c.contact_push_max_mps, 0.0f, 1e4f)) {
-    return invalid("contact_push_max_mps must be in [0, 1e4]");
-  }
-  if (!finite_in(c.restitution_threshold_mps, 0.0f, 1e4f)) {
-    return invalid("restitution_threshold_mps must be in [0, 1e4]");
-  }
-  if (!finite_in(c.linear_slop_m, 0.0f, 1.0f)) return invalid("linear_slop_m must be in [0, 1]");
-  if (!finite_in(c.speculative_distance_m, 0.0f, 10.0f)) {
-    return invalid("speculative_distance_m must be in [0, 10]");
-  }
-  if (!finite_in(c.sleep_threshold_mps, 0.0f, 1e4f)) {
-    return invalid("sleep_threshold_mps must be in [0, 1e4]");
-  }
-  if (!finite_in(c.time_to_sleep_s, 0.0f, 1e6f))
-    return invalid("time_to_sleep_s must be in [0, 1e6]");
-  if (c.max_bodies < 1 || c.max_bodies > (1u << 24))
-    return invalid("max_bodies must be in [1, 2^24]");
-  return Status::Ok();
+  return d3::check_config(c);
 }
 
 // --- bodies -----------------------------------------------------------------
 
 Result<BodyId> World3D::create_body(const BodyDef& def) {
-  Status s = d3::validate_body_def(def);
-  if (!s.ok()) return s;
-  if (state_.live_count >= state_.config.max_bodies) {
+  const WorldConfig& config = state_.config;
+  if (Status s = d3::check_body_def(config, def); !s.ok()) return s;
+  if (state_.live_count >= config.max_bodies) {
     return Status::Error(ErrorCode::kCapacity, "world is full (max_bodies)");
   }
-  BodyDef q = def;
-  q.shape.radius = quantize(def.shape.radius);
-  q.shape.half_extents = quantize(def.shape.half_extents);
-  q.position = quantize(def.position);
-  q.rotation = quantize(normalize(def.rotation));
-  q.linear_velocity = quantize(def.linear_velocity);
-  q.angular_velocity = quantize(def.angular_velocity);
-  q.density = quantize(def.density);
-  q.linear_damping = quantize(def.linear_damping);
-  q.angular_damping = quantize(def.angular_damping);
-  q.gravity_scale = quantize(def.gravity_scale);
-  q.material.friction = quantize(def.material.friction);
-  q.material.restitution = quantize(def.material.restitution);
-  // Quantizing can round a tiny size to zero: validate again.
-  s = d3::validate_shape(q.shape);
-  if (!s.ok() || !(q.density > 0.0f)) return invalid("shape or density too small for the grid");
-  BodyMass mass = d3::compute_mass(q.kind, q.shape, q.density);
-  if (q.kind == BodyKind::kDynamic &&
-      !(std::isfinite(mass.mass) && mass.mass > 0.0f && std::isfinite(mass.inv_mass) &&
-        is_finite(mass.inv_inertia_local))) {
-    return invalid("degenerate mass: shape too small or density too extreme");
+  // The body is built aside, quantized, and held to the same rule a
+  // snapshot is; the world changes only once it passes.
+  BodyInfo info;
+  info.alive = 1;
+  info.generation = 1;  // the real one is set below
+  info.enabled = 1;
+  info.kind = def.kind;
+  info.sensor = def.sensor ? 1 : 0;
+  info.awake = def.kind == BodyKind::kStatic ? 0 : 1;
+  info.shape = def.shape;
+  info.shape.radius = quantize(def.shape.radius);
+  info.shape.half_extents = quantize(def.shape.half_extents);
+  if (def.shape.type == ShapeType::kSphere) info.shape.half_extents = {};
+  if (def.shape.type == ShapeType::kBox) info.shape.radius = 0.0f;
+  info.material = {quantize(def.material.friction), quantize(def.material.restitution)};
+  info.layer = def.layer;
+  info.mask = def.mask;
+  info.user_data = def.user_data;
+  info.density = quantize(def.density);
+  info.linear_damping = quantize(def.linear_damping);
+  info.angular_damping = quantize(def.angular_damping);
+  info.gravity_scale = quantize(def.gravity_scale);
+  BodySim sim;
+  sim.position = quantize(def.position);
+  sim.rotation = quantize(normalize(def.rotation));
+  if (def.kind != BodyKind::kStatic) {
+    sim.linear_velocity = quantize(def.linear_velocity);
+    sim.angular_velocity = quantize(def.angular_velocity);
   }
+  // Quantizing can round a tiny size to zero or nudge a value over a limit.
+  if (!d3::check_body(config, info, sim).ok()) {
+    return invalid("shape, density or pose leaves the valid range on the canonical grid");
+  }
+  const BodyMass mass = d3::compute_mass(info.kind, info.shape, info.density);
+  if (Status s = d3::check_mass(info.kind, mass); !s.ok()) return s;
 
   uint32_t index = 0;
   if (!state_.free_slots.empty()) {
@@ -160,31 +150,11 @@ Result<BodyId> World3D::create_body(const BodyDef& def) {
     state_.sims.emplace_back();
     state_.masses.emplace_back();
   }
-  BodyInfo& info = state_.infos[index];
-  uint32_t generation = info.generation + 1;
+  uint32_t generation = state_.infos[index].generation + 1;
   if (generation == 0) generation = 1;  // wrapped: 0 is the null handle
   info.generation = generation;
-  info.alive = 1;
-  info.kind = q.kind;
-  info.sensor = q.sensor ? 1 : 0;
-  info.awake = q.kind == BodyKind::kStatic ? 0 : 1;
-  info.shape = q.shape;
-  if (q.shape.type == ShapeType::kSphere) info.shape.half_extents = {};
-  if (q.shape.type == ShapeType::kBox) info.shape.radius = 0.0f;
-  info.material = q.material;
-  info.layer = q.layer;
-  info.mask = q.mask;
-  info.user_data = q.user_data;
-  info.density = q.density;
-  info.linear_damping = q.linear_damping;
-  info.angular_damping = q.angular_damping;
-  info.gravity_scale = q.gravity_scale;
-  BodySim& sim = state_.sims[index];
-  sim = BodySim{};
-  sim.position = q.position;
-  sim.rotation = q.rotation;
-  sim.linear_velocity = q.kind == BodyKind::kStatic ? Vec3{} : q.linear_velocity;
-  sim.angular_velocity = q.kind == BodyKind::kStatic ? Vec3{} : q.angular_velocity;
+  state_.infos[index] = info;
+  state_.sims[index] = sim;
   state_.masses[index] = mass;
   ++state_.live_count;
   d3::mark_passive_dirty(*scratch_);
@@ -253,46 +223,71 @@ const Shape* World3D::shape(BodyId id) const {
 
 Status World3D::set_transform(BodyId id, Vec3 position, Quat rotation) {
   if (!is_live(state_, id)) return not_found();
-  if (!is_finite(position) || std::fabs(position.x) >= d3::kMaxCoordinate ||
-      std::fabs(position.y) >= d3::kMaxCoordinate || std::fabs(position.z) >= d3::kMaxCoordinate) {
-    return invalid("position must be finite, |x| < 1e5 m");
+  if (!is_finite(position) || !d3::inside_bounds(state_.config, position)) {
+    return invalid("position must be finite and inside the world bounds");
   }
   if (!is_finite(rotation) || length_squared(rotation) < 1e-6f) {
     return invalid("rotation must be a finite, non-zero quaternion");
   }
-  BodySim& sim = state_.sims[id.index];
-  sim.position = quantize(position);
-  sim.rotation = quantize(normalize(rotation));
-  d3::wake_body(state_, *scratch_, id.index);
+  const Vec3 p = quantize(position);
+  if (!d3::inside_bounds(state_.config, p)) {
+    return invalid("position must be inside the world bounds");
+  }
   // A teleported body may leave sleeping bodies unsupported.
   d3::wake_touching(state_, *scratch_, id);
+  BodySim& sim = state_.sims[id.index];
+  sim.position = p;
+  sim.rotation = quantize(normalize(rotation));
+  d3::wake_body(state_, *scratch_, id.index);
   d3::mark_passive_dirty(*scratch_);
   return Status::Ok();
 }
 
+namespace {
+
+// Velocity, impulse and force setters act on moving bodies only; a disabled
+// body is frozen until the game enables it again.
+Status check_movable(const WorldState& state, BodyId id, bool dynamic_only, const char* what) {
+  const BodyInfo& info = state.infos[id.index];
+  if (info.kind == BodyKind::kStatic || (dynamic_only && info.kind != BodyKind::kDynamic)) {
+    return Status::Error(ErrorCode::kInvalidArgument, what);
+  }
+  if (info.enabled == 0) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "body is disabled (it left the world bounds or was disabled): "
+                         "enable it first");
+  }
+  return Status::Ok();
+}
+
+bool speed_ok(Vec3 v) {
+  return is_finite(v) && length_squared(v) <= d3::kMaxSpeed * d3::kMaxSpeed;
+}
+
+}  // namespace
+
 Status World3D::set_linear_velocity(BodyId id, Vec3 velocity_mps) {
   if (!is_live(state_, id)) return not_found();
-  if (!is_finite(velocity_mps) || length_squared(velocity_mps) > d3::kMaxSpeed * d3::kMaxSpeed) {
-    return invalid("velocity must be finite, at most 1e4 m/s");
-  }
-  if (state_.infos[id.index].kind == BodyKind::kStatic) {
-    return invalid("static bodies cannot move");
-  }
-  state_.sims[id.index].linear_velocity = quantize(velocity_mps);
+  if (!speed_ok(velocity_mps)) return invalid("velocity must be finite, at most 1e4 m/s");
+  if (Status s = check_movable(state_, id, false, "static bodies cannot move"); !s.ok()) return s;
+  const Vec3 v = quantize(velocity_mps);
+  if (!speed_ok(v)) return invalid("velocity must be finite, at most 1e4 m/s");
+  state_.sims[id.index].linear_velocity = v;
   d3::wake_body(state_, *scratch_, id.index);
   return Status::Ok();
 }
 
 Status World3D::set_angular_velocity(BodyId id, Vec3 velocity_radps) {
   if (!is_live(state_, id)) return not_found();
-  if (!is_finite(velocity_radps) ||
-      length_squared(velocity_radps) > d3::kMaxSpeed * d3::kMaxSpeed) {
+  if (!speed_ok(velocity_radps)) {
     return invalid("angular velocity must be finite, at most 1e4 rad/s");
   }
-  if (state_.infos[id.index].kind == BodyKind::kStatic) {
-    return invalid("static bodies cannot rotate");
+  if (Status s = check_movable(state_, id, false, "static bodies cannot rotate"); !s.ok()) {
+    return s;
   }
-  state_.sims[id.index].angular_velocity = quantize(velocity_radps);
+  const Vec3 w = quantize(velocity_radps);
+  if (!speed_ok(w)) return invalid("angular velocity must be finite, at most 1e4 rad/s");
+  state_.sims[id.index].angular_velocity = w;
   d3::wake_body(state_, *scratch_, id.index);
   return Status::Ok();
 }
@@ -302,8 +297,8 @@ Status World3D::apply_linear_impulse(BodyId id, Vec3 impulse, Vec3 world_point) 
   if (!is_finite(impulse) || !is_finite(world_point)) {
     return invalid("impulse and point must be finite");
   }
-  if (state_.infos[id.index].kind != BodyKind::kDynamic) {
-    return invalid("impulses only move dynamic bodies");
+  if (Status s = check_movable(state_, id, true, "impulses only move dynamic bodies"); !s.ok()) {
+    return s;
   }
   Vec3 j = quantize(impulse);
   Vec3 p = quantize(world_point);
@@ -313,10 +308,7 @@ Status World3D::apply_linear_impulse(BodyId id, Vec3 impulse, Vec3 world_point) 
   Vec3 dw = d3::world_inverse_inertia(m, sim.rotation) * cross(p - sim.position, j);
   Vec3 v = sim.linear_velocity + dv;
   Vec3 w = sim.angular_velocity + dw;
-  if (!is_finite(v) || !is_finite(w) || length_squared(v) > d3::kMaxSpeed * d3::kMaxSpeed ||
-      length_squared(w) > d3::kMaxSpeed * d3::kMaxSpeed) {
-    return invalid("impulse would exceed the speed limit");
-  }
+  if (!speed_ok(v) || !speed_ok(w)) return invalid("impulse would exceed the speed limit");
   sim.linear_velocity = v;
   sim.angular_velocity = w;
   d3::wake_body(state_, *scratch_, id.index);
@@ -326,14 +318,37 @@ Status World3D::apply_linear_impulse(BodyId id, Vec3 impulse, Vec3 world_point) 
 Status World3D::apply_force(BodyId id, Vec3 force_n) {
   if (!is_live(state_, id)) return not_found();
   if (!is_finite(force_n)) return invalid("force must be finite");
-  if (state_.infos[id.index].kind != BodyKind::kDynamic) {
-    return invalid("forces only move dynamic bodies");
+  if (Status s = check_movable(state_, id, true, "forces only move dynamic bodies"); !s.ok()) {
+    return s;
   }
   Vec3 f = state_.sims[id.index].force + quantize(force_n);
-  if (!is_finite(f) || length_squared(f) > 1e24f) return invalid("force too large (> 1e12 N)");
+  if (!is_finite(f) || length_squared(f) > d3::kMaxForce * d3::kMaxForce) {
+    return invalid("force too large (> 1e12 N)");
+  }
   state_.sims[id.index].force = f;
   d3::wake_body(state_, *scratch_, id.index);
   return Status::Ok();
+}
+
+Status World3D::set_enabled(BodyId id, bool enabled) {
+  if (!is_live(state_, id)) return not_found();
+  BodyInfo& info = state_.infos[id.index];
+  if ((info.enabled != 0) == enabled) return Status::Ok();
+  if (enabled) {
+    info.enabled = 1;
+    d3::wake_body(state_, *scratch_, id.index);
+  } else {
+    // What rested on it must fall; its contacts end (with exit events) on
+    // the next step, as a destroyed body's do.
+    d3::wake_touching(state_, *scratch_, id);
+    d3::disable_body(info, state_.sims[id.index]);
+  }
+  d3::mark_passive_dirty(*scratch_);
+  return Status::Ok();
+}
+
+bool World3D::is_enabled(BodyId id) const {
+  return is_live(state_, id) && state_.infos[id.index].enabled != 0;
 }
 
 Status World3D::set_user_data(BodyId id, uint64_t user_data) {
@@ -347,6 +362,7 @@ Status World3D::set_user_data(BodyId id, uint64_t user_data) {
 void World3D::step() {
   WorldScratch& s = *scratch_;
   s.stats = StepStats{};
+  s.body_events.clear();
   d3::find_pairs(state_, s);
   d3::update_contacts(state_, s);
   d3::wake_touched_islands(state_, s);
@@ -358,6 +374,9 @@ void World3D::step() {
 
 std::span<const ContactEvent> World3D::events() const {
   return scratch_->events;
+}
+std::span<const BodyEvent> World3D::body_events() const {
+  return scratch_->body_events;
 }
 const StepStats& World3D::stats() const {
   return scratch_->stats;
@@ -380,6 +399,7 @@ void World3D::restore(const WorldState& in) {
   // Scratch derived from the old state must not leak into the next step.
   d3::mark_passive_dirty(*scratch_);
   scratch_->events.clear();
+  scratch_->body_events.clear();
 }
 
 const WorldState& World3D::state() const {
@@ -411,6 +431,7 @@ void World3D::dump_bodies(std::vector<BodyRecord>& out) const {
     r.linear_velocity = sim.linear_velocity;
     r.angular_velocity = sim.angular_velocity;
     r.awake = info.awake != 0;
+    r.enabled = info.enabled != 0;
     out.push_back(r);
   }
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "d3/manifold.h"
+#include "rewind/sim/body_event.h"
 #include "rewind/sim/contact_event.h"
 #include "rewind/sim/world3d.h"
 
@@ -123,6 +124,7 @@ class WorldScratch {
   std::vector<uint8_t> island_flag;
   // output
   std::vector<ContactEvent> events;
+  std::vector<BodyEvent> body_events;
   StepStats stats;
 };
 

@@ -19,6 +19,7 @@ struct BodyRecord {
   Vec3 linear_velocity;
   Vec3 angular_velocity;
   bool awake = true;
+  bool enabled = true;  ///< false once disabled (left the world bounds)
 };
 
 /// One differing field between two dumps, e.g. body 7 "position.y".

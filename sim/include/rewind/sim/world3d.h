@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rewind/sim/body.h"
+#include "rewind/sim/body_event.h"
 #include "rewind/sim/body_record.h"
 #include "rewind/sim/contact_event.h"
 #include "rewind/sim/query.h"
@@ -44,6 +45,13 @@ class World3D {
 
   /// Checks every field of a config for range and finiteness.
   static Status validate_config(const WorldConfig& config);
+  /// Portable encoding of a config (little-endian, field by field): the
+  /// bytes every snapshot embeds, and what a replay records so a verifier
+  /// can tell whether it runs the world the match ran.
+  static void encode_config(const WorldConfig& config, std::vector<uint8_t>& out);
+  /// Reads encode_config()'s bytes; kCorrupt for malformed bytes or a config
+  /// validate_config() refuses.
+  static Result<WorldConfig> decode_config(std::span<const uint8_t> bytes);
 
   // --- bodies -------------------------------------------------------------
 
@@ -70,7 +78,14 @@ class World3D {
   bool is_awake(BodyId id) const;
   const Shape* shape(BodyId id) const;
 
+  /// False for disabled bodies (see set_enabled) and invalid ids.
+  bool is_enabled(BodyId id) const;
+
   // Setters validate (finite values, live id), quantize, and wake the body.
+  // Velocity, impulse and force setters refuse disabled bodies.
+
+  /// Teleports a body; the position must lie inside the world bounds. A
+  /// disabled body stays disabled (move it, then enable it).
   Status set_transform(BodyId id, Vec3 position, Quat rotation);
   Status set_linear_velocity(BodyId id, Vec3 velocity_mps);
   Status set_angular_velocity(BodyId id, Vec3 velocity_radps);
@@ -79,6 +94,12 @@ class World3D {
   /// Adds a force (N) at the centre of mass for the next step only.
   Status apply_force(BodyId id, Vec3 force_n);
   Status set_user_data(BodyId id, uint64_t user_data);
+  /// Takes a body out of the simulation (false) or puts it back (true). A
+  /// disabled body keeps its pose, has no velocity, no contacts (they end
+  /// with exit events on the next step), is not found by queries and is
+  /// never woken. The step disables bodies that leave the world bounds
+  /// (BodyEventType::kLeftBounds); enabling wakes the body where it stands.
+  Status set_enabled(BodyId id, bool enabled);
 
   // --- stepping -----------------------------------------------------------
 
@@ -86,6 +107,9 @@ class World3D {
   void step();
   /// Contact events of the last step, ordered by (a.index, b.index).
   std::span<const ContactEvent> events() const;
+  /// Body events of the last step (bodies that left the world bounds),
+  /// ordered by body index. Not state: restore() clears them.
+  std::span<const BodyEvent> body_events() const;
   const StepStats& stats() const;
   const WorldConfig& config() const;
   /// Number of steps taken since creation.
@@ -118,8 +142,10 @@ class World3D {
   /// for resync snapshots sent over the network.
   void serialize(std::vector<uint8_t>& out) const;
   /// Replaces the state from serialize()'s bytes. Malformed input (bad sizes,
-  /// indices out of range, non-finite values) is kCorrupt and leaves the
-  /// world unchanged.
+  /// indices out of range) and any body the state rule refuses (the rule
+  /// the step itself keeps: finite values, speeds, poses inside the world
+  /// bounds) is kCorrupt, names the body and the reason, and leaves the
+  /// world unchanged. Every state step() reaches is accepted.
   Status deserialize(std::span<const uint8_t> bytes);
 
  private:

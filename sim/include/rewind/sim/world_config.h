@@ -23,6 +23,14 @@ struct WorldConfig {
   float sleep_threshold_mps = 0.05f;  ///< body speed below which it may sleep
   float time_to_sleep_s = 0.5f;       ///< seconds below the threshold before sleeping
   uint32_t max_bodies = 4096;         ///< create_body refuses beyond this
+  /// The box body centres may occupy, metres (each component in
+  /// [-1e5, 1e5], lower < upper). Bodies cannot be created or placed
+  /// outside it; a moving body whose centre leaves it during a step is
+  /// disabled where it crossed (clamped onto the box, velocities zeroed) and
+  /// reported once by a BodyEvent of type kLeftBounds. The default keeps
+  /// float32 resolution near 0.5 mm at the edge.
+  Vec3 bounds_lower{-5000.0f, -5000.0f, -5000.0f};
+  Vec3 bounds_upper{5000.0f, 5000.0f, 5000.0f};
 };
 
 }  // namespace rwd::sim

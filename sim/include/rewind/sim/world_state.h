@@ -25,6 +25,9 @@ struct BodyInfo {
   BodyKind kind = BodyKind::kStatic;
   uint8_t sensor = 0;  ///< 1: reports overlaps, never solved
   uint8_t awake = 0;   ///< 1: simulated this step (static bodies are never awake)
+  /// 0: taken out of the simulation (left the world bounds, or the game
+  /// disabled it): never awake, no contacts, not found by queries.
+  uint8_t enabled = 1;
   Shape shape;
   Material material;
   uint32_t layer = 1;

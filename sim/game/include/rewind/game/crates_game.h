@@ -28,6 +28,8 @@ struct CratesState {
 class CratesGame final : public GameWithState<CratesState> {
  public:
   std::string_view name() const override { return "crates"; }
+  /// 2: closed arena corners, kill plane and respawn of escaped bodies.
+  uint32_t rules_version() const override { return 2; }
   sim::WorldConfig world_config() const override;
 
  protected:

@@ -30,6 +30,10 @@ class Game {
   virtual ~Game() = default;
   /// Registry name, e.g. "crates".
   virtual std::string_view name() const = 0;
+  /// Revision of the game's rules: raised whenever a change to the rules,
+  /// the scene or the state block can alter a result for the same inputs.
+  /// Replays record it next to sim::kSimRevision.
+  virtual uint32_t rules_version() const = 0;
   /// World tuning this game runs with.
   virtual sim::WorldConfig world_config() const = 0;
   /// Size in bytes of the game's state block (trivially copyable data).

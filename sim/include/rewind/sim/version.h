@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Which simulation code this build runs. A replay or a snapshot produced by
+// another revision may step differently from the same inputs, so tools that
+// re-simulate compare revisions before they compare checksums.
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace rwd::sim {
+
+/// Name of the engine, as recorded in replays.
+inline constexpr std::string_view kEngineName = "rewind-sim";
+
+/// Simulation revision: raised whenever a change can alter any result (a
+/// checksum, a contact, an event) for the same scene and inputs, or the
+/// snapshot encoding. Builds with equal revisions re-simulate each other's
+/// matches bit for bit; builds with different ones make no such promise.
+///   1  first 3D lane
+///   2  world bounds (out-of-bounds bodies are disabled), disabled bodies,
+///      one validity rule shared by the step and the snapshot reader
+inline constexpr uint32_t kSimRevision = 2;
+
+/// "rewind-sim r2": the engine identity a replay records.
+inline std::string engine_version() {
+  return std::string(kEngineName) + " r" + std::to_string(kSimRevision);
+}
+
+}  // namespace rwd::sim

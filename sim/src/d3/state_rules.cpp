@@ -1,0 +1,234 @@
+// SPDX-License-Identifier: MIT
+#include "d3/state_rules.h"
+
+#include <cmath>
+
+namespace rwd::sim::d3 {
+namespace {
+
+Status invalid(const char* what) {
+  return Status::Error(ErrorCode::kInvalidArgument, what);
+}
+
+bool finite_in(float v, float lo, float hi) {
+  return std::isfinite(v) && v >= lo && v <= hi;
+}
+
+bool in_size_range(float v) {
+  return std::isfinite(v) && v > 0.0f && v <= kMaxShapeSize;
+}
+
+// Speeds are limited by length, not per component, so the rule does not
+// depend on how the world is oriented.
+bool in_speed_range(Vec3 v) {
+  return is_finite(v) && length_squared(v) <= kMaxSpeed * kMaxSpeed;
+}
+
+bool in_coordinate_range(Vec3 v) {
+  return is_finite(v) && std::fabs(v.x) <= kMaxCoordinate && std::fabs(v.y) <= kMaxCoordinate &&
+         std::fabs(v.z) <= kMaxCoordinate;
+}
+
+float clampf(float v, float lo, float hi) {
+  return v < lo ? lo : (v > hi ? hi : v);
+}
+
+// Fields a BodyDef and a stored body share: kind, shape, material, tuning.
+Status check_common(BodyKind kind, const Shape& shape, float density, float linear_damping,
+                    float angular_damping, float gravity_scale, const Material& material) {
+  if (kind != BodyKind::kStatic && kind != BodyKind::kKinematic && kind != BodyKind::kDynamic) {
+    return invalid("unknown body kind");
+  }
+  if (Status s = check_shape(shape); !s.ok()) return s;
+  if (!(std::isfinite(density) && density > 0.0f && density <= 1e9f)) {
+    return invalid("density must be in (0, 1e9] kg/m^3");
+  }
+  if (!finite_in(linear_damping, 0.0f, 1e4f) || !finite_in(angular_damping, 0.0f, 1e4f)) {
+    return invalid("damping must be in [0, 1e4] 1/s");
+  }
+  if (!(std::isfinite(gravity_scale) && std::fabs(gravity_scale) <= 1e3f)) {
+    return invalid("gravity_scale must be finite, |g| <= 1000");
+  }
+  if (!finite_in(material.friction, 0.0f, 10.0f)) return invalid("friction must be in [0, 10]");
+  if (!finite_in(material.restitution, 0.0f, 1.0f)) {
+    return invalid("restitution must be in [0, 1]");
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status check_config(const WorldConfig& c) {
+  if (!is_finite(c.gravity) || std::fabs(c.gravity.x) > 1e4f || std::fabs(c.gravity.y) > 1e4f ||
+      std::fabs(c.gravity.z) > 1e4f) {
+    return invalid("gravity must be finite, |g| <= 1e4 m/s^2");
+  }
+  if (!(c.tick_seconds > 0.0f && c.tick_seconds <= 0.1f)) {
+    return invalid("tick_seconds must be in (0, 0.1]");
+  }
+  if (c.substeps < 1 || c.substeps > 64) return invalid("substeps must be in [1, 64]");
+  if (c.relax_iterations < 0 || c.relax_iterations > 16) {
+    return invalid("relax_iterations must be in [0, 16]");
+  }
+  if (!finite_in(c.contact_hertz, 1e-3f, 1e4f)) {
+    return invalid("contact_hertz must be in [1e-3, 1e4]");
+  }
+  if (!finite_in(c.contact_damping_ratio, 0.0f, 1e4f)) {
+    return invalid("contact_damping_ratio must be in [0, 1e4]");
+  }
+  if (!finite_in(c.contact_push_max_mps, 0.0f, 1e4f)) {
+    return invalid("contact_push_max_mps must be in [0, 1e4]");
+  }
+  if (!finite_in(c.restitution_threshold_mps, 0.0f, 1e4f)) {
+    return invalid("restitution_threshold_mps must be in [0, 1e4]");
+  }
+  if (!finite_in(c.linear_slop_m, 0.0f, 1.0f)) return invalid("linear_slop_m must be in [0, 1]");
+  if (!finite_in(c.speculative_distance_m, 0.0f, 10.0f)) {
+    return invalid("speculative_distance_m must be in [0, 10]");
+  }
+  if (!finite_in(c.sleep_threshold_mps, 0.0f, 1e4f)) {
+    return invalid("sleep_threshold_mps must be in [0, 1e4]");
+  }
+  if (!finite_in(c.time_to_sleep_s, 0.0f, 1e6f)) {
+    return invalid("time_to_sleep_s must be in [0, 1e6]");
+  }
+  if (c.max_bodies < 1 || c.max_bodies > (1u << 24)) {
+    return invalid("max_bodies must be in [1, 2^24]");
+  }
+  if (!in_coordinate_range(c.bounds_lower) || !in_coordinate_range(c.bounds_upper)) {
+    return invalid("bounds must be finite, each component in [-1e5, 1e5] m");
+  }
+  if (!(c.bounds_lower.x < c.bounds_upper.x && c.bounds_lower.y < c.bounds_upper.y &&
+        c.bounds_lower.z < c.bounds_upper.z)) {
+    return invalid("bounds_lower must be below bounds_upper on every axis");
+  }
+  return Status::Ok();
+}
+
+Status check_shape(const Shape& shape) {
+  switch (shape.type) {
+    case ShapeType::kSphere:
+      if (!in_size_range(shape.radius)) return invalid("sphere radius must be in (0, 1000] m");
+      return Status::Ok();
+    case ShapeType::kBox:
+      if (!in_size_range(shape.half_extents.x) || !in_size_range(shape.half_extents.y) ||
+          !in_size_range(shape.half_extents.z)) {
+        return invalid("box half extents must be in (0, 1000] m");
+      }
+      return Status::Ok();
+  }
+  return invalid("unknown shape type");
+}
+
+Status check_body_def(const WorldConfig& config, const BodyDef& def) {
+  if (Status s = check_common(def.kind, def.shape, def.density, def.linear_damping,
+                              def.angular_damping, def.gravity_scale, def.material);
+      !s.ok()) {
+    return s;
+  }
+  if (!is_finite(def.position) || !inside_bounds(config, def.position)) {
+    return invalid("position must be finite and inside the world bounds");
+  }
+  if (!is_finite(def.rotation) || length_squared(def.rotation) < 1e-6f) {
+    return invalid("rotation must be a finite, non-zero quaternion");
+  }
+  if (!in_speed_range(def.linear_velocity) || !in_speed_range(def.angular_velocity)) {
+    return invalid("velocities must be finite, at most 1e4 m/s and 1e4 rad/s");
+  }
+  if (def.kind == BodyKind::kStatic &&
+      (!(def.linear_velocity == Vec3{}) || !(def.angular_velocity == Vec3{}))) {
+    return invalid("static bodies cannot have a velocity");
+  }
+  return Status::Ok();
+}
+
+Status check_mass(BodyKind kind, const BodyMass& m) {
+  if (kind != BodyKind::kDynamic) return Status::Ok();
+  if (!(std::isfinite(m.mass) && m.mass > 0.0f && std::isfinite(m.inv_mass) && m.inv_mass > 0.0f &&
+        is_finite(m.inv_inertia_local))) {
+    return invalid("degenerate mass: shape too small or density too extreme");
+  }
+  return Status::Ok();
+}
+
+Status check_body(const WorldConfig& config, const BodyInfo& info, const BodySim& sim) {
+  if (info.alive != 1 || info.generation == 0) return invalid("not a live body");
+  if (info.sensor > 1 || info.awake > 1 || info.enabled > 1) return invalid("flag out of range");
+  if (Status s = check_common(info.kind, info.shape, info.density, info.linear_damping,
+                              info.angular_damping, info.gravity_scale, info.material);
+      !s.ok()) {
+    return s;
+  }
+  if (!is_finite(sim.position) || !inside_bounds(config, sim.position)) {
+    return invalid("position outside the world bounds");
+  }
+  if (!is_finite(sim.rotation) ||
+      std::fabs(length_squared(sim.rotation) - 1.0f) > kRotationTolerance) {
+    return invalid("rotation is not a unit quaternion");
+  }
+  if (!in_speed_range(sim.linear_velocity) || !in_speed_range(sim.angular_velocity)) {
+    return invalid("speed above 1e4");
+  }
+  if (!is_finite(sim.force) || length_squared(sim.force) > kMaxForce * kMaxForce) {
+    return invalid("force above 1e12 N");
+  }
+  if (!(std::isfinite(sim.sleep_time) && sim.sleep_time >= 0.0f)) {
+    return invalid("sleep time must be finite and >= 0");
+  }
+  const bool still =
+      sim.linear_velocity == Vec3{} && sim.angular_velocity == Vec3{} && sim.force == Vec3{};
+  if (info.kind == BodyKind::kStatic && (info.awake != 0 || !still)) {
+    return invalid("a static body is awake or moving");
+  }
+  if (info.enabled == 0 && (info.awake != 0 || !still)) {
+    return invalid("a disabled body is awake or moving");
+  }
+  return Status::Ok();
+}
+
+bool inside_bounds(const WorldConfig& c, Vec3 p) {
+  return p.x >= c.bounds_lower.x && p.x <= c.bounds_upper.x && p.y >= c.bounds_lower.y &&
+         p.y <= c.bounds_upper.y && p.z >= c.bounds_lower.z && p.z <= c.bounds_upper.z;
+}
+
+Vec3 clamp_length(Vec3 v, float max) {
+  if (!is_finite(v)) return {};
+  const float len_sq = length_squared(v);
+  if (!(len_sq > max * max)) return v;
+  // Shorten a little below the limit so rounding cannot land above it.
+  Vec3 out = v * ((max * 0.999f) / std::sqrt(len_sq));
+  return is_finite(out) ? out : Vec3{};
+}
+
+float settle_impulse(float impulse) {
+  return std::isfinite(impulse) ? impulse : 0.0f;
+}
+
+bool settle_body(const WorldConfig& config, const BodySim& before, BodyInfo& info, BodySim& sim) {
+  if (!is_finite(sim.position)) sim.position = before.position;
+  if (!is_finite(sim.rotation) ||
+      std::fabs(length_squared(sim.rotation) - 1.0f) > kRotationTolerance) {
+    sim.rotation = before.rotation;
+  }
+  sim.linear_velocity = clamp_length(sim.linear_velocity, kMaxSpeed);
+  sim.angular_velocity = clamp_length(sim.angular_velocity, kMaxSpeed);
+  if (!is_finite(sim.force) || length_squared(sim.force) > kMaxForce * kMaxForce) sim.force = {};
+  if (!(std::isfinite(sim.sleep_time) && sim.sleep_time >= 0.0f)) sim.sleep_time = 0.0f;
+  if (inside_bounds(config, sim.position)) return false;
+  sim.position = {clampf(sim.position.x, config.bounds_lower.x, config.bounds_upper.x),
+                  clampf(sim.position.y, config.bounds_lower.y, config.bounds_upper.y),
+                  clampf(sim.position.z, config.bounds_lower.z, config.bounds_upper.z)};
+  disable_body(info, sim);
+  return true;
+}
+
+void disable_body(BodyInfo& info, BodySim& sim) {
+  info.enabled = 0;
+  info.awake = 0;
+  sim.linear_velocity = {};
+  sim.angular_velocity = {};
+  sim.force = {};
+  sim.sleep_time = 0.0f;
+}
+
+}  // namespace rwd::sim::d3

@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The one rule for valid 3D state. Everything that puts a value into
+// WorldState goes through here:
+//   - the API (create_body, setters) refuses values the rule refuses;
+//   - deserialize() refuses snapshots holding a value the rule refuses;
+//   - the step settles every body it moved back under the rule (speeds
+//     clamped, non-finite results discarded, bodies that left the world
+//     bounds disabled), so no state the step reaches is one a snapshot
+//     reader would refuse.
+// A change to one of these limits changes all three at once.
+#include <cstdint>
+
+#include "rewind/sim/body.h"
+#include "rewind/sim/status.h"
+#include "rewind/sim/world_config.h"
+#include "rewind/sim/world_state.h"
+
+namespace rwd::sim::d3 {
+
+/// Largest |component| of the world bounds, metres.
+inline constexpr float kMaxCoordinate = 1e5f;
+/// Largest accepted radius or half extent, metres.
+inline constexpr float kMaxShapeSize = 1000.0f;
+/// Largest speed a body may hold, m/s (linear) or rad/s (angular).
+inline constexpr float kMaxSpeed = 1e4f;
+/// Largest force accumulated for one step, N.
+inline constexpr float kMaxForce = 1e12f;
+/// Largest deviation of |q|^2 from 1 in a stored rotation.
+inline constexpr float kRotationTolerance = 1e-3f;
+
+/// Range and finiteness of every config field, bounds included.
+Status check_config(const WorldConfig& config);
+/// Size of a shape.
+Status check_shape(const Shape& shape);
+/// A body definition as create_body() receives it (before quantization).
+Status check_body_def(const WorldConfig& config, const BodyDef& def);
+/// Mass properties of a body: finite and positive for dynamic bodies.
+Status check_mass(BodyKind kind, const BodyMass& mass);
+/// A stored body: identity flags, shape, material, pose inside the world
+/// bounds, speeds, accumulated force, sleep timer, and the flags' mutual
+/// consistency (static and disabled bodies never awake nor moving).
+Status check_body(const WorldConfig& config, const BodyInfo& info, const BodySim& sim);
+
+/// True when `p` lies inside the config's bounds (faces included).
+bool inside_bounds(const WorldConfig& config, Vec3 p);
+/// `v` scaled down to length `max` when it is longer; zero when not finite.
+Vec3 clamp_length(Vec3 v, float max);
+/// A solver impulse as it may be cached: non-finite values become zero.
+float settle_impulse(float impulse);
+
+/// Brings a body the step has just moved back under the rule. `before` is
+/// its state at the start of the step. Non-finite poses fall back to
+/// `before`'s, speeds are clamped to kMaxSpeed, and a body whose centre left
+/// the world bounds is clamped onto them and disabled. Returns true when
+/// the body was disabled (the caller reports it).
+bool settle_body(const WorldConfig& config, const BodySim& before, BodyInfo& info, BodySim& sim);
+
+/// Takes a live body out of the simulation where it stands: not awake,
+/// not moving, no pending force. Its contacts end on the next step.
+void disable_body(BodyInfo& info, BodySim& sim);
+
+}  // namespace rwd::sim::d3
