@@ -9,7 +9,7 @@ namespace rwd::game {
 namespace {
 
 constexpr float kArenaHalf = 10.0f;     // m, inner half width of the arena
-constexpr float kWallHeight = 1.5f;     // m
+constexpr float kWallHeight = 8.0f;     // m, up to the roof
 constexpr float kCrateHalf = 0.4f;      // m
 constexpr int kTowerLevels = 4;         // 2x2 crates per level
 constexpr float kPusherRadius = 0.5f;   // m
@@ -20,6 +20,11 @@ constexpr float kJumpSpeed = 5.0f;      // m/s
 constexpr float kDashSpeed = 10.0f;     // m/s
 constexpr int32_t kCooldownTicks = 30;
 constexpr float kScoreRing = 4.0f;  // m from the centre
+// Below this height a body has left the arena for good and is respawned.
+constexpr float kKillPlaneY = -10.0f;
+// The world ends well beyond the arena: a body flung that far is disabled
+// by the engine (BodyEventType::kLeftBounds) and respawned like a fall.
+constexpr float kWorldHalf = 200.0f;
 constexpr uint32_t kLayerWorld = 1u << 0;
 constexpr uint32_t kLayerPusher = 1u << 1;
 constexpr uint64_t kTagPusher = 0x100;
@@ -43,12 +48,35 @@ sim::Vec3 spawn_point(uint32_t player, uint32_t player_count) {
   return {r * sim::det_cos(angle), kPusherRadius + 0.01f, r * sim::det_sin(angle)};
 }
 
+// Where crate c reappears after a fall: above the tower (whose top is at
+// 3.2 m) and below the roof, spread so that two crates respawned on the same
+// tick never share a spot.
+sim::Vec3 crate_respawn_point(uint32_t crate) {
+  const float step = 2.0f * kCrateHalf + 0.05f;
+  return {(static_cast<float>(crate % 4) - 1.5f) * step,
+          3.7f + static_cast<float>(crate / 4 % 4) * step, 0.0f};
+}
+
+bool fell(const sim::World3D& world, sim::BodyId id) {
+  return world.is_valid(id) && (!world.is_enabled(id) || world.position(id).y < kKillPlaneY);
+}
+
+// Puts a body back into play at `where`, at rest.
+void respawn(sim::World3D& world, sim::BodyId id, sim::Vec3 where) {
+  (void)world.set_transform(id, where, sim::Quat{});
+  (void)world.set_enabled(id, true);
+  (void)world.set_linear_velocity(id, {});
+  (void)world.set_angular_velocity(id, {});
+}
+
 }  // namespace
 
 sim::WorldConfig CratesGame::world_config() const {
   sim::WorldConfig config;
   config.tick_seconds = 1.0f / 60.0f;
   config.substeps = 4;
+  config.bounds_lower = {-kWorldHalf, -kWorldHalf, -kWorldHalf};
+  config.bounds_upper = {kWorldHalf, kWorldHalf, kWorldHalf};
   return config;
 }
 
@@ -56,13 +84,20 @@ void CratesGame::build_typed(const MatchSetup& setup, sim::World3D& world,
                              CratesState& state) const {
   state.player_count = setup.player_count;
 
-  // Arena: floor with its top at y = 0, four walls.
+  // Arena: floor with its top at y = 0, four walls and a roof: a closed box.
+  // The x walls run the floor's full length so the corners are closed; the
+  // roof stops pushers squeezed up a corner pile-up (or jumping off one)
+  // from going over the walls.
   (void)world.create_body(static_box({0, -0.5f, 0}, {kArenaHalf + 1, 0.5f, kArenaHalf + 1}));
   const float wall_y = kWallHeight * 0.5f;
-  (void)world.create_body(static_box({kArenaHalf + 0.5f, wall_y, 0}, {0.5f, wall_y, kArenaHalf}));
-  (void)world.create_body(static_box({-kArenaHalf - 0.5f, wall_y, 0}, {0.5f, wall_y, kArenaHalf}));
+  (void)world.create_body(
+      static_box({kArenaHalf + 0.5f, wall_y, 0}, {0.5f, wall_y, kArenaHalf + 1}));
+  (void)world.create_body(
+      static_box({-kArenaHalf - 0.5f, wall_y, 0}, {0.5f, wall_y, kArenaHalf + 1}));
   (void)world.create_body(static_box({0, wall_y, kArenaHalf + 0.5f}, {kArenaHalf, wall_y, 0.5f}));
   (void)world.create_body(static_box({0, wall_y, -kArenaHalf - 0.5f}, {kArenaHalf, wall_y, 0.5f}));
+  (void)world.create_body(
+      static_box({0, kWallHeight + 0.5f, 0}, {kArenaHalf + 1, 0.5f, kArenaHalf + 1}));
 
   // The tower: kTowerLevels levels of 2x2 crates, resting exactly on each other.
   uint32_t crate = 0;
@@ -156,6 +191,20 @@ void CratesGame::after_step_typed(Tick /*tick*/, sim::World3D& world, CratesStat
     if (b_pusher && a_crate)
       state.crate_last_toucher[ua - kTagCrate] = uint8_t(ub - kTagPusher + 1);
   }
+  // What left the arena comes back: pushers at their spawn point, crates
+  // above the centre. Both the kill plane and the engine's bounds (a body
+  // flung out of the world is disabled where it crossed) lead here, in
+  // player and crate order, so every machine respawns alike.
+  for (uint32_t p = 0; p < state.player_count; ++p) {
+    if (!fell(world, state.pushers[p])) continue;
+    respawn(world, state.pushers[p], spawn_point(p, state.player_count));
+    ++state.falls[p];
+  }
+  for (uint32_t c = 0; c < state.crate_count; ++c) {
+    if (!fell(world, state.crates[c])) continue;
+    respawn(world, state.crates[c], crate_respawn_point(c));
+    ++state.crate_respawns;
+  }
   // A crate resting outside the centre ring scores once for its last toucher.
   for (uint32_t c = 0; c < state.crate_count; ++c) {
     if (state.crate_scored[c] || state.crate_last_toucher[c] == 0) continue;
@@ -175,7 +224,9 @@ void CratesGame::hash_typed(const CratesState& state, sim::StateHasher& hasher) 
     hasher.add_u32(state.pushers[p].generation);
     hasher.add_u32(state.score[p]);
     hasher.add_i32(state.cooldown_ticks[p]);
+    hasher.add_u32(state.falls[p]);
   }
+  hasher.add_u32(state.crate_respawns);
   for (uint32_t c = 0; c < state.crate_count; ++c) {
     hasher.add_u32(state.crates[c].index);
     hasher.add_u32(state.crates[c].generation);

@@ -3,6 +3,9 @@
 // "crates": each player steers a heavy ball (the pusher) around a walled
 // arena whose centre holds a tower of crates. A player scores when their
 // pusher is the last to touch a crate that lands outside the centre ring.
+// The arena is closed on all sides, but a jump from a pile can still clear
+// a wall: anything that falls below the kill plane (or leaves the world
+// bounds) comes back, pushers at their spawn point, crates above the centre.
 #include <array>
 #include <cstdint>
 
@@ -23,6 +26,8 @@ struct CratesState {
   std::array<sim::BodyId, 64> crates{};
   std::array<uint8_t, 64> crate_last_toucher{};  ///< player + 1, 0 = nobody
   std::array<uint8_t, 64> crate_scored{};        ///< 1 once it counted
+  std::array<uint32_t, kMaxPlayers> falls{};     ///< pusher respawns per player
+  uint32_t crate_respawns = 0;
 };
 
 class CratesGame final : public GameWithState<CratesState> {
