@@ -10,6 +10,12 @@
 // the re-simulated ticks must equal the first pass bit for bit; otherwise it
 // prints "ROLLBACK-MISMATCH <tick>" and exits 3.
 //
+// Before the match it prints "edge <tick> <checksum>" lines for an engine
+// scene at the edge of the world: small bounds, bodies flung out of them
+// (disabled, reported) and respawned, the world reloaded from its own
+// serialized bytes every 50 ticks, so the bounds rule, disabled bodies and
+// the snapshot codec are part of the matrix too.
+//
 // Links only the engine and the game seam: no I/O beyond stdout, no clock.
 //
 // Usage: det_checksums [TICKS]   (default 600)
@@ -26,6 +32,7 @@
 
 #include "rewind/game/player_input.h"
 #include "rewind/game/simulation.h"
+#include "rewind/sim/world3d.h"
 
 namespace {
 
@@ -92,6 +99,79 @@ std::vector<PlayerInput> mispredict(const std::vector<PlayerInput>& script, Tick
   return guess;
 }
 
+// The edge-of-the-world scene. Returns false (after saying why) when a
+// snapshot of its own state does not load or a restore does not re-step.
+bool run_edge_scene(Tick ticks) {
+  namespace sim = rwd::sim;
+  sim::WorldConfig config;
+  config.bounds_lower = {-30.0f, -30.0f, -30.0f};
+  config.bounds_upper = {30.0f, 30.0f, 30.0f};
+  auto world = std::make_unique<sim::World3D>(config);
+  SplitMix64 rng{0xED6E'0F'7E11'0001ull};
+  auto coord = [&rng](float half) {
+    return (static_cast<float>(rng.below(20001)) / 10000.0f - 1.0f) * half;
+  };
+  sim::BodyDef ground;
+  ground.kind = sim::BodyKind::kStatic;
+  ground.shape = sim::Shape::make_box({20.0f, 0.5f, 20.0f});
+  ground.position = {0.0f, -0.5f, 0.0f};
+  (void)world->create_body(ground);
+  std::vector<sim::BodyId> bodies;
+  for (int i = 0; i < 24; ++i) {
+    sim::BodyDef def;
+    def.shape = i % 2 ? sim::Shape::make_sphere(0.4f) : sim::Shape::make_box({0.3f, 0.5f, 0.4f});
+    def.position = {coord(8.0f), 1.0f + static_cast<float>(i) * 0.5f, coord(8.0f)};
+    def.material.restitution = i % 3 == 0 ? 0.5f : 0.0f;
+    bodies.push_back(*world->create_body(def));
+  }
+  sim::WorldState saved;
+  std::vector<uint8_t> bytes;
+  uint64_t first_pass[4] = {};
+  for (Tick t = 0; t < ticks; ++t) {
+    const sim::BodyId id = bodies[rng.below(static_cast<uint32_t>(bodies.size()))];
+    const float kick = rng.below(8) == 0 ? 40000.0f : 2000.0f;  // sometimes out of the world
+    (void)world->apply_linear_impulse(id, {coord(kick), coord(kick), coord(kick)},
+                                      world->position(id));
+    if (t % 40 == 39) {
+      for (const sim::BodyId b : bodies) {
+        if (world->is_enabled(b)) continue;
+        (void)world->set_transform(b, {coord(5.0f), 4.0f, coord(5.0f)}, {});
+        (void)world->set_enabled(b, true);
+      }
+    }
+    if (t % 50 == 0) {
+      world->serialize(bytes);
+      auto loaded = std::make_unique<sim::World3D>();
+      if (rwd::Status s = loaded->deserialize(bytes); !s.ok()) {
+        std::fprintf(stderr, "det_checksums: edge scene tick %d does not load: %s\n",
+                     static_cast<int>(t), s.message().c_str());
+        return false;
+      }
+      world = std::move(loaded);
+    }
+    if (t % 25 == 0) {
+      world->save(saved);
+      for (uint64_t& sum : first_pass) {
+        world->step();
+        sum = world->checksum();
+      }
+      world->restore(saved);
+      for (const uint64_t sum : first_pass) {
+        world->step();
+        if (world->checksum() != sum) {
+          std::printf("ROLLBACK-MISMATCH edge %d\n", static_cast<int>(t));
+          return false;
+        }
+      }
+      world->restore(saved);
+    }
+    world->step();
+    uint32_t left = static_cast<uint32_t>(world->body_events().size());
+    std::printf("edge %d %016" PRIx64 " %u\n", static_cast<int>(t), world->checksum(), left);
+  }
+  return true;
+}
+
 bool parse_ticks(const char* text, Tick& out) {
   char* end = nullptr;
   const long value = std::strtol(text, &end, 10);
@@ -108,6 +188,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: det_checksums [TICKS]   (1..1000000, default 600)\n");
     return 2;
   }
+
+  if (!run_edge_scene(300)) return 3;
 
   MatchSetup setup;
   setup.player_count = kPlayers;
