@@ -3,16 +3,35 @@
 // (server -> client) and desync dumps (client -> server, untrusted). The
 // parser must refuse anything malformed and leave the simulation exactly as
 // it was; whatever it accepts must step, checksum and re-serialize to the
-// same bytes.
+// same bytes, and the state the step then reaches must load again (the state
+// rule holds both ways). The same bytes also feed the world config codec,
+// whose accepted inputs must re-encode to themselves.
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <vector>
 
 #include "fuzz_entries.h"
 #include "rewind/game/simulation.h"
 
+namespace {
+
+void fuzz_config_codec(const uint8_t* data, size_t size) {
+  auto config = rwd::sim::World3D::decode_config({data, size});
+  if (!config.ok()) return;
+  std::vector<uint8_t> again;
+  rwd::sim::World3D::encode_config(*config, again);
+  if (again.size() != size || std::memcmp(again.data(), data, size) != 0) {
+    std::fprintf(stderr, "fuzz_sim_snapshot: accepted config does not re-encode\n");
+    std::abort();
+  }
+}
+
+}  // namespace
+
 int fuzz_sim_snapshot_one(const uint8_t* data, size_t size) {
+  fuzz_config_codec(data, size);
   static const std::unique_ptr<rwd::game::Simulation> pristine = [] {
     auto sim = rwd::game::Simulation::create("crates", {4, 7});
     return sim.ok() ? std::move(*sim) : nullptr;
@@ -41,6 +60,12 @@ int fuzz_sim_snapshot_one(const uint8_t* data, size_t size) {
   }
   std::vector<rwd::game::PlayerInput> inputs(4);
   sim->step(inputs);
-  (void)sim->checksum();
+  sim->serialize(again);
+  if (rwd::Status stepped = copy->deserialize(again);
+      !stepped.ok() || copy->checksum() != sim->checksum()) {
+    std::fprintf(stderr, "fuzz_sim_snapshot: a state the step reached does not load: %s\n",
+                 stepped.message().c_str());
+    std::abort();
+  }
   return 0;
 }
