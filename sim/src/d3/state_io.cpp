@@ -351,20 +351,7 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
     rec.touching = r.flag();
     rec.sensor = r.flag();
     rec.point_count = r.u8();
-    if (!r.ok() || rec.index_a >= rec.index_b || rec.index_b >= slots ||
-        rec.point_count > kMaxManifoldPoints || rec.generation_a == 0 || rec.generation_b == 0 ||
-        rec.generation_a > st.infos[rec.index_a].generation ||
-        rec.generation_b > st.infos[rec.index_b].generation ||
-        (rec.sensor != 0 && rec.point_count != 0)) {
-      return corrupt("invalid contact record");
-    }
-    if (k > 0) {
-      const ContactRecord& prev = st.contacts[k - 1];
-      if (prev.index_a > rec.index_a ||
-          (prev.index_a == rec.index_a && prev.index_b >= rec.index_b)) {
-        return corrupt("contact records out of order");
-      }
-    }
+    if (!r.ok() || rec.point_count > kMaxManifoldPoints) return corrupt("invalid contact record");
     for (uint32_t p = 0; p < rec.point_count; ++p) {
       rec.points[p].feature_id = r.u32();
       rec.points[p].normal_impulse = r.f32();
@@ -372,6 +359,11 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
       rec.points[p].tangent_impulse2 = r.f32();
     }
     if (!r.ok()) return corrupt("invalid contact point");
+    if (Status s = d3::check_contact(st.infos, rec, k > 0 ? &st.contacts[k - 1] : nullptr);
+        !s.ok()) {
+      return Status::Error(ErrorCode::kCorrupt,
+                           "invalid contact record " + std::to_string(k) + ": " + s.message());
+    }
   }
   if (!r.at_end()) return corrupt("trailing bytes after snapshot");
   state_ = std::move(st);

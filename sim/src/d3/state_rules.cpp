@@ -186,6 +186,33 @@ Status check_body(const WorldConfig& config, const BodyInfo& info, const BodySim
   return Status::Ok();
 }
 
+Status check_contact(const std::vector<BodyInfo>& infos, const ContactRecord& r,
+                     const ContactRecord* previous) {
+  if (r.index_a >= r.index_b || r.index_b >= infos.size()) {
+    return invalid("body indices out of order or out of range");
+  }
+  if (r.generation_a == 0 || r.generation_b == 0 || r.generation_a > infos[r.index_a].generation ||
+      r.generation_b > infos[r.index_b].generation) {
+    return invalid("body generation never existed");
+  }
+  if (r.touching > 1 || r.sensor > 1) return invalid("flag out of range");
+  if (r.point_count > kMaxManifoldPoints || (r.sensor != 0 && r.point_count != 0)) {
+    return invalid("point count out of range");
+  }
+  for (uint32_t p = 0; p < r.point_count; ++p) {
+    const CachedContactPoint& c = r.points[p];
+    if (!std::isfinite(c.normal_impulse) || !std::isfinite(c.tangent_impulse1) ||
+        !std::isfinite(c.tangent_impulse2)) {
+      return invalid("impulse not finite");
+    }
+  }
+  if (previous != nullptr && (previous->index_a > r.index_a ||
+                              (previous->index_a == r.index_a && previous->index_b >= r.index_b))) {
+    return invalid("records out of order");
+  }
+  return Status::Ok();
+}
+
 bool inside_bounds(const WorldConfig& c, Vec3 p) {
   return p.x >= c.bounds_lower.x && p.x <= c.bounds_upper.x && p.y >= c.bounds_lower.y &&
          p.y <= c.bounds_upper.y && p.z >= c.bounds_lower.z && p.z <= c.bounds_upper.z;

@@ -10,6 +10,7 @@
 //     reader would refuse.
 // A change to one of these limits changes all three at once.
 #include <cstdint>
+#include <vector>
 
 #include "rewind/sim/body.h"
 #include "rewind/sim/status.h"
@@ -41,6 +42,14 @@ Status check_mass(BodyKind kind, const BodyMass& mass);
 /// bounds, speeds, accumulated force, sleep timer, and the flags' mutual
 /// consistency (static and disabled bodies never awake nor moving).
 Status check_body(const WorldConfig& config, const BodyInfo& info, const BodySim& sim);
+
+/// A contact cache record against the body slots it names and the record
+/// before it (null for the first): ordered pair of existing slots, sorted
+/// after `previous`, at most kMaxManifoldPoints finite impulses, sensors
+/// without points. Records may name a body destroyed or disabled since the
+/// last step: the next step ends them with exit events.
+Status check_contact(const std::vector<BodyInfo>& infos, const ContactRecord& record,
+                     const ContactRecord* previous);
 
 /// True when `p` lies inside the config's bounds (faces included).
 bool inside_bounds(const WorldConfig& config, Vec3 p);
