@@ -24,14 +24,34 @@ Status not_found() {
   return Status::Error(ErrorCode::kNotFound, "unknown or stale body id");
 }
 
-// Field by field: a bad field takes its default, the rest are kept.
+// Values enter the canonical grid like every other outside value; then,
+// field by field, a value the rule refuses (before or because of the
+// quantization, e.g. a tick so short it rounds to zero) takes its default.
+WorldConfig on_grid(const WorldConfig& c) {
+  WorldConfig q = c;
+  q.gravity = quantize(c.gravity);
+  q.tick_seconds = quantize(c.tick_seconds);
+  q.contact_hertz = quantize(c.contact_hertz);
+  q.contact_damping_ratio = quantize(c.contact_damping_ratio);
+  q.contact_push_max_mps = quantize(c.contact_push_max_mps);
+  q.restitution_threshold_mps = quantize(c.restitution_threshold_mps);
+  q.linear_slop_m = quantize(c.linear_slop_m);
+  q.speculative_distance_m = quantize(c.speculative_distance_m);
+  q.sleep_threshold_mps = quantize(c.sleep_threshold_mps);
+  q.time_to_sleep_s = quantize(c.time_to_sleep_s);
+  q.bounds_lower = quantize(c.bounds_lower);
+  q.bounds_upper = quantize(c.bounds_upper);
+  return q;
+}
+
 WorldConfig sanitize(const WorldConfig& c) {
-  const WorldConfig d;
+  const WorldConfig q = on_grid(c);
+  const WorldConfig d = on_grid(WorldConfig{});  // valid, and on the grid
   WorldConfig out = d;
   auto keep = [&](auto WorldConfig::*field) {
     WorldConfig probe = d;
-    probe.*field = c.*field;
-    if (d3::check_config(probe).ok()) out.*field = c.*field;
+    probe.*field = q.*field;
+    if (d3::check_config(probe).ok()) out.*field = q.*field;
   };
   keep(&WorldConfig::gravity);
   keep(&WorldConfig::tick_seconds);
@@ -48,33 +68,12 @@ WorldConfig sanitize(const WorldConfig& c) {
   keep(&WorldConfig::time_to_sleep_s);
   keep(&WorldConfig::max_bodies);
   // The bounds are one value: both corners or neither.
-  {
-    WorldConfig probe = d;
-    probe.bounds_lower = c.bounds_lower;
-    probe.bounds_upper = c.bounds_upper;
-    if (d3::check_config(probe).ok()) {
-      out.bounds_lower = c.bounds_lower;
-      out.bounds_upper = c.bounds_upper;
-    }
-  }
-  // Values enter the canonical grid like every other outside value.
-  out.gravity = quantize(out.gravity);
-  out.tick_seconds = quantize(out.tick_seconds);
-  out.contact_hertz = quantize(out.contact_hertz);
-  out.contact_damping_ratio = quantize(out.contact_damping_ratio);
-  out.contact_push_max_mps = quantize(out.contact_push_max_mps);
-  out.restitution_threshold_mps = quantize(out.restitution_threshold_mps);
-  out.linear_slop_m = quantize(out.linear_slop_m);
-  out.speculative_distance_m = quantize(out.speculative_distance_m);
-  out.sleep_threshold_mps = quantize(out.sleep_threshold_mps);
-  out.time_to_sleep_s = quantize(out.time_to_sleep_s);
-  out.bounds_lower = quantize(out.bounds_lower);
-  out.bounds_upper = quantize(out.bounds_upper);
-  // Quantizing can only move a value onto the grid, but a degenerate box
-  // (corners closer than the grid) would collapse: keep the rule exact.
-  if (!d3::check_config(out).ok()) {
-    out.bounds_lower = d.bounds_lower;
-    out.bounds_upper = d.bounds_upper;
+  WorldConfig probe = d;
+  probe.bounds_lower = q.bounds_lower;
+  probe.bounds_upper = q.bounds_upper;
+  if (d3::check_config(probe).ok()) {
+    out.bounds_lower = q.bounds_lower;
+    out.bounds_upper = q.bounds_upper;
   }
   return out;
 }

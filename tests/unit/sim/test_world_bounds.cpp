@@ -53,6 +53,22 @@ TEST(WorldBounds, InvalidBoundsAreRefusedAndReplaced) {
   EXPECT_EQ(world.config().bounds_lower.x, WorldConfig{}.bounds_lower.x);
 }
 
+TEST(WorldBounds, ConfigThatQuantizesOutOfRangeFallsBackToValidValues) {
+  // Valid as given, but 1e-7 s rounds to 0 on the canonical grid, and corners
+  // 1e-7 m apart collapse onto one point: the world must still hold a config
+  // its own snapshots load with.
+  WorldConfig c;
+  c.tick_seconds = 1e-7f;
+  c.bounds_lower = {0.0f, 0.0f, 0.0f};
+  c.bounds_upper = {1e-7f, 1.0f, 1.0f};
+  ASSERT_TRUE(World3D::validate_config(c).ok());
+  World3D world(c);
+  EXPECT_TRUE(World3D::validate_config(world.config()).ok());
+  EXPECT_GT(world.config().tick_seconds, 0.0f);
+  EXPECT_EQ(world.config().bounds_upper.x, WorldConfig{}.bounds_upper.x);
+  EXPECT_EQ(round_trip_checksum(world), world.checksum());
+}
+
 TEST(WorldBounds, BodiesCannotBeCreatedOrPlacedOutside) {
   World3D world(small_world(10.0f));
   BodyDef def;
