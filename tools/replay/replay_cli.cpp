@@ -34,7 +34,8 @@ constexpr const char* kToolHelp =
     "  2   corrupt or unverifiable: a record fails its hash, does not parse or is\n"
     "      out of order, no complete header, the file cannot be read\n"
     "  3   recorded by another engine revision, game rules version or world\n"
-    "      config: not re-simulated (inspect: a newer replay format)\n"
+    "      config, or for a game this build lacks: not re-simulated (inspect: a\n"
+    "      newer replay format)\n"
     "  4   incomplete: no end record, or the last frame is cut short (a server\n"
     "      stopped or killed mid-match); the valid prefix verified\n"
     "  64  usage\n";
