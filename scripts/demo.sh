@@ -14,8 +14,9 @@
 # Output files: build/demo/{match.rwr, desyncs/, server.log, bots.log,
 #               server.json, bots.json}
 # Exit codes: 0 the match ran and its replay verified; 1 a step failed (build,
-# server, bots, missing summary); rewind-replay's own status (1 or 2) when the
-# replay does not verify; 2 on bad usage.
+# server, bots, missing summary); rewind-replay verify's own status when the
+# replay does not verify (1 diverged, 2 corrupt, 3 recorded by another engine
+# version, 4 incomplete); 2 on bad usage.
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."

@@ -11,6 +11,7 @@
 #include "rewind/net/envelope_codec.h"
 #include "rewind/net/join_token.h"
 #include "rewind/proto/input_wire.h"
+#include "rewind/replay/replay_header.h"
 #include "rewind/sim/body_record.h"
 
 namespace rwd::server {
@@ -55,17 +56,17 @@ Result<std::unique_ptr<MatchHost>> MatchHost::create(const MatchConfig& config, 
 
   std::optional<replay::ReplayWriter> writer;
   if (!config.replay_path.empty()) {
-    v1::ReplayHeader header;
-    header.set_game(config.game);
-    header.set_player_count(config.players);
-    header.set_seed(config.seed);
-    header.set_tick_rate_hz(config.tick_rate_hz);
-    header.set_window_ticks(static_cast<uint32_t>(config.window_ticks));
-    header.set_server_version("rewind-server 0.1.0");
-    header.set_started_unix_ms(std::chrono::duration_cast<std::chrono::milliseconds>(
-                                   std::chrono::system_clock::now().time_since_epoch())
-                                   .count());
-    header.set_keyframe_interval(static_cast<uint32_t>(config.keyframe_interval));
+    replay::RecordingSetup recording;
+    recording.match = session->simulation().setup();
+    recording.tick_rate_hz = config.tick_rate_hz;
+    recording.window_ticks = static_cast<uint32_t>(config.window_ticks);
+    recording.keyframe_interval = static_cast<uint32_t>(config.keyframe_interval);
+    recording.server_version = "rewind-server 0.1.0";
+    recording.started_unix_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                                    std::chrono::system_clock::now().time_since_epoch())
+                                    .count();
+    const v1::ReplayHeader header =
+        replay::make_replay_header(session->simulation().game(), recording);
     replay::ReplayWriterOptions options;
     options.overwrite = config.replay_overwrite;
     auto opened = replay::ReplayWriter::open(config.replay_path, header, options);

@@ -16,16 +16,23 @@ namespace {
 
 using Rng = rwd::fuzz::CorpusRng;
 
-// A small replay: header, `ticks` ticks with a keyframe after tick 1, and
-// an end record when `finished`.
-std::vector<uint8_t> sample_replay(int ticks, bool finished) {
+// A small replay: header (of format `format`), `ticks` ticks with a
+// keyframe after tick 1, and an end record when `finished`.
+std::vector<uint8_t> sample_replay(int ticks, bool finished,
+                                   uint32_t format = rwd::replay::kFormatVersion) {
   std::vector<uint8_t> out(rwd::replay::kMagic.begin(), rwd::replay::kMagic.end());
   rwd::v1::ReplayRecord r;
   rwd::v1::ReplayHeader* h = r.mutable_header();
-  h->set_format_version(rwd::replay::kFormatVersion);
+  h->set_format_version(format);
   h->set_game("crates");
   h->set_player_count(2);
   h->set_seed(9);
+  if (format >= 2) {
+    h->set_engine("rewind-sim");
+    h->set_sim_revision(2);
+    h->set_rules_version(2);
+    h->set_world_config(std::string(61, '\x02'));
+  }
   EXPECT_TRUE(rwd::replay::append_frame(r, out).ok());
   for (int t = 0; t < ticks; ++t) {
     r.Clear();
@@ -57,7 +64,11 @@ std::vector<uint8_t> sample_replay(int ticks, bool finished) {
 // Every sample in both modes: the first byte selects hash repair.
 std::vector<std::vector<uint8_t>> seeds() {
   std::vector<std::vector<uint8_t>> out;
-  for (const std::vector<uint8_t>& file : {sample_replay(4, true), sample_replay(3, false)}) {
+  // Current format, finished and not; the oldest format; a newer one.
+  for (const std::vector<uint8_t>& file :
+       {sample_replay(4, true), sample_replay(3, false),
+        sample_replay(3, true, rwd::replay::kOldestFormatVersion),
+        sample_replay(2, true, rwd::replay::kFormatVersion + 1)}) {
     for (uint8_t mode : {0, 1}) {
       std::vector<uint8_t> input{mode};
       input.insert(input.end(), file.begin(), file.end());

@@ -23,18 +23,52 @@ using rwd::v1::ReplayRecord;
   std::abort();
 }
 
+// A torn frame really runs past the end of the input: either its 12-byte
+// frame header or the payload its length field announces.
+void check_torn(const ReplayReader& reader, const std::vector<uint8_t>& file) {
+  const size_t at = reader.offset();
+  const size_t left = file.size() - at;
+  if (left < rwd::replay::kFrameHeaderBytes) return;
+  const uint32_t len = uint32_t{file[at]} | uint32_t{file[at + 1]} << 8 |
+                       uint32_t{file[at + 2]} << 16 | uint32_t{file[at + 3]} << 24;
+  if (len <= left - rwd::replay::kFrameHeaderBytes) invariant_broken("torn frame that fits");
+}
+
 // Reads every record after the header; false when the reader reported an
-// error.
-bool read_all(ReplayReader& reader, size_t size, std::vector<ReplayRecord>& records) {
+// error. The read state must agree with how reading ended.
+bool read_all(ReplayReader& reader, const std::vector<uint8_t>& file,
+              std::vector<ReplayRecord>& records) {
   while (true) {
+    if (reader.state() != rwd::replay::ReadState::kReading) {
+      invariant_broken("read state final before the end");
+    }
     Result<std::optional<ReplayRecord>> next = reader.next();
-    if (reader.offset() > size) invariant_broken("offset past the end of the input");
+    if (reader.offset() > file.size()) invariant_broken("offset past the end of the input");
     if (!next.ok()) {
       if (next.status().message().empty()) invariant_broken("error without message");
       if (reader.next().ok()) invariant_broken("error did not stick");
+      switch (reader.state()) {
+        case rwd::replay::ReadState::kTorn:
+          check_torn(reader, file);
+          break;
+        case rwd::replay::ReadState::kUnsupported:
+          if (reader.header().format_version() <= rwd::replay::kFormatVersion) {
+            invariant_broken("unsupported records in a readable format");
+          }
+          break;
+        case rwd::replay::ReadState::kCorrupt:
+          break;
+        default:
+          invariant_broken("error with a read state that is not an error");
+      }
       return false;
     }
-    if (!next->has_value()) return true;
+    if (!next->has_value()) {
+      const rwd::replay::ReadState want =
+          reader.ended() ? rwd::replay::ReadState::kComplete : rwd::replay::ReadState::kIncomplete;
+      if (reader.state() != want) invariant_broken("clean end with the wrong read state");
+      return true;
+    }
     records.push_back(std::move(**next));
   }
 }
@@ -67,7 +101,7 @@ int fuzz_replay_reader_one(const uint8_t* data, size_t size) {
     return 0;
   }
   std::vector<ReplayRecord> records;
-  if (!read_all(*reader, file.size(), records)) return 0;
+  if (!read_all(*reader, file, records)) return 0;
 
   // Round trip: frame the header and records again and read them back.
   std::vector<uint8_t> bytes(rwd::replay::kMagic.begin(), rwd::replay::kMagic.end());
@@ -80,7 +114,7 @@ int fuzz_replay_reader_one(const uint8_t* data, size_t size) {
   Result<ReplayReader> again = ReplayReader::from_bytes(bytes);
   if (!again.ok()) invariant_broken("re-framed header does not read");
   std::vector<ReplayRecord> reread;
-  if (!read_all(*again, bytes.size(), reread)) invariant_broken("re-framed records do not read");
+  if (!read_all(*again, bytes, reread)) invariant_broken("re-framed records do not read");
   if (reread.size() != records.size()) invariant_broken("record count changed");
   for (size_t i = 0; i < records.size(); ++i) {
     if (reread[i].SerializeAsString() != records[i].SerializeAsString()) {

@@ -4,8 +4,11 @@
 #   match_test.sh MODE BIN_DIR WORK_DIR
 # MODE:
 #   faults   4 bots with latency, jitter, 5% loss, duplication, reordering:
-#            rollbacks happen, no desync, the replay verifies, and a replay
-#            with one input changed fails verification at that tick.
+#            rollbacks happen, no desync, the replay verifies (exit 0), a
+#            replay with one input changed fails verification at that tick
+#            (exit 1), copies cut on a frame boundary or inside a frame are
+#            incomplete with their prefix verified (exit 4), and a flipped
+#            bit inside a frame is corruption (exit 2).
 #   desync   one bot corrupts its state at tick 120: it is detected at that
 #            tick, reported (the server stores the report) and resynced.
 #   garbage  random datagrams are fired at the server during a match: the
@@ -16,6 +19,8 @@
 #   signal   the server (no tick budget) gets SIGINT mid-match: it ends the
 #            match cleanly, the bots finish, the replay verifies and ends
 #            with its end record.
+#   kill     the server gets SIGKILL mid-match: the replay it leaves has no
+#            end record; verify checks its whole prefix and exits 4.
 set -euo pipefail
 mode=$1
 bin=$2
@@ -36,7 +41,7 @@ trap cleanup EXIT
 tick_rate=${REWIND_TEST_TICK_RATE:-60}
 ticks=${REWIND_TEST_TICKS:-480}
 budget=$ticks
-[ "$mode" = signal ] && budget=0
+[ "$mode" = signal ] || [ "$mode" = kill ] && budget=0
 "$bin/rewind-server" --game crates --bind 127.0.0.1 --port 0 --port-file port --players 4 \
   --tick-rate "$tick_rate" --window 8 --ticks "$budget" --replay match.rwr --keyframe-interval 60 \
   --desync-dir desyncs --join-timeout 30 --summary-json >server.json 2>server.log &
@@ -50,7 +55,7 @@ case "$mode" in
   faults)  bots_args+=(--latency-ms 30 --jitter-ms 10 --loss 0.05 --duplicate 0.02 --reorder 0.02) ;;
   desync)  bots_args+=(--latency-ms 10 --corrupt-bot 2 --corrupt-at-tick 120) ;;
   garbage) bots_args+=(--latency-ms 10) ;;
-  signal)  bots_args+=(--latency-ms 10) ;;
+  signal|kill) bots_args+=(--latency-ms 10) ;;
   latency) bots_args+=(--latency-ms 150 --jitter-ms 10 --loss 0.02) ;;
   *) fail "unknown mode" ;;
 esac
@@ -83,16 +88,48 @@ PY
   flood_pid=$!
 fi
 
-if [ "$mode" = signal ]; then
-  # Interrupt the server once the match has been running for a while.
-  ( sleep $(( ticks / tick_rate / 2 + 1 )); kill -INT "$server_pid" ) &
+if [ "$mode" = signal ] || [ "$mode" = kill ]; then
+  # Interrupt (or kill) the server once the match has been running a while.
+  sig=INT
+  [ "$mode" = kill ] && sig=KILL
+  ( sleep $(( ticks / tick_rate / 2 + 1 )); kill -"$sig" "$server_pid" ) &
 fi
 set +e
 "$bin/rewind-bots" "${bots_args[@]}" >bots.json 2>bots.log
 bots_status=$?
-set -e
 wait "$server_pid"
+server_status=$?
+set -e
 server_pid=""
+[ "$mode" = kill ] || [ "$server_status" = 0 ] || fail "rewind-server exited $server_status: $(tail -5 server.log)"
+
+# Runs rewind-replay; its exit status goes to $status, its output to $2.
+replay() {  # command file.txt args...
+  local cmd=$1 out=$2
+  shift 2
+  set +e
+  "$bin/rewind-replay" "$cmd" "$@" >"$out" 2>&1
+  status=$?
+  set -e
+}
+
+if [ "$mode" = kill ]; then
+  # A killed server finishes nothing: no end record, no summary; what it
+  # flushed before the kill is a prefix that verifies.
+  [ "$server_status" = 137 ] || fail "rewind-server was not killed: exit $server_status"
+  replay verify verify.txt match.rwr
+  [ "$status" = 4 ] || fail "killed server's replay: exit $status, expected 4: $(cat verify.txt)"
+  grep -q "^INCOMPLETE: no end record" verify.txt || fail "not reported incomplete: $(cat verify.txt)"
+  verified=$(sed -n 's/^prefix verified: \([0-9]*\) ticks.*/\1/p' verify.txt)
+  [ "${verified:-0}" -gt 30 ] || fail "too few ticks verified before the kill: $(cat verify.txt)"
+  replay inspect inspect.txt match.rwr
+  [ "$status" = 4 ] || fail "inspect of the killed server's replay: exit $status: $(cat inspect.txt)"
+  replay verify verify.json match.rwr --json
+  grep -q '"outcome": "incomplete"' verify.json || fail "JSON outcome: $(cat verify.json)"
+  grep -q '"complete": false' verify.json || fail "JSON completeness: $(cat verify.json)"
+  echo "PASS [$mode] ($verified ticks verified before the kill)"
+  exit 0
+fi
 [ "$mode" = garbage ] && wait "$flood_pid"
 
 echo "server: $(cat server.json)"
@@ -121,13 +158,46 @@ case "$mode" in
     [ "$(json bots.json final_ticks_verified)" -ge $(( 4 * (ticks - 20) )) ] || fail "too few verified final ticks"
     "$bin/rewind-replay" verify match.rwr >verify.txt 2>&1 || fail "replay did not verify: $(cat verify.txt)"
     grep -q "verified $ticks ticks" verify.txt || fail "unexpected verify output: $(cat verify.txt)"
+    replay inspect inspect.txt match.rwr
+    [ "$status" = 0 ] || fail "inspect: exit $status, expected 0: $(cat inspect.txt)"
+    grep -q "; this build runs the same" inspect.txt || fail "inspect: engine not this build's: $(cat inspect.txt)"
+    grep -q "^file: complete" inspect.txt || fail "inspect: not complete: $(cat inspect.txt)"
     "$bin/rewind-replay" tamper match.rwr --tick 200 --player 1 --axis-x 1000 --axis-y -1000 --out tampered.rwr >/dev/null
-    set +e
-    "$bin/rewind-replay" verify tampered.rwr >tampered.txt 2>&1
-    status=$?
-    set -e
+    replay verify tampered.txt tampered.rwr
     [ "$status" = 1 ] || fail "tampered replay: exit $status, expected 1: $(cat tampered.txt)"
     grep -q "tick 200" tampered.txt || fail "tampered replay did not name tick 200: $(cat tampered.txt)"
+
+    # Frame boundaries (u32 LE length + 12-byte frame header per frame),
+    # then copies cut short and one damaged.
+    python3 - match.rwr <<'PY'
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+starts, at = [], 8
+while at < len(data):
+    starts.append(at)
+    at += 12 + struct.unpack_from("<I", data, at)[0]
+assert at == len(data), "frames do not tile the file"
+mid = starts[len(starts) // 2]
+open("boundary.rwr", "wb").write(data[:mid])             # a flush, then the kill
+open("torn.rwr", "wb").write(data[:mid + 12 + 3])        # a write cut mid-payload
+flipped = bytearray(data)
+flipped[mid + 12 + 1] ^= 0x08                            # one bit inside a payload
+open("flipped.rwr", "wb").write(flipped)
+PY
+    for cut in boundary torn; do
+      replay verify "$cut.txt" "$cut.rwr"
+      [ "$status" = 4 ] || fail "$cut replay: exit $status, expected 4: $(cat "$cut.txt")"
+      grep -q "^prefix verified: [1-9][0-9]* ticks" "$cut.txt" || fail "$cut replay: prefix not verified: $(cat "$cut.txt")"
+      grep -q "^INCOMPLETE: " "$cut.txt" || fail "$cut replay: not reported incomplete: $(cat "$cut.txt")"
+      replay inspect "$cut.inspect.txt" "$cut.rwr"
+      [ "$status" = 4 ] || fail "inspect $cut replay: exit $status, expected 4: $(cat "$cut.inspect.txt")"
+    done
+    grep -q "ends inside a frame" torn.txt || fail "torn replay: $(cat torn.txt)"
+    replay verify flipped.txt flipped.rwr
+    [ "$status" = 2 ] || fail "flipped replay: exit $status, expected 2: $(cat flipped.txt)"
+    grep -q "^file breaks at: hash mismatch" flipped.txt || fail "flipped replay: $(cat flipped.txt)"
+    replay inspect flipped.inspect.txt flipped.rwr
+    [ "$status" = 2 ] || fail "inspect flipped replay: exit $status, expected 2: $(cat flipped.inspect.txt)"
     ;;
   desync)
     [ "$bots_status" = 1 ] || fail "rewind-bots exited $bots_status, expected 1 (desync detected)"

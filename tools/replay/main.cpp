@@ -20,7 +20,9 @@ int run(const replay_tool::HelpRequest& help) {
 }
 
 int run(const replay_tool::VerifyCommand& cmd) {
-  const replay::VerifyReport report = replay::verify_replay(cmd.file);
+  replay::VerifyOptions options;
+  options.ignore_version = cmd.ignore_version;
+  const replay::VerifyReport report = replay::verify_replay(cmd.file, options);
   if (cmd.json) {
     replay_tool::print_verify_json(cmd.file, report, std::cout);
   } else {
@@ -33,10 +35,10 @@ int run(const replay_tool::InspectCommand& cmd) {
   Result<replay::ReplaySummary> summary = replay::summarize_replay(cmd.file);
   if (!summary.ok()) {
     std::cerr << "rewind-replay inspect: " << summary.status().message() << "\n";
-    return 2;
+    return replay_tool::kExitCorrupt;
   }
   replay_tool::print_summary(cmd.file, *summary, std::cout);
-  return summary->error ? 2 : 0;
+  return replay_tool::inspect_exit_code(*summary);
 }
 
 int run(const replay_tool::TamperCommand& cmd) {

@@ -21,12 +21,24 @@ constexpr const char* kToolHelp =
     "Checks and examines Rewind replay files.\n"
     "\n"
     "commands:\n"
-    "  verify FILE [--json]   re-simulate the match and compare every checksum\n"
-    "  inspect FILE           print header, tick range, keyframes, substitutions\n"
+    "  verify FILE [--json] [--ignore-version]\n"
+    "                         re-simulate the match and compare every checksum\n"
+    "  inspect FILE           print header, engine, world config, tick range,\n"
+    "                         keyframes, substitutions, whether the file is complete\n"
     "  tamper FILE ...        rewrite one input with valid framing (for tests)\n"
     "\n"
     "Run 'rewind-replay COMMAND --help' for a command's flags.\n"
-    "exit codes: 0 ok, 1 diverged or failed, 2 file broken or unverifiable, 64 usage\n";
+    "exit codes:\n"
+    "  0   verified and complete (inspect: intact and complete; tamper: written)\n"
+    "  1   diverged (tamper: failed)\n"
+    "  2   corrupt or unverifiable: a record fails its hash, does not parse or is\n"
+    "      out of order, no complete header, the file cannot be read\n"
+    "  3   recorded by another engine revision, game rules version or world\n"
+    "      config, or for a game this build lacks: not re-simulated (inspect: a\n"
+    "      newer replay format)\n"
+    "  4   incomplete: no end record, or the last frame is cut short (a server\n"
+    "      stopped or killed mid-match); the valid prefix verified\n"
+    "  64  usage\n";
 
 Status usage_error(const std::string& message) {
   return Status::Error(ErrorCode::kInvalidArgument, message);
@@ -65,12 +77,21 @@ Result<std::optional<int64_t>> optional_int(const std::string& flag, const std::
 
 Result<Command> parse_verify(int argc, const char* const* argv) {
   VerifyCommand cmd;
-  cli::FlagParser flags(std::string(kProgram) + " verify", "rewind-replay verify FILE [--json]",
-                        "Re-simulates the replay headless and compares the checksum of every "
-                        "tick and the state of every keyframe.\nexit codes: 0 verified, 1 "
-                        "diverged (prints the tick and the differing fields), 2 file broken or "
-                        "unverifiable (the valid prefix is still verified), 64 usage");
+  cli::FlagParser flags(
+      std::string(kProgram) + " verify", "rewind-replay verify FILE [--json] [--ignore-version]",
+      "Re-simulates the replay headless and compares the checksum of every tick and the "
+      "state of every keyframe. First it compares the engine, sim revision, game rules "
+      "version and world config the replay recorded with this build's; if any differs it "
+      "names both sides and does not re-simulate.\n"
+      "exit codes: 0 verified and complete; 1 diverged (prints the tick and the differing "
+      "fields); 2 corrupt or unverifiable (damaged, unparsable or out-of-order records; the "
+      "valid prefix is still verified); 3 recorded by another engine revision, rules version "
+      "or world config, not re-simulated; 4 incomplete: no end record or a cut-short last "
+      "frame, the whole valid prefix verified; 64 usage");
   flags.add_bool("json", &cmd.json, "print the report as JSON");
+  flags.add_bool("ignore-version", &cmd.ignore_version,
+                 "re-simulate even if the replay was recorded by another engine revision, "
+                 "rules version or world config (the report still names the differences)");
   std::vector<std::string> positionals;
   if (Status s = flags.parse(argc, argv, 2, &positionals); !s.ok()) return s;
   if (flags.help_requested()) return Command(HelpRequest{flags.help_text()});
@@ -82,10 +103,15 @@ Result<Command> parse_verify(int argc, const char* const* argv) {
 
 Result<Command> parse_inspect(int argc, const char* const* argv) {
   InspectCommand cmd;
-  cli::FlagParser flags(std::string(kProgram) + " inspect", "rewind-replay inspect FILE",
-                        "Prints the header, tick range, record counts, substituted inputs per "
-                        "player and keyframes, without re-simulating.\nexit codes: 0 intact, "
-                        "2 file broken (the valid prefix is still summarized), 64 usage");
+  cli::FlagParser flags(
+      std::string(kProgram) + " inspect", "rewind-replay inspect FILE",
+      "Prints the header, the engine, sim revision, game rules version and world config "
+      "that recorded it (and whether this build runs the same), tick range, record counts, "
+      "substituted inputs per player, keyframes and whether the file is complete, without "
+      "re-simulating.\n"
+      "exit codes: 0 intact and complete; 2 corrupt (the valid prefix is still summarized); "
+      "3 a newer replay format (only its header is shown); 4 incomplete: no end record or a "
+      "cut-short last frame; 64 usage");
   std::vector<std::string> positionals;
   if (Status s = flags.parse(argc, argv, 2, &positionals); !s.ok()) return s;
   if (flags.help_requested()) return Command(HelpRequest{flags.help_text()});

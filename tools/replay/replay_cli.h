@@ -18,6 +18,7 @@ struct HelpRequest {
 struct VerifyCommand {
   std::string file;
   bool json = false;
+  bool ignore_version = false;
 };
 
 struct InspectCommand {

@@ -40,6 +40,37 @@ struct ReplayReader::Source {
   }
 };
 
+const char* read_state_name(ReadState state) {
+  switch (state) {
+    case ReadState::kReading:
+      return "reading";
+    case ReadState::kComplete:
+      return "complete";
+    case ReadState::kIncomplete:
+      return "incomplete";
+    case ReadState::kTorn:
+      return "torn";
+    case ReadState::kCorrupt:
+      return "corrupt";
+    case ReadState::kUnsupported:
+      return "unsupported";
+    case ReadState::kIoError:
+      return "io_error";
+  }
+  return "unknown";
+}
+
+ReadState ReplayReader::state() const {
+  if (!failure_.ok()) {
+    if (torn_) return ReadState::kTorn;
+    if (failure_.code() == ErrorCode::kUnsupported) return ReadState::kUnsupported;
+    if (failure_.code() == ErrorCode::kIo) return ReadState::kIoError;
+    return ReadState::kCorrupt;
+  }
+  if (at_eof_) return ended_ ? ReadState::kComplete : ReadState::kIncomplete;
+  return ReadState::kReading;
+}
+
 Result<ReplayReader> ReplayReader::open(const std::string& path) {
   auto source = std::make_unique<Source>();
   source->name = path;
@@ -89,8 +120,11 @@ Result<ReplayReader> ReplayReader::start(std::unique_ptr<Source> source) {
                              " (record 0): the first record must be the replay header");
   }
   if (Status s = validate_header((*first)->header()); !s.ok()) {
-    return Status::Error(s.code(), "bad header at byte " + std::to_string(header_offset) +
-                                       " (record 0): " + s.message());
+    if (s.code() != ErrorCode::kUnsupported) {
+      return Status::Error(s.code(), "bad header at byte " + std::to_string(header_offset) +
+                                         " (record 0): " + s.message());
+    }
+    reader.newer_format_ = true;
   }
   reader.header_ = (*first)->header();
   return reader;
@@ -116,6 +150,7 @@ Result<std::optional<v1::ReplayRecord>> ReplayReader::read_frame() {
     return std::optional<v1::ReplayRecord>();
   }
   if (*got < sizeof head) {
+    torn_ = true;
     return fail(ErrorCode::kCorrupt, "truncated frame at " + where(frame_offset) + ": need " +
                                          std::to_string(kFrameHeaderBytes) + " bytes, have " +
                                          std::to_string(*got));
@@ -133,6 +168,13 @@ Result<std::optional<v1::ReplayRecord>> ReplayReader::read_frame() {
   got = source_->read(payload_.data(), length);
   if (!got.ok()) return fail(ErrorCode::kIo, got.status().message());
   if (*got < length) {
+    if (std::optional<size_t> real = prefix_with_hash({payload_.data(), *got}, hash)) {
+      return fail(ErrorCode::kCorrupt,
+                  "damaged length at " + where(frame_offset) + ": the frame claims " +
+                      std::to_string(length) + " bytes but its hash matches its first " +
+                      std::to_string(*real) + " (a damaged length field, not a cut-short write)");
+    }
+    torn_ = true;
     return fail(ErrorCode::kCorrupt, "truncated frame at " + where(frame_offset) + ": need " +
                                          std::to_string(kFrameHeaderBytes + length) +
                                          " bytes, have " +
@@ -223,6 +265,11 @@ Status ReplayReader::check_order(const v1::ReplayRecord& record) const {
 Result<std::optional<v1::ReplayRecord>> ReplayReader::next() {
   if (!failure_.ok()) return failure_;
   if (at_eof_) return std::optional<v1::ReplayRecord>();
+  if (newer_format_) {
+    return fail(ErrorCode::kUnsupported,
+                "records of replay format version " + std::to_string(header_.format_version()) +
+                    " are not read by this build (it reads " + readable_formats() + ")");
+  }
   if (ended_) {
     // The end record is the last thing a writer writes; anything after it
     // was appended by someone else.

@@ -36,6 +36,7 @@ Result<ReplaySummary> summarize_replay(const std::string& path) {
     }
   }
   summary.valid_bytes = reader->offset();
+  summary.state = reader->state();
   return summary;
 }
 

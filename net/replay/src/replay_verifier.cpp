@@ -53,48 +53,69 @@ class Verifier {
 
   void run() {
     const v1::ReplayHeader& header = reader_.header();
+    report_.versions = check_versions(header);
+    if (!report_.versions->matches() && !options_.ignore_version) {
+      // Stepping another engine's match proves nothing either way; the file
+      // is still read so the report says whether it is whole.
+      read_rest();
+      return;
+    }
     setup_.player_count = header.player_count();
     setup_.seed = header.seed();
     Result<std::unique_ptr<Simulation>> sim = Simulation::create(header.game(), setup_);
     if (!sim.ok()) {
       report_.error = "cannot create game \"" + header.game() + "\": " + sim.status().message();
+      read_rest();
       return;
     }
     sim_ = std::move(*sim);
+    report_.resimulated = true;
 
-    while (true) {
-      Result<std::optional<v1::ReplayRecord>> record = reader_.next();
-      if (!record.ok()) {
-        report_.framing_error = record.status().message();
-        return;
-      }
-      if (!record->has_value()) break;
-      const v1::ReplayRecord& r = **record;
-      const bool go_on = r.has_tick()       ? verify_tick(r.tick())
-                         : r.has_keyframe() ? verify_keyframe(r.keyframe())
-                                            : true;
+    while (std::optional<v1::ReplayRecord> r = read()) {
+      const bool go_on = r->has_tick()       ? verify_tick(r->tick())
+                         : r->has_keyframe() ? verify_keyframe(r->keyframe())
+                                             : true;
       if (!go_on) {
-        if (report_.diverged()) check_rest();
+        // After a divergence or an error the rest of the file is only read,
+        // not simulated, so the report still says whether it is whole.
+        read_rest();
         return;
       }
     }
-    report_.ended_cleanly = reader_.ended();
   }
 
  private:
-  // After a divergence the rest of the file is only read, not simulated, so
-  // the report still says whether the file is intact and ended cleanly.
-  void check_rest() {
-    if (report_.framing_error) return;
-    while (true) {
-      Result<std::optional<v1::ReplayRecord>> record = reader_.next();
-      if (!record.ok()) {
-        report_.framing_error = record.status().message();
-        return;
-      }
-      if (!record->has_value()) break;
+  // The next record, or nullopt at the end of the file or when reading
+  // stopped (the report then says why).
+  std::optional<v1::ReplayRecord> read() {
+    if (reader_.state() != ReadState::kReading) return std::nullopt;
+    Result<std::optional<v1::ReplayRecord>> record = reader_.next();
+    if (!record.ok()) {
+      note_stop(record.status());
+      return std::nullopt;
     }
-    report_.ended_cleanly = reader_.ended();
+    if (record->has_value() && (*record)->has_tick()) ++report_.tick_records;
+    return std::move(*record);
+  }
+
+  void note_stop(const Status& status) {
+    switch (reader_.state()) {
+      case ReadState::kTorn:
+        report_.torn_frame = status.message();
+        break;
+      case ReadState::kUnsupported:
+        // Without re-simulation the version mismatch already says it.
+        if (report_.resimulated) report_.error = status.message();
+        break;
+      default:
+        report_.framing_error = status.message();
+        break;
+    }
+  }
+
+  void read_rest() {
+    while (read()) {
+    }
   }
 
   // Steps one recorded tick; false when it diverged or could not run.
@@ -169,38 +190,31 @@ class Verifier {
   // recorded state, so keep stepping the diverged simulation with the
   // recorded inputs up to the next keyframe and compare the bodies there.
   void name_fields_after(Tick divergent) {
-    while (true) {
-      Result<std::optional<v1::ReplayRecord>> record = reader_.next();
-      if (!record.ok()) {
-        report_.framing_error = record.status().message();
-        report_.differences_note = "no keyframe at or after tick " + std::to_string(divergent) +
-                                   " before the file breaks; fields cannot be named";
-        return;
-      }
-      if (!record->has_value()) {
-        report_.ended_cleanly = reader_.ended();
-        report_.differences_note = "no keyframe at or after tick " + std::to_string(divergent) +
-                                   " in the file; the recorded state is known only by its "
-                                   "checksum, so fields cannot be named";
-        return;
-      }
-      const v1::ReplayRecord& r = **record;
-      if (r.has_tick()) {
-        sim_->step(inputs_of(r.tick()));
-      } else if (r.has_keyframe()) {
-        Simulation* recorded = load_keyframe(r.keyframe());
+    while (std::optional<v1::ReplayRecord> r = read()) {
+      if (r->has_tick()) {
+        sim_->step(inputs_of(r->tick()));
+      } else if (r->has_keyframe()) {
+        Simulation* recorded = load_keyframe(r->keyframe());
         if (recorded == nullptr) {
           report_.differences_note = "the keyframe after the divergence does not load";
           return;
         }
-        set_differences(report_, *recorded, *sim_, r.keyframe().tick(), options_);
-        if (r.keyframe().tick() != divergent && report_.differences_total > 0) {
+        set_differences(report_, *recorded, *sim_, r->keyframe().tick(), options_);
+        if (r->keyframe().tick() != divergent && report_.differences_total > 0) {
           report_.differences_note =
-              "fields compared at keyframe tick " + std::to_string(r.keyframe().tick()) + ", " +
-              std::to_string(r.keyframe().tick() - divergent) + " ticks after the divergence";
+              "fields compared at keyframe tick " + std::to_string(r->keyframe().tick()) + ", " +
+              std::to_string(r->keyframe().tick() - divergent) + " ticks after the divergence";
         }
         return;
       }
+    }
+    if (reader_.state() == ReadState::kComplete || reader_.state() == ReadState::kIncomplete) {
+      report_.differences_note = "no keyframe at or after tick " + std::to_string(divergent) +
+                                 " in the file; the recorded state is known only by its "
+                                 "checksum, so fields cannot be named";
+    } else {
+      report_.differences_note = "no keyframe at or after tick " + std::to_string(divergent) +
+                                 " before the file breaks; fields cannot be named";
     }
   }
 
@@ -214,21 +228,51 @@ class Verifier {
 
 }  // namespace
 
+VerifyOutcome VerifyReport::outcome() const {
+  if (diverged()) return VerifyOutcome::kDiverged;
+  if (framing_error || error) return VerifyOutcome::kCorrupt;
+  if (version_skipped()) return VerifyOutcome::kVersionMismatch;
+  if (!ended_cleanly) return VerifyOutcome::kIncomplete;
+  return VerifyOutcome::kVerified;
+}
+
+const char* outcome_name(VerifyOutcome outcome) {
+  switch (outcome) {
+    case VerifyOutcome::kVerified:
+      return "verified";
+    case VerifyOutcome::kDiverged:
+      return "diverged";
+    case VerifyOutcome::kCorrupt:
+      return "corrupt";
+    case VerifyOutcome::kVersionMismatch:
+      return "version_mismatch";
+    case VerifyOutcome::kIncomplete:
+      return "incomplete";
+  }
+  return "unknown";
+}
+
 VerifyReport verify_replay(ReplayReader& reader, const VerifyOptions& options) {
   VerifyReport report;
   report.header = reader.header();
   Verifier(reader, options, report).run();
+  report.file_state = reader.state();
+  report.ended_cleanly = report.file_state == ReadState::kComplete;
   return report;
 }
 
 VerifyReport verify_replay(const std::string& path, const VerifyOptions& options) {
   Result<ReplayReader> reader = ReplayReader::open(path);
   if (!reader.ok()) {
+    // Without a whole header there is no game to re-simulate: a file cut
+    // inside its first frame is as unverifiable as a damaged one.
     VerifyReport report;
     if (reader.status().code() == ErrorCode::kIo) {
       report.error = reader.status().message();
+      report.file_state = ReadState::kIoError;
     } else {
       report.framing_error = reader.status().message();
+      report.file_state = ReadState::kCorrupt;
     }
     return report;
   }

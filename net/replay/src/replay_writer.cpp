@@ -28,8 +28,12 @@ std::chrono::steady_clock::time_point now_from(const ReplayWriterOptions& option
 Result<ReplayWriter> ReplayWriter::open(const std::string& path, const v1::ReplayHeader& header,
                                         ReplayWriterOptions options) {
   v1::ReplayHeader stamped = header;
-  stamped.set_format_version(kFormatVersion);
-  if (Status s = validate_header(stamped); !s.ok()) return s;
+  if (stamped.format_version() == 0) stamped.set_format_version(kFormatVersion);
+  if (Status s = validate_header(stamped); !s.ok()) {
+    // A newer format is readable as a header only; this build cannot write one.
+    return Status::Error(
+        s.code() == ErrorCode::kUnsupported ? ErrorCode::kInvalidArgument : s.code(), s.message());
+  }
 
   struct stat st {};
   if (!options.overwrite && ::stat(path.c_str(), &st) == 0 && st.st_size > 0) {

@@ -6,10 +6,14 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "replay_test_support.h"
+#include "rewind/game/crates_game.h"
+#include "rewind/replay/replay_format.h"
 #include "rewind/replay/replay_reader.h"
+#include "rewind/sim/version.h"
 
 namespace rwd::replay {
 namespace {
@@ -139,16 +143,205 @@ TEST(ReplayCli, VerifyTamperInspectEndToEnd) {
   std::filesystem::copy_file(file.path(), cut.path());
   testing_support::cut_inside_frame(cut.path(), 0.5);
   run = run_tool("verify " + cut.path());
-  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_EQ(run.exit_code, 4) << run.output;
   EXPECT_TRUE(contains(run.output, "prefix verified: ")) << run.output;
-  EXPECT_TRUE(contains(run.output, "file breaks at: ")) << run.output;
+  EXPECT_TRUE(contains(run.output, "INCOMPLETE: the file ends inside a frame")) << run.output;
   run = run_tool("inspect " + cut.path());
-  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_EQ(run.exit_code, 4) << run.output;
   EXPECT_TRUE(contains(run.output, "end: none")) << run.output;
 
   run = run_tool("verify /nonexistent/x.rwr");
   EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_TRUE(contains(run.output, "cannot open replay")) << run.output;
+}
+
+// One recording per outcome, verified and inspected by the tool.
+class ReplayCliOutcomes : public ::testing::Test {
+ protected:
+  void SetUp() override { checksums_ = record_match(clean_.path(), Recording{}); }
+
+  std::string copy_of_clean(const TempFile& to) {
+    std::filesystem::copy_file(clean_.path(), to.path(),
+                               std::filesystem::copy_options::overwrite_existing);
+    return to.path();
+  }
+
+  static std::string revision(uint32_t r) { return "rewind-sim r" + std::to_string(r); }
+  static uint32_t rules() { return game::CratesGame().rules_version(); }
+
+  TempFile clean_{"cli_outcome_clean"};
+  std::vector<uint64_t> checksums_;
+};
+
+TEST_F(ReplayCliOutcomes, CleanFileExits0) {
+  ToolRun run = run_tool("verify " + clean_.path());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "verified 240 ticks (game crates, 4 players)")) << run.output;
+  EXPECT_FALSE(contains(run.output, "INCOMPLETE")) << run.output;
+
+  run = run_tool("verify --json " + clean_.path());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  for (const char* field :
+       {"\"outcome\": \"verified\"", "\"exit_code\": 0", "\"complete\": true",
+        "\"file_state\": \"complete\"", "\"versions_match\": true", "\"resimulated\": true",
+        "\"version_differences\": []", "\"tick_records\": 240"}) {
+    EXPECT_TRUE(contains(run.output, field)) << field << "\n" << run.output;
+  }
+
+  run = run_tool("inspect " + clean_.path());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "  engine " + revision(sim::kSimRevision) + " (crates rules " +
+                                       std::to_string(rules()) + "); this build runs the same\n"))
+      << run.output;
+  EXPECT_TRUE(contains(run.output, "world config:\n  gravity (0, -9.81, 0) m/s^2\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "  substeps 4\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "  bounds_upper (5000, 5000, 5000) m\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "file: complete")) << run.output;
+}
+
+TEST_F(ReplayCliOutcomes, OlderEngineExits3NamingBothVersions) {
+  TempFile older("cli_outcome_older");
+  Recording rec;
+  rec.edit_header = [](v1::ReplayHeader& header) {
+    header.set_sim_revision(sim::kSimRevision - 1);
+    header.set_rules_version(game::CratesGame().rules_version() - 1);
+  };
+  record_match(older.path(), rec);
+
+  const std::string recorded =
+      revision(sim::kSimRevision - 1) + " (crates rules " + std::to_string(rules() - 1) + ")";
+  const std::string current =
+      revision(sim::kSimRevision) + " (crates rules " + std::to_string(rules()) + ")";
+  ToolRun run = run_tool("verify " + older.path());
+  EXPECT_EQ(run.exit_code, 3) << run.output;
+  EXPECT_TRUE(contains(run.output, "replay was recorded by " + recorded + "; this build runs " +
+                                       current + ": not re-simulated\n"))
+      << run.output;
+  EXPECT_TRUE(contains(run.output, "  sim revision: recorded " +
+                                       std::to_string(sim::kSimRevision - 1) + ", this build " +
+                                       std::to_string(sim::kSimRevision) + "\n"))
+      << run.output;
+  EXPECT_TRUE(contains(run.output, "--ignore-version")) << run.output;
+  EXPECT_FALSE(contains(run.output, "DIVERGED")) << run.output;
+
+  run = run_tool("verify --json " + older.path());
+  EXPECT_EQ(run.exit_code, 3) << run.output;
+  for (const std::string& field :
+       {std::string("\"outcome\": \"version_mismatch\""), std::string("\"exit_code\": 3"),
+        std::string("\"versions_match\": false"), std::string("\"resimulated\": false"),
+        std::string("\"complete\": true"),
+        "\"sim_revision\": " + std::to_string(sim::kSimRevision - 1),
+        "\"sim_revision\": " + std::to_string(sim::kSimRevision)}) {
+    EXPECT_TRUE(contains(run.output, field)) << field << "\n" << run.output;
+  }
+
+  run = run_tool("verify --ignore-version " + older.path());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "note: versions differ: replay was recorded by " + recorded))
+      << run.output;
+  EXPECT_TRUE(contains(run.output, "re-simulating anyway (--ignore-version)")) << run.output;
+  EXPECT_TRUE(contains(run.output, "verified 240 ticks")) << run.output;
+
+  // inspect shows it and still exits by the file's state.
+  run = run_tool("inspect " + older.path());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(
+      run.output, "  engine " + recorded + "; this build runs " + current + ", which differs:\n"))
+      << run.output;
+}
+
+TEST_F(ReplayCliOutcomes, CutShortRecordingsExit4AfterTheirPrefixVerified) {
+  TempFile boundary("cli_outcome_boundary");
+  testing_support::cut_after_tick(copy_of_clean(boundary), 150);
+  ToolRun run = run_tool("verify " + boundary.path());
+  EXPECT_EQ(run.exit_code, 4) << run.output;
+  char last[19];
+  std::snprintf(last, sizeof last, "0x%016llx", static_cast<unsigned long long>(checksums_[150]));
+  EXPECT_TRUE(contains(run.output,
+                       "prefix verified: 151 ticks (game crates, 4 players) checksum "
+                       "of last tick " +
+                           std::string(last)))
+      << run.output;
+  EXPECT_TRUE(contains(run.output,
+                       "INCOMPLETE: no end record; the recording stops after tick 150 on a frame "
+                       "boundary"))
+      << run.output;
+  run = run_tool("verify --json " + boundary.path());
+  EXPECT_EQ(run.exit_code, 4) << run.output;
+  for (const char* field :
+       {"\"outcome\": \"incomplete\"", "\"exit_code\": 4", "\"complete\": false",
+        "\"file_state\": \"incomplete\"", "\"ticks_verified\": 151", "\"torn_frame\": null"}) {
+    EXPECT_TRUE(contains(run.output, field)) << field << "\n" << run.output;
+  }
+  run = run_tool("inspect " + boundary.path());
+  EXPECT_EQ(run.exit_code, 4) << run.output;
+  EXPECT_TRUE(contains(run.output, "file: INCOMPLETE: no end record")) << run.output;
+
+  TempFile torn("cli_outcome_torn");
+  testing_support::cut_inside_frame(copy_of_clean(torn), 0.5, kFrameHeaderBytes + 2);
+  run = run_tool("verify " + torn.path());
+  EXPECT_EQ(run.exit_code, 4) << run.output;
+  EXPECT_TRUE(contains(run.output, "prefix verified: ")) << run.output;
+  EXPECT_TRUE(contains(run.output,
+                       "INCOMPLETE: the file ends inside a frame, as a write cut "
+                       "short leaves it: truncated frame at byte "))
+      << run.output;
+  EXPECT_FALSE(contains(run.output, "file breaks at")) << run.output;
+  run = run_tool("verify --json " + torn.path());
+  EXPECT_TRUE(contains(run.output, "\"file_state\": \"torn\"")) << run.output;
+  EXPECT_TRUE(contains(run.output, "\"exit_code\": 4")) << run.output;
+  run = run_tool("inspect " + torn.path());
+  EXPECT_EQ(run.exit_code, 4) << run.output;
+}
+
+TEST_F(ReplayCliOutcomes, BitFlipInsideAFrameExits2) {
+  TempFile flipped("cli_outcome_flip");
+  copy_of_clean(flipped);
+  const uint64_t size = std::filesystem::file_size(flipped.path());
+  {
+    std::fstream f(flipped.path(), std::ios::in | std::ios::out | std::ios::binary);
+    const auto at = static_cast<std::streamoff>(size / 2);
+    f.seekg(at);
+    char byte = 0;
+    f.get(byte);
+    f.seekp(at);
+    f.put(static_cast<char>(byte ^ 0x01));
+  }
+  ToolRun run = run_tool("verify " + flipped.path());
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, "prefix verified: ")) << run.output;
+  EXPECT_TRUE(contains(run.output, "file breaks at: ")) << run.output;
+  EXPECT_FALSE(contains(run.output, "INCOMPLETE")) << run.output;
+  run = run_tool("verify --json " + flipped.path());
+  EXPECT_TRUE(contains(run.output, "\"outcome\": \"corrupt\"")) << run.output;
+  EXPECT_TRUE(contains(run.output, "\"file_state\": \"corrupt\"")) << run.output;
+  run = run_tool("inspect " + flipped.path());
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, "file: CORRUPT: breaks at: ")) << run.output;
+}
+
+TEST_F(ReplayCliOutcomes, FormatOneFileExits3AndInspects) {
+  TempFile old_format("cli_outcome_format1");
+  Recording rec;
+  rec.edit_header = [](v1::ReplayHeader& header) {
+    header.set_format_version(1);
+    header.clear_engine();
+    header.clear_sim_revision();
+    header.clear_rules_version();
+    header.clear_world_config();
+  };
+  record_match(old_format.path(), rec);
+  ToolRun run = run_tool("verify " + old_format.path());
+  EXPECT_EQ(run.exit_code, 3) << run.output;
+  EXPECT_TRUE(contains(run.output,
+                       "replay was recorded by an earlier engine that did not record its version "
+                       "(replay format 1); this build runs " +
+                           revision(sim::kSimRevision)))
+      << run.output;
+  run = run_tool("inspect " + old_format.path());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "engine not recorded (replay format 1)")) << run.output;
+  EXPECT_TRUE(contains(run.output, "world config: not recorded")) << run.output;
 }
 
 }  // namespace

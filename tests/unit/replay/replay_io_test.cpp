@@ -37,6 +37,12 @@ v1::ReplayHeader test_header(uint32_t players = 3) {
   h.set_window_ticks(8);
   h.set_server_version("test");
   h.set_keyframe_interval(4);
+  // The identity make_replay_header() records. This test links no engine,
+  // so opaque bytes stand in for an encoded world config.
+  h.set_engine("rewind-sim");
+  h.set_sim_revision(2);
+  h.set_rules_version(2);
+  h.set_world_config(std::string(61, '\x01'));
   return h;
 }
 
@@ -263,6 +269,28 @@ TEST(ReplayIo, WriterRefusesExistingFileAndBadHeader) {
   no_game.clear_game();
   EXPECT_FALSE(ReplayWriter::open(file.path(), no_game, overwrite).ok());
 
+  // The writer fills in the current format, keeps an older readable one
+  // (copies of old files) and cannot write a newer one.
+  v1::ReplayHeader old_format = test_header();
+  old_format.set_format_version(1);
+  old_format.clear_engine();
+  old_format.clear_sim_revision();
+  old_format.clear_world_config();
+  ASSERT_TRUE(ReplayWriter::open(file.path(), old_format, overwrite).ok());
+  {
+    Result<ReplayReader> reader = ReplayReader::open(file.path());
+    ASSERT_TRUE(reader.ok()) << reader.status().message();
+    EXPECT_EQ(reader->header().format_version(), 1u);
+  }
+  v1::ReplayHeader newer = test_header();
+  newer.set_format_version(kFormatVersion + 1);
+  Result<ReplayWriter> refused = ReplayWriter::open(file.path(), newer, overwrite);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), ErrorCode::kInvalidArgument);
+  v1::ReplayHeader anonymous = test_header();
+  anonymous.clear_sim_revision();
+  EXPECT_FALSE(ReplayWriter::open(file.path(), anonymous, overwrite).ok());
+
   Result<ReplayWriter> dir = ReplayWriter::open(testing::TempDir(), test_header(), overwrite);
   ASSERT_FALSE(dir.ok());
   EXPECT_EQ(dir.status().code(), ErrorCode::kIo);
@@ -374,6 +402,8 @@ TEST(ReplayIo, TruncationAtEveryByteIsCleanPrefixOrPreciseError) {
       EXPECT_EQ(err, "");
       EXPECT_EQ(reader->offset(), len);
       EXPECT_EQ(reader->ended(), len == bytes.size());
+      EXPECT_EQ(reader->state(),
+                len == bytes.size() ? ReadState::kComplete : ReadState::kIncomplete);
     } else {
       const uint64_t at = starts[k];
       const uint64_t frame_bytes = starts[k + 1] - at;
@@ -386,6 +416,8 @@ TEST(ReplayIo, TruncationAtEveryByteIsCleanPrefixOrPreciseError) {
       EXPECT_EQ(err, where);
       EXPECT_EQ(reader->offset(), at);  // the valid prefix ends where the frame starts
       EXPECT_EQ(reader->error().code(), ErrorCode::kCorrupt);
+      // A cut inside a frame is a write that did not finish, not damage.
+      EXPECT_EQ(reader->state(), ReadState::kTorn);
       // The error sticks.
       EXPECT_FALSE(reader->next().ok());
     }
@@ -412,6 +444,7 @@ TEST(ReplayIo, BitFlipInAnyPayloadIsAHashMismatchNamingTheRecord) {
       const std::string err = drain(*reader);
       EXPECT_EQ(err.rfind(prefix, 0), 0u) << "flip at " << pos << ": " << err;
       EXPECT_EQ(reader->offset(), starts[k]);
+      EXPECT_EQ(reader->state(), ReadState::kCorrupt);
     }
   }
   // A flipped bit in the stored hash is caught the same way.
@@ -423,6 +456,63 @@ TEST(ReplayIo, BitFlipInAnyPayloadIsAHashMismatchNamingTheRecord) {
       drain(*reader).rfind(
           "hash mismatch at byte " + std::to_string(starts[2]) + " (record 2, after tick 0)", 0),
       0u);
+}
+
+TEST(ReplayIo, DamagedLengthFieldIsCorruptNeverTorn) {
+  TempFile file("length_flip");
+  const std::vector<uint64_t> starts = write_small_replay(file.path());
+  const std::vector<uint8_t> bytes = read_all(file.path());
+  size_t past_end = 0;
+  for (size_t k = 0; k + 1 < starts.size(); ++k) {
+    for (int bit = 0; bit < 32; ++bit) {
+      SCOPED_TRACE("record " + std::to_string(k) + " length bit " + std::to_string(bit));
+      std::vector<uint8_t> copy = bytes;
+      copy[starts[k] + static_cast<size_t>(bit / 8)] ^= static_cast<uint8_t>(1u << (bit % 8));
+      const uint32_t claimed = uint32_t{copy[starts[k]]} | uint32_t{copy[starts[k] + 1]} << 8 |
+                               uint32_t{copy[starts[k] + 2]} << 16 |
+                               uint32_t{copy[starts[k] + 3]} << 24;
+      if (claimed <= kMaxRecordBytes && starts[k] + kFrameHeaderBytes + claimed > bytes.size()) {
+        ++past_end;  // looks like a frame cut short by the end of the file
+      }
+      Result<ReplayReader> reader = ReplayReader::from_bytes(copy);
+      if (k == 0) {
+        ASSERT_FALSE(reader.ok());
+        EXPECT_EQ(reader.status().message().find("truncated"), std::string::npos)
+            << reader.status().message();
+        continue;
+      }
+      ASSERT_TRUE(reader.ok());
+      const std::string err = drain(*reader);
+      EXPECT_FALSE(err.empty());
+      EXPECT_EQ(reader->state(), ReadState::kCorrupt) << err;
+      EXPECT_EQ(reader->offset(), starts[k]);
+    }
+  }
+  // The hash-prefix check is what tells these apart from a torn tail.
+  EXPECT_GT(past_end, 20u);
+
+  // The message says what happened.
+  std::vector<uint8_t> copy = bytes;
+  const size_t last = starts.size() - 2;  // the end record
+  copy[starts[last]] ^= 0x40;             // claims 64 more bytes than the file holds
+  Result<ReplayReader> reader = ReplayReader::from_bytes(copy);
+  ASSERT_TRUE(reader.ok());
+  EXPECT_NE(drain(*reader).find("damaged length at byte " + std::to_string(starts[last])),
+            std::string::npos);
+}
+
+TEST(ReplayIo, PrefixWithHashFindsTheShortestMatchingPrefix) {
+  const std::vector<uint8_t> bytes = {1, 2, 3, 4, 5, 6, 7, 8, 9};
+  for (size_t n = 0; n <= bytes.size(); ++n) {
+    EXPECT_EQ(prefix_with_hash(bytes, payload_hash({bytes.data(), n})), n);
+  }
+  EXPECT_EQ(prefix_with_hash(bytes, payload_hash(std::vector<uint8_t>{9, 9})), std::nullopt);
+  // Long enough for the streaming hash's internal blocks.
+  std::vector<uint8_t> long_bytes(5000);
+  for (size_t i = 0; i < long_bytes.size(); ++i) long_bytes[i] = static_cast<uint8_t>(i * 7);
+  for (size_t n : {size_t{239}, size_t{241}, size_t{1024}, size_t{4097}}) {
+    EXPECT_EQ(prefix_with_hash(long_bytes, payload_hash({long_bytes.data(), n})), n);
+  }
 }
 
 TEST(ReplayIo, HugeLengthIsRefusedBeforeAllocating) {
@@ -457,12 +547,48 @@ TEST(ReplayIo, ReaderRefusesFilesTheWriterWouldNotWrite) {
   EXPECT_EQ(bad_magic.open_error(),
             "bad magic at byte 0: not a replay file (expected \"RWRPLY01\")");
 
-  v1::ReplayHeader future = h;
+  // A newer format opens (its header can be shown) but its records are
+  // not read.
   v1::ReplayRecord future_record;
-  *future_record.mutable_header() = future;
-  future_record.mutable_header()->set_format_version(2);
-  EXPECT_NE(FileBuilder{}.add(future_record).open_error().find("format version 2"),
+  *future_record.mutable_header() = h;
+  future_record.mutable_header()->set_format_version(kFormatVersion + 1);
+  const FileBuilder future = FileBuilder{}.add(future_record).tick(0);
+  EXPECT_EQ(future.open_error(), "");
+  EXPECT_EQ(future.read_error(),
+            "records of replay format version 3 are not read by this build "
+            "(it reads formats 1 to 2)");
+  {
+    Result<ReplayReader> reader = ReplayReader::from_bytes(future.bytes);
+    ASSERT_TRUE(reader.ok());
+    EXPECT_EQ(reader->header().format_version(), 3u);
+    EXPECT_EQ(reader->state(), ReadState::kReading);
+    EXPECT_FALSE(reader->next().ok());
+    EXPECT_EQ(reader->state(), ReadState::kUnsupported);
+    EXPECT_EQ(reader->error().code(), ErrorCode::kUnsupported);
+  }
+  // ... unless its common fields are broken too.
+  future_record.mutable_header()->set_player_count(0);
+  EXPECT_NE(FileBuilder{}.add(future_record).open_error().find("player_count 0"),
             std::string::npos);
+
+  v1::ReplayRecord no_version;
+  *no_version.mutable_header() = h;
+  no_version.mutable_header()->set_format_version(0);
+  EXPECT_EQ(FileBuilder{}.add(no_version).open_error(),
+            "bad header at byte 8 (record 0): replay header names no format version");
+
+  // Format 2 must say who recorded it; format 1 never did.
+  v1::ReplayRecord anonymous;
+  *anonymous.mutable_header() = h;
+  anonymous.mutable_header()->clear_engine();
+  anonymous.mutable_header()->set_format_version(2);
+  EXPECT_NE(FileBuilder{}.add(anonymous).open_error().find(
+                "lacks the engine name, sim revision or world config"),
+            std::string::npos);
+  anonymous.mutable_header()->set_format_version(1);
+  anonymous.mutable_header()->clear_sim_revision();
+  anonymous.mutable_header()->clear_world_config();
+  EXPECT_EQ(FileBuilder{}.add(anonymous).tick(0).read_error(), "");
 
   const size_t gap_at = FileBuilder{}.header(h).tick(0).tick(1).bytes.size();
   EXPECT_EQ(
@@ -586,7 +712,9 @@ TEST(ReplayIo, SummaryCountsRecordsAndSubstitutions) {
   ASSERT_TRUE(s->end.has_value());
   EXPECT_EQ(s->end->reason(), "match over");
   EXPECT_FALSE(s->error.has_value());
+  EXPECT_EQ(s->state, ReadState::kComplete);
   EXPECT_EQ(s->valid_bytes, file_size(file.path()));
+  EXPECT_EQ(s->header.sim_revision(), 2u);
 
   std::vector<uint8_t> bytes = read_all(file.path());
   bytes.resize(bytes.size() - 3);
@@ -595,8 +723,28 @@ TEST(ReplayIo, SummaryCountsRecordsAndSubstitutions) {
   ASSERT_TRUE(s.ok());
   ASSERT_TRUE(s->error.has_value());
   EXPECT_NE(s->error->find("truncated frame"), std::string::npos);
+  EXPECT_EQ(s->state, ReadState::kTorn);
   EXPECT_FALSE(s->end.has_value());
   EXPECT_EQ(s->last_tick, 5);
+
+  // Cut on the boundary before the end record: no error, but incomplete.
+  fs::remove(file.path());
+  const std::vector<uint64_t> starts = write_small_replay(file.path(), 6);
+  bytes = read_all(file.path());
+  bytes.resize(starts[starts.size() - 2]);
+  write_all(file.path(), bytes);
+  s = summarize_replay(file.path());
+  ASSERT_TRUE(s.ok());
+  EXPECT_FALSE(s->error.has_value());
+  EXPECT_EQ(s->state, ReadState::kIncomplete);
+  EXPECT_EQ(s->last_tick, 5);
+
+  // A flipped bit inside a frame is corruption.
+  bytes[starts[3] + kFrameHeaderBytes + 1] ^= 0x04;
+  write_all(file.path(), bytes);
+  s = summarize_replay(file.path());
+  ASSERT_TRUE(s.ok());
+  EXPECT_EQ(s->state, ReadState::kCorrupt);
 }
 
 TEST(ReplayIo, RewriteForgesOneInputWithValidFraming) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -12,6 +13,8 @@
 #include <vector>
 
 #include "rewind/game/simulation.h"
+#include "rewind/replay/replay_format.h"
+#include "rewind/replay/replay_header.h"
 #include "rewind/replay/replay_reader.h"
 #include "rewind/replay/replay_writer.h"
 
@@ -46,6 +49,9 @@ struct Recording {
   bool finish = true;
   /// Lets a test replace the state a keyframe records (forged keyframes).
   std::function<void(Tick, std::vector<uint8_t>&)> edit_keyframe;
+  /// Lets a test change the header before it is written (a file that
+  /// claims another engine, rules or world config).
+  std::function<void(v1::ReplayHeader&)> edit_header;
 };
 
 /// Plays `rec` with seeded random inputs and records it the way the server
@@ -60,13 +66,14 @@ inline std::vector<uint64_t> record_match(const std::string& path, const Recordi
   EXPECT_TRUE(sim.ok()) << sim.status().message();
   if (!sim.ok()) return checksums;
 
-  v1::ReplayHeader header;
-  header.set_game(rec.game);
-  header.set_player_count(rec.players);
-  header.set_seed(rec.seed);
-  header.set_tick_rate_hz(60);
-  header.set_window_ticks(8);
-  header.set_keyframe_interval(rec.keyframe_interval);
+  RecordingSetup recording;
+  recording.match = setup;
+  recording.tick_rate_hz = 60;
+  recording.window_ticks = 8;
+  recording.keyframe_interval = rec.keyframe_interval;
+  recording.server_version = "replay tests";
+  v1::ReplayHeader header = make_replay_header((*sim)->game(), recording);
+  if (rec.edit_header) rec.edit_header(header);
   ReplayWriterOptions options;
   options.overwrite = true;
   Result<ReplayWriter> writer = ReplayWriter::open(path, header, options);
@@ -105,9 +112,11 @@ inline std::vector<uint64_t> record_match(const std::string& path, const Recordi
   return checksums;
 }
 
-/// Truncates `path` a few bytes into the first frame that starts past
-/// `fraction` of the file, so the cut never falls on a frame boundary.
-inline void cut_inside_frame(const std::string& path, double fraction) {
+/// Truncates `path` `into` bytes into the first frame that starts past
+/// `fraction` of the file, so the cut never falls on a frame boundary: the
+/// default 5 tears the 12-byte frame header, kFrameHeaderBytes + n the
+/// payload.
+inline void cut_inside_frame(const std::string& path, double fraction, uint64_t into = 5) {
   const uint64_t size = std::filesystem::file_size(path);
   uint64_t cut = 0;
   {
@@ -117,10 +126,51 @@ inline void cut_inside_frame(const std::string& path, double fraction) {
       Result<std::optional<v1::ReplayRecord>> r = reader->next();
       ASSERT_TRUE(r.ok() && r->has_value());
     }
-    cut = reader->offset() + 5;
+    cut = reader->offset() + into;
   }
   ASSERT_LT(cut, size);
   std::filesystem::resize_file(path, cut);
+}
+
+/// Truncates `path` at the end of the frame that holds tick `tick`'s record:
+/// a recording that stops on a frame boundary without its end record.
+inline void cut_after_tick(const std::string& path, Tick tick) {
+  uint64_t cut = 0;
+  {
+    Result<ReplayReader> reader = ReplayReader::open(path);
+    ASSERT_TRUE(reader.ok());
+    while (true) {
+      Result<std::optional<v1::ReplayRecord>> r = reader->next();
+      ASSERT_TRUE(r.ok() && r->has_value()) << "tick " << tick << " not recorded";
+      if ((*r)->has_tick() && (*r)->tick().tick() == tick) break;
+    }
+    cut = reader->offset();
+  }
+  std::filesystem::resize_file(path, cut);
+}
+
+/// Copies `in` to `out` frame by frame with `edit` applied to the header
+/// and every frame re-hashed: a file that says what the edit says, whatever
+/// the writer would allow.
+inline void rewrite_header(const std::string& in, const std::string& out,
+                           const std::function<void(v1::ReplayHeader&)>& edit) {
+  Result<ReplayReader> reader = ReplayReader::open(in);
+  ASSERT_TRUE(reader.ok()) << reader.status().message();
+  std::vector<uint8_t> bytes(kMagic.begin(), kMagic.end());
+  v1::ReplayRecord header;
+  *header.mutable_header() = reader->header();
+  edit(*header.mutable_header());
+  ASSERT_TRUE(append_frame(header, bytes).ok());
+  while (true) {
+    Result<std::optional<v1::ReplayRecord>> r = reader->next();
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    if (!r->has_value()) break;
+    ASSERT_TRUE(append_frame(**r, bytes).ok());
+  }
+  std::FILE* f = std::fopen(out.c_str(), "wb");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(std::fwrite(bytes.data(), 1, bytes.size(), f), bytes.size());
+  std::fclose(f);
 }
 
 }  // namespace rwd::replay::testing_support

@@ -5,10 +5,18 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <map>
 #include <random>
 
+#include "rewind/game/simulation.h"
 #include "rewind/net/envelope_codec.h"
+#include "rewind/replay/engine_identity.h"
+#include "rewind/replay/replay_format.h"
+#include "rewind/replay/replay_reader.h"
+#include "rewind/replay/replay_verifier.h"
+#include "rewind/sim/version.h"
+#include "rewind/sim/world3d.h"
 
 namespace rwd::server {
 namespace {
@@ -354,6 +362,37 @@ TEST(MatchHost, ConfigErrorsAreReported) {
       MatchHost::create(
           config, [](const Endpoint&, std::span<const uint8_t>) {}, net::SteadyClock::now())
           .ok());
+}
+
+TEST(MatchHost, ReplayHeaderNamesThisBuildAndAStoppedMatchVerifiesAsIncomplete) {
+  const std::string path =
+      (std::filesystem::path(::testing::TempDir()) / "match_host_replay.rwr").string();
+  MatchConfig config = test_config();
+  config.replay_path = path;
+  Tick finals = 0;
+  {
+    HostHarness h(config);
+    play(h, 40, nullptr);
+    finals = h.host().stats().ticks_final;
+    ASSERT_GT(finals, 20);
+  }  // the host goes away without ending the match, as a killed server would
+
+  Result<replay::ReplayReader> reader = replay::ReplayReader::open(path);
+  ASSERT_TRUE(reader.ok()) << reader.status().message();
+  const v1::ReplayHeader& header = reader->header();
+  EXPECT_EQ(header.format_version(), replay::kFormatVersion);
+  EXPECT_EQ(header.engine(), sim::kEngineName);
+  EXPECT_EQ(header.sim_revision(), sim::kSimRevision);
+  EXPECT_EQ(header.rules_version(), game::make_builtin_game("crates")->rules_version());
+  std::vector<uint8_t> config_bytes;
+  sim::World3D::encode_config(game::make_builtin_game("crates")->world_config(), config_bytes);
+  EXPECT_EQ(header.world_config(), std::string(config_bytes.begin(), config_bytes.end()));
+  EXPECT_TRUE(replay::check_versions(header).matches());
+
+  const replay::VerifyReport report = replay::verify_replay(path);
+  EXPECT_EQ(report.outcome(), replay::VerifyOutcome::kIncomplete);
+  EXPECT_EQ(report.ticks_verified, static_cast<uint64_t>(finals));
+  std::filesystem::remove(path);
 }
 
 }  // namespace

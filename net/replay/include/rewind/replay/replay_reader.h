@@ -19,11 +19,27 @@
 
 namespace rwd::replay {
 
+/// Where a read through a replay stands. Everything but kReading is final.
+enum class ReadState : uint8_t {
+  kReading,      ///< more records may follow
+  kComplete,     ///< read to the end record, and nothing follows it
+  kIncomplete,   ///< the file stops on a frame boundary without an end record
+  kTorn,         ///< the file stops inside a frame: the last write was cut short
+  kCorrupt,      ///< a frame fails its hash, does not parse, or breaks the order
+  kUnsupported,  ///< a newer format: the header is read, the records are not
+  kIoError,      ///< the operating system refused a read
+};
+
+/// "complete", "incomplete", "torn", ...: for reports and JSON.
+const char* read_state_name(ReadState state);
+
 /// Reads a replay file record by record, checking framing, hashes and order.
 class ReplayReader {
  public:
   /// Opens `path` and reads the magic and the header record. kIo when the
-  /// file cannot be read, kCorrupt/kUnsupported when it is no usable replay.
+  /// file cannot be read, kCorrupt/kInvalidArgument when it is no usable
+  /// replay. A header of a newer format (with valid game and player count)
+  /// opens, so tools can show it; next() then refuses with kUnsupported.
   static Result<ReplayReader> open(const std::string& path);
   /// Same over bytes in memory (fuzzing, tests, network uploads).
   static Result<ReplayReader> from_bytes(std::span<const uint8_t> bytes);
@@ -52,6 +68,12 @@ class ReplayReader {
   bool ended() const { return ended_; }
   /// The error that stopped the reader, if any.
   const Status& error() const { return failure_; }
+  /// How far reading got: kReading until next() has returned the end of
+  /// the file or an error. A frame that runs past the end of the file is
+  /// kTorn (an error from next(), with kCorrupt, saying where), unless a
+  /// prefix of what is there matches the frame's hash: then its length
+  /// field is damaged and the file is kCorrupt.
+  ReadState state() const;
 
  private:
   struct Source;
@@ -70,6 +92,8 @@ class ReplayReader {
   Tick last_keyframe_tick_ = kNoTick - 1;
   bool ended_ = false;
   bool at_eof_ = false;
+  bool torn_ = false;
+  bool newer_format_ = false;
   Status failure_;
   std::vector<uint8_t> payload_;
 };

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "rewind/replay/replay_reader.h"
 #include "rewind/sim/status.h"
 #include "rewind/sim/tick.h"
 #include "rewind/v1/replay.pb.h"
@@ -33,8 +34,12 @@ struct ReplaySummary {
   std::optional<v1::ReplayEnd> end;
   /// Bytes of the file that were read and verified by their hashes.
   uint64_t valid_bytes = 0;
-  /// Where and why the file breaks, if it does.
+  /// Where and why reading stopped early, if it did (a torn last frame,
+  /// damaged records, a newer format's records).
   std::optional<std::string> error;
+  /// How the read ended: kComplete, kIncomplete (no end record), kTorn (the
+  /// last frame cut short), kCorrupt, kUnsupported or kIoError.
+  ReadState state = ReadState::kReading;
 };
 
 /// Summarizes the replay at `path`. Fails only when not even the header can

@@ -3,13 +3,17 @@
 // Headless re-simulation of a replay: the same game, setup and inputs must
 // give the recorded checksum at every tick and the recorded state at every
 // keyframe. The first divergence is reported with its tick and, when a
-// keyframe allows, the bodies and fields that differ.
+// keyframe allows, the bodies and fields that differ. A replay recorded by
+// another engine revision, rules version or world config is not
+// re-simulated (unless asked): a divergence would say nothing about the
+// match.
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "rewind/replay/engine_identity.h"
 #include "rewind/replay/replay_reader.h"
 #include "rewind/sim/body_record.h"
 #include "rewind/sim/tick.h"
@@ -24,6 +28,18 @@ struct VerifyOptions {
   /// At most this many field differences are kept (differences_total counts
   /// all of them).
   size_t max_differences = 256;
+  /// Re-simulate even when the recorded engine identity differs from this
+  /// build's; the report still holds the differences.
+  bool ignore_version = false;
+};
+
+/// What a verification came to, most serious first.
+enum class VerifyOutcome : uint8_t {
+  kVerified,         ///< every tick and keyframe matched, and the file ends with its end record
+  kDiverged,         ///< a tick checksum or keyframe state disagreed
+  kCorrupt,          ///< damaged or out-of-order records, or re-simulation could not run
+  kVersionMismatch,  ///< recorded by another engine, rules or world config: not re-simulated
+  kIncomplete,       ///< the whole valid prefix verified, but there is no end record
 };
 
 /// What disagreed first.
@@ -37,6 +53,13 @@ enum class DivergenceKind : uint8_t {
 struct VerifyReport {
   /// The header, when the file had a readable one.
   std::optional<v1::ReplayHeader> header;
+  /// The recorded engine identity against this build's (with the header).
+  std::optional<VersionCheck> versions;
+  /// True once re-simulation started: false when the versions differ and
+  /// VerifyOptions::ignore_version is off, or when the game cannot be made.
+  bool resimulated = false;
+  /// Tick records in the file's valid prefix, simulated or not.
+  uint64_t tick_records = 0;
   /// Ticks re-simulated whose checksums matched (0 .. ticks_verified-1).
   uint64_t ticks_verified = 0;
   /// Checksum after the last verified tick.
@@ -45,6 +68,11 @@ struct VerifyReport {
   uint64_t keyframes_verified = 0;
   /// The file holds its end record (the match finished and the writer closed).
   bool ended_cleanly = false;
+  /// How reading the file ended (the rest of the file is read even when
+  /// re-simulation stops or is skipped): kComplete, kIncomplete and kTorn
+  /// mean every whole frame was read; kCorrupt, kUnsupported or kIoError
+  /// that reading stopped there.
+  ReadState file_state = ReadState::kReading;
 
   /// The first tick whose checksum or keyframe disagreed.
   std::optional<Tick> first_divergent_tick;
@@ -60,17 +88,27 @@ struct VerifyReport {
   /// How the fields were found, or why there are none.
   std::string differences_note;
 
-  /// Where and why the file breaks (truncated, corrupt, out of order); the
-  /// prefix before it was verified.
+  /// Where the file ends inside a frame (a write cut short, file_state
+  /// kTorn); the prefix before it was verified.
+  std::optional<std::string> torn_frame;
+  /// Where and why the file breaks (damaged, unparsable or out-of-order
+  /// records, read errors); the prefix before it was verified.
   std::optional<std::string> framing_error;
   /// Why re-simulation could not run or continue (unknown game, keyframe
-  /// bytes the simulation refuses).
+  /// bytes the simulation refuses, records of a newer format).
   std::optional<std::string> error;
 
   bool diverged() const { return first_divergent_tick.has_value(); }
-  /// Everything in the file verified and the file is intact.
-  bool ok() const { return !diverged() && !framing_error && !error; }
+  /// The recorded identity differs from this build's and nothing was
+  /// re-simulated.
+  bool version_skipped() const { return versions && !versions->matches() && !resimulated; }
+  VerifyOutcome outcome() const;
+  /// Everything in the file verified and the file is complete.
+  bool ok() const { return outcome() == VerifyOutcome::kVerified; }
 };
+
+/// "verified", "diverged", "corrupt", "version_mismatch", "incomplete".
+const char* outcome_name(VerifyOutcome outcome);
 
 /// Re-simulates the replay at `path`.
 VerifyReport verify_replay(const std::string& path, const VerifyOptions& options = {});

@@ -45,8 +45,11 @@ struct ReplayWriterOptions {
 class ReplayWriter {
  public:
   /// Creates or truncates `path`, writes the magic and `header` and flushes
-  /// them. format_version is filled in by the writer. Refuses an existing
-  /// non-empty file unless options.overwrite.
+  /// them. A format_version of 0 becomes kFormatVersion; an older readable
+  /// version is kept (copies of old files stay what they were). The header
+  /// must pass validate_header(): a format 2 header carries the engine
+  /// identity (make_replay_header() in replay_header.h fills it). Refuses an
+  /// existing non-empty file unless options.overwrite.
   static Result<ReplayWriter> open(const std::string& path, const v1::ReplayHeader& header,
                                    ReplayWriterOptions options = {});
 
