@@ -195,7 +195,7 @@ TEST_F(ReplayCliOutcomes, CleanFileExits0) {
       << run.output;
   EXPECT_TRUE(contains(run.output, "world config:\n  gravity (0, -9.81, 0) m/s^2\n")) << run.output;
   EXPECT_TRUE(contains(run.output, "  substeps 4\n")) << run.output;
-  EXPECT_TRUE(contains(run.output, "  bounds_upper (5000, 5000, 5000) m\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "  bounds_upper (200, 200, 200) m\n")) << run.output;
   EXPECT_TRUE(contains(run.output, "file: complete")) << run.output;
 }
 
