@@ -25,9 +25,12 @@ for run in 1 2; do
   fi
 done
 
-lines=$(wc -l <"$out_dir/run1.out")
-if ((lines != ticks)); then
-  echo "compare_runs: FAIL: $exe printed $lines lines, expected $ticks" >&2
+# Match ticks are "<tick> <checksum>"; the edge scene's "edge ..." lines
+# before them are compared too, but not counted.
+lines=$(grep -c -E '^-?[0-9]+ [0-9a-f]{16}$' "$out_dir/run1.out" || true)
+edge=$(grep -c '^edge ' "$out_dir/run1.out" || true)
+if ((lines != ticks)) || ((edge == 0)); then
+  echo "compare_runs: FAIL: $exe printed $lines match tick lines (expected $ticks) and $edge edge lines" >&2
   exit 1
 fi
 if ! cmp -s "$out_dir/run1.out" "$out_dir/run2.out"; then
