@@ -183,8 +183,12 @@ Status check_payload(const Envelope& e) {
       return check_chunk("resync_chunk", m.chunk_index(), m.chunk_count(), kMaxResyncChunks,
                          m.total_size(), kMaxResyncStateBytes, m.chunk());
     }
-    case Envelope::kResyncRequest:
-      return check_tick("resync_request.desync_tick", e.resync_request().desync_tick(), 0);
+    case Envelope::kResyncRequest: {
+      const auto& m = e.resync_request();
+      if (Status s = check_tick("resync_request.desync_tick", m.desync_tick(), 0); !s.ok())
+        return s;
+      return check_string("resync_request.refused_reason", m.refused_reason(), kMaxStringBytes);
+    }
     case Envelope::PAYLOAD_NOT_SET:
       return corrupt("no payload");
   }
