@@ -535,9 +535,7 @@ void ClientSession::send_desync_report(TimePoint now) {
   // so a server that is slow to answer is not buried in chunks.
   if (desync_tick_ == kNoTick || count == 0 || count > net::kMaxDesyncChunks ||
       report_sends_++ >= 3) {
-    v1::Envelope envelope;  // nothing to show: just ask for the snapshot
-    envelope.mutable_resync_request()->set_desync_tick(std::max<Tick>(desync_tick_, 0));
-    send(envelope, now);
+    send_resync_request(now);  // nothing to show: just ask for the snapshot
     return;
   }
   for (size_t i = 0; i < count; ++i) {
@@ -566,6 +564,9 @@ void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now)
   // the final ticks in between.
   if (chunk.tick() - 1 < last_final_acked_) return;
   if (!awaiting_resync_ && chunk.tick() <= last_final_received_ + 1) return;
+  // Resends of a snapshot that already failed to load: the server has not
+  // heard yet; our requests keep naming it until it sends another.
+  if (chunk.snapshot_id() == refused_snapshot_id_) return;
   if (resync_.snapshot_id != chunk.snapshot_id() || resync_.chunks.size() != chunk.chunk_count()) {
     resync_ = ResyncAssembly{};
     resync_.snapshot_id = chunk.snapshot_id();
@@ -612,6 +613,8 @@ void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now)
   time_sync_.clear_jump();
   awaiting_resync_ = false;
   desync_tick_ = kNoTick;
+  refused_snapshot_id_ = 0;
+  refused_reason_.clear();
   state_buffer_.clear();
   report_sends_ = 0;
   ++stats_.resyncs;
@@ -632,12 +635,20 @@ void ClientSession::refuse_resync(uint32_t snapshot_id, Tick tick, const std::st
   // hear that this one is useless. Until another loads, final ticks are not
   // applied and the request is repeated (update() -> send_desync_report).
   awaiting_resync_ = true;
+  refused_snapshot_id_ = snapshot_id;
+  refused_reason_ = reason.substr(0, net::kMaxStringBytes);
   last_report_sent_ = now;
+  send_resync_request(now);
+}
+
+void ClientSession::send_resync_request(TimePoint now) {
   v1::Envelope envelope;
   v1::ResyncRequest* request = envelope.mutable_resync_request();
   request->set_desync_tick(std::max<Tick>(desync_tick_, 0));
-  request->set_refused_snapshot_id(snapshot_id);
-  request->set_refused_reason(reason.substr(0, net::kMaxStringBytes));
+  if (refused_snapshot_id_ != 0) {
+    request->set_refused_snapshot_id(refused_snapshot_id_);
+    request->set_refused_reason(refused_reason_);
+  }
   send(envelope, now);
 }
 

@@ -740,7 +740,10 @@ bool MatchHost::start_resync_episode(Peer& peer) {
   // range) is often fine a few ticks earlier, and the client re-simulates
   // from there without ever having to load the broken one. Both must still
   // be in the snapshot ring, and the final ticks after the fallback must
-  // still be held for resending. At most two checks per episode.
+  // still be held for resending. At most two checks per episode. (A
+  // snapshot right after what the client acknowledged counts as
+  // acknowledged at once, so it goes out once instead of until
+  // acknowledged; a client that misses a chunk asks again.)
   const Tick newest = next_final_;
   const Tick oldest_final_held = finals_.empty() ? next_final_ : finals_.front().tick();
   const Tick fallback = std::max(peer.final_seen + 1, oldest_final_held);

@@ -102,6 +102,7 @@ class ClientSession {
   void finish_ending(TimePoint now);
   void on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now);
   void refuse_resync(uint32_t snapshot_id, Tick tick, const std::string& reason, TimePoint now);
+  void send_resync_request(TimePoint now);
   void step_due_ticks(TimePoint now);
   void verify_finals(TimePoint now);
   void send_inputs(TimePoint now);
@@ -152,6 +153,8 @@ class ClientSession {
   uint64_t desync_local_checksum_ = 0;
   uint32_t report_id_ = 0;
   TimePoint last_report_sent_;
+  uint32_t refused_snapshot_id_ = 0;  // the last snapshot that did not load, 0 = none
+  std::string refused_reason_;
   struct ResyncAssembly {
     uint32_t snapshot_id = 0;
     Tick tick = kNoTick;
