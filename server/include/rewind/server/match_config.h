@@ -37,9 +37,7 @@ struct MatchConfig {
   /// report (a round trip after its final tick, or half a second later
   /// when a chunk was lost) can still be diffed against the server's state,
   /// and a resync has older final states to fall back to.
-  int32_t snapshot_ticks() const {
-    return window_ticks + 8 + static_cast<int32_t>(tick_rate_hz);
-  }
+  int32_t snapshot_ticks() const { return window_ticks + 8 + static_cast<int32_t>(tick_rate_hz); }
   /// Checks ranges and that the game exists.
   Status validate() const;
 };
