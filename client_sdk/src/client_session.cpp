@@ -29,6 +29,13 @@ uint64_t micros_since_epoch(TimePoint t) {
       std::chrono::duration_cast<std::chrono::microseconds>(t.time_since_epoch()).count());
 }
 
+Status check_snapshot_ticks(const ClientConfig& config) {
+  if (config.snapshot_ticks < 16 || config.snapshot_ticks > 1024) {
+    return Status::Error(ErrorCode::kInvalidArgument, "snapshot_ticks must be in [16, 1024]");
+  }
+  return Status::Ok();
+}
+
 }  // namespace
 
 Result<std::unique_ptr<ClientSession>> ClientSession::create(asio::io_context& io,
@@ -39,9 +46,7 @@ Result<std::unique_ptr<ClientSession>> ClientSession::create(asio::io_context& i
     return Status::Error(ErrorCode::kInvalidArgument,
                          "bad server address '" + config.server_address + "': " + error.message());
   }
-  if (config.snapshot_ticks < 16 || config.snapshot_ticks > 1024) {
-    return Status::Error(ErrorCode::kInvalidArgument, "snapshot_ticks must be in [16, 1024]");
-  }
+  if (Status status = check_snapshot_ticks(config); !status.ok()) return status;
   if (config.faults) {
     if (Status status = net::validate_fault_config(*config.faults); !status.ok()) return status;
   }
@@ -51,10 +56,29 @@ Result<std::unique_ptr<ClientSession>> ClientSession::create(asio::io_context& i
                                          asio::ip::udp::endpoint(address, config.server_port));
 }
 
+Result<std::unique_ptr<ClientSession>> ClientSession::create_detached(const ClientConfig& config,
+                                                                      SendFn send) {
+  if (Status status = check_snapshot_ticks(config); !status.ok()) return status;
+  if (config.faults) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "network faults are injected on a socket; a detached session has none");
+  }
+  if (!send) return Status::Error(ErrorCode::kInvalidArgument, "a detached session needs a sender");
+  return std::make_unique<ClientSession>(config, std::move(send));
+}
+
+ClientSession::ClientSession(const ClientConfig& config, SendFn send)
+    : config_(config),
+      send_(std::move(send)),
+      connection_(net::SteadyClock::now()),
+      time_sync_(net::TimeSyncConfig{config.target_lead_ticks}) {
+  std::random_device device;
+  nonce_ = (uint64_t{device()} << 32) | device();
+}
+
 ClientSession::ClientSession(asio::io_context& io, const ClientConfig& config,
                              net::UdpEndpoint socket, asio::ip::udp::endpoint server)
-    : io_(io),
-      config_(config),
+    : config_(config),
       socket_(std::move(socket)),
       server_(server),
       connection_(net::SteadyClock::now()),
@@ -65,11 +89,11 @@ ClientSession::ClientSession(asio::io_context& io, const ClientConfig& config,
     net::FaultConfig in = *config_.faults;
     in.seed = out.seed ^ 0xA5A5A5A5DEADBEEFull;
     outbound_faults_.emplace(std::move(*net::FaultyLink::create(
-        io_, out, [this](std::span<const uint8_t> bytes, const asio::ip::udp::endpoint& to) {
+        io, out, [this](std::span<const uint8_t> bytes, const asio::ip::udp::endpoint& to) {
           socket_->send_to(bytes, to);
         })));
     inbound_faults_.emplace(std::move(*net::FaultyLink::create(
-        io_, in, [this](std::span<const uint8_t> bytes, const asio::ip::udp::endpoint& from) {
+        io, in, [this](std::span<const uint8_t> bytes, const asio::ip::udp::endpoint& from) {
           on_datagram(bytes, from);
         })));
   }
@@ -93,6 +117,7 @@ ClientSession::~ClientSession() {
 void ClientSession::connect(TimePoint now) {
   if (phase_ != Phase::kIdle) return;
   phase_ = Phase::kJoining;
+  connection_ = net::Connection(now);  // the silence clock starts now, on the caller's clock
   joined_at_ = now;
   last_update_ = now;
   last_join_sent_ = now - kJoinResend;  // send on the first update
@@ -237,17 +262,22 @@ void ClientSession::send_inputs(TimePoint now) {
 
 void ClientSession::on_datagram(std::span<const uint8_t> bytes,
                                 const asio::ip::udp::endpoint& from) {
-  ++stats_.packets_received;
   if (from != server_) {
+    ++stats_.packets_received;
     ++stats_.packets_rejected;
     return;
   }
-  auto decoded = net::decode_envelope(bytes);
+  receive(bytes, net::SteadyClock::now());
+}
+
+void ClientSession::receive(std::span<const uint8_t> datagram, TimePoint now) {
+  ++stats_.packets_received;
+  auto decoded = net::decode_envelope(datagram);
   if (!decoded.ok()) {
     ++stats_.packets_rejected;
     return;
   }
-  handle(*decoded, net::SteadyClock::now());
+  handle(*decoded, now);
 }
 
 void ClientSession::handle(const v1::Envelope& envelope, TimePoint now) {
@@ -505,9 +535,7 @@ void ClientSession::send_desync_report(TimePoint now) {
   // so a server that is slow to answer is not buried in chunks.
   if (desync_tick_ == kNoTick || count == 0 || count > net::kMaxDesyncChunks ||
       report_sends_++ >= 3) {
-    v1::Envelope envelope;  // nothing to show: just ask for the snapshot
-    envelope.mutable_resync_request()->set_desync_tick(std::max<Tick>(desync_tick_, 0));
-    send(envelope, now);
+    send_resync_request(now);  // nothing to show: just ask for the snapshot
     return;
   }
   for (size_t i = 0; i < count; ++i) {
@@ -536,6 +564,9 @@ void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now)
   // the final ticks in between.
   if (chunk.tick() - 1 < last_final_acked_) return;
   if (!awaiting_resync_ && chunk.tick() <= last_final_received_ + 1) return;
+  // Resends of a snapshot that already failed to load: the server has not
+  // heard yet; our requests keep naming it until it sends another.
+  if (chunk.snapshot_id() == refused_snapshot_id_) return;
   if (resync_.snapshot_id != chunk.snapshot_id() || resync_.chunks.size() != chunk.chunk_count()) {
     resync_ = ResyncAssembly{};
     resync_.snapshot_id = chunk.snapshot_id();
@@ -557,13 +588,16 @@ void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now)
   const ResyncAssembly done = std::move(resync_);
   resync_ = ResyncAssembly{};
   if (bytes.size() != done.total_size) {
-    ++stats_.packets_rejected;
+    refuse_resync(done.snapshot_id, done.tick,
+                  "chunks add up to " + std::to_string(bytes.size()) + " bytes, not " +
+                      std::to_string(done.total_size),
+                  now);
     return;
   }
   // Decoded and checked against the server's checksum before it replaces
-  // anything; a bad snapshot is dropped and the server sends another.
+  // anything; a bad snapshot is dropped and another asked for.
   if (Status status = session_->reset_from(bytes, done.checksum); !status.ok()) {
-    ++stats_.packets_rejected;
+    refuse_resync(done.snapshot_id, done.tick, status.message(), now);
     return;
   }
   const Tick tick = done.tick;
@@ -579,6 +613,8 @@ void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now)
   time_sync_.clear_jump();
   awaiting_resync_ = false;
   desync_tick_ = kNoTick;
+  refused_snapshot_id_ = 0;
+  refused_reason_.clear();
   state_buffer_.clear();
   report_sends_ = 0;
   ++stats_.resyncs;
@@ -591,11 +627,38 @@ void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now)
   step_due_ticks(now);
 }
 
+void ClientSession::refuse_resync(uint32_t snapshot_id, Tick tick, const std::string& reason,
+                                  TimePoint now) {
+  ++stats_.resyncs_refused;
+  emit({ClientEventType::kResyncRefused, tick, player_, 0, 0, reason});
+  // The server resends one snapshot until it is acknowledged, so it has to
+  // hear that this one is useless. Until another loads, final ticks are not
+  // applied and the request is repeated (update() -> send_desync_report).
+  awaiting_resync_ = true;
+  refused_snapshot_id_ = snapshot_id;
+  refused_reason_ = reason.substr(0, net::kMaxStringBytes);
+  last_report_sent_ = now;
+  send_resync_request(now);
+}
+
+void ClientSession::send_resync_request(TimePoint now) {
+  v1::Envelope envelope;
+  v1::ResyncRequest* request = envelope.mutable_resync_request();
+  request->set_desync_tick(std::max<Tick>(desync_tick_, 0));
+  if (refused_snapshot_id_ != 0) {
+    request->set_refused_snapshot_id(refused_snapshot_id_);
+    request->set_refused_reason(refused_reason_);
+  }
+  send(envelope, now);
+}
+
 void ClientSession::send(v1::Envelope& envelope, TimePoint now) {
   connection_.stamp(envelope, now);
   if (!net::encode_envelope(envelope, encode_buffer_).ok()) return;
   ++stats_.packets_sent;
-  if (outbound_faults_) {
+  if (send_) {
+    send_(encode_buffer_);
+  } else if (outbound_faults_) {
     outbound_faults_->send(encode_buffer_, server_);
   } else {
     socket_->send_to(encode_buffer_, server_);

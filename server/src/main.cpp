@@ -90,6 +90,10 @@ int main(int argc, char** argv) {
   }
   (*server)->run();
   const rwd::server::MatchStats stats = (*server)->stats();
+  std::fprintf(stderr, "[rewind-server] %s\n", stats.to_text().c_str());
+  if (const std::string problems = stats.problems(); !problems.empty()) {
+    std::fprintf(stderr, "[rewind-server] WARNING: %s\n", problems.c_str());
+  }
   if (summary_json) std::printf("%s\n", stats.to_json().c_str());
   std::fflush(stdout);
   // A lobby that never filled is a failed match for scripts.

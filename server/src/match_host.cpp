@@ -41,6 +41,19 @@ std::string printable(const std::string& text) {
 constexpr auto kReportMinInterval = std::chrono::seconds(2);
 constexpr uint32_t kMaxReportsPerPeer = 8;
 
+// A failure that repeats (every resend of every waiting client) is logged
+// the first few times and then at each power of two, so it stays loud
+// without burying the log.
+bool worth_logging(uint64_t count) {
+  return count <= 3 || (count & (count - 1)) == 0;
+}
+
+std::string hex64(uint64_t value) {
+  char text[19];
+  std::snprintf(text, sizeof(text), "0x%016llx", static_cast<unsigned long long>(value));
+  return text;
+}
+
 }  // namespace
 
 Result<std::unique_ptr<MatchHost>> MatchHost::create(const MatchConfig& config, SendFn send,
@@ -103,7 +116,7 @@ MatchHost::MatchHost(const MatchConfig& config, SendFn send,
       ended_(now),
       ids_(net::ConnectionIdGenerator::from_os_entropy()) {
   final_inputs_.resize(config.players);
-  substitution_history_.assign(kSubstitutionHistory, {kNoTick, 0});
+  final_history_.assign(kFinalHistory, FinalRecord{});
 }
 
 MatchStats MatchHost::stats() const {
@@ -191,7 +204,10 @@ void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from
       handle_desync(*peer, player, envelope.desync_report(), now);
       break;
     case v1::Envelope::kResyncRequest:
-      if (phase_ == Phase::kRunning || phase_ == Phase::kClosing) send_resync(*peer, now);
+      if (phase_ == Phase::kRunning || phase_ == Phase::kClosing) {
+        on_resync_refused(*peer, player, envelope.resync_request());
+        send_resync(*peer, now);
+      }
       break;
     case v1::Envelope::kDisconnect:
       if (peer->connected && phase_ == Phase::kRunning) {
@@ -374,9 +390,8 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
         newest = std::max(newest, tick);
         // Resends of inputs the server had are normal; an input that only
         // arrives after its tick was finalized without it is rejected.
-        const auto& [held_tick, mask] =
-            substitution_history_[static_cast<size_t>(tick) % kSubstitutionHistory];
-        if (held_tick == tick && (mask >> player) & 1u) ++stats_.rejected_inputs;
+        const FinalRecord& record = final_history_[static_cast<size_t>(tick) % kFinalHistory];
+        if (record.tick == tick && (record.substituted >> player) & 1u) ++stats_.rejected_inputs;
         break;
       }
       case net::InputResult::kConflict:
@@ -471,8 +486,9 @@ void MatchHost::finalize_ready_ticks() {
     }
     const std::optional<uint64_t> checksum = session_->checksum_after(t);
     final_tick.set_substituted_mask(substituted);
-    substitution_history_[static_cast<size_t>(t) % kSubstitutionHistory] = {t, substituted};
     final_tick.set_checksum(checksum.value_or(0));
+    final_history_[static_cast<size_t>(t) % kFinalHistory] = {t, substituted,
+                                                              final_tick.checksum()};
     stats_.final_checksum = final_tick.checksum();
 
     if (replay_ && !replay_failed_) {
@@ -588,6 +604,7 @@ void MatchHost::handle_desync(Peer& peer, uint32_t player, const v1::DesyncRepor
     assembly.report_id = report.report_id();
     assembly.tick = report.tick();
     assembly.client_checksum = report.client_checksum();
+    assembly.server_checksum = report.server_checksum();
     assembly.total_size = report.total_size();
     assembly.chunks.assign(report.chunk_count(), {});
   }
@@ -616,59 +633,90 @@ void MatchHost::handle_desync(Peer& peer, uint32_t player, const v1::DesyncRepor
       (peer.reports_stored == 0 || now - peer.last_report_stored >= kReportMinInterval)) {
     ++peer.reports_stored;
     peer.last_report_stored = now;
-    log_line("player " + std::to_string(player) + " reports a desync at tick " +
-             std::to_string(assembly.tick));
     store_desync_report(player, assembly, dump);
   }
   assembly = DesyncAssembly{};
   send_resync(peer, now);
 }
 
+std::optional<uint64_t> MatchHost::final_checksum(Tick tick) const {
+  if (tick < 0) return std::nullopt;
+  const FinalRecord& record = final_history_[static_cast<size_t>(tick) % kFinalHistory];
+  if (record.tick != tick) return std::nullopt;
+  return record.checksum;
+}
+
 void MatchHost::store_desync_report(uint32_t player, const DesyncAssembly& assembly,
                                     const std::vector<uint8_t>& dump) {
-  if (config_.desync_dir.empty()) return;
-  const std::string base = config_.desync_dir + "/desync_p" + std::to_string(player) + "_t" +
-                           std::to_string(assembly.tick) + "_r" +
-                           std::to_string(assembly.report_id);
-  std::ofstream text(base + ".txt");
-  std::ofstream raw(base + ".bin", std::ios::binary);
-  raw.write(reinterpret_cast<const char*>(dump.data()), static_cast<std::streamsize>(dump.size()));
-
-  uint64_t server_checksum = 0;
-  for (const v1::FinalTick& final_tick : finals_) {
-    if (final_tick.tick() == assembly.tick) server_checksum = final_tick.checksum();
-  }
-  char line[160];
-  std::snprintf(line, sizeof(line),
-                "player %u desync at tick %d: client 0x%016llx server 0x%016llx\n", player,
-                assembly.tick, static_cast<unsigned long long>(assembly.client_checksum),
-                static_cast<unsigned long long>(server_checksum));
-  text << line;
+  // The headline needs nothing but the report and our final-tick history,
+  // so it is written whatever fails below.
+  const std::optional<uint64_t> ours = final_checksum(assembly.tick);
+  const std::string headline = "player " + std::to_string(player) + " desync at tick " +
+                               std::to_string(assembly.tick) + ": client " +
+                               hex64(assembly.client_checksum) + " server " +
+                               hex64(ours.value_or(assembly.server_checksum)) +
+                               (ours ? "" : " (as the client received it; no longer held here)");
+  std::string text = headline + "\n";
+  // Why the report names no fields, when it cannot.
+  std::string problem;
 
   // Name the bodies that differ: the client's state after the tick against
   // ours, when the ring still holds it.
-  auto client_sim = game::Simulation::create(config_.game, {config_.players, config_.seed});
-  auto server_sim = game::Simulation::create(config_.game, {config_.players, config_.seed});
+  auto client_sim = session_->load_snapshot(dump);
   std::vector<uint8_t> server_state;
-  if (!client_sim.ok() || !server_sim.ok()) return;
-  if (Status status = (*client_sim)->deserialize(dump); !status.ok()) {
-    text << "client dump unreadable: " << status.message() << "\n";
-    return;
+  if (!client_sim.ok()) {
+    ++stats_.desync_dumps_unreadable;
+    problem = "client dump unreadable: " + client_sim.status().message();
+  } else {
+    if ((*client_sim)->checksum() != assembly.client_checksum) {
+      text += "the client dump does not reproduce the client's checksum (" +
+              hex64((*client_sim)->checksum()) + ")\n";
+    }
+    if (!session_->serialize_state_at(assembly.tick + 1, server_state)) {
+      problem = "server state for tick " + std::to_string(assembly.tick) + " is no longer held";
+    } else if (auto server_sim = session_->load_snapshot(server_state); !server_sim.ok()) {
+      problem = "server state unreadable: " + server_sim.status().message();
+    } else {
+      std::vector<sim::BodyRecord> expected, actual;
+      (*server_sim)->dump_bodies(expected);
+      (*client_sim)->dump_bodies(actual);
+      const auto differences = sim::diff_body_records(expected, actual);
+      text += std::to_string(differences.size()) +
+              " differing fields (server = expected, client = actual):\n";
+      char line[160];
+      for (const sim::FieldDifference& d : differences) {
+        std::snprintf(line, sizeof(line), "  body %u %s: expected %.9g actual %.9g\n", d.body_index,
+                      d.field.c_str(), d.expected, d.actual);
+        text += line;
+      }
+    }
   }
-  if (!session_->serialize_state_at(assembly.tick + 1, server_state) ||
-      !(*server_sim)->deserialize(server_state).ok()) {
-    text << "server state for tick " << assembly.tick << " is no longer held\n";
-    return;
+  if (!problem.empty()) text += problem + "\n";
+
+  std::string stored;
+  if (!config_.desync_dir.empty()) {
+    const std::string base = config_.desync_dir + "/desync_p" + std::to_string(player) + "_t" +
+                             std::to_string(assembly.tick) + "_r" +
+                             std::to_string(assembly.report_id);
+    // The raw dump first: it is the evidence when nothing else could be read.
+    std::ofstream raw(base + ".bin", std::ios::binary);
+    raw.write(reinterpret_cast<const char*>(dump.data()),
+              static_cast<std::streamsize>(dump.size()));
+    raw.close();
+    std::ofstream report(base + ".txt");
+    report << text;
+    report.close();
+    if (!raw || !report) {
+      ++stats_.desync_report_write_failures;
+      log_line("WARNING: cannot write desync report " + base + ".{txt,bin}");
+    } else {
+      stored = " (" + base + ".txt)";
+    }
   }
-  std::vector<sim::BodyRecord> expected, actual;
-  (*server_sim)->dump_bodies(expected);
-  (*client_sim)->dump_bodies(actual);
-  const auto differences = sim::diff_body_records(expected, actual);
-  text << differences.size() << " differing fields (server = expected, client = actual):\n";
-  for (const sim::FieldDifference& d : differences) {
-    std::snprintf(line, sizeof(line), "  body %u %s: expected %.9g actual %.9g\n", d.body_index,
-                  d.field.c_str(), d.expected, d.actual);
-    text << line;
+  if (problem.empty()) {
+    log_line(headline + stored);
+  } else {
+    log_line("WARNING: " + headline + "; " + problem + stored);
   }
 }
 
@@ -678,28 +726,83 @@ void MatchHost::send_resync(Peer& peer, TimePoint now) {
   peer.last_resync = now;
   // One snapshot per episode: resends repeat the same tick, bytes and id, so
   // an acknowledgement slower than the resend interval still matches, and
-  // the client can complete it from chunks of several sends.
-  if (peer.resync_tick == kNoTick) {
-    const Tick tick = next_final_;  // the state after the last final tick
+  // the client can complete it from chunks of several sends. When no
+  // snapshot passes its check, nothing is sent now and the next resend
+  // (or the client's next request) tries again from newer state.
+  if (peer.resync_tick == kNoTick && !start_resync_episode(peer)) return;
+  send_resync_chunks(peer, now);
+}
+
+bool MatchHost::start_resync_episode(Peer& peer) {
+  // The client restarts from the snapshot's tick and acknowledges the tick
+  // before it. The state after the last final tick is the natural choice.
+  // If that one does not load, the oldest final state the client can still
+  // take is the fallback: a state that broke recently (a body thrown out of
+  // range) is often fine a few ticks earlier, and the client re-simulates
+  // from there without ever having to load the broken one. Both must still
+  // be in the snapshot ring, and the final ticks after the fallback must
+  // still be held for resending. At most two checks per episode. (A
+  // snapshot right after what the client acknowledged counts as
+  // acknowledged at once, so it goes out once instead of until
+  // acknowledged; a client that misses a chunk asks again.)
+  const Tick newest = next_final_;
+  const Tick oldest_final_held = finals_.empty() ? next_final_ : finals_.front().tick();
+  const Tick fallback = std::max(peer.final_seen + 1, oldest_final_held);
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const Tick tick = attempt == 0 ? newest : fallback;
+    if (attempt > 0 && tick >= newest) break;  // no older state to fall back to
     const std::optional<uint64_t> checksum = session_->checksum_at(tick);
-    if (!checksum || !session_->serialize_state_at(tick, peer.resync_bytes)) {
-      log_line("cannot build a resync snapshot for tick " + std::to_string(tick));
-      return;
-    }
+    if (!checksum || !session_->serialize_state_at(tick, peer.resync_bytes)) continue;
+    if (snapshot_hook_) snapshot_hook_(tick, peer.resync_bytes);
+    // Never send what we could not load ourselves: the same test the client
+    // applies (RollbackSession::reset_from), on a fresh simulation.
+    Status status = Status::Ok();
     const size_t count = (peer.resync_bytes.size() + kResyncChunkBytes - 1) / kResyncChunkBytes;
     if (count == 0 || count > net::kMaxResyncChunks) {
-      log_line("resync snapshot too large: " + std::to_string(peer.resync_bytes.size()) + " bytes");
-      return;
+      status = Status::Error(ErrorCode::kCapacity,
+                             std::to_string(peer.resync_bytes.size()) + " bytes is too large");
+    } else if (auto loaded = session_->load_snapshot(peer.resync_bytes, *checksum); !loaded.ok()) {
+      status = loaded.status();
+    }
+    if (!status.ok()) {
+      ++stats_.resync_snapshot_failures;
+      if (worth_logging(stats_.resync_snapshot_failures)) {
+        log_line("WARNING: resync snapshot for tick " + std::to_string(tick) +
+                 " does not load on the server, not sent: " + status.message() + " (" +
+                 std::to_string(stats_.resync_snapshot_failures) + " so far)");
+      }
+      continue;
     }
     peer.resync_tick = tick;
     peer.resync_checksum = *checksum;
     peer.resync_id = next_snapshot_id_++;
-    // The client restarts from `tick` and acknowledges tick - 1 once it has
-    // the whole snapshot.
+    // Final ticks from here on are (re)sent once the client acknowledges
+    // tick - 1; the round-robin resend covers any it already had before.
     peer.final_sent = std::max(peer.final_sent, tick - 1);
     ++stats_.resyncs_sent;
+    return true;
   }
-  send_resync_chunks(peer, now);
+  peer.resync_bytes.clear();
+  return false;
+}
+
+void MatchHost::on_resync_refused(Peer& peer, uint32_t player, const v1::ResyncRequest& request) {
+  // Only the snapshot still being resent counts: later requests naming it
+  // again are copies of the same refusal.
+  if (request.refused_snapshot_id() == 0 || peer.resync_tick == kNoTick ||
+      request.refused_snapshot_id() != peer.resync_id) {
+    return;
+  }
+  ++stats_.resyncs_refused;
+  if (worth_logging(stats_.resyncs_refused)) {
+    log_line("WARNING: player " + std::to_string(player) + " could not load resync snapshot " +
+             std::to_string(peer.resync_id) + " (tick " + std::to_string(peer.resync_tick) +
+             "): " + printable(request.refused_reason()) + "; building another (" +
+             std::to_string(stats_.resyncs_refused) + " so far)");
+  }
+  // Resending the same bytes cannot help: the next send starts a new episode.
+  peer.resync_tick = kNoTick;
+  peer.resync_bytes.clear();
 }
 
 void MatchHost::send_resync_chunks(Peer& peer, TimePoint now) {

@@ -21,6 +21,16 @@
 #            with its end record.
 #   kill     the server gets SIGKILL mid-match: the replay it leaves has no
 #            end record; verify checks its whole prefix and exits 4.
+#   long     16 bots, 18,000 ticks at 120 Hz (150 s), 5 ms latency and 2%
+#            loss; one bot corrupts its state late (tick 16,500): it is
+#            detected there, reported and resynced; no bot fails, few
+#            inputs are substituted, nothing on the resync path fails, and
+#            the replay verifies to its last tick. REWIND_TEST_LONG_TICKS,
+#            _TICK_RATE and _LATENCY_MS change the match. On two cores,
+#            240 Hz and 180 Hz are more than one process can simulate for
+#            16 bots (a tenth of the inputs substituted, resync storms);
+#            120 Hz keeps up, with a few bots resynced once when all the
+#            pushers first crash into the tower.
 set -euo pipefail
 mode=$1
 bin=$2
@@ -40,23 +50,45 @@ trap cleanup EXIT
 # 60 Hz match; they play the same match at a pace they can keep.
 tick_rate=${REWIND_TEST_TICK_RATE:-60}
 ticks=${REWIND_TEST_TICKS:-480}
+players=4
+window=8
+keyframes=60
+if [ "$mode" = long ]; then
+  # 16 bots are 16 simulations in one process plus the server's: a raised
+  # tick rate plays many ticks in little time, and the window grows with
+  # it so it still spans the same ~200 ms of round trip and scheduling.
+  tick_rate=${REWIND_TEST_LONG_TICK_RATE:-120}
+  ticks=${REWIND_TEST_LONG_TICKS:-18000}
+  players=16
+  window=24
+  keyframes=600
+  corrupt_at=$(( ticks - 1500 ))
+fi
 budget=$ticks
 [ "$mode" = signal ] || [ "$mode" = kill ] && budget=0
-"$bin/rewind-server" --game crates --bind 127.0.0.1 --port 0 --port-file port --players 4 \
-  --tick-rate "$tick_rate" --window 8 --ticks "$budget" --replay match.rwr --keyframe-interval 60 \
-  --desync-dir desyncs --join-timeout 30 --summary-json >server.json 2>server.log &
+started=$(date +%s)
+"$bin/rewind-server" --game crates --bind 127.0.0.1 --port 0 --port-file port --players "$players" \
+  --tick-rate "$tick_rate" --window "$window" --ticks "$budget" --replay match.rwr \
+  --keyframe-interval "$keyframes" --desync-dir desyncs --join-timeout 30 --summary-json \
+  >server.json 2>server.log &
 server_pid=$!
 for _ in $(seq 1 100); do [ -s port ] && break; sleep 0.1; done
 [ -s port ] || fail "server did not start: $(cat server.log)"
 port=$(cat port)
 
-bots_args=(--bots 4 --connect "localhost:$port" --game crates --summary-json --duration 60)
+bots_args=(--bots "$players" --connect "localhost:$port" --game crates --summary-json)
+if [ "$mode" = long ]; then
+  bots_args+=(--duration $(( ticks / tick_rate + 120 )))
+else
+  bots_args+=(--duration 60)
+fi
 case "$mode" in
   faults)  bots_args+=(--latency-ms 30 --jitter-ms 10 --loss 0.05 --duplicate 0.02 --reorder 0.02) ;;
   desync)  bots_args+=(--latency-ms 10 --corrupt-bot 2 --corrupt-at-tick 120) ;;
   garbage) bots_args+=(--latency-ms 10) ;;
   signal|kill) bots_args+=(--latency-ms 10) ;;
   latency) bots_args+=(--latency-ms 150 --jitter-ms 10 --loss 0.02) ;;
+  long)    bots_args+=(--latency-ms ${REWIND_TEST_LONG_LATENCY_MS:-5} --jitter-ms 1 --loss 0.02 --corrupt-bot 5 --corrupt-at-tick "$corrupt_at") ;;
   *) fail "unknown mode" ;;
 esac
 
@@ -147,7 +179,7 @@ if [ "$mode" = signal ]; then
   exit 0
 fi
 [ "$(json server.json ticks_final)" = "$ticks" ] || fail "server finalized $(json server.json ticks_final) of $ticks ticks"
-[ "$(json bots.json finished)" = 4 ] || fail "not every bot finished the match: $(tail -5 bots.log)"
+[ "$(json bots.json finished)" = "$players" ] || fail "not every bot finished the match: $(tail -5 bots.log)"
 
 case "$mode" in
   faults)
@@ -224,6 +256,30 @@ PY
     [ "$(json server.json rejected_packets)" -gt 1000 ] || fail "server counted too few rejected packets"
     [ "$(json server.json substituted_inputs)" -lt 40 ] || fail "garbage starved real inputs"
     "$bin/rewind-replay" verify match.rwr >verify.txt 2>&1 || fail "replay did not verify: $(cat verify.txt)"
+    ;;
+  long)
+    played=$(( $(date +%s) - started ))
+    [ "$bots_status" = 1 ] || fail "rewind-bots exited $bots_status, expected 1 (the corrupted bot's desync): $(tail -5 bots.log)"
+    [ "$(json bots.json failed)" = 0 ] || fail "$(json bots.json failed) bots failed: $(grep -v 'resynced\|DESYNC' bots.log | tail -5)"
+    [ "$(json bots.json desyncs)" = 1 ] || fail "expected exactly one desync, got $(json bots.json desyncs): $(grep DESYNC bots.log)"
+    grep -q "bot 5: DESYNC at tick $corrupt_at " bots.log || fail "desync not detected at tick $corrupt_at: $(grep DESYNC bots.log)"
+    grep -q "bot 5: resynced at tick" bots.log || fail "the corrupted bot was not resynced"
+    [ "$(json bots.json resyncs_refused)" = 0 ] || fail "a bot refused a resync snapshot: $(grep 'did not load' bots.log)"
+    for counter in resync_snapshot_failures resyncs_refused desync_dumps_unreadable desync_report_write_failures; do
+      [ "$(json server.json $counter)" = 0 ] || fail "server $counter: $(json server.json $counter): $(grep WARNING server.log | head -5)"
+    done
+    [ "$(json server.json desync_reports)" -ge 1 ] || fail "server stored no desync report"
+    report=$(ls desyncs/desync_p*_t${corrupt_at}_*.txt 2>/dev/null | head -1)
+    [ -n "$report" ] || fail "no desync report file for tick $corrupt_at: $(ls desyncs)"
+    grep -q "differing fields" "$report" || fail "report does not name the differing fields: $(cat "$report")"
+    # A scheduling hiccup may make a few inputs late; a blowup means the
+    # clients could not keep up.
+    substituted=$(json server.json substituted_inputs)
+    [ "$substituted" -lt $(( players * ticks / 200 )) ] || fail "$substituted inputs substituted (of $(( players * ticks )))"
+    verify_started=$(date +%s)
+    "$bin/rewind-replay" verify match.rwr >verify.txt 2>&1 || fail "replay did not verify: $(cat verify.txt)"
+    grep -q "verified $ticks ticks" verify.txt || fail "unexpected verify output: $(cat verify.txt)"
+    echo "long: $players players, $ticks ticks at $tick_rate Hz played in ${played} s; replay verified in $(( $(date +%s) - verify_started )) s; $substituted inputs substituted; rollbacks: server $(json server.json rollbacks), bots $(json bots.json rollbacks)"
     ;;
 esac
 echo "PASS [$mode]"

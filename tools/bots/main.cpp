@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
     fleet[i].session->connect(start);
   }
 
-  uint64_t desync_events = 0, resync_events = 0;
+  uint64_t desync_events = 0, resync_events = 0, refused_events = 0;
   asio::steady_timer timer(io);
   std::function<void()> pump = [&]() {
     const auto now = rwd::net::SteadyClock::now();
@@ -186,6 +186,13 @@ int main(int argc, char** argv) {
           case ClientEventType::kResynced:
             ++resync_events;
             std::fprintf(stderr, "[rewind-bots] bot %zu: resynced at tick %d\n", i, event.tick);
+            break;
+          case ClientEventType::kResyncRefused:
+            ++refused_events;
+            std::fprintf(stderr,
+                         "[rewind-bots] bot %zu: resync snapshot for tick %d did not load (%s); "
+                         "asked for another\n",
+                         i, event.tick, event.reason.c_str());
             break;
           case ClientEventType::kMatchEnded:
             bot.match_ended = true;
@@ -239,12 +246,14 @@ int main(int argc, char** argv) {
   if (summary_json) {
     std::printf(
         "{\"bots\":%lld,\"joined\":%llu,\"finished\":%llu,\"failed\":%llu,\"desyncs\":%llu,"
-        "\"resyncs\":%llu,\"rollbacks\":%llu,\"resimulated_ticks\":%llu,\"ticks_final\":%lld,"
+        "\"resyncs\":%llu,\"resyncs_refused\":%llu,\"rollbacks\":%llu,\"resimulated_ticks\":%llu,"
+        "\"ticks_final\":%lld,"
         "\"final_ticks_verified\":%llu,\"rtt_ms_avg\":%.2f,\"duration_s\":%.2f}\n",
         static_cast<long long>(bots), static_cast<unsigned long long>(joined_ok),
         static_cast<unsigned long long>(ended_ok), static_cast<unsigned long long>(failed),
         static_cast<unsigned long long>(desync_events),
-        static_cast<unsigned long long>(resync_events), static_cast<unsigned long long>(rollbacks),
+        static_cast<unsigned long long>(resync_events),
+        static_cast<unsigned long long>(refused_events), static_cast<unsigned long long>(rollbacks),
         static_cast<unsigned long long>(resimulated),
         static_cast<long long>(min_final == INT64_MAX ? 0 : min_final),
         static_cast<unsigned long long>(verified), rtt_sum / static_cast<double>(bots), elapsed);

@@ -151,14 +151,21 @@ bool RollbackSession::finalize_through(Tick t) {
   return in_sync;
 }
 
-Status RollbackSession::reset_from(std::span<const uint8_t> serialized,
-                                   std::optional<uint64_t> expected_checksum) {
+Result<std::unique_ptr<game::Simulation>> RollbackSession::load_snapshot(
+    std::span<const uint8_t> serialized, std::optional<uint64_t> expected_checksum) const {
   auto scratch = game::Simulation::create(sim_->game().name(), sim_->setup());
   if (!scratch.ok()) return scratch.status();
   if (Status status = (*scratch)->deserialize(serialized); !status.ok()) return status;
   if (expected_checksum && (*scratch)->checksum() != *expected_checksum) {
     return Status::Error(ErrorCode::kCorrupt, "snapshot does not reproduce its checksum");
   }
+  return std::move(*scratch);
+}
+
+Status RollbackSession::reset_from(std::span<const uint8_t> serialized,
+                                   std::optional<uint64_t> expected_checksum) {
+  auto scratch = load_snapshot(serialized, expected_checksum);
+  if (!scratch.ok()) return scratch.status();
   sim_ = std::move(*scratch);
   const Tick t = sim_->tick();
   ring_.clear();

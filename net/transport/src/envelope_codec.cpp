@@ -24,14 +24,16 @@ Status check_string(std::string_view field, const std::string& value, size_t max
   return Status::Ok();
 }
 
-Status check_input(std::string_view field, int index, const v1::Input& input) {
-  if (input.axis_x() < -kMaxAxis || input.axis_x() > kMaxAxis || input.axis_y() < -kMaxAxis ||
-      input.axis_y() > kMaxAxis) {
-    return corrupt(std::string(field) + "[" + std::to_string(index) + "] axis (" +
-                   std::to_string(input.axis_x()) + ", " + std::to_string(input.axis_y()) +
-                   ") outside [-1000, 1000]");
-  }
-  return Status::Ok();
+bool axes_in_range(const v1::Input& input) {
+  return input.axis_x() >= -kMaxAxis && input.axis_x() <= kMaxAxis && input.axis_y() >= -kMaxAxis &&
+         input.axis_y() <= kMaxAxis;
+}
+
+// Every datagram in and out is validated, inputs by the dozen: field names
+// are only put together once something is wrong.
+Status input_error(const std::string& field, int index, const v1::Input& input) {
+  return corrupt(field + "[" + std::to_string(index) + "] axis (" + std::to_string(input.axis_x()) +
+                 ", " + std::to_string(input.axis_y()) + ") outside [-1000, 1000]");
 }
 
 // A run of inputs starting at first_tick: the last tick must still be an
@@ -53,8 +55,8 @@ Status check_input_run(std::string_view field, uint32_t player, int32_t first_ti
                    " out of range");
   }
   for (int i = 0; i < inputs.size(); ++i) {
-    if (Status s = check_input(std::string(field) + ".inputs", i, inputs.Get(i)); !s.ok()) {
-      return s;
+    if (!axes_in_range(inputs.Get(i))) {
+      return input_error(std::string(field) + ".inputs", i, inputs.Get(i));
     }
   }
   return Status::Ok();
@@ -159,14 +161,15 @@ Status check_payload(const Envelope& e) {
       }
       for (int t = 0; t < m.ticks_size(); ++t) {
         const v1::FinalTick& ft = m.ticks(t);
-        const std::string field = "final_ticks.ticks[" + std::to_string(t) + "]";
-        if (Status s = check_tick(field + ".tick", ft.tick(), 0); !s.ok()) return s;
+        auto field = [t] { return "final_ticks.ticks[" + std::to_string(t) + "]"; };
+        if (ft.tick() < 0) return check_tick(field() + ".tick", ft.tick(), 0);
         if (static_cast<uint32_t>(ft.inputs_size()) > kMaxPlayerSlots) {
-          return corrupt(field + " has " + std::to_string(ft.inputs_size()) + " inputs, limit " +
+          return corrupt(field() + " has " + std::to_string(ft.inputs_size()) + " inputs, limit " +
                          std::to_string(kMaxPlayerSlots));
         }
         for (int i = 0; i < ft.inputs_size(); ++i) {
-          if (Status s = check_input(field + ".inputs", i, ft.inputs(i)); !s.ok()) return s;
+          if (!axes_in_range(ft.inputs(i)))
+            return input_error(field() + ".inputs", i, ft.inputs(i));
         }
       }
       return check_tick("final_ticks.input_ack_tick", m.input_ack_tick(), -1);
@@ -183,8 +186,12 @@ Status check_payload(const Envelope& e) {
       return check_chunk("resync_chunk", m.chunk_index(), m.chunk_count(), kMaxResyncChunks,
                          m.total_size(), kMaxResyncStateBytes, m.chunk());
     }
-    case Envelope::kResyncRequest:
-      return check_tick("resync_request.desync_tick", e.resync_request().desync_tick(), 0);
+    case Envelope::kResyncRequest: {
+      const auto& m = e.resync_request();
+      if (Status s = check_tick("resync_request.desync_tick", m.desync_tick(), 0); !s.ok())
+        return s;
+      return check_string("resync_request.refused_reason", m.refused_reason(), kMaxStringBytes);
+    }
     case Envelope::PAYLOAD_NOT_SET:
       return corrupt("no payload");
   }

@@ -330,6 +330,10 @@ TEST(EnvelopeCodec, RejectsBadChunks) {
   v1::Envelope resync_request = sample_envelopes()[13];
   resync_request.mutable_resync_request()->set_desync_tick(-1);
   expect_rejected(resync_request, "resync_request.desync_tick");
+  v1::Envelope refused = sample_envelopes()[13];
+  refused.mutable_resync_request()->set_refused_snapshot_id(4);
+  refused.mutable_resync_request()->set_refused_reason(std::string(257, 'x'));
+  expect_rejected(refused, "resync_request.refused_reason");
 }
 
 TEST(EnvelopeCodec, RandomBytesNeverCrash) {

@@ -16,6 +16,9 @@ enum class ClientEventType : uint8_t {
   kMatchEnded,    ///< the server ended the match (reason)
   kRejected,      ///< the server refused our join (reason)
   kDisconnected,  ///< timed out or gave up (reason)
+  /// The server's resync snapshot at tick did not load (reason); another
+  /// was asked for and the session keeps waiting for it.
+  kResyncRefused,
 };
 
 struct ClientEvent {
@@ -37,6 +40,7 @@ struct ClientStats {
   uint64_t final_ticks_verified = 0;  ///< final ticks whose checksum matched
   uint64_t desyncs = 0;
   uint64_t resyncs = 0;
+  uint64_t resyncs_refused = 0;  ///< snapshots that did not load (kResyncRefused)
   uint64_t packets_sent = 0;
   uint64_t packets_received = 0;
   uint64_t packets_rejected = 0;  ///< undecodable or not from our server

@@ -8,6 +8,11 @@
 // Threading: everything runs on the caller's io_context thread. Call
 // update(now) regularly (every frame, or every millisecond or so from a
 // timer); it steps as many ticks as the tick clock says are due.
+//
+// A session made with create_detached() has no socket: it hands its
+// datagrams to a callback and takes the server's through receive(), and
+// its only clock is the times it is given (another transport, or a
+// simulated clock in headless tests).
 #include <asio/io_context.hpp>
 #include <deque>
 #include <functional>
@@ -44,6 +49,17 @@ class ClientSession {
   /// Opens a UDP socket on an ephemeral port. Errors: bad address, socket.
   static Result<std::unique_ptr<ClientSession>> create(asio::io_context& io,
                                                        const ClientConfig& config);
+  /// Datagrams for the server, from a detached session.
+  using SendFn = std::function<void(std::span<const uint8_t> datagram)>;
+  /// A session without a socket: every datagram for the server goes to
+  /// `send`, and the server's datagrams come in through receive(). The
+  /// address fields of `config` are unused; `config.faults` needs a socket
+  /// and is refused (kInvalidArgument), as is a bad snapshot_ticks.
+  static Result<std::unique_ptr<ClientSession>> create_detached(const ClientConfig& config,
+                                                                SendFn send);
+  /// Hands the session one datagram from the server, received at `now`.
+  /// Sessions with a socket receive on their own.
+  void receive(std::span<const uint8_t> datagram, TimePoint now);
 
   /// Starts joining (JoinRequest resent until answered).
   void connect(TimePoint now);
@@ -67,10 +83,12 @@ class ClientSession {
     return session_ ? &session_->simulation() : nullptr;
   }
   const net::RollbackSession* rollback() const { return session_.get(); }
-  uint16_t local_port() const { return socket_->local_port(); }
+  /// The socket's port; 0 for a detached session.
+  uint16_t local_port() const { return socket_ ? socket_->local_port() : 0; }
 
   ClientSession(asio::io_context& io, const ClientConfig& config, net::UdpEndpoint socket,
                 asio::ip::udp::endpoint server);
+  ClientSession(const ClientConfig& config, SendFn send);
   ~ClientSession();
 
  private:
@@ -83,6 +101,8 @@ class ClientSession {
   void request_resync(TimePoint now);
   void finish_ending(TimePoint now);
   void on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now);
+  void refuse_resync(uint32_t snapshot_id, Tick tick, const std::string& reason, TimePoint now);
+  void send_resync_request(TimePoint now);
   void step_due_ticks(TimePoint now);
   void verify_finals(TimePoint now);
   void send_inputs(TimePoint now);
@@ -91,8 +111,8 @@ class ClientSession {
   void emit(ClientEvent event) { events_.push_back(std::move(event)); }
   double period_s() const { return 1.0 / tick_rate_hz_; }
 
-  asio::io_context& io_;
   ClientConfig config_;
+  SendFn send_;  // set for a detached session
   std::optional<net::UdpEndpoint> socket_;
   asio::ip::udp::endpoint server_;
   std::optional<net::FaultyLink> outbound_faults_;
@@ -133,6 +153,8 @@ class ClientSession {
   uint64_t desync_local_checksum_ = 0;
   uint32_t report_id_ = 0;
   TimePoint last_report_sent_;
+  uint32_t refused_snapshot_id_ = 0;  // the last snapshot that did not load, 0 = none
+  std::string refused_reason_;
   struct ResyncAssembly {
     uint32_t snapshot_id = 0;
     Tick tick = kNoTick;

@@ -32,8 +32,12 @@ struct MatchConfig {
   /// Inputs this many ticks ahead of the server's tick are rejected.
   int32_t max_input_lead_ticks = 120;
 
-  /// Snapshot ring size needed: deepest rollback is the window plus slack.
-  int32_t snapshot_ticks() const { return window_ticks + 8; }
+  /// Snapshot ring size: the deepest rollback is the window plus slack.
+  /// One second more keeps the states of recent final ticks, so a desync
+  /// report (a round trip after its final tick, or half a second later
+  /// when a chunk was lost) can still be diffed against the server's state,
+  /// and a resync has older final states to fall back to.
+  int32_t snapshot_ticks() const { return window_ticks + 8 + static_cast<int32_t>(tick_rate_hz); }
   /// Checks ranges and that the game exists.
   Status validate() const;
 };

@@ -64,6 +64,12 @@ class MatchHost {
   /// Final ticks still held for resending, oldest first.
   const std::deque<v1::FinalTick>& recent_finals() const { return finals_; }
 
+  /// Test hook: sees every resync snapshot right after it is serialized,
+  /// before the server checks that it loads, and may damage it; fault
+  /// tests use it to drive the refusal path. Empty by default.
+  using SnapshotHook = std::function<void(Tick tick, std::vector<uint8_t>& bytes)>;
+  void set_resync_snapshot_hook(SnapshotHook hook) { snapshot_hook_ = std::move(hook); }
+
   MatchHost(const MatchConfig& config, SendFn send, std::unique_ptr<net::RollbackSession> session,
             std::optional<replay::ReplayWriter> replay, TimePoint now);
 
@@ -72,6 +78,7 @@ class MatchHost {
     uint32_t report_id = 0;
     Tick tick = kNoTick;
     uint64_t client_checksum = 0;
+    uint64_t server_checksum = 0;  // ours, as the client received it
     uint32_t total_size = 0;
     uint32_t received = 0;
     std::vector<std::vector<uint8_t>> chunks;
@@ -108,6 +115,9 @@ class MatchHost {
   void store_desync_report(uint32_t player, const DesyncAssembly& assembly,
                            const std::vector<uint8_t>& dump);
   void send_resync(Peer& peer, TimePoint now);
+  bool start_resync_episode(Peer& peer);
+  void on_resync_refused(Peer& peer, uint32_t player, const v1::ResyncRequest& request);
+  std::optional<uint64_t> final_checksum(Tick tick) const;
   void send_resync_chunks(Peer& peer, TimePoint now);
   void add_final_ticks(Peer& peer, v1::FinalTicks& out);
   void start_match(TimePoint now);
@@ -131,10 +141,16 @@ class MatchHost {
   std::deque<uint32_t> final_sizes_;  // encoded size of each, in step with finals_
   Tick next_final_ = 0;
   int32_t countdown_ticks_ = 0;
-  // Substitution masks of the last kSubstitutionHistory final ticks, to
-  // tell a resend of an input the server had from one that came too late.
-  static constexpr size_t kSubstitutionHistory = 1024;
-  std::vector<std::pair<Tick, uint64_t>> substitution_history_;
+  // Substitution masks of the last kFinalHistory final ticks, to tell a
+  // resend of an input the server had from one that came too late, and
+  // their checksums, for desync reports on ticks every client has seen.
+  struct FinalRecord {
+    Tick tick = kNoTick;
+    uint64_t substituted = 0;
+    uint64_t checksum = 0;
+  };
+  static constexpr size_t kFinalHistory = 1024;
+  std::vector<FinalRecord> final_history_;
   TimePoint closing_deadline_;
   TimePoint created_;
   TimePoint started_;
@@ -147,6 +163,7 @@ class MatchHost {
   std::vector<uint8_t> state_buffer_;
   std::vector<game::PlayerInput> final_inputs_;
   bool replay_failed_ = false;
+  SnapshotHook snapshot_hook_;
 };
 
 }  // namespace rwd::server

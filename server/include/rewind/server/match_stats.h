@@ -20,6 +20,16 @@ struct MatchStats {
   uint64_t relayed_inputs = 0;
   uint64_t desync_reports = 0;
   uint64_t resyncs_sent = 0;
+  /// Resync snapshots that did not load into a fresh simulation on the
+  /// server itself, or did not reproduce their checksum: never sent.
+  uint64_t resync_snapshot_failures = 0;
+  /// Resync snapshots a client reported it could not load.
+  uint64_t resyncs_refused = 0;
+  /// Desync reports whose client state dump could not be parsed (the
+  /// report keeps its tick and both checksums, and the raw dump).
+  uint64_t desync_dumps_unreadable = 0;
+  /// Desync reports that could not be written to the desync directory.
+  uint64_t desync_report_write_failures = 0;
   uint64_t packets_in = 0;
   uint64_t packets_out = 0;
   uint64_t bytes_in = 0;
@@ -32,6 +42,12 @@ struct MatchStats {
 
   /// One JSON object on one line.
   std::string to_json() const;
+  /// The end-of-match summary, one readable line.
+  std::string to_text() const;
+  /// What went wrong that an operator must look at (snapshots that did not
+  /// load, unreadable desync dumps, reports not written), one line; empty
+  /// when nothing did.
+  std::string problems() const;
 };
 
 }  // namespace rwd::server

@@ -101,9 +101,17 @@ class RollbackSession {
   using StepHook = std::function<void(game::Simulation&, Tick)>;
   void set_step_hook(StepHook hook) { step_hook_ = std::move(hook); }
 
+  /// Decodes a serialized simulation of this session's match into a fresh
+  /// Simulation and, when `expected_checksum` is given, checks that it
+  /// reproduces it: exactly the test reset_from() applies, so a sender can
+  /// check a snapshot before it goes out (the server does, for resyncs) and
+  /// a reader can inspect a dump without touching the session.
+  Result<std::unique_ptr<game::Simulation>> load_snapshot(
+      std::span<const uint8_t> serialized,
+      std::optional<uint64_t> expected_checksum = std::nullopt) const;
+
   /// Replaces the state from a serialized simulation (a resync). The bytes
-  /// are decoded into a scratch simulation and, when `expected_checksum` is
-  /// given, must reproduce it before anything is replaced. The ticks before
+  /// must pass load_snapshot() before anything is replaced. The ticks before
   /// the snapshot become final; input queues keep what they know for later
   /// ticks. On error nothing changes.
   Status reset_from(std::span<const uint8_t> serialized,
