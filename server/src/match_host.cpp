@@ -496,7 +496,19 @@ void MatchHost::finalize_ready_ticks() {
       if (status.ok() && config_.keyframe_interval > 0 &&
           (t + 1) % config_.keyframe_interval == 0 &&
           session_->serialize_state_at(t + 1, state_buffer_)) {
-        status = replay_->append_keyframe(t, state_buffer_);
+        // A keyframe the verifier could not load would stop it there: check
+        // it as a resync snapshot is checked, and leave out one that fails.
+        if (auto loaded = session_->load_snapshot(state_buffer_, final_tick.checksum());
+            loaded.ok()) {
+          status = replay_->append_keyframe(t, state_buffer_);
+        } else {
+          ++stats_.keyframe_load_failures;
+          if (worth_logging(stats_.keyframe_load_failures)) {
+            log_line("WARNING: replay keyframe after tick " + std::to_string(t) +
+                     " does not load on the server, left out: " + loaded.status().message() + " (" +
+                     std::to_string(stats_.keyframe_load_failures) + " so far)");
+          }
+        }
       }
       if (!status.ok()) record_replay_error(status);
     }

@@ -27,6 +27,7 @@ std::string MatchStats::to_json() const {
       << ",\"resyncs_refused\":" << resyncs_refused
       << ",\"desync_dumps_unreadable\":" << desync_dumps_unreadable
       << ",\"desync_report_write_failures\":" << desync_report_write_failures
+      << ",\"keyframe_load_failures\":" << keyframe_load_failures
       << ",\"packets_in\":" << packets_in << ",\"packets_out\":" << packets_out
       << ",\"bytes_in\":" << bytes_in << ",\"bytes_out\":" << bytes_out
       << ",\"players_joined\":" << players_joined << ",\"last_final_tick\":" << last_final_tick
@@ -45,7 +46,8 @@ std::string MatchStats::to_text() const {
       << rejected_packets << "; desync reports " << desync_reports << " ("
       << desync_dumps_unreadable << " unreadable dumps, " << desync_report_write_failures
       << " not written), resyncs sent " << resyncs_sent << " (" << resync_snapshot_failures
-      << " snapshots did not load here, " << resyncs_refused << " refused by clients)";
+      << " snapshots did not load here, " << resyncs_refused << " refused by clients)"
+      << ", keyframes that did not load " << keyframe_load_failures;
   return out.str();
 }
 
@@ -60,6 +62,7 @@ std::string MatchStats::problems() const {
   add(resyncs_refused, "resync snapshots were refused by clients");
   add(desync_dumps_unreadable, "desync reports had an unreadable client dump");
   add(desync_report_write_failures, "desync reports could not be written");
+  add(keyframe_load_failures, "replay keyframes did not load on the server and were left out");
   return out;
 }
 

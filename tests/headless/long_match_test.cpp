@@ -181,6 +181,7 @@ TEST(LongMatch, SixteenPlayersAggressivePlayLateDesyncResyncsAndReplayVerifies) 
   EXPECT_EQ(result.server.resyncs_refused, 0u);
   EXPECT_EQ(result.server.desync_dumps_unreadable, 0u);
   EXPECT_EQ(result.server.desync_report_write_failures, 0u);
+  EXPECT_EQ(result.server.keyframe_load_failures, 0u);
   EXPECT_TRUE(result.server.problems().empty()) << result.server.problems();
 
   // The client: in step up to its corruption, detected there, reported,

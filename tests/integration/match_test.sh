@@ -265,7 +265,7 @@ PY
     grep -q "bot 5: DESYNC at tick $corrupt_at " bots.log || fail "desync not detected at tick $corrupt_at: $(grep DESYNC bots.log)"
     grep -q "bot 5: resynced at tick" bots.log || fail "the corrupted bot was not resynced"
     [ "$(json bots.json resyncs_refused)" = 0 ] || fail "a bot refused a resync snapshot: $(grep 'did not load' bots.log)"
-    for counter in resync_snapshot_failures resyncs_refused desync_dumps_unreadable desync_report_write_failures; do
+    for counter in resync_snapshot_failures resyncs_refused desync_dumps_unreadable desync_report_write_failures keyframe_load_failures; do
       [ "$(json server.json $counter)" = 0 ] || fail "server $counter: $(json server.json $counter): $(grep WARNING server.log | head -5)"
     done
     [ "$(json server.json desync_reports)" -ge 1 ] || fail "server stored no desync report"

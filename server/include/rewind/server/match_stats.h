@@ -30,6 +30,9 @@ struct MatchStats {
   uint64_t desync_dumps_unreadable = 0;
   /// Desync reports that could not be written to the desync directory.
   uint64_t desync_report_write_failures = 0;
+  /// Replay keyframes that did not load into a fresh simulation with their
+  /// tick's checksum: left out of the replay (its ticks are still recorded).
+  uint64_t keyframe_load_failures = 0;
   uint64_t packets_in = 0;
   uint64_t packets_out = 0;
   uint64_t bytes_in = 0;
