@@ -1,0 +1,235 @@
+// SPDX-License-Identifier: MIT
+// Scenes where boxes rest on boxes: stacks, pyramids, mass ratios, a stack
+// far from the origin, a kicked stack, and how long a pyramid takes to sleep.
+#include <algorithm>
+#include <sstream>
+
+#include "scene_factories.h"
+#include "scene_kit.h"
+
+namespace rwd::scenes {
+namespace {
+
+using kit::RestingBoxes;
+
+constexpr float kBoxHalf = 0.5f;  // 1 m boxes
+constexpr float kLinearSlopMm = 5.0f;
+constexpr double kDriftLimitM = 0.1;  // a tenth of a box
+// Resting overlap allowed: the linear slop plus 1 mm of solver error.
+constexpr double kDepthLimitMm = kLinearSlopMm + 1.0;
+constexpr Tick kLastSecond = 60;
+
+std::string depth_text(const char* what) {
+  std::ostringstream out;
+  out << "deepest resting overlap " << what << " <= linear slop (5 mm) + 1 mm";
+  return out.str();
+}
+
+/// A vertical stack of `boxes` 1 m boxes at (x, 0, z) resting on the ground.
+class StackScene : public kit::SpecScene {
+ public:
+  StackScene(int size, int boxes, float x, float seconds, std::string_view name)
+      : SpecScene(size), name_(name), seconds_(seconds) {
+    add(kit::ground(0.0f, x, 0.0f));
+    rest_.set_ground(0.0f);
+    for (int i = 0; i < boxes; ++i) {
+      Vec3 p{x, kBoxHalf + static_cast<float>(i) * 2.0f * kBoxHalf, 0.0f};
+      int body = static_cast<int>(add(kit::box(p, {kBoxHalf, kBoxHalf, kBoxHalf})));
+      rest_.track(body, p);
+      rest_.support(i == 0 ? -1 : body - 1, body, i == 0 ? kBoxHalf : 2.0f * kBoxHalf);
+    }
+  }
+  std::string_view name() const override { return name_; }
+  WorldSpec world() const override {
+    WorldSpec w;
+    const float x = specs_[0].position.x;
+    w.bounds_lower = {x - 1000.0f, -1000.0f, -1000.0f};
+    w.bounds_upper = {x + 1000.0f, 1000.0f, 1000.0f};
+    return w;
+  }
+  Tick ticks() const override { return static_cast<Tick>(seconds_ * 60.0f + 0.5f); }
+  void after_step(Tick tick, const Engine& engine) override {
+    rest_.observe(engine, handles_, tick >= ticks() - kLastSecond);
+  }
+  std::vector<Metric> metrics() const override {
+    std::ostringstream stands;
+    stands << "every box stays within " << kDriftLimitM << " m of its start sideways for "
+           << seconds_ << " s";
+    return {kit::at_most("drift_m", "m", rest_.drift_m(), kDriftLimitM, stands.str()),
+            kit::at_most("penetration_mm", "mm", 1000.0 * rest_.depth_m(), kDepthLimitMm,
+                         depth_text("in the last second"))};
+  }
+
+ private:
+  std::string_view name_;
+  float seconds_;
+  RestingBoxes rest_;
+};
+
+/// A 2D pyramid of 1 m boxes, `base` boxes wide, 5 cm apart.
+class PyramidScene : public kit::SpecScene {
+ public:
+  explicit PyramidScene(int base, std::string_view name = "pyramid", float seconds = 10.0f)
+      : SpecScene(base), name_(name), seconds_(seconds) {
+    add(kit::ground());
+    rest_.set_ground(0.0f);
+    const float pitch = 2.0f * kBoxHalf + 0.05f;
+    std::vector<int> below;
+    for (int level = 0; level < base; ++level) {
+      std::vector<int> row;
+      const int count = base - level;
+      for (int i = 0; i < count; ++i) {
+        float x = (static_cast<float>(i) - 0.5f * static_cast<float>(count - 1)) * pitch;
+        Vec3 p{x, kBoxHalf + static_cast<float>(level) * 2.0f * kBoxHalf, 0.0f};
+        int body = static_cast<int>(add(kit::box(p, {kBoxHalf, kBoxHalf, kBoxHalf})));
+        rest_.track(body, p);
+        if (level == 0) {
+          rest_.support(-1, body, kBoxHalf);
+        } else {
+          rest_.support(below[i], body, 2.0f * kBoxHalf);
+          rest_.support(below[i + 1], body, 2.0f * kBoxHalf);
+        }
+        row.push_back(body);
+      }
+      below = std::move(row);
+    }
+  }
+  std::string_view name() const override { return name_; }
+  Tick ticks() const override { return static_cast<Tick>(seconds_ * 60.0f + 0.5f); }
+  void after_step(Tick tick, const Engine& engine) override {
+    rest_.observe(engine, handles_, tick >= ticks() - kLastSecond);
+    if (asleep_tick_ < 0 && engine.awake_count() == 0) asleep_tick_ = tick + 1;
+  }
+  std::vector<Metric> metrics() const override {
+    std::ostringstream stands;
+    stands << "every box stays within " << kDriftLimitM << " m of its start sideways for "
+           << seconds_ << " s";
+    return {kit::at_most("drift_m", "m", rest_.drift_m(), kDriftLimitM, stands.str()),
+            kit::at_most("penetration_mm", "mm", 1000.0 * rest_.depth_m(), kDepthLimitMm,
+                         depth_text("in the last second"))};
+  }
+
+ protected:
+  RestingBoxes rest_;
+  Tick asleep_tick_ = -1;
+
+ private:
+  std::string_view name_;
+  float seconds_;
+};
+
+/// How long a settled pyramid takes until every body sleeps.
+class SleepScene final : public PyramidScene {
+ public:
+  explicit SleepScene(int base) : PyramidScene(base, "sleep", 10.0f) {}
+  std::vector<Metric> metrics() const override {
+    double seconds = asleep_tick_ < 0 ? 1e9 : static_cast<double>(asleep_tick_) / 60.0;
+    return {kit::at_most("sleep_s", "s", seconds, 3.0,
+                         "every body of the pyramid sleeps within 3 s of its creation")};
+  }
+};
+
+/// A heavy box on a light one: size is the mass ratio.
+class MassRatioScene final : public kit::SpecScene {
+ public:
+  explicit MassRatioScene(int ratio) : SpecScene(ratio) {
+    add(kit::ground());
+    rest_.set_ground(0.0f);
+    Vec3 low{0.0f, kBoxHalf, 0.0f};
+    Vec3 high{0.0f, 3.0f * kBoxHalf, 0.0f};
+    int a = static_cast<int>(add(kit::box(low, {kBoxHalf, kBoxHalf, kBoxHalf})));
+    BodySpec heavy = kit::box(high, {kBoxHalf, kBoxHalf, kBoxHalf});
+    heavy.density = 1000.0f * static_cast<float>(ratio);
+    int b = static_cast<int>(add(heavy));
+    rest_.track(a, low);
+    rest_.track(b, high);
+    rest_.support(-1, a, kBoxHalf);
+    rest_.support(a, b, 2.0f * kBoxHalf);
+  }
+  std::string_view name() const override { return "mass_ratio"; }
+  Tick ticks() const override { return 600; }
+  void after_step(Tick tick, const Engine& engine) override {
+    rest_.observe(engine, handles_, tick >= ticks() - kLastSecond);
+  }
+  std::vector<Metric> metrics() const override {
+    return {kit::at_most("drift_m", "m", rest_.drift_m(), kDriftLimitM,
+                         "both boxes stay within 0.1 m of their start sideways for 10 s"),
+            kit::at_most("penetration_mm", "mm", 1000.0 * rest_.depth_m(), kDepthLimitMm,
+                         depth_text("in the last second"))};
+  }
+
+ private:
+  RestingBoxes rest_;
+};
+
+/// A settled stack whose top box is kicked sideways at 1 m/s after 1 s.
+class KickScene final : public kit::SpecScene {
+ public:
+  explicit KickScene(int boxes) : SpecScene(boxes) {
+    add(kit::ground());
+    for (int i = 0; i < boxes; ++i) {
+      Vec3 p{0.0f, kBoxHalf + static_cast<float>(i) * 2.0f * kBoxHalf, 0.0f};
+      int body = static_cast<int>(add(kit::box(p, {kBoxHalf, kBoxHalf, kBoxHalf})));
+      if (i + 1 < boxes) rest_.track(body, p);
+    }
+  }
+  std::string_view name() const override { return "kick"; }
+  Tick ticks() const override { return 240; }
+  void before_step(Tick tick, Engine& engine) override {
+    if (tick != kKickTick) return;
+    const BodyHandle top = handles_.back();
+    const float mass = 8.0f * kBoxHalf * kBoxHalf * kBoxHalf * 1000.0f;
+    engine.apply_impulse(top, {mass * 1.0f, 0.0f, 0.0f}, engine.position(top));
+  }
+  void after_step(Tick tick, const Engine& engine) override {
+    rest_.observe(engine, handles_, false);
+    if (tick < kKickTick + 1 || rest_tick_ >= 0) return;
+    float fastest = 0.0f;
+    for (size_t i = 1; i < handles_.size(); ++i) {
+      fastest = std::max(fastest, kit::point_speed(engine, handles_[i], 0.866f));
+    }
+    if (fastest < 0.05f) rest_tick_ = tick + 1;
+  }
+  std::vector<Metric> metrics() const override {
+    double rest_s = rest_tick_ < 0 ? 1e9 : static_cast<double>(rest_tick_ - kKickTick) / 60.0;
+    return {kit::at_most("rest_s", "s", rest_s, 1.0,
+                         "every box moves slower than 0.05 m/s within 1 s of the kick"),
+            kit::at_most("drift_m", "m", rest_.drift_m(), kDriftLimitM,
+                         "the boxes under the kicked one stay within 0.1 m sideways")};
+  }
+
+ private:
+  static constexpr Tick kKickTick = 60;
+  RestingBoxes rest_;
+  Tick rest_tick_ = -1;
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> make_stack(int boxes) {
+  if (boxes < 1 || boxes > 200) return nullptr;
+  return std::make_unique<StackScene>(boxes, boxes, 0.0f, 60.0f, "stack");
+}
+std::unique_ptr<Scene> make_far_stack(int distance_m) {
+  if (distance_m < 0 || distance_m > 90000) return nullptr;
+  return std::make_unique<StackScene>(distance_m, 5, static_cast<float>(distance_m), 20.0f,
+                                      "far_stack");
+}
+std::unique_ptr<Scene> make_pyramid(int base) {
+  if (base < 1 || base > 150) return nullptr;
+  return std::make_unique<PyramidScene>(base);
+}
+std::unique_ptr<Scene> make_sleep(int base) {
+  if (base < 1 || base > 150) return nullptr;
+  return std::make_unique<SleepScene>(base);
+}
+std::unique_ptr<Scene> make_mass_ratio(int ratio) {
+  if (ratio < 1 || ratio > 10000) return nullptr;
+  return std::make_unique<MassRatioScene>(ratio);
+}
+std::unique_ptr<Scene> make_kick(int boxes) {
+  if (boxes < 2 || boxes > 50) return nullptr;
+  return std::make_unique<KickScene>(boxes);
+}
+
+}  // namespace rwd::scenes
