@@ -15,6 +15,7 @@ std::string RewindEngine::settings() const {
   std::ostringstream out;
   out << "substeps=" << config_.substeps << " relax=" << config_.relax_iterations
       << " hertz=" << config_.contact_hertz;
+  if (!config_.enable_sleep) out << " sleep=off";
   return out.str();
 }
 
