@@ -3,6 +3,7 @@
 // Building blocks the scenes share: body specs, a scene base that creates
 // and remembers its bodies, and observers for resting boxes.
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -81,7 +82,9 @@ class SpecScene : public Scene {
 
 /// Boxes resting on one another: records how far each wanders sideways from
 /// where it started, and how deep each resting pair overlaps (from centre
-/// heights, valid while the boxes stay upright).
+/// heights). A pair counts only while it is still in place (its sideways
+/// offset within 0.25 m of the start), so a fallen stack reports the
+/// overlaps of what still stands rather than heights of boxes on the floor.
 class RestingBoxes {
  public:
   struct Support {
@@ -115,16 +118,30 @@ class RestingBoxes {
     }
     if (!measure_depth) return;
     for (const Support& s : supports_) {
-      float lower_y = s.lower < 0 ? ground_y_ : engine.position(handles[s.lower]).y;
-      float upper_y = engine.position(handles[s.upper]).y;
-      float depth = s.centre_gap_m - (upper_y - lower_y);
+      const Vec3 upper = engine.position(handles[s.upper]);
+      float lower_y = ground_y_;
+      if (s.lower >= 0) {
+        const Vec3 lower = engine.position(handles[s.lower]);
+        const float offset = horizontal_distance(upper, lower);
+        const float start_offset = horizontal_distance(start_[s.upper], start_[s.lower]);
+        if (!(std::fabs(offset - start_offset) <= 0.25f)) continue;
+        lower_y = lower.y;
+      } else if (!(horizontal_distance(upper, start_[s.upper]) <= 0.25f)) {
+        continue;
+      }
+      float depth = s.centre_gap_m - (upper.y - lower_y);
       if (depth > depth_m_) depth_m_ = depth;
     }
   }
 
   float drift_m() const { return drift_m_; }
   float drop_m() const { return drop_m_; }
-  float depth_m() const { return depth_m_; }
+  /// Deepest overlap seen; NaN (which fails every criterion) once a box has
+  /// moved more than 0.25 m sideways: the structure fell, and the overlaps
+  /// of what is left standing say nothing about resting contact.
+  float depth_m() const {
+    return drift_m_ > 0.25f ? std::numeric_limits<float>::quiet_NaN() : depth_m_;
+  }
 
  private:
   std::vector<Vec3> start_;
