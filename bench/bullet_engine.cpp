@@ -10,6 +10,7 @@
 //   and 0.5 s mirror Rewind's |v| + extent |w| < 0.05 m/s for 0.5 s;
 // - shapes keep Bullet's default collision margin (0.04 m, inside a box's
 //   half extents; a sphere's margin is its radius), so sizes are exact;
+//   boxes thinner than 8 cm get half their smallest half extent instead;
 // - `continuous` bodies get Bullet's swept-sphere CCD.
 // Everything else is Bullet's default: split impulse, erp 0.2, warm starting,
 // SIMD solver, dynamic AABB tree broadphase, gyroscopic term on.
@@ -115,10 +116,15 @@ bool BulletEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& 
     smallest = r;
   } else {
     const Vec3 h = spec.shape.half_extents;
-    shape = std::make_unique<btBoxShape>(bt(h));
+    smallest = std::min(h.x, std::min(h.y, h.z));
+    auto box = std::make_unique<btBoxShape>(bt(h));
+    // The margin lies inside the half extents; thin boxes (cards, walls)
+    // need a smaller one than the default 0.04 m or their core inverts.
+    // setMargin keeps the outer size.
+    if (box->getMargin() > 0.5f * smallest) box->setMargin(0.5f * smallest);
+    shape = std::move(box);
     volume = 8.0f * h.x * h.y * h.z;
     extent = std::sqrt(sim::length_squared(h));
-    smallest = std::min(h.x, std::min(h.y, h.z));
   }
   const bool dynamic = spec.kind == sim::BodyKind::kDynamic;
   const float mass = dynamic ? spec.density * volume : 0.0f;

@@ -54,6 +54,11 @@ const std::vector<SceneEntry>& scene_catalog() {
   static const std::vector<SceneEntry> catalog = {
       {"stack", "vertical stack of N 1 m boxes, 60 s", {5, 10, 20, 40}, 20, make_stack},
       {"pyramid", "2D pyramid of 1 m boxes, base N, 10 s", {10, 20, 30}, 20, make_pyramid},
+      {"card_house",
+       "house of 2 cm cards leaning 25 degrees, N frames at the base, 10 s",
+       {1, 2, 3},
+       2,
+       make_card_house},
       {"mass_ratio",
        "a box N times heavier resting on a 1 m box, 10 s",
        {10, 100},

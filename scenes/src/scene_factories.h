@@ -14,6 +14,7 @@ std::unique_ptr<Scene> make_pyramid(int base);
 std::unique_ptr<Scene> make_sleep(int base);
 std::unique_ptr<Scene> make_mass_ratio(int ratio);
 std::unique_ptr<Scene> make_kick(int boxes);
+std::unique_ptr<Scene> make_card_house(int levels);
 std::unique_ptr<Scene> make_free_fall(int seconds);
 std::unique_ptr<Scene> make_bounce(int percent);
 std::unique_ptr<Scene> make_slide(int speed);

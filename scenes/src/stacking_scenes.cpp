@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Scenes where boxes rest on boxes: stacks, pyramids, mass ratios, a stack
-// far from the origin, a kicked stack, and how long a pyramid takes to sleep.
+// far from the origin, a kicked stack, a house of cards, and how long a
+// pyramid takes to sleep.
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "scene_factories.h"
@@ -205,6 +207,63 @@ class KickScene final : public kit::SpecScene {
   Tick rest_tick_ = -1;
 };
 
+/// A house of cards `levels` frames wide at the base: pairs of 2 cm thick
+/// cards leaning 25 degrees off vertical against each other, a flat card
+/// bridging each two neighbouring frames, the next level's frames on those.
+/// It must stand for 10 s.
+class CardHouseScene final : public kit::SpecScene {
+ public:
+  explicit CardHouseScene(int levels) : SpecScene(levels) {
+    add(kit::ground());
+    const float tilt = kit::radians(25.0f);
+    const float st = std::sin(tilt);
+    const float ct = std::cos(tilt);
+    const float gap = 0.0005f;  // half a millimetre between touching faces
+    const float pitch = 0.95f;  // apex to apex
+    float base_y = 0.0f;
+    for (int level = 0; level < levels; ++level) {
+      const int frames = levels - level;
+      const float first = -0.5f * pitch * static_cast<float>(frames - 1);
+      float apex_y = 0.0f;
+      for (int f = 0; f < frames; ++f) {
+        const float apex_x = first + pitch * static_cast<float>(f);
+        for (float side : {-1.0f, 1.0f}) {
+          // The card's top outer edge meets the apex; its lowest edge is
+          // just above the floor it stands on.
+          Vec3 c{apex_x + side * (kCardHalf.y * st + kCardHalf.x * ct + gap),
+                 base_y + kCardHalf.y * ct + kCardHalf.x * st + gap, 0.0f};
+          BodySpec card = kit::box(c, kCardHalf);
+          card.rotation = kit::axis_angle({0.0f, 0.0f, 1.0f}, side * tilt);
+          rest_.track(static_cast<int>(add(card)), c);
+          apex_y = c.y + kCardHalf.y * ct + kCardHalf.x * st;
+        }
+      }
+      if (frames == 1) break;
+      // Flat cards from apex to apex.
+      const float flat_y = apex_y + kFlatHalf.y + gap;
+      for (int f = 0; f + 1 < frames; ++f) {
+        Vec3 c{first + pitch * (static_cast<float>(f) + 0.5f), flat_y, 0.0f};
+        rest_.track(static_cast<int>(add(kit::box(c, kFlatHalf))), c);
+      }
+      base_y = flat_y + kFlatHalf.y;
+    }
+  }
+  std::string_view name() const override { return "card_house"; }
+  Tick ticks() const override { return 600; }
+  void after_step(Tick, const Engine& engine) override { rest_.observe(engine, handles_, false); }
+  std::vector<Metric> metrics() const override {
+    return {kit::at_most("drift_m", "m", rest_.drift_m(), 0.05,
+                         "every card stays within 5 cm of its start sideways for 10 s")};
+  }
+
+ private:
+  // Leaning cards: 2 cm thick (x), 1 m long (y), 0.7 m wide (z), before
+  // turning; flat cards 1.2 m long (x).
+  static constexpr Vec3 kCardHalf{0.01f, 0.5f, 0.35f};
+  static constexpr Vec3 kFlatHalf{0.6f, 0.01f, 0.35f};
+  RestingBoxes rest_;
+};
+
 }  // namespace
 
 std::unique_ptr<Scene> make_stack(int boxes) {
@@ -227,6 +286,10 @@ std::unique_ptr<Scene> make_sleep(int base) {
 std::unique_ptr<Scene> make_mass_ratio(int ratio) {
   if (ratio < 1 || ratio > 10000) return nullptr;
   return std::make_unique<MassRatioScene>(ratio);
+}
+std::unique_ptr<Scene> make_card_house(int levels) {
+  if (levels < 1 || levels > 10) return nullptr;
+  return std::make_unique<CardHouseScene>(levels);
 }
 std::unique_ptr<Scene> make_kick(int boxes) {
   if (boxes < 2 || boxes > 50) return nullptr;
