@@ -3,7 +3,7 @@
 // Bullet 3 (Debian's libbullet-dev, float32) behind the scene Engine
 // interface, for side-by-side measurements. Lives in bench/ only: nothing in
 // the engine or its tests links it. The parameter mapping is documented in
-// docs/BENCHMARKS.md (generated from scripts/benchmarks_doc.py).
+// docs/BENCHMARKS.md (written by scripts/charts.py).
 #include <memory>
 #include <string>
 

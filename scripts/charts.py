@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """Turns rewind-scene-sweep CSV into charts (gnuplot, SVG) and docs/BENCHMARKS.md.
 
-Usage: scripts/charts.py --sweep SWEEP.csv --cost COST.csv --out docs/charts
+Usage: scripts/charts.py --sweep SWEEP.csv --awake AWAKE.csv --out docs/charts
                          --doc docs/BENCHMARKS.md --mode MODE --seconds S
 
 Called by scripts/charts.sh; every figure in the document comes from the two
@@ -174,7 +174,7 @@ MAPPING = """\
 | damping rate c (1/s) | v ← v / (1 + h c) per substep | Bullet scales v by (1 − d)^dt: d = 1 − e^(−c) |
 | sleeping | island sleeps when every body has \\|v\\| + extent·\\|ω\\| < 0.05 m/s for 0.5 s | island sleeps when every body has \\|v\\| < 0.05 m/s and \\|ω\\| < 0.05/extent rad/s for `gDeactivationTime` = 0.5 s |
 | mass, inertia | density × volume, solid box/sphere | the same mass; `calculateLocalInertia` of the shape (solid box/sphere) |
-| shapes, margins | exact boxes and spheres; speculative contacts from 2 cm | `btBoxShape` keeps its 0.04 m margin inside the half extents and `btSphereShape`'s margin is its radius, so the sizes are exact; corners are rounded by the margin |
+| shapes, margins | exact boxes and spheres; speculative contacts from 2 cm | `btBoxShape` keeps its 0.04 m margin inside the half extents (half the smallest half extent for boxes thinner than 8 cm: cards, walls) and `btSphereShape`'s margin is its radius, so the sizes are exact; corners are rounded by the margin |
 | penetration recovery | soft contacts (`contact_hertz`, damping ratio 10), slop 5 mm, push-out capped at 3 m/s | Bullet's defaults: split impulse, erp 0.2, no slop |
 | fast bodies | speculative contacts, always on | bodies a scene marks `continuous` get swept-sphere CCD (motion threshold half the smallest extent) |
 | step | `substeps` TGS-Soft substeps per tick, relax iterations per substep | `substeps` calls of `stepSimulation(h, 0)` (exactly one internal step of h each), `iterations` solver iterations |
@@ -186,7 +186,7 @@ MAPPING = """\
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sweep", required=True)
-    ap.add_argument("--cost", required=True)
+    ap.add_argument("--awake", required=True, help="sweep rows run with sleeping off")
     ap.add_argument("--out", required=True)
     ap.add_argument("--doc", required=True)
     ap.add_argument("--mode", required=True)
@@ -195,7 +195,7 @@ def main():
     args = ap.parse_args()
 
     rows = read_rows(args.sweep)
-    cost_rows = read_rows(args.cost)
+    awake_rows = read_rows(args.awake)
     os.makedirs(args.out, exist_ok=True)
     doc_dir = os.path.dirname(os.path.abspath(args.doc))
     rel_out = os.path.relpath(os.path.abspath(args.out), doc_dir)
@@ -227,7 +227,7 @@ def main():
     pile = [r for r in rows if r["scene"] == "pile" and r["is_default"] and r["metric"] == "escaped"]
     main_chart = cost_chart(args.out, "cost_pile", "pile of boxes in a bin: cost per step "
                             "(60 Hz, 1 thread, default settings)", pile)
-    pyramid = [r for r in cost_rows if r["metric"] == "drift_m"]
+    pyramid = [r for r in awake_rows if r["scene"] == "pyramid" and r["metric"] == "drift_m"]
     pyramid_chart = cost_chart(args.out, "cost_pyramid", "pyramid, every body awake: cost per "
                                "step (60 Hz, 1 thread, default settings)", pyramid)
 
@@ -272,6 +272,22 @@ def main():
         if "rewind" in e and "bullet" in e:
             rw, bt = e["rewind"]["ms"], e["bullet"]["ms"]
             w("| %d | %d | %.2f | %.2f | %.2f |" % (size, e["rewind"]["bodies"] - 1, rw, bt, rw / bt))
+    w("")
+
+    w("### Every body awake: what stands without sleeping\n")
+    w("The same default settings with sleeping off in both engines: a structure "
+      "that stands only because it fell asleep shows here.\n")
+    w("| scene | size | criterion | Rewind | Bullet |")
+    w("|---|---:|---|---:|---:|")
+    keyed = OrderedDict()
+    for r in awake_rows:
+        if r["metric"] != "error":
+            keyed.setdefault((r["scene"], r["size"], r["metric"]), {})[r["engine"]] = r
+    for (scene, size, metric), e in keyed.items():
+        ref = e.get("rewind") or e.get("bullet")
+        cells = ["%s %s" % (fmt(e[x]["val"], e[x]["unit"]), "✔" if e[x]["ok"] else "✘")
+                 if x in e else "–" for x in ("rewind", "bullet")]
+        w("| %s | %d | %s | %s | %s |" % (scene, size, criterion_text(ref), cells[0], cells[1]))
     w("")
 
     w("## Every scene at default settings\n")

@@ -54,14 +54,15 @@ step "sweep ($mode): every scene, both engines"
 
 pyramid_sizes=(--size 10 --size 20 --size 30)
 [[ $mode == full ]] && pyramid_sizes+=(--size 40)
-step "pyramids with every body awake (solver cost)"
-"$sweep" --mode defaults --no-sleep --scene pyramid "${pyramid_sizes[@]}" >"$out/cost_pyramid.csv"
+step "pyramids and card houses with every body awake (the solver without sleeping)"
+"$sweep" --mode defaults --no-sleep --scene pyramid "${pyramid_sizes[@]}" >"$out/awake.csv"
+"$sweep" --mode defaults --no-sleep --scene card_house | tail -n +2 >>"$out/awake.csv"
 
 "$sweep" --list >"$out/catalog.txt"
 seconds=$(( $(date +%s) - start ))
 
 step "charts and docs/BENCHMARKS.md"
-python3 scripts/charts.py --sweep "$out/sweep.csv" --cost "$out/cost_pyramid.csv" \
+python3 scripts/charts.py --sweep "$out/sweep.csv" --awake "$out/awake.csv" \
   --catalog "$out/catalog.txt" --out "$out" --doc docs/BENCHMARKS.md --mode "$mode" \
   --seconds "$seconds"
 rm -f "$out/catalog.txt" "$out"/*.dat  # gnuplot input, rebuilt from the CSVs
