@@ -22,6 +22,8 @@ packages=(
   # libraries
   libasio-dev libprotobuf-dev protobuf-compiler libxxhash-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # peer engine for the side-by-side benchmarks (bench/ only) and the charts
+  libbullet-dev gnuplot-nox
   # determinism matrix: aarch64 cross compiler, run under qemu-user
   g++-aarch64-linux-gnu qemu-user
 )

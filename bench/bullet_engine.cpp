@@ -1,0 +1,223 @@
+// SPDX-License-Identifier: MIT
+// How a BodySpec becomes a Bullet body (the table in docs/BENCHMARKS.md):
+// - friction combines by geometric mean and restitution by maximum, as in
+//   Rewind, through a contact-added callback (Bullet's own rules multiply);
+// - damping: Bullet scales velocity by (1 - d)^dt per step, so a decay rate
+//   c (1/s) becomes d = 1 - exp(-c);
+// - restitution threshold 1 m/s (Rewind's restitution_threshold_mps);
+// - sleeping: Bullet sleeps a body when |v| < lin and |w| < ang for
+//   gDeactivationTime; lin = 0.05 m/s, ang = 0.05 m/s over the body's extent
+//   and 0.5 s mirror Rewind's |v| + extent |w| < 0.05 m/s for 0.5 s;
+// - shapes keep Bullet's default collision margin (0.04 m, inside a box's
+//   half extents; a sphere's margin is its radius), so sizes are exact;
+//   boxes thinner than 8 cm get half their smallest half extent instead;
+// - `continuous` bodies get Bullet's swept-sphere CCD.
+// Everything else is Bullet's default: split impulse, erp 0.2, warm starting,
+// SIMD solver, dynamic AABB tree broadphase, gyroscopic term on.
+#include "bullet_engine.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+namespace rwd::bench {
+
+using scenes::BodyHandle;
+using scenes::BodySpec;
+using scenes::Quat;
+using scenes::Vec3;
+
+namespace {
+
+btVector3 bt(Vec3 v) {
+  return {v.x, v.y, v.z};
+}
+Vec3 rw(const btVector3& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+// Per-body surface values, kept where the callback can reach them.
+struct Surface {
+  float friction = 0.0f;
+  float restitution = 0.0f;
+};
+
+bool combine_like_rewind(btManifoldPoint& cp, const btCollisionObjectWrapper* a, int, int,
+                         const btCollisionObjectWrapper* b, int, int) {
+  const auto* sa = static_cast<const Surface*>(a->getCollisionObject()->getUserPointer());
+  const auto* sb = static_cast<const Surface*>(b->getCollisionObject()->getUserPointer());
+  if (sa == nullptr || sb == nullptr) return false;
+  cp.m_combinedFriction = std::sqrt(sa->friction * sb->friction);
+  cp.m_combinedRestitution = std::max(sa->restitution, sb->restitution);
+  return true;
+}
+
+}  // namespace
+
+struct BulletEngine::World {
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher{&config};
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btRigidBody>> bodies;
+  std::vector<Surface> surfaces;  // reserved up front: bodies point into it
+  scenes::WorldSpec spec;
+  float substep_s = 1.0f / 60.0f;
+
+  ~World() {
+    for (auto& b : bodies) world.removeRigidBody(b.get());
+  }
+};
+
+BulletEngine::BulletEngine(const BulletSettings& settings) : settings_(settings) {}
+BulletEngine::~BulletEngine() = default;
+
+std::string BulletEngine::settings() const {
+  std::ostringstream out;
+  out << "iterations=" << settings_.iterations << " substeps=" << settings_.substeps;
+  if (!settings_.sleep) out << " sleep=off";
+  return out.str();
+}
+
+void BulletEngine::reset(const scenes::WorldSpec& world, uint32_t body_capacity) {
+  world_.reset();
+  world_ = std::make_unique<World>();
+  world_->spec = world;
+  world_->surfaces.reserve(body_capacity);
+  world_->bodies.reserve(body_capacity);
+  world_->substep_s = world.tick_seconds / static_cast<float>(settings_.substeps);
+  world_->world.setGravity(bt(world.gravity));
+  btContactSolverInfo& info = world_->world.getSolverInfo();
+  info.m_numIterations = settings_.iterations;
+  info.m_restitutionVelocityThreshold = 1.0f;
+  gContactAddedCallback = combine_like_rewind;
+  gDeactivationTime = 0.5f;
+}
+
+bool BulletEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& error) {
+  if (world_->surfaces.size() == world_->surfaces.capacity()) {
+    error = "more bodies than the scene's body_capacity";
+    return false;
+  }
+  std::unique_ptr<btCollisionShape> shape;
+  float volume = 0.0f;
+  float extent = 0.0f;
+  float smallest = 0.0f;
+  if (spec.shape.type == sim::ShapeType::kSphere) {
+    const float r = spec.shape.radius;
+    shape = std::make_unique<btSphereShape>(r);
+    volume = 4.0f / 3.0f * 3.14159265f * r * r * r;
+    extent = r;
+    smallest = r;
+  } else {
+    const Vec3 h = spec.shape.half_extents;
+    smallest = std::min(h.x, std::min(h.y, h.z));
+    auto box = std::make_unique<btBoxShape>(bt(h));
+    // The margin lies inside the half extents; thin boxes (cards, walls)
+    // need a smaller one than the default 0.04 m or their core inverts.
+    // setMargin keeps the outer size.
+    if (box->getMargin() > 0.5f * smallest) box->setMargin(0.5f * smallest);
+    shape = std::move(box);
+    volume = 8.0f * h.x * h.y * h.z;
+    extent = std::sqrt(sim::length_squared(h));
+  }
+  const bool dynamic = spec.kind == sim::BodyKind::kDynamic;
+  const float mass = dynamic ? spec.density * volume : 0.0f;
+  btVector3 inertia(0.0f, 0.0f, 0.0f);
+  if (dynamic) shape->calculateLocalInertia(mass, inertia);
+  btTransform pose;
+  pose.setOrigin(bt(spec.position));
+  pose.setRotation(
+      btQuaternion(spec.rotation.x, spec.rotation.y, spec.rotation.z, spec.rotation.w));
+  btRigidBody::btRigidBodyConstructionInfo ci(mass, nullptr, shape.get(), inertia);
+  ci.m_startWorldTransform = pose;
+  ci.m_friction = spec.friction;
+  ci.m_restitution = spec.restitution;
+  ci.m_linearDamping = 1.0f - std::exp(-spec.linear_damping);
+  ci.m_angularDamping = 1.0f - std::exp(-spec.angular_damping);
+  ci.m_linearSleepingThreshold = 0.05f;
+  ci.m_angularSleepingThreshold = 0.05f / extent;
+  auto body = std::make_unique<btRigidBody>(ci);
+  world_->surfaces.push_back({spec.friction, spec.restitution});
+  body->setUserPointer(&world_->surfaces.back());
+  body->setCollisionFlags(body->getCollisionFlags() |
+                          btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+  if (spec.kind == sim::BodyKind::kKinematic) {
+    body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    body->setActivationState(DISABLE_DEACTIVATION);
+  }
+  if (dynamic && !settings_.sleep) body->setActivationState(DISABLE_DEACTIVATION);
+  if (spec.kind != sim::BodyKind::kStatic) {
+    body->setLinearVelocity(bt(spec.linear_velocity));
+    body->setAngularVelocity(bt(spec.angular_velocity));
+  }
+  if (spec.continuous) {
+    body->setCcdMotionThreshold(0.5f * smallest);
+    body->setCcdSweptSphereRadius(0.8f * smallest);
+  }
+  world_->world.addRigidBody(body.get());
+  out = static_cast<BodyHandle>(world_->bodies.size());
+  world_->shapes.push_back(std::move(shape));
+  world_->bodies.push_back(std::move(body));
+  return true;
+}
+
+void BulletEngine::step() {
+  // One call per internal step with maxSubSteps = 0 (a variable step of
+  // exactly h): Bullet's own fixed-step accumulator can drop or add a step
+  // to float round-off.
+  for (int i = 0; i < settings_.substeps; ++i) {
+    world_->world.stepSimulation(world_->substep_s, 0);
+  }
+}
+
+Vec3 BulletEngine::position(BodyHandle body) const {
+  return rw(world_->bodies[body]->getWorldTransform().getOrigin());
+}
+Quat BulletEngine::rotation(BodyHandle body) const {
+  const btQuaternion q = world_->bodies[body]->getWorldTransform().getRotation();
+  return {q.x(), q.y(), q.z(), q.w()};
+}
+Vec3 BulletEngine::linear_velocity(BodyHandle body) const {
+  return rw(world_->bodies[body]->getLinearVelocity());
+}
+Vec3 BulletEngine::angular_velocity(BodyHandle body) const {
+  return rw(world_->bodies[body]->getAngularVelocity());
+}
+
+bool BulletEngine::enabled(BodyHandle body) const {
+  // Bullet has no world bounds; a body outside the scene's region is lost.
+  const Vec3 p = position(body);
+  const Vec3 lo = world_->spec.bounds_lower;
+  const Vec3 hi = world_->spec.bounds_upper;
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && p.x >= lo.x &&
+         p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z;
+}
+
+void BulletEngine::apply_impulse(BodyHandle body, Vec3 impulse_ns, Vec3 world_point) {
+  btRigidBody& b = *world_->bodies[body];
+  b.activate(true);
+  b.applyImpulse(bt(impulse_ns), bt(world_point) - b.getCenterOfMassPosition());
+}
+
+void BulletEngine::set_velocity(BodyHandle body, Vec3 linear_mps, Vec3 angular_radps) {
+  btRigidBody& b = *world_->bodies[body];
+  b.activate(true);
+  b.setLinearVelocity(bt(linear_mps));
+  b.setAngularVelocity(bt(angular_radps));
+}
+
+uint32_t BulletEngine::awake_count() const {
+  uint32_t awake = 0;
+  for (const auto& b : world_->bodies) {
+    if (!b->isStaticOrKinematicObject() && b->isActive()) ++awake;
+  }
+  return awake;
+}
+
+}  // namespace rwd::bench

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: MIT
+// Rewind and Bullet stepping the same catalogue scenes in the same process.
+// Each benchmark runs whole scenes (one iteration = one tick; a finished
+// scene is rebuilt outside the timing), so a pile is measured over its fall
+// and its settling alike. Pyramids keep every body awake (the solver's cost,
+// not the sleeping system's); piles run with sleeping on, as a game would.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <string>
+
+#include "bullet_engine.h"
+#include "rewind/scenes/rewind_engine.h"
+#include "rewind/scenes/scene.h"
+
+namespace {
+
+using rwd::scenes::Engine;
+
+void run_scene_ticks(benchmark::State& state, Engine& engine, const char* name) {
+  const int size = static_cast<int>(state.range(0));
+  std::unique_ptr<rwd::scenes::Scene> scene;
+  rwd::Tick tick = 0;
+  auto rebuild = [&] {
+    scene = rwd::scenes::make_scene(name, size);
+    std::string error;
+    engine.reset(scene->world(), scene->body_capacity());
+    if (!scene->build(engine, error)) state.SkipWithError(error.c_str());
+    tick = 0;
+  };
+  rebuild();
+  for (auto _ : state) {
+    if (tick == scene->ticks()) {
+      state.PauseTiming();
+      rebuild();
+      state.ResumeTiming();
+    }
+    scene->before_step(tick, engine);
+    engine.step();
+    scene->after_step(tick, engine);
+    ++tick;
+  }
+  state.counters["bodies"] = scene->body_capacity();
+  state.counters["awake"] = engine.awake_count();
+}
+
+void BM_PyramidRewind(benchmark::State& state) {
+  rwd::sim::WorldConfig config;
+  config.enable_sleep = false;
+  rwd::scenes::RewindEngine engine(config);
+  run_scene_ticks(state, engine, "pyramid");
+}
+void BM_PyramidBullet(benchmark::State& state) {
+  rwd::bench::BulletSettings settings;
+  settings.sleep = false;
+  rwd::bench::BulletEngine engine(settings);
+  run_scene_ticks(state, engine, "pyramid");
+}
+void BM_PileRewind(benchmark::State& state) {
+  rwd::scenes::RewindEngine engine;
+  run_scene_ticks(state, engine, "pile");
+}
+void BM_PileBullet(benchmark::State& state) {
+  rwd::bench::BulletEngine engine;
+  run_scene_ticks(state, engine, "pile");
+}
+
+// One whole scene per benchmark: a pyramid runs 600 ticks, a pile 360.
+BENCHMARK(BM_PyramidRewind)
+    ->Arg(20)
+    ->Arg(30)
+    ->Arg(40)
+    ->Iterations(600)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PyramidBullet)
+    ->Arg(20)
+    ->Arg(30)
+    ->Arg(40)
+    ->Iterations(600)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PileRewind)
+    ->Arg(500)
+    ->Arg(1000)
+    ->Arg(2000)
+    ->Arg(4000)
+    ->Arg(8000)
+    ->Iterations(360)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PileBullet)
+    ->Arg(500)
+    ->Arg(1000)
+    ->Arg(2000)
+    ->Arg(4000)
+    ->Arg(8000)
+    ->Iterations(360)
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Factories of the catalogue's scenes; each returns nullptr for a size the
+// scene cannot take.
+#include <memory>
+
+#include "rewind/scenes/scene.h"
+
+namespace rwd::scenes {
+
+std::unique_ptr<Scene> make_stack(int boxes);
+std::unique_ptr<Scene> make_far_stack(int distance_m);
+std::unique_ptr<Scene> make_pyramid(int base);
+std::unique_ptr<Scene> make_sleep(int base);
+std::unique_ptr<Scene> make_mass_ratio(int ratio);
+std::unique_ptr<Scene> make_kick(int boxes);
+std::unique_ptr<Scene> make_card_house(int levels);
+std::unique_ptr<Scene> make_free_fall(int seconds);
+std::unique_ptr<Scene> make_bounce(int percent);
+std::unique_ptr<Scene> make_slide(int speed);
+std::unique_ptr<Scene> make_incline_stick(int degrees);
+std::unique_ptr<Scene> make_incline_slip(int degrees);
+std::unique_ptr<Scene> make_roll(int degrees);
+std::unique_ptr<Scene> make_free_spin(int rate);
+std::unique_ptr<Scene> make_projectile(int speed);
+std::unique_ptr<Scene> make_pile(int count);
+std::unique_ptr<Scene> make_overlap(int count);
+
+}  // namespace rwd::scenes

@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Building blocks the scenes share: body specs, a scene base that creates
+// and remembers its bodies, and observers for resting boxes.
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "rewind/scenes/scene.h"
+
+namespace rwd::scenes::kit {
+
+constexpr float kPi = 3.14159265358979f;
+
+inline float radians(float degrees) {
+  return degrees * kPi / 180.0f;
+}
+
+/// Rotation by `angle` radians about the unit axis.
+inline Quat axis_angle(Vec3 axis, float angle) {
+  float s = std::sin(0.5f * angle);
+  return {axis.x * s, axis.y * s, axis.z * s, std::cos(0.5f * angle)};
+}
+
+inline float horizontal_distance(Vec3 a, Vec3 b) {
+  float dx = a.x - b.x;
+  float dz = a.z - b.z;
+  return std::sqrt(dx * dx + dz * dz);
+}
+
+inline BodySpec box(Vec3 position, Vec3 half_extents, float friction = 0.6f) {
+  BodySpec s;
+  s.shape = Shape::make_box(half_extents);
+  s.position = position;
+  s.friction = friction;
+  return s;
+}
+
+inline BodySpec sphere(Vec3 position, float radius, float friction = 0.6f) {
+  BodySpec s;
+  s.shape = Shape::make_sphere(radius);
+  s.position = position;
+  s.friction = friction;
+  return s;
+}
+
+inline BodySpec fixed(BodySpec s) {
+  s.kind = BodyKind::kStatic;
+  return s;
+}
+
+/// A static slab whose top face is the plane y = top_y, centred on (x, z).
+inline BodySpec ground(float top_y = 0.0f, float x = 0.0f, float z = 0.0f, float friction = 0.6f) {
+  return fixed(box({x, top_y - 0.5f, z}, {50.0f, 0.5f, 50.0f}, friction));
+}
+
+/// A scene that adds the bodies of `specs_` in build() and keeps their handles.
+class SpecScene : public Scene {
+ public:
+  uint32_t body_capacity() const override { return static_cast<uint32_t>(specs_.size()); }
+  bool build(Engine& engine, std::string& error) override {
+    handles_.clear();
+    for (const BodySpec& s : specs_) {
+      BodyHandle h = 0;
+      if (!engine.add_body(s, h, error)) return false;
+      handles_.push_back(h);
+    }
+    return true;
+  }
+
+ protected:
+  explicit SpecScene(int size) : Scene(size) {}
+  /// Adds a spec; returns its index in specs_ (and handles_ after build).
+  size_t add(const BodySpec& s) {
+    specs_.push_back(s);
+    return specs_.size() - 1;
+  }
+  std::vector<BodySpec> specs_;
+  std::vector<BodyHandle> handles_;
+};
+
+/// Boxes resting on one another: records how far each wanders sideways from
+/// where it started, and how deep each resting pair overlaps (from centre
+/// heights). A pair counts only while it is still in place (its sideways
+/// offset within 0.25 m of the start), so a fallen stack reports the
+/// overlaps of what still stands rather than heights of boxes on the floor.
+class RestingBoxes {
+ public:
+  struct Support {
+    int lower = -1;          ///< body index, or -1 for the ground plane
+    int upper = 0;           ///< body index
+    float centre_gap_m = 0;  ///< centre height difference when just touching
+  };
+
+  void track(int body, Vec3 start) {
+    if (static_cast<size_t>(body) >= start_.size()) start_.resize(body + 1, Vec3{});
+    if (static_cast<size_t>(body) >= tracked_.size()) tracked_.resize(body + 1, false);
+    start_[body] = start;
+    tracked_[body] = true;
+  }
+  void support(int lower, int upper, float centre_gap_m) {
+    supports_.push_back({lower, upper, centre_gap_m});
+  }
+  /// The y of the ground plane a Support with lower = -1 measures against.
+  void set_ground(float top_y) { ground_y_ = top_y; }
+
+  /// Updates drift; when `measure_depth`, updates the deepest overlap too.
+  void observe(const Engine& engine, const std::vector<BodyHandle>& handles, bool measure_depth) {
+    for (size_t i = 0; i < tracked_.size(); ++i) {
+      if (!tracked_[i]) continue;
+      Vec3 p = engine.position(handles[i]);
+      float d = horizontal_distance(p, start_[i]);
+      if (!engine.enabled(handles[i]) || !std::isfinite(d)) d = 1e9f;
+      if (d > drift_m_) drift_m_ = d;
+      float drop = start_[i].y - p.y;
+      if (drop > drop_m_ || !std::isfinite(drop)) drop_m_ = std::isfinite(drop) ? drop : 1e9f;
+    }
+    if (!measure_depth) return;
+    for (const Support& s : supports_) {
+      const Vec3 upper = engine.position(handles[s.upper]);
+      float lower_y = ground_y_;
+      if (s.lower >= 0) {
+        const Vec3 lower = engine.position(handles[s.lower]);
+        const float offset = horizontal_distance(upper, lower);
+        const float start_offset = horizontal_distance(start_[s.upper], start_[s.lower]);
+        if (!(std::fabs(offset - start_offset) <= 0.25f)) continue;
+        lower_y = lower.y;
+      } else if (!(horizontal_distance(upper, start_[s.upper]) <= 0.25f)) {
+        continue;
+      }
+      float depth = s.centre_gap_m - (upper.y - lower_y);
+      if (depth > depth_m_) depth_m_ = depth;
+    }
+  }
+
+  float drift_m() const { return drift_m_; }
+  float drop_m() const { return drop_m_; }
+  /// Deepest overlap seen; NaN (which fails every criterion) once a box has
+  /// moved more than 0.25 m sideways: the structure fell, and the overlaps
+  /// of what is left standing say nothing about resting contact.
+  float depth_m() const {
+    return drift_m_ > 0.25f ? std::numeric_limits<float>::quiet_NaN() : depth_m_;
+  }
+
+ private:
+  std::vector<Vec3> start_;
+  std::vector<bool> tracked_;
+  std::vector<Support> supports_;
+  float ground_y_ = 0.0f;
+  float drift_m_ = 0.0f;
+  float drop_m_ = 0.0f;
+  float depth_m_ = 0.0f;
+};
+
+/// Speed bound of every point of a body: |v| + extent * |w|.
+inline float point_speed(const Engine& engine, BodyHandle h, float extent_m) {
+  return std::sqrt(sim::length_squared(engine.linear_velocity(h))) +
+         extent_m * std::sqrt(sim::length_squared(engine.angular_velocity(h)));
+}
+
+inline Metric at_most(std::string name, std::string unit, double value, double limit,
+                      std::string criterion) {
+  return {std::move(name),        std::move(unit), value,
+          Metric::Bound::kAtMost, limit,           std::move(criterion)};
+}
+inline Metric at_least(std::string name, std::string unit, double value, double limit,
+                       std::string criterion) {
+  return {std::move(name),         std::move(unit), value,
+          Metric::Bound::kAtLeast, limit,           std::move(criterion)};
+}
+
+/// Relative error in percent.
+inline double error_pct(double measured, double expected) {
+  return 100.0 * std::fabs(measured - expected) / std::fabs(expected);
+}
+
+}  // namespace rwd::scenes::kit

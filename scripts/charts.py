@@ -1,0 +1,366 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Turns rewind-scene-sweep CSV into charts (gnuplot, SVG) and docs/BENCHMARKS.md.
+
+Usage: scripts/charts.py --sweep SWEEP.csv --awake AWAKE.csv --out docs/charts
+                         --doc docs/BENCHMARKS.md --mode MODE --seconds S
+
+Called by scripts/charts.sh; every figure in the document comes from the two
+CSV files of one run. Needs python3 (standard library) and gnuplot.
+"""
+import argparse
+import csv
+import datetime
+import os
+import platform
+import subprocess
+import sys
+from collections import OrderedDict
+
+NEVER = 1e8  # metric values at or above this mean "never happened"
+
+
+def read_rows(path):
+    with open(path, newline="") as f:
+        rows = [r for r in csv.DictReader(f)]
+    for r in rows:
+        r["size"] = int(r["size"])
+        r["bodies"] = int(r["bodies"]) if r["bodies"] else 0
+        r["ms"] = float(r["ms_per_step"]) if r["ms_per_step"] else float("nan")
+        r["val"] = float(r["value"]) if r["value"] else float("nan")
+        r["lim"] = float(r["limit"]) if r["limit"] else float("nan")
+        r["ok"] = r["pass"] == "1"
+        r["is_default"] = r["default"] == "1"
+    return rows
+
+
+def fmt(v, unit=""):
+    if v != v:
+        return "n/a"
+    if v >= NEVER:
+        return "never"
+    a = abs(v)
+    if a == 0:
+        s = "0"
+    elif a >= 100:
+        s = "%.0f" % v
+    elif a >= 10:
+        s = "%.1f" % v
+    elif a >= 1:
+        s = "%.2f" % v
+    elif a >= 0.01:
+        s = "%.3f" % v
+    else:
+        s = "%.2g" % v
+    return s + (" " + unit if unit and unit != "" else "")
+
+
+def criterion_text(r):
+    op = "≤" if r["bound"] == "at_most" else "≥"
+    return "%s %s %s" % (r["metric"], op, fmt(r["lim"], r["unit"]))
+
+
+def gnuplot(script):
+    subprocess.run(["gnuplot"], input=script.encode(), check=True)
+
+
+def quote(s):
+    return '"' + s.replace('"', "'") + '"'
+
+
+def error_chart(out_dir, scene, size, metric, rows):
+    """Error against ms/step, one point per setting, both engines."""
+    name = "%s_%d_%s" % (scene, size, metric)
+    data_path = os.path.join(out_dir, name + ".dat")
+    engines = OrderedDict()
+    unit = rows[0]["unit"]
+    limit = rows[0]["lim"]
+    finite = [r["val"] for r in rows if r["val"] < NEVER]
+    cap = max(finite + [limit]) * 1.5 if finite else limit * 2 or 1.0
+    with open(data_path, "w") as f:
+        for engine in ("rewind", "bullet"):
+            pts = [r for r in rows if r["engine"] == engine]
+            if not pts:
+                continue
+            engines[engine] = len(engines)
+            f.write("# %s\n" % engine)
+            for r in sorted(pts, key=lambda r: r["ms"]):
+                v = r["val"] if r["val"] < NEVER else cap
+                label = r["settings"].replace("substeps=", "s").replace("iterations=", "i")
+                label = label.replace("relax=", "r").replace("hertz=", "hz").replace(" ", ",")
+                if r["is_default"]:
+                    label += " (default)"
+                f.write("%g %g %s\n" % (r["ms"], v, quote(label)))
+            f.write("\n\n")
+    svg = os.path.join(out_dir, name + ".svg")
+    ylabel = metric + (" (%s)" % unit if unit else "")
+    positive = [v for v in finite if v > 0]
+    logy = positive and len(positive) == len(finite) and max(positive) / min(positive) > 100
+    plots = []
+    colours = {"rewind": "#1f77b4", "bullet": "#d62728"}
+    for engine, idx in engines.items():
+        plots.append("%s index %d using 1:2 with points pt 7 ps 0.9 lc rgb %s title %s"
+                     % (quote(data_path), idx, quote(colours[engine]), quote(engine)))
+        plots.append("%s index %d using 1:2:3 with labels offset 0.6,0.5 left font ',8' "
+                     "tc rgb %s notitle" % (quote(data_path), idx, quote(colours[engine])))
+    plots.append("%g with lines dt 2 lc rgb 'gray40' title 'limit'" % limit)
+    gnuplot("\n".join([
+        "set terminal svg size 720,440 dynamic noenhanced font 'sans,11' background rgb 'white'",
+        "set output %s" % quote(svg),
+        "set title %s" % quote("%s %d: %s against cost (60 Hz, 1 thread)" % (scene, size, metric)),
+        "set xlabel 'ms per step'",
+        "set ylabel %s" % quote(ylabel),
+        "set logscale x",
+        "set logscale y" if logy else "unset logscale y",
+        "set grid",
+        "set key top right",
+        "plot " + ", \\\n  ".join(plots),
+    ]) + "\n")
+    return os.path.basename(svg)
+
+
+def cost_chart(out_dir, name, title, rows):
+    """ms/step against body count, both engines, log-log."""
+    data_path = os.path.join(out_dir, name + ".dat")
+    with open(data_path, "w") as f:
+        for engine in ("rewind", "bullet"):
+            f.write("# %s\n" % engine)
+            for r in sorted((r for r in rows if r["engine"] == engine), key=lambda r: r["bodies"]):
+                f.write("%d %g\n" % (r["bodies"], r["ms"]))
+            f.write("\n\n")
+    svg = os.path.join(out_dir, name + ".svg")
+    gnuplot("\n".join([
+        "set terminal svg size 720,440 dynamic noenhanced font 'sans,11' background rgb 'white'",
+        "set output %s" % quote(svg),
+        "set title %s" % quote(title),
+        "set xlabel 'bodies'",
+        "set ylabel 'ms per step'",
+        "set logscale xy",
+        "set grid",
+        "set key top left",
+        "plot %s index 0 using 1:2 with linespoints pt 7 lc rgb '#1f77b4' title 'rewind', \\"
+        % quote(data_path),
+        "  %s index 1 using 1:2 with linespoints pt 7 lc rgb '#d62728' title 'bullet'"
+        % quote(data_path),
+    ]) + "\n")
+    return os.path.basename(svg)
+
+
+def machine():
+    model = "unknown CPU"
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    model = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    cc = "unknown compiler"
+    try:
+        cc = subprocess.run(["c++", "--version"], capture_output=True, text=True).stdout
+        cc = cc.splitlines()[0]
+    except (OSError, IndexError):
+        pass
+    return "%s, %d cores visible, %s, %s" % (model, os.cpu_count() or 0, platform.system(), cc)
+
+
+MAPPING = """\
+| Scene value | Rewind | Bullet 3.24 (float32, `btDiscreteDynamicsWorld`, `btSequentialImpulseConstraintSolver`, 1 thread) |
+|---|---|---|
+| friction combine | geometric mean √(μa μb) | Bullet multiplies; a contact-added callback (`CF_CUSTOM_MATERIAL_CALLBACK` on every body) sets `m_combinedFriction` = √(μa μb) |
+| restitution combine | maximum | the same callback sets `m_combinedRestitution` = max(ea, eb) |
+| restitution threshold | `restitution_threshold_mps` = 1 m/s | `m_restitutionVelocityThreshold` = 1 m/s (Bullet's default 0.2) |
+| damping rate c (1/s) | v ← v / (1 + h c) per substep | Bullet scales v by (1 − d)^dt: d = 1 − e^(−c) |
+| sleeping | island sleeps when every body has \\|v\\| + extent·\\|ω\\| < 0.05 m/s for 0.5 s | island sleeps when every body has \\|v\\| < 0.05 m/s and \\|ω\\| < 0.05/extent rad/s for `gDeactivationTime` = 0.5 s |
+| mass, inertia | density × volume, solid box/sphere | the same mass; `calculateLocalInertia` of the shape (solid box/sphere) |
+| shapes, margins | exact boxes and spheres; speculative contacts from 2 cm | `btBoxShape` keeps its 0.04 m margin inside the half extents (half the smallest half extent for boxes thinner than 8 cm: cards, walls) and `btSphereShape`'s margin is its radius, so the sizes are exact; corners are rounded by the margin |
+| penetration recovery | soft contacts (`contact_hertz`, damping ratio 10), slop 5 mm, push-out capped at 3 m/s | Bullet's defaults: split impulse, erp 0.2, no slop |
+| fast bodies | speculative contacts, always on | bodies a scene marks `continuous` get swept-sphere CCD (motion threshold half the smallest extent) |
+| step | `substeps` TGS-Soft substeps per tick, relax iterations per substep | `substeps` calls of `stepSimulation(h, 0)` (exactly one internal step of h each), `iterations` solver iterations |
+| gyroscopic term | none | Bullet's default `BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY` |
+| world bounds | the scene's region (bodies leaving it are disabled) | none; a body outside the scene's region counts as lost |
+"""
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--sweep", required=True)
+    ap.add_argument("--awake", required=True, help="sweep rows run with sleeping off")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--doc", required=True)
+    ap.add_argument("--mode", required=True)
+    ap.add_argument("--seconds", type=float, required=True)
+    ap.add_argument("--catalog", required=True, help="rewind-scene-sweep --list output")
+    args = ap.parse_args()
+
+    rows = read_rows(args.sweep)
+    awake_rows = read_rows(args.awake)
+    os.makedirs(args.out, exist_ok=True)
+    doc_dir = os.path.dirname(os.path.abspath(args.doc))
+    rel_out = os.path.relpath(os.path.abspath(args.out), doc_dir)
+
+    catalog = OrderedDict()
+    with open(args.catalog) as f:
+        for line in f:
+            if ":" in line:
+                k, v = line.split(":", 1)
+                catalog[k.strip()] = v.strip()
+
+    # Chart size of each scene: the size that has non-default rows.
+    chart_size = {}
+    for r in rows:
+        if not r["is_default"]:
+            chart_size[r["scene"]] = r["size"]
+
+    charts = []
+    for scene in catalog:
+        size = chart_size.get(scene)
+        if size is None:
+            continue
+        runs = [r for r in rows if r["scene"] == scene and r["size"] == size and r["metric"] != "error"]
+        for metric in OrderedDict((r["metric"], 0) for r in runs):
+            mrows = [r for r in runs if r["metric"] == metric]
+            charts.append((scene, size, metric, error_chart(args.out, scene, size, metric, mrows)))
+            print("charts: %s" % charts[-1][3], file=sys.stderr)
+
+    pile = [r for r in rows if r["scene"] == "pile" and r["is_default"] and r["metric"] == "escaped"]
+    main_chart = cost_chart(args.out, "cost_pile", "pile of boxes in a bin: cost per step "
+                            "(60 Hz, 1 thread, default settings)", pile)
+    pyramid = [r for r in awake_rows if r["scene"] == "pyramid" and r["metric"] == "drift_m"]
+    pyramid_chart = cost_chart(args.out, "cost_pyramid", "pyramid, every body awake: cost per "
+                               "step (60 Hz, 1 thread, default settings)", pyramid)
+
+    d = []
+    w = d.append
+    w("<!-- SPDX-License-Identifier: MIT -->")
+    w("<!-- Generated by scripts/charts.sh; edits are overwritten. -->")
+    w("# Speed against accuracy: Rewind and Bullet on the same scenes\n")
+    w("Generated by `bash scripts/charts.sh%s` on %s in %.0f s (sweep and charts; "
+      "building not counted)." % (" --quick" if args.mode == "quick" else "",
+                                  datetime.date.today().isoformat(), args.seconds))
+    w("Machine: %s. Every figure on this page comes from that one run, so the "
+      "ratios compare the two engines under the same load; the machines are "
+      "shared and noisy, so compare figures within one run only.\n" % machine())
+    w("Both engines run each scene of `scenes/` (the `rewind_scenes` library) "
+      "through the same `Engine` interface: the same bodies, masses, friction, "
+      "restitution and damping, 60 Hz ticks, one thread. Rewind's adapter is in "
+      "`scenes/`, Bullet's only in `bench/`. ms/step is the wall time of the "
+      "engine's step alone, averaged over the whole scene (sleeping bodies "
+      "included, as in a game), unless a table says every body is awake.\n")
+    w("![pile cost](%s/%s)\n" % (rel_out, main_chart))
+
+    w("## Cost\n")
+    w("### Pile of boxes poured into a bin (default settings, sleeping on)\n")
+    w("| boxes | Rewind ms/step | Bullet ms/step | Rewind / Bullet |")
+    w("|---:|---:|---:|---:|")
+    by_size = OrderedDict()
+    for r in sorted(pile, key=lambda r: r["size"]):
+        by_size.setdefault(r["size"], {})[r["engine"]] = r["ms"]
+    for size, e in by_size.items():
+        if "rewind" in e and "bullet" in e:
+            w("| %d | %.2f | %.2f | %.2f |" % (size, e["rewind"], e["bullet"], e["rewind"] / e["bullet"]))
+    w("")
+    w("### Pyramid, every body kept awake (default settings otherwise)\n")
+    w("![pyramid cost](%s/%s)\n" % (rel_out, pyramid_chart))
+    w("| base | boxes | Rewind ms/step | Bullet ms/step | Rewind / Bullet |")
+    w("|---:|---:|---:|---:|---:|")
+    by_size = OrderedDict()
+    for r in sorted(pyramid, key=lambda r: r["size"]):
+        by_size.setdefault(r["size"], {})[r["engine"]] = r
+    for size, e in by_size.items():
+        if "rewind" in e and "bullet" in e:
+            rw, bt = e["rewind"]["ms"], e["bullet"]["ms"]
+            w("| %d | %d | %.2f | %.2f | %.2f |" % (size, e["rewind"]["bodies"] - 1, rw, bt, rw / bt))
+    w("")
+
+    w("### Every body awake: what stands without sleeping\n")
+    w("The same default settings with sleeping off in both engines: a structure "
+      "that stands only because it fell asleep shows here.\n")
+    w("| scene | size | criterion | Rewind | Bullet |")
+    w("|---|---:|---|---:|---:|")
+    keyed = OrderedDict()
+    for r in awake_rows:
+        if r["metric"] != "error":
+            keyed.setdefault((r["scene"], r["size"], r["metric"]), {})[r["engine"]] = r
+    for (scene, size, metric), e in keyed.items():
+        ref = e.get("rewind") or e.get("bullet")
+        cells = ["%s %s" % (fmt(e[x]["val"], e[x]["unit"]), "✔" if e[x]["ok"] else "✘")
+                 if x in e else "–" for x in ("rewind", "bullet")]
+        w("| %s | %d | %s | %s | %s |" % (scene, size, criterion_text(ref), cells[0], cells[1]))
+    w("")
+
+    w("## Every scene at default settings\n")
+    w("Rewind: `WorldConfig{}` (4 substeps, 1 relax iteration, contact_hertz 30). "
+      "Bullet: 10 solver iterations, 1 step per tick. ✔ meets the criterion, ✘ does not.\n")
+    w("| scene | size | criterion | Rewind | Bullet | Rewind ms/step | Bullet ms/step |")
+    w("|---|---:|---|---:|---:|---:|---:|")
+    defaults = [r for r in rows if r["is_default"] and r["metric"] != "error"]
+    keyed = OrderedDict()
+    for r in defaults:
+        keyed.setdefault((r["scene"], r["size"], r["metric"]), {})[r["engine"]] = r
+    for (scene, size, metric), e in keyed.items():
+        ref = e.get("rewind") or e.get("bullet")
+
+        def cell(engine):
+            r = e.get(engine)
+            return "%s %s" % (fmt(r["val"], r["unit"]), "✔" if r["ok"] else "✘") if r else "–"
+
+        def ms(engine):
+            r = e.get(engine)
+            return "%.3f" % r["ms"] if r else "–"
+
+        w("| %s | %d | %s | %s | %s | %s | %s |" % (scene, size, criterion_text(ref), cell("rewind"),
+                                                 cell("bullet"), ms("rewind"), ms("bullet")))
+    errors = [r for r in rows if r["metric"] == "error"]
+    for r in errors:
+        w("\n%s %d on %s could not be built." % (r["scene"], r["size"], r["engine"]))
+    w("")
+
+    w("## Known failures\n")
+    w("Criteria Rewind does not meet at default settings in this run. They are "
+      "kept out of the `stability` and `accuracy` ctest suites (which hold only "
+      "what passes today) and are the targets of the solver work.\n")
+    w("| scene | size | measured | criterion | what it asks |")
+    w("|---|---:|---:|---|---|")
+    for r in defaults:
+        if r["engine"] == "rewind" and not r["ok"]:
+            w("| %s | %d | %s | %s | %s |" % (r["scene"], r["size"], fmt(r["val"], r["unit"]),
+                                             criterion_text(r), r["criterion"]))
+    w("")
+
+    w("## Error against cost, per scene\n")
+    w("Each point is one setting: Rewind sweeps `substeps` (s), `relax_iterations` "
+      "(r) and `contact_hertz` (hz); Bullet sweeps solver iterations (i) and "
+      "steps per tick (s). The dashed line is the criterion's limit. "
+      "Values that never happened (a stack that never rests) or could not be "
+      "measured (the overlaps of a stack that fell) are drawn at the top of the "
+      "chart. ms/step is averaged over the whole scene with sleeping on, so a "
+      "setting that lets a scene fall asleep is cheap there.\n")
+    for scene, size, metric, svg in charts:
+        w("### %s %d: %s\n" % (scene, size, metric))
+        w("![%s %d %s](%s/%s)\n" % (scene, size, metric, rel_out, svg))
+
+    w("## Scenes\n")
+    w("| scene | what |")
+    w("|---|---|")
+    for k, v in catalog.items():
+        w("| %s | %s |" % (k, v))
+    w("")
+    w("## Parameter mapping\n")
+    w(MAPPING)
+    w("## Reproducing\n")
+    w("```")
+    w("bash scripts/charts.sh            # full sweep (default)")
+    w("bash scripts/charts.sh --quick    # fewer settings, piles up to 2000 boxes")
+    w("build/bench/bin/rewind-scene-sweep --help")
+    w("build/bench/bin/rewind_scene_bench   # Google Benchmark: pyramids and piles, both engines")
+    w("```")
+    w("The CSV files behind every table and chart are in `%s/`." % rel_out)
+    with open(args.doc, "w") as f:
+        f.write("\n".join(d) + "\n")
+    print("charts: wrote %s" % args.doc, file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
