@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Accuracy criteria (analytic answers) of the scene catalogue that Rewind
-// meets at default settings. The free-spin flip and angular momentum
-// criteria are not met yet (no gyroscopic term): see "Known failures" in
-// docs/BENCHMARKS.md.
+// meets at default settings (the ones it does not meet yet are listed under
+// "Known failures" in docs/BENCHMARKS.md).
 #include "scene_criterion.h"
 
 namespace rwd::scenes::test {
@@ -23,7 +22,10 @@ INSTANTIATE_TEST_SUITE_P(Scenes, Accuracy,
                                            Criterion{"slide", 5, "stop_error_pct"},
                                            Criterion{"incline_stick", 20, "creep_mm"},
                                            Criterion{"incline_slip", 30, "travel_error_pct"},
-                                           Criterion{"roll", 30, "travel_error_pct"}),
+                                           Criterion{"roll", 30, "travel_error_pct"},
+                                           Criterion{"free_spin", 10, "flip_min_dot"},
+                                           Criterion{"free_spin", 10, "momentum_drift_pct"},
+                                           Criterion{"free_spin", 10, "energy_drift_pct"}),
                          criterion_name);
 
 }  // namespace

@@ -19,9 +19,11 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///   1  first 3D lane
 ///   2  world bounds (out-of-bounds bodies are disabled), disabled bodies,
 ///      one validity rule shared by the step and the snapshot reader
-inline constexpr uint32_t kSimRevision = 2;
+///   3  gyroscopic term: angular momentum carried through each tick's turn
+///      of the inertia tensor, with energy and |L| conserved
+inline constexpr uint32_t kSimRevision = 3;
 
-/// "rewind-sim r2": the engine identity a replay records.
+/// "rewind-sim r3": the engine identity a replay records.
 inline std::string engine_version() {
   return std::string(kEngineName) + " r" + std::to_string(kSimRevision);
 }
