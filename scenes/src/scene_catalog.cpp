@@ -79,7 +79,7 @@ const std::vector<SceneEntry>& scene_catalog() {
       {"roll", "sphere rolling down an N-degree slope, 2 s", {30}, 30, make_roll},
       {"free_fall", "sphere falling freely for N s", {1, 3}, 1, make_free_fall},
       {"free_spin",
-       "box spinning at N rad/s about its intermediate axis, no gravity, 4 s",
+       "box spinning at N rad/s about its intermediate axis, no gravity, 10 s",
        {10},
        10,
        make_free_spin},
