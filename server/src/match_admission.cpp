@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: MIT
+// The match host's admission: join requests (tokens, slots, rejoining by
+// connection), the lobby, and the start of the match.
+#include <algorithm>
+
+#include "host_log.h"
+#include "rewind/net/connection_id.h"
+#include "rewind/net/envelope_codec.h"
+#include "rewind/net/join_token.h"
+#include "rewind/server/match_host.h"
+
+namespace rwd::server {
+namespace {
+
+using detail::log_line;
+using detail::printable;
+
+}  // namespace
+
+void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, TimePoint now) {
+  const v1::JoinRequest& request = envelope.join_request();
+  auto reject = [&](const std::string& reason) {
+    ++stats_.rejected_packets;
+    v1::Envelope reply;
+    reply.mutable_join_reject()->set_nonce(request.nonce());
+    reply.mutable_join_reject()->set_reason(reason);
+    send_unconnected(from, reply);
+  };
+  auto accept = [&](uint32_t player) {
+    Peer& peer = peers_[player];
+    v1::Envelope reply;
+    v1::JoinAccept* answer = reply.mutable_join_accept();
+    answer->set_nonce(request.nonce());
+    answer->set_connection_id(peer.connection->connection_id());
+    answer->set_player(player);
+    answer->set_player_count(config_.players);
+    answer->set_game(config_.game);
+    answer->set_seed(config_.seed);
+    answer->set_tick_rate_hz(config_.tick_rate_hz);
+    answer->set_window_ticks(static_cast<uint32_t>(config_.window_ticks));
+    send(peer, reply, now);
+    if (phase_ == Phase::kRunning) send_match_start(peer, now);
+  };
+
+  // A repeated request from a joined address lost our answer: answer again.
+  for (uint32_t p = 0; p < peers_.size(); ++p) {
+    if (peers_[p].joined && peers_[p].endpoint == from) {
+      if (peers_[p].join_nonce == request.nonce()) {
+        accept(p);
+      } else {
+        reject("this address already holds player slot " + std::to_string(p));
+      }
+      return;
+    }
+  }
+  if (request.game() != config_.game) {
+    reject("this server hosts '" + config_.game + "', not '" + request.game() + "'");
+    return;
+  }
+  std::optional<uint32_t> slot;
+  if (!config_.token_secret.empty()) {
+    const auto now_unix = std::chrono::duration_cast<std::chrono::seconds>(
+                              std::chrono::system_clock::now().time_since_epoch())
+                              .count();
+    const std::string& token = request.token();
+    auto verified = net::verify_join_token(
+        config_.token_secret,
+        std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(token.data()), token.size()),
+        config_.match_id, static_cast<int64_t>(now_unix));
+    if (!verified.ok()) {
+      reject("join token refused: " + verified.status().message());
+      return;
+    }
+    if (*verified >= config_.players || peers_[*verified].joined) {
+      reject("player slot " + std::to_string(*verified) + " is not available");
+      return;
+    }
+    slot = *verified;
+  } else if (phase_ == Phase::kLobby) {
+    for (uint32_t p = 0; p < peers_.size() && !slot; ++p) {
+      if (!peers_[p].joined) slot = p;
+    }
+  }
+  if (!slot) {
+    reject(phase_ == Phase::kLobby ? "match is full" : "match already running");
+    return;
+  }
+  if (phase_ != Phase::kLobby) {
+    reject("match already running");
+    return;
+  }
+  Peer& peer = peers_[*slot];
+  const uint64_t id = ids_.next();
+  peer.joined = true;
+  peer.connected = true;
+  peer.endpoint = from;
+  peer.join_nonce = request.nonce();
+  peer.connection.emplace(now, id);
+  peer.last_receive = now;
+  peer.name = request.client_name();
+  ++stats_.players_joined;
+  log_line("player " + std::to_string(*slot) + " joined from " + from.address().to_string() + ":" +
+           std::to_string(from.port()) + " (" + printable(peer.name) + ")");
+  accept(*slot);
+  const bool full =
+      std::all_of(peers_.begin(), peers_.end(), [](const Peer& p) { return p.joined; });
+  if (full) start_match(now);
+}
+
+void MatchHost::start_match(TimePoint now) {
+  phase_ = Phase::kRunning;
+  started_ = now;
+  tick_started_ = now;
+  countdown_ticks_ = static_cast<int32_t>(std::ceil(config_.start_delay_s * config_.tick_rate_hz));
+  log_line("all " + std::to_string(config_.players) + " players joined; tick 0 in " +
+           std::to_string(countdown_ticks_) + " ticks");
+  for (Peer& peer : peers_) send_match_start(peer, now);
+}
+
+void MatchHost::send_match_start(Peer& peer, TimePoint now) {
+  v1::Envelope start;
+  start.mutable_match_start()->set_start_tick(0);
+  start.mutable_match_start()->set_server_tick(server_tick());
+  send(peer, start, now);
+}
+
+}  // namespace rwd::server

@@ -1,0 +1,273 @@
+// SPDX-License-Identifier: MIT
+// The match host's desync path: reassembling a client's desync report,
+// storing it with the bodies and fields that differ (forensics), and the
+// resync episode that follows: a snapshot checked to load here before it
+// goes out, resent in chunks until acknowledged, replaced when a client
+// refuses it.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "host_log.h"
+#include "rewind/net/envelope_codec.h"
+#include "rewind/server/match_host.h"
+#include "rewind/sim/body_record.h"
+
+namespace rwd::server {
+namespace {
+
+using detail::hex64;
+using detail::log_line;
+using detail::printable;
+using detail::worth_logging;
+
+constexpr size_t kResyncChunkBytes = 1000;
+constexpr auto kResyncMinInterval = std::chrono::milliseconds(250);
+constexpr auto kReportMinInterval = std::chrono::seconds(2);
+constexpr uint32_t kMaxReportsPerPeer = 8;
+
+}  // namespace
+
+void MatchHost::handle_desync(Peer& peer, uint32_t player, const v1::DesyncReport& report,
+                              TimePoint now) {
+  if (report.tick() > next_final_ - 1 || report.tick() < 0) {
+    ++stats_.rejected_packets;  // only final ticks can desync
+    return;
+  }
+  for (uint32_t id : peer.handled_reports) {
+    if (id == report.report_id()) {
+      send_resync(peer, now);  // the client is still waiting: our snapshot was lost
+      return;
+    }
+  }
+  DesyncAssembly& assembly = peer.desync;
+  if (assembly.report_id != report.report_id() || assembly.chunks.size() != report.chunk_count() ||
+      assembly.total_size != report.total_size()) {
+    assembly = DesyncAssembly{};
+    assembly.report_id = report.report_id();
+    assembly.tick = report.tick();
+    assembly.client_checksum = report.client_checksum();
+    assembly.server_checksum = report.server_checksum();
+    assembly.total_size = report.total_size();
+    assembly.chunks.assign(report.chunk_count(), {});
+  }
+  std::vector<uint8_t>& chunk = assembly.chunks[report.chunk_index()];
+  if (chunk.empty() && !report.chunk().empty()) {
+    chunk.assign(report.chunk().begin(), report.chunk().end());
+    ++assembly.received;
+  }
+  if (assembly.received < assembly.chunks.size()) return;
+
+  std::vector<uint8_t> dump;
+  dump.reserve(assembly.total_size);
+  for (const auto& part : assembly.chunks) dump.insert(dump.end(), part.begin(), part.end());
+  if (dump.size() != assembly.total_size) {
+    ++stats_.rejected_packets;  // inconsistent chunk set; the client will retry
+    assembly = DesyncAssembly{};
+    return;
+  }
+  ++stats_.desync_reports;
+  peer.handled_reports.push_back(assembly.report_id);
+  if (peer.handled_reports.size() > 16) peer.handled_reports.erase(peer.handled_reports.begin());
+  // Storing a report (disk, two simulations, a diff) is the expensive part:
+  // a few per player, spaced out, so a client cannot stall the match or
+  // fill the disk by inventing desyncs.
+  if (peer.reports_stored < kMaxReportsPerPeer &&
+      (peer.reports_stored == 0 || now - peer.last_report_stored >= kReportMinInterval)) {
+    ++peer.reports_stored;
+    peer.last_report_stored = now;
+    store_desync_report(player, assembly, dump);
+  }
+  assembly = DesyncAssembly{};
+  send_resync(peer, now);
+}
+
+std::optional<uint64_t> MatchHost::final_checksum(Tick tick) const {
+  if (tick < 0) return std::nullopt;
+  const FinalRecord& record = final_history_[static_cast<size_t>(tick) % kFinalHistory];
+  if (record.tick != tick) return std::nullopt;
+  return record.checksum;
+}
+
+void MatchHost::store_desync_report(uint32_t player, const DesyncAssembly& assembly,
+                                    const std::vector<uint8_t>& dump) {
+  // The headline needs nothing but the report and our final-tick history,
+  // so it is written whatever fails below.
+  const std::optional<uint64_t> ours = final_checksum(assembly.tick);
+  const std::string headline = "player " + std::to_string(player) + " desync at tick " +
+                               std::to_string(assembly.tick) + ": client " +
+                               hex64(assembly.client_checksum) + " server " +
+                               hex64(ours.value_or(assembly.server_checksum)) +
+                               (ours ? "" : " (as the client received it; no longer held here)");
+  std::string text = headline + "\n";
+  // Why the report names no fields, when it cannot.
+  std::string problem;
+
+  // Name the bodies that differ: the client's state after the tick against
+  // ours, when the ring still holds it.
+  auto client_sim = session_->load_snapshot(dump);
+  std::vector<uint8_t> server_state;
+  if (!client_sim.ok()) {
+    ++stats_.desync_dumps_unreadable;
+    problem = "client dump unreadable: " + client_sim.status().message();
+  } else {
+    if ((*client_sim)->checksum() != assembly.client_checksum) {
+      text += "the client dump does not reproduce the client's checksum (" +
+              hex64((*client_sim)->checksum()) + ")\n";
+    }
+    if (!session_->serialize_state_at(assembly.tick + 1, server_state)) {
+      problem = "server state for tick " + std::to_string(assembly.tick) + " is no longer held";
+    } else if (auto server_sim = session_->load_snapshot(server_state); !server_sim.ok()) {
+      problem = "server state unreadable: " + server_sim.status().message();
+    } else {
+      std::vector<sim::BodyRecord> expected, actual;
+      (*server_sim)->dump_bodies(expected);
+      (*client_sim)->dump_bodies(actual);
+      const auto differences = sim::diff_body_records(expected, actual);
+      text += std::to_string(differences.size()) +
+              " differing fields (server = expected, client = actual):\n";
+      char line[160];
+      for (const sim::FieldDifference& d : differences) {
+        std::snprintf(line, sizeof(line), "  body %u %s: expected %.9g actual %.9g\n", d.body_index,
+                      d.field.c_str(), d.expected, d.actual);
+        text += line;
+      }
+    }
+  }
+  if (!problem.empty()) text += problem + "\n";
+
+  std::string stored;
+  if (!config_.desync_dir.empty()) {
+    const std::string base = config_.desync_dir + "/desync_p" + std::to_string(player) + "_t" +
+                             std::to_string(assembly.tick) + "_r" +
+                             std::to_string(assembly.report_id);
+    // The raw dump first: it is the evidence when nothing else could be read.
+    std::ofstream raw(base + ".bin", std::ios::binary);
+    raw.write(reinterpret_cast<const char*>(dump.data()),
+              static_cast<std::streamsize>(dump.size()));
+    raw.close();
+    std::ofstream report(base + ".txt");
+    report << text;
+    report.close();
+    if (!raw || !report) {
+      ++stats_.desync_report_write_failures;
+      log_line("WARNING: cannot write desync report " + base + ".{txt,bin}");
+    } else {
+      stored = " (" + base + ".txt)";
+    }
+  }
+  if (problem.empty()) {
+    log_line(headline + stored);
+  } else {
+    log_line("WARNING: " + headline + "; " + problem + stored);
+  }
+}
+
+void MatchHost::send_resync(Peer& peer, TimePoint now) {
+  if (peer.resynced_once && now - peer.last_resync < kResyncMinInterval) return;
+  peer.resynced_once = true;
+  peer.last_resync = now;
+  // One snapshot per episode: resends repeat the same tick, bytes and id, so
+  // an acknowledgement slower than the resend interval still matches, and
+  // the client can complete it from chunks of several sends. When no
+  // snapshot passes its check, nothing is sent now and the next resend
+  // (or the client's next request) tries again from newer state.
+  if (peer.resync_tick == kNoTick && !start_resync_episode(peer)) return;
+  send_resync_chunks(peer, now);
+}
+
+bool MatchHost::start_resync_episode(Peer& peer) {
+  // The client restarts from the snapshot's tick and acknowledges the tick
+  // before it. The state after the last final tick is the natural choice.
+  // If that one does not load, the oldest final state the client can still
+  // take is the fallback: a state that broke recently (a body thrown out of
+  // range) is often fine a few ticks earlier, and the client re-simulates
+  // from there without ever having to load the broken one. Both must still
+  // be in the snapshot ring, and the final ticks after the fallback must
+  // still be held for resending. At most two checks per episode. (A
+  // snapshot right after what the client acknowledged counts as
+  // acknowledged at once, so it goes out once instead of until
+  // acknowledged; a client that misses a chunk asks again.)
+  const Tick newest = next_final_;
+  const Tick oldest_final_held = finals_.empty() ? next_final_ : finals_.front().tick();
+  const Tick fallback = std::max(peer.final_seen + 1, oldest_final_held);
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const Tick tick = attempt == 0 ? newest : fallback;
+    if (attempt > 0 && tick >= newest) break;  // no older state to fall back to
+    const std::optional<uint64_t> checksum = session_->checksum_at(tick);
+    if (!checksum || !session_->serialize_state_at(tick, peer.resync_bytes)) continue;
+    if (snapshot_hook_) snapshot_hook_(tick, peer.resync_bytes);
+    // Never send what we could not load ourselves: the same test the client
+    // applies (RollbackSession::reset_from), on a fresh simulation.
+    Status status = Status::Ok();
+    const size_t count = (peer.resync_bytes.size() + kResyncChunkBytes - 1) / kResyncChunkBytes;
+    if (count == 0 || count > net::kMaxResyncChunks) {
+      status = Status::Error(ErrorCode::kCapacity,
+                             std::to_string(peer.resync_bytes.size()) + " bytes is too large");
+    } else if (auto loaded = session_->load_snapshot(peer.resync_bytes, *checksum); !loaded.ok()) {
+      status = loaded.status();
+    }
+    if (!status.ok()) {
+      ++stats_.resync_snapshot_failures;
+      if (worth_logging(stats_.resync_snapshot_failures)) {
+        log_line("WARNING: resync snapshot for tick " + std::to_string(tick) +
+                 " does not load on the server, not sent: " + status.message() + " (" +
+                 std::to_string(stats_.resync_snapshot_failures) + " so far)");
+      }
+      continue;
+    }
+    peer.resync_tick = tick;
+    peer.resync_checksum = *checksum;
+    peer.resync_id = next_snapshot_id_++;
+    // Final ticks from here on are (re)sent once the client acknowledges
+    // tick - 1; the round-robin resend covers any it already had before.
+    peer.final_sent = std::max(peer.final_sent, tick - 1);
+    ++stats_.resyncs_sent;
+    return true;
+  }
+  peer.resync_bytes.clear();
+  return false;
+}
+
+void MatchHost::on_resync_refused(Peer& peer, uint32_t player, const v1::ResyncRequest& request) {
+  // Only the snapshot still being resent counts: later requests naming it
+  // again are copies of the same refusal.
+  if (request.refused_snapshot_id() == 0 || peer.resync_tick == kNoTick ||
+      request.refused_snapshot_id() != peer.resync_id) {
+    return;
+  }
+  ++stats_.resyncs_refused;
+  if (worth_logging(stats_.resyncs_refused)) {
+    log_line("WARNING: player " + std::to_string(player) + " could not load resync snapshot " +
+             std::to_string(peer.resync_id) + " (tick " + std::to_string(peer.resync_tick) +
+             "): " + printable(request.refused_reason()) + "; building another (" +
+             std::to_string(stats_.resyncs_refused) + " so far)");
+  }
+  // Resending the same bytes cannot help: the next send starts a new episode.
+  peer.resync_tick = kNoTick;
+  peer.resync_bytes.clear();
+}
+
+void MatchHost::send_resync_chunks(Peer& peer, TimePoint now) {
+  const std::vector<uint8_t>& bytes = peer.resync_bytes;
+  const auto count =
+      static_cast<uint32_t>((bytes.size() + kResyncChunkBytes - 1) / kResyncChunkBytes);
+  for (uint32_t i = 0; i < count; ++i) {
+    v1::Envelope envelope;
+    v1::ResyncChunk* chunk = envelope.mutable_resync_chunk();
+    chunk->set_snapshot_id(peer.resync_id);
+    chunk->set_tick(peer.resync_tick);
+    chunk->set_checksum(peer.resync_checksum);
+    chunk->set_chunk_index(i);
+    chunk->set_chunk_count(count);
+    chunk->set_total_size(static_cast<uint32_t>(bytes.size()));
+    const size_t begin = i * kResyncChunkBytes;
+    const size_t end = std::min(bytes.size(), begin + kResyncChunkBytes);
+    chunk->set_chunk(std::string(bytes.begin() + static_cast<std::ptrdiff_t>(begin),
+                                 bytes.begin() + static_cast<std::ptrdiff_t>(end)));
+    send(peer, envelope, now);
+  }
+}
+
+}  // namespace rwd::server
