@@ -17,7 +17,6 @@ constexpr auto kMatchPing = std::chrono::milliseconds(250);
 constexpr auto kReportResend = std::chrono::milliseconds(500);
 constexpr int kMaxStepsPerUpdate = 30;      // bounds a catch-up burst
 constexpr size_t kMaxInputsPerPacket = 64;  // redundancy: every unacked input, up to this
-constexpr size_t kReportChunkBytes = 1000;
 constexpr size_t kMaxQueuedEvents = 4096;
 
 double seconds(std::chrono::steady_clock::duration d) {
@@ -478,15 +477,6 @@ bool ClientSession::apply_final_tick(const v1::FinalTick& final_tick, TimePoint 
   return true;
 }
 
-void ClientSession::request_resync(TimePoint now) {
-  if (awaiting_resync_) return;
-  awaiting_resync_ = true;
-  desync_tick_ = kNoTick;  // nothing to report, just ask
-  state_buffer_.clear();
-  report_sends_ = 0;
-  send_desync_report(now);
-}
-
 void ClientSession::finish_ending(TimePoint now) {
   phase_ = Phase::kEnded;
   emit({ClientEventType::kMatchEnded, end_tick_, player_, 0, 0, end_reason_});
@@ -526,130 +516,6 @@ void ClientSession::verify_finals(TimePoint now) {
     (void)session_->serialize_state_at(tick + 1, state_buffer_);
     send_desync_report(now);
   }
-}
-
-void ClientSession::send_desync_report(TimePoint now) {
-  last_report_sent_ = now;
-  const size_t count = (state_buffer_.size() + kReportChunkBytes - 1) / kReportChunkBytes;
-  // The whole report goes out a few times; after that only a short request,
-  // so a server that is slow to answer is not buried in chunks.
-  if (desync_tick_ == kNoTick || count == 0 || count > net::kMaxDesyncChunks ||
-      report_sends_++ >= 3) {
-    send_resync_request(now);  // nothing to show: just ask for the snapshot
-    return;
-  }
-  for (size_t i = 0; i < count; ++i) {
-    v1::Envelope envelope;
-    v1::DesyncReport* report = envelope.mutable_desync_report();
-    report->set_tick(desync_tick_);
-    report->set_client_checksum(desync_local_checksum_);
-    report->set_server_checksum(desync_server_checksum_);
-    report->set_report_id(report_id_);
-    report->set_chunk_index(static_cast<uint32_t>(i));
-    report->set_chunk_count(static_cast<uint32_t>(count));
-    report->set_total_size(static_cast<uint32_t>(state_buffer_.size()));
-    const size_t begin = i * kReportChunkBytes;
-    const size_t end = std::min(state_buffer_.size(), begin + kReportChunkBytes);
-    report->set_chunk(std::string(state_buffer_.begin() + static_cast<std::ptrdiff_t>(begin),
-                                  state_buffer_.begin() + static_cast<std::ptrdiff_t>(end)));
-    send(envelope, now);
-  }
-}
-
-void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now) {
-  // Only a snapshot past everything we already settled can help: older ones
-  // are delayed duplicates of an earlier episode.
-  if (chunk.tick() <= session_->final_tick()) return;
-  // Nor one before what we told the server we have: it would never resend
-  // the final ticks in between.
-  if (chunk.tick() - 1 < last_final_acked_) return;
-  if (!awaiting_resync_ && chunk.tick() <= last_final_received_ + 1) return;
-  // Resends of a snapshot that already failed to load: the server has not
-  // heard yet; our requests keep naming it until it sends another.
-  if (chunk.snapshot_id() == refused_snapshot_id_) return;
-  if (resync_.snapshot_id != chunk.snapshot_id() || resync_.chunks.size() != chunk.chunk_count()) {
-    resync_ = ResyncAssembly{};
-    resync_.snapshot_id = chunk.snapshot_id();
-    resync_.tick = chunk.tick();
-    resync_.checksum = chunk.checksum();
-    resync_.total_size = chunk.total_size();
-    resync_.chunks.assign(chunk.chunk_count(), {});
-  }
-  std::string& part = resync_.chunks[chunk.chunk_index()];
-  if (part.empty() && !chunk.chunk().empty()) {
-    part = chunk.chunk();
-    ++resync_.received;
-  }
-  if (resync_.received < resync_.chunks.size()) return;
-
-  std::vector<uint8_t> bytes;
-  bytes.reserve(resync_.total_size);
-  for (const std::string& p : resync_.chunks) bytes.insert(bytes.end(), p.begin(), p.end());
-  const ResyncAssembly done = std::move(resync_);
-  resync_ = ResyncAssembly{};
-  if (bytes.size() != done.total_size) {
-    refuse_resync(done.snapshot_id, done.tick,
-                  "chunks add up to " + std::to_string(bytes.size()) + " bytes, not " +
-                      std::to_string(done.total_size),
-                  now);
-    return;
-  }
-  // Decoded and checked against the server's checksum before it replaces
-  // anything; a bad snapshot is dropped and another asked for.
-  if (Status status = session_->reset_from(bytes, done.checksum); !status.ok()) {
-    refuse_resync(done.snapshot_id, done.tick, status.message(), now);
-    return;
-  }
-  const Tick tick = done.tick;
-  last_final_received_ = tick - 1;  // the server resends final ticks from here
-  pending_finals_.clear();
-  early_finals_.clear();
-  next_input_tick_ = std::max(next_input_tick_, tick);
-  // Re-anchor the clock on the server's instead of bursting through the
-  // ticks the clock ran ahead while we waited.
-  const double rtt_ticks = stats_.rtt_ms / 1000.0 * tick_rate_hz_;
-  tick_clock_ =
-      std::max(static_cast<double>(tick), server_tick_ + rtt_ticks + config_.target_lead_ticks);
-  time_sync_.clear_jump();
-  awaiting_resync_ = false;
-  desync_tick_ = kNoTick;
-  refused_snapshot_id_ = 0;
-  refused_reason_.clear();
-  state_buffer_.clear();
-  report_sends_ = 0;
-  ++stats_.resyncs;
-  emit({ClientEventType::kResynced,
-        tick,
-        player_,
-        session_->simulation().checksum(),
-        done.checksum,
-        {}});
-  step_due_ticks(now);
-}
-
-void ClientSession::refuse_resync(uint32_t snapshot_id, Tick tick, const std::string& reason,
-                                  TimePoint now) {
-  ++stats_.resyncs_refused;
-  emit({ClientEventType::kResyncRefused, tick, player_, 0, 0, reason});
-  // The server resends one snapshot until it is acknowledged, so it has to
-  // hear that this one is useless. Until another loads, final ticks are not
-  // applied and the request is repeated (update() -> send_desync_report).
-  awaiting_resync_ = true;
-  refused_snapshot_id_ = snapshot_id;
-  refused_reason_ = reason.substr(0, net::kMaxStringBytes);
-  last_report_sent_ = now;
-  send_resync_request(now);
-}
-
-void ClientSession::send_resync_request(TimePoint now) {
-  v1::Envelope envelope;
-  v1::ResyncRequest* request = envelope.mutable_resync_request();
-  request->set_desync_tick(std::max<Tick>(desync_tick_, 0));
-  if (refused_snapshot_id_ != 0) {
-    request->set_refused_snapshot_id(refused_snapshot_id_);
-    request->set_refused_reason(refused_reason_);
-  }
-  send(envelope, now);
 }
 
 void ClientSession::send(v1::Envelope& envelope, TimePoint now) {
