@@ -28,6 +28,7 @@
 #include "rewind/proto/input_wire.h"
 #include "rewind/replay/replay_reader.h"
 #include "rewind/replay/replay_verifier.h"
+#include "scratch_dir.h"
 
 namespace rwd::test {
 namespace {
@@ -39,23 +40,6 @@ Tick match_ticks() {
   const long value = text != nullptr ? std::strtol(text, nullptr, 10) : 0;
   return value >= 3000 ? static_cast<Tick>(value) : 100'000;
 }
-
-class ScratchDir {
- public:
-  explicit ScratchDir(const std::string& name)
-      : path_(std::filesystem::path(testing::TempDir()) /
-              (name + "_" + std::to_string(::getpid()))) {
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~ScratchDir() {
-    if (!::testing::Test::HasFailure()) std::filesystem::remove_all(path_);
-  }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
 
 // Where the pushers are at a keyframe. Those that left the arena (over a
 // wall, or through a gap) are reported, not judged: the game's rules decide
