@@ -315,6 +315,9 @@ struct Spin {
 
 Spin carry_angular_momentum(const BodyMass& mass, Quat q0, Quat q1, Vec3 w) {
   const Vec3 inv = mass.inv_inertia_local;
+  // Equal principal moments (spheres, cubes): the inertia tensor does not
+  // change as the body turns, so neither does w.
+  if (inv.x == inv.y && inv.y == inv.z) return {w, q1};
   const Vec3 inertia{1.0f / inv.x, 1.0f / inv.y, 1.0f / inv.z};
   const Vec3 l_world = rotate(q0, mul_elements(inertia, inv_rotate(q0, w)));
   const float two_energy = dot(w, l_world);
