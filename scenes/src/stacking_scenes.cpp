@@ -28,6 +28,17 @@ std::string depth_text(const char* what) {
   return out.str();
 }
 
+// What a standing structure is judged by: how far any box drifted sideways
+// over the whole scene, and how deep boxes rest in each other at the end.
+std::vector<Metric> standing_metrics(const RestingBoxes& rest, float seconds) {
+  std::ostringstream stands;
+  stands << "every box stays within " << kDriftLimitM << " m of its start sideways for " << seconds
+         << " s";
+  return {kit::at_most("drift_m", "m", rest.drift_m(), kDriftLimitM, stands.str()),
+          kit::at_most("penetration_mm", "mm", 1000.0 * rest.depth_m(), kDepthLimitMm,
+                       depth_text("in the last second"))};
+}
+
 /// A vertical stack of `boxes` 1 m boxes at (x, 0, z) resting on the ground.
 class StackScene : public kit::SpecScene {
  public:
@@ -54,14 +65,7 @@ class StackScene : public kit::SpecScene {
   void after_step(Tick tick, const Engine& engine) override {
     rest_.observe(engine, handles_, tick >= ticks() - kLastSecond);
   }
-  std::vector<Metric> metrics() const override {
-    std::ostringstream stands;
-    stands << "every box stays within " << kDriftLimitM << " m of its start sideways for "
-           << seconds_ << " s";
-    return {kit::at_most("drift_m", "m", rest_.drift_m(), kDriftLimitM, stands.str()),
-            kit::at_most("penetration_mm", "mm", 1000.0 * rest_.depth_m(), kDepthLimitMm,
-                         depth_text("in the last second"))};
-  }
+  std::vector<Metric> metrics() const override { return standing_metrics(rest_, seconds_); }
 
  private:
   std::string_view name_;
@@ -103,14 +107,7 @@ class PyramidScene : public kit::SpecScene {
     rest_.observe(engine, handles_, tick >= ticks() - kLastSecond);
     if (asleep_tick_ < 0 && engine.awake_count() == 0) asleep_tick_ = tick + 1;
   }
-  std::vector<Metric> metrics() const override {
-    std::ostringstream stands;
-    stands << "every box stays within " << kDriftLimitM << " m of its start sideways for "
-           << seconds_ << " s";
-    return {kit::at_most("drift_m", "m", rest_.drift_m(), kDriftLimitM, stands.str()),
-            kit::at_most("penetration_mm", "mm", 1000.0 * rest_.depth_m(), kDepthLimitMm,
-                         depth_text("in the last second"))};
-  }
+  std::vector<Metric> metrics() const override { return standing_metrics(rest_, seconds_); }
 
  protected:
   RestingBoxes rest_;
