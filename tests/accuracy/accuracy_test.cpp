@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Accuracy criteria (analytic answers) of the scene catalogue that Rewind
-// meets at default settings (the ones it does not meet yet are listed under
-// "Known failures" in docs/BENCHMARKS.md).
+// Every accuracy criterion of the scene catalogue (analytic answers), at
+// default settings.
 #include "scene_criterion.h"
 
 namespace rwd::scenes::test {

@@ -1,17 +1,31 @@
 // SPDX-License-Identifier: MIT
 // TGS-Soft contact solver (after Erin Catto's "Solver2D" soft step, as in
-// Box2D v3), in 3D. Per tick, with h = tick / substeps:
+// Box2D v3), in 3D, with the push-out split from the real velocities. Per
+// tick, with h = tick / substeps:
 //   for each substep:
 //     integrate velocities (gravity, forces, damping)
 //     warm start (apply last substep's impulses)
-//     solve      (soft contacts: spring-damper push-out, capped speed)
-//     integrate positions
-//     relax      (rigid contacts, no push-out: removes the bias velocity)
+//     solve      (rigid contacts on the real velocities; overlaps beyond the
+//                 slop pushed out on separate push velocities, capped speed)
+//     integrate positions (real plus push velocities; push velocities dropped)
+//     relax      (rigid contacts again, after the move)
 //   restitution (bounce from the pre-step approach speed)
 //   store impulses in the contact cache for next tick's warm start
 //   write back, settling every body under the state rule (state_rules.h):
 //   speed limits, finite poses, world bounds (bodies that left are disabled
 //   and reported)
+// Why the push-out has its own velocities: Box2D's soft contact pushes with
+// the real velocities and lets relax take the push back, and carries load
+// like a spring (an overlap proportional to the weight above: 10 mm at the
+// foot of a 10-box stack, and a tall stack on such springs buckles). Here
+// the real contact is rigid, so resting overlap stays at the slop whatever
+// the load, and a push-out moves bodies apart without ever leaving them
+// with speed (a column of deep overlaps separates without launching its top).
+// The contact hertz and damping ratio still set how fast overlaps go.
+//
+// The normal impulses of a manifold's points are solved together (a few
+// sweeps on the manifold's own K matrix, see solve_manifold) and applied to
+// the bodies once; friction follows point by point (solve_friction).
 // Contact anchors stay fixed relative to the body centres for the whole tick;
 // each substep recomputes the separation from how far the bodies have moved
 // and turned since the tick began, so the narrowphase runs once per tick.
@@ -19,6 +33,7 @@
 // error small; recomputing it per substep would cost a matrix per body).
 #include <cmath>
 
+#include "d3/angular_momentum.h"
 #include "d3/body_storage.h"
 #include "d3/pipeline.h"
 #include "d3/state_rules.h"
@@ -32,13 +47,22 @@ namespace {
 constexpr float kMaxLinearSpeed = 400.0f;  // m/s
 constexpr float kMaxRotationPerSubstep = 0.25f * kPi;
 
+// Sweeps over a manifold's normal system per solve: enough for four points
+// on a face to agree (one sweep is the usual sequential impulse, which
+// leaves the body turning toward the last point solved; a tall stack of
+// such tilts never settles and walks off its base).
+constexpr int kManifoldSweeps = 4;
+// An overlap deeper than this many linear slops past the slop is pushed out
+// from the ground up (support_order.cpp): at the default slop, 2 cm.
+constexpr float kDeepOverlapSlops = 4.0f;
+
 Softness make_soft(float hertz, float zeta, float h) {
-  if (hertz == 0.0f) return {0.0f, 1.0f, 0.0f};
+  if (hertz == 0.0f) return {0.0f, 1.0f};
   float omega = 2.0f * kPi * hertz;
   float a1 = 2.0f * zeta + h * omega;
   float a2 = h * omega * a1;
   float a3 = 1.0f / (1.0f + a2);
-  return {omega / a1, a2 * a3, a3};
+  return {omega / a1, a2 * a3};
 }
 
 float effective_mass(const SolverBody& a, const SolverBody& b, Vec3 ra, Vec3 rb, Vec3 dir) {
@@ -135,14 +159,25 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
       cp.anchor_a = mp.anchor_a;
       cp.anchor_b = mp.anchor_b;
       cp.base_separation = mp.separation - dot(mp.anchor_b - mp.anchor_a, c.normal);
+      cp.separation = mp.separation;
       cp.normal_mass = effective_mass(a, b, cp.anchor_a, cp.anchor_b, c.normal);
       cp.tangent_mass1 = effective_mass(a, b, cp.anchor_a, cp.anchor_b, c.tangent1);
       cp.tangent_mass2 = effective_mass(a, b, cp.anchor_a, cp.anchor_b, c.tangent2);
       cp.normal_impulse = rec.points[p].normal_impulse;
       cp.tangent_impulse1 = rec.points[p].tangent_impulse1;
       cp.tangent_impulse2 = rec.points[p].tangent_impulse2;
+      cp.push_impulse = 0.0f;
       cp.max_normal_impulse = 0.0f;
       cp.relative_velocity = dot(c.normal, relative_velocity(a, b, cp.anchor_a, cp.anchor_b));
+    }
+    for (uint32_t i = 0; i < c.point_count; ++i) {
+      const Vec3 rna = a.inv_inertia * cross(c.points[i].anchor_a, c.normal);
+      const Vec3 rnb = b.inv_inertia * cross(c.points[i].anchor_b, c.normal);
+      for (uint32_t j = 0; j < c.point_count; ++j) {
+        c.coupling[i][j] = a.inv_mass + b.inv_mass +
+                           dot(cross(c.points[j].anchor_a, c.normal), rna) +
+                           dot(cross(c.points[j].anchor_b, c.normal), rnb);
+      }
     }
     points += c.point_count;
     scratch.constraints.push_back(c);
@@ -166,97 +201,283 @@ void integrate_velocities(WorldScratch& scratch, float h) {
 }
 
 void integrate_positions(WorldScratch& scratch, float h) {
+  const float max_w = kMaxRotationPerSubstep / h;
   for (size_t i = 1; i < scratch.solver_bodies.size(); ++i) {
     SolverBody& b = scratch.solver_bodies[i];
     Vec3 w = b.angular_velocity;
-    float max_w = kMaxRotationPerSubstep / h;
     float w_sq = length_squared(w);
     if (w_sq > max_w * max_w) {
       w = w * (max_w / std::sqrt(w_sq));
       b.angular_velocity = w;
     }
-    b.delta_position += b.linear_velocity * h;
+    Vec3 v = b.linear_velocity;
+    if (b.pushed != 0) {
+      v += b.push_linear;
+      w += b.push_angular;
+      w_sq = length_squared(w);
+      if (w_sq > max_w * max_w) w = w * (max_w / std::sqrt(w_sq));
+    }
+    b.delta_position += v * h;
     b.delta_rotation = integrate_rotation(b.delta_rotation, w, h);
   }
 }
 
+// Applies each contact's impulses of the last substep (or, on the first,
+// of the last tick) as one impulse and one torque per body.
 void warm_start(WorldScratch& scratch) {
+  for (const ContactConstraint& c : scratch.constraints) {
+    SolverBody& a = scratch.solver_bodies[c.body_a];
+    SolverBody& b = scratch.solver_bodies[c.body_b];
+    Vec3 linear{};
+    Vec3 torque_a{};
+    Vec3 torque_b{};
+    for (uint32_t p = 0; p < c.point_count; ++p) {
+      const ConstraintPoint& cp = c.points[p];
+      const Vec3 impulse = c.normal * cp.normal_impulse + c.tangent1 * cp.tangent_impulse1 +
+                           c.tangent2 * cp.tangent_impulse2;
+      linear += impulse;
+      torque_a += cross(cp.anchor_a, impulse);
+      torque_b += cross(cp.anchor_b, impulse);
+    }
+    a.linear_velocity -= linear * a.inv_mass;
+    a.angular_velocity -= a.inv_inertia * torque_a;
+    b.linear_velocity += linear * b.inv_mass;
+    b.angular_velocity += b.inv_inertia * torque_b;
+  }
+}
+
+// Projected Gauss-Seidel sweeps over one manifold's normal system with the
+// bodies held: impulse[p] (accumulated, >= 0) is raised by delta[p] so that
+// the normal velocity vn[p] + sum_j K[p][j] delta[j] reaches -bias[p], each
+// step scaled by `scale`. No body is touched, so the sweeps cost a few
+// multiply-adds; the caller applies the deltas to the bodies once. The
+// residual is kept up to date column by column, so the inner loop has no
+// dependency chain; N is the point count, fixed per instantiation.
+template <uint32_t N>
+void sweep_manifold(const float (*k)[kMaxManifoldPoints], const float* mass, const float* vn,
+                    const float* bias, float scale, float* impulse, float* delta) {
+  float residual[N];
+  float step[N];
+  float total[N];
+  for (uint32_t p = 0; p < N; ++p) {
+    residual[p] = vn[p] + bias[p];
+    step[p] = mass[p] * scale;
+    total[p] = impulse[p];
+  }
+  const int sweeps = N == 1 ? 1 : kManifoldSweeps;
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    for (uint32_t p = 0; p < N; ++p) {
+      float next = total[p] - step[p] * residual[p];
+      if (next < 0.0f) next = 0.0f;
+      const float change = next - total[p];
+      total[p] = next;
+      for (uint32_t j = 0; j < N; ++j) residual[j] += k[j][p] * change;
+    }
+  }
+  for (uint32_t p = 0; p < N; ++p) {
+    delta[p] = total[p] - impulse[p];
+    impulse[p] = total[p];
+  }
+}
+
+void solve_manifold(uint32_t n, const float (*k)[kMaxManifoldPoints], const float* mass,
+                    const float* vn, const float* bias, float scale, float* impulse, float* delta) {
+  switch (n) {
+    case 1:
+      sweep_manifold<1>(k, mass, vn, bias, scale, impulse, delta);
+      break;
+    case 2:
+      sweep_manifold<2>(k, mass, vn, bias, scale, impulse, delta);
+      break;
+    case 3:
+      sweep_manifold<3>(k, mass, vn, bias, scale, impulse, delta);
+      break;
+    default:
+      sweep_manifold<4>(k, mass, vn, bias, scale, impulse, delta);
+      break;
+  }
+}
+
+// Applies normal impulses delta[p] at the manifold's points to a pair of
+// velocities (real or push); a side marked fixed is left alone.
+void apply_normal_impulses(const ContactConstraint& c, const float* delta, const SolverBody& a,
+                           const SolverBody& b, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb,
+                           uint8_t fixed = kPushFixedNone) {
+  Vec3 linear{};
+  Vec3 torque_a{};
+  Vec3 torque_b{};
+  for (uint32_t p = 0; p < c.point_count; ++p) {
+    const Vec3 impulse = c.normal * delta[p];
+    linear += impulse;
+    torque_a += cross(c.points[p].anchor_a, impulse);
+    torque_b += cross(c.points[p].anchor_b, impulse);
+  }
+  if (fixed != kPushFixedA) {
+    va -= linear * a.inv_mass;
+    wa -= a.inv_inertia * torque_a;
+  }
+  if (fixed != kPushFixedB) {
+    vb += linear * b.inv_mass;
+    wb += b.inv_inertia * torque_b;
+  }
+}
+
+// Each point's separation from the motion since the tick began; run after
+// every position update (the passes in between read it).
+void update_separations(WorldScratch& scratch) {
+  for (ContactConstraint& c : scratch.constraints) {
+    const SolverBody& a = scratch.solver_bodies[c.body_a];
+    const SolverBody& b = scratch.solver_bodies[c.body_b];
+    const Vec3 dp = b.delta_position - a.delta_position;
+    for (uint32_t p = 0; p < c.point_count; ++p) {
+      ConstraintPoint& cp = c.points[p];
+      const Vec3 pa = rotate(a.delta_rotation, cp.anchor_a);
+      const Vec3 pb = rotate(b.delta_rotation, cp.anchor_b);
+      cp.separation = dot(dp + (pb - pa), c.normal) + cp.base_separation;
+    }
+  }
+}
+
+// Friction after the normal impulses (so the cones use this pass's values),
+// point by point: a circular cone |t| <= mu * normal impulse at each point.
+void solve_friction(ContactConstraint& c, SolverBody& a, SolverBody& b) {
+  for (uint32_t p = 0; p < c.point_count; ++p) {
+    ConstraintPoint& cp = c.points[p];
+    const Vec3 dv = relative_velocity(a, b, cp.anchor_a, cp.anchor_b);
+    float t1 = cp.tangent_impulse1 - cp.tangent_mass1 * dot(dv, c.tangent1);
+    float t2 = cp.tangent_impulse2 - cp.tangent_mass2 * dot(dv, c.tangent2);
+    const float limit = c.friction * cp.normal_impulse;
+    const float len_sq = t1 * t1 + t2 * t2;
+    if (len_sq > limit * limit) {
+      const float scale = limit / std::sqrt(len_sq);  // len_sq > 0 here
+      t1 = t1 * scale;
+      t2 = t2 * scale;
+    }
+    const float i1 = t1 - cp.tangent_impulse1;
+    const float i2 = t2 - cp.tangent_impulse2;
+    cp.tangent_impulse1 = t1;
+    cp.tangent_impulse2 = t2;
+    apply_impulse(a, b, cp.anchor_a, cp.anchor_b, c.tangent1 * i1 + c.tangent2 * i2);
+  }
+}
+
+// One pass over the contacts on the real velocities: rigid contacts (a gap
+// may close within the substep, no more) and friction.
+void solve_contacts(WorldScratch& scratch, float inv_h) {
+  float vn[kMaxManifoldPoints];
+  float bias[kMaxManifoldPoints];
+  float mass[kMaxManifoldPoints];
+  float impulse[kMaxManifoldPoints];
+  float delta[kMaxManifoldPoints];
   for (ContactConstraint& c : scratch.constraints) {
     SolverBody& a = scratch.solver_bodies[c.body_a];
     SolverBody& b = scratch.solver_bodies[c.body_b];
     for (uint32_t p = 0; p < c.point_count; ++p) {
       const ConstraintPoint& cp = c.points[p];
-      Vec3 impulse = c.normal * cp.normal_impulse + c.tangent1 * cp.tangent_impulse1 +
-                     c.tangent2 * cp.tangent_impulse2;
-      apply_impulse(a, b, cp.anchor_a, cp.anchor_b, impulse);
+      bias[p] = cp.separation > 0.0f ? cp.separation * inv_h : 0.0f;  // speculative
+      vn[p] = dot(relative_velocity(a, b, cp.anchor_a, cp.anchor_b), c.normal);
+      mass[p] = cp.normal_mass;
+      impulse[p] = cp.normal_impulse;
     }
-  }
-}
+    solve_manifold(c.point_count, c.coupling, mass, vn, bias, 1.0f, impulse, delta);
+    for (uint32_t p = 0; p < c.point_count; ++p) {
+      ConstraintPoint& cp = c.points[p];
+      cp.normal_impulse = impulse[p];
+      if (impulse[p] > cp.max_normal_impulse) cp.max_normal_impulse = impulse[p];
+    }
+    apply_normal_impulses(c, delta, a, b, a.linear_velocity, a.angular_velocity, b.linear_velocity,
+                          b.angular_velocity);
 
-void solve_contacts(WorldScratch& scratch, const WorldConfig& config, float inv_h, bool use_bias) {
-  const float slop = config.linear_slop_m;
-  const float push_max = config.contact_push_max_mps;
-  for (ContactConstraint& c : scratch.constraints) {
-    SolverBody& a = scratch.solver_bodies[c.body_a];
-    SolverBody& b = scratch.solver_bodies[c.body_b];
-    Vec3 dp = b.delta_position - a.delta_position;
-    for (uint32_t p = 0; p < c.point_count; ++p) {
-      ConstraintPoint& cp = c.points[p];
-      // Current separation from the motion since the tick began.
-      Vec3 pa = rotate(a.delta_rotation, cp.anchor_a);
-      Vec3 pb = rotate(b.delta_rotation, cp.anchor_b);
-      float s = dot(dp + (pb - pa), c.normal) + cp.base_separation;
-      float bias = 0.0f;
-      float mass_scale = 1.0f;
-      float impulse_scale = 0.0f;
-      if (s > 0.0f) {
-        bias = s * inv_h;  // speculative: may close the gap, not more
-      } else if (use_bias) {
-        float depth = s + slop;  // penetration up to the slop is allowed
-        if (depth < 0.0f) {
-          bias = c.softness.bias_rate * depth;
-          if (bias < -push_max) bias = -push_max;
-        }
-        mass_scale = c.softness.mass_scale;
-        impulse_scale = c.softness.impulse_scale;
-      }
-      float vn = dot(relative_velocity(a, b, cp.anchor_a, cp.anchor_b), c.normal);
-      float impulse =
-          -cp.normal_mass * mass_scale * (vn + bias) - impulse_scale * cp.normal_impulse;
-      float total = cp.normal_impulse + impulse;
-      if (total < 0.0f) total = 0.0f;
-      impulse = total - cp.normal_impulse;
-      cp.normal_impulse = total;
-      if (total > cp.max_normal_impulse) cp.max_normal_impulse = total;
-      apply_impulse(a, b, cp.anchor_a, cp.anchor_b, c.normal * impulse);
-    }
-    // Friction after the normal impulses so the cone uses this pass's values.
-    for (uint32_t p = 0; p < c.point_count; ++p) {
-      ConstraintPoint& cp = c.points[p];
-      Vec3 dv = relative_velocity(a, b, cp.anchor_a, cp.anchor_b);
-      float i1 = -cp.tangent_mass1 * dot(dv, c.tangent1);
-      float i2 = -cp.tangent_mass2 * dot(dv, c.tangent2);
-      float t1 = cp.tangent_impulse1 + i1;
-      float t2 = cp.tangent_impulse2 + i2;
-      // Circular friction cone: |t| <= mu * normal impulse.
-      float limit = c.friction * cp.normal_impulse;
-      float len_sq = t1 * t1 + t2 * t2;
-      if (len_sq > limit * limit) {
-        float scale = limit / std::sqrt(len_sq);  // len_sq > 0 here
-        t1 = t1 * scale;
-        t2 = t2 * scale;
-      }
-      i1 = t1 - cp.tangent_impulse1;
-      i2 = t2 - cp.tangent_impulse2;
-      cp.tangent_impulse1 = t1;
-      cp.tangent_impulse2 = t2;
-      apply_impulse(a, b, cp.anchor_a, cp.anchor_b, c.tangent1 * i1 + c.tangent2 * i2);
-    }
+    solve_friction(c, a, b);
   }
   // The immovable body absorbs impulses with zero inverse mass; keep it at
   // rest explicitly so no -0/+0 noise can ever accumulate there.
   scratch.solver_bodies[0].linear_velocity = {};
   scratch.solver_bodies[0].angular_velocity = {};
+}
+
+// The normal K matrix of a contact whose side `fixed` does not move.
+void one_sided_coupling(const ContactConstraint& c, const SolverBody& moving, bool moving_is_b,
+                        float (*k)[kMaxManifoldPoints], float* mass) {
+  Vec3 rn[kMaxManifoldPoints];
+  for (uint32_t i = 0; i < c.point_count; ++i) {
+    const Vec3 r = moving_is_b ? c.points[i].anchor_b : c.points[i].anchor_a;
+    rn[i] = cross(r, c.normal);
+  }
+  for (uint32_t i = 0; i < c.point_count; ++i) {
+    const Vec3 irn = moving.inv_inertia * rn[i];
+    for (uint32_t j = 0; j < c.point_count; ++j) k[i][j] = moving.inv_mass + dot(rn[j], irn);
+    mass[i] = k[i][i] > 0.0f ? 1.0f / k[i][i] : 0.0f;
+  }
+}
+
+// One pass of the push-out on the push velocities, from the ground up
+// (support_order.cpp): overlaps deeper than the slop are pushed apart at
+// the contact's bias rate, at most at the push speed cap, and a gap may
+// close no faster than it would in the real pass. The push impulses
+// accumulate over the tick's substeps and are never warm-started.
+void push_out(WorldScratch& scratch, const WorldConfig& config, float inv_h) {
+  const float slop = config.linear_slop_m;
+  const float push_max = config.contact_push_max_mps;
+  float vn[kMaxManifoldPoints];
+  float bias[kMaxManifoldPoints];
+  float mass[kMaxManifoldPoints];
+  float impulse[kMaxManifoldPoints];
+  float delta[kMaxManifoldPoints];
+  float one_sided[kMaxManifoldPoints][kMaxManifoldPoints];
+  for (uint32_t index : scratch.push_order) {
+    ContactConstraint& c = scratch.constraints[index];
+    SolverBody& a = scratch.solver_bodies[c.body_a];
+    SolverBody& b = scratch.solver_bodies[c.body_b];
+    bool overlapping = false;
+    float deepest = 0.0f;
+    for (uint32_t p = 0; p < c.point_count; ++p) {
+      const float s = c.points[p].separation;
+      if (s + slop < deepest) deepest = s + slop;
+      bias[p] = s > 0.0f ? s * inv_h : 0.0f;
+      const float depth = s + slop;  // overlap up to the slop is allowed
+      if (depth < 0.0f) {
+        const float push = c.softness.bias_rate * depth;
+        bias[p] = push < -push_max ? -push_max : push;
+        overlapping = true;
+      }
+    }
+    if (!overlapping && a.pushed == 0 && b.pushed == 0) continue;
+    for (uint32_t p = 0; p < c.point_count; ++p) {
+      const ConstraintPoint& cp = c.points[p];
+      const Vec3 va = a.push_linear + cross(a.push_angular, cp.anchor_a);
+      const Vec3 vb = b.push_linear + cross(b.push_angular, cp.anchor_b);
+      vn[p] = dot(vb - va, c.normal);
+      mass[p] = cp.normal_mass;
+      impulse[p] = cp.push_impulse;
+    }
+    const float(*k)[kMaxManifoldPoints] = c.coupling;
+    // Only a deep overlap is pushed out from the ground up; shallow ones (a
+    // resting contact a little past the slop) push both bodies, so the
+    // push-out never drives a resting structure sideways.
+    const bool deep = deepest < -kDeepOverlapSlops * slop;
+    const uint8_t fixed = deep ? c.push_fixed : static_cast<uint8_t>(kPushFixedNone);
+    if (fixed != kPushFixedNone) {
+      const bool moving_is_b = fixed == kPushFixedA;
+      one_sided_coupling(c, moving_is_b ? b : a, moving_is_b, one_sided, mass);
+      k = one_sided;
+    }
+    solve_manifold(c.point_count, k, mass, vn, bias, c.softness.mass_scale, impulse, delta);
+    bool moved = false;
+    for (uint32_t p = 0; p < c.point_count; ++p) {
+      c.points[p].push_impulse = impulse[p];
+      moved = moved || delta[p] != 0.0f;
+    }
+    if (!moved) continue;
+    apply_normal_impulses(c, delta, a, b, a.push_linear, a.push_angular, b.push_linear,
+                          b.push_angular, fixed);
+    if (fixed != kPushFixedA && a.inv_mass != 0.0f) a.pushed = 1;
+    if (fixed != kPushFixedB && b.inv_mass != 0.0f) b.pushed = 1;
+  }
+  SolverBody& immovable = scratch.solver_bodies[0];
+  immovable.push_linear = {};
+  immovable.push_angular = {};
+  immovable.pushed = 0;
 }
 
 void apply_restitution(WorldScratch& scratch, const WorldConfig& config) {
@@ -293,58 +514,6 @@ void store_impulses(WorldState& state, const WorldScratch& scratch) {
   }
 }
 
-// The gyroscopic term. The solver holds the inertia tensor fixed at the
-// tick's starting orientation, so its angular velocity belongs to that
-// orientation: the world angular momentum is L = I(q0) w. A free body keeps
-// L while its inertia turns with it, so the velocity it ends the tick with
-// is I(q1)^-1 L: this is what makes a box spun about its intermediate axis
-// tumble (the Dzhanibekov effect) instead of spinning forever.
-//
-// The orientation q1 came from the tick's starting velocity, an explicit
-// step that on its own pumps energy into a tumbling body (an explicit torque
-// w x Iw does the same; an implicit one, as in Bullet, drains it). The
-// gyroscopic term does no work, so the body-frame momentum is moved along the
-// sphere |L| = const back onto the energy ellipsoid L.I^-1.L = 2E of the
-// tick's start (two Newton steps), and the orientation is turned by the same
-// small body-frame rotation, so the world momentum stays exactly L. Both
-// invariants then hold to rounding.
-struct Spin {
-  Vec3 angular_velocity;
-  Quat rotation;
-};
-
-Spin carry_angular_momentum(const BodyMass& mass, Quat q0, Quat q1, Vec3 w) {
-  const Vec3 inv = mass.inv_inertia_local;
-  // Equal principal moments (spheres, cubes): the inertia tensor does not
-  // change as the body turns, so neither does w.
-  if (inv.x == inv.y && inv.y == inv.z) return {w, q1};
-  const Vec3 inertia{1.0f / inv.x, 1.0f / inv.y, 1.0f / inv.z};
-  const Vec3 l_world = rotate(q0, mul_elements(inertia, inv_rotate(q0, w)));
-  const float two_energy = dot(w, l_world);
-  const float l_sq = length_squared(l_world);
-  const Vec3 carried = inv_rotate(q1, l_world);  // body frame at the tick's end
-  if (!(l_sq > 0.0f) || !(two_energy > 0.0f)) return {rotate(q1, mul_elements(inv, carried)), q1};
-  Vec3 l = carried;
-  for (int i = 0; i < 2; ++i) {
-    const Vec3 g = mul_elements(inv, l);  // the body-frame w; L.I^-1.L has gradient 2g
-    const float error = dot(l, g) - two_energy;
-    // The gradient's part tangent to the momentum sphere.
-    const Vec3 t = g - l * (dot(g, l) / length_squared(l));
-    const float slope = 2.0f * dot(g, t);
-    if (!(slope > 1e-12f * two_energy)) break;  // on a principal axis: nothing to correct
-    Vec3 next = l - t * (error / slope);
-    next = next * std::sqrt(l_sq / length_squared(next));
-    if (!is_finite(next)) break;
-    l = next;
-  }
-  // The body-frame rotation r taking l to `carried`: q1 r maps l to L.
-  const Vec3 axis = cross(l, carried);
-  const Quat r = normalize(Quat{axis.x, axis.y, axis.z, l_sq + dot(l, carried)});
-  const Quat q = normalize(q1 * r);
-  if (!is_finite(q)) return {rotate(q1, mul_elements(inv, carried)), q1};
-  return {rotate(q, mul_elements(inv, l)), q};
-}
-
 void finalize(WorldState& state, WorldScratch& scratch, float tick) {
   const WorldConfig& config = state.config;
   for (size_t i = 1; i < scratch.solver_bodies.size(); ++i) {
@@ -366,10 +535,12 @@ void finalize(WorldState& state, WorldScratch& scratch, float tick) {
     // Sleep timer: a body is at rest when no point of it moves faster than
     // the threshold (|v| + extent * |w| bounds every surface point's speed).
     // Kinematic bodies rest only when they are not driven at all.
+    // A body still being pushed out of an overlap is not at rest either.
     bool resting = false;
     if (state.infos[index].kind == BodyKind::kDynamic) {
-      float speed =
-          length(b.linear_velocity) + state.masses[index].extent * length(b.angular_velocity);
+      const Vec3 v = b.linear_velocity + b.push_linear;
+      const Vec3 w = b.angular_velocity + b.push_angular;
+      float speed = length(v) + state.masses[index].extent * length(w);
       resting = speed < config.sleep_threshold_mps;
     } else {
       resting = b.linear_velocity == Vec3{} && b.angular_velocity == Vec3{};
@@ -392,14 +563,15 @@ void solve(WorldState& state, WorldScratch& scratch) {
   const float h = tick / static_cast<float>(config.substeps);
   const float inv_h = 1.0f / h;
   prepare(state, scratch, h);
+  order_push_out(scratch);
   for (int32_t s = 0; s < config.substeps; ++s) {
     integrate_velocities(scratch, h);
     warm_start(scratch);
-    solve_contacts(scratch, config, inv_h, true);
+    solve_contacts(scratch, inv_h);
+    push_out(scratch, config, inv_h);
     integrate_positions(scratch, h);
-    for (int32_t r = 0; r < config.relax_iterations; ++r) {
-      solve_contacts(scratch, config, inv_h, false);
-    }
+    update_separations(scratch);
+    for (int32_t r = 0; r < config.relax_iterations; ++r) solve_contacts(scratch, inv_h);
   }
   apply_restitution(scratch, config);
   store_impulses(state, scratch);

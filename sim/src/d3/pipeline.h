@@ -8,6 +8,8 @@
 //                      awake body wake before solving
 //   contact_events.cpp build_events: enter/stay/exit from old vs new cache
 //   contact_solver.cpp solve: TGS-Soft substeps, restitution, write back
+//                      (support_order.cpp orders its push-out,
+//                      angular_momentum.cpp the gyroscopic term)
 //   island_sleep.cpp   update_sleep: islands at rest fall asleep
 #include "d3/world_scratch.h"
 #include "rewind/sim/world_state.h"
@@ -41,6 +43,10 @@ void wake_touching(WorldState& state, WorldScratch& scratch, BodyId id);
 /// Fills scratch.events from scratch.other_contacts (last step) and
 /// state.contacts (this step).
 void build_events(const WorldState& state, WorldScratch& scratch);
+
+/// Levels the solver bodies by contacts from the immovable ones and fills
+/// scratch.push_order and each constraint's push_fixed (support_order.cpp).
+void order_push_out(WorldScratch& scratch);
 
 /// Runs the TGS-Soft solver over all awake bodies for one tick.
 void solve(WorldState& state, WorldScratch& scratch);

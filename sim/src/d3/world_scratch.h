@@ -47,6 +47,11 @@ struct ContactGeometry {
 struct SolverBody {
   Vec3 linear_velocity;
   Vec3 angular_velocity;
+  /// Push-out velocities of the current substep: they move the body out of
+  /// overlaps and are then dropped, so recovering from an overlap never
+  /// becomes real velocity (a split impulse).
+  Vec3 push_linear;
+  Vec3 push_angular;
   Vec3 delta_position;
   Quat delta_rotation;
   float inv_mass;
@@ -54,18 +59,22 @@ struct SolverBody {
   Vec3 linear_acceleration;     ///< gravity plus applied force, m/s^2
   float linear_damping_factor;  ///< 1 / (1 + h * damping), per substep
   float angular_damping_factor;
+  uint8_t pushed;  ///< push velocities are non-zero this substep
 };
 
+/// How hard overlaps are pushed out: the separating speed per metre of
+/// overlap and the fraction of a rigid push-out impulse applied per substep,
+/// from a spring-damper of the contact hertz and damping ratio.
 struct Softness {
-  float bias_rate;
-  float mass_scale;
-  float impulse_scale;
+  float bias_rate;   ///< 1/s
+  float mass_scale;  ///< (0, 1]
 };
 
 struct ConstraintPoint {
   Vec3 anchor_a;  ///< from A's centre at step start, world frame (fixed)
   Vec3 anchor_b;
   float base_separation;    ///< separation minus the anchors' normal offset
+  float separation;         ///< metres, as of the last position update
   float relative_velocity;  ///< normal approach speed before the step (restitution)
   float normal_mass;
   float tangent_mass1;
@@ -74,7 +83,13 @@ struct ConstraintPoint {
   float tangent_impulse1;
   float tangent_impulse2;
   float max_normal_impulse;
+  float push_impulse;  ///< accumulated push-out impulse of this tick
 };
+
+/// Which body the push-out holds fixed (support_order.cpp).
+enum : uint8_t { kPushFixedNone = 0, kPushFixedA = 1, kPushFixedB = 2 };
+/// Support level of a body that rests on nothing.
+inline constexpr uint32_t kNoSupport = 0xFFFFFFFFu;
 
 struct ContactConstraint {
   uint32_t body_a;  ///< solver body index
@@ -87,6 +102,11 @@ struct ContactConstraint {
   float friction;
   float restitution;
   Softness softness;
+  uint8_t push_fixed;  ///< kPushFixed*: the lower body of the contact, if any
+  /// The manifold's normal K matrix: coupling[i][j] is the normal velocity
+  /// change at point i per unit normal impulse at point j (fixed for the
+  /// step, like the anchors and inverse inertias it is built from).
+  float coupling[kMaxManifoldPoints][kMaxManifoldPoints];
   ConstraintPoint points[kMaxManifoldPoints];
 };
 
@@ -118,6 +138,15 @@ class WorldScratch {
   std::vector<uint32_t> solver_body_ids;
   std::vector<SolverBody> solver_bodies;
   std::vector<ContactConstraint> constraints;
+  // push-out order (support_order.cpp)
+  std::vector<uint32_t> support_level;  ///< by solver body
+  std::vector<uint32_t> adjacency_start;
+  std::vector<uint32_t> adjacency_fill;
+  std::vector<uint32_t> adjacency;
+  std::vector<uint32_t> support_queue;
+  std::vector<uint32_t> push_key;
+  std::vector<uint32_t> push_bucket;
+  std::vector<uint32_t> push_order;  ///< constraint indices, lowest support first
   // islands
   std::vector<uint32_t> island_parent;
   std::vector<float> island_sleep_time;

@@ -21,9 +21,12 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///      one validity rule shared by the step and the snapshot reader
 ///   3  gyroscopic term: angular momentum carried through each tick's turn
 ///      of the inertia tensor, with energy and |L| conserved
-inline constexpr uint32_t kSimRevision = 3;
+///   4  rigid contacts with the push-out on separate velocities (ordered
+///      from the ground up for deep overlaps), each manifold's normal
+///      impulses solved as a block, two relax passes by default
+inline constexpr uint32_t kSimRevision = 4;
 
-/// "rewind-sim r3": the engine identity a replay records.
+/// "rewind-sim r4": the engine identity a replay records.
 inline std::string engine_version() {
   return std::string(kEngineName) + " r" + std::to_string(kSimRevision);
 }

@@ -9,13 +9,18 @@ namespace rwd::sim {
 /// Tuning of the 3D world. Part of world state (a restored world steps with
 /// the configuration it was saved with) and of the checksum.
 struct WorldConfig {
-  Vec3 gravity{0.0f, -9.81f, 0.0f};        ///< m/s^2
-  float tick_seconds = 1.0f / 60.0f;       ///< length of one step(), (0, 0.1]
-  int32_t substeps = 4;                    ///< TGS-Soft substeps per tick, [1, 64]
-  int32_t relax_iterations = 1;            ///< rigid relax passes per substep, [0, 16]
-  float contact_hertz = 30.0f;             ///< contact softness stiffness, > 0
-  float contact_damping_ratio = 10.0f;     ///< contact softness damping ratio, >= 0
-  float contact_push_max_mps = 3.0f;       ///< cap on penetration recovery speed, m/s
+  Vec3 gravity{0.0f, -9.81f, 0.0f};   ///< m/s^2
+  float tick_seconds = 1.0f / 60.0f;  ///< length of one step(), (0, 0.1]
+  int32_t substeps = 4;               ///< TGS-Soft substeps per tick, [1, 64]
+  int32_t relax_iterations = 2;       ///< rigid contact passes after each substep's move, [0, 16]
+  /// The push-out of overlaps deeper than the slop acts as a spring-damper
+  /// of this frequency (Hz, > 0; at most a quarter of the substep rate, twice
+  /// that against static bodies) and damping ratio (>= 0): it separates at
+  /// 2 pi hertz / (2 ratio + 2 pi hertz h) per second times the overlap. It
+  /// moves bodies apart without giving them velocity.
+  float contact_hertz = 30.0f;
+  float contact_damping_ratio = 1.0f;
+  float contact_push_max_mps = 3.0f;       ///< cap on the push-out speed per contact, m/s
   float restitution_threshold_mps = 1.0f;  ///< no bounce below this approach speed
   float linear_slop_m = 0.005f;            ///< allowed penetration, m
   float speculative_distance_m = 0.02f;    ///< contacts are kept this far apart, m
