@@ -11,6 +11,9 @@
 #   gcc-O3-native  g++ -O3 -march=native
 #   clang-O3       clang++ -O3
 #   aarch64-O3     aarch64-linux-gnu-g++ -O3 -static, run under qemu-aarch64
+#   gcc-O2-lanes   g++ -O2 -DREWIND_SCALAR_LANES: the solver's four lanes as
+#                  plain arrays instead of SSE2 (NEON on aarch64), so the
+#                  instruction set is proven not to change a result
 #
 # Usage: run_matrix.sh [--source DIR] [--ticks N] [--jobs N] BUILD_DIR
 #   --source DIR  repository root (default: two levels above this script)
@@ -114,6 +117,7 @@ builds=(
   "gcc-O3-native|g++|-O3 -march=native${gcc_flags:+ $gcc_flags}||"
   "clang-O3|clang++|-O3||"
   "aarch64-O3|aarch64-linux-gnu-g++|-O3${cross_flags:+ $cross_flags}|-static|qemu-aarch64"
+  "gcc-O2-lanes|g++|-O2 -DREWIND_SCALAR_LANES${gcc_flags:+ $gcc_flags}||"
 )
 
 # --- compile: one generated ninja file; it reuses objects whose inputs are

@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
-// TGS-Soft contact solver (after Erin Catto's "Solver2D" soft step, as in
-// Box2D v3), in 3D, with the push-out split from the real velocities. Per
+// The contact solver: substeps after Erin Catto's "Solver2D" soft step (as
+// in Box2D v3), in 3D, with the push-out split from the real velocities. Per
 // tick, with h = tick / substeps:
 //   for each substep:
 //     integrate velocities (gravity, forces, damping)
 //     warm start (apply last substep's impulses)
 //     solve      (rigid contacts on the real velocities; overlaps beyond the
 //                 slop pushed out on separate push velocities, capped speed)
-//     integrate positions (real plus push velocities; push velocities dropped)
+//     integrate positions (real plus push velocities; the push velocities
+//                 and impulses last one tick and are never kept)
 //     relax      (rigid contacts again, after the move)
 //   restitution (bounce from the pre-step approach speed)
 //   store impulses in the contact cache for next tick's warm start
@@ -24,8 +25,10 @@
 // The contact hertz and damping ratio still set how fast overlaps go.
 //
 // The normal impulses of a manifold's points are solved together (a few
-// sweeps on the manifold's own K matrix, see solve_manifold) and applied to
-// the bodies once; friction follows point by point (solve_friction).
+// sweeps on the manifold's own K matrix) and applied to the bodies once;
+// friction follows point by point. The real-velocity passes run over
+// coloured batches of four contacts in SIMD lanes (contact_batches.cpp);
+// the push-out, which visits contacts from the ground up, runs here.
 // Contact anchors stay fixed relative to the body centres for the whole tick;
 // each substep recomputes the separation from how far the bodies have moved
 // and turned since the tick began, so the narrowphase runs once per tick.
@@ -47,11 +50,6 @@ namespace {
 constexpr float kMaxLinearSpeed = 400.0f;  // m/s
 constexpr float kMaxRotationPerSubstep = 0.25f * kPi;
 
-// Sweeps over a manifold's normal system per solve: enough for four points
-// on a face to agree (one sweep is the usual sequential impulse, which
-// leaves the body turning toward the last point solved; a tall stack of
-// such tilts never settles and walks off its base).
-constexpr int kManifoldSweeps = 4;
 // An overlap deeper than this many linear slops past the slop is pushed out
 // from the ground up (support_order.cpp): at the default slop, 2 cm.
 constexpr float kDeepOverlapSlops = 4.0f;
@@ -222,30 +220,6 @@ void integrate_positions(WorldScratch& scratch, float h) {
   }
 }
 
-// Applies each contact's impulses of the last substep (or, on the first,
-// of the last tick) as one impulse and one torque per body.
-void warm_start(WorldScratch& scratch) {
-  for (const ContactConstraint& c : scratch.constraints) {
-    SolverBody& a = scratch.solver_bodies[c.body_a];
-    SolverBody& b = scratch.solver_bodies[c.body_b];
-    Vec3 linear{};
-    Vec3 torque_a{};
-    Vec3 torque_b{};
-    for (uint32_t p = 0; p < c.point_count; ++p) {
-      const ConstraintPoint& cp = c.points[p];
-      const Vec3 impulse = c.normal * cp.normal_impulse + c.tangent1 * cp.tangent_impulse1 +
-                           c.tangent2 * cp.tangent_impulse2;
-      linear += impulse;
-      torque_a += cross(cp.anchor_a, impulse);
-      torque_b += cross(cp.anchor_b, impulse);
-    }
-    a.linear_velocity -= linear * a.inv_mass;
-    a.angular_velocity -= a.inv_inertia * torque_a;
-    b.linear_velocity += linear * b.inv_mass;
-    b.angular_velocity += b.inv_inertia * torque_b;
-  }
-}
-
 // Projected Gauss-Seidel sweeps over one manifold's normal system with the
 // bodies held: impulse[p] (accumulated, >= 0) is raised by delta[p] so that
 // the normal velocity vn[p] + sum_j K[p][j] delta[j] reaches -bias[p], each
@@ -320,80 +294,6 @@ void apply_normal_impulses(const ContactConstraint& c, const float* delta, const
     vb += linear * b.inv_mass;
     wb += b.inv_inertia * torque_b;
   }
-}
-
-// Each point's separation from the motion since the tick began; run after
-// every position update (the passes in between read it).
-void update_separations(WorldScratch& scratch) {
-  for (ContactConstraint& c : scratch.constraints) {
-    const SolverBody& a = scratch.solver_bodies[c.body_a];
-    const SolverBody& b = scratch.solver_bodies[c.body_b];
-    const Vec3 dp = b.delta_position - a.delta_position;
-    for (uint32_t p = 0; p < c.point_count; ++p) {
-      ConstraintPoint& cp = c.points[p];
-      const Vec3 pa = rotate(a.delta_rotation, cp.anchor_a);
-      const Vec3 pb = rotate(b.delta_rotation, cp.anchor_b);
-      cp.separation = dot(dp + (pb - pa), c.normal) + cp.base_separation;
-    }
-  }
-}
-
-// Friction after the normal impulses (so the cones use this pass's values),
-// point by point: a circular cone |t| <= mu * normal impulse at each point.
-void solve_friction(ContactConstraint& c, SolverBody& a, SolverBody& b) {
-  for (uint32_t p = 0; p < c.point_count; ++p) {
-    ConstraintPoint& cp = c.points[p];
-    const Vec3 dv = relative_velocity(a, b, cp.anchor_a, cp.anchor_b);
-    float t1 = cp.tangent_impulse1 - cp.tangent_mass1 * dot(dv, c.tangent1);
-    float t2 = cp.tangent_impulse2 - cp.tangent_mass2 * dot(dv, c.tangent2);
-    const float limit = c.friction * cp.normal_impulse;
-    const float len_sq = t1 * t1 + t2 * t2;
-    if (len_sq > limit * limit) {
-      const float scale = limit / std::sqrt(len_sq);  // len_sq > 0 here
-      t1 = t1 * scale;
-      t2 = t2 * scale;
-    }
-    const float i1 = t1 - cp.tangent_impulse1;
-    const float i2 = t2 - cp.tangent_impulse2;
-    cp.tangent_impulse1 = t1;
-    cp.tangent_impulse2 = t2;
-    apply_impulse(a, b, cp.anchor_a, cp.anchor_b, c.tangent1 * i1 + c.tangent2 * i2);
-  }
-}
-
-// One pass over the contacts on the real velocities: rigid contacts (a gap
-// may close within the substep, no more) and friction.
-void solve_contacts(WorldScratch& scratch, float inv_h) {
-  float vn[kMaxManifoldPoints];
-  float bias[kMaxManifoldPoints];
-  float mass[kMaxManifoldPoints];
-  float impulse[kMaxManifoldPoints];
-  float delta[kMaxManifoldPoints];
-  for (ContactConstraint& c : scratch.constraints) {
-    SolverBody& a = scratch.solver_bodies[c.body_a];
-    SolverBody& b = scratch.solver_bodies[c.body_b];
-    for (uint32_t p = 0; p < c.point_count; ++p) {
-      const ConstraintPoint& cp = c.points[p];
-      bias[p] = cp.separation > 0.0f ? cp.separation * inv_h : 0.0f;  // speculative
-      vn[p] = dot(relative_velocity(a, b, cp.anchor_a, cp.anchor_b), c.normal);
-      mass[p] = cp.normal_mass;
-      impulse[p] = cp.normal_impulse;
-    }
-    solve_manifold(c.point_count, c.coupling, mass, vn, bias, 1.0f, impulse, delta);
-    for (uint32_t p = 0; p < c.point_count; ++p) {
-      ConstraintPoint& cp = c.points[p];
-      cp.normal_impulse = impulse[p];
-      if (impulse[p] > cp.max_normal_impulse) cp.max_normal_impulse = impulse[p];
-    }
-    apply_normal_impulses(c, delta, a, b, a.linear_velocity, a.angular_velocity, b.linear_velocity,
-                          b.angular_velocity);
-
-    solve_friction(c, a, b);
-  }
-  // The immovable body absorbs impulses with zero inverse mass; keep it at
-  // rest explicitly so no -0/+0 noise can ever accumulate there.
-  scratch.solver_bodies[0].linear_velocity = {};
-  scratch.solver_bodies[0].angular_velocity = {};
 }
 
 // The normal K matrix of a contact whose side `fixed` does not move.
@@ -564,15 +464,17 @@ void solve(WorldState& state, WorldScratch& scratch) {
   const float inv_h = 1.0f / h;
   prepare(state, scratch, h);
   order_push_out(scratch);
+  build_batches(scratch);
   for (int32_t s = 0; s < config.substeps; ++s) {
     integrate_velocities(scratch, h);
-    warm_start(scratch);
-    solve_contacts(scratch, inv_h);
+    warm_start_batches(scratch);
+    solve_batches(scratch, inv_h);
     push_out(scratch, config, inv_h);
     integrate_positions(scratch, h);
     update_separations(scratch);
-    for (int32_t r = 0; r < config.relax_iterations; ++r) solve_contacts(scratch, inv_h);
+    for (int32_t r = 0; r < config.relax_iterations; ++r) solve_batches(scratch, inv_h);
   }
+  unpack_batches(scratch);
   apply_restitution(scratch, config);
   store_impulses(state, scratch);
   finalize(state, scratch, tick);

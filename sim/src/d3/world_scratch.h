@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "d3/contact_batches.h"
 #include "d3/manifold.h"
 #include "rewind/sim/body_event.h"
 #include "rewind/sim/contact_event.h"
@@ -138,6 +139,13 @@ class WorldScratch {
   std::vector<uint32_t> solver_body_ids;
   std::vector<SolverBody> solver_bodies;
   std::vector<ContactConstraint> constraints;
+  // coloured batches (contact_batches.cpp)
+  std::vector<uint64_t> color_bits;  ///< per colour, one bit per solver body
+  std::vector<uint32_t> color_of;    ///< by constraint
+  std::vector<uint32_t> color_start;
+  std::vector<uint32_t> color_fill;
+  std::vector<uint32_t> colored;  ///< constraint indices by colour
+  std::vector<d3::ContactBatch> batches;
   // push-out order (support_order.cpp)
   std::vector<uint32_t> support_level;  ///< by solver body
   std::vector<uint32_t> adjacency_start;

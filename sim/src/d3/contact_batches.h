@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The contact constraints of a step, coloured and packed four to a batch
+// for the solver's wide passes (contact_batches.cpp).
+//
+// Colouring (as Box2D v3's constraint graph): each constraint takes the
+// first of kColorCount colours in which neither of its movable bodies has a
+// constraint yet (static, sleeping and kinematic bodies never block: the
+// solver does not change their velocities). Constraints of one colour share
+// no movable body, so they can be solved in any order, four at a time, with
+// the same result; the colours are solved one after another, constraints
+// that found no colour last, one per batch. The order depends only on the
+// constraint list, never on the lane count or the instruction set.
+#include <cstdint>
+
+#include "d3/wide_float.h"
+#include "rewind/sim/world_state.h"
+
+namespace rwd::sim {
+class WorldScratch;
+}
+
+namespace rwd::sim::d3 {
+
+inline constexpr uint32_t kColorCount = 24;
+/// Gauss-Seidel sweeps over a manifold's normal system per pass: enough for
+/// four points on a face to agree (one sweep is the usual sequential
+/// impulse, which leaves the body turning toward the last point solved; a
+/// tall stack of such tilts never settles and walks off its base).
+inline constexpr int kManifoldSweeps = 4;
+/// The constraint of an empty lane.
+inline constexpr uint32_t kNoConstraint = 0xFFFFFFFFu;
+
+/// Four contact constraints, structure of arrays: [component][lane] or
+/// [point][lane]. Points past a manifold's count (and empty lanes) have
+/// zero masses and couplings, so the same arithmetic leaves them at zero.
+struct alignas(16) ContactBatch {
+  uint32_t constraint[kLanes];  ///< index into scratch.constraints, or kNoConstraint
+  uint32_t body_a[kLanes];      ///< solver body (0, the immovable body, for empty lanes)
+  uint32_t body_b[kLanes];
+  float normal[3][kLanes];
+  float tangent1[3][kLanes];
+  float tangent2[3][kLanes];
+  float friction[kLanes];
+  struct Point {
+    float anchor_a[3][kLanes];
+    float anchor_b[3][kLanes];
+    float base_separation[kLanes];
+    float separation[kLanes];
+    float normal_mass[kLanes];
+    float tangent_mass1[kLanes];
+    float tangent_mass2[kLanes];
+    float normal_impulse[kLanes];
+    float tangent_impulse1[kLanes];
+    float tangent_impulse2[kLanes];
+    float max_normal_impulse[kLanes];
+  } points[kMaxManifoldPoints];
+  float coupling[kMaxManifoldPoints][kMaxManifoldPoints][kLanes];
+};
+
+/// Colours scratch.constraints and packs them into scratch.batches.
+void build_batches(WorldScratch& scratch);
+/// Applies every batch's impulses of the last substep to its bodies.
+void warm_start_batches(WorldScratch& scratch);
+/// One pass on the real velocities: each manifold's normal impulses as a
+/// block (a gap may close within the substep, no more), then friction point
+/// by point.
+void solve_batches(WorldScratch& scratch, float inv_h);
+/// Each point's separation from the motion since the tick began, into the
+/// batches and the scalar constraints (the push-out reads those).
+void update_separations(WorldScratch& scratch);
+/// Copies the impulses back to scratch.constraints.
+void unpack_batches(WorldScratch& scratch);
+
+}  // namespace rwd::sim::d3

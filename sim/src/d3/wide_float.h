@@ -1,0 +1,202 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Four floats processed as one: the lanes of the contact solver
+// (contact_batches.cpp). Each operation is the IEEE single-precision
+// operation applied lane by lane, with no fused multiply-add, no
+// reciprocal or square-root estimate and no reordering, so a lane computes
+// bit for bit what the same expression computes on one float. SSE2 (every
+// x86-64), NEON (every aarch64) and plain arrays (REWIND_SCALAR_LANES, or
+// any other target) therefore give identical results; the determinism
+// matrix builds the plain-array version too to prove it.
+//
+// min/max/clamps are written as compare-and-select, not with the native
+// min/max instructions, whose results for NaN differ between SSE and NEON.
+#include <cstdint>
+
+#if !defined(REWIND_SCALAR_LANES) && defined(__SSE2__)
+#define REWIND_LANES_SSE2 1
+#include <emmintrin.h>
+#elif !defined(REWIND_SCALAR_LANES) && defined(__ARM_NEON) && defined(__aarch64__)
+#define REWIND_LANES_NEON 1
+#include <arm_neon.h>
+#endif
+
+namespace rwd::sim::d3 {
+
+inline constexpr int kLanes = 4;
+
+#if defined(REWIND_LANES_SSE2)
+
+struct FloatW {
+  __m128 v;
+};
+struct MaskW {
+  __m128 v;
+};
+inline FloatW splat(float x) {
+  return {_mm_set1_ps(x)};
+}
+inline FloatW load(const float* p) {
+  return {_mm_loadu_ps(p)};
+}
+inline void store(float* p, FloatW a) {
+  _mm_storeu_ps(p, a.v);
+}
+inline FloatW operator+(FloatW a, FloatW b) {
+  return {_mm_add_ps(a.v, b.v)};
+}
+inline FloatW operator-(FloatW a, FloatW b) {
+  return {_mm_sub_ps(a.v, b.v)};
+}
+inline FloatW operator*(FloatW a, FloatW b) {
+  return {_mm_mul_ps(a.v, b.v)};
+}
+inline FloatW operator/(FloatW a, FloatW b) {
+  return {_mm_div_ps(a.v, b.v)};
+}
+inline FloatW sqrt(FloatW a) {
+  return {_mm_sqrt_ps(a.v)};
+}
+inline MaskW operator<(FloatW a, FloatW b) {
+  return {_mm_cmplt_ps(a.v, b.v)};
+}
+inline MaskW operator>(FloatW a, FloatW b) {
+  return {_mm_cmpgt_ps(a.v, b.v)};
+}
+/// m ? a : b, lane by lane.
+inline FloatW select(MaskW m, FloatW a, FloatW b) {
+  return {_mm_or_ps(_mm_and_ps(m.v, a.v), _mm_andnot_ps(m.v, b.v))};
+}
+
+#elif defined(REWIND_LANES_NEON)
+
+struct FloatW {
+  float32x4_t v;
+};
+struct MaskW {
+  uint32x4_t v;
+};
+inline FloatW splat(float x) {
+  return {vdupq_n_f32(x)};
+}
+inline FloatW load(const float* p) {
+  return {vld1q_f32(p)};
+}
+inline void store(float* p, FloatW a) {
+  vst1q_f32(p, a.v);
+}
+inline FloatW operator+(FloatW a, FloatW b) {
+  return {vaddq_f32(a.v, b.v)};
+}
+inline FloatW operator-(FloatW a, FloatW b) {
+  return {vsubq_f32(a.v, b.v)};
+}
+inline FloatW operator*(FloatW a, FloatW b) {
+  return {vmulq_f32(a.v, b.v)};
+}
+inline FloatW operator/(FloatW a, FloatW b) {
+  return {vdivq_f32(a.v, b.v)};
+}
+inline FloatW sqrt(FloatW a) {
+  return {vsqrtq_f32(a.v)};
+}
+inline MaskW operator<(FloatW a, FloatW b) {
+  return {vcltq_f32(a.v, b.v)};
+}
+inline MaskW operator>(FloatW a, FloatW b) {
+  return {vcgtq_f32(a.v, b.v)};
+}
+inline FloatW select(MaskW m, FloatW a, FloatW b) {
+  return {vbslq_f32(m.v, a.v, b.v)};
+}
+
+#else
+
+struct FloatW {
+  float v[kLanes];
+};
+struct MaskW {
+  bool v[kLanes];
+};
+inline FloatW splat(float x) {
+  return {{x, x, x, x}};
+}
+inline FloatW load(const float* p) {
+  return {{p[0], p[1], p[2], p[3]}};
+}
+inline void store(float* p, FloatW a) {
+  for (int i = 0; i < kLanes; ++i) p[i] = a.v[i];
+}
+#define REWIND_LANEWISE(op)                                   \
+  FloatW r;                                                   \
+  for (int i = 0; i < kLanes; ++i) r.v[i] = a.v[i] op b.v[i]; \
+  return r
+inline FloatW operator+(FloatW a, FloatW b) {
+  REWIND_LANEWISE(+);
+}
+inline FloatW operator-(FloatW a, FloatW b) {
+  REWIND_LANEWISE(-);
+}
+inline FloatW operator*(FloatW a, FloatW b) {
+  REWIND_LANEWISE(*);
+}
+inline FloatW operator/(FloatW a, FloatW b) {
+  REWIND_LANEWISE(/);
+}
+#undef REWIND_LANEWISE
+inline FloatW sqrt(FloatW a) {
+  FloatW r;
+  for (int i = 0; i < kLanes; ++i) r.v[i] = __builtin_sqrtf(a.v[i]);
+  return r;
+}
+inline MaskW operator<(FloatW a, FloatW b) {
+  MaskW m;
+  for (int i = 0; i < kLanes; ++i) m.v[i] = a.v[i] < b.v[i];
+  return m;
+}
+inline MaskW operator>(FloatW a, FloatW b) {
+  MaskW m;
+  for (int i = 0; i < kLanes; ++i) m.v[i] = a.v[i] > b.v[i];
+  return m;
+}
+inline FloatW select(MaskW m, FloatW a, FloatW b) {
+  FloatW r;
+  for (int i = 0; i < kLanes; ++i) r.v[i] = m.v[i] ? a.v[i] : b.v[i];
+  return r;
+}
+
+#endif
+
+inline FloatW operator-(FloatW a) {
+  return splat(0.0f) - a;
+}
+
+/// Three FloatW: a Vec3 per lane.
+struct Vec3W {
+  FloatW x, y, z;
+};
+inline Vec3W operator+(const Vec3W& a, const Vec3W& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+inline Vec3W operator-(const Vec3W& a, const Vec3W& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+inline Vec3W operator*(const Vec3W& a, FloatW s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+inline FloatW dot(const Vec3W& a, const Vec3W& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+inline Vec3W cross(const Vec3W& a, const Vec3W& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+/// A column-major 3x3 matrix per lane (as Mat3).
+struct Mat3W {
+  Vec3W c0, c1, c2;
+};
+inline Vec3W operator*(const Mat3W& m, const Vec3W& v) {
+  return m.c0 * v.x + m.c1 * v.y + m.c2 * v.z;
+}
+
+}  // namespace rwd::sim::d3
