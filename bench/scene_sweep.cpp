@@ -15,6 +15,8 @@
 #include "bullet_engine.h"
 #include "rewind/scenes/rewind_engine.h"
 #include "rewind/scenes/scene.h"
+#include "rewind/tune/csv.h"
+#include "rewind/tune/solver_setting.h"
 
 namespace {
 
@@ -24,6 +26,8 @@ using rwd::scenes::Engine;
 using rwd::scenes::RewindEngine;
 using rwd::scenes::SceneEntry;
 using rwd::scenes::SceneResult;
+using rwd::tune::csv_quoted;
+using rwd::tune::SolverSetting;
 
 constexpr const char* kUsage =
     "usage: rewind-scene-sweep [--mode defaults|quick|full] [--engine rewind|bullet|both]\n"
@@ -46,11 +50,9 @@ struct Setting {
 Setting rewind_setting(bool sleep, int substeps, int relax, float hertz) {
   rwd::sim::WorldConfig c;
   c.enable_sleep = sleep;
-  const bool is_default =
-      substeps == c.substeps && relax == c.relax_iterations && hertz == c.contact_hertz;
-  c.substeps = substeps;
-  c.relax_iterations = relax;
-  c.contact_hertz = hertz;
+  const SolverSetting s{substeps, relax, hertz};
+  const bool is_default = s == SolverSetting::of(c);
+  c = s.applied_to(c);
   return {"rewind", is_default, [c] { return std::make_unique<RewindEngine>(c); }};
 }
 
@@ -92,17 +94,6 @@ std::vector<Setting> sweep_settings(bool full, bool sleep) {
     for (int n : {2, 4}) s.push_back(bullet_setting(sleep, 10, n));
   }
   return s;
-}
-
-// Free text goes in double quotes with inner quotes doubled (RFC 4180); the
-// other fields never hold commas or quotes.
-std::string csv_quoted(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
 }
 
 void print_row(const SceneResult& r, bool is_default) {

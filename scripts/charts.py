@@ -355,6 +355,7 @@ def main():
     w("bash scripts/charts.sh --quick    # fewer settings, piles up to 2000 boxes")
     w("build/bench/bin/rewind-scene-sweep --help")
     w("build/bench/bin/rewind_scene_bench   # Google Benchmark: pyramids and piles, both engines")
+    w("build/bench/bin/rewind-tune --scene stack --size 10   # cheapest Rewind settings within a scene's criteria")
     w("```")
     w("The CSV files behind every table and chart are in `%s/`." % rel_out)
     with open(args.doc, "w") as f:

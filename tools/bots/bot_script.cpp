@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "bot_script.h"
+#include "rewind/tools/bot_script.h"
 
 namespace rwd::tools {
 namespace {

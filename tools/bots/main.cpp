@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "bot_script.h"
 #include "rewind/cli/flag_parser.h"
 #include "rewind/client/client_session.h"
+#include "rewind/tools/bot_script.h"
 
 namespace {
 

@@ -20,10 +20,8 @@ uint32_t get_u32(const uint8_t* p) {
   return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
 }
 
-}  // namespace
-
-Result<std::unique_ptr<Simulation>> Simulation::create(std::string_view game_name,
-                                                       const MatchSetup& setup) {
+// The game `game_name` for a match of `setup`, or why there is none.
+Result<std::unique_ptr<Game>> make_game(std::string_view game_name, const MatchSetup& setup) {
   if (setup.player_count < 1 || setup.player_count > kMaxPlayers) {
     return Status::Error(ErrorCode::kInvalidArgument, "player_count must be in [1, " +
                                                           std::to_string(kMaxPlayers) + "], got " +
@@ -39,11 +37,38 @@ Result<std::unique_ptr<Simulation>> Simulation::create(std::string_view game_nam
     return Status::Error(ErrorCode::kInvalidArgument,
                          "unknown game '" + std::string(game_name) + "' (known: " + known + ")");
   }
-  return std::make_unique<Simulation>(std::move(game), setup);
+  return game;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Simulation>> Simulation::create(std::string_view game_name,
+                                                       const MatchSetup& setup) {
+  Result<std::unique_ptr<Game>> game = make_game(game_name, setup);
+  if (!game.ok()) return game.status();
+  return std::make_unique<Simulation>(std::move(*game), setup);
+}
+
+Result<std::unique_ptr<Simulation>> Simulation::create(std::string_view game_name,
+                                                       const MatchSetup& setup,
+                                                       const sim::WorldConfig& world_config) {
+  Result<std::unique_ptr<Game>> game = make_game(game_name, setup);
+  if (!game.ok()) return game.status();
+  if (Status status = sim::World3D::validate_config(world_config); !status.ok()) {
+    return Status::Error(ErrorCode::kInvalidArgument, "world config: " + status.message());
+  }
+  return std::make_unique<Simulation>(std::move(*game), setup, world_config);
 }
 
 Simulation::Simulation(std::unique_ptr<Game> game, const MatchSetup& setup)
     : game_(std::move(game)), setup_(setup), world_(game_->world_config()) {
+  game_state_.assign(game_->state_size(), std::byte{0});
+  game_->build(setup_, world_, game_state_);
+}
+
+Simulation::Simulation(std::unique_ptr<Game> game, const MatchSetup& setup,
+                       const sim::WorldConfig& world_config)
+    : game_(std::move(game)), setup_(setup), world_(world_config) {
   game_state_.assign(game_->state_size(), std::byte{0});
   game_->build(setup_, world_, game_state_);
 }

@@ -67,6 +67,19 @@ TEST(FlagParser, ErrorsNameTheFlagAndLeaveDefaults) {
   }
 }
 
+TEST(FlagParser, RepeatedListFlagsAppendInOrder) {
+  std::vector<std::string> budgets;
+  FlagParser flags("prog", "prog [flags]", "test program");
+  flags.add_string_list("budget", &budgets, "a limit");
+  const char* args[] = {"prog", "--budget", "a=1", "--budget=b=2", "--budget", "a=3"};
+  ASSERT_TRUE(flags.parse(6, args).ok());
+  EXPECT_EQ(budgets, (std::vector<std::string>{"a=1", "b=2", "a=3"}));
+  const char* missing[] = {"prog", "--budget"};
+  EXPECT_EQ(flags.parse(2, missing).message(), "--budget: missing value");
+  EXPECT_NE(flags.help_text().find("--budget STR..."), std::string::npos);
+  EXPECT_NE(flags.help_text().find("(repeatable)"), std::string::npos);
+}
+
 TEST(FlagParser, HelpStopsParsingAndListsEveryFlag) {
   Parsed p = parse({"--help", "--nope"});
   EXPECT_TRUE(p.status.ok());

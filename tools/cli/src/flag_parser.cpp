@@ -33,6 +33,11 @@ void FlagParser::add_double(const std::string& name, double* target, double min,
   flags_.push_back({name, Kind::kDouble, target, 0, 0, min, max, help, text.str()});
 }
 
+void FlagParser::add_string_list(const std::string& name, std::vector<std::string>* target,
+                                 const std::string& help) {
+  flags_.push_back({name, Kind::kStringList, target, 0, 0, 0, 0, help, ""});
+}
+
 Status FlagParser::assign(const Flag& flag, const std::string& value) {
   auto bad = [&](const std::string& why) {
     return Status::Error(ErrorCode::kInvalidArgument, "--" + flag.name + ": " + why);
@@ -40,6 +45,9 @@ Status FlagParser::assign(const Flag& flag, const std::string& value) {
   switch (flag.kind) {
     case Kind::kString:
       *static_cast<std::string*>(flag.target) = value;
+      return Status::Ok();
+    case Kind::kStringList:
+      static_cast<std::vector<std::string>*>(flag.target)->push_back(value);
       return Status::Ok();
     case Kind::kBool:
       if (value == "true" || value == "1") {
@@ -141,6 +149,9 @@ std::string FlagParser::help_text() const {
       case Kind::kString:
         left += " STR";
         break;
+      case Kind::kStringList:
+        left += " STR...";
+        break;
       case Kind::kInt:
         left += " N";
         break;
@@ -151,7 +162,11 @@ std::string FlagParser::help_text() const {
         break;
     }
     if (left.size() < 26) left.resize(26, ' ');
-    out << left << " " << f.help << " (default " << f.default_text << ")\n";
+    if (f.kind == Kind::kStringList) {
+      out << left << " " << f.help << " (repeatable)\n";
+    } else {
+      out << left << " " << f.help << " (default " << f.default_text << ")\n";
+    }
   }
   out << "  --help                   print this help and exit\n";
   return out.str();

@@ -29,7 +29,23 @@ class Simulation {
   /// kInvalidArgument.
   static Result<std::unique_ptr<Simulation>> create(std::string_view game_name,
                                                     const MatchSetup& setup);
+  /// Creates the named game's match on a world built from `world_config`
+  /// instead of the game's own world_config(), for tools that measure how a
+  /// game plays at other solver settings (rewind-tune). Start from the
+  /// game's world_config() and change only solver fields (substeps,
+  /// relax_iterations, contact_hertz...): tick length, gravity and bounds
+  /// are part of the game's design. Such a match agrees (checksums,
+  /// replays) only with matches made with the same config; servers and
+  /// clients use the overload above. A config World3D::validate_config()
+  /// refuses is kInvalidArgument, as are unknown names and invalid setups.
+  static Result<std::unique_ptr<Simulation>> create(std::string_view game_name,
+                                                    const MatchSetup& setup,
+                                                    const sim::WorldConfig& world_config);
   Simulation(std::unique_ptr<Game> game, const MatchSetup& setup);
+  /// The game on a world built from `world_config` (see create()); the
+  /// config must pass World3D::validate_config().
+  Simulation(std::unique_ptr<Game> game, const MatchSetup& setup,
+             const sim::WorldConfig& world_config);
 
   /// The next tick step() will simulate.
   Tick tick() const { return tick_; }

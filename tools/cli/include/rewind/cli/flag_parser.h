@@ -23,6 +23,10 @@ class FlagParser {
                const std::string& help);
   void add_double(const std::string& name, double* target, double min, double max,
                   const std::string& help);
+  /// A flag that may be given many times: each occurrence appends its value
+  /// to `target` (e.g. "--budget a=1 --budget b=2").
+  void add_string_list(const std::string& name, std::vector<std::string>* target,
+                       const std::string& help);
 
   /// Parses argv[first..]. Accepts "--name value" and "--name=value"; bool
   /// flags take no value ("--name") or an explicit "--name=true|false".
@@ -36,7 +40,7 @@ class FlagParser {
   std::string help_text() const;
 
  private:
-  enum class Kind : uint8_t { kString, kBool, kInt, kDouble };
+  enum class Kind : uint8_t { kString, kBool, kInt, kDouble, kStringList };
   struct Flag {
     std::string name;
     Kind kind;

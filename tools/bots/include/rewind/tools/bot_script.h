@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Input scripts for bot clients. Each is a pure function of (seed, bot,
-// tick), so a load test can be rerun with the same inputs.
+// Input scripts for bot clients, and for the games rewind-tune plays. Each
+// is a pure function of (seed, bot, tick), so a load test can be rerun with
+// the same inputs and a tuning run can replay them at every setting.
 #include <cstdint>
 #include <string_view>
 

@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: MIT
+// Simulation::create with a world config of the caller's: the seam tools use
+// to play a game at other solver settings.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "rewind/game/crates_game.h"
+#include "rewind/game/simulation.h"
+
+namespace rwd::game {
+namespace {
+
+std::vector<PlayerInput> forward(uint32_t players) {
+  std::vector<PlayerInput> inputs(players);
+  for (PlayerInput& in : inputs) in.axis_y = kAxisMax;
+  return inputs;
+}
+
+TEST(SimulationConfig, TheGamesOwnConfigByDefault) {
+  auto sim = Simulation::create("crates", {2, 1});
+  ASSERT_TRUE(sim.ok()) << sim.status().message();
+  EXPECT_EQ((*sim)->world().config().substeps, CratesGame().world_config().substeps);
+  EXPECT_EQ((*sim)->world().config().relax_iterations,
+            CratesGame().world_config().relax_iterations);
+}
+
+TEST(SimulationConfig, AnOverrideRunsTheSameGameOnThatWorld) {
+  sim::WorldConfig fine = CratesGame().world_config();
+  fine.substeps = 16;
+  fine.relax_iterations = 4;
+  auto tuned = Simulation::create("crates", {2, 1}, fine);
+  auto usual = Simulation::create("crates", {2, 1});
+  ASSERT_TRUE(tuned.ok()) << tuned.status().message();
+  ASSERT_TRUE(usual.ok());
+  EXPECT_EQ((*tuned)->world().config().substeps, 16);
+  EXPECT_EQ((*tuned)->world().config().relax_iterations, 4);
+  // The same bodies, built by the same rules.
+  EXPECT_EQ((*tuned)->world().body_count(), (*usual)->world().body_count());
+  EXPECT_EQ((*tuned)->game_state().size(), (*usual)->game_state().size());
+  // Another world: its checksum (which covers the config) differs from the
+  // first tick on.
+  const std::vector<PlayerInput> inputs = forward(2);
+  (*tuned)->step(inputs);
+  (*usual)->step(inputs);
+  EXPECT_NE((*tuned)->checksum(), (*usual)->checksum());
+
+  // The game's own config passed explicitly is the usual match, bit for bit.
+  auto same = Simulation::create("crates", {2, 1}, CratesGame().world_config());
+  ASSERT_TRUE(same.ok());
+  (*same)->step(inputs);
+  EXPECT_EQ((*same)->checksum(), (*usual)->checksum());
+}
+
+TEST(SimulationConfig, InvalidConfigsAndSetupsAreRefused) {
+  sim::WorldConfig bad = CratesGame().world_config();
+  bad.substeps = 0;
+  auto refused = Simulation::create("crates", {2, 1}, bad);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), ErrorCode::kInvalidArgument);
+  EXPECT_NE(refused.status().message().find("substeps"), std::string::npos)
+      << refused.status().message();
+
+  auto unknown = Simulation::create("chess", {2, 1}, CratesGame().world_config());
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_NE(unknown.status().message().find("unknown game 'chess'"), std::string::npos);
+  auto nobody = Simulation::create("crates", {0, 1}, CratesGame().world_config());
+  ASSERT_FALSE(nobody.ok());
+  EXPECT_EQ(nobody.status().code(), ErrorCode::kInvalidArgument);
+}
+
+}  // namespace
+}  // namespace rwd::game
