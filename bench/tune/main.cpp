@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
   std::ostream* progress = cmd.quiet ? nullptr : &std::cerr;
   std::unique_ptr<TuneTarget> target;
   if (!cmd.scene.empty()) {
-    auto scene = SceneTarget::create(cmd.scene, cmd.size);
+    auto scene = SceneTarget::create(cmd.scene, cmd.size, !cmd.awake);
     if (!scene.ok()) return usage_error(scene.status().message());
     target = std::move(*scene);
   } else {

@@ -5,7 +5,8 @@
 
 namespace rwd::tune {
 
-Result<std::unique_ptr<SceneTarget>> SceneTarget::create(const std::string& name, int size) {
+Result<std::unique_ptr<SceneTarget>> SceneTarget::create(const std::string& name, int size,
+                                                         bool sleep) {
   const scenes::SceneEntry* entry = nullptr;
   std::string known;
   for (const scenes::SceneEntry& e : scenes::scene_catalog()) {
@@ -24,24 +25,28 @@ Result<std::unique_ptr<SceneTarget>> SceneTarget::create(const std::string& name
                          "scene " + name + " cannot take size " + std::to_string(size));
   }
   return std::unique_ptr<SceneTarget>(
-      new SceneTarget(name, size, std::string(entry->description), probe->ticks()));
+      new SceneTarget(name, size, std::string(entry->description), probe->ticks(), sleep));
 }
 
-SceneTarget::SceneTarget(std::string name, int size, std::string what, Tick ticks)
-    : name_(std::move(name)), size_(size), what_(std::move(what)), ticks_(ticks) {}
+SceneTarget::SceneTarget(std::string name, int size, std::string what, Tick ticks, bool sleep)
+    : name_(std::move(name)), size_(size), what_(std::move(what)), ticks_(ticks) {
+  base_.enable_sleep = sleep;
+}
 
 std::string SceneTarget::description() const {
   return "scene " + name_ + " " + std::to_string(size_) + " (" + what_ + "), " +
-         std::to_string(ticks_) + " ticks per run; ms/step is the world's step alone";
+         std::to_string(ticks_) + " ticks per run" +
+         (base_.enable_sleep ? "" : ", every body kept awake") +
+         "; ms/step is the world's step alone";
 }
 
 SolverSetting SceneTarget::default_setting() const {
-  return SolverSetting::of(sim::WorldConfig{});
+  return SolverSetting::of(base_);
 }
 
 Measurement SceneTarget::measure(const SolverSetting& setting) {
   std::unique_ptr<scenes::Scene> scene = scenes::make_scene(name_, size_);
-  scenes::RewindEngine engine(setting.applied_to(sim::WorldConfig{}));
+  scenes::RewindEngine engine(setting.applied_to(base_));
   const scenes::SceneResult r = scenes::run_scene(*scene, engine);
   return {r.ms_per_step, r.metrics, r.error};
 }

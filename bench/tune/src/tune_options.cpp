@@ -37,8 +37,8 @@ grid:
   default setting is measured in any case, as the baseline.
 
 scenes (--scene):
-  The scene runs on Rewind with WorldConfig defaults (sleeping on) and the
-  setting applied. Its metrics and their limits are the scene's own criteria
+  The scene runs on Rewind with WorldConfig defaults (sleeping on; off with
+  --no-sleep) and the setting applied. Its metrics and their limits are the scene's own criteria
   (the ones in docs/BENCHMARKS.md, in the units the scene names); ms/step is
   the wall time of the world's step alone, averaged over the scene's ticks.
   --size picks the scene's size (boxes, base width, ratio...; see --list);
@@ -130,6 +130,7 @@ struct RawFlags {
   std::string chart;
   bool json = false;
   bool quiet = false;
+  bool no_sleep = false;
   bool list = false;
 };
 
@@ -137,6 +138,8 @@ cli::FlagParser declare(RawFlags& f) {
   cli::FlagParser flags("rewind-tune", kUsage, kDescription);
   flags.add_string("scene", &f.scene, "catalogue scene to tune (see --list)");
   flags.add_int("size", &f.size, 0, 1000000, "scene size; 0: the size the charts sweep");
+  flags.add_bool("no-sleep", &f.no_sleep,
+                 "scene: keep every body awake (what the solver alone must hold)");
   flags.add_string("game", &f.game, "built-in game to tune (see --list)");
   flags.add_int("players", &f.players, 1, game::kMaxPlayers, "game: players in the match");
   flags.add_int("seed", &f.seed, 0, INT64_MAX, "game: match seed and input-script seed");
@@ -232,6 +235,8 @@ Result<TuneCommand> parse_tune_command(int argc, const char* const* argv) {
     }
   } else if (given(argc, argv, "size")) {
     return usage("--size applies to --scene only (a game's size is --players)");
+  } else if (raw.no_sleep) {
+    return usage("--no-sleep applies to --scene only");
   }
   if (raw.window_ticks > raw.ticks) {
     return usage("--window-ticks: " + std::to_string(raw.window_ticks) +
@@ -272,6 +277,7 @@ Result<TuneCommand> parse_tune_command(int argc, const char* const* argv) {
 
   cmd.scene = raw.scene;
   cmd.size = static_cast<int>(raw.size);
+  cmd.awake = raw.no_sleep;
   cmd.game = raw.game;
   cmd.play.game = raw.game;
   cmd.play.players = static_cast<uint32_t>(raw.players);

@@ -135,7 +135,7 @@ TEST(RunScene, RewindMeasuresStepTime) {
   ASSERT_TRUE(r.error.empty());
   EXPECT_EQ(r.bodies, 56u);  // ground + 55 boxes
   EXPECT_GT(r.ms_per_step, 0.0);
-  EXPECT_EQ(r.settings, "substeps=4 relax=2 hertz=30");
+  EXPECT_EQ(r.settings, "substeps=4 relax=1 hertz=30");
 }
 
 }  // namespace

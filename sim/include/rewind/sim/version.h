@@ -23,7 +23,7 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///      of the inertia tensor, with energy and |L| conserved
 ///   4  rigid contacts with the push-out on separate velocities (ordered
 ///      from the ground up for deep overlaps), each manifold's normal
-///      impulses solved as a block, two relax passes by default, contacts
+///      impulses solved as a block, contacts
 ///      solved colour by colour in batches of four lanes
 inline constexpr uint32_t kSimRevision = 4;
 

@@ -12,7 +12,7 @@ struct WorldConfig {
   Vec3 gravity{0.0f, -9.81f, 0.0f};   ///< m/s^2
   float tick_seconds = 1.0f / 60.0f;  ///< length of one step(), (0, 0.1]
   int32_t substeps = 4;               ///< TGS-Soft substeps per tick, [1, 64]
-  int32_t relax_iterations = 2;       ///< rigid contact passes after each substep's move, [0, 16]
+  int32_t relax_iterations = 1;       ///< rigid contact passes after each substep's move, [0, 16]
   /// The push-out of overlaps deeper than the slop acts as a spring-damper
   /// of this frequency (Hz, > 0; at most a quarter of the substep rate, twice
   /// that against static bodies) and damping ratio (>= 0): it separates at

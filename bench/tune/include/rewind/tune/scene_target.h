@@ -8,6 +8,7 @@
 #include <string>
 
 #include "rewind/sim/status.h"
+#include "rewind/sim/world_config.h"
 #include "rewind/tune/tune_target.h"
 
 namespace rwd::tune {
@@ -17,7 +18,9 @@ class SceneTarget final : public TuneTarget {
   /// The catalogue scene `name` at `size`; size 0 picks the scene's chart
   /// size (the size rewind-scene-sweep sweeps). kInvalidArgument for an
   /// unknown name (listing the catalogue) or a size the scene cannot take.
-  static Result<std::unique_ptr<SceneTarget>> create(const std::string& name, int size);
+  /// `sleep` false keeps every body awake (the solver alone must hold).
+  static Result<std::unique_ptr<SceneTarget>> create(const std::string& name, int size,
+                                                     bool sleep = true);
 
   std::string kind() const override { return "scene"; }
   std::string name() const override { return name_; }
@@ -28,12 +31,13 @@ class SceneTarget final : public TuneTarget {
   Measurement measure(const SolverSetting& setting) override;
 
  private:
-  SceneTarget(std::string name, int size, std::string what, Tick ticks);
+  SceneTarget(std::string name, int size, std::string what, Tick ticks, bool sleep);
 
   std::string name_;
   int size_;
   std::string what_;  // the catalogue's description
   Tick ticks_;
+  sim::WorldConfig base_;  // defaults, with sleeping as asked
 };
 
 }  // namespace rwd::tune

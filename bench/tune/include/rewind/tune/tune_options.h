@@ -16,11 +16,12 @@ struct TuneCommand {
     kHelp,  ///< -h/--help: print help_text()
   };
   Action action = Action::kTune;
-  std::string scene;  ///< --scene; empty when tuning a game
-  int size = 0;       ///< --size; 0 = the scene's chart size
-  std::string game;   ///< --game; empty when tuning a scene
-  GamePlay play;      ///< how a game is played (--players, --seed, ...)
-  SweepPlan plan;     ///< grid, budget, finalists, repeats
+  std::string scene;   ///< --scene; empty when tuning a game
+  int size = 0;        ///< --size; 0 = the scene's chart size
+  bool awake = false;  ///< --no-sleep: the scene runs with sleeping off
+  std::string game;    ///< --game; empty when tuning a scene
+  GamePlay play;       ///< how a game is played (--players, --seed, ...)
+  SweepPlan plan;      ///< grid, budget, finalists, repeats
   std::string csv_path;
   std::string chart_path;
   bool json = false;
