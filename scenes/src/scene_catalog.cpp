@@ -40,7 +40,9 @@ SceneResult run_scene(Scene& scene, Engine& engine) {
     scene.before_step(t, engine);
     const Clock::time_point start = Clock::now();
     engine.step();
-    stepping += Clock::now() - start;
+    const Clock::duration took = Clock::now() - start;
+    stepping += took;
+    scene.step_timed(t, std::chrono::duration<double, std::milli>(took).count());
     scene.after_step(t, engine);
   }
   if (r.ticks > 0) {
@@ -96,7 +98,11 @@ const std::vector<SceneEntry>& scene_catalog() {
        make_overlap},
       {"kick", "stack of N boxes, the top one kicked at 1 m/s after 1 s", {5}, 5, make_kick},
       {"far_stack", "5-box stack N m from the origin, 20 s", {1000, 10000}, 10000, make_far_stack},
-      {"sleep", "pyramid of base N until every body sleeps", {5, 10}, 10, make_sleep},
+      {"sleep",
+       "pyramid of base N until every body sleeps, then asleep, 10 s",
+       {10, 20, 30},
+       30,
+       make_sleep},
   };
   return catalog;
 }

@@ -52,6 +52,12 @@ class Scene {
   }
   /// Observes the world after tick `tick` (0-based) has been stepped.
   virtual void after_step(Tick tick, const Engine& engine) = 0;
+  /// The wall time the engine's step of tick `tick` took, ms (called by
+  /// run_scene just before after_step; scenes that judge cost use it).
+  virtual void step_timed(Tick tick, double ms) {
+    (void)tick;
+    (void)ms;
+  }
   /// The metrics, valid after the last after_step.
   virtual std::vector<Metric> metrics() const = 0;
 
