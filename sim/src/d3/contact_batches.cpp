@@ -26,28 +26,21 @@ struct BodiesW {
   Vec3W v;
   Vec3W w;
   FloatW inv_mass;
-  Mat3W inv_inertia;
 };
 
 BodiesW gather(const std::vector<SolverBody>& bodies, const uint32_t (&index)[kLanes]) {
-  alignas(16) float f[16][kLanes];
+  alignas(16) float f[7][kLanes];
   for (int i = 0; i < kLanes; ++i) {
     const SolverBody& b = bodies[index[i]];
-    const float values[16] = {
-        b.linear_velocity.x,  b.linear_velocity.y,  b.linear_velocity.z, b.angular_velocity.x,
-        b.angular_velocity.y, b.angular_velocity.z, b.inv_mass,          b.inv_inertia.c0.x,
-        b.inv_inertia.c0.y,   b.inv_inertia.c0.z,   b.inv_inertia.c1.x,  b.inv_inertia.c1.y,
-        b.inv_inertia.c1.z,   b.inv_inertia.c2.x,   b.inv_inertia.c2.y,  b.inv_inertia.c2.z};
-    for (int k = 0; k < 16; ++k) f[k][i] = values[k];
+    f[0][i] = b.linear_velocity.x;
+    f[1][i] = b.linear_velocity.y;
+    f[2][i] = b.linear_velocity.z;
+    f[3][i] = b.angular_velocity.x;
+    f[4][i] = b.angular_velocity.y;
+    f[5][i] = b.angular_velocity.z;
+    f[6][i] = b.inv_mass;
   }
-  BodiesW out;
-  out.v = {load(f[0]), load(f[1]), load(f[2])};
-  out.w = {load(f[3]), load(f[4]), load(f[5])};
-  out.inv_mass = load(f[6]);
-  out.inv_inertia.c0 = {load(f[7]), load(f[8]), load(f[9])};
-  out.inv_inertia.c1 = {load(f[10]), load(f[11]), load(f[12])};
-  out.inv_inertia.c2 = {load(f[13]), load(f[14]), load(f[15])};
-  return out;
+  return {{load(f[0]), load(f[1]), load(f[2])}, {load(f[3]), load(f[4]), load(f[5])}, load(f[6])};
 }
 
 // Writes the lanes' velocities back. A body is in at most one lane of a
@@ -65,19 +58,6 @@ void scatter(std::vector<SolverBody>& bodies, const uint32_t (&index)[kLanes], c
     s.linear_velocity = {f[0][i], f[1][i], f[2][i]};
     s.angular_velocity = {f[3][i], f[4][i], f[5][i]};
   }
-}
-
-Vec3W relative_velocity(const BodiesW& a, const BodiesW& b, const Vec3W& ra, const Vec3W& rb) {
-  const Vec3W va = a.v + cross(a.w, ra);
-  const Vec3W vb = b.v + cross(b.w, rb);
-  return vb - va;
-}
-
-void apply(BodiesW& a, BodiesW& b, const Vec3W& ra, const Vec3W& rb, const Vec3W& p) {
-  a.v = a.v - p * a.inv_mass;
-  a.w = a.w - a.inv_inertia * cross(ra, p);
-  b.v = b.v + p * b.inv_mass;
-  b.w = b.w + b.inv_inertia * cross(rb, p);
 }
 
 FloatW clamp_at_zero(FloatW x) {
@@ -122,9 +102,9 @@ void clear_lane(ContactBatch& batch, int lane) {
   }
   batch.friction[lane] = 0.0f;
   for (ContactBatch::Point& p : batch.points) {
-    for (int i = 0; i < 3; ++i) {
-      p.anchor_a[i][lane] = 0.0f;
-      p.anchor_b[i][lane] = 0.0f;
+    for (float(*v)[kLanes] : {p.anchor_a, p.anchor_b, p.rn_a, p.rn_b, p.rt1_a, p.rt1_b, p.rt2_a,
+                              p.rt2_b, p.in_a, p.in_b, p.it1_a, p.it1_b, p.it2_a, p.it2_b}) {
+      for (int i = 0; i < 3; ++i) v[i][lane] = 0.0f;
     }
     p.base_separation[lane] = 0.0f;
     p.separation[lane] = 0.0f;
@@ -141,7 +121,16 @@ void clear_lane(ContactBatch& batch, int lane) {
   }
 }
 
-void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConstraint& c) {
+void put(float (&dst)[3][kLanes], int lane, Vec3 v) {
+  dst[0][lane] = v.x;
+  dst[1][lane] = v.y;
+  dst[2][lane] = v.z;
+}
+
+void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConstraint& c,
+               const std::vector<SolverBody>& bodies) {
+  const SolverBody& body_a = bodies[c.body_a];
+  const SolverBody& body_b = bodies[c.body_b];
   clear_lane(batch, lane);
   batch.constraint[lane] = index;
   batch.body_a[lane] = c.body_a;
@@ -163,6 +152,24 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
     bp.anchor_b[0][lane] = cp.anchor_b.x;
     bp.anchor_b[1][lane] = cp.anchor_b.y;
     bp.anchor_b[2][lane] = cp.anchor_b.z;
+    const Vec3 rn_a = cross(cp.anchor_a, c.normal);
+    const Vec3 rn_b = cross(cp.anchor_b, c.normal);
+    const Vec3 rt1_a = cross(cp.anchor_a, c.tangent1);
+    const Vec3 rt1_b = cross(cp.anchor_b, c.tangent1);
+    const Vec3 rt2_a = cross(cp.anchor_a, c.tangent2);
+    const Vec3 rt2_b = cross(cp.anchor_b, c.tangent2);
+    put(bp.rn_a, lane, rn_a);
+    put(bp.rn_b, lane, rn_b);
+    put(bp.rt1_a, lane, rt1_a);
+    put(bp.rt1_b, lane, rt1_b);
+    put(bp.rt2_a, lane, rt2_a);
+    put(bp.rt2_b, lane, rt2_b);
+    put(bp.in_a, lane, body_a.inv_inertia * rn_a);
+    put(bp.in_b, lane, body_b.inv_inertia * rn_b);
+    put(bp.it1_a, lane, body_a.inv_inertia * rt1_a);
+    put(bp.it1_b, lane, body_b.inv_inertia * rt1_b);
+    put(bp.it2_a, lane, body_a.inv_inertia * rt2_a);
+    put(bp.it2_b, lane, body_b.inv_inertia * rt2_b);
     bp.base_separation[lane] = cp.base_separation;
     bp.separation[lane] = cp.separation;
     bp.normal_mass[lane] = cp.normal_mass;
@@ -205,7 +212,8 @@ void build_batches(WorldScratch& scratch) {
         const uint32_t at = first + lane;
         if (lane < per_batch && at < end) {
           const uint32_t index = scratch.colored[at];
-          fill_lane(batch, static_cast<int>(lane), index, scratch.constraints[index]);
+          fill_lane(batch, static_cast<int>(lane), index, scratch.constraints[index],
+                    scratch.solver_bodies);
         } else {
           clear_lane(batch, static_cast<int>(lane));
         }
@@ -223,19 +231,22 @@ void warm_start_batches(WorldScratch& scratch) {
     const Vec3W t1 = lane_load(batch.tangent1);
     const Vec3W t2 = lane_load(batch.tangent2);
     Vec3W linear{splat(0.0f), splat(0.0f), splat(0.0f)};
-    Vec3W torque_a = linear;
-    Vec3W torque_b = linear;
+    Vec3W turn_a = linear;
+    Vec3W turn_b = linear;
     for (const ContactBatch::Point& p : batch.points) {
-      const Vec3W impulse = n * lane_load(p.normal_impulse) + t1 * lane_load(p.tangent_impulse1) +
-                            t2 * lane_load(p.tangent_impulse2);
-      linear = linear + impulse;
-      torque_a = torque_a + cross(lane_load(p.anchor_a), impulse);
-      torque_b = torque_b + cross(lane_load(p.anchor_b), impulse);
+      const FloatW ln = lane_load(p.normal_impulse);
+      const FloatW l1 = lane_load(p.tangent_impulse1);
+      const FloatW l2 = lane_load(p.tangent_impulse2);
+      linear = linear + (n * ln + t1 * l1 + t2 * l2);
+      turn_a =
+          turn_a + (lane_load(p.in_a) * ln + lane_load(p.it1_a) * l1 + lane_load(p.it2_a) * l2);
+      turn_b =
+          turn_b + (lane_load(p.in_b) * ln + lane_load(p.it1_b) * l1 + lane_load(p.it2_b) * l2);
     }
     a.v = a.v - linear * a.inv_mass;
-    a.w = a.w - a.inv_inertia * torque_a;
+    a.w = a.w - turn_a;
     b.v = b.v + linear * b.inv_mass;
-    b.w = b.w + b.inv_inertia * torque_b;
+    b.w = b.w + turn_b;
     scatter(bodies, batch.body_a, a);
     scatter(bodies, batch.body_b, b);
   }
@@ -261,7 +272,7 @@ void solve_batches(WorldScratch& scratch, float inv_h) {
       const FloatW s = lane_load(bp.separation);
       const FloatW bias = select(s > zero, s * inv_h_w, zero);  // speculative
       const FloatW vn =
-          dot(relative_velocity(a, b, lane_load(bp.anchor_a), lane_load(bp.anchor_b)), n);
+          dot(b.v - a.v, n) + dot(lane_load(bp.rn_b), b.w) - dot(lane_load(bp.rn_a), a.w);
       residual[p] = vn + bias;
       step[p] = lane_load(bp.normal_mass);
       total[p] = lane_load(bp.normal_impulse);
@@ -277,23 +288,23 @@ void solve_batches(WorldScratch& scratch, float inv_h) {
         }
       }
     }
-    Vec3W linear{zero, zero, zero};
-    Vec3W torque_a = linear;
-    Vec3W torque_b = linear;
+    FloatW pushed = zero;
+    Vec3W turn_a{zero, zero, zero};
+    Vec3W turn_b = turn_a;
     for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
       ContactBatch::Point& bp = batch.points[p];
       lane_store(bp.normal_impulse, total[p]);
       const FloatW max_seen = lane_load(bp.max_normal_impulse);
       lane_store(bp.max_normal_impulse, select(total[p] > max_seen, total[p], max_seen));
-      const Vec3W impulse = n * (total[p] - start[p]);
-      linear = linear + impulse;
-      torque_a = torque_a + cross(lane_load(bp.anchor_a), impulse);
-      torque_b = torque_b + cross(lane_load(bp.anchor_b), impulse);
+      const FloatW change = total[p] - start[p];
+      pushed = pushed + change;
+      turn_a = turn_a + lane_load(bp.in_a) * change;
+      turn_b = turn_b + lane_load(bp.in_b) * change;
     }
-    a.v = a.v - linear * a.inv_mass;
-    a.w = a.w - a.inv_inertia * torque_a;
-    b.v = b.v + linear * b.inv_mass;
-    b.w = b.w + b.inv_inertia * torque_b;
+    a.v = a.v - n * (pushed * a.inv_mass);
+    a.w = a.w - turn_a;
+    b.v = b.v + n * (pushed * b.inv_mass);
+    b.w = b.w + turn_b;
 
     // Friction after the normal impulses (the cones use this pass's
     // values), point by point: |t| <= mu * normal impulse.
@@ -302,13 +313,13 @@ void solve_batches(WorldScratch& scratch, float inv_h) {
     const FloatW mu = lane_load(batch.friction);
     for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
       ContactBatch::Point& bp = batch.points[p];
-      const Vec3W ra = lane_load(bp.anchor_a);
-      const Vec3W rb = lane_load(bp.anchor_b);
-      const Vec3W dv = relative_velocity(a, b, ra, rb);
+      const Vec3W dv = b.v - a.v;
+      const FloatW v1 = dot(dv, t1) + dot(lane_load(bp.rt1_b), b.w) - dot(lane_load(bp.rt1_a), a.w);
+      const FloatW v2 = dot(dv, t2) + dot(lane_load(bp.rt2_b), b.w) - dot(lane_load(bp.rt2_a), a.w);
       const FloatW old1 = lane_load(bp.tangent_impulse1);
       const FloatW old2 = lane_load(bp.tangent_impulse2);
-      FloatW f1 = old1 - lane_load(bp.tangent_mass1) * dot(dv, t1);
-      FloatW f2 = old2 - lane_load(bp.tangent_mass2) * dot(dv, t2);
+      FloatW f1 = old1 - lane_load(bp.tangent_mass1) * v1;
+      FloatW f2 = old2 - lane_load(bp.tangent_mass2) * v2;
       const FloatW limit = mu * total[p];
       const FloatW len_sq = f1 * f1 + f2 * f2;
       const MaskW over = len_sq > limit * limit;
@@ -319,7 +330,13 @@ void solve_batches(WorldScratch& scratch, float inv_h) {
       f2 = select(over, f2 * scale, f2);
       lane_store(bp.tangent_impulse1, f1);
       lane_store(bp.tangent_impulse2, f2);
-      apply(a, b, ra, rb, t1 * (f1 - old1) + t2 * (f2 - old2));
+      const FloatW i1 = f1 - old1;
+      const FloatW i2 = f2 - old2;
+      const Vec3W impulse = t1 * i1 + t2 * i2;
+      a.v = a.v - impulse * a.inv_mass;
+      a.w = a.w - (lane_load(bp.it1_a) * i1 + lane_load(bp.it2_a) * i2);
+      b.v = b.v + impulse * b.inv_mass;
+      b.w = b.w + (lane_load(bp.it1_b) * i1 + lane_load(bp.it2_b) * i2);
     }
     scatter(bodies, batch.body_a, a);
     scatter(bodies, batch.body_b, b);
