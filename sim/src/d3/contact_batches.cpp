@@ -43,8 +43,10 @@ BodiesW gather(const std::vector<SolverBody>& bodies, const uint32_t (&index)[kL
   return {{load(f[0]), load(f[1]), load(f[2])}, {load(f[3]), load(f[4]), load(f[5])}, load(f[6])};
 }
 
-// Writes the lanes' velocities back. A body is in at most one lane of a
-// batch unless it cannot move (then every lane holds its unchanged value).
+// Writes the lanes' velocities back to the bodies that can move. A movable
+// body is in at most one lane of a batch; a body that cannot move (static,
+// sleeping, kinematic) may be in several and is never written, so no lane
+// order or lane count can leave a different signed zero in it.
 void scatter(std::vector<SolverBody>& bodies, const uint32_t (&index)[kLanes], const BodiesW& b) {
   alignas(16) float f[6][kLanes];
   store(f[0], b.v.x);
@@ -55,6 +57,7 @@ void scatter(std::vector<SolverBody>& bodies, const uint32_t (&index)[kLanes], c
   store(f[5], b.w.z);
   for (int i = 0; i < kLanes; ++i) {
     SolverBody& s = bodies[index[i]];
+    if (s.inv_mass == 0.0f) continue;
     s.linear_velocity = {f[0][i], f[1][i], f[2][i]};
     s.angular_velocity = {f[3][i], f[4][i], f[5][i]};
   }
@@ -341,10 +344,6 @@ void solve_batches(WorldScratch& scratch, float inv_h) {
     scatter(bodies, batch.body_a, a);
     scatter(bodies, batch.body_b, b);
   }
-  // The immovable body absorbs impulses with zero inverse mass; keep it at
-  // rest explicitly so no -0/+0 noise can ever accumulate there.
-  bodies[0].linear_velocity = {};
-  bodies[0].angular_velocity = {};
 }
 
 // q rotating v, per lane, as rotate() in math.h.
