@@ -158,7 +158,6 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
       cp.anchor_b = mp.anchor_b;
       cp.base_separation = mp.separation - dot(mp.anchor_b - mp.anchor_a, c.normal);
       cp.separation = mp.separation;
-      cp.normal_mass = effective_mass(a, b, cp.anchor_a, cp.anchor_b, c.normal);
       cp.tangent_mass1 = effective_mass(a, b, cp.anchor_a, cp.anchor_b, c.tangent1);
       cp.tangent_mass2 = effective_mass(a, b, cp.anchor_a, cp.anchor_b, c.tangent2);
       cp.normal_impulse = rec.points[p].normal_impulse;
@@ -166,16 +165,27 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
       cp.tangent_impulse2 = rec.points[p].tangent_impulse2;
       cp.push_impulse = 0.0f;
       cp.max_normal_impulse = 0.0f;
-      cp.relative_velocity = dot(c.normal, relative_velocity(a, b, cp.anchor_a, cp.anchor_b));
+      // Only restitution reads the approach speed: a contact that cannot
+      // bounce does not pay for it.
+      cp.relative_velocity = c.restitution == 0.0f
+                                 ? 0.0f
+                                 : dot(c.normal, relative_velocity(a, b, cp.anchor_a, cp.anchor_b));
+    }
+    // The normal K matrix; its diagonal gives each point's normal mass.
+    Vec3 rn_a[kMaxManifoldPoints];
+    Vec3 rn_b[kMaxManifoldPoints];
+    for (uint32_t i = 0; i < c.point_count; ++i) {
+      rn_a[i] = cross(c.points[i].anchor_a, c.normal);
+      rn_b[i] = cross(c.points[i].anchor_b, c.normal);
     }
     for (uint32_t i = 0; i < c.point_count; ++i) {
-      const Vec3 rna = a.inv_inertia * cross(c.points[i].anchor_a, c.normal);
-      const Vec3 rnb = b.inv_inertia * cross(c.points[i].anchor_b, c.normal);
+      const Vec3 irn_a = a.inv_inertia * rn_a[i];
+      const Vec3 irn_b = b.inv_inertia * rn_b[i];
       for (uint32_t j = 0; j < c.point_count; ++j) {
-        c.coupling[i][j] = a.inv_mass + b.inv_mass +
-                           dot(cross(c.points[j].anchor_a, c.normal), rna) +
-                           dot(cross(c.points[j].anchor_b, c.normal), rnb);
+        c.coupling[i][j] = a.inv_mass + b.inv_mass + dot(rn_a[j], irn_a) + dot(rn_b[j], irn_b);
       }
+      const float diagonal = c.coupling[i][i];
+      c.points[i].normal_mass = diagonal > 0.0f ? 1.0f / diagonal : 0.0f;
     }
     points += c.point_count;
     scratch.constraints.push_back(c);
