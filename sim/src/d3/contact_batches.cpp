@@ -94,6 +94,22 @@ void color(WorldScratch& scratch) {
   }
 }
 
+void clear_point(ContactBatch::Point& p, int lane) {
+  for (float(*v)[kLanes] : {p.anchor_a, p.anchor_b, p.rn_a, p.rn_b, p.rt1_a, p.rt1_b, p.rt2_a,
+                            p.rt2_b, p.in_a, p.in_b, p.it1_a, p.it1_b, p.it2_a, p.it2_b}) {
+    for (int i = 0; i < 3; ++i) v[i][lane] = 0.0f;
+  }
+  p.base_separation[lane] = 0.0f;
+  p.separation[lane] = 0.0f;
+  p.normal_mass[lane] = 0.0f;
+  p.tangent_mass1[lane] = 0.0f;
+  p.tangent_mass2[lane] = 0.0f;
+  p.normal_impulse[lane] = 0.0f;
+  p.tangent_impulse1[lane] = 0.0f;
+  p.tangent_impulse2[lane] = 0.0f;
+  p.max_normal_impulse[lane] = 0.0f;
+}
+
 void clear_lane(ContactBatch& batch, int lane) {
   batch.constraint[lane] = kNoConstraint;
   batch.body_a[lane] = 0;
@@ -104,21 +120,7 @@ void clear_lane(ContactBatch& batch, int lane) {
     batch.tangent2[i][lane] = 0.0f;
   }
   batch.friction[lane] = 0.0f;
-  for (ContactBatch::Point& p : batch.points) {
-    for (float(*v)[kLanes] : {p.anchor_a, p.anchor_b, p.rn_a, p.rn_b, p.rt1_a, p.rt1_b, p.rt2_a,
-                              p.rt2_b, p.in_a, p.in_b, p.it1_a, p.it1_b, p.it2_a, p.it2_b}) {
-      for (int i = 0; i < 3; ++i) v[i][lane] = 0.0f;
-    }
-    p.base_separation[lane] = 0.0f;
-    p.separation[lane] = 0.0f;
-    p.normal_mass[lane] = 0.0f;
-    p.tangent_mass1[lane] = 0.0f;
-    p.tangent_mass2[lane] = 0.0f;
-    p.normal_impulse[lane] = 0.0f;
-    p.tangent_impulse1[lane] = 0.0f;
-    p.tangent_impulse2[lane] = 0.0f;
-    p.max_normal_impulse[lane] = 0.0f;
-  }
+  for (ContactBatch::Point& p : batch.points) clear_point(p, lane);
   for (auto& row : batch.coupling) {
     for (auto& k : row) k[lane] = 0.0f;
   }
@@ -134,7 +136,6 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
                const std::vector<SolverBody>& bodies) {
   const SolverBody& body_a = bodies[c.body_a];
   const SolverBody& body_b = bodies[c.body_b];
-  clear_lane(batch, lane);
   batch.constraint[lane] = index;
   batch.body_a[lane] = c.body_a;
   batch.body_b[lane] = c.body_b;
@@ -167,22 +168,36 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
     put(bp.rt1_b, lane, rt1_b);
     put(bp.rt2_a, lane, rt2_a);
     put(bp.rt2_b, lane, rt2_b);
+    const Vec3 it1_a = body_a.inv_inertia * rt1_a;
+    const Vec3 it1_b = body_b.inv_inertia * rt1_b;
+    const Vec3 it2_a = body_a.inv_inertia * rt2_a;
+    const Vec3 it2_b = body_b.inv_inertia * rt2_b;
     put(bp.in_a, lane, body_a.inv_inertia * rn_a);
     put(bp.in_b, lane, body_b.inv_inertia * rn_b);
-    put(bp.it1_a, lane, body_a.inv_inertia * rt1_a);
-    put(bp.it1_b, lane, body_b.inv_inertia * rt1_b);
-    put(bp.it2_a, lane, body_a.inv_inertia * rt2_a);
-    put(bp.it2_b, lane, body_b.inv_inertia * rt2_b);
+    put(bp.it1_a, lane, it1_a);
+    put(bp.it1_b, lane, it1_b);
+    put(bp.it2_a, lane, it2_a);
+    put(bp.it2_b, lane, it2_b);
     bp.base_separation[lane] = cp.base_separation;
     bp.separation[lane] = cp.separation;
     bp.normal_mass[lane] = cp.normal_mass;
-    bp.tangent_mass1[lane] = cp.tangent_mass1;
-    bp.tangent_mass2[lane] = cp.tangent_mass2;
+    // Tangent masses from the same vectors (the effective mass along each
+    // tangent at the point).
+    const float k1 = body_a.inv_mass + body_b.inv_mass + dot(rt1_a, it1_a) + dot(rt1_b, it1_b);
+    const float k2 = body_a.inv_mass + body_b.inv_mass + dot(rt2_a, it2_a) + dot(rt2_b, it2_b);
+    bp.tangent_mass1[lane] = k1 > 0.0f ? 1.0f / k1 : 0.0f;
+    bp.tangent_mass2[lane] = k2 > 0.0f ? 1.0f / k2 : 0.0f;
     bp.normal_impulse[lane] = cp.normal_impulse;
     bp.tangent_impulse1[lane] = cp.tangent_impulse1;
     bp.tangent_impulse2[lane] = cp.tangent_impulse2;
     bp.max_normal_impulse[lane] = cp.max_normal_impulse;
-    for (uint32_t j = 0; j < c.point_count; ++j) batch.coupling[p][j][lane] = c.coupling[p][j];
+    for (uint32_t j = 0; j < kMaxManifoldPoints; ++j) {
+      batch.coupling[p][j][lane] = j < c.point_count ? c.coupling[p][j] : 0.0f;
+    }
+  }
+  for (uint32_t p = c.point_count; p < kMaxManifoldPoints; ++p) {
+    clear_point(batch.points[p], lane);
+    for (auto& k : batch.coupling[p]) k[lane] = 0.0f;
   }
 }
 

@@ -63,13 +63,6 @@ Softness make_soft(float hertz, float zeta, float h) {
   return {omega / a1, a2 * a3};
 }
 
-float effective_mass(const SolverBody& a, const SolverBody& b, Vec3 ra, Vec3 rb, Vec3 dir) {
-  Vec3 rna = cross(ra, dir);
-  Vec3 rnb = cross(rb, dir);
-  float k = a.inv_mass + b.inv_mass + dot(rna, a.inv_inertia * rna) + dot(rnb, b.inv_inertia * rnb);
-  return k > 0.0f ? 1.0f / k : 0.0f;
-}
-
 void apply_impulse(SolverBody& a, SolverBody& b, Vec3 ra, Vec3 rb, Vec3 p) {
   a.linear_velocity -= p * a.inv_mass;
   a.angular_velocity -= a.inv_inertia * cross(ra, p);
@@ -158,8 +151,6 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
       cp.anchor_b = mp.anchor_b;
       cp.base_separation = mp.separation - dot(mp.anchor_b - mp.anchor_a, c.normal);
       cp.separation = mp.separation;
-      cp.tangent_mass1 = effective_mass(a, b, cp.anchor_a, cp.anchor_b, c.tangent1);
-      cp.tangent_mass2 = effective_mass(a, b, cp.anchor_a, cp.anchor_b, c.tangent2);
       cp.normal_impulse = rec.points[p].normal_impulse;
       cp.tangent_impulse1 = rec.points[p].tangent_impulse1;
       cp.tangent_impulse2 = rec.points[p].tangent_impulse2;

@@ -78,8 +78,6 @@ struct ConstraintPoint {
   float separation;         ///< metres, as of the last position update
   float relative_velocity;  ///< normal approach speed before the step (restitution)
   float normal_mass;
-  float tangent_mass1;
-  float tangent_mass2;
   float normal_impulse;
   float tangent_impulse1;
   float tangent_impulse2;
