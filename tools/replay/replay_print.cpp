@@ -6,12 +6,15 @@
 #include <cstdio>
 #include <span>
 
+#include "rewind/cli/json_text.h"
 #include "rewind/replay/engine_identity.h"
 #include "rewind/replay/replay_format.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::replay_tool {
 namespace {
+
+using cli::json_string;
 
 std::string hex64(uint64_t v) {
   char buf[19];
@@ -30,35 +33,6 @@ std::string game_label(const replay::VerifyReport& report) {
   if (!report.header) return "";
   return " (game " + report.header->game() + ", " + std::to_string(report.header->player_count()) +
          (report.header->player_count() == 1 ? " player)" : " players)");
-}
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(c));
-          out += buf;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
 }
 
 // JSON has no NaN or infinity; a diverged body can hold them.

@@ -8,10 +8,13 @@
 #include <sstream>
 #include <string>
 
+#include "rewind/cli/json_text.h"
 #include "rewind/tune/csv.h"
 
 namespace rwd::tune {
 namespace {
+
+using cli::json_string;
 
 std::string number(double v) {
   // NaN is how a scene says it could not measure (the overlaps of a stack
@@ -91,32 +94,6 @@ std::string failing_metrics(const SettingRun& run) {
 }
 
 // JSON ---------------------------------------------------------------------
-
-std::string json_string(std::string_view text) {
-  std::string out = "\"";
-  for (char c : text) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
 
 std::string json_number(double v) {
   if (!std::isfinite(v)) return "null";
