@@ -40,15 +40,8 @@ struct BoxFrame {
 };
 
 BoxFrame make_frame(const BoxPose& b) {
-  return {b.center,
-          {rotate(b.rotation, {1.0f, 0.0f, 0.0f}), rotate(b.rotation, {0.0f, 1.0f, 0.0f}),
-           rotate(b.rotation, {0.0f, 0.0f, 1.0f})},
-          {b.half_extents.x, b.half_extents.y, b.half_extents.z}};
-}
-
-float project_radius(const BoxFrame& b, Vec3 l) {
-  return b.half[0] * std::fabs(dot(b.axis[0], l)) + b.half[1] * std::fabs(dot(b.axis[1], l)) +
-         b.half[2] * std::fabs(dot(b.axis[2], l));
+  const Mat3 m = mat3_from_quat(b.rotation);
+  return {b.center, {m.c0, m.c1, m.c2}, {b.half_extents.x, b.half_extents.y, b.half_extents.z}};
 }
 
 struct ClipVertex {
@@ -283,10 +276,25 @@ void collide_boxes(const BoxPose& pose_a, const BoxPose& pose_b, float speculati
   Vec3 d = b.center - a.center;
   constexpr float kLowest = -std::numeric_limits<float>::max();
 
+  // B's axes in A's frame (r[i][j] = a_i . b_j) and the centre offset in
+  // both frames: every one of the 15 projections is then a few products of
+  // these (Gottschalk's OBB test) instead of dot products in world space.
+  float r[3][3];
+  float abs_r[3][3];
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      r[i][j] = dot(a.axis[i], b.axis[j]);
+      abs_r[i][j] = std::fabs(r[i][j]);
+    }
+  }
+  const float ta[3] = {dot(d, a.axis[0]), dot(d, a.axis[1]), dot(d, a.axis[2])};
+  const float tb[3] = {dot(d, b.axis[0]), dot(d, b.axis[1]), dot(d, b.axis[2])};
+
   float best_a = kLowest;
   int face_a = 0;
   for (int i = 0; i < 3; ++i) {
-    float sep = std::fabs(dot(d, a.axis[i])) - a.half[i] - project_radius(b, a.axis[i]);
+    const float rb = b.half[0] * abs_r[i][0] + b.half[1] * abs_r[i][1] + b.half[2] * abs_r[i][2];
+    float sep = std::fabs(ta[i]) - a.half[i] - rb;
     if (sep > speculative_m) return;
     if (sep > best_a) {
       best_a = sep;
@@ -295,32 +303,39 @@ void collide_boxes(const BoxPose& pose_a, const BoxPose& pose_b, float speculati
   }
   float best_b = kLowest;
   int face_b = 0;
-  for (int i = 0; i < 3; ++i) {
-    float sep = std::fabs(dot(d, b.axis[i])) - project_radius(a, b.axis[i]) - b.half[i];
+  for (int j = 0; j < 3; ++j) {
+    const float ra = a.half[0] * abs_r[0][j] + a.half[1] * abs_r[1][j] + a.half[2] * abs_r[2][j];
+    float sep = std::fabs(tb[j]) - ra - b.half[j];
     if (sep > speculative_m) return;
     if (sep > best_b) {
       best_b = sep;
-      face_b = i;
+      face_b = j;
     }
   }
+  // Edge axes a_i x b_j, |a_i x b_j| = sqrt(1 - r_ij^2): projections along
+  // the unnormalized axis, then scaled to metres.
   float best_edge = kLowest;
   int edge_a = 0;
   int edge_b = 0;
-  Vec3 edge_axis;
+  float edge_sign = 1.0f;
   for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3;
+    const int i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
-      Vec3 l = cross(a.axis[i], b.axis[j]);
-      float len_sq = length_squared(l);
+      const float len_sq = 1.0f - r[i][j] * r[i][j];
       if (len_sq < kParallelSinSquared) continue;
-      l = l * (1.0f / std::sqrt(len_sq));
-      float dl = dot(d, l);
-      float sep = std::fabs(dl) - project_radius(a, l) - project_radius(b, l);
+      const int j1 = (j + 1) % 3;
+      const int j2 = (j + 2) % 3;
+      const float ra = a.half[i1] * abs_r[i2][j] + a.half[i2] * abs_r[i1][j];
+      const float rb = b.half[j1] * abs_r[i][j2] + b.half[j2] * abs_r[i][j1];
+      const float dl = ta[i2] * r[i1][j] - ta[i1] * r[i2][j];
+      float sep = (std::fabs(dl) - ra - rb) / std::sqrt(len_sq);
       if (sep > speculative_m) return;
       if (sep > best_edge) {
         best_edge = sep;
         edge_a = i;
         edge_b = j;
-        edge_axis = dl >= 0.0f ? l : -l;
+        edge_sign = dl >= 0.0f ? 1.0f : -1.0f;
       }
     }
   }
@@ -328,6 +343,8 @@ void collide_boxes(const BoxPose& pose_a, const BoxPose& pose_b, float speculati
   bool use_b = best_b > best_a + kFaceTolerance;
   float best_face = use_b ? best_b : best_a;
   if (best_edge > best_face + kEdgeTolerance) {
+    const Vec3 l = cross(a.axis[edge_a], b.axis[edge_b]);
+    const Vec3 edge_axis = l * (edge_sign / std::sqrt(length_squared(l)));
     edge_contact(a, b, edge_a, edge_b, edge_axis, best_edge, out);
   } else if (use_b) {
     face_contact(b, a, face_b, true, speculative_m, out);

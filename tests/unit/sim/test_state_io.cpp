@@ -186,8 +186,9 @@ namespace {
 // enabled flag (the pile's motion is unchanged). Revision 3: the gyroscopic
 // term changes how the falling boxes turn. Revision 4: rigid contacts with a
 // separate push-out, manifolds solved as blocks, contacts
-// solved by colour in batches of four lanes.
-constexpr uint64_t kPinnedPileChecksum = 0xa1449c3d9c342d50ull;
+// solved by colour in batches of four lanes, box-box SAT on the relative
+// rotation matrix.
+constexpr uint64_t kPinnedPileChecksum = 0x0b879d9222e171deull;
 
 TEST(StateIo, PinnedChecksumOfTheReferencePile) {
   World3D world;

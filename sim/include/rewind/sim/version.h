@@ -24,7 +24,8 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///   4  rigid contacts with the push-out on separate velocities (ordered
 ///      from the ground up for deep overlaps), each manifold's normal
 ///      impulses solved as a block, contacts
-///      solved colour by colour in batches of four lanes
+///      solved colour by colour in batches of four lanes, box-box SAT on
+///      the relative rotation matrix
 inline constexpr uint32_t kSimRevision = 4;
 
 /// "rewind-sim r4": the engine identity a replay records.
