@@ -5,67 +5,35 @@
 // scalar solver's, written once for four lanes (wide_float.h), so a lane
 // computes what one contact alone would.
 #include "d3/contact_batches.h"
+#include "d3/contact_lanes.h"
 
 #include "d3/world_scratch.h"
 
 namespace rwd::sim::d3 {
 namespace {
 
-FloatW lane_load(const float (&a)[kLanes]) {
-  return load(a);
-}
-Vec3W lane_load(const float (&a)[3][kLanes]) {
-  return {load(a[0]), load(a[1]), load(a[2])};
-}
-void lane_store(float (&a)[kLanes], FloatW v) {
-  store(a, v);
-}
-
-// The velocities of four bodies, one per lane.
-struct BodiesW {
-  Vec3W v;
-  Vec3W w;
-  FloatW inv_mass;
+// Four lanes over one batch (see contact_lanes.h for what an access is).
+struct OneBatch {
+  using F = FloatW;
+  static constexpr int kWidth = kLanes;
+  ContactBatch* batch;
+  static F splat(float x) { return d3::splat(x); }
+  static F from(const float* p) { return load(p); }
+  static void to(float* p, F v) { store(p, v); }
+  F ld(const float (&field)[kLanes]) const { return load(field); }
+  void st(float (&field)[kLanes], F v) const { store(field, v); }
+  uint32_t body_a(int lane) const { return batch->body_a[lane]; }
+  uint32_t body_b(int lane) const { return batch->body_b[lane]; }
+  ContactBatch& first() const { return *batch; }
 };
 
-BodiesW gather(const std::vector<SolverBody>& bodies, const uint32_t (&index)[kLanes]) {
-  alignas(16) float f[7][kLanes];
-  for (int i = 0; i < kLanes; ++i) {
-    const SolverBody& b = bodies[index[i]];
-    f[0][i] = b.linear_velocity.x;
-    f[1][i] = b.linear_velocity.y;
-    f[2][i] = b.linear_velocity.z;
-    f[3][i] = b.angular_velocity.x;
-    f[4][i] = b.angular_velocity.y;
-    f[5][i] = b.angular_velocity.z;
-    f[6][i] = b.inv_mass;
-  }
-  return {{load(f[0]), load(f[1]), load(f[2])}, {load(f[3]), load(f[4]), load(f[5])}, load(f[6])};
-}
-
-// Writes the lanes' velocities back to the bodies that can move. A movable
-// body is in at most one lane of a batch; a body that cannot move (static,
-// sleeping, kinematic) may be in several and is never written, so no lane
-// order or lane count can leave a different signed zero in it.
-void scatter(std::vector<SolverBody>& bodies, const uint32_t (&index)[kLanes], const BodiesW& b) {
-  alignas(16) float f[6][kLanes];
-  store(f[0], b.v.x);
-  store(f[1], b.v.y);
-  store(f[2], b.v.z);
-  store(f[3], b.w.x);
-  store(f[4], b.w.y);
-  store(f[5], b.w.z);
-  for (int i = 0; i < kLanes; ++i) {
-    SolverBody& s = bodies[index[i]];
-    if (s.inv_mass == 0.0f) continue;
-    s.linear_velocity = {f[0][i], f[1][i], f[2][i]};
-    s.angular_velocity = {f[3][i], f[4][i], f[5][i]};
-  }
-}
-
-FloatW clamp_at_zero(FloatW x) {
-  const FloatW zero = splat(0.0f);
-  return select(x < zero, zero, x);
+bool use_eight_lanes() {
+#if defined(REWIND_LANES_AVX)
+  static const bool available = lanes8_available();
+  return available;
+#else
+  return false;
+#endif
 }
 
 // --- colouring ---------------------------------------------------------
@@ -201,6 +169,50 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
   }
 }
 
+#if defined(REWIND_LANES_AVX)
+void pair_warm_start(ContactBatch& b0, ContactBatch& b1, std::vector<SolverBody>& bodies) {
+  warm_start_pair(b0, b1, bodies);
+}
+void pair_solve(ContactBatch& b0, ContactBatch& b1, std::vector<SolverBody>& bodies, float inv_h) {
+  solve_pair(b0, b1, bodies, inv_h);
+}
+void pair_separations(ContactBatch& b0, ContactBatch& b1, const std::vector<SolverBody>& bodies) {
+  separations_pair(b0, b1, bodies);
+}
+#else
+// Without eight lanes pairs never form; these keep for_batches' callers
+// whole and would solve the two batches in turn.
+void pair_warm_start(ContactBatch& b0, ContactBatch& b1, std::vector<SolverBody>& bodies) {
+  warm_start_lanes(OneBatch{&b0}, bodies);
+  warm_start_lanes(OneBatch{&b1}, bodies);
+}
+void pair_solve(ContactBatch& b0, ContactBatch& b1, std::vector<SolverBody>& bodies, float inv_h) {
+  solve_lanes(OneBatch{&b0}, bodies, inv_h);
+  solve_lanes(OneBatch{&b1}, bodies, inv_h);
+}
+void pair_separations(ContactBatch& b0, ContactBatch& b1, const std::vector<SolverBody>& bodies) {
+  separations_lanes(OneBatch{&b0}, bodies);
+  separations_lanes(OneBatch{&b1}, bodies);
+}
+#endif
+
+// Runs `one` on every batch, or `two` on pairs of batches of one colour
+// when eight lanes are available (the colour's odd batch and the constraints
+// that found no colour, one per batch, with `one`, in order).
+template <class One, class Two>
+void for_batches(WorldScratch& scratch, One one, Two two) {
+  std::vector<ContactBatch>& batches = scratch.batches;
+  const bool pairs = use_eight_lanes();
+  for (uint32_t col = 0; col <= kColorCount; ++col) {
+    uint32_t k = scratch.batch_start[col];
+    const uint32_t end = scratch.batch_start[col + 1];
+    if (pairs && col < kColorCount) {
+      for (; k + 1 < end; k += 2) two(batches[k], batches[k + 1]);
+    }
+    for (; k < end; ++k) one(batches[k]);
+  }
+}
+
 }  // namespace
 
 void build_batches(WorldScratch& scratch) {
@@ -220,7 +232,9 @@ void build_batches(WorldScratch& scratch) {
 
   // Batches of four within a colour; overflow constraints one per batch.
   scratch.batches.clear();
+  scratch.batch_start.assign(kColorCount + 2, 0);
   for (uint32_t col = 0; col <= kColorCount; ++col) {
+    scratch.batch_start[col] = static_cast<uint32_t>(scratch.batches.size());
     const uint32_t begin = scratch.color_start[col];
     const uint32_t end = scratch.color_start[col + 1];
     const uint32_t per_batch = col == kColorCount ? 1 : kLanes;
@@ -238,164 +252,29 @@ void build_batches(WorldScratch& scratch) {
       }
     }
   }
+  scratch.batch_start[kColorCount + 1] = static_cast<uint32_t>(scratch.batches.size());
 }
 
 void warm_start_batches(WorldScratch& scratch) {
   std::vector<SolverBody>& bodies = scratch.solver_bodies;
-  for (ContactBatch& batch : scratch.batches) {
-    BodiesW a = gather(bodies, batch.body_a);
-    BodiesW b = gather(bodies, batch.body_b);
-    const Vec3W n = lane_load(batch.normal);
-    const Vec3W t1 = lane_load(batch.tangent1);
-    const Vec3W t2 = lane_load(batch.tangent2);
-    Vec3W linear{splat(0.0f), splat(0.0f), splat(0.0f)};
-    Vec3W turn_a = linear;
-    Vec3W turn_b = linear;
-    for (const ContactBatch::Point& p : batch.points) {
-      const FloatW ln = lane_load(p.normal_impulse);
-      const FloatW l1 = lane_load(p.tangent_impulse1);
-      const FloatW l2 = lane_load(p.tangent_impulse2);
-      linear = linear + (n * ln + t1 * l1 + t2 * l2);
-      turn_a =
-          turn_a + (lane_load(p.in_a) * ln + lane_load(p.it1_a) * l1 + lane_load(p.it2_a) * l2);
-      turn_b =
-          turn_b + (lane_load(p.in_b) * ln + lane_load(p.it1_b) * l1 + lane_load(p.it2_b) * l2);
-    }
-    a.v = a.v - linear * a.inv_mass;
-    a.w = a.w - turn_a;
-    b.v = b.v + linear * b.inv_mass;
-    b.w = b.w + turn_b;
-    scatter(bodies, batch.body_a, a);
-    scatter(bodies, batch.body_b, b);
-  }
+  for_batches(
+      scratch, [&](ContactBatch& b) { warm_start_lanes(OneBatch{&b}, bodies); },
+      [&](ContactBatch& b0, ContactBatch& b1) { pair_warm_start(b0, b1, bodies); });
 }
 
 void solve_batches(WorldScratch& scratch, float inv_h) {
   std::vector<SolverBody>& bodies = scratch.solver_bodies;
-  const FloatW zero = splat(0.0f);
-  const FloatW inv_h_w = splat(inv_h);
-  for (ContactBatch& batch : scratch.batches) {
-    BodiesW a = gather(bodies, batch.body_a);
-    BodiesW b = gather(bodies, batch.body_b);
-    const Vec3W n = lane_load(batch.normal);
-
-    // Normal impulses of the manifold as a block: sweeps with the bodies
-    // held (the residual kept up to date column by column), then one
-    // impulse per body.
-    FloatW residual[kMaxManifoldPoints];
-    FloatW step[kMaxManifoldPoints];
-    FloatW total[kMaxManifoldPoints];
-    for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
-      const ContactBatch::Point& bp = batch.points[p];
-      const FloatW s = lane_load(bp.separation);
-      const FloatW bias = select(s > zero, s * inv_h_w, zero);  // speculative
-      const FloatW vn =
-          dot(b.v - a.v, n) + dot(lane_load(bp.rn_b), b.w) - dot(lane_load(bp.rn_a), a.w);
-      residual[p] = vn + bias;
-      step[p] = lane_load(bp.normal_mass);
-      total[p] = lane_load(bp.normal_impulse);
-    }
-    const FloatW start[kMaxManifoldPoints] = {total[0], total[1], total[2], total[3]};
-    for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
-      for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
-        const FloatW next = clamp_at_zero(total[p] - step[p] * residual[p]);
-        const FloatW change = next - total[p];
-        total[p] = next;
-        for (uint32_t j = 0; j < kMaxManifoldPoints; ++j) {
-          residual[j] = residual[j] + lane_load(batch.coupling[j][p]) * change;
-        }
-      }
-    }
-    FloatW pushed = zero;
-    Vec3W turn_a{zero, zero, zero};
-    Vec3W turn_b = turn_a;
-    for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
-      ContactBatch::Point& bp = batch.points[p];
-      lane_store(bp.normal_impulse, total[p]);
-      const FloatW max_seen = lane_load(bp.max_normal_impulse);
-      lane_store(bp.max_normal_impulse, select(total[p] > max_seen, total[p], max_seen));
-      const FloatW change = total[p] - start[p];
-      pushed = pushed + change;
-      turn_a = turn_a + lane_load(bp.in_a) * change;
-      turn_b = turn_b + lane_load(bp.in_b) * change;
-    }
-    a.v = a.v - n * (pushed * a.inv_mass);
-    a.w = a.w - turn_a;
-    b.v = b.v + n * (pushed * b.inv_mass);
-    b.w = b.w + turn_b;
-
-    // Friction after the normal impulses (the cones use this pass's
-    // values), point by point: |t| <= mu * normal impulse.
-    const Vec3W t1 = lane_load(batch.tangent1);
-    const Vec3W t2 = lane_load(batch.tangent2);
-    const FloatW mu = lane_load(batch.friction);
-    for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
-      ContactBatch::Point& bp = batch.points[p];
-      const Vec3W dv = b.v - a.v;
-      const FloatW v1 = dot(dv, t1) + dot(lane_load(bp.rt1_b), b.w) - dot(lane_load(bp.rt1_a), a.w);
-      const FloatW v2 = dot(dv, t2) + dot(lane_load(bp.rt2_b), b.w) - dot(lane_load(bp.rt2_a), a.w);
-      const FloatW old1 = lane_load(bp.tangent_impulse1);
-      const FloatW old2 = lane_load(bp.tangent_impulse2);
-      FloatW f1 = old1 - lane_load(bp.tangent_mass1) * v1;
-      FloatW f2 = old2 - lane_load(bp.tangent_mass2) * v2;
-      const FloatW limit = mu * total[p];
-      const FloatW len_sq = f1 * f1 + f2 * f2;
-      const MaskW over = len_sq > limit * limit;
-      // Lanes under the limit keep their impulse; the others scale onto the
-      // cone (len_sq > 0 there).
-      const FloatW scale = select(over, limit / sqrt(len_sq), splat(1.0f));
-      f1 = select(over, f1 * scale, f1);
-      f2 = select(over, f2 * scale, f2);
-      lane_store(bp.tangent_impulse1, f1);
-      lane_store(bp.tangent_impulse2, f2);
-      const FloatW i1 = f1 - old1;
-      const FloatW i2 = f2 - old2;
-      const Vec3W impulse = t1 * i1 + t2 * i2;
-      a.v = a.v - impulse * a.inv_mass;
-      a.w = a.w - (lane_load(bp.it1_a) * i1 + lane_load(bp.it2_a) * i2);
-      b.v = b.v + impulse * b.inv_mass;
-      b.w = b.w + (lane_load(bp.it1_b) * i1 + lane_load(bp.it2_b) * i2);
-    }
-    scatter(bodies, batch.body_a, a);
-    scatter(bodies, batch.body_b, b);
-  }
-}
-
-// q rotating v, per lane, as rotate() in math.h.
-Vec3W rotate_w(const FloatW (&q)[4], const Vec3W& v) {
-  const Vec3W u{q[0], q[1], q[2]};
-  const Vec3W uv = cross(u, v);
-  const FloatW two = splat(2.0f);
-  const Vec3W t{two * uv.x, two * uv.y, two * uv.z};
-  const Vec3W wt{q[3] * t.x, q[3] * t.y, q[3] * t.z};
-  return v + wt + cross(u, t);
+  for_batches(
+      scratch, [&](ContactBatch& b) { solve_lanes(OneBatch{&b}, bodies, inv_h); },
+      [&](ContactBatch& b0, ContactBatch& b1) { pair_solve(b0, b1, bodies, inv_h); });
 }
 
 void update_separations(WorldScratch& scratch) {
   const std::vector<SolverBody>& bodies = scratch.solver_bodies;
-  for (ContactBatch& batch : scratch.batches) {
-    alignas(16) float f[14][kLanes];
-    for (int i = 0; i < kLanes; ++i) {
-      const SolverBody& a = bodies[batch.body_a[i]];
-      const SolverBody& b = bodies[batch.body_b[i]];
-      const float values[14] = {a.delta_position.x, a.delta_position.y, a.delta_position.z,
-                                a.delta_rotation.x, a.delta_rotation.y, a.delta_rotation.z,
-                                a.delta_rotation.w, b.delta_position.x, b.delta_position.y,
-                                b.delta_position.z, b.delta_rotation.x, b.delta_rotation.y,
-                                b.delta_rotation.z, b.delta_rotation.w};
-      for (int k = 0; k < 14; ++k) f[k][i] = values[k];
-    }
-    const Vec3W pos_a{load(f[0]), load(f[1]), load(f[2])};
-    const FloatW rot_a[4] = {load(f[3]), load(f[4]), load(f[5]), load(f[6])};
-    const Vec3W pos_b{load(f[7]), load(f[8]), load(f[9])};
-    const FloatW rot_b[4] = {load(f[10]), load(f[11]), load(f[12]), load(f[13])};
-    const Vec3W dp = pos_b - pos_a;
-    const Vec3W n = lane_load(batch.normal);
-    for (ContactBatch::Point& bp : batch.points) {
-      const Vec3W pa = rotate_w(rot_a, lane_load(bp.anchor_a));
-      const Vec3W pb = rotate_w(rot_b, lane_load(bp.anchor_b));
-      lane_store(bp.separation, dot(dp + (pb - pa), n) + lane_load(bp.base_separation));
-    }
+  for_batches(
+      scratch, [&](ContactBatch& b) { separations_lanes(OneBatch{&b}, bodies); },
+      [&](ContactBatch& b0, ContactBatch& b1) { pair_separations(b0, b1, bodies); });
+  for (const ContactBatch& batch : scratch.batches) {
     for (int lane = 0; lane < kLanes; ++lane) {
       if (batch.constraint[lane] == kNoConstraint) continue;
       ContactConstraint& c = scratch.constraints[batch.constraint[lane]];

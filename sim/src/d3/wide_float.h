@@ -13,6 +13,12 @@
 // min/max instructions, whose results for NaN differ between SSE and NEON.
 #include <cstdint>
 
+// Eight-lane AVX passes exist on x86-64 and are chosen at run time
+// (contact_lanes_avx.cpp); REWIND_SCALAR_LANES turns them off too.
+#if !defined(REWIND_SCALAR_LANES) && defined(__x86_64__) && defined(__GNUC__)
+#define REWIND_LANES_AVX 1
+#endif
+
 #if !defined(REWIND_SCALAR_LANES) && defined(__SSE2__)
 #define REWIND_LANES_SSE2 1
 #include <emmintrin.h>
@@ -169,34 +175,6 @@ inline FloatW select(MaskW m, FloatW a, FloatW b) {
 
 inline FloatW operator-(FloatW a) {
   return splat(0.0f) - a;
-}
-
-/// Three FloatW: a Vec3 per lane.
-struct Vec3W {
-  FloatW x, y, z;
-};
-inline Vec3W operator+(const Vec3W& a, const Vec3W& b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-inline Vec3W operator-(const Vec3W& a, const Vec3W& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-inline Vec3W operator*(const Vec3W& a, FloatW s) {
-  return {a.x * s, a.y * s, a.z * s};
-}
-inline FloatW dot(const Vec3W& a, const Vec3W& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-inline Vec3W cross(const Vec3W& a, const Vec3W& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
-/// A column-major 3x3 matrix per lane (as Mat3).
-struct Mat3W {
-  Vec3W c0, c1, c2;
-};
-inline Vec3W operator*(const Mat3W& m, const Vec3W& v) {
-  return m.c0 * v.x + m.c1 * v.y + m.c2 * v.z;
 }
 
 }  // namespace rwd::sim::d3

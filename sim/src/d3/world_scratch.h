@@ -144,6 +144,7 @@ class WorldScratch {
   std::vector<uint32_t> color_fill;
   std::vector<uint32_t> colored;  ///< constraint indices by colour
   std::vector<d3::ContactBatch> batches;
+  std::vector<uint32_t> batch_start;  ///< first batch of each colour (and of the rest)
   // push-out order (support_order.cpp)
   std::vector<uint32_t> support_level;  ///< by solver body
   std::vector<uint32_t> adjacency_start;

@@ -1,0 +1,285 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The solver's passes over contact batches, written once for any lane type:
+// four lanes over one batch (contact_batches.cpp: SSE2, NEON or plain
+// arrays) or eight over two batches of the same colour
+// (contact_lanes_avx.cpp: AVX, chosen at run time). Constraints of one
+// colour share no movable body, so solving two batches at once is solving
+// them one after the other: the lane count cannot change a result.
+//
+// An access type A says where the lanes come from:
+//   A::F                  the lane type (+ - * /, < >, select, sqrt by ADL)
+//   A::kWidth             lanes
+//   A::splat(x)           x in every lane
+//   A::from(p), A::to(p)  kWidth contiguous floats
+//   acc.ld(field)         a [kLanes] field of the first batch and, for two
+//   acc.st(field, v)      batches, the same field of the second
+//   acc.body_a(lane)      solver body of a lane (body_b likewise)
+//   acc.first()           the first batch, whose fields name what to load
+//
+// Everything here has internal linkage: each file that includes it compiles
+// its own copy for its own instruction set.
+#include <cstdint>
+#include <vector>
+
+#include "d3/contact_batches.h"
+#include "d3/world_scratch.h"
+
+namespace rwd::sim::d3 {
+namespace {
+
+template <class F>
+struct V3 {
+  F x, y, z;
+};
+template <class F>
+V3<F> operator+(const V3<F>& a, const V3<F>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class F>
+V3<F> operator-(const V3<F>& a, const V3<F>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class F>
+V3<F> operator*(const V3<F>& a, F s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+template <class F>
+F dot3(const V3<F>& a, const V3<F>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class F>
+V3<F> cross3(const V3<F>& a, const V3<F>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+template <class A>
+V3<typename A::F> ld3(const A& acc, const float (&f)[3][kLanes]) {
+  return {acc.ld(f[0]), acc.ld(f[1]), acc.ld(f[2])};
+}
+
+// The velocities of the lanes' bodies.
+template <class F>
+struct LaneBodies {
+  V3<F> v;
+  V3<F> w;
+  F inv_mass;
+};
+
+template <class A>
+LaneBodies<typename A::F> gather_bodies(const A& acc, const std::vector<SolverBody>& bodies,
+                                        bool side_b) {
+  alignas(32) float f[7][A::kWidth];
+  for (int i = 0; i < A::kWidth; ++i) {
+    const SolverBody& b = bodies[side_b ? acc.body_b(i) : acc.body_a(i)];
+    f[0][i] = b.linear_velocity.x;
+    f[1][i] = b.linear_velocity.y;
+    f[2][i] = b.linear_velocity.z;
+    f[3][i] = b.angular_velocity.x;
+    f[4][i] = b.angular_velocity.y;
+    f[5][i] = b.angular_velocity.z;
+    f[6][i] = b.inv_mass;
+  }
+  return {{A::from(f[0]), A::from(f[1]), A::from(f[2])},
+          {A::from(f[3]), A::from(f[4]), A::from(f[5])},
+          A::from(f[6])};
+}
+
+// Writes the lanes' velocities back to the bodies that can move. A movable
+// body is in at most one lane of a colour; a body that cannot move (static,
+// sleeping, kinematic) may be in several and is never written, so no lane
+// order or lane count can leave a different signed zero in it.
+template <class A>
+void scatter_bodies(const A& acc, std::vector<SolverBody>& bodies, bool side_b,
+                    const LaneBodies<typename A::F>& b) {
+  alignas(32) float f[6][A::kWidth];
+  A::to(f[0], b.v.x);
+  A::to(f[1], b.v.y);
+  A::to(f[2], b.v.z);
+  A::to(f[3], b.w.x);
+  A::to(f[4], b.w.y);
+  A::to(f[5], b.w.z);
+  for (int i = 0; i < A::kWidth; ++i) {
+    SolverBody& s = bodies[side_b ? acc.body_b(i) : acc.body_a(i)];
+    if (s.inv_mass == 0.0f) continue;
+    s.linear_velocity = {f[0][i], f[1][i], f[2][i]};
+    s.angular_velocity = {f[3][i], f[4][i], f[5][i]};
+  }
+}
+
+template <class A>
+void warm_start_lanes(const A& acc, std::vector<SolverBody>& bodies) {
+  using F = typename A::F;
+  const ContactBatch& batch = acc.first();
+  LaneBodies<F> a = gather_bodies(acc, bodies, false);
+  LaneBodies<F> b = gather_bodies(acc, bodies, true);
+  const V3<F> n = ld3(acc, batch.normal);
+  const V3<F> t1 = ld3(acc, batch.tangent1);
+  const V3<F> t2 = ld3(acc, batch.tangent2);
+  const F zero = A::splat(0.0f);
+  V3<F> linear{zero, zero, zero};
+  V3<F> turn_a = linear;
+  V3<F> turn_b = linear;
+  for (const ContactBatch::Point& p : batch.points) {
+    const F ln = acc.ld(p.normal_impulse);
+    const F l1 = acc.ld(p.tangent_impulse1);
+    const F l2 = acc.ld(p.tangent_impulse2);
+    linear = linear + (n * ln + t1 * l1 + t2 * l2);
+    turn_a = turn_a + (ld3(acc, p.in_a) * ln + ld3(acc, p.it1_a) * l1 + ld3(acc, p.it2_a) * l2);
+    turn_b = turn_b + (ld3(acc, p.in_b) * ln + ld3(acc, p.it1_b) * l1 + ld3(acc, p.it2_b) * l2);
+  }
+  a.v = a.v - linear * a.inv_mass;
+  a.w = a.w - turn_a;
+  b.v = b.v + linear * b.inv_mass;
+  b.w = b.w + turn_b;
+  scatter_bodies(acc, bodies, false, a);
+  scatter_bodies(acc, bodies, true, b);
+}
+
+// One pass on the real velocities: the manifold's normal impulses as a
+// block (sweeps with the bodies held, the residual kept up to date column
+// by column, then one impulse per body; a gap may close within the substep,
+// no more), then friction point by point, |t| <= mu * normal impulse.
+template <class A>
+void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
+  using F = typename A::F;
+  ContactBatch& batch = acc.first();
+  const F zero = A::splat(0.0f);
+  const F inv_h_w = A::splat(inv_h);
+  LaneBodies<F> a = gather_bodies(acc, bodies, false);
+  LaneBodies<F> b = gather_bodies(acc, bodies, true);
+  const V3<F> n = ld3(acc, batch.normal);
+
+  F residual[kMaxManifoldPoints];
+  F step[kMaxManifoldPoints];
+  F total[kMaxManifoldPoints];
+  for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+    const ContactBatch::Point& bp = batch.points[p];
+    const F s = acc.ld(bp.separation);
+    const F bias = select(s > zero, s * inv_h_w, zero);  // speculative
+    const F vn = dot3(b.v - a.v, n) + dot3(ld3(acc, bp.rn_b), b.w) - dot3(ld3(acc, bp.rn_a), a.w);
+    residual[p] = vn + bias;
+    step[p] = acc.ld(bp.normal_mass);
+    total[p] = acc.ld(bp.normal_impulse);
+  }
+  const F start[kMaxManifoldPoints] = {total[0], total[1], total[2], total[3]};
+  for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
+    for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+      F next = total[p] - step[p] * residual[p];
+      next = select(next < zero, zero, next);
+      const F change = next - total[p];
+      total[p] = next;
+      for (uint32_t j = 0; j < kMaxManifoldPoints; ++j) {
+        residual[j] = residual[j] + acc.ld(batch.coupling[j][p]) * change;
+      }
+    }
+  }
+  F pushed = zero;
+  V3<F> turn_a{zero, zero, zero};
+  V3<F> turn_b = turn_a;
+  for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+    ContactBatch::Point& bp = batch.points[p];
+    acc.st(bp.normal_impulse, total[p]);
+    const F max_seen = acc.ld(bp.max_normal_impulse);
+    acc.st(bp.max_normal_impulse, select(total[p] > max_seen, total[p], max_seen));
+    const F change = total[p] - start[p];
+    pushed = pushed + change;
+    turn_a = turn_a + ld3(acc, bp.in_a) * change;
+    turn_b = turn_b + ld3(acc, bp.in_b) * change;
+  }
+  a.v = a.v - n * (pushed * a.inv_mass);
+  a.w = a.w - turn_a;
+  b.v = b.v + n * (pushed * b.inv_mass);
+  b.w = b.w + turn_b;
+
+  const V3<F> t1 = ld3(acc, batch.tangent1);
+  const V3<F> t2 = ld3(acc, batch.tangent2);
+  const F mu = acc.ld(batch.friction);
+  const F one = A::splat(1.0f);
+  for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+    ContactBatch::Point& bp = batch.points[p];
+    const V3<F> dv = b.v - a.v;
+    const F v1 = dot3(dv, t1) + dot3(ld3(acc, bp.rt1_b), b.w) - dot3(ld3(acc, bp.rt1_a), a.w);
+    const F v2 = dot3(dv, t2) + dot3(ld3(acc, bp.rt2_b), b.w) - dot3(ld3(acc, bp.rt2_a), a.w);
+    const F old1 = acc.ld(bp.tangent_impulse1);
+    const F old2 = acc.ld(bp.tangent_impulse2);
+    F f1 = old1 - acc.ld(bp.tangent_mass1) * v1;
+    F f2 = old2 - acc.ld(bp.tangent_mass2) * v2;
+    const F limit = mu * total[p];
+    const F len_sq = f1 * f1 + f2 * f2;
+    const auto over = len_sq > limit * limit;
+    // Lanes under the limit keep their impulse; the others scale onto the
+    // cone (len_sq > 0 there).
+    const F scale = select(over, limit / sqrt(len_sq), one);
+    f1 = select(over, f1 * scale, f1);
+    f2 = select(over, f2 * scale, f2);
+    acc.st(bp.tangent_impulse1, f1);
+    acc.st(bp.tangent_impulse2, f2);
+    const F i1 = f1 - old1;
+    const F i2 = f2 - old2;
+    const V3<F> impulse = t1 * i1 + t2 * i2;
+    a.v = a.v - impulse * a.inv_mass;
+    a.w = a.w - (ld3(acc, bp.it1_a) * i1 + ld3(acc, bp.it2_a) * i2);
+    b.v = b.v + impulse * b.inv_mass;
+    b.w = b.w + (ld3(acc, bp.it1_b) * i1 + ld3(acc, bp.it2_b) * i2);
+  }
+  scatter_bodies(acc, bodies, false, a);
+  scatter_bodies(acc, bodies, true, b);
+}
+
+// q rotating v, per lane, as rotate() in math.h.
+template <class A>
+V3<typename A::F> rotate_lanes(const typename A::F (&q)[4], const V3<typename A::F>& v) {
+  using F = typename A::F;
+  const V3<F> u{q[0], q[1], q[2]};
+  const V3<F> uv = cross3(u, v);
+  const F two = A::splat(2.0f);
+  const V3<F> t{two * uv.x, two * uv.y, two * uv.z};
+  const V3<F> wt{q[3] * t.x, q[3] * t.y, q[3] * t.z};
+  return v + wt + cross3(u, t);
+}
+
+// Each point's separation from the motion since the tick began (the
+// batches only; the caller copies them to the scalar constraints).
+template <class A>
+void separations_lanes(const A& acc, const std::vector<SolverBody>& bodies) {
+  using F = typename A::F;
+  ContactBatch& batch = acc.first();
+  alignas(32) float f[14][A::kWidth];
+  for (int i = 0; i < A::kWidth; ++i) {
+    const SolverBody& a = bodies[acc.body_a(i)];
+    const SolverBody& b = bodies[acc.body_b(i)];
+    const float values[14] = {a.delta_position.x, a.delta_position.y, a.delta_position.z,
+                              a.delta_rotation.x, a.delta_rotation.y, a.delta_rotation.z,
+                              a.delta_rotation.w, b.delta_position.x, b.delta_position.y,
+                              b.delta_position.z, b.delta_rotation.x, b.delta_rotation.y,
+                              b.delta_rotation.z, b.delta_rotation.w};
+    for (int k = 0; k < 14; ++k) f[k][i] = values[k];
+  }
+  const V3<F> pos_a{A::from(f[0]), A::from(f[1]), A::from(f[2])};
+  const F rot_a[4] = {A::from(f[3]), A::from(f[4]), A::from(f[5]), A::from(f[6])};
+  const V3<F> pos_b{A::from(f[7]), A::from(f[8]), A::from(f[9])};
+  const F rot_b[4] = {A::from(f[10]), A::from(f[11]), A::from(f[12]), A::from(f[13])};
+  const V3<F> dp = pos_b - pos_a;
+  const V3<F> n = ld3(acc, batch.normal);
+  for (ContactBatch::Point& bp : batch.points) {
+    const V3<F> pa = rotate_lanes<A>(rot_a, ld3(acc, bp.anchor_a));
+    const V3<F> pb = rotate_lanes<A>(rot_b, ld3(acc, bp.anchor_b));
+    acc.st(bp.separation, dot3(dp + (pb - pa), n) + acc.ld(bp.base_separation));
+  }
+}
+
+}  // namespace
+
+#if defined(REWIND_LANES_AVX)
+/// Eight lanes over two batches of one colour (contact_lanes_avx.cpp); only
+/// call when lanes8_available().
+bool lanes8_available();
+void warm_start_pair(ContactBatch& first, ContactBatch& second, std::vector<SolverBody>& bodies);
+void solve_pair(ContactBatch& first, ContactBatch& second, std::vector<SolverBody>& bodies,
+                float inv_h);
+void separations_pair(ContactBatch& first, ContactBatch& second,
+                      const std::vector<SolverBody>& bodies);
+#endif
+
+}  // namespace rwd::sim::d3

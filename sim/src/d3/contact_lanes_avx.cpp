@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: MIT
+// The solver's passes on eight AVX lanes: two batches of one colour at a
+// time (contact_lanes.h). Compiled for AVX through a target pragma, so the
+// rest of the engine stays plain x86-64; contact_batches.cpp calls in only
+// when the processor and the OS support AVX. Each AVX operation is the same
+// IEEE single-precision operation per lane as the SSE2 one (no FMA, exact
+// division and square root, compare-and-select), so the results are those of
+// the four-lane passes.
+#include "d3/wide_float.h"
+
+#if defined(REWIND_LANES_AVX)
+
+#include <immintrin.h>
+
+#include <cstddef>
+#include <vector>
+
+#include "d3/contact_batches.h"
+#include "d3/world_scratch.h"
+
+// Everything defined from here on may use AVX instructions.
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx"))), apply_to = function)
+#else
+#pragma GCC push_options
+#pragma GCC target("avx")
+#endif
+
+namespace rwd::sim::d3 {
+namespace {
+
+struct FloatW8 {
+  __m256 v;
+};
+struct MaskW8 {
+  __m256 v;
+};
+inline FloatW8 operator+(FloatW8 a, FloatW8 b) {
+  return {_mm256_add_ps(a.v, b.v)};
+}
+inline FloatW8 operator-(FloatW8 a, FloatW8 b) {
+  return {_mm256_sub_ps(a.v, b.v)};
+}
+inline FloatW8 operator*(FloatW8 a, FloatW8 b) {
+  return {_mm256_mul_ps(a.v, b.v)};
+}
+inline FloatW8 operator/(FloatW8 a, FloatW8 b) {
+  return {_mm256_div_ps(a.v, b.v)};
+}
+inline FloatW8 sqrt(FloatW8 a) {
+  return {_mm256_sqrt_ps(a.v)};
+}
+// Ordered, non-signalling compares: false for NaN, as SSE's cmplt/cmpgt.
+inline MaskW8 operator<(FloatW8 a, FloatW8 b) {
+  return {_mm256_cmp_ps(a.v, b.v, _CMP_LT_OQ)};
+}
+inline MaskW8 operator>(FloatW8 a, FloatW8 b) {
+  return {_mm256_cmp_ps(a.v, b.v, _CMP_GT_OQ)};
+}
+inline FloatW8 select(MaskW8 m, FloatW8 a, FloatW8 b) {
+  return {_mm256_or_ps(_mm256_and_ps(m.v, a.v), _mm256_andnot_ps(m.v, b.v))};
+}
+
+// Eight lanes over two batches: lanes 0-3 from the first, 4-7 from the
+// second. A field is named through the first batch; the second's is at the
+// same offset.
+struct TwoBatches {
+  using F = FloatW8;
+  static constexpr int kWidth = 2 * kLanes;
+  ContactBatch* batch0;
+  ContactBatch* batch1;
+  static F splat(float x) { return {_mm256_set1_ps(x)}; }
+  static F from(const float* p) { return {_mm256_loadu_ps(p)}; }
+  static void to(float* p, F v) { _mm256_storeu_ps(p, v.v); }
+  const float* second(const float* field) const {
+    const std::ptrdiff_t offset =
+        reinterpret_cast<const char*>(field) - reinterpret_cast<const char*>(batch0);
+    return reinterpret_cast<const float*>(reinterpret_cast<const char*>(batch1) + offset);
+  }
+  F ld(const float (&field)[kLanes]) const {
+    const __m128 lo = _mm_loadu_ps(field);
+    const __m128 hi = _mm_loadu_ps(second(field));
+    return {_mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1)};
+  }
+  void st(float (&field)[kLanes], F v) const {
+    _mm_storeu_ps(field, _mm256_castps256_ps128(v.v));
+    _mm_storeu_ps(const_cast<float*>(second(field)), _mm256_extractf128_ps(v.v, 1));
+  }
+  uint32_t body_a(int lane) const {
+    return lane < kLanes ? batch0->body_a[lane] : batch1->body_a[lane - kLanes];
+  }
+  uint32_t body_b(int lane) const {
+    return lane < kLanes ? batch0->body_b[lane] : batch1->body_b[lane - kLanes];
+  }
+  ContactBatch& first() const { return *batch0; }
+};
+
+}  // namespace
+}  // namespace rwd::sim::d3
+
+#include "d3/contact_lanes.h"
+
+namespace rwd::sim::d3 {
+
+void warm_start_pair(ContactBatch& first, ContactBatch& second, std::vector<SolverBody>& bodies) {
+  warm_start_lanes(TwoBatches{&first, &second}, bodies);
+}
+
+void solve_pair(ContactBatch& first, ContactBatch& second, std::vector<SolverBody>& bodies,
+                float inv_h) {
+  solve_lanes(TwoBatches{&first, &second}, bodies, inv_h);
+}
+
+void separations_pair(ContactBatch& first, ContactBatch& second,
+                      const std::vector<SolverBody>& bodies) {
+  separations_lanes(TwoBatches{&first, &second}, bodies);
+}
+
+}  // namespace rwd::sim::d3
+
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
+#pragma GCC pop_options
+#endif
+
+namespace rwd::sim::d3 {
+
+bool lanes8_available() {
+  // AVX in the processor and its 256-bit registers saved by the OS.
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx");
+}
+
+}  // namespace rwd::sim::d3
+
+#endif  // REWIND_LANES_AVX
