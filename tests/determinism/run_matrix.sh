@@ -12,8 +12,10 @@
 #   clang-O3       clang++ -O3
 #   aarch64-O3     aarch64-linux-gnu-g++ -O3 -static, run under qemu-aarch64
 #   gcc-O2-lanes   g++ -O2 -DREWIND_SCALAR_LANES: the solver's four lanes as
-#                  plain arrays instead of SSE2 (NEON on aarch64), so the
-#                  instruction set is proven not to change a result
+#                  plain arrays instead of SSE2 or eight AVX lanes; with the
+#                  x86-64 builds (eight AVX lanes where the machine has AVX)
+#                  and aarch64 (four NEON lanes) this proves neither the
+#                  instruction set nor the lane count changes a result
 #
 # Usage: run_matrix.sh [--source DIR] [--ticks N] [--jobs N] BUILD_DIR
 #   --source DIR  repository root (default: two levels above this script)
