@@ -100,7 +100,11 @@ void put(float (&dst)[3][kLanes], int lane, Vec3 v) {
   dst[2][lane] = v.z;
 }
 
-void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConstraint& c,
+// Packs constraint `index` into a lane. The normal K matrix (and from its
+// diagonal the normal masses) is computed here, from the vectors the lane
+// keeps anyway, and written back to the constraint for the push-out and
+// restitution, which run on the scalar constraints.
+void fill_lane(ContactBatch& batch, int lane, uint32_t index, ContactConstraint& c,
                const std::vector<SolverBody>& bodies) {
   const SolverBody& body_a = bodies[c.body_a];
   const SolverBody& body_b = bodies[c.body_b];
@@ -115,6 +119,10 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
     dst[a][2][lane] = axes[a].z;
   }
   batch.friction[lane] = c.friction;
+  Vec3 rn_a_of[kMaxManifoldPoints];
+  Vec3 rn_b_of[kMaxManifoldPoints];
+  Vec3 in_a_of[kMaxManifoldPoints];
+  Vec3 in_b_of[kMaxManifoldPoints];
   for (uint32_t p = 0; p < c.point_count; ++p) {
     const ConstraintPoint& cp = c.points[p];
     ContactBatch::Point& bp = batch.points[p];
@@ -140,15 +148,18 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
     const Vec3 it1_b = body_b.inv_inertia * rt1_b;
     const Vec3 it2_a = body_a.inv_inertia * rt2_a;
     const Vec3 it2_b = body_b.inv_inertia * rt2_b;
-    put(bp.in_a, lane, body_a.inv_inertia * rn_a);
-    put(bp.in_b, lane, body_b.inv_inertia * rn_b);
+    rn_a_of[p] = rn_a;
+    rn_b_of[p] = rn_b;
+    in_a_of[p] = body_a.inv_inertia * rn_a;
+    in_b_of[p] = body_b.inv_inertia * rn_b;
+    put(bp.in_a, lane, in_a_of[p]);
+    put(bp.in_b, lane, in_b_of[p]);
     put(bp.it1_a, lane, it1_a);
     put(bp.it1_b, lane, it1_b);
     put(bp.it2_a, lane, it2_a);
     put(bp.it2_b, lane, it2_b);
     bp.base_separation[lane] = cp.base_separation;
     bp.separation[lane] = cp.separation;
-    bp.normal_mass[lane] = cp.normal_mass;
     // Tangent masses from the same vectors (the effective mass along each
     // tangent at the point).
     const float k1 = body_a.inv_mass + body_b.inv_mass + dot(rt1_a, it1_a) + dot(rt1_b, it1_b);
@@ -159,8 +170,17 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
     bp.tangent_impulse1[lane] = cp.tangent_impulse1;
     bp.tangent_impulse2[lane] = cp.tangent_impulse2;
     bp.max_normal_impulse[lane] = cp.max_normal_impulse;
+  }
+  for (uint32_t i = 0; i < c.point_count; ++i) {
+    for (uint32_t j = 0; j < c.point_count; ++j) {
+      c.coupling[i][j] = body_a.inv_mass + body_b.inv_mass + dot(rn_a_of[j], in_a_of[i]) +
+                         dot(rn_b_of[j], in_b_of[i]);
+    }
+    const float diagonal = c.coupling[i][i];
+    c.points[i].normal_mass = diagonal > 0.0f ? 1.0f / diagonal : 0.0f;
+    batch.points[i].normal_mass[lane] = c.points[i].normal_mass;
     for (uint32_t j = 0; j < kMaxManifoldPoints; ++j) {
-      batch.coupling[p][j][lane] = j < c.point_count ? c.coupling[p][j] : 0.0f;
+      batch.coupling[i][j][lane] = j < c.point_count ? c.coupling[i][j] : 0.0f;
     }
   }
   for (uint32_t p = c.point_count; p < kMaxManifoldPoints; ++p) {

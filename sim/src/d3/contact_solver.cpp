@@ -162,22 +162,6 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
                                  ? 0.0f
                                  : dot(c.normal, relative_velocity(a, b, cp.anchor_a, cp.anchor_b));
     }
-    // The normal K matrix; its diagonal gives each point's normal mass.
-    Vec3 rn_a[kMaxManifoldPoints];
-    Vec3 rn_b[kMaxManifoldPoints];
-    for (uint32_t i = 0; i < c.point_count; ++i) {
-      rn_a[i] = cross(c.points[i].anchor_a, c.normal);
-      rn_b[i] = cross(c.points[i].anchor_b, c.normal);
-    }
-    for (uint32_t i = 0; i < c.point_count; ++i) {
-      const Vec3 irn_a = a.inv_inertia * rn_a[i];
-      const Vec3 irn_b = b.inv_inertia * rn_b[i];
-      for (uint32_t j = 0; j < c.point_count; ++j) {
-        c.coupling[i][j] = a.inv_mass + b.inv_mass + dot(rn_a[j], irn_a) + dot(rn_b[j], irn_b);
-      }
-      const float diagonal = c.coupling[i][i];
-      c.points[i].normal_mass = diagonal > 0.0f ? 1.0f / diagonal : 0.0f;
-    }
     points += c.point_count;
     scratch.constraints.push_back(c);
   }

@@ -102,7 +102,8 @@ struct ContactConstraint {
   float restitution;
   Softness softness;
   uint8_t push_fixed;  ///< kPushFixed*: the lower body of the contact, if any
-  /// The manifold's normal K matrix: coupling[i][j] is the normal velocity
+  /// The manifold's normal K matrix (filled when packed into batches,
+  /// with the normal masses): coupling[i][j] is the normal velocity
   /// change at point i per unit normal impulse at point j (fixed for the
   /// step, like the anchors and inverse inertias it is built from).
   float coupling[kMaxManifoldPoints][kMaxManifoldPoints];
