@@ -64,47 +64,46 @@ struct LaneBodies {
   V3<F> v;
   V3<F> w;
   F inv_mass;
+  F rest;  // the row's eighth float, written back unchanged
 };
 
+// A solver body's first eight floats: its row (see SolverBody).
+inline const float* body_row(const SolverBody& b) {
+  return reinterpret_cast<const float*>(&b);
+}
+inline float* body_row(SolverBody& b) {
+  return reinterpret_cast<float*>(&b);
+}
+
+// The lanes' bodies: their rows, transposed into lanes by the access.
 template <class A>
 LaneBodies<typename A::F> gather_bodies(const A& acc, const std::vector<SolverBody>& bodies,
                                         bool side_b) {
-  alignas(32) float f[7][A::kWidth];
+  const float* rows[A::kWidth];
   for (int i = 0; i < A::kWidth; ++i) {
-    const SolverBody& b = bodies[side_b ? acc.body_b(i) : acc.body_a(i)];
-    f[0][i] = b.linear_velocity.x;
-    f[1][i] = b.linear_velocity.y;
-    f[2][i] = b.linear_velocity.z;
-    f[3][i] = b.angular_velocity.x;
-    f[4][i] = b.angular_velocity.y;
-    f[5][i] = b.angular_velocity.z;
-    f[6][i] = b.inv_mass;
+    rows[i] = body_row(bodies[side_b ? acc.body_b(i) : acc.body_a(i)]);
   }
-  return {{A::from(f[0]), A::from(f[1]), A::from(f[2])},
-          {A::from(f[3]), A::from(f[4]), A::from(f[5])},
-          A::from(f[6])};
+  typename A::F f[8];
+  A::gather_rows(rows, f);
+  return {{f[0], f[1], f[2]}, {f[3], f[4], f[5]}, f[6], f[7]};
 }
 
-// Writes the lanes' velocities back to the bodies that can move. A movable
+// Writes the lanes' rows back (velocities; the inverse mass and the eighth
+// float as they were read, so a row is stored whole and the next gather's
+// load of it is forwarded from the store) to the bodies that can move. A movable
 // body is in at most one lane of a colour; a body that cannot move (static,
 // sleeping, kinematic) may be in several and is never written, so no lane
 // order or lane count can leave a different signed zero in it.
 template <class A>
 void scatter_bodies(const A& acc, std::vector<SolverBody>& bodies, bool side_b,
                     const LaneBodies<typename A::F>& b) {
-  alignas(32) float f[6][A::kWidth];
-  A::to(f[0], b.v.x);
-  A::to(f[1], b.v.y);
-  A::to(f[2], b.v.z);
-  A::to(f[3], b.w.x);
-  A::to(f[4], b.w.y);
-  A::to(f[5], b.w.z);
+  float* rows[A::kWidth];
   for (int i = 0; i < A::kWidth; ++i) {
     SolverBody& s = bodies[side_b ? acc.body_b(i) : acc.body_a(i)];
-    if (s.inv_mass == 0.0f) continue;
-    s.linear_velocity = {f[0][i], f[1][i], f[2][i]};
-    s.angular_velocity = {f[3][i], f[4][i], f[5][i]};
+    rows[i] = s.inv_mass == 0.0f ? nullptr : body_row(s);
   }
+  const typename A::F f[8] = {b.v.x, b.v.y, b.v.z, b.w.x, b.w.y, b.w.z, b.inv_mass, b.rest};
+  A::scatter_rows(f, rows);
 }
 
 template <class A>

@@ -86,6 +86,48 @@ struct TwoBatches {
     _mm_storeu_ps(field, _mm256_castps256_ps128(v.v));
     _mm_storeu_ps(const_cast<float*>(second(field)), _mm256_extractf128_ps(v.v, 1));
   }
+  // Rows of eight floats into eight lane values and back (8x8 transpose;
+  // scatter writes only where the row pointer is set).
+  static void transpose8(__m256 (&r)[8]) {
+    const __m256 t0 = _mm256_unpacklo_ps(r[0], r[1]);
+    const __m256 t1 = _mm256_unpackhi_ps(r[0], r[1]);
+    const __m256 t2 = _mm256_unpacklo_ps(r[2], r[3]);
+    const __m256 t3 = _mm256_unpackhi_ps(r[2], r[3]);
+    const __m256 t4 = _mm256_unpacklo_ps(r[4], r[5]);
+    const __m256 t5 = _mm256_unpackhi_ps(r[4], r[5]);
+    const __m256 t6 = _mm256_unpacklo_ps(r[6], r[7]);
+    const __m256 t7 = _mm256_unpackhi_ps(r[6], r[7]);
+    const __m256 s0 = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(1, 0, 1, 0));
+    const __m256 s1 = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(3, 2, 3, 2));
+    const __m256 s2 = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(1, 0, 1, 0));
+    const __m256 s3 = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(3, 2, 3, 2));
+    const __m256 s4 = _mm256_shuffle_ps(t4, t6, _MM_SHUFFLE(1, 0, 1, 0));
+    const __m256 s5 = _mm256_shuffle_ps(t4, t6, _MM_SHUFFLE(3, 2, 3, 2));
+    const __m256 s6 = _mm256_shuffle_ps(t5, t7, _MM_SHUFFLE(1, 0, 1, 0));
+    const __m256 s7 = _mm256_shuffle_ps(t5, t7, _MM_SHUFFLE(3, 2, 3, 2));
+    r[0] = _mm256_permute2f128_ps(s0, s4, 0x20);
+    r[1] = _mm256_permute2f128_ps(s1, s5, 0x20);
+    r[2] = _mm256_permute2f128_ps(s2, s6, 0x20);
+    r[3] = _mm256_permute2f128_ps(s3, s7, 0x20);
+    r[4] = _mm256_permute2f128_ps(s0, s4, 0x31);
+    r[5] = _mm256_permute2f128_ps(s1, s5, 0x31);
+    r[6] = _mm256_permute2f128_ps(s2, s6, 0x31);
+    r[7] = _mm256_permute2f128_ps(s3, s7, 0x31);
+  }
+  static void gather_rows(const float* const (&rows)[2 * kLanes], F (&out)[8]) {
+    __m256 r[8];
+    for (int i = 0; i < 8; ++i) r[i] = _mm256_load_ps(rows[i]);
+    transpose8(r);
+    for (int k = 0; k < 8; ++k) out[k] = {r[k]};
+  }
+  static void scatter_rows(const F (&in)[8], float* const (&rows)[2 * kLanes]) {
+    __m256 r[8];
+    for (int k = 0; k < 8; ++k) r[k] = in[k].v;
+    transpose8(r);
+    for (int i = 0; i < 8; ++i) {
+      if (rows[i] != nullptr) _mm256_store_ps(rows[i], r[i]);
+    }
+  }
   uint32_t body_a(int lane) const {
     return lane < kLanes ? batch0->body_a[lane] : batch1->body_a[lane - kLanes];
   }

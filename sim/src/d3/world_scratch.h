@@ -5,6 +5,7 @@
 // rebuilt whenever it is marked dirty, which restore() does), so a restored
 // world steps exactly like the one that was saved. The vectors keep their
 // capacity between steps, so a warmed-up world does not allocate.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -45,9 +46,15 @@ struct ContactGeometry {
 /// A body as the solver sees it: velocities and the pose change since the
 /// start of the step. Index 0 is a shared immovable body standing in for
 /// every static or sleeping body.
-struct SolverBody {
+///
+/// The first eight floats (velocities, inverse mass, the angular damping
+/// factor) are one aligned row, so the solver's lanes gather and scatter
+/// bodies with a few vector loads and a transpose (contact_lanes.h).
+struct alignas(32) SolverBody {
   Vec3 linear_velocity;
   Vec3 angular_velocity;
+  float inv_mass;
+  float angular_damping_factor;
   /// Push-out velocities of the current substep: they move the body out of
   /// overlaps and are then dropped, so recovering from an overlap never
   /// becomes real velocity (a split impulse).
@@ -55,13 +62,15 @@ struct SolverBody {
   Vec3 push_angular;
   Vec3 delta_position;
   Quat delta_rotation;
-  float inv_mass;
   Mat3 inv_inertia;             ///< world frame, fixed for the step
   Vec3 linear_acceleration;     ///< gravity plus applied force, m/s^2
   float linear_damping_factor;  ///< 1 / (1 + h * damping), per substep
-  float angular_damping_factor;
-  uint8_t pushed;  ///< push velocities are non-zero this substep
+  uint8_t pushed;               ///< push velocities are non-zero this substep
 };
+static_assert(offsetof(SolverBody, angular_velocity) == 3 * sizeof(float) &&
+                  offsetof(SolverBody, inv_mass) == 6 * sizeof(float) &&
+                  offsetof(SolverBody, angular_damping_factor) == 7 * sizeof(float),
+              "the solver's lanes read a body's first eight floats as one row");
 
 /// How hard overlaps are pushed out: the separating speed per metre of
 /// overlap and the fraction of a rigid push-out impulse applied per substep,
