@@ -13,7 +13,7 @@ namespace {
 // A 40-box stack with the settings rewind-tune recommends for it with every
 // body awake (`rewind-tune --scene stack --size 40 --no-sleep`; README,
 // Tuning): the defaults hold 20 boxes, not 40.
-constexpr Tuned kStack40{12, 0, 60.0f};
+constexpr Tuned kStack40{12, 0};
 
 class Stability : public ::testing::TestWithParam<Criterion> {};
 
