@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The solver's wide passes over coloured batches of four contacts (see
-// contact_batches.h for the colouring). Per batch: gather the bodies'
-// velocities into lanes, solve, scatter them back. The arithmetic is the
-// scalar solver's, written once for four lanes (wide_float.h), so a lane
-// computes what one contact alone would.
+// Colouring and packing the contact constraints into batches of four
+// (contact_batches.h), and running the solver's lane passes
+// (contact_lanes.h) over them: four lanes per batch, or eight over two
+// batches of one colour where AVX is available (contact_lanes_avx.cpp).
 #include "d3/contact_batches.h"
 #include "d3/contact_lanes.h"
 
@@ -22,59 +21,11 @@ struct OneBatch {
   static void to(float* p, F v) { store(p, v); }
   F ld(const float (&field)[kLanes]) const { return load(field); }
   void st(float (&field)[kLanes], F v) const { store(field, v); }
-  // Rows of eight floats into eight lane values and back (only where the
-  // row pointer is set).
-  static void gather_rows(const float* const (&rows)[kLanes], F (&out)[8]) {
-#if defined(REWIND_LANES_SSE2)
-    __m128 lo[kLanes];
-    __m128 hi[kLanes];
-    for (int i = 0; i < kLanes; ++i) {
-      lo[i] = _mm_load_ps(rows[i]);
-      hi[i] = _mm_load_ps(rows[i] + 4);
-    }
-    _MM_TRANSPOSE4_PS(lo[0], lo[1], lo[2], lo[3]);
-    _MM_TRANSPOSE4_PS(hi[0], hi[1], hi[2], hi[3]);
-    for (int k = 0; k < 4; ++k) {
-      out[k] = {lo[k]};
-      out[4 + k] = {hi[k]};
-    }
-#else
-    alignas(16) float f[8][kLanes];
-    for (int i = 0; i < kLanes; ++i) {
-      for (int k = 0; k < 8; ++k) f[k][i] = rows[i][k];
-    }
-    for (int k = 0; k < 8; ++k) out[k] = load(f[k]);
-#endif
-  }
-  static void scatter_rows(const F (&in)[8], float* const (&rows)[kLanes]) {
-#if defined(REWIND_LANES_SSE2)
-    __m128 lo[4] = {in[0].v, in[1].v, in[2].v, in[3].v};
-    __m128 hi[4] = {in[4].v, in[5].v, in[6].v, in[7].v};
-    _MM_TRANSPOSE4_PS(lo[0], lo[1], lo[2], lo[3]);
-    _MM_TRANSPOSE4_PS(hi[0], hi[1], hi[2], hi[3]);
-    for (int i = 0; i < kLanes; ++i) {
-      if (rows[i] == nullptr) continue;
-      _mm_store_ps(rows[i], lo[i]);
-      _mm_store_ps(rows[i] + 4, hi[i]);
-    }
-#else
-    alignas(16) float f[8][kLanes];
-    for (int k = 0; k < 8; ++k) store(f[k], in[k]);
-    for (int i = 0; i < kLanes; ++i) {
-      if (rows[i] == nullptr) continue;
-      for (int k = 0; k < 8; ++k) rows[i][k] = f[k][i];
-    }
-#endif
-  }
-  uint32_t body_a(int lane) const {
-    return batch->body_a[lane];
-  }
-  uint32_t body_b(int lane) const {
-    return batch->body_b[lane];
-  }
-  ContactBatch& first() const {
-    return *batch;
-  }
+  static void gather_rows(const float* const (&rows)[kLanes], F (&out)[8]) { load_rows(rows, out); }
+  static void scatter_rows(const F (&in)[8], float* const (&rows)[kLanes]) { store_rows(in, rows); }
+  uint32_t body_a(int lane) const { return batch->body_a[lane]; }
+  uint32_t body_b(int lane) const { return batch->body_b[lane]; }
+  ContactBatch& first() const { return *batch; }
 };
 
 bool use_eight_lanes() {

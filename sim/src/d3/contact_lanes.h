@@ -16,6 +16,9 @@
 //   acc.st(field, v)      batches, the same field of the second
 //   acc.body_a(lane)      solver body of a lane (body_b likewise)
 //   acc.first()           the first batch, whose fields name what to load
+//   A::gather_rows(rows, out), A::scatter_rows(in, rows)
+//                         kWidth solver-body rows of eight floats into eight
+//                         lane values and back (null rows left alone)
 //
 // Everything here has internal linkage: each file that includes it compiles
 // its own copy for its own instruction set.

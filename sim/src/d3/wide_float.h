@@ -177,4 +177,51 @@ inline FloatW operator-(FloatW a) {
   return splat(0.0f) - a;
 }
 
+/// Eight floats from each of kLanes rows (a solver body's row, 16-byte
+/// aligned) into eight lane values: out[k] holds float k of every row.
+inline void load_rows(const float* const (&rows)[kLanes], FloatW (&out)[8]) {
+#if defined(REWIND_LANES_SSE2)
+  __m128 lo[kLanes];
+  __m128 hi[kLanes];
+  for (int i = 0; i < kLanes; ++i) {
+    lo[i] = _mm_load_ps(rows[i]);
+    hi[i] = _mm_load_ps(rows[i] + 4);
+  }
+  _MM_TRANSPOSE4_PS(lo[0], lo[1], lo[2], lo[3]);
+  _MM_TRANSPOSE4_PS(hi[0], hi[1], hi[2], hi[3]);
+  for (int k = 0; k < 4; ++k) {
+    out[k] = {lo[k]};
+    out[4 + k] = {hi[k]};
+  }
+#else
+  alignas(16) float f[8][kLanes];
+  for (int i = 0; i < kLanes; ++i) {
+    for (int k = 0; k < 8; ++k) f[k][i] = rows[i][k];
+  }
+  for (int k = 0; k < 8; ++k) out[k] = load(f[k]);
+#endif
+}
+
+/// The inverse of load_rows, whole rows at a time; null rows are left alone.
+inline void store_rows(const FloatW (&in)[8], float* const (&rows)[kLanes]) {
+#if defined(REWIND_LANES_SSE2)
+  __m128 lo[4] = {in[0].v, in[1].v, in[2].v, in[3].v};
+  __m128 hi[4] = {in[4].v, in[5].v, in[6].v, in[7].v};
+  _MM_TRANSPOSE4_PS(lo[0], lo[1], lo[2], lo[3]);
+  _MM_TRANSPOSE4_PS(hi[0], hi[1], hi[2], hi[3]);
+  for (int i = 0; i < kLanes; ++i) {
+    if (rows[i] == nullptr) continue;
+    _mm_store_ps(rows[i], lo[i]);
+    _mm_store_ps(rows[i] + 4, hi[i]);
+  }
+#else
+  alignas(16) float f[8][kLanes];
+  for (int k = 0; k < 8; ++k) store(f[k], in[k]);
+  for (int i = 0; i < kLanes; ++i) {
+    if (rows[i] == nullptr) continue;
+    for (int k = 0; k < 8; ++k) rows[i][k] = f[k][i];
+  }
+#endif
+}
+
 }  // namespace rwd::sim::d3
