@@ -435,7 +435,6 @@ void finalize(WorldState& state, WorldScratch& scratch, float tick) {
     if (settle_body(config, before, state.infos[index], sim)) {
       scratch.body_events.push_back(
           {BodyEventType::kLeftBounds, {index, state.infos[index].generation}, sim.position});
-      mark_passive_dirty(scratch);
     }
   }
 }

@@ -61,23 +61,20 @@ bool is_moving_kinematic(const WorldState& state, uint32_t i) {
 
 }  // namespace
 
-void wake_body(WorldState& state, WorldScratch& scratch, uint32_t index) {
+void wake_body(WorldState& state, uint32_t index) {
   BodyInfo& info = state.infos[index];
   if (!is_simulated(info) || info.kind == BodyKind::kStatic) return;
   state.sims[index].sleep_time = 0.0f;
-  if (info.awake == 0) {
-    info.awake = 1;
-    mark_passive_dirty(scratch);
-  }
+  info.awake = 1;
 }
 
-void wake_touching(WorldState& state, WorldScratch& scratch, BodyId id) {
+void wake_touching(WorldState& state, BodyId id) {
   for (const ContactRecord& r : state.contacts) {
     if (r.touching == 0 || !live_record(state, r)) continue;
     if (r.index_a == id.index && r.generation_a == id.generation) {
-      wake_body(state, scratch, r.index_b);
+      wake_body(state, r.index_b);
     } else if (r.index_b == id.index && r.generation_b == id.generation) {
-      wake_body(state, scratch, r.index_a);
+      wake_body(state, r.index_a);
     }
   }
 }
@@ -123,7 +120,7 @@ void wake_touched_islands(WorldState& state, WorldScratch& scratch) {
     BodyInfo& info = state.infos[i];
     if (!is_simulated(info) || info.kind != BodyKind::kDynamic || info.awake != 0) continue;
     if (scratch.island_flag[find_root(scratch.island_parent, i)] == 0) continue;
-    wake_body(state, scratch, i);
+    wake_body(state, i);
     woke = true;
   }
   if (!woke) return;
@@ -177,7 +174,6 @@ void update_sleep(WorldState& state, WorldScratch& scratch) {
     info.awake = 0;
     state.sims[i].linear_velocity = {};
     state.sims[i].angular_velocity = {};
-    mark_passive_dirty(scratch);
   }
 }
 

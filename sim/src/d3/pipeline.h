@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The stages of World3D::step(), one file each, in the order they run:
-//   broadphase.cpp     find_pairs: candidate pairs from fat bounds
+//   broadphase.cpp     find_pairs: candidate pairs from two AABB trees
 //   narrowphase.cpp    update_contacts: manifolds, feature-id warm starting,
 //                      sleeping contacts carried over
 //   island_sleep.cpp   wake_touched_islands: sleeping islands touched by an
@@ -18,10 +18,10 @@ namespace rwd::sim::d3 {
 
 /// Fills scratch.pairs with candidate pairs sorted by (a, b).
 void find_pairs(const WorldState& state, WorldScratch& scratch);
-/// Marks the passive broadphase list for rebuilding (sleep, wake, create,
-/// destroy, teleport, restore).
-inline void mark_passive_dirty(WorldScratch& scratch) {
-  scratch.passive_dirty = true;
+/// The world was edited (create, destroy, teleport, enable, restore): the
+/// broadphase rebuilds its trees before the next pairs.
+inline void mark_static_dirty(WorldScratch& scratch) {
+  scratch.static_dirty = true;
 }
 
 /// Replaces state.contacts with this step's cache (old one kept in
@@ -36,9 +36,9 @@ void wake_touched_islands(WorldState& state, WorldScratch& scratch);
 /// Advances sleep timers and puts islands at rest to sleep.
 void update_sleep(WorldState& state, WorldScratch& scratch);
 /// Wakes one body (no island propagation: the next step does that).
-void wake_body(WorldState& state, WorldScratch& scratch, uint32_t index);
+void wake_body(WorldState& state, uint32_t index);
 /// Wakes every live body with a touching contact with `id`.
-void wake_touching(WorldState& state, WorldScratch& scratch, BodyId id);
+void wake_touching(WorldState& state, BodyId id);
 
 /// Fills scratch.events from scratch.other_contacts (last step) and
 /// state.contacts (this step).

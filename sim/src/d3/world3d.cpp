@@ -156,7 +156,7 @@ Result<BodyId> World3D::create_body(const BodyDef& def) {
   state_.sims[index] = sim;
   state_.masses[index] = mass;
   ++state_.live_count;
-  d3::mark_passive_dirty(*scratch_);
+  d3::mark_static_dirty(*scratch_);
   return BodyId{index, generation};
 }
 
@@ -164,7 +164,7 @@ Status World3D::destroy_body(BodyId id) {
   if (!is_live(state_, id)) return not_found();
   // Bodies resting on this one must not float: wake everything it touches.
   // Its cache records stay, so the next step reports their exit events.
-  d3::wake_touching(state_, *scratch_, id);
+  d3::wake_touching(state_, id);
   BodyInfo& info = state_.infos[id.index];
   info.alive = 0;
   info.awake = 0;
@@ -174,7 +174,7 @@ Status World3D::destroy_body(BodyId id) {
   free.insert(std::lower_bound(free.begin(), free.end(), id.index, std::greater<uint32_t>()),
               id.index);
   --state_.live_count;
-  d3::mark_passive_dirty(*scratch_);
+  d3::mark_static_dirty(*scratch_);
   return Status::Ok();
 }
 
@@ -233,12 +233,12 @@ Status World3D::set_transform(BodyId id, Vec3 position, Quat rotation) {
     return invalid("position must be inside the world bounds");
   }
   // A teleported body may leave sleeping bodies unsupported.
-  d3::wake_touching(state_, *scratch_, id);
+  d3::wake_touching(state_, id);
   BodySim& sim = state_.sims[id.index];
   sim.position = p;
   sim.rotation = quantize(normalize(rotation));
-  d3::wake_body(state_, *scratch_, id.index);
-  d3::mark_passive_dirty(*scratch_);
+  d3::wake_body(state_, id.index);
+  d3::mark_static_dirty(*scratch_);
   return Status::Ok();
 }
 
@@ -272,7 +272,7 @@ Status World3D::set_linear_velocity(BodyId id, Vec3 velocity_mps) {
   const Vec3 v = quantize(velocity_mps);
   if (!speed_ok(v)) return invalid("velocity must be finite, at most 1e4 m/s");
   state_.sims[id.index].linear_velocity = v;
-  d3::wake_body(state_, *scratch_, id.index);
+  d3::wake_body(state_, id.index);
   return Status::Ok();
 }
 
@@ -287,7 +287,7 @@ Status World3D::set_angular_velocity(BodyId id, Vec3 velocity_radps) {
   const Vec3 w = quantize(velocity_radps);
   if (!speed_ok(w)) return invalid("angular velocity must be finite, at most 1e4 rad/s");
   state_.sims[id.index].angular_velocity = w;
-  d3::wake_body(state_, *scratch_, id.index);
+  d3::wake_body(state_, id.index);
   return Status::Ok();
 }
 
@@ -310,7 +310,7 @@ Status World3D::apply_linear_impulse(BodyId id, Vec3 impulse, Vec3 world_point) 
   if (!speed_ok(v) || !speed_ok(w)) return invalid("impulse would exceed the speed limit");
   sim.linear_velocity = v;
   sim.angular_velocity = w;
-  d3::wake_body(state_, *scratch_, id.index);
+  d3::wake_body(state_, id.index);
   return Status::Ok();
 }
 
@@ -325,7 +325,7 @@ Status World3D::apply_force(BodyId id, Vec3 force_n) {
     return invalid("force too large (> 1e12 N)");
   }
   state_.sims[id.index].force = f;
-  d3::wake_body(state_, *scratch_, id.index);
+  d3::wake_body(state_, id.index);
   return Status::Ok();
 }
 
@@ -335,14 +335,14 @@ Status World3D::set_enabled(BodyId id, bool enabled) {
   if ((info.enabled != 0) == enabled) return Status::Ok();
   if (enabled) {
     info.enabled = 1;
-    d3::wake_body(state_, *scratch_, id.index);
+    d3::wake_body(state_, id.index);
   } else {
     // What rested on it must fall; its contacts end (with exit events) on
     // the next step, as a destroyed body's do.
-    d3::wake_touching(state_, *scratch_, id);
+    d3::wake_touching(state_, id);
     d3::disable_body(info, state_.sims[id.index]);
   }
-  d3::mark_passive_dirty(*scratch_);
+  d3::mark_static_dirty(*scratch_);
   return Status::Ok();
 }
 
@@ -396,7 +396,7 @@ void World3D::save(WorldState& out) const {
 void World3D::restore(const WorldState& in) {
   state_ = in;
   // Scratch derived from the old state must not leak into the next step.
-  d3::mark_passive_dirty(*scratch_);
+  d3::mark_static_dirty(*scratch_);
   scratch_->events.clear();
   scratch_->body_events.clear();
 }

@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Per-step working memory of a World3D. Nothing here is state: every array is
-// rebuilt from WorldState during a step (or, for the passive broadphase list,
-// rebuilt whenever it is marked dirty, which restore() does), so a restored
-// world steps exactly like the one that was saved. The vectors keep their
+// Per-step working memory of a World3D. Nothing here is state: what is kept
+// from step to step (the broadphase's trees and sweep order) only speeds up
+// finding what the state alone decides, and restore() has the trees
+// rebuilt, so a restored world steps exactly like the one that was saved. The vectors keep their
 // capacity between steps, so a warmed-up world does not allocate.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "d3/aabb_tree.h"
 #include "d3/contact_batches.h"
 #include "d3/manifold.h"
 #include "rewind/sim/body_event.h"
@@ -16,17 +17,6 @@
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim::d3 {
-
-struct Aabb {
-  Vec3 lower;
-  Vec3 upper;
-};
-
-/// One body in a broadphase list, sorted by (min_x, body).
-struct SweepEntry {
-  float min_x;
-  uint32_t body;
-};
 
 struct BodyPair {
   uint32_t a;  ///< lower index
@@ -127,17 +117,35 @@ namespace rwd::sim {
 class WorldScratch {
  public:
   using Aabb = d3::Aabb;
-  using SweepEntry = d3::SweepEntry;
   using BodyPair = d3::BodyPair;
   using ContactGeometry = d3::ContactGeometry;
   using SolverBody = d3::SolverBody;
   using ContactConstraint = d3::ContactConstraint;
 
-  // broadphase
-  std::vector<Aabb> aabbs;  ///< by body index; valid for active bodies and the passive list
-  std::vector<SweepEntry> active;
-  std::vector<SweepEntry> passive;
-  bool passive_dirty = true;
+  // broadphase (broadphase.cpp)
+  /// By body index: this step's bounds of every awake body (fattened by
+  /// the speculative distance and its reach this tick) and the exact
+  /// bounds of every static and sleeping one.
+  std::vector<Aabb> aabbs;
+  std::vector<uint32_t> active;  ///< awake movable bodies, ascending
+  /// The awake bodies sorted along the sweep axis, kept from step to step
+  /// so re-sorting a scene that moved a little is nearly free; the bounds
+  /// are copied beside them in that order so the sweep reads memory in
+  /// sequence.
+  std::vector<uint32_t> sweep_order;
+  std::vector<float> sweep_lower;  ///< on the sweep axis
+  std::vector<float> sweep_upper;
+  std::vector<float> sweep_cross[4];  ///< lower, upper, lower, upper on the other two axes
+  std::vector<Aabb> sweep_boxes;
+  std::vector<uint32_t> sweep_hits;  ///< one body's overlaps, positions in the order
+  int sweep_axis = 0;
+  d3::AabbTree sleeping_tree;           ///< sleeping movable bodies, exact leaves
+  d3::AabbTree static_tree;             ///< static bodies, exact leaves, built in bulk
+  std::vector<uint32_t> sleeping_proxy; ///< by body index; AabbTree::kNull if none
+  std::vector<uint32_t> tree_bodies;    ///< bulk-build input
+  std::vector<Aabb> tree_boxes;
+  std::vector<uint32_t> tree_proxies;
+  bool static_dirty = true;  ///< the world was edited: both trees are rebuilt
   std::vector<BodyPair> pairs;
   // narrowphase
   std::vector<ContactRecord> other_contacts;  ///< last step's cache after the swap

@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// A bounding volume hierarchy of axis-aligned boxes: leaves are bodies,
+// every inner node bounds its two children. It supports both ways a
+// broadphase keeps one:
+//   - incremental (insert, remove): inserts descend by the surface-area
+//     cost and the path back up is kept height-balanced by rotations, so
+//     the tree stays shallow however leaves arrive;
+//   - bulk (build): a top-down median split, for geometry that changes
+//     rarely (static bodies).
+// The tree is working memory only. Its shape depends on the order of past
+// edits, so nothing that reaches the state may depend on it: callers use it
+// to find candidates and then decide on exact boxes, and sort what they
+// keep (broadphase.cpp).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "rewind/sim/math.h"
+
+namespace rwd::sim::d3 {
+
+struct Aabb {
+  Vec3 lower;
+  Vec3 upper;
+};
+
+inline bool overlaps(const Aabb& a, const Aabb& b) {
+  return a.lower.x <= b.upper.x && b.lower.x <= a.upper.x && a.lower.y <= b.upper.y &&
+         b.lower.y <= a.upper.y && a.lower.z <= b.upper.z && b.lower.z <= a.upper.z;
+}
+
+inline bool contains(const Aabb& outer, const Aabb& inner) {
+  return outer.lower.x <= inner.lower.x && outer.lower.y <= inner.lower.y &&
+         outer.lower.z <= inner.lower.z && inner.upper.x <= outer.upper.x &&
+         inner.upper.y <= outer.upper.y && inner.upper.z <= outer.upper.z;
+}
+
+class AabbTree {
+ public:
+  static constexpr uint32_t kNull = 0xFFFFFFFFu;
+
+  /// Removes every leaf; capacity is kept.
+  void clear();
+
+  /// Adds a leaf for `body` bounded by `box`; returns its proxy (stable
+  /// until removed).
+  uint32_t insert(const Aabb& box, uint32_t body);
+  void remove(uint32_t proxy);
+  const Aabb& box(uint32_t proxy) const { return nodes_[proxy].box; }
+
+  /// Replaces the tree by one built top-down over `boxes[i]` for
+  /// `bodies[i]`; proxies[i] receives each leaf's proxy.
+  void build(std::span<const Aabb> boxes, std::span<const uint32_t> bodies,
+             std::vector<uint32_t>& proxies);
+
+  /// Calls visit(body) for every leaf whose box overlaps `box`, in tree
+  /// order (callers must not depend on that order).
+  template <typename Visit>
+  void query(const Aabb& box, Visit&& visit) const;
+
+  uint32_t leaf_count() const { return leaves_; }
+  /// Longest root-to-leaf path (0 for one leaf, -1 when empty).
+  int32_t height() const { return root_ == kNull ? -1 : nodes_[root_].height; }
+  /// Checks parent links, heights, balance and that every inner box
+  /// bounds its children; for tests.
+  bool valid() const;
+
+ private:
+  struct Node {
+    Aabb box;
+    uint32_t parent;  ///< or the next free node
+    uint32_t child1;  ///< kNull for a leaf
+    uint32_t child2;
+    int32_t height;  ///< 0 for a leaf, -1 for a free node
+    uint32_t body;
+  };
+
+  uint32_t allocate();
+  void release(uint32_t node);
+  void insert_leaf(uint32_t leaf);
+  void remove_leaf(uint32_t leaf);
+  uint32_t balance(uint32_t a);
+  void refit_upward(uint32_t node);
+  uint32_t build_range(uint32_t* leaves, uint32_t count, uint32_t parent);
+  bool valid_subtree(uint32_t node, uint32_t parent) const;
+
+  std::vector<Node> nodes_;
+  std::vector<uint32_t> build_leaves_;
+  uint32_t root_ = kNull;
+  uint32_t free_ = kNull;
+  uint32_t leaves_ = 0;
+};
+
+template <typename Visit>
+void AabbTree::query(const Aabb& box, Visit&& visit) const {
+  if (root_ == kNull) return;
+  // A depth-first walk holds at most one entry per level plus one. Rotations
+  // keep the tree shallow (tens of levels for millions of leaves), so the
+  // stack lives on the call stack unless a tree is pathologically deep.
+  uint32_t local[128];
+  std::vector<uint32_t> deep;
+  uint32_t* stack = local;
+  if (nodes_[root_].height + 2 > 128) {
+    deep.resize(static_cast<size_t>(nodes_[root_].height) + 2);
+    stack = deep.data();
+  }
+  uint32_t top = 0;
+  stack[top++] = root_;
+  while (top > 0) {
+    const Node& node = nodes_[stack[--top]];
+    if (!overlaps(node.box, box)) continue;
+    if (node.child1 == kNull) {
+      visit(node.body);
+    } else {
+      stack[top++] = node.child1;
+      stack[top++] = node.child2;
+    }
+  }
+}
+
+}  // namespace rwd::sim::d3
