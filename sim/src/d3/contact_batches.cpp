@@ -64,8 +64,7 @@ void color(WorldScratch& scratch) {
 }
 
 void clear_point(ContactBatch::Point& p, int lane) {
-  for (float(*v)[kLanes] : {p.anchor_a, p.anchor_b, p.rn_a, p.rn_b, p.rt1_a, p.rt1_b, p.rt2_a,
-                            p.rt2_b, p.in_a, p.in_b, p.it1_a, p.it1_b, p.it2_a, p.it2_b}) {
+  for (float(*v)[kLanes] : {p.anchor_a, p.anchor_b}) {
     for (int i = 0; i < 3; ++i) v[i][lane] = 0.0f;
   }
   p.base_separation[lane] = 0.0f;
@@ -93,12 +92,6 @@ void clear_lane(ContactBatch& batch, int lane) {
   for (auto& row : batch.coupling) {
     for (auto& k : row) k[lane] = 0.0f;
   }
-}
-
-void put(float (&dst)[3][kLanes], int lane, Vec3 v) {
-  dst[0][lane] = v.x;
-  dst[1][lane] = v.y;
-  dst[2][lane] = v.z;
 }
 
 // Packs constraint `index` into a lane. The normal K matrix (and from its
@@ -139,12 +132,6 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, ContactConstraint&
     const Vec3 rt1_b = cross(cp.anchor_b, c.tangent1);
     const Vec3 rt2_a = cross(cp.anchor_a, c.tangent2);
     const Vec3 rt2_b = cross(cp.anchor_b, c.tangent2);
-    put(bp.rn_a, lane, rn_a);
-    put(bp.rn_b, lane, rn_b);
-    put(bp.rt1_a, lane, rt1_a);
-    put(bp.rt1_b, lane, rt1_b);
-    put(bp.rt2_a, lane, rt2_a);
-    put(bp.rt2_b, lane, rt2_b);
     const Vec3 it1_a = body_a.inv_inertia * rt1_a;
     const Vec3 it1_b = body_b.inv_inertia * rt1_b;
     const Vec3 it2_a = body_a.inv_inertia * rt2_a;
@@ -153,12 +140,6 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, ContactConstraint&
     rn_b_of[p] = rn_b;
     in_a_of[p] = body_a.inv_inertia * rn_a;
     in_b_of[p] = body_b.inv_inertia * rn_b;
-    put(bp.in_a, lane, in_a_of[p]);
-    put(bp.in_b, lane, in_b_of[p]);
-    put(bp.it1_a, lane, it1_a);
-    put(bp.it1_b, lane, it1_b);
-    put(bp.it2_a, lane, it2_a);
-    put(bp.it2_b, lane, it2_b);
     bp.base_separation[lane] = cp.base_separation;
     bp.separation[lane] = cp.separation;
     // Tangent masses from the same vectors (the effective mass along each

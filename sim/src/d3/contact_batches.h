@@ -43,24 +43,12 @@ struct alignas(16) ContactBatch {
   float tangent2[3][kLanes];
   float friction[kLanes];
   struct Point {
+    // The anchors are all a point keeps of its geometry: the passes derive
+    // the Jacobian's angular parts (anchor x axis) and their products with
+    // the bodies' inverse inertias in registers, as the scalar code would,
+    // so a batch stays small enough for the passes to stream it from cache.
     float anchor_a[3][kLanes];
     float anchor_b[3][kLanes];
-    // The Jacobian's angular parts (anchor x axis) and what a unit impulse
-    // along them does to each body's angular velocity (inverse inertia
-    // times them), fixed for the step like the anchors: the passes then
-    // need dot products and scaled adds, no cross products or matrices.
-    float rn_a[3][kLanes];
-    float rn_b[3][kLanes];
-    float rt1_a[3][kLanes];
-    float rt1_b[3][kLanes];
-    float rt2_a[3][kLanes];
-    float rt2_b[3][kLanes];
-    float in_a[3][kLanes];
-    float in_b[3][kLanes];
-    float it1_a[3][kLanes];
-    float it1_b[3][kLanes];
-    float it2_a[3][kLanes];
-    float it2_b[3][kLanes];
     float base_separation[kLanes];
     float separation[kLanes];
     float normal_mass[kLanes];

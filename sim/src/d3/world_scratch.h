@@ -39,12 +39,14 @@ struct ContactGeometry {
 ///
 /// The first eight floats (velocities, inverse mass, the angular damping
 /// factor) are one aligned row, so the solver's lanes gather and scatter
-/// bodies with a few vector loads and a transpose (contact_lanes.h).
+/// bodies with a few vector loads and a transpose (contact_lanes.h); the
+/// inverse inertia follows as a second row and one float.
 struct alignas(32) SolverBody {
   Vec3 linear_velocity;
   Vec3 angular_velocity;
   float inv_mass;
   float angular_damping_factor;
+  Mat3 inv_inertia;  ///< world frame, fixed for the step
   /// Push-out velocities of the current substep: they move the body out of
   /// overlaps and are then dropped, so recovering from an overlap never
   /// becomes real velocity (a split impulse).
@@ -52,15 +54,16 @@ struct alignas(32) SolverBody {
   Vec3 push_angular;
   Vec3 delta_position;
   Quat delta_rotation;
-  Mat3 inv_inertia;             ///< world frame, fixed for the step
   Vec3 linear_acceleration;     ///< gravity plus applied force, m/s^2
   float linear_damping_factor;  ///< 1 / (1 + h * damping), per substep
   uint8_t pushed;               ///< push velocities are non-zero this substep
 };
 static_assert(offsetof(SolverBody, angular_velocity) == 3 * sizeof(float) &&
                   offsetof(SolverBody, inv_mass) == 6 * sizeof(float) &&
-                  offsetof(SolverBody, angular_damping_factor) == 7 * sizeof(float),
-              "the solver's lanes read a body's first eight floats as one row");
+                  offsetof(SolverBody, angular_damping_factor) == 7 * sizeof(float) &&
+                  offsetof(SolverBody, inv_inertia) == 8 * sizeof(float),
+              "the solver's lanes read a body's first eight floats as one row and its "
+              "inverse inertia (columns) as the next nine");
 
 /// How hard overlaps are pushed out: the separating speed per metre of
 /// overlap and the fraction of a rigid push-out impulse applied per substep,
