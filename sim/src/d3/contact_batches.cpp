@@ -64,7 +64,8 @@ void color(WorldScratch& scratch) {
 }
 
 void clear_point(ContactBatch::Point& p, int lane) {
-  for (float(*v)[kLanes] : {p.anchor_a, p.anchor_b}) {
+  for (float(*v)[kLanes] : {p.anchor_a, p.anchor_b, p.in_a, p.in_b, p.it1_a, p.it1_b, p.it2_a,
+                            p.it2_b}) {
     for (int i = 0; i < 3; ++i) v[i][lane] = 0.0f;
   }
   p.base_separation[lane] = 0.0f;
@@ -92,6 +93,12 @@ void clear_lane(ContactBatch& batch, int lane) {
   for (auto& row : batch.coupling) {
     for (auto& k : row) k[lane] = 0.0f;
   }
+}
+
+void put(float (&dst)[3][kLanes], int lane, Vec3 v) {
+  dst[0][lane] = v.x;
+  dst[1][lane] = v.y;
+  dst[2][lane] = v.z;
 }
 
 // Packs constraint `index` into a lane. The normal K matrix (and from its
@@ -140,6 +147,12 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, ContactConstraint&
     rn_b_of[p] = rn_b;
     in_a_of[p] = body_a.inv_inertia * rn_a;
     in_b_of[p] = body_b.inv_inertia * rn_b;
+    put(bp.in_a, lane, in_a_of[p]);
+    put(bp.in_b, lane, in_b_of[p]);
+    put(bp.it1_a, lane, it1_a);
+    put(bp.it1_b, lane, it1_b);
+    put(bp.it2_a, lane, it2_a);
+    put(bp.it2_b, lane, it2_b);
     bp.base_separation[lane] = cp.base_separation;
     bp.separation[lane] = cp.separation;
     // Tangent masses from the same vectors (the effective mass along each

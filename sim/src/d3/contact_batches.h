@@ -43,12 +43,19 @@ struct alignas(16) ContactBatch {
   float tangent2[3][kLanes];
   float friction[kLanes];
   struct Point {
-    // The anchors are all a point keeps of its geometry: the passes derive
-    // the Jacobian's angular parts (anchor x axis) and their products with
-    // the bodies' inverse inertias in registers, as the scalar code would,
-    // so a batch stays small enough for the passes to stream it from cache.
+    // The Jacobian's angular parts (anchor x axis) are derived in
+    // registers from the anchors and axes, as the scalar code computes
+    // them; what a unit impulse along them does to each body's angular
+    // velocity (inverse inertia times them) is kept for the step, since
+    // deriving it would need each body's inertia gathered on every pass.
     float anchor_a[3][kLanes];
     float anchor_b[3][kLanes];
+    float in_a[3][kLanes];
+    float in_b[3][kLanes];
+    float it1_a[3][kLanes];
+    float it1_b[3][kLanes];
+    float it2_a[3][kLanes];
+    float it2_b[3][kLanes];
     float base_separation[kLanes];
     float separation[kLanes];
     float normal_mass[kLanes];

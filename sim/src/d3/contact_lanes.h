@@ -91,34 +91,6 @@ LaneBodies<typename A::F> gather_bodies(const A& acc, const std::vector<SolverBo
   return {{f[0], f[1], f[2]}, {f[3], f[4], f[5]}, f[6], f[7]};
 }
 
-// The lanes' bodies' world inverse inertias (columns): the row after the
-// velocities, transposed like it, and the ninth float one lane at a time.
-template <class F>
-struct LaneInertia {
-  V3<F> c0, c1, c2;
-};
-
-template <class A>
-LaneInertia<typename A::F> gather_inertia(const A& acc, const std::vector<SolverBody>& bodies,
-                                          bool side_b) {
-  const float* rows[A::kWidth];
-  alignas(32) float last[A::kWidth];
-  for (int i = 0; i < A::kWidth; ++i) {
-    rows[i] = body_row(bodies[side_b ? acc.body_b(i) : acc.body_a(i)]) + 8;
-    last[i] = rows[i][8];
-  }
-  typename A::F f[8];
-  A::gather_rows(rows, f);
-  return {{f[0], f[1], f[2]}, {f[3], f[4], f[5]}, {f[6], f[7], A::from(last)}};
-}
-
-// m v with the association of Mat3 * Vec3 (math.h), so a lane's product is
-// bit for bit the scalar one.
-template <class F>
-V3<F> mul(const LaneInertia<F>& m, const V3<F>& v) {
-  return m.c0 * v.x + m.c1 * v.y + m.c2 * v.z;
-}
-
 // Writes the lanes' rows back (velocities; the inverse mass and the eighth
 // float as they were read, so a row is stored whole and the next gather's
 // load of it is forwarded from the store) to the bodies that can move. A movable
@@ -143,8 +115,6 @@ void warm_start_lanes(const A& acc, std::vector<SolverBody>& bodies) {
   const ContactBatch& batch = acc.first();
   LaneBodies<F> a = gather_bodies(acc, bodies, false);
   LaneBodies<F> b = gather_bodies(acc, bodies, true);
-  const LaneInertia<F> ia = gather_inertia(acc, bodies, false);
-  const LaneInertia<F> ib = gather_inertia(acc, bodies, true);
   const V3<F> n = ld3(acc, batch.normal);
   const V3<F> t1 = ld3(acc, batch.tangent1);
   const V3<F> t2 = ld3(acc, batch.tangent2);
@@ -156,13 +126,9 @@ void warm_start_lanes(const A& acc, std::vector<SolverBody>& bodies) {
     const F ln = acc.ld(p.normal_impulse);
     const F l1 = acc.ld(p.tangent_impulse1);
     const F l2 = acc.ld(p.tangent_impulse2);
-    const V3<F> ra = ld3(acc, p.anchor_a);
-    const V3<F> rb = ld3(acc, p.anchor_b);
     linear = linear + (n * ln + t1 * l1 + t2 * l2);
-    turn_a = turn_a + (mul(ia, cross3(ra, n)) * ln + mul(ia, cross3(ra, t1)) * l1 +
-                       mul(ia, cross3(ra, t2)) * l2);
-    turn_b = turn_b + (mul(ib, cross3(rb, n)) * ln + mul(ib, cross3(rb, t1)) * l1 +
-                       mul(ib, cross3(rb, t2)) * l2);
+    turn_a = turn_a + (ld3(acc, p.in_a) * ln + ld3(acc, p.it1_a) * l1 + ld3(acc, p.it2_a) * l2);
+    turn_b = turn_b + (ld3(acc, p.in_b) * ln + ld3(acc, p.it1_b) * l1 + ld3(acc, p.it2_b) * l2);
   }
   a.v = a.v - linear * a.inv_mass;
   a.w = a.w - turn_a;
@@ -184,8 +150,6 @@ void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
   const F inv_h_w = A::splat(inv_h);
   LaneBodies<F> a = gather_bodies(acc, bodies, false);
   LaneBodies<F> b = gather_bodies(acc, bodies, true);
-  const LaneInertia<F> ia = gather_inertia(acc, bodies, false);
-  const LaneInertia<F> ib = gather_inertia(acc, bodies, true);
   const V3<F> n = ld3(acc, batch.normal);
 
   F residual[kMaxManifoldPoints];
@@ -226,8 +190,8 @@ void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
     acc.st(bp.max_normal_impulse, select(total[p] > max_seen, total[p], max_seen));
     const F change = total[p] - start[p];
     pushed = pushed + change;
-    turn_a = turn_a + mul(ia, rn_a[p]) * change;
-    turn_b = turn_b + mul(ib, rn_b[p]) * change;
+    turn_a = turn_a + ld3(acc, bp.in_a) * change;
+    turn_b = turn_b + ld3(acc, bp.in_b) * change;
   }
   a.v = a.v - n * (pushed * a.inv_mass);
   a.w = a.w - turn_a;
@@ -267,9 +231,9 @@ void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
     const F i2 = f2 - old2;
     const V3<F> impulse = t1 * i1 + t2 * i2;
     a.v = a.v - impulse * a.inv_mass;
-    a.w = a.w - (mul(ia, rt1_a) * i1 + mul(ia, rt2_a) * i2);
+    a.w = a.w - (ld3(acc, bp.it1_a) * i1 + ld3(acc, bp.it2_a) * i2);
     b.v = b.v + impulse * b.inv_mass;
-    b.w = b.w + (mul(ib, rt1_b) * i1 + mul(ib, rt2_b) * i2);
+    b.w = b.w + (ld3(acc, bp.it1_b) * i1 + ld3(acc, bp.it2_b) * i2);
   }
   scatter_bodies(acc, bodies, false, a);
   scatter_bodies(acc, bodies, true, b);

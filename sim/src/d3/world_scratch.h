@@ -39,8 +39,7 @@ struct ContactGeometry {
 ///
 /// The first eight floats (velocities, inverse mass, the angular damping
 /// factor) are one aligned row, so the solver's lanes gather and scatter
-/// bodies with a few vector loads and a transpose (contact_lanes.h); the
-/// inverse inertia follows as a second row and one float.
+/// bodies with a few vector loads and a transpose (contact_lanes.h).
 struct alignas(32) SolverBody {
   Vec3 linear_velocity;
   Vec3 angular_velocity;
@@ -60,10 +59,8 @@ struct alignas(32) SolverBody {
 };
 static_assert(offsetof(SolverBody, angular_velocity) == 3 * sizeof(float) &&
                   offsetof(SolverBody, inv_mass) == 6 * sizeof(float) &&
-                  offsetof(SolverBody, angular_damping_factor) == 7 * sizeof(float) &&
-                  offsetof(SolverBody, inv_inertia) == 8 * sizeof(float),
-              "the solver's lanes read a body's first eight floats as one row and its "
-              "inverse inertia (columns) as the next nine");
+                  offsetof(SolverBody, angular_damping_factor) == 7 * sizeof(float),
+              "the solver's lanes read a body's first eight floats as one row");
 
 /// How hard overlaps are pushed out: the separating speed per metre of
 /// overlap and the fraction of a rigid push-out impulse applied per substep,
