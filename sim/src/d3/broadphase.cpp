@@ -60,8 +60,8 @@ void rebuild_trees(const WorldState& state, WorldScratch& scratch) {
     scratch.tree_boxes.clear();
     for (uint32_t i = 0; i < n; ++i) {
       const BodyInfo& info = state.infos[i];
-      const bool wanted = statics ? is_simulated(info) && info.kind == BodyKind::kStatic
-                                  : is_sleeping(info);
+      const bool wanted =
+          statics ? is_simulated(info) && info.kind == BodyKind::kStatic : is_sleeping(info);
       if (!wanted) continue;
       scratch.tree_bodies.push_back(i);
       scratch.tree_boxes.push_back(exact_bounds(state, i));
@@ -167,7 +167,8 @@ void sort_sweep(const WorldState& state, WorldScratch& scratch, int axis) {
       const uint32_t body = order[k];
       const float key = lower_on(scratch.aabbs[body], axis);
       size_t slot = k;
-      while (slot > 0 && (lower[slot - 1] > key || (lower[slot - 1] == key && order[slot - 1] > body))) {
+      while (slot > 0 &&
+             (lower[slot - 1] > key || (lower[slot - 1] == key && order[slot - 1] > body))) {
         lower[slot] = lower[slot - 1];
         order[slot] = order[slot - 1];
         --slot;

@@ -63,16 +63,15 @@ void color(WorldScratch& scratch) {
   }
 }
 
+// The inputs of a point past a manifold's count (prepare_lanes zeroes what
+// it derives for such points).
 void clear_point(ContactBatch::Point& p, int lane) {
-  for (float(*v)[kLanes] : {p.anchor_a, p.anchor_b, p.in_a, p.in_b, p.it1_a, p.it1_b, p.it2_a,
-                            p.it2_b}) {
-    for (int i = 0; i < 3; ++i) v[i][lane] = 0.0f;
+  for (int i = 0; i < 3; ++i) {
+    p.anchor_a[i][lane] = 0.0f;
+    p.anchor_b[i][lane] = 0.0f;
   }
   p.base_separation[lane] = 0.0f;
   p.separation[lane] = 0.0f;
-  p.normal_mass[lane] = 0.0f;
-  p.tangent_mass1[lane] = 0.0f;
-  p.tangent_mass2[lane] = 0.0f;
   p.normal_impulse[lane] = 0.0f;
   p.tangent_impulse1[lane] = 0.0f;
   p.tangent_impulse2[lane] = 0.0f;
@@ -88,30 +87,19 @@ void clear_lane(ContactBatch& batch, int lane) {
     batch.tangent1[i][lane] = 0.0f;
     batch.tangent2[i][lane] = 0.0f;
   }
+  batch.point_count[lane] = 0.0f;
   batch.friction[lane] = 0.0f;
   for (ContactBatch::Point& p : batch.points) clear_point(p, lane);
-  for (auto& row : batch.coupling) {
-    for (auto& k : row) k[lane] = 0.0f;
-  }
 }
 
-void put(float (&dst)[3][kLanes], int lane, Vec3 v) {
-  dst[0][lane] = v.x;
-  dst[1][lane] = v.y;
-  dst[2][lane] = v.z;
-}
-
-// Packs constraint `index` into a lane. The normal K matrix (and from its
-// diagonal the normal masses) is computed here, from the vectors the lane
-// keeps anyway, and written back to the constraint for the push-out and
-// restitution, which run on the scalar constraints.
-void fill_lane(ContactBatch& batch, int lane, uint32_t index, ContactConstraint& c,
-               const std::vector<SolverBody>& bodies) {
-  const SolverBody& body_a = bodies[c.body_a];
-  const SolverBody& body_b = bodies[c.body_b];
+// Packs constraint `index` into a lane: ids, axes, anchors and impulses.
+// The quantities derived from them (inverse-inertia products, masses, the
+// normal K matrix) are computed for all lanes at once by prepare_lanes.
+void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConstraint& c) {
   batch.constraint[lane] = index;
   batch.body_a[lane] = c.body_a;
   batch.body_b[lane] = c.body_b;
+  batch.point_count[lane] = static_cast<float>(c.point_count);
   const Vec3 axes[3] = {c.normal, c.tangent1, c.tangent2};
   float(*dst[3])[kLanes] = {batch.normal, batch.tangent1, batch.tangent2};
   for (int a = 0; a < 3; ++a) {
@@ -120,10 +108,6 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, ContactConstraint&
     dst[a][2][lane] = axes[a].z;
   }
   batch.friction[lane] = c.friction;
-  Vec3 rn_a_of[kMaxManifoldPoints];
-  Vec3 rn_b_of[kMaxManifoldPoints];
-  Vec3 in_a_of[kMaxManifoldPoints];
-  Vec3 in_b_of[kMaxManifoldPoints];
   for (uint32_t p = 0; p < c.point_count; ++p) {
     const ConstraintPoint& cp = c.points[p];
     ContactBatch::Point& bp = batch.points[p];
@@ -133,58 +117,35 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, ContactConstraint&
     bp.anchor_b[0][lane] = cp.anchor_b.x;
     bp.anchor_b[1][lane] = cp.anchor_b.y;
     bp.anchor_b[2][lane] = cp.anchor_b.z;
-    const Vec3 rn_a = cross(cp.anchor_a, c.normal);
-    const Vec3 rn_b = cross(cp.anchor_b, c.normal);
-    const Vec3 rt1_a = cross(cp.anchor_a, c.tangent1);
-    const Vec3 rt1_b = cross(cp.anchor_b, c.tangent1);
-    const Vec3 rt2_a = cross(cp.anchor_a, c.tangent2);
-    const Vec3 rt2_b = cross(cp.anchor_b, c.tangent2);
-    const Vec3 it1_a = body_a.inv_inertia * rt1_a;
-    const Vec3 it1_b = body_b.inv_inertia * rt1_b;
-    const Vec3 it2_a = body_a.inv_inertia * rt2_a;
-    const Vec3 it2_b = body_b.inv_inertia * rt2_b;
-    rn_a_of[p] = rn_a;
-    rn_b_of[p] = rn_b;
-    in_a_of[p] = body_a.inv_inertia * rn_a;
-    in_b_of[p] = body_b.inv_inertia * rn_b;
-    put(bp.in_a, lane, in_a_of[p]);
-    put(bp.in_b, lane, in_b_of[p]);
-    put(bp.it1_a, lane, it1_a);
-    put(bp.it1_b, lane, it1_b);
-    put(bp.it2_a, lane, it2_a);
-    put(bp.it2_b, lane, it2_b);
     bp.base_separation[lane] = cp.base_separation;
     bp.separation[lane] = cp.separation;
-    // Tangent masses from the same vectors (the effective mass along each
-    // tangent at the point).
-    const float k1 = body_a.inv_mass + body_b.inv_mass + dot(rt1_a, it1_a) + dot(rt1_b, it1_b);
-    const float k2 = body_a.inv_mass + body_b.inv_mass + dot(rt2_a, it2_a) + dot(rt2_b, it2_b);
-    bp.tangent_mass1[lane] = k1 > 0.0f ? 1.0f / k1 : 0.0f;
-    bp.tangent_mass2[lane] = k2 > 0.0f ? 1.0f / k2 : 0.0f;
     bp.normal_impulse[lane] = cp.normal_impulse;
     bp.tangent_impulse1[lane] = cp.tangent_impulse1;
     bp.tangent_impulse2[lane] = cp.tangent_impulse2;
     bp.max_normal_impulse[lane] = cp.max_normal_impulse;
   }
-  for (uint32_t i = 0; i < c.point_count; ++i) {
-    for (uint32_t j = 0; j < c.point_count; ++j) {
-      c.coupling[i][j] = body_a.inv_mass + body_b.inv_mass + dot(rn_a_of[j], in_a_of[i]) +
-                         dot(rn_b_of[j], in_b_of[i]);
+  for (uint32_t p = c.point_count; p < kMaxManifoldPoints; ++p) clear_point(batch.points[p], lane);
+}
+
+// The normal K matrix and masses, computed in the lanes, back to the scalar
+// constraints for the push-out and restitution.
+void copy_back_masses(WorldScratch& scratch) {
+  for (const ContactBatch& batch : scratch.batches) {
+    for (int lane = 0; lane < kLanes; ++lane) {
+      if (batch.constraint[lane] == kNoConstraint) continue;
+      ContactConstraint& c = scratch.constraints[batch.constraint[lane]];
+      for (uint32_t i = 0; i < c.point_count; ++i) {
+        for (uint32_t j = 0; j < c.point_count; ++j) c.coupling[i][j] = batch.coupling[i][j][lane];
+        c.points[i].normal_mass = batch.points[i].normal_mass[lane];
+      }
     }
-    const float diagonal = c.coupling[i][i];
-    c.points[i].normal_mass = diagonal > 0.0f ? 1.0f / diagonal : 0.0f;
-    batch.points[i].normal_mass[lane] = c.points[i].normal_mass;
-    for (uint32_t j = 0; j < kMaxManifoldPoints; ++j) {
-      batch.coupling[i][j][lane] = j < c.point_count ? c.coupling[i][j] : 0.0f;
-    }
-  }
-  for (uint32_t p = c.point_count; p < kMaxManifoldPoints; ++p) {
-    clear_point(batch.points[p], lane);
-    for (auto& k : batch.coupling[p]) k[lane] = 0.0f;
   }
 }
 
 #if defined(REWIND_LANES_AVX)
+void pair_prepare(ContactBatch& b0, ContactBatch& b1, const std::vector<SolverBody>& bodies) {
+  prepare_pair(b0, b1, bodies);
+}
 void pair_warm_start(ContactBatch& b0, ContactBatch& b1, std::vector<SolverBody>& bodies) {
   warm_start_pair(b0, b1, bodies);
 }
@@ -197,6 +158,10 @@ void pair_separations(ContactBatch& b0, ContactBatch& b1, const std::vector<Solv
 #else
 // Without eight lanes pairs never form; these keep for_batches' callers
 // whole and would solve the two batches in turn.
+void pair_prepare(ContactBatch& b0, ContactBatch& b1, const std::vector<SolverBody>& bodies) {
+  prepare_lanes(OneBatch{&b0}, bodies);
+  prepare_lanes(OneBatch{&b1}, bodies);
+}
 void pair_warm_start(ContactBatch& b0, ContactBatch& b1, std::vector<SolverBody>& bodies) {
   warm_start_lanes(OneBatch{&b0}, bodies);
   warm_start_lanes(OneBatch{&b1}, bodies);
@@ -259,8 +224,7 @@ void build_batches(WorldScratch& scratch) {
         const uint32_t at = first + lane;
         if (lane < per_batch && at < end) {
           const uint32_t index = scratch.colored[at];
-          fill_lane(batch, static_cast<int>(lane), index, scratch.constraints[index],
-                    scratch.solver_bodies);
+          fill_lane(batch, static_cast<int>(lane), index, scratch.constraints[index]);
         } else {
           clear_lane(batch, static_cast<int>(lane));
         }
@@ -268,6 +232,11 @@ void build_batches(WorldScratch& scratch) {
     }
   }
   scratch.batch_start[kColorCount + 1] = static_cast<uint32_t>(scratch.batches.size());
+  const std::vector<SolverBody>& bodies = scratch.solver_bodies;
+  for_batches(
+      scratch, [&](ContactBatch& b) { prepare_lanes(OneBatch{&b}, bodies); },
+      [&](ContactBatch& b0, ContactBatch& b1) { pair_prepare(b0, b1, bodies); });
+  copy_back_masses(scratch);
 }
 
 void warm_start_batches(WorldScratch& scratch) {

@@ -60,6 +60,12 @@ template <class A>
 V3<typename A::F> ld3(const A& acc, const float (&f)[3][kLanes]) {
   return {acc.ld(f[0]), acc.ld(f[1]), acc.ld(f[2])};
 }
+template <class A>
+void st3(const A& acc, float (&f)[3][kLanes], const V3<typename A::F>& v) {
+  acc.st(f[0], v.x);
+  acc.st(f[1], v.y);
+  acc.st(f[2], v.z);
+}
 
 // The velocities of the lanes' bodies.
 template <class F>
@@ -91,6 +97,34 @@ LaneBodies<typename A::F> gather_bodies(const A& acc, const std::vector<SolverBo
   return {{f[0], f[1], f[2]}, {f[3], f[4], f[5]}, f[6], f[7]};
 }
 
+// The lanes' bodies' world inverse inertias (columns): the row after the
+// velocities, transposed like it, and the ninth float one lane at a time.
+template <class F>
+struct LaneInertia {
+  V3<F> c0, c1, c2;
+};
+
+template <class A>
+LaneInertia<typename A::F> gather_inertia(const A& acc, const std::vector<SolverBody>& bodies,
+                                          bool side_b) {
+  const float* rows[A::kWidth];
+  alignas(32) float last[A::kWidth];
+  for (int i = 0; i < A::kWidth; ++i) {
+    rows[i] = body_row(bodies[side_b ? acc.body_b(i) : acc.body_a(i)]) + 8;
+    last[i] = rows[i][8];
+  }
+  typename A::F f[8];
+  A::gather_rows(rows, f);
+  return {{f[0], f[1], f[2]}, {f[3], f[4], f[5]}, {f[6], f[7], A::from(last)}};
+}
+
+// m v with the association of Mat3 * Vec3 (math.h), so a lane's product is
+// bit for bit the scalar one.
+template <class F>
+V3<F> mul(const LaneInertia<F>& m, const V3<F>& v) {
+  return m.c0 * v.x + m.c1 * v.y + m.c2 * v.z;
+}
+
 // Writes the lanes' rows back (velocities; the inverse mass and the eighth
 // float as they were read, so a row is stored whole and the next gather's
 // load of it is forwarded from the store) to the bodies that can move. A movable
@@ -107,6 +141,80 @@ void scatter_bodies(const A& acc, std::vector<SolverBody>& bodies, bool side_b,
   }
   const typename A::F f[8] = {b.v.x, b.v.y, b.v.z, b.w.x, b.w.y, b.w.z, b.inv_mass, b.rest};
   A::scatter_rows(f, rows);
+}
+
+// 1 / k where k > 0, else 0 (no division by zero in any lane).
+template <class A>
+typename A::F inverse_or_zero(typename A::F k) {
+  const typename A::F zero = A::splat(0.0f);
+  const typename A::F one = A::splat(1.0f);
+  const auto positive = k > zero;
+  return select(positive, one / select(positive, k, one), zero);
+}
+
+// What the passes keep fixed for the step, from the packed anchors and
+// axes: the inverse-inertia products of each point's Jacobian, the tangent
+// masses, the normal K matrix and from its diagonal the normal masses.
+// Points past a lane's count get exact zeros, as if never there.
+template <class A>
+void prepare_lanes(const A& acc, const std::vector<SolverBody>& bodies) {
+  using F = typename A::F;
+  ContactBatch& batch = acc.first();
+  const F zero = A::splat(0.0f);
+  const F mass_sum =
+      gather_bodies(acc, bodies, false).inv_mass + gather_bodies(acc, bodies, true).inv_mass;
+  const LaneInertia<F> ia = gather_inertia(acc, bodies, false);
+  const LaneInertia<F> ib = gather_inertia(acc, bodies, true);
+  const V3<F> n = ld3(acc, batch.normal);
+  const V3<F> t1 = ld3(acc, batch.tangent1);
+  const V3<F> t2 = ld3(acc, batch.tangent2);
+  const F count = acc.ld(batch.point_count);
+  V3<F> rn_a[kMaxManifoldPoints];
+  V3<F> rn_b[kMaxManifoldPoints];
+  V3<F> in_a[kMaxManifoldPoints];
+  V3<F> in_b[kMaxManifoldPoints];
+  for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+    ContactBatch::Point& bp = batch.points[p];
+    const auto real = A::splat(static_cast<float>(p)) < count;
+    const auto keep = [&](const V3<F>& v) {
+      return V3<F>{select(real, v.x, zero), select(real, v.y, zero), select(real, v.z, zero)};
+    };
+    const V3<F> ra = ld3(acc, bp.anchor_a);
+    const V3<F> rb = ld3(acc, bp.anchor_b);
+    rn_a[p] = cross3(ra, n);
+    rn_b[p] = cross3(rb, n);
+    in_a[p] = keep(mul(ia, rn_a[p]));
+    in_b[p] = keep(mul(ib, rn_b[p]));
+    const V3<F> rt1_a = cross3(ra, t1);
+    const V3<F> rt1_b = cross3(rb, t1);
+    const V3<F> rt2_a = cross3(ra, t2);
+    const V3<F> rt2_b = cross3(rb, t2);
+    const V3<F> it1_a = keep(mul(ia, rt1_a));
+    const V3<F> it1_b = keep(mul(ib, rt1_b));
+    const V3<F> it2_a = keep(mul(ia, rt2_a));
+    const V3<F> it2_b = keep(mul(ib, rt2_b));
+    st3(acc, bp.in_a, in_a[p]);
+    st3(acc, bp.in_b, in_b[p]);
+    st3(acc, bp.it1_a, it1_a);
+    st3(acc, bp.it1_b, it1_b);
+    st3(acc, bp.it2_a, it2_a);
+    st3(acc, bp.it2_b, it2_b);
+    // The effective mass along each tangent at the point.
+    const F k1 = mass_sum + dot3(rt1_a, it1_a) + dot3(rt1_b, it1_b);
+    const F k2 = mass_sum + dot3(rt2_a, it2_a) + dot3(rt2_b, it2_b);
+    acc.st(bp.tangent_mass1, select(real, inverse_or_zero<A>(k1), zero));
+    acc.st(bp.tangent_mass2, select(real, inverse_or_zero<A>(k2), zero));
+  }
+  for (uint32_t i = 0; i < kMaxManifoldPoints; ++i) {
+    const auto real_i = A::splat(static_cast<float>(i)) < count;
+    for (uint32_t j = 0; j < kMaxManifoldPoints; ++j) {
+      const auto real_j = A::splat(static_cast<float>(j)) < count;
+      const F k = mass_sum + dot3(rn_a[j], in_a[i]) + dot3(rn_b[j], in_b[i]);
+      acc.st(batch.coupling[i][j], select(real_i, select(real_j, k, zero), zero));
+    }
+    const F diagonal = acc.ld(batch.coupling[i][i]);
+    acc.st(batch.points[i].normal_mass, inverse_or_zero<A>(diagonal));
+  }
 }
 
 template <class A>
@@ -287,6 +395,7 @@ void separations_lanes(const A& acc, const std::vector<SolverBody>& bodies) {
 /// Eight lanes over two batches of one colour (contact_lanes_avx.cpp); only
 /// call when lanes8_available().
 bool lanes8_available();
+void prepare_pair(ContactBatch& first, ContactBatch& second, const std::vector<SolverBody>& bodies);
 void warm_start_pair(ContactBatch& first, ContactBatch& second, std::vector<SolverBody>& bodies);
 void solve_pair(ContactBatch& first, ContactBatch& second, std::vector<SolverBody>& bodies,
                 float inv_h);

@@ -144,6 +144,11 @@ struct TwoBatches {
 
 namespace rwd::sim::d3 {
 
+void prepare_pair(ContactBatch& first, ContactBatch& second,
+                  const std::vector<SolverBody>& bodies) {
+  prepare_lanes(TwoBatches{&first, &second}, bodies);
+}
+
 void warm_start_pair(ContactBatch& first, ContactBatch& second, std::vector<SolverBody>& bodies) {
   warm_start_lanes(TwoBatches{&first, &second}, bodies);
 }

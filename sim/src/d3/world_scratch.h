@@ -39,7 +39,8 @@ struct ContactGeometry {
 ///
 /// The first eight floats (velocities, inverse mass, the angular damping
 /// factor) are one aligned row, so the solver's lanes gather and scatter
-/// bodies with a few vector loads and a transpose (contact_lanes.h).
+/// bodies with a few vector loads and a transpose (contact_lanes.h); the
+/// inverse inertia follows, read the same way when batches are prepared.
 struct alignas(32) SolverBody {
   Vec3 linear_velocity;
   Vec3 angular_velocity;
@@ -59,8 +60,10 @@ struct alignas(32) SolverBody {
 };
 static_assert(offsetof(SolverBody, angular_velocity) == 3 * sizeof(float) &&
                   offsetof(SolverBody, inv_mass) == 6 * sizeof(float) &&
-                  offsetof(SolverBody, angular_damping_factor) == 7 * sizeof(float),
-              "the solver's lanes read a body's first eight floats as one row");
+                  offsetof(SolverBody, angular_damping_factor) == 7 * sizeof(float) &&
+                  offsetof(SolverBody, inv_inertia) == 8 * sizeof(float),
+              "the solver's lanes read a body's first eight floats as one row and its "
+              "inverse inertia (columns) as the next nine");
 
 /// How hard overlaps are pushed out: the separating speed per metre of
 /// overlap and the fraction of a rigid push-out impulse applied per substep,
@@ -139,10 +142,10 @@ class WorldScratch {
   std::vector<Aabb> sweep_boxes;
   std::vector<uint32_t> sweep_hits;  ///< one body's overlaps, positions in the order
   int sweep_axis = 0;
-  d3::AabbTree sleeping_tree;           ///< sleeping movable bodies, exact leaves
-  d3::AabbTree static_tree;             ///< static bodies, exact leaves, built in bulk
-  std::vector<uint32_t> sleeping_proxy; ///< by body index; AabbTree::kNull if none
-  std::vector<uint32_t> tree_bodies;    ///< bulk-build input
+  d3::AabbTree sleeping_tree;            ///< sleeping movable bodies, exact leaves
+  d3::AabbTree static_tree;              ///< static bodies, exact leaves, built in bulk
+  std::vector<uint32_t> sleeping_proxy;  ///< by body index; AabbTree::kNull if none
+  std::vector<uint32_t> tree_bodies;     ///< bulk-build input
   std::vector<Aabb> tree_boxes;
   std::vector<uint32_t> tree_proxies;
   bool static_dirty = true;  ///< the world was edited: both trees are rebuilt

@@ -25,8 +25,8 @@ std::vector<BodyPair> reference_pairs(const WorldState& state) {
     const BodySim& sim = state.sims[i];
     boxes[i] = shape_aabb(state.infos[i].shape, sim.position, sim.rotation);
     if (is_active(state.infos[i])) {
-      const float reach = length(sim.linear_velocity) +
-                          length(sim.angular_velocity) * state.masses[i].extent;
+      const float reach =
+          length(sim.linear_velocity) + length(sim.angular_velocity) * state.masses[i].extent;
       const float m = state.config.speculative_distance_m + state.config.tick_seconds * reach;
       boxes[i].lower -= Vec3{m, m, m};
       boxes[i].upper += Vec3{m, m, m};
@@ -94,7 +94,8 @@ TEST(Broadphase, KeptStructuresMatchFreshOnesThroughSleepWakeAndRestore) {
   for (int i = 0; i < 60; ++i) {
     BodyDef def;
     def.shape = Shape::make_box({0.25f, 0.25f, 0.25f});
-    def.position = {static_cast<float>(i % 5) * 0.6f - 1.2f, 0.5f + static_cast<float>(i / 25) * 0.6f,
+    def.position = {static_cast<float>(i % 5) * 0.6f - 1.2f,
+                    0.5f + static_cast<float>(i / 25) * 0.6f,
                     static_cast<float>((i / 5) % 5) * 0.6f - 1.2f};
     boxes.push_back(world.create_body(def).value());
   }
