@@ -25,6 +25,8 @@ struct OneBatch {
   static void scatter_rows(const F (&in)[8], float* const (&rows)[kLanes]) { store_rows(in, rows); }
   uint32_t body_a(int lane) const { return batch->body_a[lane]; }
   uint32_t body_b(int lane) const { return batch->body_b[lane]; }
+  bool movable_a(int lane) const { return batch->movable_a[lane] != 0; }
+  bool movable_b(int lane) const { return batch->movable_b[lane] != 0; }
   ContactBatch& first() const { return *batch; }
 };
 
@@ -82,6 +84,8 @@ void clear_lane(ContactBatch& batch, int lane) {
   batch.constraint[lane] = kNoConstraint;
   batch.body_a[lane] = 0;
   batch.body_b[lane] = 0;
+  batch.movable_a[lane] = 0;
+  batch.movable_b[lane] = 0;
   for (int i = 0; i < 3; ++i) {
     batch.normal[i][lane] = 0.0f;
     batch.tangent1[i][lane] = 0.0f;
@@ -95,10 +99,13 @@ void clear_lane(ContactBatch& batch, int lane) {
 // Packs constraint `index` into a lane: ids, axes, anchors and impulses.
 // The quantities derived from them (inverse-inertia products, masses, the
 // normal K matrix) are computed for all lanes at once by prepare_lanes.
-void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConstraint& c) {
+void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConstraint& c,
+               const std::vector<SolverBody>& bodies) {
   batch.constraint[lane] = index;
   batch.body_a[lane] = c.body_a;
   batch.body_b[lane] = c.body_b;
+  batch.movable_a[lane] = bodies[c.body_a].inv_mass != 0.0f ? 1 : 0;
+  batch.movable_b[lane] = bodies[c.body_b].inv_mass != 0.0f ? 1 : 0;
   batch.point_count[lane] = static_cast<float>(c.point_count);
   const Vec3 axes[3] = {c.normal, c.tangent1, c.tangent2};
   float(*dst[3])[kLanes] = {batch.normal, batch.tangent1, batch.tangent2};
@@ -224,7 +231,8 @@ void build_batches(WorldScratch& scratch) {
         const uint32_t at = first + lane;
         if (lane < per_batch && at < end) {
           const uint32_t index = scratch.colored[at];
-          fill_lane(batch, static_cast<int>(lane), index, scratch.constraints[index]);
+          fill_lane(batch, static_cast<int>(lane), index, scratch.constraints[index],
+                    scratch.solver_bodies);
         } else {
           clear_lane(batch, static_cast<int>(lane));
         }

@@ -38,6 +38,9 @@ struct alignas(16) ContactBatch {
   uint32_t constraint[kLanes];  ///< index into scratch.constraints, or kNoConstraint
   uint32_t body_a[kLanes];      ///< solver body (0, the immovable body, for empty lanes)
   uint32_t body_b[kLanes];
+  /// 1 where the lane's body can move (the passes write back only those).
+  uint8_t movable_a[kLanes];
+  uint8_t movable_b[kLanes];
   float point_count[kLanes];  ///< the manifold's points (0 for an empty lane)
   float normal[3][kLanes];
   float tangent1[3][kLanes];

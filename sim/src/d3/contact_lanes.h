@@ -16,9 +16,10 @@
 //   acc.st(field, v)      batches, the same field of the second
 //   acc.body_a(lane)      solver body of a lane (body_b likewise)
 //   acc.first()           the first batch, whose fields name what to load
+//   acc.movable_a(lane)   whether the lane's body can move (movable_b likewise)
 //   A::gather_rows(rows, out), A::scatter_rows(in, rows)
 //                         kWidth solver-body rows of eight floats into eight
-//                         lane values and back (null rows left alone)
+//                         lane values and back
 //
 // Everything here has internal linkage: each file that includes it compiles
 // its own copy for its own instruction set.
@@ -127,17 +128,19 @@ V3<F> mul(const LaneInertia<F>& m, const V3<F>& v) {
 
 // Writes the lanes' rows back (velocities; the inverse mass and the eighth
 // float as they were read, so a row is stored whole and the next gather's
-// load of it is forwarded from the store) to the bodies that can move. A movable
-// body is in at most one lane of a colour; a body that cannot move (static,
-// sleeping, kinematic) may be in several and is never written, so no lane
-// order or lane count can leave a different signed zero in it.
+// load of it is forwarded from the store) to the bodies that can move. A
+// movable body is in at most one lane of a colour; a body that cannot move
+// (static, sleeping, kinematic) may be in several and is never written (its
+// lanes store to a sink on the stack), so no lane order or lane count can
+// leave a different signed zero in it.
 template <class A>
 void scatter_bodies(const A& acc, std::vector<SolverBody>& bodies, bool side_b,
                     const LaneBodies<typename A::F>& b) {
+  alignas(32) float sink[8];
   float* rows[A::kWidth];
   for (int i = 0; i < A::kWidth; ++i) {
-    SolverBody& s = bodies[side_b ? acc.body_b(i) : acc.body_a(i)];
-    rows[i] = s.inv_mass == 0.0f ? nullptr : body_row(s);
+    const bool movable = side_b ? acc.movable_b(i) : acc.movable_a(i);
+    rows[i] = movable ? body_row(bodies[side_b ? acc.body_b(i) : acc.body_a(i)]) : sink;
   }
   const typename A::F f[8] = {b.v.x, b.v.y, b.v.z, b.w.x, b.w.y, b.w.z, b.inv_mass, b.rest};
   A::scatter_rows(f, rows);

@@ -67,15 +67,18 @@ inline FloatW8 select(MaskW8 m, FloatW8 a, FloatW8 b) {
 struct TwoBatches {
   using F = FloatW8;
   static constexpr int kWidth = 2 * kLanes;
+  TwoBatches(ContactBatch* first, ContactBatch* second)
+      : batch0(first),
+        batch1(second),
+        distance(reinterpret_cast<const char*>(second) - reinterpret_cast<const char*>(first)) {}
   ContactBatch* batch0;
   ContactBatch* batch1;
+  std::ptrdiff_t distance;  ///< from the first batch to the second, bytes
   static F splat(float x) { return {_mm256_set1_ps(x)}; }
   static F from(const float* p) { return {_mm256_loadu_ps(p)}; }
   static void to(float* p, F v) { _mm256_storeu_ps(p, v.v); }
   const float* second(const float* field) const {
-    const std::ptrdiff_t offset =
-        reinterpret_cast<const char*>(field) - reinterpret_cast<const char*>(batch0);
-    return reinterpret_cast<const float*>(reinterpret_cast<const char*>(batch1) + offset);
+    return reinterpret_cast<const float*>(reinterpret_cast<const char*>(field) + distance);
   }
   F ld(const float (&field)[kLanes]) const {
     const __m128 lo = _mm_loadu_ps(field);
@@ -86,8 +89,7 @@ struct TwoBatches {
     _mm_storeu_ps(field, _mm256_castps256_ps128(v.v));
     _mm_storeu_ps(const_cast<float*>(second(field)), _mm256_extractf128_ps(v.v, 1));
   }
-  // Rows of eight floats into eight lane values and back (8x8 transpose;
-  // scatter writes only where the row pointer is set).
+  // Rows of eight floats into eight lane values and back (8x8 transpose).
   static void transpose8(__m256 (&r)[8]) {
     const __m256 t0 = _mm256_unpacklo_ps(r[0], r[1]);
     const __m256 t1 = _mm256_unpackhi_ps(r[0], r[1]);
@@ -125,7 +127,7 @@ struct TwoBatches {
     for (int k = 0; k < 8; ++k) r[k] = in[k].v;
     transpose8(r);
     for (int i = 0; i < 8; ++i) {
-      if (rows[i] != nullptr) _mm256_store_ps(rows[i], r[i]);
+      _mm256_store_ps(rows[i], r[i]);
     }
   }
   uint32_t body_a(int lane) const {
@@ -133,6 +135,12 @@ struct TwoBatches {
   }
   uint32_t body_b(int lane) const {
     return lane < kLanes ? batch0->body_b[lane] : batch1->body_b[lane - kLanes];
+  }
+  bool movable_a(int lane) const {
+    return (lane < kLanes ? batch0->movable_a[lane] : batch1->movable_a[lane - kLanes]) != 0;
+  }
+  bool movable_b(int lane) const {
+    return (lane < kLanes ? batch0->movable_b[lane] : batch1->movable_b[lane - kLanes]) != 0;
   }
   ContactBatch& first() const { return *batch0; }
 };

@@ -55,12 +55,15 @@ constexpr int kMaxClip = 12;
 // Keeps the part of `poly` where dist(p) <= 0.
 int clip_polygon(const ClipVertex* in, int count, Vec3 plane_normal, float plane_offset, int side,
                  ClipVertex* out) {
+  float dist[kMaxClip];
+  for (int m = 0; m < count; ++m) dist[m] = dot(plane_normal, in[m].p) - plane_offset;
   int n = 0;
   for (int m = 0; m < count; ++m) {
+    const int next = m + 1 == count ? 0 : m + 1;
     const ClipVertex& p = in[m];
-    const ClipVertex& q = in[(m + 1) % count];
-    float dp = dot(plane_normal, p.p) - plane_offset;
-    float dq = dot(plane_normal, q.p) - plane_offset;
+    const ClipVertex& q = in[next];
+    const float dp = dist[m];
+    const float dq = dist[next];
     if (dp <= 0.0f) out[n++] = p;
     if ((dp <= 0.0f) != (dq <= 0.0f)) {
       float t = dp / (dp - dq);  // signs differ, so dp - dq != 0
@@ -312,8 +315,15 @@ void collide_boxes(const BoxPose& pose_a, const BoxPose& pose_b, float speculati
       face_b = j;
     }
   }
-  // Edge axes a_i x b_j, |a_i x b_j| = sqrt(1 - r_ij^2): projections along
-  // the unnormalized axis, then scaled to metres.
+  bool use_b = best_b > best_a + kFaceTolerance;
+  float best_face = use_b ? best_b : best_a;
+  // An edge axis is used only if it separates more than the best face axis
+  // by kEdgeTolerance. Its distance is the projection along the
+  // unnormalized axis divided by |a_i x b_j| = sqrt(1 - r_ij^2) <= 1, which
+  // can only make a negative projection more negative: an axis whose
+  // projection is negative and already within that threshold can neither
+  // win nor separate, and its square root and division are skipped.
+  const float edge_threshold = best_face + kEdgeTolerance;
   float best_edge = kLowest;
   int edge_a = 0;
   int edge_b = 0;
@@ -329,7 +339,9 @@ void collide_boxes(const BoxPose& pose_a, const BoxPose& pose_b, float speculati
       const float ra = a.half[i1] * abs_r[i2][j] + a.half[i2] * abs_r[i1][j];
       const float rb = b.half[j1] * abs_r[i][j2] + b.half[j2] * abs_r[i][j1];
       const float dl = ta[i2] * r[i1][j] - ta[i1] * r[i2][j];
-      float sep = (std::fabs(dl) - ra - rb) / std::sqrt(len_sq);
+      const float projection = std::fabs(dl) - ra - rb;
+      if (projection < 0.0f && projection <= edge_threshold) continue;
+      float sep = projection / std::sqrt(len_sq);
       if (sep > speculative_m) return;
       if (sep > best_edge) {
         best_edge = sep;
@@ -340,8 +352,6 @@ void collide_boxes(const BoxPose& pose_a, const BoxPose& pose_b, float speculati
     }
   }
 
-  bool use_b = best_b > best_a + kFaceTolerance;
-  float best_face = use_b ? best_b : best_a;
   if (best_edge > best_face + kEdgeTolerance) {
     const Vec3 l = cross(a.axis[edge_a], b.axis[edge_b]);
     const Vec3 edge_axis = l * (edge_sign / std::sqrt(length_squared(l)));

@@ -202,7 +202,7 @@ inline void load_rows(const float* const (&rows)[kLanes], FloatW (&out)[8]) {
 #endif
 }
 
-/// The inverse of load_rows, whole rows at a time; null rows are left alone.
+/// The inverse of load_rows, whole rows at a time.
 inline void store_rows(const FloatW (&in)[8], float* const (&rows)[kLanes]) {
 #if defined(REWIND_LANES_SSE2)
   __m128 lo[4] = {in[0].v, in[1].v, in[2].v, in[3].v};
@@ -210,7 +210,6 @@ inline void store_rows(const FloatW (&in)[8], float* const (&rows)[kLanes]) {
   _MM_TRANSPOSE4_PS(lo[0], lo[1], lo[2], lo[3]);
   _MM_TRANSPOSE4_PS(hi[0], hi[1], hi[2], hi[3]);
   for (int i = 0; i < kLanes; ++i) {
-    if (rows[i] == nullptr) continue;
     _mm_store_ps(rows[i], lo[i]);
     _mm_store_ps(rows[i] + 4, hi[i]);
   }
@@ -218,7 +217,6 @@ inline void store_rows(const FloatW (&in)[8], float* const (&rows)[kLanes]) {
   alignas(16) float f[8][kLanes];
   for (int k = 0; k < 8; ++k) store(f[k], in[k]);
   for (int i = 0; i < kLanes; ++i) {
-    if (rows[i] == nullptr) continue;
     for (int k = 0; k < 8; ++k) rows[i][k] = f[k][i];
   }
 #endif
