@@ -261,20 +261,52 @@ void solve_batches(WorldScratch& scratch, float inv_h) {
       [&](ContactBatch& b0, ContactBatch& b1) { pair_solve(b0, b1, bodies, inv_h); });
 }
 
+namespace {
+
+// A batch's separations, as the lanes computed them, back to its scalar
+// constraints (the push-out reads those).
+void copy_back_separations(WorldScratch& scratch, const ContactBatch& batch) {
+  for (int lane = 0; lane < kLanes; ++lane) {
+    if (batch.constraint[lane] == kNoConstraint) continue;
+    ContactConstraint& c = scratch.constraints[batch.constraint[lane]];
+    for (uint32_t p = 0; p < c.point_count; ++p) {
+      c.points[p].separation = batch.points[p].separation[lane];
+    }
+  }
+}
+
+}  // namespace
+
 void update_separations(WorldScratch& scratch) {
   const std::vector<SolverBody>& bodies = scratch.solver_bodies;
   for_batches(
-      scratch, [&](ContactBatch& b) { separations_lanes(OneBatch{&b}, bodies); },
-      [&](ContactBatch& b0, ContactBatch& b1) { pair_separations(b0, b1, bodies); });
-  for (const ContactBatch& batch : scratch.batches) {
-    for (int lane = 0; lane < kLanes; ++lane) {
-      if (batch.constraint[lane] == kNoConstraint) continue;
-      ContactConstraint& c = scratch.constraints[batch.constraint[lane]];
-      for (uint32_t p = 0; p < c.point_count; ++p) {
-        c.points[p].separation = batch.points[p].separation[lane];
-      }
-    }
-  }
+      scratch,
+      [&](ContactBatch& b) {
+        separations_lanes(OneBatch{&b}, bodies);
+        copy_back_separations(scratch, b);
+      },
+      [&](ContactBatch& b0, ContactBatch& b1) {
+        pair_separations(b0, b1, bodies);
+        copy_back_separations(scratch, b0);
+        copy_back_separations(scratch, b1);
+      });
+}
+
+void update_separations_and_relax(WorldScratch& scratch, float inv_h) {
+  std::vector<SolverBody>& bodies = scratch.solver_bodies;
+  for_batches(
+      scratch,
+      [&](ContactBatch& b) {
+        separations_lanes(OneBatch{&b}, bodies);
+        copy_back_separations(scratch, b);
+        solve_lanes(OneBatch{&b}, bodies, inv_h);
+      },
+      [&](ContactBatch& b0, ContactBatch& b1) {
+        pair_separations(b0, b1, bodies);
+        copy_back_separations(scratch, b0);
+        copy_back_separations(scratch, b1);
+        pair_solve(b0, b1, bodies, inv_h);
+      });
 }
 
 void unpack_batches(WorldScratch& scratch) {

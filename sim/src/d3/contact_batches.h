@@ -84,6 +84,10 @@ void solve_batches(WorldScratch& scratch, float inv_h);
 /// Each point's separation from the motion since the tick began, into the
 /// batches and the scalar constraints (the push-out reads those).
 void update_separations(WorldScratch& scratch);
+/// update_separations and then one solve_batches, in one pass over the
+/// batches (a batch's separations depend only on the bodies' motion so
+/// far, which solving other batches does not change).
+void update_separations_and_relax(WorldScratch& scratch, float inv_h);
 /// Copies the impulses back to scratch.constraints.
 void unpack_batches(WorldScratch& scratch);
 

@@ -455,8 +455,12 @@ void solve(WorldState& state, WorldScratch& scratch) {
     solve_batches(scratch, inv_h);
     push_out(scratch, config, inv_h);
     integrate_positions(scratch, h);
-    update_separations(scratch);
-    for (int32_t r = 0; r < config.relax_iterations; ++r) solve_batches(scratch, inv_h);
+    if (config.relax_iterations > 0) {
+      update_separations_and_relax(scratch, inv_h);
+    } else {
+      update_separations(scratch);
+    }
+    for (int32_t r = 1; r < config.relax_iterations; ++r) solve_batches(scratch, inv_h);
   }
   unpack_batches(scratch);
   apply_restitution(scratch, config);
