@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Colouring and packing the contact constraints into batches of four
+// Colouring and packing the contact constraints into batches of eight
 // (contact_batches.h), and running the solver's lane passes
-// (contact_lanes.h) over them: four lanes per batch, or eight over two
-// batches of one colour where AVX is available (contact_lanes_avx.cpp).
+// (contact_lanes.h) over them: eight AVX lanes per batch where the processor
+// has them (contact_lanes_avx.cpp), else four lanes over each half.
 #include "d3/contact_batches.h"
 #include "d3/contact_lanes.h"
 
@@ -11,22 +11,24 @@
 namespace rwd::sim::d3 {
 namespace {
 
-// Four lanes over one batch (see contact_lanes.h for what an access is).
-struct OneBatch {
+// Four lanes over half a batch, lanes [base, base + 4) (see
+// contact_lanes.h for what an access is).
+struct HalfBatch {
   using F = FloatW;
   static constexpr int kWidth = kLanes;
   ContactBatch* batch;
+  int base;  ///< 0 or kLanes
   static F splat(float x) { return d3::splat(x); }
   static F from(const float* p) { return load(p); }
   static void to(float* p, F v) { store(p, v); }
-  F ld(const float (&field)[kLanes]) const { return load(field); }
-  void st(float (&field)[kLanes], F v) const { store(field, v); }
+  F ld(const float (&field)[kBatchLanes]) const { return load(field + base); }
+  void st(float (&field)[kBatchLanes], F v) const { store(field + base, v); }
   static void gather_rows(const float* const (&rows)[kLanes], F (&out)[8]) { load_rows(rows, out); }
   static void scatter_rows(const F (&in)[8], float* const (&rows)[kLanes]) { store_rows(in, rows); }
-  uint32_t body_a(int lane) const { return batch->body_a[lane]; }
-  uint32_t body_b(int lane) const { return batch->body_b[lane]; }
-  bool movable_a(int lane) const { return batch->movable_a[lane] != 0; }
-  bool movable_b(int lane) const { return batch->movable_b[lane] != 0; }
+  uint32_t body_a(int lane) const { return batch->body_a[base + lane]; }
+  uint32_t body_b(int lane) const { return batch->body_b[base + lane]; }
+  bool movable_a(int lane) const { return batch->movable_a[base + lane] != 0; }
+  bool movable_b(int lane) const { return batch->movable_b[base + lane] != 0; }
   ContactBatch& first() const { return *batch; }
 };
 
@@ -108,7 +110,7 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
   batch.movable_b[lane] = bodies[c.body_b].inv_mass != 0.0f ? 1 : 0;
   batch.point_count[lane] = static_cast<float>(c.point_count);
   const Vec3 axes[3] = {c.normal, c.tangent1, c.tangent2};
-  float(*dst[3])[kLanes] = {batch.normal, batch.tangent1, batch.tangent2};
+  float(*dst[3])[kBatchLanes] = {batch.normal, batch.tangent1, batch.tangent2};
   for (int a = 0; a < 3; ++a) {
     dst[a][0][lane] = axes[a].x;
     dst[a][1][lane] = axes[a].y;
@@ -138,7 +140,7 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
 // constraints for the push-out and restitution.
 void copy_back_masses(WorldScratch& scratch) {
   for (const ContactBatch& batch : scratch.batches) {
-    for (int lane = 0; lane < kLanes; ++lane) {
+    for (int lane = 0; lane < kBatchLanes; ++lane) {
       if (batch.constraint[lane] == kNoConstraint) continue;
       ContactConstraint& c = scratch.constraints[batch.constraint[lane]];
       for (uint32_t i = 0; i < c.point_count; ++i) {
@@ -149,54 +151,44 @@ void copy_back_masses(WorldScratch& scratch) {
   }
 }
 
-#if defined(REWIND_LANES_AVX)
-void pair_prepare(ContactBatch& b0, ContactBatch& b1, const std::vector<SolverBody>& bodies) {
-  prepare_pair(b0, b1, bodies);
+#if !defined(REWIND_LANES_AVX)
+// Without AVX in the build the eight-lane passes never run; these keep
+// for_batches' callers whole and would take the two halves in turn.
+void prepare_full(ContactBatch& b, const std::vector<SolverBody>& bodies) {
+  prepare_lanes(HalfBatch{&b, 0}, bodies);
+  prepare_lanes(HalfBatch{&b, kLanes}, bodies);
 }
-void pair_warm_start(ContactBatch& b0, ContactBatch& b1, std::vector<SolverBody>& bodies) {
-  warm_start_pair(b0, b1, bodies);
+void warm_start_full(ContactBatch& b, std::vector<SolverBody>& bodies) {
+  warm_start_lanes(HalfBatch{&b, 0}, bodies);
+  warm_start_lanes(HalfBatch{&b, kLanes}, bodies);
 }
-void pair_solve(ContactBatch& b0, ContactBatch& b1, std::vector<SolverBody>& bodies, float inv_h) {
-  solve_pair(b0, b1, bodies, inv_h);
+void solve_full(ContactBatch& b, std::vector<SolverBody>& bodies, float inv_h) {
+  solve_lanes(HalfBatch{&b, 0}, bodies, inv_h);
+  solve_lanes(HalfBatch{&b, kLanes}, bodies, inv_h);
 }
-void pair_separations(ContactBatch& b0, ContactBatch& b1, const std::vector<SolverBody>& bodies) {
-  separations_pair(b0, b1, bodies);
-}
-#else
-// Without eight lanes pairs never form; these keep for_batches' callers
-// whole and would solve the two batches in turn.
-void pair_prepare(ContactBatch& b0, ContactBatch& b1, const std::vector<SolverBody>& bodies) {
-  prepare_lanes(OneBatch{&b0}, bodies);
-  prepare_lanes(OneBatch{&b1}, bodies);
-}
-void pair_warm_start(ContactBatch& b0, ContactBatch& b1, std::vector<SolverBody>& bodies) {
-  warm_start_lanes(OneBatch{&b0}, bodies);
-  warm_start_lanes(OneBatch{&b1}, bodies);
-}
-void pair_solve(ContactBatch& b0, ContactBatch& b1, std::vector<SolverBody>& bodies, float inv_h) {
-  solve_lanes(OneBatch{&b0}, bodies, inv_h);
-  solve_lanes(OneBatch{&b1}, bodies, inv_h);
-}
-void pair_separations(ContactBatch& b0, ContactBatch& b1, const std::vector<SolverBody>& bodies) {
-  separations_lanes(OneBatch{&b0}, bodies);
-  separations_lanes(OneBatch{&b1}, bodies);
+void separations_full(ContactBatch& b, const std::vector<SolverBody>& bodies) {
+  separations_lanes(HalfBatch{&b, 0}, bodies);
+  separations_lanes(HalfBatch{&b, kLanes}, bodies);
 }
 #endif
 
-// Runs `one` on every batch, or `two` on pairs of batches of one colour
-// when eight lanes are available (the colour's odd batch and the constraints
-// that found no colour, one per batch, with `one`, in order).
-template <class One, class Two>
-void for_batches(WorldScratch& scratch, One one, Two two) {
+// Runs a pass on every batch in order: `full` (eight AVX lanes) where the
+// processor has AVX, else `half` on each half that holds a constraint.
+// Batches of the constraints that found no colour hold one each and always
+// take the four-lane path.
+template <class Full, class Half>
+void for_batches(WorldScratch& scratch, Full full, Half half) {
   std::vector<ContactBatch>& batches = scratch.batches;
-  const bool pairs = use_eight_lanes();
-  for (uint32_t col = 0; col <= kColorCount; ++col) {
-    uint32_t k = scratch.batch_start[col];
-    const uint32_t end = scratch.batch_start[col + 1];
-    if (pairs && col < kColorCount) {
-      for (; k + 1 < end; k += 2) two(batches[k], batches[k + 1]);
+  const bool eight = use_eight_lanes();
+  const uint32_t colored_end = scratch.batch_start[kColorCount];
+  for (uint32_t k = 0; k < batches.size(); ++k) {
+    ContactBatch& b = batches[k];
+    if (eight && k < colored_end) {
+      full(b);
+      continue;
     }
-    for (; k < end; ++k) one(batches[k]);
+    half(HalfBatch{&b, 0});
+    if (b.constraint[kLanes] != kNoConstraint) half(HalfBatch{&b, kLanes});
   }
 }
 
@@ -224,10 +216,10 @@ void build_batches(WorldScratch& scratch) {
     scratch.batch_start[col] = static_cast<uint32_t>(scratch.batches.size());
     const uint32_t begin = scratch.color_start[col];
     const uint32_t end = scratch.color_start[col + 1];
-    const uint32_t per_batch = col == kColorCount ? 1 : kLanes;
+    const uint32_t per_batch = col == kColorCount ? 1 : kBatchLanes;
     for (uint32_t first = begin; first < end; first += per_batch) {
       ContactBatch& batch = scratch.batches.emplace_back();
-      for (uint32_t lane = 0; lane < kLanes; ++lane) {
+      for (uint32_t lane = 0; lane < kBatchLanes; ++lane) {
         const uint32_t at = first + lane;
         if (lane < per_batch && at < end) {
           const uint32_t index = scratch.colored[at];
@@ -242,31 +234,32 @@ void build_batches(WorldScratch& scratch) {
   scratch.batch_start[kColorCount + 1] = static_cast<uint32_t>(scratch.batches.size());
   const std::vector<SolverBody>& bodies = scratch.solver_bodies;
   for_batches(
-      scratch, [&](ContactBatch& b) { prepare_lanes(OneBatch{&b}, bodies); },
-      [&](ContactBatch& b0, ContactBatch& b1) { pair_prepare(b0, b1, bodies); });
+      scratch, [&](ContactBatch& b) { prepare_full(b, bodies); },
+      [&](const HalfBatch& h) { prepare_lanes(h, bodies); });
   copy_back_masses(scratch);
 }
 
 void warm_start_batches(WorldScratch& scratch) {
   std::vector<SolverBody>& bodies = scratch.solver_bodies;
   for_batches(
-      scratch, [&](ContactBatch& b) { warm_start_lanes(OneBatch{&b}, bodies); },
-      [&](ContactBatch& b0, ContactBatch& b1) { pair_warm_start(b0, b1, bodies); });
+      scratch, [&](ContactBatch& b) { warm_start_full(b, bodies); },
+      [&](const HalfBatch& h) { warm_start_lanes(h, bodies); });
 }
 
 void solve_batches(WorldScratch& scratch, float inv_h) {
   std::vector<SolverBody>& bodies = scratch.solver_bodies;
   for_batches(
-      scratch, [&](ContactBatch& b) { solve_lanes(OneBatch{&b}, bodies, inv_h); },
-      [&](ContactBatch& b0, ContactBatch& b1) { pair_solve(b0, b1, bodies, inv_h); });
+      scratch, [&](ContactBatch& b) { solve_full(b, bodies, inv_h); },
+      [&](const HalfBatch& h) { solve_lanes(h, bodies, inv_h); });
 }
 
 namespace {
 
-// A batch's separations, as the lanes computed them, back to its scalar
-// constraints (the push-out reads those).
-void copy_back_separations(WorldScratch& scratch, const ContactBatch& batch) {
-  for (int lane = 0; lane < kLanes; ++lane) {
+// The separations of lanes [first, first + count) of a batch, as the lanes
+// computed them, back to their scalar constraints (the push-out reads those).
+void copy_back_separations(WorldScratch& scratch, const ContactBatch& batch, int first = 0,
+                           int count = kBatchLanes) {
+  for (int lane = first; lane < first + count; ++lane) {
     if (batch.constraint[lane] == kNoConstraint) continue;
     ContactConstraint& c = scratch.constraints[batch.constraint[lane]];
     for (uint32_t p = 0; p < c.point_count; ++p) {
@@ -282,13 +275,12 @@ void update_separations(WorldScratch& scratch) {
   for_batches(
       scratch,
       [&](ContactBatch& b) {
-        separations_lanes(OneBatch{&b}, bodies);
+        separations_full(b, bodies);
         copy_back_separations(scratch, b);
       },
-      [&](ContactBatch& b0, ContactBatch& b1) {
-        pair_separations(b0, b1, bodies);
-        copy_back_separations(scratch, b0);
-        copy_back_separations(scratch, b1);
+      [&](const HalfBatch& h) {
+        separations_lanes(h, bodies);
+        copy_back_separations(scratch, *h.batch, h.base, kLanes);
       });
 }
 
@@ -297,21 +289,20 @@ void update_separations_and_relax(WorldScratch& scratch, float inv_h) {
   for_batches(
       scratch,
       [&](ContactBatch& b) {
-        separations_lanes(OneBatch{&b}, bodies);
+        separations_full(b, bodies);
         copy_back_separations(scratch, b);
-        solve_lanes(OneBatch{&b}, bodies, inv_h);
+        solve_full(b, bodies, inv_h);
       },
-      [&](ContactBatch& b0, ContactBatch& b1) {
-        pair_separations(b0, b1, bodies);
-        copy_back_separations(scratch, b0);
-        copy_back_separations(scratch, b1);
-        pair_solve(b0, b1, bodies, inv_h);
+      [&](const HalfBatch& h) {
+        separations_lanes(h, bodies);
+        copy_back_separations(scratch, *h.batch, h.base, kLanes);
+        solve_lanes(h, bodies, inv_h);
       });
 }
 
 void unpack_batches(WorldScratch& scratch) {
   for (const ContactBatch& batch : scratch.batches) {
-    for (int lane = 0; lane < kLanes; ++lane) {
+    for (int lane = 0; lane < kBatchLanes; ++lane) {
       if (batch.constraint[lane] == kNoConstraint) continue;
       ContactConstraint& c = scratch.constraints[batch.constraint[lane]];
       for (uint32_t p = 0; p < c.point_count; ++p) {

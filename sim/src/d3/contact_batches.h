@@ -1,16 +1,17 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The contact constraints of a step, coloured and packed four to a batch
+// The contact constraints of a step, coloured and packed eight to a batch
 // for the solver's wide passes (contact_batches.cpp).
 //
 // Colouring (as Box2D v3's constraint graph): each constraint takes the
 // first of kColorCount colours in which neither of its movable bodies has a
 // constraint yet (static, sleeping and kinematic bodies never block: the
 // solver does not change their velocities). Constraints of one colour share
-// no movable body, so they can be solved in any order, four at a time, with
-// the same result; the colours are solved one after another, constraints
+// no movable body, so they can be solved in any order, four or eight at a
+// time, with the same result; the colours are solved one after another, constraints
 // that found no colour last, one per batch. The order depends only on the
 // constraint list, never on the lane count or the instruction set.
+#include <cstddef>
 #include <cstdint>
 
 #include "d3/wide_float.h"
@@ -30,48 +31,58 @@ inline constexpr uint32_t kColorCount = 24;
 inline constexpr int kManifoldSweeps = 4;
 /// The constraint of an empty lane.
 inline constexpr uint32_t kNoConstraint = 0xFFFFFFFFu;
+/// Constraints per batch: one AVX register of lanes, or two of SSE2/NEON
+/// (the four-lane passes take a batch in two halves). Lanes are filled
+/// from the first, so a batch whose upper half is empty can skip it.
+inline constexpr int kBatchLanes = 2 * kLanes;
 
-/// Four contact constraints, structure of arrays: [component][lane] or
+/// Eight contact constraints, structure of arrays: [component][lane] or
 /// [point][lane]. Points past a manifold's count (and empty lanes) have
 /// zero masses and couplings, so the same arithmetic leaves them at zero.
-struct alignas(16) ContactBatch {
-  uint32_t constraint[kLanes];  ///< index into scratch.constraints, or kNoConstraint
-  uint32_t body_a[kLanes];      ///< solver body (0, the immovable body, for empty lanes)
-  uint32_t body_b[kLanes];
-  /// 1 where the lane's body can move (the passes write back only those).
-  uint8_t movable_a[kLanes];
-  uint8_t movable_b[kLanes];
-  float point_count[kLanes];  ///< the manifold's points (0 for an empty lane)
-  float normal[3][kLanes];
-  float tangent1[3][kLanes];
-  float tangent2[3][kLanes];
-  float friction[kLanes];
+struct alignas(32) ContactBatch {
+  uint32_t constraint[kBatchLanes];  ///< index into scratch.constraints, or kNoConstraint
+  uint32_t body_a[kBatchLanes];      ///< solver body (0, the immovable body, for empty lanes)
+  uint32_t body_b[kBatchLanes];
+  float point_count[kBatchLanes];  ///< the manifold's points (0 for an empty lane)
+  float normal[3][kBatchLanes];
+  float tangent1[3][kBatchLanes];
+  float tangent2[3][kBatchLanes];
+  float friction[kBatchLanes];
   struct Point {
     // The Jacobian's angular parts (anchor x axis) are derived in
     // registers from the anchors and axes, as the scalar code computes
     // them; what a unit impulse along them does to each body's angular
     // velocity (inverse inertia times them) is kept for the step, since
     // deriving it would need each body's inertia gathered on every pass.
-    float anchor_a[3][kLanes];
-    float anchor_b[3][kLanes];
-    float in_a[3][kLanes];
-    float in_b[3][kLanes];
-    float it1_a[3][kLanes];
-    float it1_b[3][kLanes];
-    float it2_a[3][kLanes];
-    float it2_b[3][kLanes];
-    float base_separation[kLanes];
-    float separation[kLanes];
-    float normal_mass[kLanes];
-    float tangent_mass1[kLanes];
-    float tangent_mass2[kLanes];
-    float normal_impulse[kLanes];
-    float tangent_impulse1[kLanes];
-    float tangent_impulse2[kLanes];
-    float max_normal_impulse[kLanes];
+    float anchor_a[3][kBatchLanes];
+    float anchor_b[3][kBatchLanes];
+    float in_a[3][kBatchLanes];
+    float in_b[3][kBatchLanes];
+    float it1_a[3][kBatchLanes];
+    float it1_b[3][kBatchLanes];
+    float it2_a[3][kBatchLanes];
+    float it2_b[3][kBatchLanes];
+    float base_separation[kBatchLanes];
+    float separation[kBatchLanes];
+    float normal_mass[kBatchLanes];
+    float tangent_mass1[kBatchLanes];
+    float tangent_mass2[kBatchLanes];
+    float normal_impulse[kBatchLanes];
+    float tangent_impulse1[kBatchLanes];
+    float tangent_impulse2[kBatchLanes];
+    float max_normal_impulse[kBatchLanes];
   } points[kMaxManifoldPoints];
-  float coupling[kMaxManifoldPoints][kMaxManifoldPoints][kLanes];
+  float coupling[kMaxManifoldPoints][kMaxManifoldPoints][kBatchLanes];
+  /// 1 where the lane's body can move (the passes write back only those).
+  /// Last, so every float field above stays 32-byte aligned.
+  uint8_t movable_a[kBatchLanes];
+  uint8_t movable_b[kBatchLanes];
 };
+// The eight-lane passes load and store every float field with aligned
+// 32-byte accesses.
+static_assert(offsetof(ContactBatch, normal) % 32 == 0 &&
+              offsetof(ContactBatch, points) % 32 == 0 && sizeof(ContactBatch::Point) % 32 == 0 &&
+              offsetof(ContactBatch, coupling) % 32 == 0);
 
 /// Colours scratch.constraints and packs them into scratch.batches.
 void build_batches(WorldScratch& scratch);

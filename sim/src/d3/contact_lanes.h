@@ -1,21 +1,21 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The solver's passes over contact batches, written once for any lane type:
-// four lanes over one batch (contact_batches.cpp: SSE2, NEON or plain
-// arrays) or eight over two batches of the same colour
-// (contact_lanes_avx.cpp: AVX, chosen at run time). Constraints of one
-// colour share no movable body, so solving two batches at once is solving
-// them one after the other: the lane count cannot change a result.
+// four lanes over half a batch (contact_batches.cpp: SSE2, NEON or plain
+// arrays) or eight over a whole batch (contact_lanes_avx.cpp: AVX, chosen at
+// run time). A batch's constraints share no movable body, so solving its
+// halves at once is solving them one after the other: the lane count cannot
+// change a result.
 //
 // An access type A says where the lanes come from:
 //   A::F                  the lane type (+ - * /, < >, select, sqrt by ADL)
 //   A::kWidth             lanes
 //   A::splat(x)           x in every lane
 //   A::from(p), A::to(p)  kWidth contiguous floats
-//   acc.ld(field)         a [kLanes] field of the first batch and, for two
-//   acc.st(field, v)      batches, the same field of the second
+//   acc.ld(field)         the access's lanes of a [kBatchLanes] field
+//   acc.st(field, v)
 //   acc.body_a(lane)      solver body of a lane (body_b likewise)
-//   acc.first()           the first batch, whose fields name what to load
+//   acc.first()           the batch, whose fields name what to load
 //   acc.movable_a(lane)   whether the lane's body can move (movable_b likewise)
 //   A::gather_rows(rows, out), A::scatter_rows(in, rows)
 //                         kWidth solver-body rows of eight floats into eight
@@ -58,11 +58,11 @@ V3<F> cross3(const V3<F>& a, const V3<F>& b) {
 }
 
 template <class A>
-V3<typename A::F> ld3(const A& acc, const float (&f)[3][kLanes]) {
+V3<typename A::F> ld3(const A& acc, const float (&f)[3][kBatchLanes]) {
   return {acc.ld(f[0]), acc.ld(f[1]), acc.ld(f[2])};
 }
 template <class A>
-void st3(const A& acc, float (&f)[3][kLanes], const V3<typename A::F>& v) {
+void st3(const A& acc, float (&f)[3][kBatchLanes], const V3<typename A::F>& v) {
   acc.st(f[0], v.x);
   acc.st(f[1], v.y);
   acc.st(f[2], v.z);
@@ -395,15 +395,13 @@ void separations_lanes(const A& acc, const std::vector<SolverBody>& bodies) {
 }  // namespace
 
 #if defined(REWIND_LANES_AVX)
-/// Eight lanes over two batches of one colour (contact_lanes_avx.cpp); only
-/// call when lanes8_available().
+/// Eight lanes over a whole batch (contact_lanes_avx.cpp); only call when
+/// lanes8_available().
 bool lanes8_available();
-void prepare_pair(ContactBatch& first, ContactBatch& second, const std::vector<SolverBody>& bodies);
-void warm_start_pair(ContactBatch& first, ContactBatch& second, std::vector<SolverBody>& bodies);
-void solve_pair(ContactBatch& first, ContactBatch& second, std::vector<SolverBody>& bodies,
-                float inv_h);
-void separations_pair(ContactBatch& first, ContactBatch& second,
-                      const std::vector<SolverBody>& bodies);
+void prepare_full(ContactBatch& batch, const std::vector<SolverBody>& bodies);
+void warm_start_full(ContactBatch& batch, std::vector<SolverBody>& bodies);
+void solve_full(ContactBatch& batch, std::vector<SolverBody>& bodies, float inv_h);
+void separations_full(ContactBatch& batch, const std::vector<SolverBody>& bodies);
 #endif
 
 }  // namespace rwd::sim::d3

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The solver's passes on eight AVX lanes: two batches of one colour at a
-// time (contact_lanes.h). Compiled for AVX through a target pragma, so the
+// The solver's passes on eight AVX lanes: a whole batch at a time
+// (contact_lanes.h). Compiled for AVX through a target pragma, so the
 // rest of the engine stays plain x86-64; contact_batches.cpp calls in only
 // when the processor and the OS support AVX. Each AVX operation is the same
 // IEEE single-precision operation per lane as the SSE2 one (no FMA, exact
@@ -61,34 +61,18 @@ inline FloatW8 select(MaskW8 m, FloatW8 a, FloatW8 b) {
   return {_mm256_or_ps(_mm256_and_ps(m.v, a.v), _mm256_andnot_ps(m.v, b.v))};
 }
 
-// Eight lanes over two batches: lanes 0-3 from the first, 4-7 from the
-// second. A field is named through the first batch; the second's is at the
-// same offset.
-struct TwoBatches {
+// Eight lanes over one batch.
+struct FullBatch {
   using F = FloatW8;
-  static constexpr int kWidth = 2 * kLanes;
-  TwoBatches(ContactBatch* first, ContactBatch* second)
-      : batch0(first),
-        batch1(second),
-        distance(reinterpret_cast<const char*>(second) - reinterpret_cast<const char*>(first)) {}
-  ContactBatch* batch0;
-  ContactBatch* batch1;
-  std::ptrdiff_t distance;  ///< from the first batch to the second, bytes
+  static constexpr int kWidth = kBatchLanes;
+  ContactBatch* batch;
   static F splat(float x) { return {_mm256_set1_ps(x)}; }
   static F from(const float* p) { return {_mm256_loadu_ps(p)}; }
   static void to(float* p, F v) { _mm256_storeu_ps(p, v.v); }
-  const float* second(const float* field) const {
-    return reinterpret_cast<const float*>(reinterpret_cast<const char*>(field) + distance);
-  }
-  F ld(const float (&field)[kLanes]) const {
-    const __m128 lo = _mm_loadu_ps(field);
-    const __m128 hi = _mm_loadu_ps(second(field));
-    return {_mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1)};
-  }
-  void st(float (&field)[kLanes], F v) const {
-    _mm_storeu_ps(field, _mm256_castps256_ps128(v.v));
-    _mm_storeu_ps(const_cast<float*>(second(field)), _mm256_extractf128_ps(v.v, 1));
-  }
+  // Batches are 32-byte aligned and every field is a multiple of 32 bytes
+  // from the start, so lane arrays load and store aligned.
+  F ld(const float (&field)[kBatchLanes]) const { return {_mm256_load_ps(field)}; }
+  void st(float (&field)[kBatchLanes], F v) const { _mm256_store_ps(field, v.v); }
   // Rows of eight floats into eight lane values and back (8x8 transpose).
   static void transpose8(__m256 (&r)[8]) {
     const __m256 t0 = _mm256_unpacklo_ps(r[0], r[1]);
@@ -116,13 +100,13 @@ struct TwoBatches {
     r[6] = _mm256_permute2f128_ps(s2, s6, 0x31);
     r[7] = _mm256_permute2f128_ps(s3, s7, 0x31);
   }
-  static void gather_rows(const float* const (&rows)[2 * kLanes], F (&out)[8]) {
+  static void gather_rows(const float* const (&rows)[kBatchLanes], F (&out)[8]) {
     __m256 r[8];
     for (int i = 0; i < 8; ++i) r[i] = _mm256_load_ps(rows[i]);
     transpose8(r);
     for (int k = 0; k < 8; ++k) out[k] = {r[k]};
   }
-  static void scatter_rows(const F (&in)[8], float* const (&rows)[2 * kLanes]) {
+  static void scatter_rows(const F (&in)[8], float* const (&rows)[kBatchLanes]) {
     __m256 r[8];
     for (int k = 0; k < 8; ++k) r[k] = in[k].v;
     transpose8(r);
@@ -130,19 +114,11 @@ struct TwoBatches {
       _mm256_store_ps(rows[i], r[i]);
     }
   }
-  uint32_t body_a(int lane) const {
-    return lane < kLanes ? batch0->body_a[lane] : batch1->body_a[lane - kLanes];
-  }
-  uint32_t body_b(int lane) const {
-    return lane < kLanes ? batch0->body_b[lane] : batch1->body_b[lane - kLanes];
-  }
-  bool movable_a(int lane) const {
-    return (lane < kLanes ? batch0->movable_a[lane] : batch1->movable_a[lane - kLanes]) != 0;
-  }
-  bool movable_b(int lane) const {
-    return (lane < kLanes ? batch0->movable_b[lane] : batch1->movable_b[lane - kLanes]) != 0;
-  }
-  ContactBatch& first() const { return *batch0; }
+  uint32_t body_a(int lane) const { return batch->body_a[lane]; }
+  uint32_t body_b(int lane) const { return batch->body_b[lane]; }
+  bool movable_a(int lane) const { return batch->movable_a[lane] != 0; }
+  bool movable_b(int lane) const { return batch->movable_b[lane] != 0; }
+  ContactBatch& first() const { return *batch; }
 };
 
 }  // namespace
@@ -152,23 +128,20 @@ struct TwoBatches {
 
 namespace rwd::sim::d3 {
 
-void prepare_pair(ContactBatch& first, ContactBatch& second,
-                  const std::vector<SolverBody>& bodies) {
-  prepare_lanes(TwoBatches{&first, &second}, bodies);
+void prepare_full(ContactBatch& batch, const std::vector<SolverBody>& bodies) {
+  prepare_lanes(FullBatch{&batch}, bodies);
 }
 
-void warm_start_pair(ContactBatch& first, ContactBatch& second, std::vector<SolverBody>& bodies) {
-  warm_start_lanes(TwoBatches{&first, &second}, bodies);
+void warm_start_full(ContactBatch& batch, std::vector<SolverBody>& bodies) {
+  warm_start_lanes(FullBatch{&batch}, bodies);
 }
 
-void solve_pair(ContactBatch& first, ContactBatch& second, std::vector<SolverBody>& bodies,
-                float inv_h) {
-  solve_lanes(TwoBatches{&first, &second}, bodies, inv_h);
+void solve_full(ContactBatch& batch, std::vector<SolverBody>& bodies, float inv_h) {
+  solve_lanes(FullBatch{&batch}, bodies, inv_h);
 }
 
-void separations_pair(ContactBatch& first, ContactBatch& second,
-                      const std::vector<SolverBody>& bodies) {
-  separations_lanes(TwoBatches{&first, &second}, bodies);
+void separations_full(ContactBatch& batch, const std::vector<SolverBody>& bodies) {
+  separations_lanes(FullBatch{&batch}, bodies);
 }
 
 }  // namespace rwd::sim::d3
