@@ -14,7 +14,10 @@
 // scene at the edge of the world: small bounds, bodies flung out of them
 // (disabled, reported) and respawned, the world reloaded from its own
 // serialized bytes every 50 ticks, so the bounds rule, disabled bodies and
-// the snapshot codec are part of the matrix too.
+// the snapshot codec are part of the matrix too; then "heap <tick>
+// <checksum> <points>" lines for a heap with deep and shallow overlaps that
+// sleeps and is kicked awake, so the push-out and the broadphase's trees are
+// part of it.
 //
 // Links only the engine and the game seam: no I/O beyond stdout, no clock.
 //
@@ -172,6 +175,77 @@ bool run_edge_scene(Tick ticks) {
   return true;
 }
 
+// The heap scene: a column of boxes built half inside each other (deep
+// overlaps, pushed out one at a time from the ground up) beside a heap of
+// boxes and spheres dropped into a corner overlapping a little (shallow
+// overlaps, pushed out in the solver's lanes), with sleeping on, so bodies
+// fall asleep, are kicked awake and pile up again. Every 30 ticks a restore
+// must re-step bit for bit. Returns false (after saying why) otherwise.
+bool run_heap_scene(Tick ticks) {
+  namespace sim = rwd::sim;
+  sim::World3D world;
+  SplitMix64 rng{0x4EA9'0F'B0C5'0002ull};
+  auto coord = [&rng](float half) {
+    return (static_cast<float>(rng.below(20001)) / 10000.0f - 1.0f) * half;
+  };
+  sim::BodyDef ground;
+  ground.kind = sim::BodyKind::kStatic;
+  ground.shape = sim::Shape::make_box({20.0f, 0.5f, 20.0f});
+  ground.position = {0.0f, -0.5f, 0.0f};
+  (void)world.create_body(ground);
+  for (int w = 0; w < 2; ++w) {  // two walls make a corner
+    sim::BodyDef wall = ground;
+    wall.shape =
+        sim::Shape::make_box(w == 0 ? sim::Vec3{0.5f, 3.0f, 6.0f} : sim::Vec3{6.0f, 3.0f, 0.5f});
+    wall.position = w == 0 ? sim::Vec3{-6.5f, 3.0f, 0.0f} : sim::Vec3{0.0f, 3.0f, -6.5f};
+    (void)world.create_body(wall);
+  }
+  std::vector<sim::BodyId> bodies;
+  for (int i = 0; i < 8; ++i) {  // the column: each box half inside the one below
+    sim::BodyDef def;
+    def.shape = sim::Shape::make_box({0.5f, 0.5f, 0.5f});
+    def.position = {4.0f, 0.5f + 0.5f * static_cast<float>(i), 4.0f};
+    bodies.push_back(*world.create_body(def));
+  }
+  for (int i = 0; i < 40; ++i) {  // the heap: a loose lattice, a little overlapping
+    sim::BodyDef def;
+    def.shape =
+        i % 4 == 3 ? sim::Shape::make_sphere(0.35f) : sim::Shape::make_box({0.35f, 0.35f, 0.35f});
+    def.position = {-5.0f + 0.65f * static_cast<float>(i % 4),
+                    0.4f + 0.65f * static_cast<float>(i / 16),
+                    -5.0f + 0.65f * static_cast<float>((i / 4) % 4)};
+    bodies.push_back(*world.create_body(def));
+  }
+  sim::WorldState saved;
+  uint64_t first_pass[4] = {};
+  for (Tick t = 0; t < ticks; ++t) {
+    if (t % 90 == 60) {  // a kick wakes part of the heap
+      const sim::BodyId id = bodies[8 + rng.below(40)];
+      (void)world.apply_linear_impulse(id, {coord(30.0f), 20.0f, coord(30.0f)}, world.position(id));
+    }
+    if (t % 30 == 0) {
+      world.save(saved);
+      for (uint64_t& sum : first_pass) {
+        world.step();
+        sum = world.checksum();
+      }
+      world.restore(saved);
+      for (const uint64_t sum : first_pass) {
+        world.step();
+        if (world.checksum() != sum) {
+          std::printf("ROLLBACK-MISMATCH heap %d\n", static_cast<int>(t));
+          return false;
+        }
+      }
+      world.restore(saved);
+    }
+    world.step();
+    std::printf("heap %d %016" PRIx64 " %u\n", static_cast<int>(t), world.checksum(),
+                world.stats().contact_points);
+  }
+  return true;
+}
+
 bool parse_ticks(const char* text, Tick& out) {
   char* end = nullptr;
   const long value = std::strtol(text, &end, 10);
@@ -190,6 +264,7 @@ int main(int argc, char** argv) {
   }
 
   if (!run_edge_scene(300)) return 3;
+  if (!run_heap_scene(400)) return 3;
 
   MatchSetup setup;
   setup.player_count = kPlayers;

@@ -80,6 +80,7 @@ void clear_point(ContactBatch::Point& p, int lane) {
   p.tangent_impulse1[lane] = 0.0f;
   p.tangent_impulse2[lane] = 0.0f;
   p.max_normal_impulse[lane] = 0.0f;
+  p.push_impulse[lane] = 0.0f;
 }
 
 void clear_lane(ContactBatch& batch, int lane) {
@@ -95,6 +96,8 @@ void clear_lane(ContactBatch& batch, int lane) {
   }
   batch.point_count[lane] = 0.0f;
   batch.friction[lane] = 0.0f;
+  batch.push_rate[lane] = 0.0f;
+  batch.push_mass_scale[lane] = 0.0f;
   for (ContactBatch::Point& p : batch.points) clear_point(p, lane);
 }
 
@@ -117,6 +120,8 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
     dst[a][2][lane] = axes[a].z;
   }
   batch.friction[lane] = c.friction;
+  batch.push_rate[lane] = c.softness.bias_rate;
+  batch.push_mass_scale[lane] = c.softness.mass_scale;
   for (uint32_t p = 0; p < c.point_count; ++p) {
     const ConstraintPoint& cp = c.points[p];
     ContactBatch::Point& bp = batch.points[p];
@@ -132,6 +137,7 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
     bp.tangent_impulse1[lane] = cp.tangent_impulse1;
     bp.tangent_impulse2[lane] = cp.tangent_impulse2;
     bp.max_normal_impulse[lane] = cp.max_normal_impulse;
+    bp.push_impulse[lane] = 0.0f;
   }
   for (uint32_t p = c.point_count; p < kMaxManifoldPoints; ++p) clear_point(batch.points[p], lane);
 }
@@ -169,6 +175,10 @@ void solve_full(ContactBatch& b, std::vector<SolverBody>& bodies, float inv_h) {
 void separations_full(ContactBatch& b, const std::vector<SolverBody>& bodies) {
   separations_lanes(HalfBatch{&b, 0}, bodies);
   separations_lanes(HalfBatch{&b, kLanes}, bodies);
+}
+void push_full(ContactBatch& b, std::vector<SolverBody>& bodies, const PushSettings& push) {
+  push_lanes(HalfBatch{&b, 0}, bodies, push);
+  push_lanes(HalfBatch{&b, kLanes}, bodies, push);
 }
 #endif
 
@@ -223,6 +233,8 @@ void build_batches(WorldScratch& scratch) {
         const uint32_t at = first + lane;
         if (lane < per_batch && at < end) {
           const uint32_t index = scratch.colored[at];
+          scratch.constraints[index].batch = static_cast<uint32_t>(scratch.batches.size() - 1);
+          scratch.constraints[index].lane = lane;
           fill_lane(batch, static_cast<int>(lane), index, scratch.constraints[index],
                     scratch.solver_bodies);
         } else {
@@ -269,6 +281,15 @@ void copy_back_separations(WorldScratch& scratch, const ContactBatch& batch, int
 }
 
 }  // namespace
+
+void push_batches(WorldScratch& scratch, const WorldConfig& config, float inv_h) {
+  std::vector<SolverBody>& bodies = scratch.solver_bodies;
+  const PushSettings push{inv_h, config.linear_slop_m, config.contact_push_max_mps,
+                          -kDeepOverlapSlops * config.linear_slop_m};
+  for_batches(
+      scratch, [&](ContactBatch& b) { push_full(b, bodies, push); },
+      [&](const HalfBatch& h) { push_lanes(h, bodies, push); });
+}
 
 void update_separations(WorldScratch& scratch) {
   const std::vector<SolverBody>& bodies = scratch.solver_bodies;

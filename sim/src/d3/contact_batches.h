@@ -29,6 +29,10 @@ inline constexpr uint32_t kColorCount = 24;
 /// impulse, which leaves the body turning toward the last point solved; a
 /// tall stack of such tilts never settles and walks off its base).
 inline constexpr int kManifoldSweeps = 4;
+/// An overlap deeper than this many linear slops past the slop is pushed out
+/// from the ground up, one contact at a time (support_order.cpp); shallower
+/// ones are pushed out in the lanes.
+inline constexpr float kDeepOverlapSlops = 4.0f;
 /// The constraint of an empty lane.
 inline constexpr uint32_t kNoConstraint = 0xFFFFFFFFu;
 /// Constraints per batch: one AVX register of lanes, or two of SSE2/NEON
@@ -48,6 +52,8 @@ struct alignas(32) ContactBatch {
   float tangent1[3][kBatchLanes];
   float tangent2[3][kBatchLanes];
   float friction[kBatchLanes];
+  float push_rate[kBatchLanes];        ///< the softness's bias rate, 1/s
+  float push_mass_scale[kBatchLanes];  ///< the softness's mass scale
   struct Point {
     // The Jacobian's angular parts (anchor x axis) are derived in
     // registers from the anchors and axes, as the scalar code computes
@@ -71,6 +77,7 @@ struct alignas(32) ContactBatch {
     float tangent_impulse1[kBatchLanes];
     float tangent_impulse2[kBatchLanes];
     float max_normal_impulse[kBatchLanes];
+    float push_impulse[kBatchLanes];  ///< accumulated push-out impulse of this tick
   } points[kMaxManifoldPoints];
   float coupling[kMaxManifoldPoints][kMaxManifoldPoints][kBatchLanes];
   /// 1 where the lane's body can move (the passes write back only those).
@@ -83,6 +90,14 @@ struct alignas(32) ContactBatch {
 static_assert(offsetof(ContactBatch, normal) % 32 == 0 &&
               offsetof(ContactBatch, points) % 32 == 0 && sizeof(ContactBatch::Point) % 32 == 0 &&
               offsetof(ContactBatch, coupling) % 32 == 0);
+
+/// What the lanes' push-out pass needs of the world's settings.
+struct PushSettings {
+  float inv_h;       ///< 1 / substep, 1/s
+  float slop;        ///< overlap allowed, m
+  float max_speed;   ///< push speed cap, m/s
+  float deep_limit;  ///< depths below this were pushed out one by one, m
+};
 
 /// Colours scratch.constraints and packs them into scratch.batches.
 void build_batches(WorldScratch& scratch);
@@ -99,6 +114,10 @@ void update_separations(WorldScratch& scratch);
 /// batches (a batch's separations depend only on the bodies' motion so
 /// far, which solving other batches does not change).
 void update_separations_and_relax(WorldScratch& scratch, float inv_h);
+/// One pass of the push-out over every shallow overlap (at most
+/// kDeepOverlapSlops slops past the slop), in the batches' order; the deep
+/// ones were pushed out from the ground up before it (contact_solver.cpp).
+void push_batches(WorldScratch& scratch, const WorldConfig& config, float inv_h);
 /// Copies the impulses back to scratch.constraints.
 void unpack_batches(WorldScratch& scratch);
 

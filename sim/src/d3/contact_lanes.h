@@ -85,21 +85,28 @@ inline float* body_row(SolverBody& b) {
   return reinterpret_cast<float*>(&b);
 }
 
-// The lanes' bodies: their rows, transposed into lanes by the access.
+// Offsets of a solver body's rows (see SolverBody).
+inline constexpr int kVelocityRow = 0;
+inline constexpr int kPushRow = 8;
+inline constexpr int kInertiaRow = 16;
+
+// The lanes' bodies: one of their rows (the velocities, or the push row read
+// the same way: push velocities, inverse mass, pushed), transposed into lanes
+// by the access.
 template <class A>
 LaneBodies<typename A::F> gather_bodies(const A& acc, const std::vector<SolverBody>& bodies,
-                                        bool side_b) {
+                                        bool side_b, int row = kVelocityRow) {
   const float* rows[A::kWidth];
   for (int i = 0; i < A::kWidth; ++i) {
-    rows[i] = body_row(bodies[side_b ? acc.body_b(i) : acc.body_a(i)]);
+    rows[i] = body_row(bodies[side_b ? acc.body_b(i) : acc.body_a(i)]) + row;
   }
   typename A::F f[8];
   A::gather_rows(rows, f);
   return {{f[0], f[1], f[2]}, {f[3], f[4], f[5]}, f[6], f[7]};
 }
 
-// The lanes' bodies' world inverse inertias (columns): the row after the
-// velocities, transposed like it, and the ninth float one lane at a time.
+// The lanes' bodies' world inverse inertias (columns): a row transposed like
+// the velocities, and the ninth float one lane at a time.
 template <class F>
 struct LaneInertia {
   V3<F> c0, c1, c2;
@@ -111,7 +118,7 @@ LaneInertia<typename A::F> gather_inertia(const A& acc, const std::vector<Solver
   const float* rows[A::kWidth];
   alignas(32) float last[A::kWidth];
   for (int i = 0; i < A::kWidth; ++i) {
-    rows[i] = body_row(bodies[side_b ? acc.body_b(i) : acc.body_a(i)]) + 8;
+    rows[i] = body_row(bodies[side_b ? acc.body_b(i) : acc.body_a(i)]) + kInertiaRow;
     last[i] = rows[i][8];
   }
   typename A::F f[8];
@@ -135,12 +142,12 @@ V3<F> mul(const LaneInertia<F>& m, const V3<F>& v) {
 // leave a different signed zero in it.
 template <class A>
 void scatter_bodies(const A& acc, std::vector<SolverBody>& bodies, bool side_b,
-                    const LaneBodies<typename A::F>& b) {
+                    const LaneBodies<typename A::F>& b, int row = kVelocityRow) {
   alignas(32) float sink[8];
   float* rows[A::kWidth];
   for (int i = 0; i < A::kWidth; ++i) {
     const bool movable = side_b ? acc.movable_b(i) : acc.movable_a(i);
-    rows[i] = movable ? body_row(bodies[side_b ? acc.body_b(i) : acc.body_a(i)]) : sink;
+    rows[i] = movable ? body_row(bodies[side_b ? acc.body_b(i) : acc.body_a(i)]) + row : sink;
   }
   const typename A::F f[8] = {b.v.x, b.v.y, b.v.z, b.w.x, b.w.y, b.w.z, b.inv_mass, b.rest};
   A::scatter_rows(f, rows);
@@ -350,6 +357,95 @@ void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
   scatter_bodies(acc, bodies, true, b);
 }
 
+// One pass of the push-out on the push velocities: overlaps deeper than the
+// slop are pushed apart at the contact's bias rate, at most at the speed
+// cap, and a gap may close no faster than it would in the real pass. As in
+// the real pass, a manifold's points are solved as a block (one sweep for a
+// single point), each step scaled by the softness's mass scale; the
+// impulses accumulate over the tick's substeps. A lane takes part only when
+// it overlaps or one of its bodies already moves on push velocities, and
+// never when its overlap is deep (push_out_deep held it).
+template <class A>
+void push_lanes(const A& acc, std::vector<SolverBody>& bodies, const PushSettings& push) {
+  using F = typename A::F;
+  ContactBatch& batch = acc.first();
+  const F zero = A::splat(0.0f);
+  const F one = A::splat(1.0f);
+  LaneBodies<F> a = gather_bodies(acc, bodies, false, kPushRow);
+  LaneBodies<F> b = gather_bodies(acc, bodies, true, kPushRow);
+  const V3<F> n = ld3(acc, batch.normal);
+  const F count = acc.ld(batch.point_count);
+  const F rate = acc.ld(batch.push_rate);
+  const F scale = acc.ld(batch.push_mass_scale);
+  const F inv_h = A::splat(push.inv_h);
+  const F slop = A::splat(push.slop);
+  const F cap = A::splat(-push.max_speed);
+  F deepest = zero;
+  F overlapping = zero;
+  F residual[kMaxManifoldPoints];
+  F step[kMaxManifoldPoints];
+  F total[kMaxManifoldPoints];
+  F start[kMaxManifoldPoints];
+  V3<F> rn_a[kMaxManifoldPoints];
+  V3<F> rn_b[kMaxManifoldPoints];
+  for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+    const ContactBatch::Point& bp = batch.points[p];
+    const auto real = A::splat(static_cast<float>(p)) < count;
+    const F s = acc.ld(bp.separation);
+    const F depth = s + slop;  // overlap up to the slop is allowed
+    const F pushing = rate * depth;
+    const F bias = select(depth < zero, select(pushing < cap, cap, pushing),
+                          select(s > zero, s * inv_h, zero));
+    deepest = select(real, select(depth < deepest, depth, deepest), deepest);
+    overlapping = select(real, select(depth < zero, one, overlapping), overlapping);
+    rn_a[p] = cross3(ld3(acc, bp.anchor_a), n);
+    rn_b[p] = cross3(ld3(acc, bp.anchor_b), n);
+    const F vn = dot3(b.v - a.v, n) + dot3(rn_b[p], b.w) - dot3(rn_a[p], a.w);
+    residual[p] = vn + bias;
+    step[p] = acc.ld(bp.normal_mass) * scale;
+    total[p] = acc.ld(bp.push_impulse);
+    start[p] = total[p];
+  }
+  // Single points converge in one sweep; further sweeps leave them be.
+  const auto several = count > one;
+  for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
+    for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+      const F gain = sweep == 0 ? step[p] : select(several, step[p], zero);
+      F next = total[p] - gain * residual[p];
+      next = select(next < zero, zero, next);
+      const F change = next - total[p];
+      total[p] = next;
+      for (uint32_t j = 0; j < kMaxManifoldPoints; ++j) {
+        residual[j] = residual[j] + acc.ld(batch.coupling[j][p]) * change;
+      }
+    }
+  }
+  const F shallow = select(deepest < A::splat(push.deep_limit), zero, one);
+  const F wanted = select(overlapping + a.rest + b.rest > zero, shallow, zero);
+  const auto active = wanted > zero;
+  F pushed = zero;
+  F moved = zero;
+  V3<F> turn_a{zero, zero, zero};
+  V3<F> turn_b = turn_a;
+  for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+    ContactBatch::Point& bp = batch.points[p];
+    const F change = select(active, total[p] - start[p], zero);
+    acc.st(bp.push_impulse, start[p] + change);
+    pushed = pushed + change;
+    moved = select(change < zero, one, select(change > zero, one, moved));
+    turn_a = turn_a + ld3(acc, bp.in_a) * change;
+    turn_b = turn_b + ld3(acc, bp.in_b) * change;
+  }
+  a.v = a.v - n * (pushed * a.inv_mass);
+  a.w = a.w - turn_a;
+  b.v = b.v + n * (pushed * b.inv_mass);
+  b.w = b.w + turn_b;
+  a.rest = select(moved > zero, one, a.rest);
+  b.rest = select(moved > zero, one, b.rest);
+  scatter_bodies(acc, bodies, false, a, kPushRow);
+  scatter_bodies(acc, bodies, true, b, kPushRow);
+}
+
 // q rotating v, per lane, as rotate() in math.h.
 template <class A>
 V3<typename A::F> rotate_lanes(const typename A::F (&q)[4], const V3<typename A::F>& v) {
@@ -402,6 +498,7 @@ void prepare_full(ContactBatch& batch, const std::vector<SolverBody>& bodies);
 void warm_start_full(ContactBatch& batch, std::vector<SolverBody>& bodies);
 void solve_full(ContactBatch& batch, std::vector<SolverBody>& bodies, float inv_h);
 void separations_full(ContactBatch& batch, const std::vector<SolverBody>& bodies);
+void push_full(ContactBatch& batch, std::vector<SolverBody>& bodies, const PushSettings& push);
 #endif
 
 }  // namespace rwd::sim::d3

@@ -144,6 +144,10 @@ void separations_full(ContactBatch& batch, const std::vector<SolverBody>& bodies
   separations_lanes(FullBatch{&batch}, bodies);
 }
 
+void push_full(ContactBatch& batch, std::vector<SolverBody>& bodies, const PushSettings& push) {
+  push_lanes(FullBatch{&batch}, bodies, push);
+}
+
 }  // namespace rwd::sim::d3
 
 #if defined(__clang__)

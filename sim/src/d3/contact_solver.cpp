@@ -5,8 +5,10 @@
 //   for each substep:
 //     integrate velocities (gravity, forces, damping)
 //     warm start (apply last substep's impulses)
-//     solve      (rigid contacts on the real velocities; overlaps beyond the
-//                 slop pushed out on separate push velocities, capped speed)
+//     solve      (rigid contacts on the real velocities)
+//     push-out   (overlaps beyond the slop pushed apart on separate push
+//                 velocities, capped speed: deep ones one at a time from the
+//                 ground up, then the rest in the lanes)
 //     integrate positions (real plus push velocities; the push velocities
 //                 and impulses last one tick and are never kept)
 //     relax      (rigid contacts again, after the move)
@@ -26,9 +28,10 @@
 //
 // The normal impulses of a manifold's points are solved together (a few
 // sweeps on the manifold's own K matrix) and applied to the bodies once;
-// friction follows point by point. The real-velocity passes run over
-// coloured batches of four contacts in SIMD lanes (contact_batches.cpp);
-// the push-out, which visits contacts from the ground up, runs here.
+// friction follows point by point. The real-velocity passes and the push-out
+// of shallow overlaps run over coloured batches of eight contacts in SIMD
+// lanes (contact_batches.cpp); the push-out of deep overlaps, which visits
+// contacts from the ground up, runs here.
 // Contact anchors stay fixed relative to the body centres for the whole tick;
 // each substep recomputes the separation from how far the bodies have moved
 // and turned since the tick began, so the narrowphase runs once per tick.
@@ -49,10 +52,6 @@ namespace {
 // moves faster than this, or turns more than a quarter turn per substep.
 constexpr float kMaxLinearSpeed = 400.0f;  // m/s
 constexpr float kMaxRotationPerSubstep = 0.25f * kPi;
-
-// An overlap deeper than this many linear slops past the slop is pushed out
-// from the ground up (support_order.cpp): at the default slop, 2 cm.
-constexpr float kDeepOverlapSlops = 4.0f;
 
 Softness make_soft(float hertz, float zeta, float h) {
   if (hertz == 0.0f) return {0.0f, 1.0f};
@@ -99,6 +98,7 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
     b.angular_velocity = sim.angular_velocity;
     b.delta_rotation = Quat{};
     b.inv_mass = mass.inv_mass;
+    b.push_inv_mass = mass.inv_mass;
     b.linear_damping_factor = 1.0f;
     b.angular_damping_factor = 1.0f;
     if (info.kind == BodyKind::kDynamic) {
@@ -154,7 +154,6 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
       cp.normal_impulse = rec.points[p].normal_impulse;
       cp.tangent_impulse1 = rec.points[p].tangent_impulse1;
       cp.tangent_impulse2 = rec.points[p].tangent_impulse2;
-      cp.push_impulse = 0.0f;
       cp.max_normal_impulse = 0.0f;
       // Only restitution reads the approach speed: a contact that cannot
       // bounce does not pay for it.
@@ -166,6 +165,15 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
     scratch.constraints.push_back(c);
   }
   scratch.stats.contact_points = points;
+}
+
+// Impulses against the shared immovable body move nothing; its push row is
+// cleared so the lanes read exact zeros from it.
+void reset_immovable_push(WorldScratch& scratch) {
+  SolverBody& immovable = scratch.solver_bodies[0];
+  immovable.push_linear = {};
+  immovable.push_angular = {};
+  immovable.pushed = 0.0f;
 }
 
 void integrate_velocities(WorldScratch& scratch, float h) {
@@ -194,7 +202,7 @@ void integrate_positions(WorldScratch& scratch, float h) {
       b.angular_velocity = w;
     }
     Vec3 v = b.linear_velocity;
-    if (b.pushed != 0) {
+    if (b.pushed != 0.0f) {
       v += b.push_linear;
       w += b.push_angular;
       w_sq = length_squared(w);
@@ -296,14 +304,16 @@ void one_sided_coupling(const ContactConstraint& c, const SolverBody& moving, bo
   }
 }
 
-// One pass of the push-out on the push velocities, from the ground up
-// (support_order.cpp): overlaps deeper than the slop are pushed apart at
-// the contact's bias rate, at most at the push speed cap, and a gap may
-// close no faster than it would in the real pass. The push impulses
-// accumulate over the tick's substeps and are never warm-started.
-void push_out(WorldScratch& scratch, const WorldConfig& config, float inv_h) {
+// The push-out of the overlaps deeper than kDeepOverlapSlops slops past the
+// slop, one contact at a time from the ground up (support_order.cpp): the
+// lower body is held, so a column that was built overlapping rises box by
+// box instead of compounding its pushes up the column. The shallow
+// overlaps are pushed out next, in the lanes (push_batches). Deep overlaps
+// are rare, so this pass mostly tests and skips.
+void push_out_deep(WorldScratch& scratch, const WorldConfig& config, float inv_h) {
   const float slop = config.linear_slop_m;
   const float push_max = config.contact_push_max_mps;
+  const float deep_limit = -kDeepOverlapSlops * slop;
   float vn[kMaxManifoldPoints];
   float bias[kMaxManifoldPoints];
   float mass[kMaxManifoldPoints];
@@ -312,36 +322,32 @@ void push_out(WorldScratch& scratch, const WorldConfig& config, float inv_h) {
   float one_sided[kMaxManifoldPoints][kMaxManifoldPoints];
   for (uint32_t index : scratch.push_order) {
     ContactConstraint& c = scratch.constraints[index];
-    SolverBody& a = scratch.solver_bodies[c.body_a];
-    SolverBody& b = scratch.solver_bodies[c.body_b];
-    bool overlapping = false;
     float deepest = 0.0f;
     for (uint32_t p = 0; p < c.point_count; ++p) {
-      const float s = c.points[p].separation;
-      if (s + slop < deepest) deepest = s + slop;
+      const float depth = c.points[p].separation + slop;  // overlap up to the slop is allowed
+      if (depth < deepest) deepest = depth;
+    }
+    if (!(deepest < deep_limit)) continue;
+    SolverBody& a = scratch.solver_bodies[c.body_a];
+    SolverBody& b = scratch.solver_bodies[c.body_b];
+    ContactBatch& batch = scratch.batches[c.batch];
+    for (uint32_t p = 0; p < c.point_count; ++p) {
+      const ConstraintPoint& cp = c.points[p];
+      const float s = cp.separation;
       bias[p] = s > 0.0f ? s * inv_h : 0.0f;
-      const float depth = s + slop;  // overlap up to the slop is allowed
+      const float depth = s + slop;
       if (depth < 0.0f) {
         const float push = c.softness.bias_rate * depth;
         bias[p] = push < -push_max ? -push_max : push;
-        overlapping = true;
       }
-    }
-    if (!overlapping && a.pushed == 0 && b.pushed == 0) continue;
-    for (uint32_t p = 0; p < c.point_count; ++p) {
-      const ConstraintPoint& cp = c.points[p];
       const Vec3 va = a.push_linear + cross(a.push_angular, cp.anchor_a);
       const Vec3 vb = b.push_linear + cross(b.push_angular, cp.anchor_b);
       vn[p] = dot(vb - va, c.normal);
       mass[p] = cp.normal_mass;
-      impulse[p] = cp.push_impulse;
+      impulse[p] = batch.points[p].push_impulse[c.lane];
     }
     const float(*k)[kMaxManifoldPoints] = c.coupling;
-    // Only a deep overlap is pushed out from the ground up; shallow ones (a
-    // resting contact a little past the slop) push both bodies, so the
-    // push-out never drives a resting structure sideways.
-    const bool deep = deepest < -kDeepOverlapSlops * slop;
-    const uint8_t fixed = deep ? c.push_fixed : static_cast<uint8_t>(kPushFixedNone);
+    const uint8_t fixed = c.push_fixed;
     if (fixed != kPushFixedNone) {
       const bool moving_is_b = fixed == kPushFixedA;
       one_sided_coupling(c, moving_is_b ? b : a, moving_is_b, one_sided, mass);
@@ -350,19 +356,16 @@ void push_out(WorldScratch& scratch, const WorldConfig& config, float inv_h) {
     solve_manifold(c.point_count, k, mass, vn, bias, c.softness.mass_scale, impulse, delta);
     bool moved = false;
     for (uint32_t p = 0; p < c.point_count; ++p) {
-      c.points[p].push_impulse = impulse[p];
+      batch.points[p].push_impulse[c.lane] = impulse[p];
       moved = moved || delta[p] != 0.0f;
     }
     if (!moved) continue;
     apply_normal_impulses(c, delta, a, b, a.push_linear, a.push_angular, b.push_linear,
                           b.push_angular, fixed);
-    if (fixed != kPushFixedA && a.inv_mass != 0.0f) a.pushed = 1;
-    if (fixed != kPushFixedB && b.inv_mass != 0.0f) b.pushed = 1;
+    if (fixed != kPushFixedA && a.inv_mass != 0.0f) a.pushed = 1.0f;
+    if (fixed != kPushFixedB && b.inv_mass != 0.0f) b.pushed = 1.0f;
   }
-  SolverBody& immovable = scratch.solver_bodies[0];
-  immovable.push_linear = {};
-  immovable.push_angular = {};
-  immovable.pushed = 0;
+  reset_immovable_push(scratch);
 }
 
 void apply_restitution(WorldScratch& scratch, const WorldConfig& config) {
@@ -453,7 +456,8 @@ void solve(WorldState& state, WorldScratch& scratch) {
     integrate_velocities(scratch, h);
     warm_start_batches(scratch);
     solve_batches(scratch, inv_h);
-    push_out(scratch, config, inv_h);
+    push_out_deep(scratch, config, inv_h);
+    push_batches(scratch, config, inv_h);
     integrate_positions(scratch, h);
     if (config.relax_iterations > 0) {
       update_separations_and_relax(scratch, inv_h);

@@ -37,33 +37,37 @@ struct ContactGeometry {
 /// start of the step. Index 0 is a shared immovable body standing in for
 /// every static or sleeping body.
 ///
-/// The first eight floats (velocities, inverse mass, the angular damping
-/// factor) are one aligned row, so the solver's lanes gather and scatter
-/// bodies with a few vector loads and a transpose (contact_lanes.h); the
-/// inverse inertia follows, read the same way when batches are prepared.
+/// The solver's lanes gather and scatter bodies as aligned rows of eight
+/// floats with a few vector loads and a transpose (contact_lanes.h): the
+/// velocities row, the push-out row, then the inverse inertia.
 struct alignas(32) SolverBody {
+  // Row 0: the real velocities.
   Vec3 linear_velocity;
   Vec3 angular_velocity;
   float inv_mass;
   float angular_damping_factor;
-  Mat3 inv_inertia;  ///< world frame, fixed for the step
-  /// Push-out velocities of the current substep: they move the body out of
-  /// overlaps and are then dropped, so recovering from an overlap never
-  /// becomes real velocity (a split impulse).
+  // Row 1: the push-out. Push velocities move the body out of overlaps
+  // during the tick's substeps and are then dropped, so recovering from an
+  // overlap never becomes real velocity (a split impulse).
   Vec3 push_linear;
   Vec3 push_angular;
+  float push_inv_mass;  ///< inv_mass again, so the push row is self-contained
+  float pushed;         ///< 1 once push velocities are set this tick, else 0
+  Mat3 inv_inertia;     ///< world frame, fixed for the step
   Vec3 delta_position;
   Quat delta_rotation;
   Vec3 linear_acceleration;     ///< gravity plus applied force, m/s^2
   float linear_damping_factor;  ///< 1 / (1 + h * damping), per substep
-  uint8_t pushed;               ///< push velocities are non-zero this substep
 };
 static_assert(offsetof(SolverBody, angular_velocity) == 3 * sizeof(float) &&
                   offsetof(SolverBody, inv_mass) == 6 * sizeof(float) &&
                   offsetof(SolverBody, angular_damping_factor) == 7 * sizeof(float) &&
-                  offsetof(SolverBody, inv_inertia) == 8 * sizeof(float),
-              "the solver's lanes read a body's first eight floats as one row and its "
-              "inverse inertia (columns) as the next nine");
+                  offsetof(SolverBody, push_linear) == 8 * sizeof(float) &&
+                  offsetof(SolverBody, push_angular) == 11 * sizeof(float) &&
+                  offsetof(SolverBody, push_inv_mass) == 14 * sizeof(float) &&
+                  offsetof(SolverBody, pushed) == 15 * sizeof(float) &&
+                  offsetof(SolverBody, inv_inertia) == 16 * sizeof(float),
+              "the solver's lanes read a body as rows of eight floats");
 
 /// How hard overlaps are pushed out: the separating speed per metre of
 /// overlap and the fraction of a rigid push-out impulse applied per substep,
@@ -84,7 +88,6 @@ struct ConstraintPoint {
   float tangent_impulse1;
   float tangent_impulse2;
   float max_normal_impulse;
-  float push_impulse;  ///< accumulated push-out impulse of this tick
 };
 
 /// Which body the push-out holds fixed (support_order.cpp).
@@ -104,6 +107,10 @@ struct ContactConstraint {
   float restitution;
   Softness softness;
   uint8_t push_fixed;  ///< kPushFixed*: the lower body of the contact, if any
+  /// Where the constraint is packed: scratch.batches[batch], lane `lane`
+  /// (its push-out impulses live there).
+  uint32_t batch;
+  uint32_t lane;
   /// The manifold's normal K matrix (filled when packed into batches,
   /// with the normal masses): coupling[i][j] is the normal velocity
   /// change at point i per unit normal impulse at point j (fixed for the

@@ -26,7 +26,9 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///      impulses solved as a block, contacts
 ///      solved colour by colour in batches of four lanes, box-box SAT on
 ///      the relative rotation matrix
-inline constexpr uint32_t kSimRevision = 4;
+///   5  shallow overlaps pushed out colour by colour in the lanes (deep ones
+///      still one at a time from the ground up)
+inline constexpr uint32_t kSimRevision = 5;
 
 /// "rewind-sim r4": the engine identity a replay records.
 inline std::string engine_version() {
