@@ -85,8 +85,12 @@ void update_contacts(WorldState& state, WorldScratch& scratch) {
   old.swap(state.contacts);  // old = last step's cache; state.contacts is rebuilt
   std::vector<ContactRecord>& out = state.contacts;
   out.clear();
-  scratch.geometry.clear();
   const std::vector<BodyPair>& pairs = scratch.pairs;
+  // geometry[k] belongs to out[k]. Its slots are kept from step to step and
+  // written in place (only grown here), so a carried record costs one byte
+  // and an evaluated one no copy.
+  std::vector<ContactGeometry>& geometry = scratch.geometry;
+  if (geometry.size() < old.size() + pairs.size()) geometry.resize(old.size() + pairs.size());
   size_t i = 0;
   size_t j = 0;
   while (i < pairs.size() || j < old.size()) {
@@ -94,10 +98,8 @@ void update_contacts(WorldState& state, WorldScratch& scratch) {
     uint64_t ko = j < old.size() ? key(old[j].index_a, old[j].index_b) : ~uint64_t{0};
     if (j < old.size() && (i == pairs.size() || ko < kp)) {
       if (both_resting(state, old[j])) {
+        geometry[out.size()].valid = 0;
         out.push_back(old[j]);
-        ContactGeometry geo{};
-        geo.valid = 0;
-        scratch.geometry.push_back(geo);
       }
       ++j;
       continue;
@@ -115,13 +117,12 @@ void update_contacts(WorldState& state, WorldScratch& scratch) {
       ++j;
     }
     ++i;
-    ContactGeometry geo{};
+    ContactGeometry& geo = geometry[out.size()];
     evaluate(state, rec, prior, geo);
     // Pairs whose bounds overlap but whose shapes are out of reach are not
     // kept: the cache holds only pairs that have (or had) points.
     if (geo.manifold.point_count == 0 && rec.touching == 0) continue;
     out.push_back(rec);
-    scratch.geometry.push_back(geo);
   }
 }
 

@@ -24,7 +24,8 @@ struct BodyPair {
 };
 
 /// This step's manifold for one contact record, parallel to
-/// WorldState::contacts. `valid` is 0 for records carried over unchanged
+/// WorldState::contacts (the vector may be longer; entries past the
+/// contacts are stale). `valid` is 0 for records carried over unchanged
 /// because both bodies sleep (their geometry is not needed).
 struct ContactGeometry {
   Manifold manifold;
