@@ -268,16 +268,22 @@ void solve_batches(WorldScratch& scratch, float inv_h) {
 namespace {
 
 // The separations of lanes [first, first + count) of a batch, as the lanes
-// computed them, back to their scalar constraints (the push-out reads those).
-void copy_back_separations(WorldScratch& scratch, const ContactBatch& batch, int first = 0,
-                           int count = kBatchLanes) {
+// computed them, back to their scalar constraints (the push-out reads
+// those); notes in scratch.overlapping whether any point overlaps past the
+// slop.
+void copy_back_separations(WorldScratch& scratch, float slop, const ContactBatch& batch,
+                           int first = 0, int count = kBatchLanes) {
+  bool overlapping = false;
   for (int lane = first; lane < first + count; ++lane) {
     if (batch.constraint[lane] == kNoConstraint) continue;
     ContactConstraint& c = scratch.constraints[batch.constraint[lane]];
     for (uint32_t p = 0; p < c.point_count; ++p) {
-      c.points[p].separation = batch.points[p].separation[lane];
+      const float separation = batch.points[p].separation[lane];
+      c.points[p].separation = separation;
+      overlapping = overlapping || separation + slop < 0.0f;
     }
   }
+  if (overlapping) scratch.overlapping = true;
 }
 
 }  // namespace
@@ -291,32 +297,34 @@ void push_batches(WorldScratch& scratch, const WorldConfig& config, float inv_h)
       [&](const HalfBatch& h) { push_lanes(h, bodies, push); });
 }
 
-void update_separations(WorldScratch& scratch) {
+void update_separations(WorldScratch& scratch, float slop) {
   const std::vector<SolverBody>& bodies = scratch.solver_bodies;
+  scratch.overlapping = false;
   for_batches(
       scratch,
       [&](ContactBatch& b) {
         separations_full(b, bodies);
-        copy_back_separations(scratch, b);
+        copy_back_separations(scratch, slop, b);
       },
       [&](const HalfBatch& h) {
         separations_lanes(h, bodies);
-        copy_back_separations(scratch, *h.batch, h.base, kLanes);
+        copy_back_separations(scratch, slop, *h.batch, h.base, kLanes);
       });
 }
 
-void update_separations_and_relax(WorldScratch& scratch, float inv_h) {
+void update_separations_and_relax(WorldScratch& scratch, float slop, float inv_h) {
   std::vector<SolverBody>& bodies = scratch.solver_bodies;
+  scratch.overlapping = false;
   for_batches(
       scratch,
       [&](ContactBatch& b) {
         separations_full(b, bodies);
-        copy_back_separations(scratch, b);
+        copy_back_separations(scratch, slop, b);
         solve_full(b, bodies, inv_h);
       },
       [&](const HalfBatch& h) {
         separations_lanes(h, bodies);
-        copy_back_separations(scratch, *h.batch, h.base, kLanes);
+        copy_back_separations(scratch, slop, *h.batch, h.base, kLanes);
         solve_lanes(h, bodies, inv_h);
       });
 }

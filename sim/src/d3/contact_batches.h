@@ -108,12 +108,13 @@ void warm_start_batches(WorldScratch& scratch);
 /// by point.
 void solve_batches(WorldScratch& scratch, float inv_h);
 /// Each point's separation from the motion since the tick began, into the
-/// batches and the scalar constraints (the push-out reads those).
-void update_separations(WorldScratch& scratch);
+/// batches and the scalar constraints (the push-out reads those); sets
+/// scratch.overlapping when a point overlaps more than `slop` (m).
+void update_separations(WorldScratch& scratch, float slop);
 /// update_separations and then one solve_batches, in one pass over the
 /// batches (a batch's separations depend only on the bodies' motion so
 /// far, which solving other batches does not change).
-void update_separations_and_relax(WorldScratch& scratch, float inv_h);
+void update_separations_and_relax(WorldScratch& scratch, float slop, float inv_h);
 /// One pass of the push-out over every shallow overlap (at most
 /// kDeepOverlapSlops slops past the slop), in the batches' order; the deep
 /// ones were pushed out from the ground up before it (contact_solver.cpp).

@@ -124,6 +124,7 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
   Softness static_soft = make_soft(2.0f * hertz, config.contact_damping_ratio, h);
 
   scratch.constraints.clear();
+  scratch.overlapping = false;
   uint32_t points = 0;
   for (uint32_t k = 0; k < state.contacts.size(); ++k) {
     const ContactRecord& rec = state.contacts[k];
@@ -151,6 +152,7 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
       cp.anchor_b = mp.anchor_b;
       cp.base_separation = mp.separation - dot(mp.anchor_b - mp.anchor_a, c.normal);
       cp.separation = mp.separation;
+      if (mp.separation + config.linear_slop_m < 0.0f) scratch.overlapping = true;
       cp.normal_impulse = rec.points[p].normal_impulse;
       cp.tangent_impulse1 = rec.points[p].tangent_impulse1;
       cp.tangent_impulse2 = rec.points[p].tangent_impulse2;
@@ -452,17 +454,25 @@ void solve(WorldState& state, WorldScratch& scratch) {
   prepare(state, scratch, h);
   order_push_out(scratch);
   build_batches(scratch);
+  const float slop = config.linear_slop_m;
+  scratch.pushing = false;
   for (int32_t s = 0; s < config.substeps; ++s) {
     integrate_velocities(scratch, h);
     warm_start_batches(scratch);
     solve_batches(scratch, inv_h);
-    push_out_deep(scratch, config, inv_h);
-    push_batches(scratch, config, inv_h);
+    // Until some point overlaps past the slop, every push velocity and
+    // impulse is zero and a push-out pass would leave them so: resting
+    // scenes skip it.
+    if (scratch.pushing || scratch.overlapping) {
+      scratch.pushing = true;
+      push_out_deep(scratch, config, inv_h);
+      push_batches(scratch, config, inv_h);
+    }
     integrate_positions(scratch, h);
     if (config.relax_iterations > 0) {
-      update_separations_and_relax(scratch, inv_h);
+      update_separations_and_relax(scratch, slop, inv_h);
     } else {
-      update_separations(scratch);
+      update_separations(scratch, slop);
     }
     for (int32_t r = 1; r < config.relax_iterations; ++r) solve_batches(scratch, inv_h);
   }

@@ -183,6 +183,11 @@ class WorldScratch {
   std::vector<uint32_t> push_key;
   std::vector<uint32_t> push_bucket;
   std::vector<uint32_t> push_order;  ///< constraint indices, lowest support first
+  /// Some contact point overlaps past the slop, as of the last separation
+  /// update; while none does and nothing has been pushed this tick, the
+  /// push-out has nothing to do and is skipped.
+  bool overlapping = false;
+  bool pushing = false;  ///< the push-out has run this tick
   // islands
   std::vector<uint32_t> island_parent;
   std::vector<float> island_sleep_time;
