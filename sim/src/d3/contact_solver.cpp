@@ -135,7 +135,8 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
     const SolverBody& a = scratch.solver_bodies[ia];
     const SolverBody& b = scratch.solver_bodies[ib];
     if (a.inv_mass == 0.0f && b.inv_mass == 0.0f) continue;  // nothing can respond
-    ContactConstraint c{};
+    // Built in place: a constraint is a few hundred bytes.
+    ContactConstraint& c = scratch.constraints.emplace_back();
     c.body_a = ia;
     c.body_b = ib;
     c.record = k;
@@ -164,7 +165,6 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
                                  : dot(c.normal, relative_velocity(a, b, cp.anchor_a, cp.anchor_b));
     }
     points += c.point_count;
-    scratch.constraints.push_back(c);
   }
   scratch.stats.contact_points = points;
 }
