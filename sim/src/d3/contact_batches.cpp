@@ -4,8 +4,10 @@
 // (contact_lanes.h) over them: eight AVX lanes per batch where the processor
 // has them (contact_lanes_avx.cpp), else four lanes over each half.
 #include "d3/contact_batches.h"
-#include "d3/contact_lanes.h"
 
+#include <algorithm>
+
+#include "d3/contact_lanes.h"
 #include "d3/world_scratch.h"
 
 namespace rwd::sim::d3 {
@@ -157,28 +159,45 @@ void copy_back_masses(WorldScratch& scratch) {
   }
 }
 
+// The four-lane passes over half a batch, for the batch's point bound.
+void prepare_half(const HalfBatch& h, const std::vector<SolverBody>& bodies) {
+  for_point_bound(*h.batch, [&](auto n) { prepare_lanes<decltype(n)::value>(h, bodies); });
+}
+void warm_start_half(const HalfBatch& h, std::vector<SolverBody>& bodies) {
+  for_point_bound(*h.batch, [&](auto n) { warm_start_lanes<decltype(n)::value>(h, bodies); });
+}
+void solve_half(const HalfBatch& h, std::vector<SolverBody>& bodies, float inv_h) {
+  for_point_bound(*h.batch, [&](auto n) { solve_lanes<decltype(n)::value>(h, bodies, inv_h); });
+}
+void separations_half(const HalfBatch& h, const std::vector<SolverBody>& bodies) {
+  for_point_bound(*h.batch, [&](auto n) { separations_lanes<decltype(n)::value>(h, bodies); });
+}
+void push_half(const HalfBatch& h, std::vector<SolverBody>& bodies, const PushSettings& push) {
+  for_point_bound(*h.batch, [&](auto n) { push_lanes<decltype(n)::value>(h, bodies, push); });
+}
+
 #if !defined(REWIND_LANES_AVX)
 // Without AVX in the build the eight-lane passes never run; these keep
 // for_batches' callers whole and would take the two halves in turn.
 void prepare_full(ContactBatch& b, const std::vector<SolverBody>& bodies) {
-  prepare_lanes(HalfBatch{&b, 0}, bodies);
-  prepare_lanes(HalfBatch{&b, kLanes}, bodies);
+  prepare_half(HalfBatch{&b, 0}, bodies);
+  prepare_half(HalfBatch{&b, kLanes}, bodies);
 }
 void warm_start_full(ContactBatch& b, std::vector<SolverBody>& bodies) {
-  warm_start_lanes(HalfBatch{&b, 0}, bodies);
-  warm_start_lanes(HalfBatch{&b, kLanes}, bodies);
+  warm_start_half(HalfBatch{&b, 0}, bodies);
+  warm_start_half(HalfBatch{&b, kLanes}, bodies);
 }
 void solve_full(ContactBatch& b, std::vector<SolverBody>& bodies, float inv_h) {
-  solve_lanes(HalfBatch{&b, 0}, bodies, inv_h);
-  solve_lanes(HalfBatch{&b, kLanes}, bodies, inv_h);
+  solve_half(HalfBatch{&b, 0}, bodies, inv_h);
+  solve_half(HalfBatch{&b, kLanes}, bodies, inv_h);
 }
 void separations_full(ContactBatch& b, const std::vector<SolverBody>& bodies) {
-  separations_lanes(HalfBatch{&b, 0}, bodies);
-  separations_lanes(HalfBatch{&b, kLanes}, bodies);
+  separations_half(HalfBatch{&b, 0}, bodies);
+  separations_half(HalfBatch{&b, kLanes}, bodies);
 }
 void push_full(ContactBatch& b, std::vector<SolverBody>& bodies, const PushSettings& push) {
-  push_lanes(HalfBatch{&b, 0}, bodies, push);
-  push_lanes(HalfBatch{&b, kLanes}, bodies, push);
+  push_half(HalfBatch{&b, 0}, bodies, push);
+  push_half(HalfBatch{&b, kLanes}, bodies, push);
 }
 #endif
 
@@ -207,19 +226,30 @@ void for_batches(WorldScratch& scratch, Full full, Half half) {
 void build_batches(WorldScratch& scratch) {
   color(scratch);
   const uint32_t count = static_cast<uint32_t>(scratch.constraints.size());
-  // Constraints by colour (counting sort, stable: constraint order within a
-  // colour), overflow last.
-  scratch.color_start.assign(kColorCount + 2, 0);
-  for (uint32_t k = 0; k < count; ++k) ++scratch.color_start[scratch.color_of[k] + 1];
-  for (uint32_t col = 0; col <= kColorCount; ++col) {
-    scratch.color_start[col + 1] += scratch.color_start[col];
-  }
+  // Constraints by colour and, within a colour, by point count, most first
+  // (a counting sort, stable: constraint order within a bucket), so batches
+  // mostly hold manifolds of one size; the overflow last, in constraint
+  // order (its constraints share bodies, so their order matters). Order
+  // within a colour never changes a result.
+  constexpr uint32_t kSizes = kMaxManifoldPoints;
+  constexpr uint32_t kBuckets = kColorCount * kSizes + 1;
+  const auto bucket_of = [&](uint32_t k) {
+    const uint32_t col = scratch.color_of[k];
+    if (col == kColorCount) return kBuckets - 1;
+    return col * kSizes + (kSizes - scratch.constraints[k].point_count);
+  };
+  std::vector<uint32_t>& fill = scratch.color_fill;
+  fill.assign(kBuckets + 1, 0);
+  for (uint32_t k = 0; k < count; ++k) ++fill[bucket_of(k) + 1];
+  for (uint32_t b = 0; b < kBuckets; ++b) fill[b + 1] += fill[b];
+  scratch.color_start.resize(kColorCount + 2);
+  for (uint32_t col = 0; col < kColorCount; ++col) scratch.color_start[col] = fill[col * kSizes];
+  scratch.color_start[kColorCount] = fill[kBuckets - 1];
+  scratch.color_start[kColorCount + 1] = count;
   scratch.colored.resize(count);
-  scratch.color_fill.assign(scratch.color_start.begin(), scratch.color_start.end() - 1);
-  for (uint32_t k = 0; k < count; ++k)
-    scratch.colored[scratch.color_fill[scratch.color_of[k]]++] = k;
+  for (uint32_t k = 0; k < count; ++k) scratch.colored[fill[bucket_of(k)]++] = k;
 
-  // Batches of four within a colour; overflow constraints one per batch.
+  // Batches of eight within a colour; overflow constraints one per batch.
   scratch.batches.clear();
   scratch.batch_start.assign(kColorCount + 2, 0);
   for (uint32_t col = 0; col <= kColorCount; ++col) {
@@ -229,6 +259,7 @@ void build_batches(WorldScratch& scratch) {
     const uint32_t per_batch = col == kColorCount ? 1 : kBatchLanes;
     for (uint32_t first = begin; first < end; first += per_batch) {
       ContactBatch& batch = scratch.batches.emplace_back();
+      batch.point_bound = 1;
       for (uint32_t lane = 0; lane < kBatchLanes; ++lane) {
         const uint32_t at = first + lane;
         if (lane < per_batch && at < end) {
@@ -237,6 +268,7 @@ void build_batches(WorldScratch& scratch) {
           scratch.constraints[index].lane = lane;
           fill_lane(batch, static_cast<int>(lane), index, scratch.constraints[index],
                     scratch.solver_bodies);
+          batch.point_bound = std::max(batch.point_bound, scratch.constraints[index].point_count);
         } else {
           clear_lane(batch, static_cast<int>(lane));
         }
@@ -247,7 +279,7 @@ void build_batches(WorldScratch& scratch) {
   const std::vector<SolverBody>& bodies = scratch.solver_bodies;
   for_batches(
       scratch, [&](ContactBatch& b) { prepare_full(b, bodies); },
-      [&](const HalfBatch& h) { prepare_lanes(h, bodies); });
+      [&](const HalfBatch& h) { prepare_half(h, bodies); });
   copy_back_masses(scratch);
 }
 
@@ -255,14 +287,14 @@ void warm_start_batches(WorldScratch& scratch) {
   std::vector<SolverBody>& bodies = scratch.solver_bodies;
   for_batches(
       scratch, [&](ContactBatch& b) { warm_start_full(b, bodies); },
-      [&](const HalfBatch& h) { warm_start_lanes(h, bodies); });
+      [&](const HalfBatch& h) { warm_start_half(h, bodies); });
 }
 
 void solve_batches(WorldScratch& scratch, float inv_h) {
   std::vector<SolverBody>& bodies = scratch.solver_bodies;
   for_batches(
       scratch, [&](ContactBatch& b) { solve_full(b, bodies, inv_h); },
-      [&](const HalfBatch& h) { solve_lanes(h, bodies, inv_h); });
+      [&](const HalfBatch& h) { solve_half(h, bodies, inv_h); });
 }
 
 namespace {
@@ -294,7 +326,7 @@ void push_batches(WorldScratch& scratch, const WorldConfig& config, float inv_h)
                           -kDeepOverlapSlops * config.linear_slop_m};
   for_batches(
       scratch, [&](ContactBatch& b) { push_full(b, bodies, push); },
-      [&](const HalfBatch& h) { push_lanes(h, bodies, push); });
+      [&](const HalfBatch& h) { push_half(h, bodies, push); });
 }
 
 void update_separations(WorldScratch& scratch, float slop) {
@@ -307,7 +339,7 @@ void update_separations(WorldScratch& scratch, float slop) {
         copy_back_separations(scratch, slop, b);
       },
       [&](const HalfBatch& h) {
-        separations_lanes(h, bodies);
+        separations_half(h, bodies);
         copy_back_separations(scratch, slop, *h.batch, h.base, kLanes);
       });
 }
@@ -323,9 +355,9 @@ void update_separations_and_relax(WorldScratch& scratch, float slop, float inv_h
         solve_full(b, bodies, inv_h);
       },
       [&](const HalfBatch& h) {
-        separations_lanes(h, bodies);
+        separations_half(h, bodies);
         copy_back_separations(scratch, slop, *h.batch, h.base, kLanes);
-        solve_lanes(h, bodies, inv_h);
+        solve_half(h, bodies, inv_h);
       });
 }
 

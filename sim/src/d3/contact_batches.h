@@ -84,6 +84,10 @@ struct alignas(32) ContactBatch {
   /// Last, so every float field above stays 32-byte aligned.
   uint8_t movable_a[kBatchLanes];
   uint8_t movable_b[kBatchLanes];
+  /// The most points any lane holds (1 to kMaxManifoldPoints): the passes
+  /// run that many. Constraints are packed by point count within a colour,
+  /// so most batches are full of manifolds of one size.
+  uint32_t point_bound;
 };
 // The eight-lane passes load and store every float field with aligned
 // 32-byte accesses.

@@ -24,6 +24,7 @@
 // Everything here has internal linkage: each file that includes it compiles
 // its own copy for its own instruction set.
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "d3/contact_batches.h"
@@ -166,7 +167,7 @@ typename A::F inverse_or_zero(typename A::F k) {
 // axes: the inverse-inertia products of each point's Jacobian, the tangent
 // masses, the normal K matrix and from its diagonal the normal masses.
 // Points past a lane's count get exact zeros, as if never there.
-template <class A>
+template <uint32_t N, class A>
 void prepare_lanes(const A& acc, const std::vector<SolverBody>& bodies) {
   using F = typename A::F;
   ContactBatch& batch = acc.first();
@@ -183,7 +184,7 @@ void prepare_lanes(const A& acc, const std::vector<SolverBody>& bodies) {
   V3<F> rn_b[kMaxManifoldPoints];
   V3<F> in_a[kMaxManifoldPoints];
   V3<F> in_b[kMaxManifoldPoints];
-  for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+  for (uint32_t p = 0; p < N; ++p) {
     ContactBatch::Point& bp = batch.points[p];
     const auto real = A::splat(static_cast<float>(p)) < count;
     const auto keep = [&](const V3<F>& v) {
@@ -215,9 +216,9 @@ void prepare_lanes(const A& acc, const std::vector<SolverBody>& bodies) {
     acc.st(bp.tangent_mass1, select(real, inverse_or_zero<A>(k1), zero));
     acc.st(bp.tangent_mass2, select(real, inverse_or_zero<A>(k2), zero));
   }
-  for (uint32_t i = 0; i < kMaxManifoldPoints; ++i) {
+  for (uint32_t i = 0; i < N; ++i) {
     const auto real_i = A::splat(static_cast<float>(i)) < count;
-    for (uint32_t j = 0; j < kMaxManifoldPoints; ++j) {
+    for (uint32_t j = 0; j < N; ++j) {
       const auto real_j = A::splat(static_cast<float>(j)) < count;
       const F k = mass_sum + dot3(rn_a[j], in_a[i]) + dot3(rn_b[j], in_b[i]);
       acc.st(batch.coupling[i][j], select(real_i, select(real_j, k, zero), zero));
@@ -227,7 +228,7 @@ void prepare_lanes(const A& acc, const std::vector<SolverBody>& bodies) {
   }
 }
 
-template <class A>
+template <uint32_t N, class A>
 void warm_start_lanes(const A& acc, std::vector<SolverBody>& bodies) {
   using F = typename A::F;
   const ContactBatch& batch = acc.first();
@@ -240,7 +241,8 @@ void warm_start_lanes(const A& acc, std::vector<SolverBody>& bodies) {
   V3<F> linear{zero, zero, zero};
   V3<F> turn_a = linear;
   V3<F> turn_b = linear;
-  for (const ContactBatch::Point& p : batch.points) {
+  for (uint32_t k = 0; k < N; ++k) {
+    const ContactBatch::Point& p = batch.points[k];
     const F ln = acc.ld(p.normal_impulse);
     const F l1 = acc.ld(p.tangent_impulse1);
     const F l2 = acc.ld(p.tangent_impulse2);
@@ -260,7 +262,7 @@ void warm_start_lanes(const A& acc, std::vector<SolverBody>& bodies) {
 // block (sweeps with the bodies held, the residual kept up to date column
 // by column, then one impulse per body; a gap may close within the substep,
 // no more), then friction point by point, |t| <= mu * normal impulse.
-template <class A>
+template <uint32_t N, class A>
 void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
   using F = typename A::F;
   ContactBatch& batch = acc.first();
@@ -275,7 +277,7 @@ void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
   F total[kMaxManifoldPoints];
   V3<F> rn_a[kMaxManifoldPoints];
   V3<F> rn_b[kMaxManifoldPoints];
-  for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+  for (uint32_t p = 0; p < N; ++p) {
     const ContactBatch::Point& bp = batch.points[p];
     rn_a[p] = cross3(ld3(acc, bp.anchor_a), n);
     rn_b[p] = cross3(ld3(acc, bp.anchor_b), n);
@@ -286,14 +288,15 @@ void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
     step[p] = acc.ld(bp.normal_mass);
     total[p] = acc.ld(bp.normal_impulse);
   }
-  const F start[kMaxManifoldPoints] = {total[0], total[1], total[2], total[3]};
+  F start[kMaxManifoldPoints];
+  for (uint32_t p = 0; p < N; ++p) start[p] = total[p];
   for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
-    for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+    for (uint32_t p = 0; p < N; ++p) {
       F next = total[p] - step[p] * residual[p];
       next = select(next < zero, zero, next);
       const F change = next - total[p];
       total[p] = next;
-      for (uint32_t j = 0; j < kMaxManifoldPoints; ++j) {
+      for (uint32_t j = 0; j < N; ++j) {
         residual[j] = residual[j] + acc.ld(batch.coupling[j][p]) * change;
       }
     }
@@ -301,7 +304,7 @@ void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
   F pushed = zero;
   V3<F> turn_a{zero, zero, zero};
   V3<F> turn_b = turn_a;
-  for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+  for (uint32_t p = 0; p < N; ++p) {
     ContactBatch::Point& bp = batch.points[p];
     acc.st(bp.normal_impulse, total[p]);
     const F max_seen = acc.ld(bp.max_normal_impulse);
@@ -320,7 +323,7 @@ void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
   const V3<F> t2 = ld3(acc, batch.tangent2);
   const F mu = acc.ld(batch.friction);
   const F one = A::splat(1.0f);
-  for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+  for (uint32_t p = 0; p < N; ++p) {
     ContactBatch::Point& bp = batch.points[p];
     const V3<F> ra = ld3(acc, bp.anchor_a);
     const V3<F> rb = ld3(acc, bp.anchor_b);
@@ -365,7 +368,7 @@ void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
 // impulses accumulate over the tick's substeps. A lane takes part only when
 // it overlaps or one of its bodies already moves on push velocities, and
 // never when its overlap is deep (push_out_deep held it).
-template <class A>
+template <uint32_t N, class A>
 void push_lanes(const A& acc, std::vector<SolverBody>& bodies, const PushSettings& push) {
   using F = typename A::F;
   ContactBatch& batch = acc.first();
@@ -388,7 +391,7 @@ void push_lanes(const A& acc, std::vector<SolverBody>& bodies, const PushSetting
   F start[kMaxManifoldPoints];
   V3<F> rn_a[kMaxManifoldPoints];
   V3<F> rn_b[kMaxManifoldPoints];
-  for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+  for (uint32_t p = 0; p < N; ++p) {
     const ContactBatch::Point& bp = batch.points[p];
     const auto real = A::splat(static_cast<float>(p)) < count;
     const F s = acc.ld(bp.separation);
@@ -409,13 +412,13 @@ void push_lanes(const A& acc, std::vector<SolverBody>& bodies, const PushSetting
   // Single points converge in one sweep; further sweeps leave them be.
   const auto several = count > one;
   for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
-    for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+    for (uint32_t p = 0; p < N; ++p) {
       const F gain = sweep == 0 ? step[p] : select(several, step[p], zero);
       F next = total[p] - gain * residual[p];
       next = select(next < zero, zero, next);
       const F change = next - total[p];
       total[p] = next;
-      for (uint32_t j = 0; j < kMaxManifoldPoints; ++j) {
+      for (uint32_t j = 0; j < N; ++j) {
         residual[j] = residual[j] + acc.ld(batch.coupling[j][p]) * change;
       }
     }
@@ -427,7 +430,7 @@ void push_lanes(const A& acc, std::vector<SolverBody>& bodies, const PushSetting
   F moved = zero;
   V3<F> turn_a{zero, zero, zero};
   V3<F> turn_b = turn_a;
-  for (uint32_t p = 0; p < kMaxManifoldPoints; ++p) {
+  for (uint32_t p = 0; p < N; ++p) {
     ContactBatch::Point& bp = batch.points[p];
     const F change = select(active, total[p] - start[p], zero);
     acc.st(bp.push_impulse, start[p] + change);
@@ -446,6 +449,28 @@ void push_lanes(const A& acc, std::vector<SolverBody>& bodies, const PushSetting
   scatter_bodies(acc, bodies, true, b, kPushRow);
 }
 
+// Runs fn(std::integral_constant<uint32_t, N>) with N the batch's point
+// bound (1 to kMaxManifoldPoints), so each pass is compiled for exactly the
+// points its batch holds. The bound belongs to the whole batch, so every
+// lane width runs the same points.
+template <class Fn>
+void for_point_bound(const ContactBatch& batch, Fn&& fn) {
+  switch (batch.point_bound) {
+    case 1:
+      fn(std::integral_constant<uint32_t, 1>{});
+      break;
+    case 2:
+      fn(std::integral_constant<uint32_t, 2>{});
+      break;
+    case 3:
+      fn(std::integral_constant<uint32_t, 3>{});
+      break;
+    default:
+      fn(std::integral_constant<uint32_t, kMaxManifoldPoints>{});
+      break;
+  }
+}
+
 // q rotating v, per lane, as rotate() in math.h.
 template <class A>
 V3<typename A::F> rotate_lanes(const typename A::F (&q)[4], const V3<typename A::F>& v) {
@@ -460,7 +485,7 @@ V3<typename A::F> rotate_lanes(const typename A::F (&q)[4], const V3<typename A:
 
 // Each point's separation from the motion since the tick began (the
 // batches only; the caller copies them to the scalar constraints).
-template <class A>
+template <uint32_t N, class A>
 void separations_lanes(const A& acc, const std::vector<SolverBody>& bodies) {
   using F = typename A::F;
   ContactBatch& batch = acc.first();
@@ -481,7 +506,8 @@ void separations_lanes(const A& acc, const std::vector<SolverBody>& bodies) {
   const F rot_b[4] = {A::from(f[10]), A::from(f[11]), A::from(f[12]), A::from(f[13])};
   const V3<F> dp = pos_b - pos_a;
   const V3<F> n = ld3(acc, batch.normal);
-  for (ContactBatch::Point& bp : batch.points) {
+  for (uint32_t k = 0; k < N; ++k) {
+    ContactBatch::Point& bp = batch.points[k];
     const V3<F> pa = rotate_lanes<A>(rot_a, ld3(acc, bp.anchor_a));
     const V3<F> pb = rotate_lanes<A>(rot_b, ld3(acc, bp.anchor_b));
     acc.st(bp.separation, dot3(dp + (pb - pa), n) + acc.ld(bp.base_separation));

@@ -129,23 +129,28 @@ struct FullBatch {
 namespace rwd::sim::d3 {
 
 void prepare_full(ContactBatch& batch, const std::vector<SolverBody>& bodies) {
-  prepare_lanes(FullBatch{&batch}, bodies);
+  for_point_bound(batch,
+                  [&](auto n) { prepare_lanes<decltype(n)::value>(FullBatch{&batch}, bodies); });
 }
 
 void warm_start_full(ContactBatch& batch, std::vector<SolverBody>& bodies) {
-  warm_start_lanes(FullBatch{&batch}, bodies);
+  for_point_bound(batch,
+                  [&](auto n) { warm_start_lanes<decltype(n)::value>(FullBatch{&batch}, bodies); });
 }
 
 void solve_full(ContactBatch& batch, std::vector<SolverBody>& bodies, float inv_h) {
-  solve_lanes(FullBatch{&batch}, bodies, inv_h);
+  for_point_bound(
+      batch, [&](auto n) { solve_lanes<decltype(n)::value>(FullBatch{&batch}, bodies, inv_h); });
 }
 
 void separations_full(ContactBatch& batch, const std::vector<SolverBody>& bodies) {
-  separations_lanes(FullBatch{&batch}, bodies);
+  for_point_bound(
+      batch, [&](auto n) { separations_lanes<decltype(n)::value>(FullBatch{&batch}, bodies); });
 }
 
 void push_full(ContactBatch& batch, std::vector<SolverBody>& bodies, const PushSettings& push) {
-  push_lanes(FullBatch{&batch}, bodies, push);
+  for_point_bound(batch,
+                  [&](auto n) { push_lanes<decltype(n)::value>(FullBatch{&batch}, bodies, push); });
 }
 
 }  // namespace rwd::sim::d3
