@@ -218,6 +218,42 @@ size_t sweep_one(const WorldScratch& scratch, size_t k, uint32_t* hits) {
   return count;
 }
 
+// Sorts scratch.pairs by (a, b): a least-significant-digit radix sort over
+// the bytes a body index can use (two passes per byte of the larger index),
+// on keys a << 32 | b. Keys are unique, so the order is the one sort order.
+void sort_pairs(WorldScratch& scratch, uint32_t body_count) {
+  std::vector<BodyPair>& pairs = scratch.pairs;
+  const size_t count = pairs.size();
+  std::vector<uint64_t>& keys = scratch.pair_keys;
+  std::vector<uint64_t>& spare = scratch.pair_spare;
+  keys.resize(count);
+  spare.resize(count);
+  for (size_t k = 0; k < count; ++k) {
+    keys[k] = (static_cast<uint64_t>(pairs[k].a) << 32) | pairs[k].b;
+  }
+  uint32_t index_bytes = 1;
+  while (index_bytes < 4 && (body_count - 1) >> (8 * index_bytes) != 0) ++index_bytes;
+  uint32_t buckets[256];
+  for (uint32_t half = 0; half < 2; ++half) {
+    for (uint32_t byte = 0; byte < index_bytes; ++byte) {
+      const uint32_t shift = 32 * half + 8 * byte;
+      for (uint32_t& b : buckets) b = 0;
+      for (const uint64_t key : keys) ++buckets[(key >> shift) & 0xFF];
+      uint32_t sum = 0;
+      for (uint32_t& b : buckets) {
+        const uint32_t here = b;
+        b = sum;
+        sum += here;
+      }
+      for (const uint64_t key : keys) spare[buckets[(key >> shift) & 0xFF]++] = key;
+      keys.swap(spare);
+    }
+  }
+  for (size_t k = 0; k < count; ++k) {
+    pairs[k] = {static_cast<uint32_t>(keys[k] >> 32), static_cast<uint32_t>(keys[k])};
+  }
+}
+
 }  // namespace
 
 void find_pairs(const WorldState& state, WorldScratch& scratch) {
@@ -250,9 +286,7 @@ void find_pairs(const WorldState& state, WorldScratch& scratch) {
     scratch.sleeping_tree.query(box, against);
     scratch.static_tree.query(box, against);
   }
-  std::sort(pairs.begin(), pairs.end(), [](const BodyPair& l, const BodyPair& r) {
-    return l.a < r.a || (l.a == r.a && l.b < r.b);
-  });
+  sort_pairs(scratch, static_cast<uint32_t>(state.infos.size()));
   scratch.stats.broadphase_pairs = static_cast<uint32_t>(pairs.size());
 }
 

@@ -93,7 +93,8 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
     if (!is_active(info)) continue;
     const BodySim& sim = state.sims[i];
     const BodyMass& mass = state.masses[i];
-    SolverBody b{};
+    scratch.solver_index[i] = static_cast<uint32_t>(scratch.solver_bodies.size());
+    SolverBody& b = scratch.solver_bodies.emplace_back();
     b.linear_velocity = sim.linear_velocity;
     b.angular_velocity = sim.angular_velocity;
     b.delta_rotation = Quat{};
@@ -109,8 +110,6 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
     } else {
       b.inv_inertia = mat3_zero();
     }
-    scratch.solver_index[i] = static_cast<uint32_t>(scratch.solver_bodies.size());
-    scratch.solver_bodies.push_back(b);
     scratch.solver_body_ids.push_back(i);
   }
 

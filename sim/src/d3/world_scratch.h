@@ -158,6 +158,8 @@ class WorldScratch {
   std::vector<uint32_t> tree_proxies;
   bool static_dirty = true;  ///< the world was edited: both trees are rebuilt
   std::vector<BodyPair> pairs;
+  std::vector<uint64_t> pair_keys;  ///< radix sort of the pairs
+  std::vector<uint64_t> pair_spare;
   // narrowphase
   std::vector<ContactRecord> other_contacts;  ///< last step's cache after the swap
   std::vector<ContactGeometry> geometry;
