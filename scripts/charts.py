@@ -314,13 +314,13 @@ def main():
       "Where it rises above 1 the step outgrows the caches. Measured with `perf` on the "
       "1,000- and 8,000-box piles: the solver's lane passes over the contact batches (warm "
       "start, solve, push-out, and the separation update fused with relax: sixteen passes "
-      "a tick over about 670 bytes per contact) go from about 40% of the step to about "
-      "55%, because at 8,000 boxes the batches (some 27 MB) no longer fit in the caches "
-      "and every pass streams them from memory; the broadphase (awake boxes swept along "
-      "the axis of greatest spread, sleeping and static ones in AABB trees) stays about "
-      "an eighth of the step and the narrowphase falls from about a quarter to an eighth. "
-      "Fewer bytes per contact (deriving more of each constraint in registers) or fewer "
-      "passes are the remedies.\n")
+      "a tick, each over as many manifold points as its batch holds) go from about 37% of "
+      "the step to about 40%, and packing the batches from about 7% to 11%, because at "
+      "8,000 boxes the batches (some 20 MB) no longer fit in the caches and every pass "
+      "streams them from memory; the broadphase (awake boxes swept along the axis of "
+      "greatest spread, sleeping and static ones in AABB trees) stays about an eighth of "
+      "the step and the narrowphase falls from about 29% to 20%. Fewer bytes per contact "
+      "or fewer passes are the remedies.\n")
 
     w("### Every body awake: what stands without sleeping\n")
     w("The same default settings with sleeping off in both engines: a structure "
