@@ -102,6 +102,43 @@ std::vector<PlayerInput> mispredict(const std::vector<PlayerInput>& script, Tick
   return guess;
 }
 
+// A uniform value in [-half, half] from the stream.
+float uniform(SplitMix64& rng, float half) {
+  return (static_cast<float>(rng.below(20001)) / 10000.0f - 1.0f) * half;
+}
+
+// A 40 m square floor whose top is at y = 0.
+rwd::sim::BodyDef floor_def() {
+  rwd::sim::BodyDef ground;
+  ground.kind = rwd::sim::BodyKind::kStatic;
+  ground.shape = rwd::sim::Shape::make_box({20.0f, 0.5f, 20.0f});
+  ground.position = {0.0f, -0.5f, 0.0f};
+  return ground;
+}
+
+// Steps the world four ticks, restores it and steps them again: the second
+// pass must print the first pass's checksums. Leaves the world restored.
+// Prints "ROLLBACK-MISMATCH <scene> <tick>" and returns false otherwise.
+bool restep_matches(rwd::sim::World3D& world, const char* scene, Tick t) {
+  rwd::sim::WorldState saved;
+  world.save(saved);
+  uint64_t first_pass[4] = {};
+  for (uint64_t& sum : first_pass) {
+    world.step();
+    sum = world.checksum();
+  }
+  world.restore(saved);
+  for (const uint64_t sum : first_pass) {
+    world.step();
+    if (world.checksum() != sum) {
+      std::printf("ROLLBACK-MISMATCH %s %d\n", scene, static_cast<int>(t));
+      return false;
+    }
+  }
+  world.restore(saved);
+  return true;
+}
+
 // The edge-of-the-world scene. Returns false (after saying why) when a
 // snapshot of its own state does not load or a restore does not re-step.
 bool run_edge_scene(Tick ticks) {
@@ -111,14 +148,8 @@ bool run_edge_scene(Tick ticks) {
   config.bounds_upper = {30.0f, 30.0f, 30.0f};
   auto world = std::make_unique<sim::World3D>(config);
   SplitMix64 rng{0xED6E'0F'7E11'0001ull};
-  auto coord = [&rng](float half) {
-    return (static_cast<float>(rng.below(20001)) / 10000.0f - 1.0f) * half;
-  };
-  sim::BodyDef ground;
-  ground.kind = sim::BodyKind::kStatic;
-  ground.shape = sim::Shape::make_box({20.0f, 0.5f, 20.0f});
-  ground.position = {0.0f, -0.5f, 0.0f};
-  (void)world->create_body(ground);
+  auto coord = [&rng](float half) { return uniform(rng, half); };
+  (void)world->create_body(floor_def());
   std::vector<sim::BodyId> bodies;
   for (int i = 0; i < 24; ++i) {
     sim::BodyDef def;
@@ -127,9 +158,7 @@ bool run_edge_scene(Tick ticks) {
     def.material.restitution = i % 3 == 0 ? 0.5f : 0.0f;
     bodies.push_back(*world->create_body(def));
   }
-  sim::WorldState saved;
   std::vector<uint8_t> bytes;
-  uint64_t first_pass[4] = {};
   for (Tick t = 0; t < ticks; ++t) {
     const sim::BodyId id = bodies[rng.below(static_cast<uint32_t>(bodies.size()))];
     const float kick = rng.below(8) == 0 ? 40000.0f : 2000.0f;  // sometimes out of the world
@@ -152,22 +181,7 @@ bool run_edge_scene(Tick ticks) {
       }
       world = std::move(loaded);
     }
-    if (t % 25 == 0) {
-      world->save(saved);
-      for (uint64_t& sum : first_pass) {
-        world->step();
-        sum = world->checksum();
-      }
-      world->restore(saved);
-      for (const uint64_t sum : first_pass) {
-        world->step();
-        if (world->checksum() != sum) {
-          std::printf("ROLLBACK-MISMATCH edge %d\n", static_cast<int>(t));
-          return false;
-        }
-      }
-      world->restore(saved);
-    }
+    if (t % 25 == 0 && !restep_matches(*world, "edge", t)) return false;
     world->step();
     uint32_t left = static_cast<uint32_t>(world->body_events().size());
     std::printf("edge %d %016" PRIx64 " %u\n", static_cast<int>(t), world->checksum(), left);
@@ -185,13 +199,8 @@ bool run_heap_scene(Tick ticks) {
   namespace sim = rwd::sim;
   sim::World3D world;
   SplitMix64 rng{0x4EA9'0F'B0C5'0002ull};
-  auto coord = [&rng](float half) {
-    return (static_cast<float>(rng.below(20001)) / 10000.0f - 1.0f) * half;
-  };
-  sim::BodyDef ground;
-  ground.kind = sim::BodyKind::kStatic;
-  ground.shape = sim::Shape::make_box({20.0f, 0.5f, 20.0f});
-  ground.position = {0.0f, -0.5f, 0.0f};
+  auto coord = [&rng](float half) { return uniform(rng, half); };
+  const sim::BodyDef ground = floor_def();
   (void)world.create_body(ground);
   for (int w = 0; w < 2; ++w) {  // two walls make a corner
     sim::BodyDef wall = ground;
@@ -216,29 +225,12 @@ bool run_heap_scene(Tick ticks) {
                     -5.0f + 0.65f * static_cast<float>((i / 4) % 4)};
     bodies.push_back(*world.create_body(def));
   }
-  sim::WorldState saved;
-  uint64_t first_pass[4] = {};
   for (Tick t = 0; t < ticks; ++t) {
     if (t % 90 == 60) {  // a kick wakes part of the heap
       const sim::BodyId id = bodies[8 + rng.below(40)];
       (void)world.apply_linear_impulse(id, {coord(30.0f), 20.0f, coord(30.0f)}, world.position(id));
     }
-    if (t % 30 == 0) {
-      world.save(saved);
-      for (uint64_t& sum : first_pass) {
-        world.step();
-        sum = world.checksum();
-      }
-      world.restore(saved);
-      for (const uint64_t sum : first_pass) {
-        world.step();
-        if (world.checksum() != sum) {
-          std::printf("ROLLBACK-MISMATCH heap %d\n", static_cast<int>(t));
-          return false;
-        }
-      }
-      world.restore(saved);
-    }
+    if (t % 30 == 0 && !restep_matches(world, "heap", t)) return false;
     world.step();
     std::printf("heap %d %016" PRIx64 " %u\n", static_cast<int>(t), world.checksum(),
                 world.stats().contact_points);

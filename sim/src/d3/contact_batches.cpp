@@ -144,18 +144,27 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
   for (uint32_t p = c.point_count; p < kMaxManifoldPoints; ++p) clear_point(batch.points[p], lane);
 }
 
+// Calls fn(lane, constraint) for each lane in [first, first + count) of a
+// batch that holds a constraint.
+template <class Fn>
+void for_each_packed(WorldScratch& scratch, const ContactBatch& batch, Fn fn, int first = 0,
+                     int count = kBatchLanes) {
+  for (int lane = first; lane < first + count; ++lane) {
+    if (batch.constraint[lane] == kNoConstraint) continue;
+    fn(lane, scratch.constraints[batch.constraint[lane]]);
+  }
+}
+
 // The normal K matrix and masses, computed in the lanes, back to the scalar
 // constraints for the push-out and restitution.
 void copy_back_masses(WorldScratch& scratch) {
   for (const ContactBatch& batch : scratch.batches) {
-    for (int lane = 0; lane < kBatchLanes; ++lane) {
-      if (batch.constraint[lane] == kNoConstraint) continue;
-      ContactConstraint& c = scratch.constraints[batch.constraint[lane]];
+    for_each_packed(scratch, batch, [&](int lane, ContactConstraint& c) {
       for (uint32_t i = 0; i < c.point_count; ++i) {
         for (uint32_t j = 0; j < c.point_count; ++j) c.coupling[i][j] = batch.coupling[i][j][lane];
         c.points[i].normal_mass = batch.points[i].normal_mass[lane];
       }
-    }
+    });
   }
 }
 
@@ -306,15 +315,16 @@ namespace {
 void copy_back_separations(WorldScratch& scratch, float slop, const ContactBatch& batch,
                            int first = 0, int count = kBatchLanes) {
   bool overlapping = false;
-  for (int lane = first; lane < first + count; ++lane) {
-    if (batch.constraint[lane] == kNoConstraint) continue;
-    ContactConstraint& c = scratch.constraints[batch.constraint[lane]];
-    for (uint32_t p = 0; p < c.point_count; ++p) {
-      const float separation = batch.points[p].separation[lane];
-      c.points[p].separation = separation;
-      overlapping = overlapping || separation + slop < 0.0f;
-    }
-  }
+  for_each_packed(
+      scratch, batch,
+      [&](int lane, ContactConstraint& c) {
+        for (uint32_t p = 0; p < c.point_count; ++p) {
+          const float separation = batch.points[p].separation[lane];
+          c.points[p].separation = separation;
+          overlapping = overlapping || separation + slop < 0.0f;
+        }
+      },
+      first, count);
   if (overlapping) scratch.overlapping = true;
 }
 
@@ -329,22 +339,11 @@ void push_batches(WorldScratch& scratch, const WorldConfig& config, float inv_h)
       [&](const HalfBatch& h) { push_half(h, bodies, push); });
 }
 
-void update_separations(WorldScratch& scratch, float slop) {
-  const std::vector<SolverBody>& bodies = scratch.solver_bodies;
-  scratch.overlapping = false;
-  for_batches(
-      scratch,
-      [&](ContactBatch& b) {
-        separations_full(b, bodies);
-        copy_back_separations(scratch, slop, b);
-      },
-      [&](const HalfBatch& h) {
-        separations_half(h, bodies);
-        copy_back_separations(scratch, slop, *h.batch, h.base, kLanes);
-      });
-}
+namespace {
 
-void update_separations_and_relax(WorldScratch& scratch, float slop, float inv_h) {
+// The separation update, and when `relax` is set the relax pass fused into
+// it, batch by batch.
+void separation_pass(WorldScratch& scratch, float slop, bool relax, float inv_h) {
   std::vector<SolverBody>& bodies = scratch.solver_bodies;
   scratch.overlapping = false;
   for_batches(
@@ -352,20 +351,28 @@ void update_separations_and_relax(WorldScratch& scratch, float slop, float inv_h
       [&](ContactBatch& b) {
         separations_full(b, bodies);
         copy_back_separations(scratch, slop, b);
-        solve_full(b, bodies, inv_h);
+        if (relax) solve_full(b, bodies, inv_h);
       },
       [&](const HalfBatch& h) {
         separations_half(h, bodies);
         copy_back_separations(scratch, slop, *h.batch, h.base, kLanes);
-        solve_half(h, bodies, inv_h);
+        if (relax) solve_half(h, bodies, inv_h);
       });
+}
+
+}  // namespace
+
+void update_separations(WorldScratch& scratch, float slop) {
+  separation_pass(scratch, slop, false, 0.0f);
+}
+
+void update_separations_and_relax(WorldScratch& scratch, float slop, float inv_h) {
+  separation_pass(scratch, slop, true, inv_h);
 }
 
 void unpack_batches(WorldScratch& scratch) {
   for (const ContactBatch& batch : scratch.batches) {
-    for (int lane = 0; lane < kBatchLanes; ++lane) {
-      if (batch.constraint[lane] == kNoConstraint) continue;
-      ContactConstraint& c = scratch.constraints[batch.constraint[lane]];
+    for_each_packed(scratch, batch, [&](int lane, ContactConstraint& c) {
       for (uint32_t p = 0; p < c.point_count; ++p) {
         const ContactBatch::Point& bp = batch.points[p];
         ConstraintPoint& cp = c.points[p];
@@ -374,7 +381,7 @@ void unpack_batches(WorldScratch& scratch) {
         cp.tangent_impulse2 = bp.tangent_impulse2[lane];
         cp.max_normal_impulse = bp.max_normal_impulse[lane];
       }
-    }
+    });
   }
 }
 

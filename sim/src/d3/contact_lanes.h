@@ -258,6 +258,34 @@ void warm_start_lanes(const A& acc, std::vector<SolverBody>& bodies) {
   scatter_bodies(acc, bodies, true, b);
 }
 
+// Projected Gauss-Seidel sweeps over each lane's manifold normal system
+// with the bodies held: impulse total[p] (accumulated, >= 0) moves so the
+// normal velocity residual[p] reaches zero, the first sweep scaled by
+// first_gain[p] and the later ones by later_gain[p]. The residual is kept up
+// to date column by column, so no body is touched; the caller applies the
+// change once.
+template <uint32_t N, class A>
+void sweep_normal_block(const A& acc, const ContactBatch& batch,
+                        const typename A::F (&first_gain)[kMaxManifoldPoints],
+                        const typename A::F (&later_gain)[kMaxManifoldPoints],
+                        typename A::F (&residual)[kMaxManifoldPoints],
+                        typename A::F (&total)[kMaxManifoldPoints]) {
+  using F = typename A::F;
+  const F zero = A::splat(0.0f);
+  for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
+    for (uint32_t p = 0; p < N; ++p) {
+      const F gain = sweep == 0 ? first_gain[p] : later_gain[p];
+      F next = total[p] - gain * residual[p];
+      next = select(next < zero, zero, next);
+      const F change = next - total[p];
+      total[p] = next;
+      for (uint32_t j = 0; j < N; ++j) {
+        residual[j] = residual[j] + acc.ld(batch.coupling[j][p]) * change;
+      }
+    }
+  }
+}
+
 // One pass on the real velocities: the manifold's normal impulses as a
 // block (sweeps with the bodies held, the residual kept up to date column
 // by column, then one impulse per body; a gap may close within the substep,
@@ -290,17 +318,7 @@ void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
   }
   F start[kMaxManifoldPoints];
   for (uint32_t p = 0; p < N; ++p) start[p] = total[p];
-  for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
-    for (uint32_t p = 0; p < N; ++p) {
-      F next = total[p] - step[p] * residual[p];
-      next = select(next < zero, zero, next);
-      const F change = next - total[p];
-      total[p] = next;
-      for (uint32_t j = 0; j < N; ++j) {
-        residual[j] = residual[j] + acc.ld(batch.coupling[j][p]) * change;
-      }
-    }
-  }
+  sweep_normal_block<N>(acc, batch, step, step, residual, total);
   F pushed = zero;
   V3<F> turn_a{zero, zero, zero};
   V3<F> turn_b = turn_a;
@@ -411,18 +429,9 @@ void push_lanes(const A& acc, std::vector<SolverBody>& bodies, const PushSetting
   }
   // Single points converge in one sweep; further sweeps leave them be.
   const auto several = count > one;
-  for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
-    for (uint32_t p = 0; p < N; ++p) {
-      const F gain = sweep == 0 ? step[p] : select(several, step[p], zero);
-      F next = total[p] - gain * residual[p];
-      next = select(next < zero, zero, next);
-      const F change = next - total[p];
-      total[p] = next;
-      for (uint32_t j = 0; j < N; ++j) {
-        residual[j] = residual[j] + acc.ld(batch.coupling[j][p]) * change;
-      }
-    }
-  }
+  F later_step[kMaxManifoldPoints];
+  for (uint32_t p = 0; p < N; ++p) later_step[p] = select(several, step[p], zero);
+  sweep_normal_block<N>(acc, batch, step, later_step, residual, total);
   const F shallow = select(deepest < A::splat(push.deep_limit), zero, one);
   const F wanted = select(overlapping + a.rest + b.rest > zero, shallow, zero);
   const auto active = wanted > zero;
