@@ -62,8 +62,8 @@ class AabbTree {
   uint32_t leaf_count() const { return leaves_; }
   /// Longest root-to-leaf path (0 for one leaf, -1 when empty).
   int32_t height() const { return root_ == kNull ? -1 : nodes_[root_].height; }
-  /// Checks parent links, heights, balance and that every inner box
-  /// bounds its children; for tests.
+  /// Checks parent links, heights, the node count and that every inner
+  /// box bounds its children; for tests.
   bool valid() const;
 
  private:

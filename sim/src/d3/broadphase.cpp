@@ -178,13 +178,11 @@ void sort_sweep(const WorldState& state, WorldScratch& scratch, int axis) {
     }
   }
   scratch.sweep_upper.resize(m);
-  scratch.sweep_boxes.resize(m);
   for (auto& cross : scratch.sweep_cross) cross.resize(m);
   const int axis1 = (axis + 1) % 3;
   const int axis2 = (axis + 2) % 3;
   for (size_t k = 0; k < m; ++k) {
     const Aabb& box = scratch.aabbs[order[k]];
-    scratch.sweep_boxes[k] = box;
     scratch.sweep_upper[k] = upper_on(box, axis);
     scratch.sweep_cross[0][k] = lower_on(box, axis1);
     scratch.sweep_cross[1][k] = upper_on(box, axis1);
@@ -270,7 +268,7 @@ void find_pairs(const WorldState& state, WorldScratch& scratch) {
   const size_t m = order.size();
   for (size_t k = 0; k < m; ++k) {
     const uint32_t i = order[k];
-    const Aabb& box = scratch.sweep_boxes[k];
+    const Aabb& box = scratch.aabbs[i];
     const BodyInfo& info = state.infos[i];
     const size_t hit_count = sweep_one(scratch, k, scratch.sweep_hits.data());
     for (size_t h = 0; h < hit_count; ++h) {

@@ -69,40 +69,6 @@ void color(WorldScratch& scratch) {
   }
 }
 
-// The inputs of a point past a manifold's count (prepare_lanes zeroes what
-// it derives for such points).
-void clear_point(ContactBatch::Point& p, int lane) {
-  for (int i = 0; i < 3; ++i) {
-    p.anchor_a[i][lane] = 0.0f;
-    p.anchor_b[i][lane] = 0.0f;
-  }
-  p.base_separation[lane] = 0.0f;
-  p.separation[lane] = 0.0f;
-  p.normal_impulse[lane] = 0.0f;
-  p.tangent_impulse1[lane] = 0.0f;
-  p.tangent_impulse2[lane] = 0.0f;
-  p.max_normal_impulse[lane] = 0.0f;
-  p.push_impulse[lane] = 0.0f;
-}
-
-void clear_lane(ContactBatch& batch, int lane) {
-  batch.constraint[lane] = kNoConstraint;
-  batch.body_a[lane] = 0;
-  batch.body_b[lane] = 0;
-  batch.movable_a[lane] = 0;
-  batch.movable_b[lane] = 0;
-  for (int i = 0; i < 3; ++i) {
-    batch.normal[i][lane] = 0.0f;
-    batch.tangent1[i][lane] = 0.0f;
-    batch.tangent2[i][lane] = 0.0f;
-  }
-  batch.point_count[lane] = 0.0f;
-  batch.friction[lane] = 0.0f;
-  batch.push_rate[lane] = 0.0f;
-  batch.push_mass_scale[lane] = 0.0f;
-  for (ContactBatch::Point& p : batch.points) clear_point(p, lane);
-}
-
 // Packs constraint `index` into a lane: ids, axes, anchors and impulses.
 // The quantities derived from them (inverse-inertia products, masses, the
 // normal K matrix) are computed for all lanes at once by prepare_lanes.
@@ -141,7 +107,6 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
     bp.max_normal_impulse[lane] = cp.max_normal_impulse;
     bp.push_impulse[lane] = 0.0f;
   }
-  for (uint32_t p = c.point_count; p < kMaxManifoldPoints; ++p) clear_point(batch.points[p], lane);
 }
 
 // Calls fn(lane, constraint) for each lane in [first, first + count) of a
@@ -267,6 +232,9 @@ void build_batches(WorldScratch& scratch) {
     const uint32_t end = scratch.color_start[col + 1];
     const uint32_t per_batch = col == kColorCount ? 1 : kBatchLanes;
     for (uint32_t first = begin; first < end; first += per_batch) {
+      // Value-initialised: an empty lane, and the points past a manifold's
+      // count, are all zeros (prepare_lanes keeps what it derives for them
+      // at zero too).
       ContactBatch& batch = scratch.batches.emplace_back();
       batch.point_bound = 1;
       for (uint32_t lane = 0; lane < kBatchLanes; ++lane) {
@@ -279,7 +247,7 @@ void build_batches(WorldScratch& scratch) {
                     scratch.solver_bodies);
           batch.point_bound = std::max(batch.point_bound, scratch.constraints[index].point_count);
         } else {
-          clear_lane(batch, static_cast<int>(lane));
+          batch.constraint[lane] = kNoConstraint;
         }
       }
     }

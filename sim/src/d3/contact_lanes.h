@@ -258,6 +258,18 @@ void warm_start_lanes(const A& acc, std::vector<SolverBody>& bodies) {
   scatter_bodies(acc, bodies, true, b);
 }
 
+// A point's Jacobian angular parts (anchor x normal, both sides) and the
+// normal velocity of b relative to a there.
+template <class A>
+typename A::F normal_velocity(const A& acc, const ContactBatch::Point& bp,
+                              const V3<typename A::F>& n, const LaneBodies<typename A::F>& a,
+                              const LaneBodies<typename A::F>& b, V3<typename A::F>& rn_a,
+                              V3<typename A::F>& rn_b) {
+  rn_a = cross3(ld3(acc, bp.anchor_a), n);
+  rn_b = cross3(ld3(acc, bp.anchor_b), n);
+  return dot3(b.v - a.v, n) + dot3(rn_b, b.w) - dot3(rn_a, a.w);
+}
+
 // Projected Gauss-Seidel sweeps over each lane's manifold normal system
 // with the bodies held: impulse total[p] (accumulated, >= 0) moves so the
 // normal velocity residual[p] reaches zero, the first sweep scaled by
@@ -307,11 +319,9 @@ void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
   V3<F> rn_b[kMaxManifoldPoints];
   for (uint32_t p = 0; p < N; ++p) {
     const ContactBatch::Point& bp = batch.points[p];
-    rn_a[p] = cross3(ld3(acc, bp.anchor_a), n);
-    rn_b[p] = cross3(ld3(acc, bp.anchor_b), n);
     const F s = acc.ld(bp.separation);
     const F bias = select(s > zero, s * inv_h_w, zero);  // speculative
-    const F vn = dot3(b.v - a.v, n) + dot3(rn_b[p], b.w) - dot3(rn_a[p], a.w);
+    const F vn = normal_velocity(acc, bp, n, a, b, rn_a[p], rn_b[p]);
     residual[p] = vn + bias;
     step[p] = acc.ld(bp.normal_mass);
     total[p] = acc.ld(bp.normal_impulse);
@@ -419,9 +429,7 @@ void push_lanes(const A& acc, std::vector<SolverBody>& bodies, const PushSetting
                           select(s > zero, s * inv_h, zero));
     deepest = select(real, select(depth < deepest, depth, deepest), deepest);
     overlapping = select(real, select(depth < zero, one, overlapping), overlapping);
-    rn_a[p] = cross3(ld3(acc, bp.anchor_a), n);
-    rn_b[p] = cross3(ld3(acc, bp.anchor_b), n);
-    const F vn = dot3(b.v - a.v, n) + dot3(rn_b[p], b.w) - dot3(rn_a[p], a.w);
+    const F vn = normal_velocity(acc, bp, n, a, b, rn_a[p], rn_b[p]);
     residual[p] = vn + bias;
     step[p] = acc.ld(bp.normal_mass) * scale;
     total[p] = acc.ld(bp.push_impulse);

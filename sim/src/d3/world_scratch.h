@@ -134,9 +134,9 @@ class WorldScratch {
   using ContactConstraint = d3::ContactConstraint;
 
   // broadphase (broadphase.cpp)
-  /// By body index: this step's bounds of every awake body (fattened by
-  /// the speculative distance and its reach this tick) and the exact
-  /// bounds of every static and sleeping one.
+  /// By body index: this step's bounds of every awake body, fattened by
+  /// the speculative distance and its reach this tick (sleeping and static
+  /// bodies' exact bounds live in their trees' leaves).
   std::vector<Aabb> aabbs;
   std::vector<uint32_t> active;  ///< awake movable bodies, ascending
   /// The awake bodies sorted along the sweep axis, kept from step to step
@@ -147,8 +147,7 @@ class WorldScratch {
   std::vector<float> sweep_lower;  ///< on the sweep axis
   std::vector<float> sweep_upper;
   std::vector<float> sweep_cross[4];  ///< lower, upper, lower, upper on the other two axes
-  std::vector<Aabb> sweep_boxes;
-  std::vector<uint32_t> sweep_hits;  ///< one body's overlaps, positions in the order
+  std::vector<uint32_t> sweep_hits;   ///< one body's overlaps, positions in the order
   int sweep_axis = 0;
   d3::AabbTree sleeping_tree;            ///< sleeping movable bodies, exact leaves
   d3::AabbTree static_tree;              ///< static bodies, exact leaves, built in bulk
