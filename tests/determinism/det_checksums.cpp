@@ -193,7 +193,8 @@ bool run_edge_scene(Tick ticks) {
 // overlaps, pushed out one at a time from the ground up) beside a heap of
 // boxes and spheres dropped into a corner overlapping a little (shallow
 // overlaps, pushed out in the solver's lanes), with sleeping on, so bodies
-// fall asleep, are kicked awake and pile up again. Every 30 ticks a restore
+// fall asleep, are kicked awake and pile up again (resting contacts carry
+// their manifolds forward in between). Every 30 ticks a restore
 // must re-step bit for bit. Returns false (after saying why) otherwise.
 bool run_heap_scene(Tick ticks) {
   namespace sim = rwd::sim;
@@ -232,8 +233,10 @@ bool run_heap_scene(Tick ticks) {
     }
     if (t % 30 == 0 && !restep_matches(world, "heap", t)) return false;
     world.step();
-    std::printf("heap %d %016" PRIx64 " %u\n", static_cast<int>(t), world.checksum(),
-                world.stats().contact_points);
+    // Contact points and reused manifolds too: every build must carry the
+    // same manifolds forward on the same ticks.
+    std::printf("heap %d %016" PRIx64 " %u %u\n", static_cast<int>(t), world.checksum(),
+                world.stats().contact_points, world.stats().reused_manifolds);
   }
   return true;
 }

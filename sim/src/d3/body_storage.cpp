@@ -34,21 +34,29 @@ BodyMass compute_mass(BodyKind kind, const Shape& shape, float density) {
   return m;
 }
 
-Aabb shape_aabb(const Shape& shape, Vec3 position, Quat rotation) {
+Aabb shape_aabb(const Shape& shape, Vec3 position, const Mat3& axes) {
   Vec3 e;
   if (shape.type == ShapeType::kSphere) {
     e = {shape.radius, shape.radius, shape.radius};
   } else {
-    Mat3 r = mat3_from_quat(rotation);
     Vec3 h = shape.half_extents;
     // Extent along world axis i = sum_k |R_ik| h_k.
-    e = abs(r.c0) * h.x + abs(r.c1) * h.y + abs(r.c2) * h.z;
+    e = abs(axes.c0) * h.x + abs(axes.c1) * h.y + abs(axes.c2) * h.z;
   }
   return {position - e, position + e};
 }
 
+Aabb shape_aabb(const Shape& shape, Vec3 position, Quat rotation) {
+  if (shape.type == ShapeType::kSphere) return shape_aabb(shape, position, Mat3{});
+  return shape_aabb(shape, position, mat3_from_quat(rotation));
+}
+
+Mat3 world_inverse_inertia(const BodyMass& mass, const Mat3& axes) {
+  return rotate_diagonal(axes, mass.inv_inertia_local);
+}
+
 Mat3 world_inverse_inertia(const BodyMass& mass, Quat rotation) {
-  return rotate_diagonal(mat3_from_quat(rotation), mass.inv_inertia_local);
+  return world_inverse_inertia(mass, mat3_from_quat(rotation));
 }
 
 }  // namespace rwd::sim::d3

@@ -11,10 +11,34 @@ namespace rwd::sim::d3 {
 /// Mass, inverse mass and principal inverse inertia from density and shape;
 /// zero for static and kinematic bodies (infinite mass).
 BodyMass compute_mass(BodyKind kind, const Shape& shape, float density);
-/// Tight world bounds of the shape at a pose.
+/// Tight world bounds of the shape at a pose (`axes` = mat3_from_quat of
+/// its rotation).
+Aabb shape_aabb(const Shape& shape, Vec3 position, const Mat3& axes);
 Aabb shape_aabb(const Shape& shape, Vec3 position, Quat rotation);
-/// The world-frame inverse inertia tensor.
+/// The world-frame inverse inertia tensor (`axes` as above).
+Mat3 world_inverse_inertia(const BodyMass& mass, const Mat3& axes);
 Mat3 world_inverse_inertia(const BodyMass& mass, Quat rotation);
+
+/// Starts a step's body frames: every frame of earlier steps goes stale.
+inline void begin_body_axes(const WorldState& state, WorldScratch& scratch) {
+  ++scratch.step_serial;
+  scratch.axes.resize(state.infos.size());
+  scratch.axes_step.resize(state.infos.size(), 0);
+}
+/// Records body i's frame for this step (its pose must not move until the
+/// step's solve).
+inline const Mat3& set_body_axes(WorldScratch& scratch, uint32_t i, Quat rotation) {
+  scratch.axes[i] = mat3_from_quat(rotation);
+  scratch.axes_step[i] = scratch.step_serial;
+  return scratch.axes[i];
+}
+/// Body i's rotation matrix at the start of this step, computed once per
+/// step and body (the broadphase, the narrowphase's pairs and the solver's
+/// inertia share it, bit for bit what mat3_from_quat gives).
+inline const Mat3& body_axes(const WorldState& state, WorldScratch& scratch, uint32_t i) {
+  if (scratch.axes_step[i] == scratch.step_serial) return scratch.axes[i];
+  return set_body_axes(scratch, i, state.sims[i].rotation);
+}
 
 inline bool is_live(const WorldState& s, BodyId id) {
   return id.generation != 0 && id.index < s.infos.size() && s.infos[id.index].alive != 0 &&

@@ -17,9 +17,12 @@
 // a function of the state alone: the sweep axis and the shape of a tree,
 // which depend on history and differ after a restore, never reach a result.
 #include <algorithm>
+#include <cstddef>
+#include <limits>
 
 #include "d3/body_storage.h"
 #include "d3/pipeline.h"
+#include "d3/wide_float.h"
 
 namespace rwd::sim::d3 {
 namespace {
@@ -114,7 +117,7 @@ int awake_bounds(const WorldState& state, WorldScratch& scratch) {
     const float reach =
         length(sim.linear_velocity) + length(sim.angular_velocity) * state.masses[i].extent;
     const float margin = speculative + tick * reach;
-    Aabb box = shape_aabb(info.shape, sim.position, sim.rotation);
+    Aabb box = shape_aabb(info.shape, sim.position, set_body_axes(scratch, i, sim.rotation));
     box.lower -= Vec3{margin, margin, margin};
     box.upper += Vec3{margin, margin, margin};
     scratch.aabbs[i] = box;
@@ -178,7 +181,16 @@ void sort_sweep(const WorldState& state, WorldScratch& scratch, int axis) {
     }
   }
   scratch.sweep_upper.resize(m);
-  for (auto& cross : scratch.sweep_cross) cross.resize(m);
+  // The cross-axis bounds are padded for sweep_one's last lanes: empty
+  // intervals (lower > upper) overlap nothing.
+  const size_t padded = m + kLanes - 1;
+  for (int c = 0; c < 4; ++c) {
+    const float pad =
+        c % 2 == 0 ? std::numeric_limits<float>::max() : -std::numeric_limits<float>::max();
+    scratch.sweep_cross[c].resize(padded);
+    std::fill(scratch.sweep_cross[c].begin() + static_cast<std::ptrdiff_t>(m),
+              scratch.sweep_cross[c].end(), pad);
+  }
   const int axis1 = (axis + 1) % 3;
   const int axis2 = (axis + 2) % 3;
   for (size_t k = 0; k < m; ++k) {
@@ -193,8 +205,12 @@ void sort_sweep(const WorldState& state, WorldScratch& scratch, int axis) {
 }
 
 // Positions after k in the sweep order whose bounds overlap k's, into
-// `hits`; returns how many. Branch-free over the candidates, which in a
-// dense scene are many more than the overlaps.
+// `hits`, ascending; returns how many. The candidates are the positions
+// whose lower bound on the sweep axis is at most k's upper one (a binary
+// search: the lower bounds are sorted); they are tested kLanes at a time
+// on the other two axes, branch-free, since in a dense scene they are many
+// more than the overlaps. The arrays are padded with kLanes - 1 entries
+// that overlap nothing.
 size_t sweep_one(const WorldScratch& scratch, size_t k, uint32_t* hits) {
   const size_t m = scratch.sweep_order.size();
   const float* lower = scratch.sweep_lower.data();
@@ -203,58 +219,66 @@ size_t sweep_one(const WorldScratch& scratch, size_t k, uint32_t* hits) {
   const float* lo2 = scratch.sweep_cross[2].data();
   const float* hi2 = scratch.sweep_cross[3].data();
   const float upper = scratch.sweep_upper[k];
-  const float k_lo1 = lo1[k];
-  const float k_hi1 = hi1[k];
-  const float k_lo2 = lo2[k];
-  const float k_hi2 = hi2[k];
+  const size_t end = static_cast<size_t>(std::upper_bound(lower + k + 1, lower + m, upper) - lower);
+  const FloatW k_lo1 = splat(lo1[k]);
+  const FloatW k_hi1 = splat(hi1[k]);
+  const FloatW k_lo2 = splat(lo2[k]);
+  const FloatW k_hi2 = splat(hi2[k]);
   size_t count = 0;
-  for (size_t l = k + 1; l < m && lower[l] <= upper; ++l) {
-    const bool hit = (lo1[l] <= k_hi1) & (k_lo1 <= hi1[l]) & (lo2[l] <= k_hi2) & (k_lo2 <= hi2[l]);
-    hits[count] = static_cast<uint32_t>(l);
-    count += hit ? 1u : 0u;
+  for (size_t l = k + 1; l < end; l += kLanes) {
+    const MaskW miss = (load(lo1 + l) > k_hi1) | (k_lo1 > load(hi1 + l)) | (load(lo2 + l) > k_hi2) |
+                       (k_lo2 > load(hi2 + l));
+    uint32_t bits = ~lane_bits(miss) & ((1u << kLanes) - 1u);
+    if (end - l < static_cast<size_t>(kLanes)) bits &= (1u << (end - l)) - 1u;
+    while (bits != 0) {
+      hits[count++] = static_cast<uint32_t>(l + static_cast<size_t>(__builtin_ctz(bits)));
+      bits &= bits - 1u;
+    }
   }
   return count;
 }
 
-// Sorts scratch.pairs by (a, b): a least-significant-digit radix sort over
-// the bytes a body index can use (two passes per byte of the larger index),
-// on keys a << 32 | b. Keys are unique, so the order is the one sort order.
+// Sorts scratch.pairs by (a, b): a counting sort by a (one pass to count,
+// one to place), then each a's pairs by b, by insertion while they are few
+// (a body has a handful of neighbours) and std::sort past that (the ground
+// under a pile). Pairs are unique, so the order is the one sort order.
 void sort_pairs(WorldScratch& scratch, uint32_t body_count) {
   std::vector<BodyPair>& pairs = scratch.pairs;
-  const size_t count = pairs.size();
-  std::vector<uint64_t>& keys = scratch.pair_keys;
-  std::vector<uint64_t>& spare = scratch.pair_spare;
-  keys.resize(count);
-  spare.resize(count);
-  for (size_t k = 0; k < count; ++k) {
-    keys[k] = (static_cast<uint64_t>(pairs[k].a) << 32) | pairs[k].b;
-  }
-  uint32_t index_bytes = 1;
-  while (index_bytes < 4 && (body_count - 1) >> (8 * index_bytes) != 0) ++index_bytes;
-  uint32_t buckets[256];
-  for (uint32_t half = 0; half < 2; ++half) {
-    for (uint32_t byte = 0; byte < index_bytes; ++byte) {
-      const uint32_t shift = 32 * half + 8 * byte;
-      for (uint32_t& b : buckets) b = 0;
-      for (const uint64_t key : keys) ++buckets[(key >> shift) & 0xFF];
-      uint32_t sum = 0;
-      for (uint32_t& b : buckets) {
-        const uint32_t here = b;
-        b = sum;
-        sum += here;
+  std::vector<BodyPair>& sorted = scratch.pair_spare;
+  std::vector<uint32_t>& start = scratch.pair_start;
+  start.assign(static_cast<size_t>(body_count) + 1, 0);
+  for (const BodyPair& p : pairs) ++start[p.a + 1];
+  for (uint32_t i = 0; i < body_count; ++i) start[i + 1] += start[i];
+  sorted.resize(pairs.size());
+  for (const BodyPair& p : pairs) sorted[start[p.a]++] = p;
+  // start[a] is now the end of a's run, and the start of a + 1's.
+  uint32_t begin = 0;
+  for (uint32_t a = 0; a < body_count; ++a) {
+    const uint32_t end = start[a];
+    if (end - begin > 16) {
+      std::sort(sorted.begin() + begin, sorted.begin() + end,
+                [](const BodyPair& l, const BodyPair& r) { return l.b < r.b; });
+    } else {
+      for (uint32_t k = begin + 1; k < end; ++k) {
+        const BodyPair p = sorted[k];
+        uint32_t slot = k;
+        while (slot > begin && sorted[slot - 1].b > p.b) {
+          sorted[slot] = sorted[slot - 1];
+          --slot;
+        }
+        sorted[slot] = p;
       }
-      for (const uint64_t key : keys) spare[buckets[(key >> shift) & 0xFF]++] = key;
-      keys.swap(spare);
     }
+    begin = end;
   }
-  for (size_t k = 0; k < count; ++k) {
-    pairs[k] = {static_cast<uint32_t>(keys[k] >> 32), static_cast<uint32_t>(keys[k])};
-  }
+  pairs.swap(sorted);
 }
 
 }  // namespace
 
 void find_pairs(const WorldState& state, WorldScratch& scratch) {
+  // The first stage of a step: the step's body frames start here.
+  begin_body_axes(state, scratch);
   if (scratch.static_dirty) {
     rebuild_trees(state, scratch);
   } else {

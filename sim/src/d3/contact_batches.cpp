@@ -87,6 +87,7 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
     dst[a][1][lane] = axes[a].y;
     dst[a][2][lane] = axes[a].z;
   }
+  batch.overlapping = static_cast<uint8_t>(batch.overlapping | c.overlapping);
   batch.friction[lane] = c.friction;
   batch.push_rate[lane] = c.softness.bias_rate;
   batch.push_mass_scale[lane] = c.softness.mass_scale;
@@ -280,9 +281,11 @@ namespace {
 // computed them, back to their scalar constraints (the push-out reads
 // those); notes in scratch.overlapping whether any point overlaps past the
 // slop.
-void copy_back_separations(WorldScratch& scratch, float slop, const ContactBatch& batch,
-                           int first = 0, int count = kBatchLanes) {
+void copy_back_separations(WorldScratch& scratch, float slop, ContactBatch& batch, int first = 0,
+                           int count = kBatchLanes) {
   bool overlapping = false;
+  bool deep = false;
+  const float deep_limit = -kDeepOverlapSlops * slop;
   for_each_packed(
       scratch, batch,
       [&](int lane, ContactConstraint& c) {
@@ -290,10 +293,15 @@ void copy_back_separations(WorldScratch& scratch, float slop, const ContactBatch
           const float separation = batch.points[p].separation[lane];
           c.points[p].separation = separation;
           overlapping = overlapping || separation + slop < 0.0f;
+          deep = deep || separation + slop < deep_limit;
         }
       },
       first, count);
   if (overlapping) scratch.overlapping = true;
+  if (deep) scratch.deep_overlap = true;
+  // The first lanes start the batch's flag, an upper half adds to it.
+  if (first == 0) batch.overlapping = 0;
+  if (overlapping) batch.overlapping = 1;
 }
 
 }  // namespace
@@ -302,9 +310,30 @@ void push_batches(WorldScratch& scratch, const WorldConfig& config, float inv_h)
   std::vector<SolverBody>& bodies = scratch.solver_bodies;
   const PushSettings push{inv_h, config.linear_slop_m, config.contact_push_max_mps,
                           -kDeepOverlapSlops * config.linear_slop_m};
+  // A lane pushes only when it overlaps or one of its bodies already moves
+  // on push velocities; a batch with neither (decided for the whole batch
+  // before either half runs, so every lane width skips the same batches)
+  // would change nothing and is skipped.
+  const auto idle = [&](const ContactBatch& b) {
+    if (b.overlapping != 0) return false;
+    for (int lane = 0; lane < kBatchLanes; ++lane) {
+      if (bodies[b.body_a[lane]].pushed != 0.0f || bodies[b.body_b[lane]].pushed != 0.0f) {
+        return false;
+      }
+    }
+    return true;
+  };
   for_batches(
-      scratch, [&](ContactBatch& b) { push_full(b, bodies, push); },
-      [&](const HalfBatch& h) { push_half(h, bodies, push); });
+      scratch,
+      [&](ContactBatch& b) {
+        if (!idle(b)) push_full(b, bodies, push);
+      },
+      [&](const HalfBatch& h) {
+        // Asked again for the upper half, the answer is the same: pushing
+        // only ever marks bodies, so a batch busy before its lower half is
+        // busy after it, and an idle one had its lower half skipped.
+        if (!idle(*h.batch)) push_half(h, bodies, push);
+      });
 }
 
 namespace {
@@ -314,6 +343,7 @@ namespace {
 void separation_pass(WorldScratch& scratch, float slop, bool relax, float inv_h) {
   std::vector<SolverBody>& bodies = scratch.solver_bodies;
   scratch.overlapping = false;
+  scratch.deep_overlap = false;
   for_batches(
       scratch,
       [&](ContactBatch& b) {

@@ -84,6 +84,10 @@ struct alignas(32) ContactBatch {
   /// Last, so every float field above stays 32-byte aligned.
   uint8_t movable_a[kBatchLanes];
   uint8_t movable_b[kBatchLanes];
+  /// 1 when a point of some lane overlaps past the slop, as of the last
+  /// separation update: a batch without one whose bodies are not being
+  /// pushed has nothing to push out.
+  uint8_t overlapping;
   /// The most points any lane holds (1 to kMaxManifoldPoints): the passes
   /// run that many. Constraints are packed by point count within a colour,
   /// so most batches are full of manifolds of one size.
@@ -113,7 +117,8 @@ void warm_start_batches(WorldScratch& scratch);
 void solve_batches(WorldScratch& scratch, float inv_h);
 /// Each point's separation from the motion since the tick began, into the
 /// batches and the scalar constraints (the push-out reads those); sets
-/// scratch.overlapping when a point overlaps more than `slop` (m).
+/// scratch.overlapping when a point overlaps more than `slop` (m), and
+/// scratch.deep_overlap when more than kDeepOverlapSlops slops past it.
 void update_separations(WorldScratch& scratch, float slop);
 /// update_separations and then one solve_batches, in one pass over the
 /// batches (a batch's separations depend only on the bodies' motion so

@@ -95,8 +95,8 @@ inline constexpr int kInertiaRow = 16;
 // the same way: push velocities, inverse mass, pushed), transposed into lanes
 // by the access.
 template <class A>
-LaneBodies<typename A::F> gather_bodies(const A& acc, const std::vector<SolverBody>& bodies,
-                                        bool side_b, int row = kVelocityRow) {
+[[gnu::always_inline]] inline LaneBodies<typename A::F> gather_bodies(
+    const A& acc, const std::vector<SolverBody>& bodies, bool side_b, int row = kVelocityRow) {
   const float* rows[A::kWidth];
   for (int i = 0; i < A::kWidth; ++i) {
     rows[i] = body_row(bodies[side_b ? acc.body_b(i) : acc.body_a(i)]) + row;
@@ -142,8 +142,9 @@ V3<F> mul(const LaneInertia<F>& m, const V3<F>& v) {
 // lanes store to a sink on the stack), so no lane order or lane count can
 // leave a different signed zero in it.
 template <class A>
-void scatter_bodies(const A& acc, std::vector<SolverBody>& bodies, bool side_b,
-                    const LaneBodies<typename A::F>& b, int row = kVelocityRow) {
+[[gnu::always_inline]] inline void scatter_bodies(const A& acc, std::vector<SolverBody>& bodies,
+                                                  bool side_b, const LaneBodies<typename A::F>& b,
+                                                  int row = kVelocityRow) {
   alignas(32) float sink[8];
   float* rows[A::kWidth];
   for (int i = 0; i < A::kWidth; ++i) {

@@ -103,7 +103,7 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
     b.linear_damping_factor = 1.0f;
     b.angular_damping_factor = 1.0f;
     if (info.kind == BodyKind::kDynamic) {
-      b.inv_inertia = world_inverse_inertia(mass, sim.rotation);
+      b.inv_inertia = world_inverse_inertia(mass, body_axes(state, scratch, i));
       b.linear_acceleration = config.gravity * info.gravity_scale + sim.force * mass.inv_mass;
       b.linear_damping_factor = 1.0f / (1.0f + h * info.linear_damping);
       b.angular_damping_factor = 1.0f / (1.0f + h * info.angular_damping);
@@ -124,6 +124,8 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
 
   scratch.constraints.clear();
   scratch.overlapping = false;
+  scratch.deep_overlap = false;
+  const float deep_limit = -kDeepOverlapSlops * config.linear_slop_m;
   uint32_t points = 0;
   for (uint32_t k = 0; k < state.contacts.size(); ++k) {
     const ContactRecord& rec = state.contacts[k];
@@ -152,7 +154,8 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
       cp.anchor_b = mp.anchor_b;
       cp.base_separation = mp.separation - dot(mp.anchor_b - mp.anchor_a, c.normal);
       cp.separation = mp.separation;
-      if (mp.separation + config.linear_slop_m < 0.0f) scratch.overlapping = true;
+      if (mp.separation + config.linear_slop_m < 0.0f) c.overlapping = 1;
+      if (mp.separation + config.linear_slop_m < deep_limit) scratch.deep_overlap = true;
       cp.normal_impulse = rec.points[p].normal_impulse;
       cp.tangent_impulse1 = rec.points[p].tangent_impulse1;
       cp.tangent_impulse2 = rec.points[p].tangent_impulse2;
@@ -163,6 +166,7 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
                                  ? 0.0f
                                  : dot(c.normal, relative_velocity(a, b, cp.anchor_a, cp.anchor_b));
     }
+    if (c.overlapping != 0) scratch.overlapping = true;
     points += c.point_count;
   }
   scratch.stats.contact_points = points;
@@ -451,20 +455,27 @@ void solve(WorldState& state, WorldScratch& scratch) {
   const float h = tick / static_cast<float>(config.substeps);
   const float inv_h = 1.0f / h;
   prepare(state, scratch, h);
-  order_push_out(scratch);
   build_batches(scratch);
   const float slop = config.linear_slop_m;
   scratch.pushing = false;
+  bool ordered = false;
   for (int32_t s = 0; s < config.substeps; ++s) {
     integrate_velocities(scratch, h);
     warm_start_batches(scratch);
     solve_batches(scratch, inv_h);
     // Until some point overlaps past the slop, every push velocity and
     // impulse is zero and a push-out pass would leave them so: resting
-    // scenes skip it.
+    // scenes skip it. Likewise the push-out from the ground up, and the
+    // order it needs (a function of this tick's contacts alone, so
+    // computing it when first needed gives the order of the tick's start),
+    // wait for a deep overlap.
     if (scratch.pushing || scratch.overlapping) {
       scratch.pushing = true;
-      push_out_deep(scratch, config, inv_h);
+      if (scratch.deep_overlap) {
+        if (!ordered) order_push_out(scratch);
+        ordered = true;
+        push_out_deep(scratch, config, inv_h);
+      }
       push_batches(scratch, config, inv_h);
     }
     integrate_positions(scratch, h);

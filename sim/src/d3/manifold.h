@@ -34,9 +34,17 @@ struct ManifoldPoint {
   uint32_t feature_id;
 };
 
+/// Manifold::separating_axis when no axis separated the shapes (or the
+/// routine does not say).
+inline constexpr uint8_t kNoSeparatingAxis = 0xFF;
+
 struct Manifold {
   Vec3 normal;  ///< unit, from A to B
   uint32_t point_count = 0;
+  /// collide_boxes: the axis that put the boxes farther apart than the
+  /// speculative distance (0-2 A's faces, 3-5 B's, 6 + 3i + j the edge
+  /// pair a_i x b_j), so the next step can try it first.
+  uint8_t separating_axis = kNoSeparatingAxis;
   ManifoldPoint points[kMaxManifoldPoints];
 };
 
@@ -55,8 +63,29 @@ void collide_box_sphere(const BoxPose& box, Vec3 center, float radius, float spe
 /// SAT over the 15 axes, then reference/incident face clipping (up to four
 /// points) or a single edge-edge point.
 void collide_boxes(const BoxPose& a, const BoxPose& b, float speculative_m, Manifold& out);
+/// The same with each box's rotation given as its matrix (mat3_from_quat),
+/// so a caller that has it does not rebuild it per pair.
+void collide_boxes(Vec3 center_a, const Mat3& axes_a, Vec3 half_a, Vec3 center_b,
+                   const Mat3& axes_b, Vec3 half_b, float speculative_m, Manifold& out);
+
+/// Whether `axis` (as Manifold::separating_axis numbers it) alone puts the
+/// boxes farther apart than speculative_m, computed bit for bit as
+/// collide_boxes computes that axis: when it does, collide_boxes finds no
+/// points either, so a caller may skip it.
+bool box_axis_separates(Vec3 center_a, const Mat3& axes_a, Vec3 half_a, Vec3 center_b,
+                        const Mat3& axes_b, Vec3 half_b, uint8_t axis, float speculative_m);
+
+/// A shape's pose for collide_shapes: centre, rotation and its matrix
+/// (mat3_from_quat(rotation), which boxes use).
+struct ShapePose {
+  Vec3 position;
+  Quat rotation;
+  Mat3 axes;
+};
 
 /// Dispatches on the shape types; fills anchors. Normal always from A to B.
+void collide_shapes(const Shape& shape_a, const ShapePose& pose_a, const Shape& shape_b,
+                    const ShapePose& pose_b, float speculative_m, Manifold& out);
 void collide_shapes(const Shape& shape_a, Vec3 position_a, Quat rotation_a, const Shape& shape_b,
                     Vec3 position_b, Quat rotation_b, float speculative_m, Manifold& out);
 

@@ -39,24 +39,28 @@ struct BoxFrame {
   float half[3];
 };
 
-BoxFrame make_frame(const BoxPose& b) {
-  const Mat3 m = mat3_from_quat(b.rotation);
-  return {b.center, {m.c0, m.c1, m.c2}, {b.half_extents.x, b.half_extents.y, b.half_extents.z}};
+BoxFrame make_frame(Vec3 center, const Mat3& m, Vec3 half) {
+  return {center, {m.c0, m.c1, m.c2}, {half.x, half.y, half.z}};
 }
 
+// A vertex of the incident face in the reference face's frame: u and v
+// along the reference face's two side axes, w along its normal, all from
+// the reference box's centre. Clipping against the reference face's side
+// planes is then clipping against |u| <= hu, |v| <= hv, one subtraction
+// per vertex and plane instead of a dot product.
 struct ClipVertex {
-  Vec3 p;
+  float c[3];               // u, v, w
   uint8_t incident_edges;   // bit e: lies on incident edge e
   uint8_t reference_sides;  // bit s: lies on reference side plane s
 };
 
 constexpr int kMaxClip = 12;
 
-// Keeps the part of `poly` where dist(p) <= 0.
-int clip_polygon(const ClipVertex* in, int count, Vec3 plane_normal, float plane_offset, int side,
+// Keeps the part of `in` where sign * c[coord] <= limit (side plane `side`).
+int clip_polygon(const ClipVertex* in, int count, int coord, float sign, float limit, int side,
                  ClipVertex* out) {
   float dist[kMaxClip];
-  for (int m = 0; m < count; ++m) dist[m] = dot(plane_normal, in[m].p) - plane_offset;
+  for (int m = 0; m < count; ++m) dist[m] = sign * in[m].c[coord] - limit;
   int n = 0;
   for (int m = 0; m < count; ++m) {
     const int next = m + 1 == count ? 0 : m + 1;
@@ -66,9 +70,9 @@ int clip_polygon(const ClipVertex* in, int count, Vec3 plane_normal, float plane
     const float dq = dist[next];
     if (dp <= 0.0f) out[n++] = p;
     if ((dp <= 0.0f) != (dq <= 0.0f)) {
-      float t = dp / (dp - dq);  // signs differ, so dp - dq != 0
+      const float t = dp / (dp - dq);  // signs differ, so dp - dq != 0
       ClipVertex x;
-      x.p = p.p + (q.p - p.p) * t;
+      for (int k = 0; k < 3; ++k) x.c[k] = p.c[k] + (q.c[k] - p.c[k]) * t;
       x.incident_edges = static_cast<uint8_t>(p.incident_edges & q.incident_edges);
       x.reference_sides =
           static_cast<uint8_t>((p.reference_sides & q.reference_sides) | (1u << side));
@@ -164,29 +168,40 @@ void face_contact(const BoxFrame& ref, const BoxFrame& inc, int ref_axis, bool r
   uint32_t inc_face = static_cast<uint32_t>(k) * 2u + (inc_sign > 0.0f ? 1u : 0u);
   int u = (k + 1) % 3;
   int v = (k + 2) % 3;
-  Vec3 fc = inc.center + inc.axis[k] * (inc_sign * inc.half[k]);
-  Vec3 du = inc.axis[u] * inc.half[u];
-  Vec3 dv = inc.axis[v] * inc.half[v];
+  const int j = (ref_axis + 1) % 3;
+  const int l = (ref_axis + 2) % 3;
+  // The incident face's centre and half edges in the reference frame.
+  const Vec3 frame[3] = {ref.axis[j], ref.axis[l], n};
+  const Vec3 fc = inc.center + inc.axis[k] * (inc_sign * inc.half[k]) - ref.center;
+  const Vec3 du = inc.axis[u] * inc.half[u];
+  const Vec3 dv = inc.axis[v] * inc.half[v];
+  float fc_r[3];
+  float du_r[3];
+  float dv_r[3];
+  for (int c = 0; c < 3; ++c) {
+    fc_r[c] = dot(fc, frame[c]);
+    du_r[c] = dot(du, frame[c]);
+    dv_r[c] = dot(dv, frame[c]);
+  }
   ClipVertex a[kMaxClip];
   ClipVertex b[kMaxClip];
   const float su[4] = {1.0f, -1.0f, -1.0f, 1.0f};
   const float sv[4] = {1.0f, 1.0f, -1.0f, -1.0f};
   for (int m = 0; m < 4; ++m) {
-    a[m].p = fc + du * su[m] + dv * sv[m];
+    for (int c = 0; c < 3; ++c) a[m].c[c] = fc_r[c] + du_r[c] * su[m] + dv_r[c] * sv[m];
     // Vertex m starts edge m and ends edge m-1.
     a[m].incident_edges = static_cast<uint8_t>((1u << m) | (1u << ((m + 3) & 3)));
     a[m].reference_sides = 0;
   }
   int count = 4;
-  int j = (ref_axis + 1) % 3;
-  int l = (ref_axis + 2) % 3;
-  const Vec3 plane_normals[4] = {ref.axis[j], -ref.axis[j], ref.axis[l], -ref.axis[l]};
+  // Side planes in order: +u, -u, +v, -v.
+  const int coord[4] = {0, 0, 1, 1};
+  const float sign[4] = {1.0f, -1.0f, 1.0f, -1.0f};
   const float half[4] = {ref.half[j], ref.half[j], ref.half[l], ref.half[l]};
   ClipVertex* src = a;
   ClipVertex* dst = b;
   for (int s = 0; s < 4 && count > 0; ++s) {
-    float offset = dot(plane_normals[s], ref.center) + half[s] + kClipTolerance;
-    count = clip_polygon(src, count, plane_normals[s], offset, s, dst);
+    count = clip_polygon(src, count, coord[s], sign[s], half[s] + kClipTolerance, s, dst);
     ClipVertex* t = src;
     src = dst;
     dst = t;
@@ -194,12 +209,14 @@ void face_contact(const BoxFrame& ref, const BoxFrame& inc, int ref_axis, bool r
 
   Candidate cand[kMaxClip];
   int n_cand = 0;
-  float face_offset = dot(n, ref.center) + ref.half[ref_axis];
+  const float face_offset = ref.half[ref_axis];
   uint32_t base_id = (ref_is_b ? 1u << 16 : 0u) | (ref_face << 12) | (inc_face << 8);
   for (int m = 0; m < count; ++m) {
-    float sep = dot(n, src[m].p) - face_offset;
+    const float sep = src[m].c[2] - face_offset;
     if (sep > speculative_m) continue;
-    cand[n_cand].point = src[m].p - n * (0.5f * sep);
+    // Midway between the incident point and the reference face.
+    cand[n_cand].point = ref.center + frame[0] * src[m].c[0] + frame[1] * src[m].c[1] +
+                         n * (src[m].c[2] - 0.5f * sep);
     cand[n_cand].separation = sep;
     cand[n_cand].id =
         base_id | (static_cast<uint32_t>(src[m].reference_sides) << 4) | src[m].incident_edges;
@@ -269,13 +286,53 @@ void edge_contact(const BoxFrame& a, const BoxFrame& b, int ia, int ib, Vec3 l, 
                              (static_cast<uint32_t>(ib) * 4u + code_b);
 }
 
+// The separations along the 15 axes, written once for the full test and
+// the single-axis retest (box_axis_separates), so both give the same bits.
+// r_ij = a_i . b_j, ta and tb the centre offset in A's and B's frames.
+inline float face_a_separation(float ta_i, float half_a_i, const float* half_b, float r0, float r1,
+                               float r2) {
+  const float rb = half_b[0] * r0 + half_b[1] * r1 + half_b[2] * r2;
+  return std::fabs(ta_i) - half_a_i - rb;
+}
+inline float face_b_separation(float tb_j, float half_b_j, const float* half_a, float r0, float r1,
+                               float r2) {
+  const float ra = half_a[0] * r0 + half_a[1] * r1 + half_a[2] * r2;
+  return std::fabs(tb_j) - ra - half_b_j;
+}
+// The projection along a_i x b_j (not yet divided by its length) and the
+// sign of the offset along it; abs_* are |r| of the entries named.
+inline float edge_projection(const BoxFrame& a, const BoxFrame& b, int i, int j,
+                             const float (&abs_r)[3][3], const float (&r)[3][3],
+                             const float (&ta)[3], float& dl) {
+  const int i1 = (i + 1) % 3;
+  const int i2 = (i + 2) % 3;
+  const int j1 = (j + 1) % 3;
+  const int j2 = (j + 2) % 3;
+  const float ra = a.half[i1] * abs_r[i2][j] + a.half[i2] * abs_r[i1][j];
+  const float rb = b.half[j1] * abs_r[i][j2] + b.half[j2] * abs_r[i][j1];
+  dl = ta[i2] * r[i1][j] - ta[i1] * r[i2][j];
+  return std::fabs(dl) - ra - rb;
+}
+
+// Separating axes as Manifold::separating_axis numbers them.
+constexpr uint8_t kFaceAxisA = 0;  // + i
+constexpr uint8_t kFaceAxisB = 3;  // + j
+constexpr uint8_t kEdgeAxis = 6;   // + 3 i + j
+
 }  // namespace
 
 void collide_boxes(const BoxPose& pose_a, const BoxPose& pose_b, float speculative_m,
                    Manifold& out) {
+  collide_boxes(pose_a.center, mat3_from_quat(pose_a.rotation), pose_a.half_extents, pose_b.center,
+                mat3_from_quat(pose_b.rotation), pose_b.half_extents, speculative_m, out);
+}
+
+void collide_boxes(Vec3 center_a, const Mat3& axes_a, Vec3 half_a, Vec3 center_b,
+                   const Mat3& axes_b, Vec3 half_b, float speculative_m, Manifold& out) {
   out.point_count = 0;
-  BoxFrame a = make_frame(pose_a);
-  BoxFrame b = make_frame(pose_b);
+  out.separating_axis = kNoSeparatingAxis;
+  const BoxFrame a = make_frame(center_a, axes_a, half_a);
+  const BoxFrame b = make_frame(center_b, axes_b, half_b);
   Vec3 d = b.center - a.center;
   constexpr float kLowest = -std::numeric_limits<float>::max();
 
@@ -296,9 +353,12 @@ void collide_boxes(const BoxPose& pose_a, const BoxPose& pose_b, float speculati
   float best_a = kLowest;
   int face_a = 0;
   for (int i = 0; i < 3; ++i) {
-    const float rb = b.half[0] * abs_r[i][0] + b.half[1] * abs_r[i][1] + b.half[2] * abs_r[i][2];
-    float sep = std::fabs(ta[i]) - a.half[i] - rb;
-    if (sep > speculative_m) return;
+    const float sep =
+        face_a_separation(ta[i], a.half[i], b.half, abs_r[i][0], abs_r[i][1], abs_r[i][2]);
+    if (sep > speculative_m) {
+      out.separating_axis = static_cast<uint8_t>(kFaceAxisA + i);
+      return;
+    }
     if (sep > best_a) {
       best_a = sep;
       face_a = i;
@@ -307,9 +367,12 @@ void collide_boxes(const BoxPose& pose_a, const BoxPose& pose_b, float speculati
   float best_b = kLowest;
   int face_b = 0;
   for (int j = 0; j < 3; ++j) {
-    const float ra = a.half[0] * abs_r[0][j] + a.half[1] * abs_r[1][j] + a.half[2] * abs_r[2][j];
-    float sep = std::fabs(tb[j]) - ra - b.half[j];
-    if (sep > speculative_m) return;
+    const float sep =
+        face_b_separation(tb[j], b.half[j], a.half, abs_r[0][j], abs_r[1][j], abs_r[2][j]);
+    if (sep > speculative_m) {
+      out.separating_axis = static_cast<uint8_t>(kFaceAxisB + j);
+      return;
+    }
     if (sep > best_b) {
       best_b = sep;
       face_b = j;
@@ -329,20 +392,17 @@ void collide_boxes(const BoxPose& pose_a, const BoxPose& pose_b, float speculati
   int edge_b = 0;
   float edge_sign = 1.0f;
   for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3;
-    const int i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
       const float len_sq = 1.0f - r[i][j] * r[i][j];
       if (len_sq < kParallelSinSquared) continue;
-      const int j1 = (j + 1) % 3;
-      const int j2 = (j + 2) % 3;
-      const float ra = a.half[i1] * abs_r[i2][j] + a.half[i2] * abs_r[i1][j];
-      const float rb = b.half[j1] * abs_r[i][j2] + b.half[j2] * abs_r[i][j1];
-      const float dl = ta[i2] * r[i1][j] - ta[i1] * r[i2][j];
-      const float projection = std::fabs(dl) - ra - rb;
+      float dl = 0.0f;
+      const float projection = edge_projection(a, b, i, j, abs_r, r, ta, dl);
       if (projection < 0.0f && projection <= edge_threshold) continue;
       float sep = projection / std::sqrt(len_sq);
-      if (sep > speculative_m) return;
+      if (sep > speculative_m) {
+        out.separating_axis = static_cast<uint8_t>(kEdgeAxis + 3 * i + j);
+        return;
+      }
       if (sep > best_edge) {
         best_edge = sep;
         edge_a = i;
@@ -361,6 +421,53 @@ void collide_boxes(const BoxPose& pose_a, const BoxPose& pose_b, float speculati
   } else {
     face_contact(a, b, face_a, false, speculative_m, out);
   }
+}
+
+bool box_axis_separates(Vec3 center_a, const Mat3& axes_a, Vec3 half_a, Vec3 center_b,
+                        const Mat3& axes_b, Vec3 half_b, uint8_t axis, float speculative_m) {
+  const BoxFrame a = make_frame(center_a, axes_a, half_a);
+  const BoxFrame b = make_frame(center_b, axes_b, half_b);
+  const Vec3 d = b.center - a.center;
+  // Only the entries of r, |r|, ta and tb the axis reads, each computed as
+  // collide_boxes computes it.
+  float r[3][3] = {};
+  float abs_r[3][3] = {};
+  float ta[3] = {};
+  const auto entry = [&](int i, int j) {
+    r[i][j] = dot(a.axis[i], b.axis[j]);
+    abs_r[i][j] = std::fabs(r[i][j]);
+  };
+  if (axis < kFaceAxisB) {
+    const int i = axis - kFaceAxisA;
+    for (int j = 0; j < 3; ++j) entry(i, j);
+    return face_a_separation(dot(d, a.axis[i]), a.half[i], b.half, abs_r[i][0], abs_r[i][1],
+                             abs_r[i][2]) > speculative_m;
+  }
+  if (axis < kEdgeAxis) {
+    const int j = axis - kFaceAxisB;
+    for (int i = 0; i < 3; ++i) entry(i, j);
+    return face_b_separation(dot(d, b.axis[j]), b.half[j], a.half, abs_r[0][j], abs_r[1][j],
+                             abs_r[2][j]) > speculative_m;
+  }
+  if (axis >= kEdgeAxis + 9) return false;
+  const int i = (axis - kEdgeAxis) / 3;
+  const int j = (axis - kEdgeAxis) % 3;
+  const int i1 = (i + 1) % 3;
+  const int i2 = (i + 2) % 3;
+  entry(i, j);
+  entry(i1, j);
+  entry(i2, j);
+  entry(i, (j + 1) % 3);
+  entry(i, (j + 2) % 3);
+  ta[i1] = dot(d, a.axis[i1]);
+  ta[i2] = dot(d, a.axis[i2]);
+  const float len_sq = 1.0f - r[i][j] * r[i][j];
+  if (len_sq < kParallelSinSquared) return false;
+  float dl = 0.0f;
+  const float projection = edge_projection(a, b, i, j, abs_r, r, ta, dl);
+  // A separating projection is positive, so collide_boxes never skips it.
+  if (!(projection > 0.0f)) return false;
+  return projection / std::sqrt(len_sq) > speculative_m;
 }
 
 }  // namespace rwd::sim::d3

@@ -83,11 +83,22 @@ void collide_box_sphere(const BoxPose& box, Vec3 center, float radius, float spe
 
 void collide_shapes(const Shape& shape_a, Vec3 position_a, Quat rotation_a, const Shape& shape_b,
                     Vec3 position_b, Quat rotation_b, float speculative_m, Manifold& out) {
+  collide_shapes(shape_a, {position_a, rotation_a, mat3_from_quat(rotation_a)}, shape_b,
+                 {position_b, rotation_b, mat3_from_quat(rotation_b)}, speculative_m, out);
+}
+
+void collide_shapes(const Shape& shape_a, const ShapePose& pose_a, const Shape& shape_b,
+                    const ShapePose& pose_b, float speculative_m, Manifold& out) {
+  const Vec3 position_a = pose_a.position;
+  const Vec3 position_b = pose_b.position;
+  const Quat rotation_a = pose_a.rotation;
+  const Quat rotation_b = pose_b.rotation;
+  out.separating_axis = kNoSeparatingAxis;
   bool a_box = shape_a.type == ShapeType::kBox;
   bool b_box = shape_b.type == ShapeType::kBox;
   if (a_box && b_box) {
-    collide_boxes({position_a, rotation_a, shape_a.half_extents},
-                  {position_b, rotation_b, shape_b.half_extents}, speculative_m, out);
+    collide_boxes(position_a, pose_a.axes, shape_a.half_extents, position_b, pose_b.axes,
+                  shape_b.half_extents, speculative_m, out);
   } else if (a_box) {
     collide_box_sphere({position_a, rotation_a, shape_a.half_extents}, position_b, shape_b.radius,
                        speculative_m, out);

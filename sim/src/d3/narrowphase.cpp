@@ -5,9 +5,19 @@
 // their feature id reappears (warm starting); new points start at zero.
 // Contacts whose bodies both sleep are carried over as they are: nothing
 // moved, so their manifold is still valid and costs nothing.
+//
+// Two shortcuts, each a pure function of the state:
+//  - a manifold is carried forward while its bodies barely move relative to
+//    each other (manifold_reuse.h): resting and settling contacts, most of
+//    a pile or a stack, cost a few quaternion products instead of a SAT and
+//    a clip;
+//  - a box pair that last step's separating axis still keeps apart is
+//    skipped (scratch.separated_keys): it has no points either way, so
+//    this one never changes a result.
 #include <cmath>
 
 #include "d3/body_storage.h"
+#include "d3/manifold_reuse.h"
 #include "d3/pipeline.h"
 
 namespace rwd::sim::d3 {
@@ -29,46 +39,90 @@ float pair_speculative(const WorldState& state, uint32_t a, uint32_t b) {
   return state.config.speculative_distance_m + state.config.tick_seconds * reach;
 }
 
-// Computes the manifold and fills `rec` (ids, touching, impulses matched by
-// feature id against `old`, which may be null or `rec` itself).
-void evaluate(const WorldState& state, ContactRecord& rec, const ContactRecord* old,
-              ContactGeometry& geo) {
+// Computes the manifold (or carries `old`'s forward, see the top of the
+// file) and fills `rec` (ids, touching, impulses matched by feature id
+// against `old`, which may be null but is never `rec` itself). Returns true
+// when the manifold was carried. A pair left with no points and not
+// touching is dropped by the caller, so nothing else is filled for it.
+bool evaluate(const WorldState& state, WorldScratch& scratch, ContactRecord& rec,
+              const ContactRecord* old, ContactGeometry& geo) {
   const BodyInfo& ia = state.infos[rec.index_a];
   const BodyInfo& ib = state.infos[rec.index_b];
   const BodySim& sa = state.sims[rec.index_a];
   const BodySim& sb = state.sims[rec.index_b];
-  collide_shapes(ia.shape, sa.position, sa.rotation, ib.shape, sb.position, sb.rotation,
-                 pair_speculative(state, rec.index_a, rec.index_b), geo.manifold);
+  rec.sensor = (ia.sensor != 0 || ib.sensor != 0) ? 1 : 0;
+  Manifold& m = geo.manifold;
+  bool carried = false;
+  const Mat3& axes_a = body_axes(state, scratch, rec.index_a);
+  if (old != nullptr && rec.sensor == 0 && old->sensor == 0 && old->point_count > 0) {
+    const RelativePose now = relative_pose(sa, axes_a, sb);
+    const Quat turn = now.rotation * conjugate(old->frame_rotation);
+    if (within_reuse(*old, now, turn, state.masses[rec.index_b].extent)) {
+      carry_manifold(sa, axes_a, sb, *old, now, turn, m);
+      m.separating_axis = kNoSeparatingAxis;
+      rec = *old;  // same ids, impulses and frame
+      carried = true;
+    }
+  }
+  if (!carried) {
+    collide_shapes(ia.shape, {sa.position, sa.rotation, axes_a}, ib.shape,
+                   {sb.position, sb.rotation, body_axes(state, scratch, rec.index_b)},
+                   pair_speculative(state, rec.index_a, rec.index_b), m);
+    if (m.point_count == 0) {
+      rec.touching = 0;
+      return false;
+    }
+  }
   geo.friction = std::sqrt(ia.material.friction * ib.material.friction);
   geo.restitution = ia.material.restitution > ib.material.restitution ? ia.material.restitution
                                                                       : ib.material.restitution;
   geo.valid = 1;
-  rec.sensor = (ia.sensor != 0 || ib.sensor != 0) ? 1 : 0;
   // Touching is geometric and independent of speed: sensors need a real
   // overlap, solid pairs a point within the configured speculative distance
   // (the contact the solver is holding apart), as in Box2D.
-  float limit = rec.sensor != 0 ? 0.0f : state.config.speculative_distance_m;
+  const float limit = rec.sensor != 0 ? 0.0f : state.config.speculative_distance_m;
   uint8_t touching = 0;
-  CachedContactPoint points[kMaxManifoldPoints];
-  const Manifold& m = geo.manifold;
   for (uint32_t i = 0; i < m.point_count; ++i) {
-    if (rec.sensor != 0 ? m.points[i].separation < limit : m.points[i].separation <= limit) {
-      touching = 1;
-    }
-    points[i] = CachedContactPoint{m.points[i].feature_id, 0.0f, 0.0f, 0.0f};
-    if (old == nullptr || rec.sensor != 0) continue;
+    const float separation = m.points[i].separation;
+    if (rec.sensor != 0 ? separation < limit : separation <= limit) touching = 1;
+  }
+  rec.touching = touching;
+  if (carried) return true;
+  rec.point_count = rec.sensor != 0 ? 0 : static_cast<uint8_t>(m.point_count);
+  for (uint32_t i = 0; i < kMaxManifoldPoints; ++i) {
+    CachedContactPoint& point = rec.points[i];
+    point = CachedContactPoint{};
+    if (i >= rec.point_count) continue;
+    point.feature_id = m.points[i].feature_id;
+    if (old == nullptr) continue;
     for (uint32_t j = 0; j < old->point_count; ++j) {
-      if (old->points[j].feature_id == points[i].feature_id) {
-        points[i] = old->points[j];
+      if (old->points[j].feature_id == point.feature_id) {
+        point = old->points[j];
         break;
       }
     }
   }
-  rec.touching = touching;
-  rec.point_count = rec.sensor != 0 ? 0 : static_cast<uint8_t>(m.point_count);
-  for (uint32_t i = 0; i < kMaxManifoldPoints; ++i) {
-    rec.points[i] = i < rec.point_count ? points[i] : CachedContactPoint{};
+  if (rec.point_count > 0) {
+    record_frame(axes_a, relative_pose(sa, axes_a, sb), m, rec);
+  } else {
+    rec.frame_position = {};
+    rec.frame_rotation = {};
+    rec.frame_normal = {};
   }
+  return false;
+}
+
+// Whether last step's separating axis of a box pair (if it had one) still
+// separates it: then the pair has no points and needs no manifold.
+bool still_separated(const WorldState& state, WorldScratch& scratch, uint32_t a, uint32_t b,
+                     uint8_t axis) {
+  const BodyInfo& ia = state.infos[a];
+  const BodyInfo& ib = state.infos[b];
+  if (ia.shape.type != ShapeType::kBox || ib.shape.type != ShapeType::kBox) return false;
+  return box_axis_separates(state.sims[a].position, body_axes(state, scratch, a),
+                            ia.shape.half_extents, state.sims[b].position,
+                            body_axes(state, scratch, b), ib.shape.half_extents, axis,
+                            pair_speculative(state, a, b));
 }
 
 bool both_resting(const WorldState& state, const ContactRecord& r) {
@@ -93,6 +147,14 @@ void update_contacts(WorldState& state, WorldScratch& scratch) {
   if (geometry.size() < old.size() + pairs.size()) geometry.resize(old.size() + pairs.size());
   size_t i = 0;
   size_t j = 0;
+  uint32_t reused = 0;
+  // Last step's separated pairs, walked alongside the sorted pairs.
+  const std::vector<uint64_t>& sep_keys = scratch.separated_keys;
+  size_t s = 0;
+  std::vector<uint64_t>& next_keys = scratch.next_separated_keys;
+  std::vector<uint8_t>& next_axes = scratch.next_separated_axes;
+  next_keys.clear();
+  next_axes.clear();
   while (i < pairs.size() || j < old.size()) {
     uint64_t kp = i < pairs.size() ? key(pairs[i].a, pairs[i].b) : ~uint64_t{0};
     uint64_t ko = j < old.size() ? key(old[j].index_a, old[j].index_b) : ~uint64_t{0};
@@ -104,32 +166,67 @@ void update_contacts(WorldState& state, WorldScratch& scratch) {
       ++j;
       continue;
     }
-    ContactRecord rec;
-    rec.index_a = pairs[i].a;
-    rec.index_b = pairs[i].b;
-    rec.generation_a = state.infos[rec.index_a].generation;
-    rec.generation_b = state.infos[rec.index_b].generation;
+    const uint32_t a = pairs[i].a;
+    const uint32_t b = pairs[i].b;
+    const uint32_t generation_a = state.infos[a].generation;
+    const uint32_t generation_b = state.infos[b].generation;
     const ContactRecord* prior = nullptr;
     if (kp == ko) {
-      if (old[j].generation_a == rec.generation_a && old[j].generation_b == rec.generation_b) {
+      if (old[j].generation_a == generation_a && old[j].generation_b == generation_b) {
         prior = &old[j];
       }
       ++j;
     }
     ++i;
-    ContactGeometry& geo = geometry[out.size()];
-    evaluate(state, rec, prior, geo);
+    if (prior == nullptr) {
+      while (s < sep_keys.size() && sep_keys[s] < kp) ++s;
+      if (s < sep_keys.size() && sep_keys[s] == kp &&
+          still_separated(state, scratch, a, b, scratch.separated_axes[s])) {
+        next_keys.push_back(kp);
+        next_axes.push_back(scratch.separated_axes[s]);
+        continue;
+      }
+    }
+    // Built in place; dropped again when it is not kept.
+    ContactRecord& rec = out.emplace_back();
+    rec.index_a = a;
+    rec.index_b = b;
+    rec.generation_a = generation_a;
+    rec.generation_b = generation_b;
+    ContactGeometry& geo = geometry[out.size() - 1];
+    if (evaluate(state, scratch, rec, prior, geo)) ++reused;
     // Pairs whose bounds overlap but whose shapes are out of reach are not
     // kept: the cache holds only pairs that have (or had) points.
-    if (geo.manifold.point_count == 0 && rec.touching == 0) continue;
-    out.push_back(rec);
+    if (geo.manifold.point_count == 0 && rec.touching == 0) {
+      out.pop_back();
+      if (geo.manifold.separating_axis != kNoSeparatingAxis) {
+        next_keys.push_back(kp);
+        next_axes.push_back(geo.manifold.separating_axis);
+      }
+    }
   }
+  scratch.separated_keys.swap(next_keys);
+  scratch.separated_axes.swap(next_axes);
+  scratch.stats.reused_manifolds = reused;
 }
 
 void refresh_contact(WorldState& state, WorldScratch& scratch, uint32_t index) {
   ContactRecord& rec = state.contacts[index];
-  ContactRecord prior = rec;
-  evaluate(state, rec, &prior, scratch.geometry[index]);
+  const ContactRecord prior = rec;
+  ContactGeometry& geo = scratch.geometry[index];
+  evaluate(state, scratch, rec, &prior, geo);
+  if (geo.manifold.point_count == 0) {
+    // Out of reach now. The record stays in this step's cache without
+    // points (it ends with an exit event, and the next step drops it).
+    const ContactRecord ids = rec;
+    rec = ContactRecord{};
+    rec.index_a = ids.index_a;
+    rec.generation_a = ids.generation_a;
+    rec.index_b = ids.index_b;
+    rec.generation_b = ids.generation_b;
+    rec.sensor = ids.sensor;
+    geo.valid = 1;
+  }
 }
 
 }  // namespace rwd::sim::d3

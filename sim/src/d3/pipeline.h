@@ -16,7 +16,8 @@
 
 namespace rwd::sim::d3 {
 
-/// Fills scratch.pairs with candidate pairs sorted by (a, b).
+/// Fills scratch.pairs with candidate pairs sorted by (a, b). The first
+/// stage of a step: it starts the step's body frames (body_axes).
 void find_pairs(const WorldState& state, WorldScratch& scratch);
 /// The world was edited (create, destroy, teleport, enable, restore): the
 /// broadphase rebuilds its trees before the next pairs.

@@ -19,8 +19,9 @@ namespace rwd::sim {
 namespace {
 
 constexpr uint8_t kMagic[4] = {'R', 'W', 'D', '3'};
-// 2: world bounds in the config, the enabled flag per body.
-constexpr uint32_t kVersion = 2;
+// 2: world bounds in the config, the enabled flag per body. 3: each contact
+// record's manifold frame and its points' positions on A (manifold reuse).
+constexpr uint32_t kVersion = 3;
 // Bounds the allocation a hostile header can request.
 constexpr uint32_t kMaxSlots = 1u << 24;
 
@@ -140,7 +141,14 @@ void write_state(Sink& s, const WorldState& st) {
       s.f32(r.points[p].normal_impulse);
       s.f32(r.points[p].tangent_impulse1);
       s.f32(r.points[p].tangent_impulse2);
+      s.vec3(r.points[p].local_a);
+      s.f32(r.points[p].separation);
     }
+    // A record without points has no manifold, so no frame.
+    if (r.point_count == 0) continue;
+    s.vec3(r.frame_position);
+    s.quat(r.frame_rotation);
+    s.vec3(r.frame_normal);
   }
 }
 
@@ -357,6 +365,13 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
       rec.points[p].normal_impulse = r.f32();
       rec.points[p].tangent_impulse1 = r.f32();
       rec.points[p].tangent_impulse2 = r.f32();
+      rec.points[p].local_a = r.vec3();
+      rec.points[p].separation = r.f32();
+    }
+    if (rec.point_count > 0) {
+      rec.frame_position = r.vec3();
+      rec.frame_rotation = r.quat();
+      rec.frame_normal = r.vec3();
     }
     if (!r.ok()) return corrupt("invalid contact point");
     if (Status s = d3::check_contact(st.infos, rec, k > 0 ? &st.contacts[k - 1] : nullptr);

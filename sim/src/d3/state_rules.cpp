@@ -24,6 +24,16 @@ bool in_speed_range(Vec3 v) {
   return is_finite(v) && length_squared(v) <= kMaxSpeed * kMaxSpeed;
 }
 
+// Every component finite and within [-limit, limit].
+bool in_box_range(Vec3 v, float limit) {
+  return is_finite(v) && std::fabs(v.x) <= limit && std::fabs(v.y) <= limit &&
+         std::fabs(v.z) <= limit;
+}
+
+// How far from 1 the squared length of a stored unit vector or rotation may
+// be (rounding of a rotated unit vector stays far below this).
+constexpr float kUnitTolerance = 1e-3f;
+
 bool in_coordinate_range(Vec3 v) {
   return is_finite(v) && std::fabs(v.x) <= kMaxCoordinate && std::fabs(v.y) <= kMaxCoordinate &&
          std::fabs(v.z) <= kMaxCoordinate;
@@ -204,6 +214,23 @@ Status check_contact(const std::vector<BodyInfo>& infos, const ContactRecord& r,
     if (!std::isfinite(c.normal_impulse) || !std::isfinite(c.tangent_impulse1) ||
         !std::isfinite(c.tangent_impulse2)) {
       return invalid("impulse not finite");
+    }
+    // A point lies on A's surface and its separation spans the two shapes:
+    // no step puts either much past the largest shapes.
+    if (!in_box_range(c.local_a, 2.0f * kMaxShapeSize) ||
+        !finite_in(c.separation, -4.0f * kMaxShapeSize, 4.0f * kMaxShapeSize)) {
+      return invalid("contact point out of range");
+    }
+  }
+  if (r.point_count > 0) {
+    // B's centre relative to A's lies within the world's span; the
+    // rotation and normal are unit up to rounding.
+    const Quat q = r.frame_rotation;
+    const float q_sq = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
+    if (!in_box_range(r.frame_position, 4.0f * kMaxCoordinate) ||
+        !finite_in(q_sq, 1.0f - kUnitTolerance, 1.0f + kUnitTolerance) ||
+        !finite_in(length_squared(r.frame_normal), 1.0f - kUnitTolerance, 1.0f + kUnitTolerance)) {
+      return invalid("manifold frame out of range or not unit");
     }
   }
   if (previous != nullptr && (previous->index_a > r.index_a ||

@@ -46,7 +46,8 @@ Status check_body(const WorldConfig& config, const BodyInfo& info, const BodySim
 /// A contact cache record against the body slots it names and the record
 /// before it (null for the first): ordered pair of existing slots, sorted
 /// after `previous`, at most kMaxManifoldPoints finite impulses, sensors
-/// without points. Records may name a body destroyed or disabled since the
+/// without points, points and manifold frame in range (unit rotation and
+/// normal). Records may name a body destroyed or disabled since the
 /// last step: the next step ends them with exit events.
 Status check_contact(const std::vector<BodyInfo>& infos, const ContactRecord& record,
                      const ContactRecord* previous);

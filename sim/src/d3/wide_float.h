@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // Four floats processed as one: the lanes of the contact solver
-// (contact_batches.cpp). Each operation is the IEEE single-precision
+// (contact_batches.cpp) and of the broadphase's sweep. Each operation is the IEEE single-precision
 // operation applied lane by lane, with no fused multiply-add, no
 // reciprocal or square-root estimate and no reordering, so a lane computes
 // bit for bit what the same expression computes on one float. SSE2 (every
@@ -73,6 +73,13 @@ inline MaskW operator>(FloatW a, FloatW b) {
 inline FloatW select(MaskW m, FloatW a, FloatW b) {
   return {_mm_or_ps(_mm_and_ps(m.v, a.v), _mm_andnot_ps(m.v, b.v))};
 }
+inline MaskW operator|(MaskW a, MaskW b) {
+  return {_mm_or_ps(a.v, b.v)};
+}
+/// Bit i set when lane i of m is true.
+inline uint32_t lane_bits(MaskW m) {
+  return static_cast<uint32_t>(_mm_movemask_ps(m.v));
+}
 
 #elif defined(REWIND_LANES_NEON)
 
@@ -114,6 +121,13 @@ inline MaskW operator>(FloatW a, FloatW b) {
 }
 inline FloatW select(MaskW m, FloatW a, FloatW b) {
   return {vbslq_f32(m.v, a.v, b.v)};
+}
+inline MaskW operator|(MaskW a, MaskW b) {
+  return {vorrq_u32(a.v, b.v)};
+}
+inline uint32_t lane_bits(MaskW m) {
+  const uint32x4_t weights = {1u, 2u, 4u, 8u};
+  return vaddvq_u32(vandq_u32(m.v, weights));
 }
 
 #else
@@ -169,6 +183,16 @@ inline FloatW select(MaskW m, FloatW a, FloatW b) {
   FloatW r;
   for (int i = 0; i < kLanes; ++i) r.v[i] = m.v[i] ? a.v[i] : b.v[i];
   return r;
+}
+inline MaskW operator|(MaskW a, MaskW b) {
+  MaskW m;
+  for (int i = 0; i < kLanes; ++i) m.v[i] = a.v[i] || b.v[i];
+  return m;
+}
+inline uint32_t lane_bits(MaskW m) {
+  uint32_t bits = 0;
+  for (int i = 0; i < kLanes; ++i) bits |= (m.v[i] ? 1u : 0u) << i;
+  return bits;
 }
 
 #endif

@@ -107,7 +107,8 @@ struct ContactConstraint {
   float friction;
   float restitution;
   Softness softness;
-  uint8_t push_fixed;  ///< kPushFixed*: the lower body of the contact, if any
+  uint8_t push_fixed;   ///< kPushFixed*: the lower body of the contact, if any
+  uint8_t overlapping;  ///< 1 when a point overlapped past the slop at the start of the tick
   /// Where the constraint is packed: scratch.batches[batch], lane `lane`
   /// (its push-out impulses live there).
   uint32_t batch;
@@ -157,10 +158,29 @@ class WorldScratch {
   std::vector<uint32_t> tree_proxies;
   bool static_dirty = true;  ///< the world was edited: both trees are rebuilt
   std::vector<BodyPair> pairs;
-  std::vector<uint64_t> pair_keys;  ///< radix sort of the pairs
-  std::vector<uint64_t> pair_spare;
+  std::vector<uint32_t> pair_start;  ///< counting sort of the pairs by a
+  std::vector<BodyPair> pair_spare;
+  // body frames (body_storage.h: body_axes)
+  /// By body index: the rotation matrix of the body's pose at the start of
+  /// this step, valid where axes_step[i] == step_serial. The broadphase
+  /// fills it for the awake bodies; the others get theirs when first asked.
+  std::vector<Mat3> axes;
+  std::vector<uint64_t> axes_step;
+  /// Counts step() calls of this scratch, never repeating (unlike the
+  /// state's step count, which restore() winds back), so a frame computed
+  /// in an earlier step, or for a state since restored, is never taken for
+  /// this step's.
+  uint64_t step_serial = 0;
   // narrowphase
   std::vector<ContactRecord> other_contacts;  ///< last step's cache after the swap
+  /// Box pairs whose bounds overlapped but whose shapes an axis kept apart,
+  /// sorted by key (a << 32 | b), with that axis: the narrowphase tries it
+  /// first next step, and a pair it still separates is skipped (it would
+  /// have no points either way, so what is here never changes a result).
+  std::vector<uint64_t> separated_keys;
+  std::vector<uint8_t> separated_axes;
+  std::vector<uint64_t> next_separated_keys;
+  std::vector<uint8_t> next_separated_axes;
   std::vector<ContactGeometry> geometry;
   // solver
   std::vector<uint32_t> solver_index;  ///< by body index; 0 = immovable
@@ -188,6 +208,10 @@ class WorldScratch {
   /// update; while none does and nothing has been pushed this tick, the
   /// push-out has nothing to do and is skipped.
   bool overlapping = false;
+  /// Some contact point overlaps more than kDeepOverlapSlops slops past the
+  /// slop (same source): only then does the push-out from the ground up
+  /// have work, and only then is its order computed.
+  bool deep_overlap = false;
   bool pushing = false;  ///< the push-out has run this tick
   // islands
   std::vector<uint32_t> island_parent;

@@ -28,6 +28,9 @@ struct StepStats {
   uint32_t broadphase_pairs = 0;
   uint32_t touching_manifolds = 0;
   uint32_t contact_points = 0;
+  /// Manifolds carried forward from their last computation because their
+  /// bodies barely moved relative to each other (no shape collision run).
+  uint32_t reused_manifolds = 0;
 };
 
 class WorldScratch;  // per-step working memory; not state

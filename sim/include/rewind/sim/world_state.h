@@ -61,13 +61,17 @@ struct BodyMass {
 /// Maximum contact points in one manifold.
 inline constexpr uint32_t kMaxManifoldPoints = 4;
 
-/// The persistent part of one contact point: its feature id and the
-/// impulses it ended the last step with (warm start).
+/// The persistent part of one contact point: its feature id, the impulses
+/// it ended the last step with (warm start), and where it was when its
+/// manifold was last computed (so the manifold can be carried forward while
+/// the two bodies barely move relative to each other; see ContactRecord).
 struct CachedContactPoint {
   uint32_t feature_id = 0;        ///< which features produced the point (see manifold.h)
   float normal_impulse = 0.0f;    ///< N*s per substep
   float tangent_impulse1 = 0.0f;  ///< N*s per substep, along the first tangent of the normal
   float tangent_impulse2 = 0.0f;  ///< N*s per substep, along the second tangent
+  Vec3 local_a;                   ///< metres, the point on A's surface, in A's frame
+  float separation = 0.0f;        ///< metres along the normal to B's surface then
 };
 
 /// One pair of bodies whose fat bounds overlapped last step. Records are kept
@@ -82,6 +86,13 @@ struct ContactRecord {
   uint8_t sensor = 0;    ///< 1: at least one body is a sensor
   uint8_t point_count = 0;
   CachedContactPoint points[kMaxManifoldPoints];
+  // The frame of the last computed manifold (meaningful when point_count >
+  // 0): B's centre and rotation, and the normal, in A's body frame. While B
+  // stays within a millimetre of this pose relative to A, the step moves the
+  // points with B instead of colliding the shapes again.
+  Vec3 frame_position;  ///< metres
+  Quat frame_rotation;  ///< unit
+  Vec3 frame_normal;    ///< unit, from A to B
 };
 
 /// All persistent state of a World3D.
