@@ -30,6 +30,17 @@ bool same_bodies(const ContactRecord& x, const ContactRecord& y) {
 void build_events(const WorldState& state, WorldScratch& scratch) {
   std::vector<ContactEvent>& events = scratch.events;
   events.clear();
+  if (scratch.contacts_unchanged) {
+    // The cache carried over whole: every touching pair stays.
+    uint32_t touching = 0;
+    for (const ContactRecord& r : state.contacts) {
+      if (r.touching == 0) continue;
+      events.push_back(make_event(ContactEventType::kStay, r));
+      ++touching;
+    }
+    scratch.stats.touching_manifolds = touching;
+    return;
+  }
   const std::vector<ContactRecord>& old = scratch.other_contacts;
   const std::vector<ContactRecord>& now = state.contacts;
   size_t i = 0;

@@ -80,6 +80,9 @@ void wake_touching(WorldState& state, BodyId id) {
 }
 
 void wake_touched_islands(WorldState& state, WorldScratch& scratch) {
+  // Nothing awake (the broadphase's list of awake movers is empty) wakes
+  // nothing.
+  if (scratch.active.empty()) return;
   // Cheap test first: does any touching contact join an awake mover and a
   // sleeping dynamic body? Usually not, and then no island work is done.
   bool needed = false;

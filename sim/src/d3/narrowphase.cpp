@@ -135,6 +135,28 @@ bool both_resting(const WorldState& state, const ContactRecord& r) {
 }  // namespace
 
 void update_contacts(WorldState& state, WorldScratch& scratch) {
+  // A world at rest (no pairs: nothing awake) whose every record joins two
+  // sleeping bodies keeps its cache exactly as it is: no copy, no merge.
+  scratch.contacts_unchanged = false;
+  if (scratch.pairs.empty()) {
+    bool resting = true;
+    for (const ContactRecord& r : state.contacts) {
+      if (!both_resting(state, r)) {
+        resting = false;
+        break;
+      }
+    }
+    if (resting) {
+      scratch.contacts_unchanged = true;
+      if (scratch.geometry.size() < state.contacts.size()) {
+        scratch.geometry.resize(state.contacts.size());
+      }
+      for (size_t k = 0; k < state.contacts.size(); ++k) scratch.geometry[k].valid = 0;
+      scratch.separated_keys.clear();
+      scratch.separated_axes.clear();
+      return;
+    }
+  }
   std::vector<ContactRecord>& old = scratch.other_contacts;
   old.swap(state.contacts);  // old = last step's cache; state.contacts is rebuilt
   std::vector<ContactRecord>& out = state.contacts;

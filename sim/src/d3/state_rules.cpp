@@ -254,10 +254,6 @@ Vec3 clamp_length(Vec3 v, float max) {
   return is_finite(out) ? out : Vec3{};
 }
 
-float settle_impulse(float impulse) {
-  return std::isfinite(impulse) ? impulse : 0.0f;
-}
-
 bool settle_body(const WorldConfig& config, const BodySim& before, BodyInfo& info, BodySim& sim) {
   if (!is_finite(sim.position)) sim.position = before.position;
   if (!is_finite(sim.rotation) ||

@@ -9,6 +9,7 @@
 //     bounds disabled), so no state the step reaches is one a snapshot
 //     reader would refuse.
 // A change to one of these limits changes all three at once.
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -57,7 +58,9 @@ bool inside_bounds(const WorldConfig& config, Vec3 p);
 /// `v` scaled down to length `max` when it is longer; zero when not finite.
 Vec3 clamp_length(Vec3 v, float max);
 /// A solver impulse as it may be cached: non-finite values become zero.
-float settle_impulse(float impulse);
+inline float settle_impulse(float impulse) {
+  return std::isfinite(impulse) ? impulse : 0.0f;
+}
 
 /// Brings a body the step has just moved back under the rule. `before` is
 /// its state at the start of the step. Non-finite poses fall back to

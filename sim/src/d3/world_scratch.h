@@ -173,6 +173,9 @@ class WorldScratch {
   uint64_t step_serial = 0;
   // narrowphase
   std::vector<ContactRecord> other_contacts;  ///< last step's cache after the swap
+  /// This step kept last step's cache as it was (everything asleep), so
+  /// other_contacts was not refreshed and every record continues.
+  bool contacts_unchanged = false;
   /// Box pairs whose bounds overlapped but whose shapes an axis kept apart,
   /// sorted by key (a << 32 | b), with that axis: the narrowphase tries it
   /// first next step, and a pair it still separates is skipped (it would
