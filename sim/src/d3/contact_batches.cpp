@@ -144,6 +144,12 @@ void warm_start_half(const HalfBatch& h, std::vector<SolverBody>& bodies) {
 void solve_half(const HalfBatch& h, std::vector<SolverBody>& bodies, float inv_h) {
   for_point_bound(*h.batch, [&](auto n) { solve_lanes<decltype(n)::value>(h, bodies, inv_h); });
 }
+// Both halves of a batch whose upper half holds a constraint, interleaved.
+void solve_halves(ContactBatch& b, std::vector<SolverBody>& bodies, float inv_h) {
+  for_point_bound(b, [&](auto n) {
+    solve_lanes_pair<decltype(n)::value>(HalfBatch{&b, 0}, HalfBatch{&b, kLanes}, bodies, inv_h);
+  });
+}
 void separations_half(const HalfBatch& h, const std::vector<SolverBody>& bodies) {
   for_point_bound(*h.batch, [&](auto n) { separations_lanes<decltype(n)::value>(h, bodies); });
 }
@@ -165,6 +171,11 @@ void warm_start_full(ContactBatch& b, std::vector<SolverBody>& bodies) {
 void solve_full(ContactBatch& b, std::vector<SolverBody>& bodies, float inv_h) {
   solve_half(HalfBatch{&b, 0}, bodies, inv_h);
   solve_half(HalfBatch{&b, kLanes}, bodies, inv_h);
+}
+void solve_full_pair(ContactBatch& first, ContactBatch& second, std::vector<SolverBody>& bodies,
+                     float inv_h) {
+  solve_full(first, bodies, inv_h);
+  solve_full(second, bodies, inv_h);
 }
 void separations_full(ContactBatch& b, const std::vector<SolverBody>& bodies) {
   separations_half(HalfBatch{&b, 0}, bodies);
@@ -268,11 +279,50 @@ void warm_start_batches(WorldScratch& scratch) {
       [&](const HalfBatch& h) { warm_start_half(h, bodies); });
 }
 
-void solve_batches(WorldScratch& scratch, float inv_h) {
+namespace {
+
+// The real-velocity pass over every batch in order, two at a time where
+// the order allows: `each(b)` runs first on every batch (the separation
+// update, or nothing), then the solve, on consecutive batches of one colour
+// with the same point bound as a pair (eight lanes), else on a batch's two
+// halves as a pair (four lanes). Batches of one colour share no movable
+// body, so the pairs give the results of the batches one after the other.
+template <class Each>
+void solve_pass(WorldScratch& scratch, float inv_h, Each each) {
+  std::vector<ContactBatch>& batches = scratch.batches;
   std::vector<SolverBody>& bodies = scratch.solver_bodies;
-  for_batches(
-      scratch, [&](ContactBatch& b) { solve_full(b, bodies, inv_h); },
-      [&](const HalfBatch& h) { solve_half(h, bodies, inv_h); });
+  const bool eight = use_eight_lanes();
+  const uint32_t colored_end = scratch.batch_start[kColorCount];
+  uint32_t color = 0;
+  for (uint32_t k = 0; k < batches.size(); ++k) {
+    ContactBatch& b = batches[k];
+    if (eight && k < colored_end) {
+      while (scratch.batch_start[color + 1] <= k) ++color;
+      const bool pair =
+          k + 1 < scratch.batch_start[color + 1] && batches[k + 1].point_bound == b.point_bound;
+      each(b);
+      if (!pair) {
+        solve_full(b, bodies, inv_h);
+        continue;
+      }
+      each(batches[k + 1]);
+      solve_full_pair(b, batches[k + 1], bodies, inv_h);
+      ++k;
+      continue;
+    }
+    each(b);
+    if (b.constraint[kLanes] != kNoConstraint) {
+      solve_halves(b, bodies, inv_h);
+    } else {
+      solve_half(HalfBatch{&b, 0}, bodies, inv_h);
+    }
+  }
+}
+
+}  // namespace
+
+void solve_batches(WorldScratch& scratch, float inv_h) {
+  solve_pass(scratch, inv_h, [](ContactBatch&) {});
 }
 
 namespace {
@@ -344,18 +394,28 @@ void separation_pass(WorldScratch& scratch, float slop, bool relax, float inv_h)
   std::vector<SolverBody>& bodies = scratch.solver_bodies;
   scratch.overlapping = false;
   scratch.deep_overlap = false;
-  for_batches(
-      scratch,
-      [&](ContactBatch& b) {
-        separations_full(b, bodies);
-        copy_back_separations(scratch, slop, b);
-        if (relax) solve_full(b, bodies, inv_h);
-      },
-      [&](const HalfBatch& h) {
-        separations_half(h, bodies);
-        copy_back_separations(scratch, slop, *h.batch, h.base, kLanes);
-        if (relax) solve_half(h, bodies, inv_h);
-      });
+  // A batch's separations depend only on its bodies' motion so far, which
+  // the relax pass (velocities only) does not change.
+  const bool eight = use_eight_lanes();
+  const uint32_t colored_end = scratch.batch_start[kColorCount];
+  const auto separations = [&](ContactBatch& b) {
+    const uint32_t k = static_cast<uint32_t>(&b - scratch.batches.data());
+    if (eight && k < colored_end) {
+      separations_full(b, bodies);
+      copy_back_separations(scratch, slop, b);
+      return;
+    }
+    separations_half(HalfBatch{&b, 0}, bodies);
+    copy_back_separations(scratch, slop, b, 0, kLanes);
+    if (b.constraint[kLanes] == kNoConstraint) return;
+    separations_half(HalfBatch{&b, kLanes}, bodies);
+    copy_back_separations(scratch, slop, b, kLanes, kLanes);
+  };
+  if (relax) {
+    solve_pass(scratch, inv_h, separations);
+  } else {
+    for (ContactBatch& b : scratch.batches) separations(b);
+  }
 }
 
 }  // namespace

@@ -303,42 +303,84 @@ void sweep_normal_block(const A& acc, const ContactBatch& batch,
 // block (sweeps with the bodies held, the residual kept up to date column
 // by column, then one impulse per body; a gap may close within the substep,
 // no more), then friction point by point, |t| <= mu * normal impulse.
-template <uint32_t N, class A>
-void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
+//
+// The pass is split where the bodies are held (begin, sweep, finish), so
+// two batches of one colour, or the two halves of a batch, can run their
+// sweeps interleaved: the sweeps are a chain of dependent operations per
+// point, and two independent chains in flight take little longer than one.
+// Batches of one colour share no movable body, so this is the same as
+// running them one after the other, bit for bit.
+template <class A>
+struct SolveLanes {
   using F = typename A::F;
-  ContactBatch& batch = acc.first();
-  const F zero = A::splat(0.0f);
-  const F inv_h_w = A::splat(inv_h);
-  LaneBodies<F> a = gather_bodies(acc, bodies, false);
-  LaneBodies<F> b = gather_bodies(acc, bodies, true);
-  const V3<F> n = ld3(acc, batch.normal);
-
+  LaneBodies<F> a;
+  LaneBodies<F> b;
+  V3<F> n;
   F residual[kMaxManifoldPoints];
   F step[kMaxManifoldPoints];
   F total[kMaxManifoldPoints];
-  V3<F> rn_a[kMaxManifoldPoints];
-  V3<F> rn_b[kMaxManifoldPoints];
+  F start[kMaxManifoldPoints];
+};
+
+template <uint32_t N, class A>
+[[gnu::always_inline]] inline void begin_solve(const A& acc, const std::vector<SolverBody>& bodies,
+                                               float inv_h, SolveLanes<A>& s) {
+  using F = typename A::F;
+  const ContactBatch& batch = acc.first();
+  const F zero = A::splat(0.0f);
+  const F inv_h_w = A::splat(inv_h);
+  s.a = gather_bodies(acc, bodies, false);
+  s.b = gather_bodies(acc, bodies, true);
+  s.n = ld3(acc, batch.normal);
   for (uint32_t p = 0; p < N; ++p) {
     const ContactBatch::Point& bp = batch.points[p];
-    const F s = acc.ld(bp.separation);
-    const F bias = select(s > zero, s * inv_h_w, zero);  // speculative
-    const F vn = normal_velocity(acc, bp, n, a, b, rn_a[p], rn_b[p]);
-    residual[p] = vn + bias;
-    step[p] = acc.ld(bp.normal_mass);
-    total[p] = acc.ld(bp.normal_impulse);
+    const F sep = acc.ld(bp.separation);
+    const F bias = select(sep > zero, sep * inv_h_w, zero);  // speculative
+    V3<F> rn_a;
+    V3<F> rn_b;
+    const F vn = normal_velocity(acc, bp, s.n, s.a, s.b, rn_a, rn_b);
+    s.residual[p] = vn + bias;
+    s.step[p] = acc.ld(bp.normal_mass);
+    s.total[p] = acc.ld(bp.normal_impulse);
+    s.start[p] = s.total[p];
   }
-  F start[kMaxManifoldPoints];
-  for (uint32_t p = 0; p < N; ++p) start[p] = total[p];
-  sweep_normal_block<N>(acc, batch, step, step, residual, total);
+}
+
+// One Gauss-Seidel step of sweep_normal_block at point p.
+template <uint32_t N, class A>
+[[gnu::always_inline]] inline void sweep_step(const A& acc, const ContactBatch& batch, uint32_t p,
+                                              typename A::F gain,
+                                              typename A::F (&residual)[kMaxManifoldPoints],
+                                              typename A::F (&total)[kMaxManifoldPoints]) {
+  using F = typename A::F;
+  const F zero = A::splat(0.0f);
+  F next = total[p] - gain * residual[p];
+  next = select(next < zero, zero, next);
+  const F change = next - total[p];
+  total[p] = next;
+  for (uint32_t j = 0; j < N; ++j) {
+    residual[j] = residual[j] + acc.ld(batch.coupling[j][p]) * change;
+  }
+}
+
+template <uint32_t N, class A>
+[[gnu::always_inline]] inline void finish_solve(const A& acc, std::vector<SolverBody>& bodies,
+                                                SolveLanes<A>& s) {
+  using F = typename A::F;
+  ContactBatch& batch = acc.first();
+  const F zero = A::splat(0.0f);
+  LaneBodies<F>& a = s.a;
+  LaneBodies<F>& b = s.b;
+  const V3<F>& n = s.n;
   F pushed = zero;
   V3<F> turn_a{zero, zero, zero};
   V3<F> turn_b = turn_a;
   for (uint32_t p = 0; p < N; ++p) {
     ContactBatch::Point& bp = batch.points[p];
-    acc.st(bp.normal_impulse, total[p]);
+    acc.st(bp.normal_impulse, s.total[p]);
     const F max_seen = acc.ld(bp.max_normal_impulse);
-    acc.st(bp.max_normal_impulse, select(total[p] > max_seen, total[p], max_seen));
-    const F change = total[p] - start[p];
+    acc.st(bp.max_normal_impulse, select(s.total[p] > max_seen, s.total[p], max_seen));
+    const F change = s.total[p] - s.start[p];
     pushed = pushed + change;
     turn_a = turn_a + ld3(acc, bp.in_a) * change;
     turn_b = turn_b + ld3(acc, bp.in_b) * change;
@@ -367,7 +409,7 @@ void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
     const F old2 = acc.ld(bp.tangent_impulse2);
     F f1 = old1 - acc.ld(bp.tangent_mass1) * v1;
     F f2 = old2 - acc.ld(bp.tangent_mass2) * v2;
-    const F limit = mu * total[p];
+    const F limit = mu * s.total[p];
     const F len_sq = f1 * f1 + f2 * f2;
     const auto over = len_sq > limit * limit;
     // Lanes under the limit keep their impulse; the others scale onto the
@@ -387,6 +429,39 @@ void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
   }
   scatter_bodies(acc, bodies, false, a);
   scatter_bodies(acc, bodies, true, b);
+}
+
+template <uint32_t N, class A>
+void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
+  SolveLanes<A> s;
+  begin_solve<N>(acc, bodies, inv_h, s);
+  const ContactBatch& batch = acc.first();
+  for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
+    for (uint32_t p = 0; p < N; ++p) sweep_step<N>(acc, batch, p, s.step[p], s.residual, s.total);
+  }
+  finish_solve<N>(acc, bodies, s);
+}
+
+// solve_lanes on two accesses whose movable bodies differ (two batches of
+// one colour with the same point bound, or a batch's two halves), their
+// sweeps interleaved.
+template <uint32_t N, class A>
+void solve_lanes_pair(const A& first, const A& second, std::vector<SolverBody>& bodies,
+                      float inv_h) {
+  SolveLanes<A> s1;
+  SolveLanes<A> s2;
+  begin_solve<N>(first, bodies, inv_h, s1);
+  begin_solve<N>(second, bodies, inv_h, s2);
+  const ContactBatch& batch1 = first.first();
+  const ContactBatch& batch2 = second.first();
+  for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
+    for (uint32_t p = 0; p < N; ++p) {
+      sweep_step<N>(first, batch1, p, s1.step[p], s1.residual, s1.total);
+      sweep_step<N>(second, batch2, p, s2.step[p], s2.residual, s2.total);
+    }
+  }
+  finish_solve<N>(first, bodies, s1);
+  finish_solve<N>(second, bodies, s2);
 }
 
 // One pass of the push-out on the push velocities: overlaps deeper than the
@@ -541,6 +616,9 @@ bool lanes8_available();
 void prepare_full(ContactBatch& batch, const std::vector<SolverBody>& bodies);
 void warm_start_full(ContactBatch& batch, std::vector<SolverBody>& bodies);
 void solve_full(ContactBatch& batch, std::vector<SolverBody>& bodies, float inv_h);
+/// solve_full on two batches of one colour with the same point bound.
+void solve_full_pair(ContactBatch& first, ContactBatch& second, std::vector<SolverBody>& bodies,
+                     float inv_h);
 void separations_full(ContactBatch& batch, const std::vector<SolverBody>& bodies);
 void push_full(ContactBatch& batch, std::vector<SolverBody>& bodies, const PushSettings& push);
 #endif

@@ -143,6 +143,13 @@ void solve_full(ContactBatch& batch, std::vector<SolverBody>& bodies, float inv_
       batch, [&](auto n) { solve_lanes<decltype(n)::value>(FullBatch{&batch}, bodies, inv_h); });
 }
 
+void solve_full_pair(ContactBatch& first, ContactBatch& second, std::vector<SolverBody>& bodies,
+                     float inv_h) {
+  for_point_bound(first, [&](auto n) {
+    solve_lanes_pair<decltype(n)::value>(FullBatch{&first}, FullBatch{&second}, bodies, inv_h);
+  });
+}
+
 void separations_full(ContactBatch& batch, const std::vector<SolverBody>& bodies) {
   for_point_bound(
       batch, [&](auto n) { separations_lanes<decltype(n)::value>(FullBatch{&batch}, bodies); });
