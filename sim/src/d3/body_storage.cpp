@@ -1,48 +1,26 @@
 // SPDX-License-Identifier: MIT
 #include "d3/body_storage.h"
-#include "rewind/sim/det_math.h"
+
+#include "d3/shape_ops.h"
 
 #include <cmath>
 
 namespace rwd::sim::d3 {
 
 BodyMass compute_mass(BodyKind kind, const Shape& shape, float density) {
+  const ShapeOps& ops = shape_ops(shape.type);
   BodyMass m;
-  if (shape.type == ShapeType::kSphere) {
-    m.extent = shape.radius;
-  } else {
-    m.extent = length(shape.half_extents);
-  }
+  m.extent = ops.extent(shape);
   if (kind != BodyKind::kDynamic) return m;
-  if (shape.type == ShapeType::kSphere) {
-    float r = shape.radius;
-    float volume = (4.0f / 3.0f) * kPi * r * r * r;
-    m.mass = density * volume;
-    float i = 0.4f * m.mass * r * r;  // solid sphere: 2/5 m r^2
-    m.inv_inertia_local = {1.0f / i, 1.0f / i, 1.0f / i};
-  } else {
-    Vec3 h = shape.half_extents;
-    float volume = 8.0f * h.x * h.y * h.z;
-    m.mass = density * volume;
-    // Solid box: I_x = m/3 (hy^2 + hz^2) with half extents.
-    float k = m.mass / 3.0f;
-    m.inv_inertia_local = {1.0f / (k * (h.y * h.y + h.z * h.z)),
-                           1.0f / (k * (h.x * h.x + h.z * h.z)),
-                           1.0f / (k * (h.x * h.x + h.y * h.y))};
-  }
+  m.mass = density * ops.volume(shape);
+  const Vec3 i = ops.inertia(shape, m.mass);
+  m.inv_inertia_local = {1.0f / i.x, 1.0f / i.y, 1.0f / i.z};
   m.inv_mass = 1.0f / m.mass;
   return m;
 }
 
 Aabb shape_aabb(const Shape& shape, Vec3 position, const Mat3& axes) {
-  Vec3 e;
-  if (shape.type == ShapeType::kSphere) {
-    e = {shape.radius, shape.radius, shape.radius};
-  } else {
-    Vec3 h = shape.half_extents;
-    // Extent along world axis i = sum_k |R_ik| h_k.
-    e = abs(axes.c0) * h.x + abs(axes.c1) * h.y + abs(axes.c2) * h.z;
-  }
+  const Vec3 e = shape_ops(shape.type).half_bounds(shape, axes);
   return {position - e, position + e};
 }
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Sphere-sphere and box-sphere manifolds (one point each), and the dispatch.
+// Sphere-sphere and box-sphere manifolds (one point each).
 #include <cmath>
 
 #include "d3/manifold.h"
@@ -79,40 +79,6 @@ void collide_box_sphere(const BoxPose& box, Vec3 center, float radius, float spe
   out.points[0].point = (surface_a + surface_b) * 0.5f;
   out.points[0].separation = separation;
   out.points[0].feature_id = id;
-}
-
-void collide_shapes(const Shape& shape_a, Vec3 position_a, Quat rotation_a, const Shape& shape_b,
-                    Vec3 position_b, Quat rotation_b, float speculative_m, Manifold& out) {
-  collide_shapes(shape_a, {position_a, rotation_a, mat3_from_quat(rotation_a)}, shape_b,
-                 {position_b, rotation_b, mat3_from_quat(rotation_b)}, speculative_m, out);
-}
-
-void collide_shapes(const Shape& shape_a, const ShapePose& pose_a, const Shape& shape_b,
-                    const ShapePose& pose_b, float speculative_m, Manifold& out) {
-  const Vec3 position_a = pose_a.position;
-  const Vec3 position_b = pose_b.position;
-  const Quat rotation_a = pose_a.rotation;
-  const Quat rotation_b = pose_b.rotation;
-  out.separating_axis = kNoSeparatingAxis;
-  bool a_box = shape_a.type == ShapeType::kBox;
-  bool b_box = shape_b.type == ShapeType::kBox;
-  if (a_box && b_box) {
-    collide_boxes(position_a, pose_a.axes, shape_a.half_extents, position_b, pose_b.axes,
-                  shape_b.half_extents, speculative_m, out);
-  } else if (a_box) {
-    collide_box_sphere({position_a, rotation_a, shape_a.half_extents}, position_b, shape_b.radius,
-                       speculative_m, out);
-  } else if (b_box) {
-    collide_box_sphere({position_b, rotation_b, shape_b.half_extents}, position_a, shape_a.radius,
-                       speculative_m, out);
-    out.normal = -out.normal;  // the routine's normal ran from B to A
-  } else {
-    collide_spheres(position_a, shape_a.radius, position_b, shape_b.radius, speculative_m, out);
-  }
-  for (uint32_t i = 0; i < out.point_count; ++i) {
-    out.points[i].anchor_a = out.points[i].point - position_a;
-    out.points[i].anchor_b = out.points[i].point - position_b;
-  }
 }
 
 }  // namespace rwd::sim::d3

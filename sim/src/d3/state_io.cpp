@@ -12,6 +12,7 @@
 
 #include "d3/body_storage.h"
 #include "d3/pipeline.h"
+#include "d3/shape_ops.h"
 #include "d3/state_rules.h"
 #include "rewind/sim/world3d.h"
 
@@ -229,7 +230,7 @@ bool read_body(Reader& r, BodyInfo& b, BodySim& m) {
   b.awake = r.flag();
   b.enabled = r.flag();
   uint8_t type = r.u8();
-  r.require(type <= 1);
+  r.require(d3::is_known_shape(static_cast<ShapeType>(type)));
   b.shape.type = static_cast<ShapeType>(type);
   b.shape.radius = r.f32();
   b.shape.half_extents = r.vec3();

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "d3/state_rules.h"
 
+#include "d3/shape_ops.h"
+
 #include <cmath>
 
 namespace rwd::sim::d3 {
@@ -12,10 +14,6 @@ Status invalid(const char* what) {
 
 bool finite_in(float v, float lo, float hi) {
   return std::isfinite(v) && v >= lo && v <= hi;
-}
-
-bool in_size_range(float v) {
-  return std::isfinite(v) && v > 0.0f && v <= kMaxShapeSize;
 }
 
 // Speeds are limited by length, not per component, so the rule does not
@@ -116,18 +114,8 @@ Status check_config(const WorldConfig& c) {
 }
 
 Status check_shape(const Shape& shape) {
-  switch (shape.type) {
-    case ShapeType::kSphere:
-      if (!in_size_range(shape.radius)) return invalid("sphere radius must be in (0, 1000] m");
-      return Status::Ok();
-    case ShapeType::kBox:
-      if (!in_size_range(shape.half_extents.x) || !in_size_range(shape.half_extents.y) ||
-          !in_size_range(shape.half_extents.z)) {
-        return invalid("box half extents must be in (0, 1000] m");
-      }
-      return Status::Ok();
-  }
-  return invalid("unknown shape type");
+  if (!is_known_shape(shape.type)) return invalid("unknown shape type");
+  return shape_ops(shape.type).check(shape);
 }
 
 Status check_body_def(const WorldConfig& config, const BodyDef& def) {

@@ -57,6 +57,12 @@ Status check_contact(const std::vector<BodyInfo>& infos, const ContactRecord& re
 bool inside_bounds(const WorldConfig& config, Vec3 p);
 /// `v` scaled down to length `max` when it is longer; zero when not finite.
 Vec3 clamp_length(Vec3 v, float max);
+/// A shape size (radius, half extent, half height): finite, in
+/// (0, kMaxShapeSize] metres.
+inline bool in_shape_size_range(float v) {
+  return std::isfinite(v) && v > 0.0f && v <= kMaxShapeSize;
+}
+
 /// A solver impulse as it may be cached: non-finite values become zero.
 inline float settle_impulse(float impulse) {
   return std::isfinite(impulse) ? impulse : 0.0f;

@@ -8,6 +8,7 @@
 
 #include "d3/body_storage.h"
 #include "d3/pipeline.h"
+#include "d3/shape_ops.h"
 #include "d3/state_rules.h"
 #include "d3/world_scratch.h"
 
@@ -115,8 +116,7 @@ Result<BodyId> World3D::create_body(const BodyDef& def) {
   info.shape = def.shape;
   info.shape.radius = quantize(def.shape.radius);
   info.shape.half_extents = quantize(def.shape.half_extents);
-  if (def.shape.type == ShapeType::kSphere) info.shape.half_extents = {};
-  if (def.shape.type == ShapeType::kBox) info.shape.radius = 0.0f;
+  d3::shape_ops(def.shape.type).canonical(info.shape);
   info.material = {quantize(def.material.friction), quantize(def.material.restitution)};
   info.layer = def.layer;
   info.mask = def.mask;

@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: MIT
+// The collide table: one routine per pair of shape types, indexed [a][b].
+// A pair is written once, for the order its routine takes; the reversed
+// entry calls it with the shapes swapped and turns the normal around, so
+// the normal always runs from A to B (as Box2D v3's s_registers and Jolt's
+// CollisionDispatch do). Every entry is filled: there is no default that
+// treats an unknown shape as some other shape.
+#include <cstdint>
+
+#include "d3/manifold.h"
+#include "d3/shape_ops.h"
+
+namespace rwd::sim::d3 {
+namespace {
+
+using CollideFn = void (*)(const Shape&, const ShapePose&, const Shape&, const ShapePose&, float,
+                           Manifold&);
+
+void sphere_sphere(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+                   float speculative_m, Manifold& out) {
+  collide_spheres(pa.position, a.radius, pb.position, b.radius, speculative_m, out);
+}
+
+void box_sphere(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+                float speculative_m, Manifold& out) {
+  collide_box_sphere({pa.position, pa.rotation, a.half_extents}, pb.position, b.radius,
+                     speculative_m, out);
+}
+
+void box_box(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+             float speculative_m, Manifold& out) {
+  collide_boxes(pa.position, pa.axes, a.half_extents, pb.position, pb.axes, b.half_extents,
+                speculative_m, out);
+}
+
+struct Entry {
+  CollideFn fn = nullptr;
+  bool reversed = false;  // fn takes (b, a)
+};
+
+struct Table {
+  Entry at[kShapeTypeCount][kShapeTypeCount];
+};
+
+constexpr Table make_table() {
+  Table t;
+  const auto add = [&t](ShapeType a, ShapeType b, CollideFn fn) {
+    const auto ia = static_cast<uint32_t>(a);
+    const auto ib = static_cast<uint32_t>(b);
+    t.at[ia][ib] = {fn, false};
+    if (ia != ib) t.at[ib][ia] = {fn, true};
+  };
+  add(ShapeType::kSphere, ShapeType::kSphere, sphere_sphere);
+  add(ShapeType::kBox, ShapeType::kSphere, box_sphere);
+  add(ShapeType::kBox, ShapeType::kBox, box_box);
+  return t;
+}
+
+constexpr Table kTable = make_table();
+
+constexpr bool complete(const Table& t) {
+  for (const auto& row : t.at) {
+    for (const Entry& e : row) {
+      if (e.fn == nullptr) return false;
+    }
+  }
+  return true;
+}
+static_assert(complete(kTable), "every pair of shape types needs a collide routine");
+
+}  // namespace
+
+void collide_shapes(const Shape& shape_a, Vec3 position_a, Quat rotation_a, const Shape& shape_b,
+                    Vec3 position_b, Quat rotation_b, float speculative_m, Manifold& out) {
+  collide_shapes(shape_a, {position_a, rotation_a, mat3_from_quat(rotation_a)}, shape_b,
+                 {position_b, rotation_b, mat3_from_quat(rotation_b)}, speculative_m, out);
+}
+
+void collide_shapes(const Shape& shape_a, const ShapePose& pose_a, const Shape& shape_b,
+                    const ShapePose& pose_b, float speculative_m, Manifold& out) {
+  out.separating_axis = kNoSeparatingAxis;
+  const Entry& e =
+      kTable.at[static_cast<uint32_t>(shape_a.type)][static_cast<uint32_t>(shape_b.type)];
+  if (e.reversed) {
+    e.fn(shape_b, pose_b, shape_a, pose_a, speculative_m, out);
+    out.normal = -out.normal;  // the routine's normal ran from B to A
+    // A separating axis named in the routine's order means nothing here.
+    out.separating_axis = kNoSeparatingAxis;
+  } else {
+    e.fn(shape_a, pose_a, shape_b, pose_b, speculative_m, out);
+  }
+  for (uint32_t i = 0; i < out.point_count; ++i) {
+    out.points[i].anchor_a = out.points[i].point - pose_a.position;
+    out.points[i].anchor_b = out.points[i].point - pose_b.position;
+  }
+}
+
+}  // namespace rwd::sim::d3

@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: MIT
+// The box: half extents along the body's axes.
+#include <cmath>
+
+#include "d3/shape_ops.h"
+#include "d3/state_rules.h"
+
+namespace rwd::sim::d3 {
+namespace {
+
+Status check(const Shape& s) {
+  if (!in_shape_size_range(s.half_extents.x) || !in_shape_size_range(s.half_extents.y) ||
+      !in_shape_size_range(s.half_extents.z)) {
+    return Status::Error(ErrorCode::kInvalidArgument, "box half extents must be in (0, 1000] m");
+  }
+  return Status::Ok();
+}
+
+void canonical(Shape& s) {
+  s.radius = 0.0f;
+}
+
+float extent(const Shape& s) {
+  return length(s.half_extents);
+}
+
+float volume(const Shape& s) {
+  const Vec3 h = s.half_extents;
+  return 8.0f * h.x * h.y * h.z;
+}
+
+Vec3 inertia(const Shape& s, float mass) {
+  const Vec3 h = s.half_extents;
+  // Solid box: I_x = m/3 (hy^2 + hz^2) with half extents.
+  const float k = mass / 3.0f;
+  return {k * (h.y * h.y + h.z * h.z), k * (h.x * h.x + h.z * h.z), k * (h.x * h.x + h.y * h.y)};
+}
+
+Vec3 half_bounds(const Shape& s, const Mat3& axes) {
+  const Vec3 h = s.half_extents;
+  // Extent along world axis i = sum_k |R_ik| h_k.
+  return abs(axes.c0) * h.x + abs(axes.c1) * h.y + abs(axes.c2) * h.z;
+}
+
+// Slabs in the box's frame.
+bool raycast(const Shape& s, Vec3 center, Quat rotation, Vec3 origin, Vec3 dir, float max_distance,
+             float& t, Vec3& normal) {
+  const Vec3 half = s.half_extents;
+  Vec3 o = inv_rotate(rotation, origin - center);
+  Vec3 d = inv_rotate(rotation, dir);
+  float t_enter = -1.0f;  // below any real entry: origin inside until proven outside
+  float t_exit = max_distance;
+  int enter_axis = -1;
+  float enter_sign = 0.0f;
+  for (int i = 0; i < 3; ++i) {
+    float oi = component(o, i);
+    float di = component(d, i);
+    float hi = component(half, i);
+    if (std::fabs(di) < 1e-12f) {
+      if (oi < -hi || oi > hi) return false;
+      continue;
+    }
+    float inv = 1.0f / di;
+    float t1 = (-hi - oi) * inv;
+    float t2 = (hi - oi) * inv;
+    float sign = -1.0f;  // entering through the -axis face
+    if (t1 > t2) {
+      float tmp = t1;
+      t1 = t2;
+      t2 = tmp;
+      sign = 1.0f;
+    }
+    if (t1 > t_enter) {
+      t_enter = t1;
+      enter_axis = i;
+      enter_sign = sign;
+    }
+    if (t2 < t_exit) t_exit = t2;
+    if (t_enter > t_exit) return false;
+  }
+  if (t_exit < 0.0f) return false;
+  if (t_enter <= 0.0f) {  // origin inside the box
+    t = 0.0f;
+    normal = -dir;
+    return true;
+  }
+  t = t_enter;
+  float n[3] = {0.0f, 0.0f, 0.0f};
+  n[enter_axis] = enter_sign;
+  normal = rotate(rotation, Vec3{n[0], n[1], n[2]});
+  return true;
+}
+
+}  // namespace
+
+extern const ShapeOps kBoxOps{"box",  check,   canonical,   extent,
+                              volume, inertia, half_bounds, raycast};
+
+}  // namespace rwd::sim::d3

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// The sphere: a radius about the body's origin.
+#include <cmath>
+
+#include "d3/shape_ops.h"
+#include "d3/state_rules.h"
+#include "rewind/sim/det_math.h"
+
+namespace rwd::sim::d3 {
+namespace {
+
+Status check(const Shape& s) {
+  if (!in_shape_size_range(s.radius)) {
+    return Status::Error(ErrorCode::kInvalidArgument, "sphere radius must be in (0, 1000] m");
+  }
+  return Status::Ok();
+}
+
+void canonical(Shape& s) {
+  s.half_extents = {};
+}
+
+float extent(const Shape& s) {
+  return s.radius;
+}
+
+float volume(const Shape& s) {
+  const float r = s.radius;
+  return (4.0f / 3.0f) * kPi * r * r * r;
+}
+
+Vec3 inertia(const Shape& s, float mass) {
+  const float r = s.radius;
+  const float i = 0.4f * mass * r * r;  // solid sphere: 2/5 m r^2
+  return {i, i, i};
+}
+
+Vec3 half_bounds(const Shape& s, const Mat3&) {
+  return {s.radius, s.radius, s.radius};
+}
+
+bool raycast(const Shape& s, Vec3 center, Quat, Vec3 origin, Vec3 dir, float max_distance, float& t,
+             Vec3& normal) {
+  return ray_sphere(origin, dir, max_distance, center, s.radius, t, normal);
+}
+
+}  // namespace
+
+bool ray_sphere(Vec3 origin, Vec3 dir, float max_distance, Vec3 center, float radius, float& t,
+                Vec3& normal) {
+  Vec3 m = origin - center;
+  float b = dot(m, dir);
+  float c = dot(m, m) - radius * radius;
+  if (c <= 0.0f) {  // inside
+    t = 0.0f;
+    normal = -dir;
+    return true;
+  }
+  if (b > 0.0f) return false;  // outside and pointing away
+  float disc = b * b - c;
+  if (disc < 0.0f) return false;
+  t = -b - std::sqrt(disc);
+  if (t < 0.0f) t = 0.0f;
+  if (t > max_distance) return false;
+  normal = normalize_or_zero(origin + dir * t - center);
+  return true;
+}
+
+extern const ShapeOps kSphereOps{"sphere", check,   canonical,   extent,
+                                 volume,   inertia, half_bounds, raycast};
+
+}  // namespace rwd::sim::d3
