@@ -191,7 +191,7 @@ bool run_edge_scene(Tick ticks) {
 
 // The heap scene: a column of boxes built half inside each other (deep
 // overlaps, pushed out one at a time from the ground up) beside a heap of
-// boxes and spheres dropped into a corner overlapping a little (shallow
+// boxes, spheres and capsules dropped into a corner overlapping a little (shallow
 // overlaps, pushed out in the solver's lanes), with sleeping on, so bodies
 // fall asleep, are kicked awake and pile up again (resting contacts carry
 // their manifolds forward in between). Every 30 ticks a restore
@@ -219,8 +219,10 @@ bool run_heap_scene(Tick ticks) {
   }
   for (int i = 0; i < 40; ++i) {  // the heap: a loose lattice, a little overlapping
     sim::BodyDef def;
-    def.shape =
-        i % 4 == 3 ? sim::Shape::make_sphere(0.35f) : sim::Shape::make_box({0.35f, 0.35f, 0.35f});
+    // Boxes, spheres and capsules: every pair of shape types meets.
+    def.shape = i % 4 == 3   ? sim::Shape::make_sphere(0.35f)
+                : i % 4 == 1 ? sim::Shape::make_capsule(0.2f, 0.15f)
+                             : sim::Shape::make_box({0.35f, 0.35f, 0.35f});
     def.position = {-5.0f + 0.65f * static_cast<float>(i % 4),
                     0.4f + 0.65f * static_cast<float>(i / 16),
                     -5.0f + 0.65f * static_cast<float>((i / 4) % 4)};

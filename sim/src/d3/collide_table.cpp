@@ -33,6 +33,26 @@ void box_box(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePos
                 speculative_m, out);
 }
 
+CapsulePose capsule_pose(const Shape& s, const ShapePose& p) {
+  return {p.position, p.axes.c1, s.half_height, s.radius};
+}
+
+void capsule_sphere(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+                    float speculative_m, Manifold& out) {
+  collide_capsule_sphere(capsule_pose(a, pa), pb.position, b.radius, speculative_m, out);
+}
+
+void capsule_capsule(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+                     float speculative_m, Manifold& out) {
+  collide_capsules(capsule_pose(a, pa), capsule_pose(b, pb), speculative_m, out);
+}
+
+void box_capsule(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+                 float speculative_m, Manifold& out) {
+  collide_box_capsule({pa.position, pa.rotation, a.half_extents}, capsule_pose(b, pb),
+                      speculative_m, out);
+}
+
 struct Entry {
   CollideFn fn = nullptr;
   bool reversed = false;  // fn takes (b, a)
@@ -53,6 +73,9 @@ constexpr Table make_table() {
   add(ShapeType::kSphere, ShapeType::kSphere, sphere_sphere);
   add(ShapeType::kBox, ShapeType::kSphere, box_sphere);
   add(ShapeType::kBox, ShapeType::kBox, box_box);
+  add(ShapeType::kCapsule, ShapeType::kSphere, capsule_sphere);
+  add(ShapeType::kCapsule, ShapeType::kCapsule, capsule_capsule);
+  add(ShapeType::kBox, ShapeType::kCapsule, box_capsule);
   return t;
 }
 

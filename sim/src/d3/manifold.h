@@ -18,6 +18,7 @@
 //                    bits 8-11 incident face, bits 0-3 incident edges the point
 //                    lies on, bits 4-7 reference side planes it lies on
 //   box-box edge:    bit 31 set, bits 8-15 edge of A, bits 0-7 edge of B
+//   capsules:        see manifold_capsule.cpp
 #include <cstdint>
 
 #include "rewind/sim/math.h"
@@ -55,8 +56,25 @@ struct BoxPose {
   Vec3 half_extents;
 };
 
+/// A capsule's pose: centre, unit axis (its local y in the world), half
+/// height and radius.
+struct CapsulePose {
+  Vec3 center;
+  Vec3 axis;
+  float half_height;
+  float radius;
+};
+
 void collide_spheres(Vec3 center_a, float radius_a, Vec3 center_b, float radius_b,
                      float speculative_m, Manifold& out);
+/// Capsule A against sphere B (normal from the capsule to the sphere).
+void collide_capsule_sphere(const CapsulePose& capsule, Vec3 center, float radius,
+                            float speculative_m, Manifold& out);
+void collide_capsules(const CapsulePose& a, const CapsulePose& b, float speculative_m,
+                      Manifold& out);
+/// Box A against capsule B (normal from the box to the capsule).
+void collide_box_capsule(const BoxPose& box, const CapsulePose& capsule, float speculative_m,
+                         Manifold& out);
 /// Box A against sphere B (normal from the box to the sphere).
 void collide_box_sphere(const BoxPose& box, Vec3 center, float radius, float speculative_m,
                         Manifold& out);

@@ -9,6 +9,10 @@
 // each point's A side stays fixed on A, its B side moves with B, and the
 // separation is measured between the two along the normal.
 //
+// Only pairs of shapes whose contact features are fixed on them (boxes)
+// are carried: a rolling sphere's or capsule's contact point moves over its
+// surface, which carrying would turn into a tilted normal.
+//
 // The frame is not updated on reuse, so slow drift adds up until it crosses
 // the bound and the shapes are collided again; the bound is well under the
 // slop, so a feature that comes into reach meanwhile (a box tipping onto a

@@ -39,6 +39,15 @@ float pair_speculative(const WorldState& state, uint32_t a, uint32_t b) {
   return state.config.speculative_distance_m + state.config.tick_seconds * reach;
 }
 
+// Whether a shape's contact features are fixed on it (a box's faces,
+// edges and corners), so a manifold carried forward keeps its points where
+// they are. A round surface's contact point moves over it as the body
+// rolls; carrying it would tilt the normal with the roll, so pairs with a
+// sphere or a capsule are collided every step.
+bool keeps_features(const Shape& shape) {
+  return shape.type == ShapeType::kBox;
+}
+
 // Computes the manifold (or carries `old`'s forward, see the top of the
 // file) and fills `rec` (ids, touching, impulses matched by feature id
 // against `old`, which may be null but is never `rec` itself). Returns true
@@ -54,7 +63,8 @@ bool evaluate(const WorldState& state, WorldScratch& scratch, ContactRecord& rec
   Manifold& m = geo.manifold;
   bool carried = false;
   const Mat3& axes_a = body_axes(state, scratch, rec.index_a);
-  if (old != nullptr && rec.sensor == 0 && old->sensor == 0 && old->point_count > 0) {
+  if (old != nullptr && rec.sensor == 0 && old->sensor == 0 && old->point_count > 0 &&
+      keeps_features(ia.shape) && keeps_features(ib.shape)) {
     const RelativePose now = relative_pose(sa, axes_a, sb);
     const Quat turn = now.rotation * conjugate(old->frame_rotation);
     if (within_reuse(*old, now, turn, state.masses[rec.index_b].extent)) {

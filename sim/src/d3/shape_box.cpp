@@ -18,6 +18,7 @@ Status check(const Shape& s) {
 
 void canonical(Shape& s) {
   s.radius = 0.0f;
+  s.half_height = 0.0f;
 }
 
 float extent(const Shape& s) {

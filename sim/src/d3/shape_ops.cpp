@@ -5,9 +5,10 @@ namespace rwd::sim::d3 {
 namespace {
 
 // Indexed by ShapeType.
-const ShapeOps* const kTable[kShapeTypeCount] = {&kSphereOps, &kBoxOps};
+const ShapeOps* const kTable[kShapeTypeCount] = {&kSphereOps, &kBoxOps, &kCapsuleOps};
 static_assert(static_cast<uint32_t>(ShapeType::kSphere) == 0 &&
-              static_cast<uint32_t>(ShapeType::kBox) == 1);
+              static_cast<uint32_t>(ShapeType::kBox) == 1 &&
+              static_cast<uint32_t>(ShapeType::kCapsule) == 2);
 
 }  // namespace
 

@@ -15,7 +15,7 @@
 namespace rwd::sim::d3 {
 
 /// Number of shape types; ShapeType values are 0 .. kShapeTypeCount - 1.
-inline constexpr uint32_t kShapeTypeCount = 2;
+inline constexpr uint32_t kShapeTypeCount = 3;
 
 struct ShapeOps {
   const char* name;
@@ -50,6 +50,7 @@ const ShapeOps& shape_ops(ShapeType type);
 // Each shape's entry, defined in its own file.
 extern const ShapeOps kSphereOps;
 extern const ShapeOps kBoxOps;
+extern const ShapeOps kCapsuleOps;
 
 /// The ray test of a sphere of `radius` at `center` (dir unit), shared by
 /// the shapes made of spheres.

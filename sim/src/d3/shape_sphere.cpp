@@ -18,6 +18,7 @@ Status check(const Shape& s) {
 
 void canonical(Shape& s) {
   s.half_extents = {};
+  s.half_height = 0.0f;
 }
 
 float extent(const Shape& s) {

@@ -22,7 +22,8 @@ namespace {
 constexpr uint8_t kMagic[4] = {'R', 'W', 'D', '3'};
 // 2: world bounds in the config, the enabled flag per body. 3: each contact
 // record's manifold frame and its points' positions on A (manifold reuse).
-constexpr uint32_t kVersion = 3;
+// 4: capsules (each shape's half height).
+constexpr uint32_t kVersion = 4;
 // Bounds the allocation a hostile header can request.
 constexpr uint32_t kMaxSlots = 1u << 24;
 
@@ -112,6 +113,7 @@ void write_state(Sink& s, const WorldState& st) {
     s.u8(static_cast<uint8_t>(b.shape.type));
     s.f32(b.shape.radius);
     s.vec3(b.shape.half_extents);
+    s.f32(b.shape.half_height);
     s.f32(b.material.friction);
     s.f32(b.material.restitution);
     s.u32(b.layer);
@@ -234,6 +236,7 @@ bool read_body(Reader& r, BodyInfo& b, BodySim& m) {
   b.shape.type = static_cast<ShapeType>(type);
   b.shape.radius = r.f32();
   b.shape.half_extents = r.vec3();
+  b.shape.half_height = r.f32();
   b.material.friction = r.f32();
   b.material.restitution = r.f32();
   b.layer = r.u32();

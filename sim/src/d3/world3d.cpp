@@ -116,6 +116,7 @@ Result<BodyId> World3D::create_body(const BodyDef& def) {
   info.shape = def.shape;
   info.shape.radius = quantize(def.shape.radius);
   info.shape.half_extents = quantize(def.shape.half_extents);
+  info.shape.half_height = quantize(def.shape.half_height);
   d3::shape_ops(def.shape.type).canonical(info.shape);
   info.material = {quantize(def.material.friction), quantize(def.material.restitution)};
   info.layer = def.layer;

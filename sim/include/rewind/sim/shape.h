@@ -9,14 +9,18 @@ namespace rwd::sim {
 enum class ShapeType : uint8_t {
   kSphere = 0,
   kBox = 1,
+  /// A segment along the body's local y axis, from -half_height to
+  /// +half_height, swept by a sphere of `radius`.
+  kCapsule = 2,
 };
 
 /// A collision shape centred on its body's origin. Plain data, trivially
-/// copyable, part of world state.
+/// copyable, part of world state. Sizes are in metres, each in (0, 1000].
 struct Shape {
   ShapeType type = ShapeType::kBox;
-  float radius = 0.0f;  ///< sphere radius in metres, > 0
-  Vec3 half_extents;    ///< box half sizes in metres, each > 0
+  float radius = 0.0f;       ///< sphere and capsule radius, m
+  Vec3 half_extents;         ///< box half sizes, m
+  float half_height = 0.0f;  ///< capsule: half the distance between its cap centres, m
 
   static Shape make_sphere(float radius_m) {
     Shape s;
@@ -28,6 +32,15 @@ struct Shape {
     Shape s;
     s.type = ShapeType::kBox;
     s.half_extents = half_extents_m;
+    return s;
+  }
+  /// A capsule standing along local y: total height 2 (half_height_m +
+  /// radius_m).
+  static Shape make_capsule(float radius_m, float half_height_m) {
+    Shape s;
+    s.type = ShapeType::kCapsule;
+    s.radius = radius_m;
+    s.half_height = half_height_m;
     return s;
   }
 };

@@ -28,10 +28,10 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///      the relative rotation matrix
 ///   5  shallow overlaps pushed out colour by colour in the lanes (deep ones
 ///      still one at a time from the ground up)
-///   6  manifolds carried forward while their bodies barely move relative
-///      to each other (the contact cache keeps each manifold's frame);
-///      box-box clipping in the reference face's frame; push-out batches
-///      with nothing to push skipped
+///   6  box manifolds carried forward while their bodies barely move
+///      relative to each other (the contact cache keeps each manifold's
+///      frame); box-box clipping in the reference face's frame; push-out
+///      batches with nothing to push skipped; capsules
 inline constexpr uint32_t kSimRevision = 6;
 
 /// "rewind-sim r6": the engine identity a replay records.
