@@ -114,6 +114,15 @@ bool BulletEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& 
     volume = 4.0f / 3.0f * 3.14159265f * r * r * r;
     extent = r;
     smallest = r;
+  } else if (spec.shape.type == sim::ShapeType::kCapsule) {
+    // Bullet's capsule stands along its local y like Rewind's; its height
+    // is the distance between the cap centres.
+    const float r = spec.shape.radius;
+    const float h = spec.shape.half_height;
+    shape = std::make_unique<btCapsuleShape>(r, 2.0f * h);
+    volume = 3.14159265f * r * r * 2.0f * h + 4.0f / 3.0f * 3.14159265f * r * r * r;
+    extent = h + r;
+    smallest = r;
   } else {
     const Vec3 h = spec.shape.half_extents;
     smallest = std::min(h.x, std::min(h.y, h.z));

@@ -175,7 +175,7 @@ MAPPING = """\
 | damping rate c (1/s) | v ← v / (1 + h c) per substep | Bullet scales v by (1 − d)^dt: d = 1 − e^(−c) |
 | sleeping | island sleeps when every body has \\|v\\| + extent·\\|ω\\| < 0.05 m/s for 0.5 s | island sleeps when every body has \\|v\\| < 0.05 m/s and \\|ω\\| < 0.05/extent rad/s for `gDeactivationTime` = 0.5 s |
 | mass, inertia | density × volume, solid box/sphere | the same mass; `calculateLocalInertia` of the shape (solid box/sphere) |
-| shapes, margins | exact boxes and spheres; speculative contacts from 2 cm | `btBoxShape` keeps its 0.04 m margin inside the half extents (half the smallest half extent for boxes thinner than 8 cm: cards, walls) and `btSphereShape`'s margin is its radius, so the sizes are exact; corners are rounded by the margin |
+| shapes, margins | exact boxes, spheres and capsules; speculative contacts from 2 cm | `btBoxShape` keeps its 0.04 m margin inside the half extents (half the smallest half extent for boxes thinner than 8 cm: cards, walls) and `btSphereShape`'s and `btCapsuleShape`'s margins are their radius, so the sizes are exact; corners are rounded by the margin. Both engines' capsules stand along local y, Bullet's height being the distance between the cap centres (2 × half_height) |
 | penetration recovery | soft contacts (`contact_hertz`, damping ratio 10), slop 5 mm, push-out capped at 3 m/s | Bullet's defaults: split impulse, erp 0.2, no slop |
 | fast bodies | speculative contacts, always on | bodies a scene marks `continuous` get swept-sphere CCD (motion threshold half the smallest extent) |
 | step | `substeps` TGS-Soft substeps per tick, relax iterations per substep | `substeps` calls of `stepSimulation(h, 0)` (exactly one internal step of h each), `iterations` solver iterations |

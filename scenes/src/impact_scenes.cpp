@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Scenes of violent motion: projectiles against a thin wall, a pile of boxes
-// dropped into a bin, and boxes created overlapping.
+// Scenes of violent motion: projectiles against a thin wall, piles of boxes
+// (and of boxes and capsules) dropped into a bin, and boxes created
+// overlapping.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -44,10 +45,12 @@ class ProjectileScene final : public kit::SpecScene {
 
 /// `count` 0.5 m boxes released in a loose lattice (about ten layers) inside an open bin; they
 /// fall, tumble and settle. None may leave the bin, and after 6 s the pile
-/// should be nearly at rest.
+/// should be nearly at rest. The mixed pile makes every other body a
+/// capsule (0.15 m radius, 0.7 m long), so boxes and capsules meet in every
+/// pairing.
 class PileScene final : public kit::SpecScene {
  public:
-  explicit PileScene(int count) : SpecScene(count) {
+  PileScene(int count, bool mixed) : SpecScene(count), mixed_(mixed) {
     // About ten layers of k x k boxes, 0.8 m apart (a turned box reaches
     // at most 0.39 m from its centre, so none starts touching another).
     const int k = std::max(2, static_cast<int>(std::ceil(std::sqrt(count / 10.0))));
@@ -73,13 +76,14 @@ class PileScene final : public kit::SpecScene {
       Vec3 p{(static_cast<float>(col) - 0.5f * static_cast<float>(k - 1)) * pitch + shift,
              1.0f + pitch * static_cast<float>(layer),
              (static_cast<float>(row) - 0.5f * static_cast<float>(k - 1)) * pitch - shift};
-      BodySpec b = kit::box(p, {0.25f, 0.25f, 0.25f});
+      BodySpec b =
+          mixed && i % 2 == 1 ? kit::capsule(p, 0.15f, 0.2f) : kit::box(p, {0.25f, 0.25f, 0.25f});
       const float turn = 0.3f * static_cast<float>((i * 7) % 5 - 2);
       b.rotation = kit::axis_angle({0.6f, 0.0f, 0.8f}, turn);
       add(b);
     }
   }
-  std::string_view name() const override { return "pile"; }
+  std::string_view name() const override { return mixed_ ? "mixed_pile" : "pile"; }
   Tick ticks() const override { return 360; }
   void after_step(Tick tick, const Engine& engine) override {
     if (tick + 1 != ticks()) return;
@@ -90,6 +94,8 @@ class PileScene final : public kit::SpecScene {
       const bool inside = engine.enabled(handles_[i]) && std::fabs(p.x) < limit &&
                           std::fabs(p.z) < limit && p.y > -0.1f && std::isfinite(p.y);
       if (!inside) ++escaped_;
+      // The farthest surface point of either shape: a box's corner, a
+      // capsule's pole.
       speed_sum += kit::point_speed(engine, handles_[i], 0.433f);
     }
     mean_speed_ = speed_sum / static_cast<double>(handles_.size() - first_box_);
@@ -102,6 +108,7 @@ class PileScene final : public kit::SpecScene {
   }
 
  private:
+  bool mixed_ = false;
   float inner_half_ = 0.0f;
   float wall_top_ = 0.0f;
   size_t first_box_ = 0;
@@ -165,7 +172,11 @@ std::unique_ptr<Scene> make_projectile(int speed) {
 }
 std::unique_ptr<Scene> make_pile(int count) {
   if (count < 1 || count > 100000) return nullptr;
-  return std::make_unique<PileScene>(count);
+  return std::make_unique<PileScene>(count, false);
+}
+std::unique_ptr<Scene> make_mixed_pile(int count) {
+  if (count < 1 || count > 100000) return nullptr;
+  return std::make_unique<PileScene>(count, true);
 }
 std::unique_ptr<Scene> make_overlap(int count) {
   if (count < 1 || count > 50) return nullptr;

@@ -24,6 +24,8 @@ std::unique_ptr<Scene> make_roll(int degrees);
 std::unique_ptr<Scene> make_free_spin(int rate);
 std::unique_ptr<Scene> make_projectile(int speed);
 std::unique_ptr<Scene> make_pile(int count);
+std::unique_ptr<Scene> make_mixed_pile(int count);
+std::unique_ptr<Scene> make_log_cabin(int layers);
 std::unique_ptr<Scene> make_overlap(int count);
 
 }  // namespace rwd::scenes

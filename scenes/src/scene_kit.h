@@ -45,6 +45,16 @@ inline BodySpec sphere(Vec3 position, float radius, float friction = 0.6f) {
   return s;
 }
 
+/// A capsule of `radius` whose cap centres are half_height from its centre
+/// along its local y axis.
+inline BodySpec capsule(Vec3 position, float radius, float half_height, float friction = 0.6f) {
+  BodySpec s;
+  s.shape = Shape::make_capsule(radius, half_height);
+  s.position = position;
+  s.friction = friction;
+  return s;
+}
+
 inline BodySpec fixed(BodySpec s) {
   s.kind = BodyKind::kStatic;
   return s;

@@ -283,7 +283,67 @@ class CardHouseScene final : public kit::SpecScene {
   RestingBoxes rest_;
 };
 
+/// A log cabin of capsules: `layers` layers of two parallel 2 m logs
+/// (0.2 m radius), each layer across the one below, so every log rests on
+/// two crossings (a crossing touches at one point). Round logs on round
+/// logs are in neutral balance, so the criterion allows the same creep as
+/// the card house.
+class LogCabinScene final : public kit::SpecScene {
+ public:
+  explicit LogCabinScene(int layers) : SpecScene(layers) {
+    add(kit::ground());
+    rest_.set_ground(0.0f);
+    const Quat along_x = kit::axis_angle({0.0f, 0.0f, 1.0f}, -0.5f * kit::kPi);
+    const Quat along_z = kit::axis_angle({1.0f, 0.0f, 0.0f}, 0.5f * kit::kPi);
+    int below[2] = {-1, -1};
+    for (int layer = 0; layer < layers; ++layer) {
+      int here[2];
+      for (int side = 0; side < 2; ++side) {
+        const float offset = side == 0 ? -kSpacing : kSpacing;
+        const float y = kRadius + 2.0f * kRadius * static_cast<float>(layer);
+        const Vec3 p = layer % 2 == 0 ? Vec3{0.0f, y, offset} : Vec3{offset, y, 0.0f};
+        BodySpec log = kit::capsule(p, kRadius, kHalfHeight);
+        log.rotation = layer % 2 == 0 ? along_x : along_z;
+        here[side] = static_cast<int>(add(log));
+        rest_.track(here[side], p);
+        if (layer == 0) {
+          rest_.support(-1, here[side], kRadius);
+        } else {
+          rest_.support(below[0], here[side], 2.0f * kRadius);
+          rest_.support(below[1], here[side], 2.0f * kRadius);
+        }
+      }
+      below[0] = here[0];
+      below[1] = here[1];
+    }
+  }
+  std::string_view name() const override { return "log_cabin"; }
+  Tick ticks() const override { return 600; }
+  void after_step(Tick tick, const Engine& engine) override {
+    // Overlaps are judged once settled, over the last second.
+    rest_.observe(engine, handles_, tick >= ticks() - 60);
+  }
+  std::vector<Metric> metrics() const override {
+    return {kit::at_most("drift_m", "m", rest_.drift_m(), 0.05,
+                         "every log stays within 5 cm of its start sideways for 10 s"),
+            kit::at_most("penetration_mm", "mm", 1000.0 * rest_.depth_m(), kDepthLimitMm,
+                         "deepest resting overlap of a crossing in the last second <= linear "
+                         "slop (5 mm) + 1 mm")};
+  }
+
+ private:
+  static constexpr float kRadius = 0.2f;
+  static constexpr float kHalfHeight = 0.8f;
+  static constexpr float kSpacing = 0.6f;
+  RestingBoxes rest_;
+};
+
 }  // namespace
+
+std::unique_ptr<Scene> make_log_cabin(int layers) {
+  if (layers < 1 || layers > 50) return nullptr;
+  return std::make_unique<LogCabinScene>(layers);
+}
 
 std::unique_ptr<Scene> make_stack(int boxes) {
   if (boxes < 1 || boxes > 200) return nullptr;

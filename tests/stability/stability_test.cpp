@@ -44,6 +44,10 @@ INSTANTIATE_TEST_SUITE_P(
         Criterion{"pile", 250, "escaped"}, Criterion{"pile", 250, "mean_speed_mps"},
         Criterion{"pile", 500, "escaped"}, Criterion{"pile", 500, "mean_speed_mps"},
         Criterion{"pile", 1000, "escaped"}, Criterion{"pile", 1000, "mean_speed_mps"},
+        Criterion{"mixed_pile", 250, "escaped"}, Criterion{"mixed_pile", 250, "mean_speed_mps"},
+        Criterion{"mixed_pile", 500, "escaped"}, Criterion{"mixed_pile", 500, "mean_speed_mps"},
+        Criterion{"log_cabin", 3, "drift_m"}, Criterion{"log_cabin", 3, "penetration_mm"},
+        Criterion{"log_cabin", 6, "drift_m"}, Criterion{"log_cabin", 6, "penetration_mm"},
         Criterion{"sleep", 10, "sleep_s"}, Criterion{"sleep", 20, "sleep_s"},
         Criterion{"sleep", 30, "sleep_s"}),
     criterion_name);
