@@ -223,6 +223,8 @@ bool run_heap_scene(Tick ticks) {
     def.shape = i % 4 == 3   ? sim::Shape::make_sphere(0.35f)
                 : i % 4 == 1 ? sim::Shape::make_capsule(0.2f, 0.15f)
                              : sim::Shape::make_box({0.35f, 0.35f, 0.35f});
+    // Every other capsule is a character: locked upright.
+    if (i % 8 == 1) def.lock_rotation = sim::kLockRotationX | sim::kLockRotationZ;
     def.position = {-5.0f + 0.65f * static_cast<float>(i % 4),
                     0.4f + 0.65f * static_cast<float>(i / 16),
                     -5.0f + 0.65f * static_cast<float>((i / 4) % 4)};
@@ -232,6 +234,11 @@ bool run_heap_scene(Tick ticks) {
     if (t % 90 == 60) {  // a kick wakes part of the heap
       const sim::BodyId id = bodies[8 + rng.below(40)];
       (void)world.apply_linear_impulse(id, {coord(30.0f), 20.0f, coord(30.0f)}, world.position(id));
+      // ... and a push off-centre, with a twist.
+      const sim::BodyId other = bodies[8 + rng.below(40)];
+      (void)world.apply_force_at(other, {coord(900.0f), 0.0f, coord(900.0f)},
+                                 world.position(other) + sim::Vec3{0.0f, 0.2f, 0.0f});
+      (void)world.apply_torque(other, {0.0f, coord(200.0f), 0.0f});
     }
     if (t % 30 == 0 && !restep_matches(world, "heap", t)) return false;
     world.step();

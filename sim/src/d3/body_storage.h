@@ -19,6 +19,29 @@ Aabb shape_aabb(const Shape& shape, Vec3 position, Quat rotation);
 Mat3 world_inverse_inertia(const BodyMass& mass, const Mat3& axes);
 Mat3 world_inverse_inertia(const BodyMass& mass, Quat rotation);
 
+/// v without its components about the world axes `locks` names
+/// (kLockRotation* bits): an angular velocity or impulse a locked body may
+/// take.
+inline Vec3 without_locked_axes(uint8_t locks, Vec3 v) {
+  if ((locks & kLockRotationX) != 0) v.x = 0.0f;
+  if ((locks & kLockRotationY) != 0) v.y = 0.0f;
+  if ((locks & kLockRotationZ) != 0) v.z = 0.0f;
+  return v;
+}
+/// A world inverse inertia with the rows and columns of the locked axes
+/// cleared: no torque turns the body about them, and the solver's
+/// effective masses account for that.
+inline Mat3 lock_inverse_inertia(uint8_t locks, Mat3 m) {
+  if (locks == 0) return m;
+  m.c0 = without_locked_axes(locks, m.c0);
+  m.c1 = without_locked_axes(locks, m.c1);
+  m.c2 = without_locked_axes(locks, m.c2);
+  if ((locks & kLockRotationX) != 0) m.c0 = {};
+  if ((locks & kLockRotationY) != 0) m.c1 = {};
+  if ((locks & kLockRotationZ) != 0) m.c2 = {};
+  return m;
+}
+
 /// Starts a step's body frames: every frame of earlier steps goes stale.
 inline void begin_body_axes(const WorldState& state, WorldScratch& scratch) {
   ++scratch.step_serial;

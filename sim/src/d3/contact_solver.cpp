@@ -103,7 +103,10 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
     b.linear_damping_factor = 1.0f;
     b.angular_damping_factor = 1.0f;
     if (info.kind == BodyKind::kDynamic) {
-      b.inv_inertia = world_inverse_inertia(mass, body_axes(state, scratch, i));
+      b.inv_inertia = lock_inverse_inertia(
+          info.lock_rotation, world_inverse_inertia(mass, body_axes(state, scratch, i)));
+      b.torqued = !(sim.torque == Vec3{});
+      if (b.torqued) b.angular_acceleration = b.inv_inertia * sim.torque;
       b.linear_acceleration = config.gravity * info.gravity_scale + sim.force * mass.inv_mass;
       b.linear_damping_factor = 1.0f / (1.0f + h * info.linear_damping);
       b.angular_damping_factor = 1.0f / (1.0f + h * info.angular_damping);
@@ -187,6 +190,7 @@ void integrate_velocities(WorldScratch& scratch, float h) {
     if (b.inv_mass == 0.0f) continue;  // kinematic: keeps its set velocity
     Vec3 v = b.linear_velocity * b.linear_damping_factor + b.linear_acceleration * h;
     Vec3 w = b.angular_velocity * b.angular_damping_factor;
+    if (b.torqued) w += b.angular_acceleration * h;
     float speed_sq = length_squared(v);
     if (speed_sq > kMaxLinearSpeed * kMaxLinearSpeed) {
       v = v * (kMaxLinearSpeed / std::sqrt(speed_sq));
@@ -418,13 +422,20 @@ void finalize(WorldState& state, WorldScratch& scratch, float tick) {
     sim.rotation = normalize(b.delta_rotation * sim.rotation);
     sim.linear_velocity = b.linear_velocity;
     sim.angular_velocity = b.angular_velocity;
-    if (state.infos[index].kind == BodyKind::kDynamic) {
+    const uint8_t locks = state.infos[index].lock_rotation;
+    if (locks != 0) {
+      // A locked body turns only about its free axes, with the inertia the
+      // solver used: no gyroscopic carry, which would lean it onto a
+      // locked axis.
+      sim.angular_velocity = without_locked_axes(locks, sim.angular_velocity);
+    } else if (state.infos[index].kind == BodyKind::kDynamic) {
       const Spin spin = carry_angular_momentum(state.masses[index], before.rotation, sim.rotation,
                                                b.angular_velocity);
       sim.angular_velocity = spin.angular_velocity;
       sim.rotation = spin.rotation;
     }
     sim.force = {};
+    sim.torque = {};
     // Sleep timer: a body is at rest when no point of it moves faster than
     // the threshold (|v| + extent * |w| bounds every surface point's speed).
     // Kinematic bodies rest only when they are not driven at all.

@@ -22,7 +22,7 @@ namespace {
 constexpr uint8_t kMagic[4] = {'R', 'W', 'D', '3'};
 // 2: world bounds in the config, the enabled flag per body. 3: each contact
 // record's manifold frame and its points' positions on A (manifold reuse).
-// 4: capsules (each shape's half height).
+// 4: capsules (each shape's half height), rotation locks and torques.
 constexpr uint32_t kVersion = 4;
 // Bounds the allocation a hostile header can request.
 constexpr uint32_t kMaxSlots = 1u << 24;
@@ -128,6 +128,8 @@ void write_state(Sink& s, const WorldState& st) {
     s.vec3(m.linear_velocity);
     s.vec3(m.angular_velocity);
     s.vec3(m.force);
+    s.vec3(m.torque);
+    s.u8(b.lock_rotation);
     s.f32(m.sleep_time);
   }
   s.u32(static_cast<uint32_t>(st.contacts.size()));
@@ -251,6 +253,8 @@ bool read_body(Reader& r, BodyInfo& b, BodySim& m) {
   m.linear_velocity = r.vec3();
   m.angular_velocity = r.vec3();
   m.force = r.vec3();
+  m.torque = r.vec3();
+  b.lock_rotation = r.u8();
   m.sleep_time = r.f32();
   return r.ok();
 }

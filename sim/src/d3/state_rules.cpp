@@ -119,6 +119,9 @@ Status check_shape(const Shape& shape) {
 }
 
 Status check_body_def(const WorldConfig& config, const BodyDef& def) {
+  if (def.lock_rotation > kLockRotationAll) {
+    return invalid("lock_rotation must be kLockRotation* bits (0 to 7)");
+  }
   if (Status s = check_common(def.kind, def.shape, def.density, def.linear_damping,
                               def.angular_damping, def.gravity_scale, def.material);
       !s.ok()) {
@@ -170,11 +173,18 @@ Status check_body(const WorldConfig& config, const BodyInfo& info, const BodySim
   if (!is_finite(sim.force) || length_squared(sim.force) > kMaxForce * kMaxForce) {
     return invalid("force above 1e12 N");
   }
+  if (!is_finite(sim.torque) || length_squared(sim.torque) > kMaxTorque * kMaxTorque) {
+    return invalid("torque above 1e12 N m");
+  }
+  if (info.lock_rotation > kLockRotationAll) return invalid("rotation lock out of range");
+  if (!angular_velocity_respects_locks(info.lock_rotation, sim.angular_velocity)) {
+    return invalid("angular velocity about a locked axis");
+  }
   if (!(std::isfinite(sim.sleep_time) && sim.sleep_time >= 0.0f)) {
     return invalid("sleep time must be finite and >= 0");
   }
-  const bool still =
-      sim.linear_velocity == Vec3{} && sim.angular_velocity == Vec3{} && sim.force == Vec3{};
+  const bool still = sim.linear_velocity == Vec3{} && sim.angular_velocity == Vec3{} &&
+                     sim.force == Vec3{} && sim.torque == Vec3{};
   if (info.kind == BodyKind::kStatic && (info.awake != 0 || !still)) {
     return invalid("a static body is awake or moving");
   }
@@ -251,6 +261,9 @@ bool settle_body(const WorldConfig& config, const BodySim& before, BodyInfo& inf
   sim.linear_velocity = clamp_length(sim.linear_velocity, kMaxSpeed);
   sim.angular_velocity = clamp_length(sim.angular_velocity, kMaxSpeed);
   if (!is_finite(sim.force) || length_squared(sim.force) > kMaxForce * kMaxForce) sim.force = {};
+  if (!is_finite(sim.torque) || length_squared(sim.torque) > kMaxTorque * kMaxTorque) {
+    sim.torque = {};
+  }
   if (!(std::isfinite(sim.sleep_time) && sim.sleep_time >= 0.0f)) sim.sleep_time = 0.0f;
   if (inside_bounds(config, sim.position)) return false;
   sim.position = {clampf(sim.position.x, config.bounds_lower.x, config.bounds_upper.x),
@@ -266,6 +279,7 @@ void disable_body(BodyInfo& info, BodySim& sim) {
   sim.linear_velocity = {};
   sim.angular_velocity = {};
   sim.force = {};
+  sim.torque = {};
   sim.sleep_time = 0.0f;
 }
 

@@ -28,6 +28,8 @@ inline constexpr float kMaxShapeSize = 1000.0f;
 inline constexpr float kMaxSpeed = 1e4f;
 /// Largest force accumulated for one step, N.
 inline constexpr float kMaxForce = 1e12f;
+/// Largest torque accumulated for one step, N m.
+inline constexpr float kMaxTorque = 1e12f;
 /// Largest deviation of |q|^2 from 1 in a stored rotation.
 inline constexpr float kRotationTolerance = 1e-3f;
 
@@ -57,6 +59,14 @@ Status check_contact(const std::vector<BodyInfo>& infos, const ContactRecord& re
 bool inside_bounds(const WorldConfig& config, Vec3 p);
 /// `v` scaled down to length `max` when it is longer; zero when not finite.
 Vec3 clamp_length(Vec3 v, float max);
+/// Whether w is zero about every world axis `locks` (kLockRotation* bits)
+/// names.
+inline bool angular_velocity_respects_locks(uint8_t locks, Vec3 w) {
+  return ((locks & kLockRotationX) == 0 || w.x == 0.0f) &&
+         ((locks & kLockRotationY) == 0 || w.y == 0.0f) &&
+         ((locks & kLockRotationZ) == 0 || w.z == 0.0f);
+}
+
 /// A shape size (radius, half extent, half height): finite, in
 /// (0, kMaxShapeSize] metres.
 inline bool in_shape_size_range(float v) {

@@ -126,12 +126,14 @@ Result<BodyId> World3D::create_body(const BodyDef& def) {
   info.linear_damping = quantize(def.linear_damping);
   info.angular_damping = quantize(def.angular_damping);
   info.gravity_scale = quantize(def.gravity_scale);
+  info.lock_rotation = def.lock_rotation;
   BodySim sim;
   sim.position = quantize(def.position);
   sim.rotation = quantize(normalize(def.rotation));
   if (def.kind != BodyKind::kStatic) {
     sim.linear_velocity = quantize(def.linear_velocity);
-    sim.angular_velocity = quantize(def.angular_velocity);
+    sim.angular_velocity =
+        d3::without_locked_axes(def.lock_rotation, quantize(def.angular_velocity));
   }
   // Quantizing can round a tiny size to zero or nudge a value over a limit.
   if (!d3::check_body(config, info, sim).ok()) {
@@ -285,7 +287,8 @@ Status World3D::set_angular_velocity(BodyId id, Vec3 velocity_radps) {
   if (Status s = check_movable(state_, id, false, "static bodies cannot rotate"); !s.ok()) {
     return s;
   }
-  const Vec3 w = quantize(velocity_radps);
+  const Vec3 w =
+      d3::without_locked_axes(state_.infos[id.index].lock_rotation, quantize(velocity_radps));
   if (!speed_ok(w)) return invalid("angular velocity must be finite, at most 1e4 rad/s");
   state_.sims[id.index].angular_velocity = w;
   d3::wake_body(state_, id.index);
@@ -305,7 +308,9 @@ Status World3D::apply_linear_impulse(BodyId id, Vec3 impulse, Vec3 world_point) 
   BodySim& sim = state_.sims[id.index];
   const BodyMass& m = state_.masses[id.index];
   Vec3 dv = j * m.inv_mass;
-  Vec3 dw = d3::world_inverse_inertia(m, sim.rotation) * cross(p - sim.position, j);
+  const uint8_t locks = state_.infos[id.index].lock_rotation;
+  Vec3 dw = d3::lock_inverse_inertia(locks, d3::world_inverse_inertia(m, sim.rotation)) *
+            cross(p - sim.position, j);
   Vec3 v = sim.linear_velocity + dv;
   Vec3 w = sim.angular_velocity + dw;
   if (!speed_ok(v) || !speed_ok(w)) return invalid("impulse would exceed the speed limit");
@@ -326,6 +331,57 @@ Status World3D::apply_force(BodyId id, Vec3 force_n) {
     return invalid("force too large (> 1e12 N)");
   }
   state_.sims[id.index].force = f;
+  d3::wake_body(state_, id.index);
+  return Status::Ok();
+}
+
+Status World3D::set_rotation_lock(BodyId id, uint8_t locks) {
+  if (!is_live(state_, id)) return not_found();
+  if (locks > kLockRotationAll) return invalid("locks must be kLockRotation* bits (0 to 7)");
+  state_.infos[id.index].lock_rotation = locks;
+  BodySim& sim = state_.sims[id.index];
+  sim.angular_velocity = d3::without_locked_axes(locks, sim.angular_velocity);
+  if (d3::is_simulated(state_.infos[id.index])) d3::wake_body(state_, id.index);
+  return Status::Ok();
+}
+
+Status World3D::apply_torque(BodyId id, Vec3 torque_nm) {
+  if (!is_live(state_, id)) return not_found();
+  if (!is_finite(torque_nm)) return invalid("torque must be finite");
+  if (Status s = check_movable(state_, id, true, "torques only turn dynamic bodies"); !s.ok()) {
+    return s;
+  }
+  const Vec3 t = state_.sims[id.index].torque + quantize(torque_nm);
+  if (!is_finite(t) || length_squared(t) > d3::kMaxTorque * d3::kMaxTorque) {
+    return invalid("torque too large (> 1e12 N m)");
+  }
+  state_.sims[id.index].torque = t;
+  d3::wake_body(state_, id.index);
+  return Status::Ok();
+}
+
+Status World3D::apply_force_at(BodyId id, Vec3 force_n, Vec3 world_point) {
+  if (!is_live(state_, id)) return not_found();
+  if (!is_finite(force_n) || !is_finite(world_point)) {
+    return invalid("force and point must be finite");
+  }
+  if (Status s = check_movable(state_, id, true, "forces only move dynamic bodies"); !s.ok()) {
+    return s;
+  }
+  // Both sums are checked before either is kept: a refused call changes
+  // nothing.
+  BodySim& sim = state_.sims[id.index];
+  const Vec3 f_in = quantize(force_n);
+  const Vec3 f = sim.force + f_in;
+  const Vec3 t = sim.torque + cross(quantize(world_point) - sim.position, f_in);
+  if (!is_finite(f) || length_squared(f) > d3::kMaxForce * d3::kMaxForce) {
+    return invalid("force too large (> 1e12 N)");
+  }
+  if (!is_finite(t) || length_squared(t) > d3::kMaxTorque * d3::kMaxTorque) {
+    return invalid("torque too large (> 1e12 N m)");
+  }
+  sim.force = f;
+  sim.torque = t;
   d3::wake_body(state_, id.index);
   return Status::Ok();
 }

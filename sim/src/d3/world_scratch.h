@@ -59,6 +59,11 @@ struct alignas(32) SolverBody {
   Quat delta_rotation;
   Vec3 linear_acceleration;     ///< gravity plus applied force, m/s^2
   float linear_damping_factor;  ///< 1 / (1 + h * damping), per substep
+  /// Applied torque through the (locked) inverse inertia, rad/s^2; used
+  /// only when `torqued`, so bodies without a torque are integrated as if
+  /// the term did not exist.
+  Vec3 angular_acceleration;
+  bool torqued;
 };
 static_assert(offsetof(SolverBody, angular_velocity) == 3 * sizeof(float) &&
                   offsetof(SolverBody, inv_mass) == 6 * sizeof(float) &&

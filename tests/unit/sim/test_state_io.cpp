@@ -190,8 +190,9 @@ namespace {
 // rotation matrix. Revision 5: shallow overlaps are pushed out in the lanes,
 // colour by colour. Revision 6: box manifolds are carried forward while
 // their bodies barely move, box faces are clipped in the reference frame,
-// and the checksum covers each shape's half height (capsules).
-constexpr uint64_t kPinnedPileChecksum = 0x1050122cb1584199ull;
+// and the checksum covers each shape's half height (capsules), each body's
+// rotation locks and pending torque.
+constexpr uint64_t kPinnedPileChecksum = 0xb27774ac5eb1e101ull;
 
 TEST(StateIo, PinnedChecksumOfTheReferencePile) {
   World3D world;

@@ -32,6 +32,14 @@ struct Material {
   float restitution = 0.0f;  ///< bounce, [0, 1]
 };
 
+/// World axes a dynamic body never turns about (BodyDef::lock_rotation):
+/// a character capsule locks x and z to stay upright, kLockRotationAll
+/// keeps a body from turning at all.
+inline constexpr uint8_t kLockRotationX = 1;
+inline constexpr uint8_t kLockRotationY = 2;
+inline constexpr uint8_t kLockRotationZ = 4;
+inline constexpr uint8_t kLockRotationAll = 7;
+
 /// Everything needed to create a body. Values are validated (finite, in
 /// range) and quantized to the canonical grid on creation.
 struct BodyDef {
@@ -50,6 +58,9 @@ struct BodyDef {
   uint32_t mask = 0xFFFFFFFFu;  ///< layers this body collides with (both sides must agree)
   bool sensor = false;          ///< reports overlap events, never pushes
   uint64_t user_data = 0;       ///< game tag; part of state and the checksum
+  /// kLockRotation* bits: world axes the body never turns about (its
+  /// angular velocity about them stays zero, whatever pushes it), [0, 7].
+  uint8_t lock_rotation = 0;
 };
 
 }  // namespace rwd::sim

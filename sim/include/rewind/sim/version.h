@@ -31,7 +31,8 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///   6  box manifolds carried forward while their bodies barely move
 ///      relative to each other (the contact cache keeps each manifold's
 ///      frame); box-box clipping in the reference face's frame; push-out
-///      batches with nothing to push skipped; capsules
+///      batches with nothing to push skipped; capsules; rotation locks,
+///      torques and forces at a point
 inline constexpr uint32_t kSimRevision = 6;
 
 /// "rewind-sim r6": the engine identity a replay records.

@@ -96,6 +96,16 @@ class World3D {
   Status apply_linear_impulse(BodyId id, Vec3 impulse, Vec3 world_point);
   /// Adds a force (N) at the centre of mass for the next step only.
   Status apply_force(BodyId id, Vec3 force_n);
+  /// Adds a force (N) at a world point for the next step only: the force,
+  /// and its torque about the centre of mass.
+  Status apply_force_at(BodyId id, Vec3 force_n, Vec3 world_point);
+  /// Adds a torque (N m, world frame) for the next step only. A body turns
+  /// only about the axes it is not locked on.
+  Status apply_torque(BodyId id, Vec3 torque_nm);
+  /// Sets the world axes the body never turns about (kLockRotation* bits,
+  /// body.h); its angular velocity about them becomes zero. Works on any
+  /// live body, disabled ones included (they stay disabled).
+  Status set_rotation_lock(BodyId id, uint8_t locks);
   Status set_user_data(BodyId id, uint64_t user_data);
   /// Takes a body out of the simulation (false) or puts it back (true). A
   /// disabled body keeps its pose, has no velocity, no contacts (they end

@@ -37,6 +37,7 @@ struct BodyInfo {
   float linear_damping = 0.0f;   ///< 1/s
   float angular_damping = 0.0f;  ///< 1/s
   float gravity_scale = 1.0f;
+  uint8_t lock_rotation = 0;  ///< kLockRotation* bits (body.h)
 };
 
 /// Hot simulation state of one body slot, written every step while awake.
@@ -46,6 +47,7 @@ struct BodySim {
   Vec3 linear_velocity;     ///< m/s
   Vec3 angular_velocity;    ///< rad/s, world frame
   Vec3 force;               ///< N, accumulated for the next step only
+  Vec3 torque;              ///< N m, world frame, accumulated for the next step only
   float sleep_time = 0.0f;  ///< seconds spent below the sleep threshold
 };
 
