@@ -12,6 +12,7 @@
 // edits, so nothing that reaches the state may depend on it: callers use it
 // to find candidates and then decide on exact boxes, and sort what they
 // keep (broadphase.cpp).
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -58,6 +59,11 @@ class AabbTree {
   /// order (callers must not depend on that order).
   template <typename Visit>
   void query(const Aabb& box, Visit&& visit) const;
+
+  /// Calls visit(body) for every leaf whose box the segment origin +
+  /// t * dir, 0 <= t <= max_t, touches (slab test; in tree order).
+  template <typename Visit>
+  void ray_query(Vec3 origin, Vec3 dir, float max_t, Visit&& visit) const;
 
   uint32_t leaf_count() const { return leaves_; }
   /// Longest root-to-leaf path (0 for one leaf, -1 when empty).
@@ -110,6 +116,58 @@ void AabbTree::query(const Aabb& box, Visit&& visit) const {
   while (top > 0) {
     const Node& node = nodes_[stack[--top]];
     if (!overlaps(node.box, box)) continue;
+    if (node.child1 == kNull) {
+      visit(node.body);
+    } else {
+      stack[top++] = node.child1;
+      stack[top++] = node.child2;
+    }
+  }
+}
+
+// Whether the segment origin + t dir, t in [0, max_t], touches the box.
+inline bool segment_hits(const Aabb& box, Vec3 origin, Vec3 inv_dir, float max_t) {
+  float t_lo = 0.0f;
+  float t_hi = max_t;
+  for (int i = 0; i < 3; ++i) {
+    const float o = component(origin, i);
+    const float lo = component(box.lower, i);
+    const float hi = component(box.upper, i);
+    const float inv = component(inv_dir, i);
+    if (!std::isfinite(inv)) {  // parallel to the slabs
+      if (o < lo || o > hi) return false;
+      continue;
+    }
+    float t0 = (lo - o) * inv;
+    float t1 = (hi - o) * inv;
+    if (t0 > t1) {
+      const float t = t0;
+      t0 = t1;
+      t1 = t;
+    }
+    if (t0 > t_lo) t_lo = t0;
+    if (t1 < t_hi) t_hi = t1;
+    if (t_lo > t_hi) return false;
+  }
+  return true;
+}
+
+template <typename Visit>
+void AabbTree::ray_query(Vec3 origin, Vec3 dir, float max_t, Visit&& visit) const {
+  if (root_ == kNull) return;
+  const Vec3 inv_dir{1.0f / dir.x, 1.0f / dir.y, 1.0f / dir.z};
+  uint32_t local[128];
+  std::vector<uint32_t> deep;
+  uint32_t* stack = local;
+  if (nodes_[root_].height + 2 > 128) {
+    deep.resize(static_cast<size_t>(nodes_[root_].height) + 2);
+    stack = deep.data();
+  }
+  uint32_t top = 0;
+  stack[top++] = root_;
+  while (top > 0) {
+    const Node& node = nodes_[stack[--top]];
+    if (!segment_hits(node.box, origin, inv_dir, max_t)) continue;
     if (node.child1 == kNull) {
       visit(node.body);
     } else {

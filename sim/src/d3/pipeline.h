@@ -23,6 +23,7 @@ void find_pairs(const WorldState& state, WorldScratch& scratch);
 /// broadphase rebuilds its trees before the next pairs.
 inline void mark_static_dirty(WorldScratch& scratch) {
   scratch.static_dirty = true;
+  scratch.query_edited = true;
 }
 
 /// Replaces state.contacts with this step's cache (old one kept in

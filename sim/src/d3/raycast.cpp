@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
-// Ray queries. A linear scan over live bodies in index order: queries are
-// rare next to the step and the scan is exactly reproducible; a BVH over the
-// broadphase bounds is the planned replacement when scenes grow. Rays that
+// Ray queries, through the query trees (query_trees.h): the bodies whose
+// bounds the ray's segment touches are tested exactly, in index order, so
+// ties go to the lower index and no tree shape reaches a result. Rays that
 // start inside a shape hit it at distance 0 with the normal facing back
 // along the ray.
 #include <algorithm>
 #include <cmath>
 
 #include "d3/body_storage.h"
+#include "d3/query_trees.h"
 #include "d3/shape_ops.h"
 #include "rewind/sim/world3d.h"
 
@@ -23,13 +24,23 @@ bool prepare_ray(const Ray& ray, Vec3& dir) {
   return !(dir == Vec3{});
 }
 
+// Calls visit(hit) for every body the ray hits, in index order: the
+// candidates the query trees give for the ray's segment, sorted, each
+// tested exactly.
 template <class Visit>
-void cast(const WorldState& state, const Ray& ray, Vec3 dir, const QueryFilter& filter,
-          Visit&& visit) {
-  for (uint32_t i = 0; i < state.infos.size(); ++i) {
+void cast(const WorldState& state, WorldScratch& scratch, const Ray& ray, Vec3 dir,
+          const QueryFilter& filter, Visit&& visit) {
+  d3::refresh_query_trees(state, scratch);
+  std::vector<uint32_t>& candidates = scratch.query_hits;
+  candidates.clear();
+  const auto collect = [&](uint32_t i) {
+    if (d3::query_accepts(state, filter, i)) candidates.push_back(i);
+  };
+  scratch.query_static.ray_query(ray.origin, dir, ray.max_distance, collect);
+  scratch.query_movable.ray_query(ray.origin, dir, ray.max_distance, collect);
+  std::sort(candidates.begin(), candidates.end());
+  for (const uint32_t i : candidates) {
     const BodyInfo& info = state.infos[i];
-    if (!d3::is_simulated(info) || (info.layer & filter.layer_mask) == 0) continue;
-    if (info.sensor != 0 && !filter.include_sensors) continue;
     const BodySim& sim = state.sims[i];
     float t = 0.0f;
     Vec3 normal;
@@ -49,7 +60,7 @@ std::optional<RayHit> World3D::raycast(const Ray& ray, const QueryFilter& filter
   if (!prepare_ray(ray, dir)) return std::nullopt;
   std::optional<RayHit> best;
   // Index order plus a strict comparison: ties go to the lower index.
-  cast(state_, ray, dir, filter, [&](const RayHit& hit) {
+  cast(state_, *scratch_, ray, dir, filter, [&](const RayHit& hit) {
     if (!best || hit.distance < best->distance) best = hit;
   });
   return best;
@@ -60,7 +71,7 @@ void World3D::raycast_all(const Ray& ray, const QueryFilter& filter,
   out.clear();
   Vec3 dir;
   if (!prepare_ray(ray, dir)) return;
-  cast(state_, ray, dir, filter, [&](const RayHit& hit) { out.push_back(hit); });
+  cast(state_, *scratch_, ray, dir, filter, [&](const RayHit& hit) { out.push_back(hit); });
   std::sort(out.begin(), out.end(), [](const RayHit& l, const RayHit& r) {
     return l.distance < r.distance || (l.distance == r.distance && l.body.index < r.body.index);
   });

@@ -163,6 +163,17 @@ class WorldScratch {
   std::vector<uint32_t> tree_proxies;
   bool static_dirty = true;  ///< the world was edited: both trees are rebuilt
   std::vector<BodyPair> pairs;
+  // queries (query_trees.cpp): trees over every simulated body's exact
+  // bounds, made current when a query first needs them after a step or an
+  // edit, so a world nobody queries never pays for them
+  d3::AabbTree query_static;      ///< static bodies; rebuilt after edits
+  d3::AabbTree query_movable;     ///< every other simulated body; rebuilt per step
+  uint64_t query_serial = ~0ull;  ///< step_serial the movable tree was built at
+  bool query_edited = true;       ///< the world was edited since the trees were built
+  std::vector<uint32_t> query_bodies;
+  std::vector<Aabb> query_boxes;
+  std::vector<uint32_t> query_proxies;
+  std::vector<uint32_t> query_hits;  ///< one query's candidates
   std::vector<uint32_t> pair_start;  ///< counting sort of the pairs by a
   std::vector<BodyPair> pair_spare;
   // body frames (body_storage.h: body_axes)

@@ -134,6 +134,17 @@ class World3D {
   std::optional<RayHit> raycast(const Ray& ray, const QueryFilter& filter = {}) const;
   /// Every hit along the ray, sorted near to far (ties by index).
   void raycast_all(const Ray& ray, const QueryFilter& filter, std::vector<RayHit>& out) const;
+  /// Every body whose shape overlaps or touches `shape` placed at
+  /// `position` (m) and `rotation`, in index order, into `out` (cleared
+  /// first; a reused vector keeps its capacity, so the query does not
+  /// allocate once warm). kInvalidArgument, with `out` empty, for a shape
+  /// the body rule refuses or a non-finite or zero pose.
+  ///
+  /// Queries walk trees over the bodies' bounds (rebuilt the first time a
+  /// query needs them after a step or an edit) and test each candidate
+  /// exactly; they change no state.
+  Status overlap(const Shape& shape, Vec3 position, Quat rotation, const QueryFilter& filter,
+                 std::vector<BodyId>& out) const;
 
   // --- state --------------------------------------------------------------
 
