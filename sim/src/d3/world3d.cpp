@@ -4,6 +4,7 @@
 #include "rewind/sim/world3d.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "d3/body_storage.h"
@@ -419,13 +420,44 @@ void World3D::step() {
   WorldScratch& s = *scratch_;
   s.stats = StepStats{};
   s.body_events.clear();
+  if (!s.stage_timing) {
+    d3::find_pairs(state_, s);
+    d3::update_contacts(state_, s);
+    d3::wake_touched_islands(state_, s);
+    d3::build_events(state_, s);
+    d3::solve(state_, s);
+    d3::update_sleep(state_, s);
+    ++state_.step_count;
+    return;
+  }
+  // The same stages, each timed (the times are diagnostics, never state).
+  using Clock = std::chrono::steady_clock;
+  StepStats::StageTimes& t = s.stats.times;
+  const auto us = [](Clock::time_point from, Clock::time_point to) {
+    return std::chrono::duration<double, std::micro>(to - from).count();
+  };
+  const Clock::time_point t0 = Clock::now();
   d3::find_pairs(state_, s);
+  const Clock::time_point t1 = Clock::now();
   d3::update_contacts(state_, s);
+  const Clock::time_point t2 = Clock::now();
   d3::wake_touched_islands(state_, s);
   d3::build_events(state_, s);
+  const Clock::time_point t3 = Clock::now();
   d3::solve(state_, s);
+  const Clock::time_point t4 = Clock::now();
   d3::update_sleep(state_, s);
+  const Clock::time_point t5 = Clock::now();
+  t.broadphase_us = us(t0, t1);
+  t.narrowphase_us = us(t1, t2);
+  t.events_us = us(t2, t3);
+  t.solver_us = us(t3, t4);
+  t.sleep_us = us(t4, t5);
   ++state_.step_count;
+}
+
+void World3D::set_stage_timing(bool on) {
+  scratch_->stage_timing = on;
 }
 
 std::span<const ContactEvent> World3D::events() const {

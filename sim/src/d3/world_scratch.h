@@ -237,6 +237,7 @@ class WorldScratch {
   std::vector<float> island_sleep_time;
   std::vector<uint8_t> island_flag;
   // output
+  bool stage_timing = false;  ///< World3D::set_stage_timing
   std::vector<ContactEvent> events;
   std::vector<BodyEvent> body_events;
   StepStats stats;

@@ -213,5 +213,33 @@ TEST(World3D, LayerMasksFilterCollisions) {
   EXPECT_LT(world.position(g).y, -0.5f);  // fell through
 }
 
+TEST(World3D, StageTimesAreDiagnosticsOnly) {
+  // Two worlds, one timing its stages: same results bit for bit; times are
+  // zero when off and add up to something when on.
+  World3D timed;
+  World3D plain;
+  for (World3D* w : {&timed, &plain}) {
+    test::add_ground(*w);
+    for (int i = 0; i < 10; ++i) test::add_box(*w, {0.1f * i, 0.5f + 1.1f * i, 0.0f});
+  }
+  timed.set_stage_timing(true);
+  double total = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    timed.step();
+    plain.step();
+    ASSERT_EQ(timed.checksum(), plain.checksum());
+    const StepStats::StageTimes& t = timed.stats().times;
+    for (double v : {t.broadphase_us, t.narrowphase_us, t.events_us, t.solver_us, t.sleep_us}) {
+      EXPECT_GE(v, 0.0);
+      total += v;
+    }
+    EXPECT_EQ(plain.stats().times.solver_us, 0.0);
+  }
+  EXPECT_GT(total, 0.0);
+  timed.set_stage_timing(false);
+  timed.step();
+  EXPECT_EQ(timed.stats().times.solver_us, 0.0);
+}
+
 }  // namespace
 }  // namespace rwd::sim

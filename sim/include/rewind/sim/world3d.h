@@ -31,6 +31,15 @@ struct StepStats {
   /// Manifolds carried forward from their last computation because their
   /// bodies barely moved relative to each other (no shape collision run).
   uint32_t reused_manifolds = 0;
+  /// Wall time of each stage, microseconds; all zero unless
+  /// World3D::set_stage_timing(true) (the clock is read only then).
+  struct StageTimes {
+    double broadphase_us = 0.0;   ///< candidate pairs
+    double narrowphase_us = 0.0;  ///< manifolds, the contact cache
+    double events_us = 0.0;       ///< waking touched islands, contact events
+    double solver_us = 0.0;       ///< constraints, substeps, write back
+    double sleep_us = 0.0;        ///< islands falling asleep
+  } times;
 };
 
 class WorldScratch;  // per-step working memory; not state
@@ -124,6 +133,9 @@ class World3D {
   /// ordered by body index. Not state: restore() clears them.
   std::span<const BodyEvent> body_events() const;
   const StepStats& stats() const;
+  /// Measures each stage's wall time into stats().times (off by default:
+  /// a world that does not ask never reads the clock). Not state.
+  void set_stage_timing(bool on);
   const WorldConfig& config() const;
   /// Number of steps taken since creation.
   uint64_t step_count() const;
