@@ -3,7 +3,8 @@
 // axis never turns, an upright character capsule stays upright when struck,
 // a torque and an off-centre force change the velocities by the analytic
 // amounts (no gravity, one step), locked axes take no torque, bad arguments
-// change nothing, and snapshots keep locks and pending torques.
+// change nothing, snapshots keep locks and pending torques, and a kinematic
+// platform carries what rests on it by friction.
 #include <cmath>
 #include <vector>
 
@@ -166,6 +167,27 @@ TEST(LocksAndTorques, SnapshotsKeepLocksAndPendingTorques) {
   writer.restore(bad);
   writer.serialize(bytes);
   EXPECT_FALSE(loaded.deserialize(bytes).ok());
+}
+
+TEST(KinematicPlatform, CarriesWhatRestsOnItByFriction) {
+  // A kinematic platform moving at 1 m/s carries a box resting on it: after
+  // the box catches up (friction, mu 0.6) it moves with the platform.
+  WorldConfig c;
+  c.enable_sleep = false;
+  World3D world(c);
+  BodyDef platform;
+  platform.kind = BodyKind::kKinematic;
+  platform.shape = Shape::make_box({3.0f, 0.25f, 3.0f});
+  platform.position = {0.0f, 0.0f, 0.0f};
+  platform.linear_velocity = {1.0f, 0.0f, 0.0f};
+  const BodyId deck = *world.create_body(platform);
+  const BodyId box = test::add_box(world, {0.0f, 0.75f, 0.0f});
+  test::step_seconds(world, 1.0f);
+  EXPECT_NEAR(world.linear_velocity(box).x, 1.0f, 0.01f);
+  // It rides along: the platform moved 1 m, the box nearly as far.
+  EXPECT_NEAR(world.position(deck).x, 1.0f, 1e-4f);
+  EXPECT_GT(world.position(box).x, 0.9f);
+  EXPECT_NEAR(world.position(box).y, 0.75f, c.linear_slop_m + 0.001f);
 }
 
 }  // namespace
