@@ -89,6 +89,9 @@ class AabbTree {
   uint32_t balance(uint32_t a);
   void refit_upward(uint32_t node);
   uint32_t build_range(uint32_t* leaves, uint32_t count, uint32_t parent);
+  /// Visits the leaves under every node whose box `accept` takes.
+  template <typename Accept, typename Visit>
+  void walk(Accept&& accept, Visit&& visit) const;
   bool valid_subtree(uint32_t node, uint32_t parent) const;
 
   std::vector<Node> nodes_;
@@ -98,8 +101,8 @@ class AabbTree {
   uint32_t leaves_ = 0;
 };
 
-template <typename Visit>
-void AabbTree::query(const Aabb& box, Visit&& visit) const {
+template <typename Accept, typename Visit>
+void AabbTree::walk(Accept&& accept, Visit&& visit) const {
   if (root_ == kNull) return;
   // A depth-first walk holds at most one entry per level plus one. Rotations
   // keep the tree shallow (tens of levels for millions of leaves), so the
@@ -115,7 +118,7 @@ void AabbTree::query(const Aabb& box, Visit&& visit) const {
   stack[top++] = root_;
   while (top > 0) {
     const Node& node = nodes_[stack[--top]];
-    if (!overlaps(node.box, box)) continue;
+    if (!accept(node.box)) continue;
     if (node.child1 == kNull) {
       visit(node.body);
     } else {
@@ -123,6 +126,11 @@ void AabbTree::query(const Aabb& box, Visit&& visit) const {
       stack[top++] = node.child2;
     }
   }
+}
+
+template <typename Visit>
+void AabbTree::query(const Aabb& box, Visit&& visit) const {
+  walk([&box](const Aabb& node) { return overlaps(node, box); }, visit);
 }
 
 // Whether the segment origin + t dir, t in [0, max_t], touches the box.
@@ -154,27 +162,8 @@ inline bool segment_hits(const Aabb& box, Vec3 origin, Vec3 inv_dir, float max_t
 
 template <typename Visit>
 void AabbTree::ray_query(Vec3 origin, Vec3 dir, float max_t, Visit&& visit) const {
-  if (root_ == kNull) return;
   const Vec3 inv_dir{1.0f / dir.x, 1.0f / dir.y, 1.0f / dir.z};
-  uint32_t local[128];
-  std::vector<uint32_t> deep;
-  uint32_t* stack = local;
-  if (nodes_[root_].height + 2 > 128) {
-    deep.resize(static_cast<size_t>(nodes_[root_].height) + 2);
-    stack = deep.data();
-  }
-  uint32_t top = 0;
-  stack[top++] = root_;
-  while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    if (!segment_hits(node.box, origin, inv_dir, max_t)) continue;
-    if (node.child1 == kNull) {
-      visit(node.body);
-    } else {
-      stack[top++] = node.child1;
-      stack[top++] = node.child2;
-    }
-  }
+  walk([&](const Aabb& node) { return segment_hits(node, origin, inv_dir, max_t); }, visit);
 }
 
 }  // namespace rwd::sim::d3

@@ -271,6 +271,24 @@ typename A::F normal_velocity(const A& acc, const ContactBatch::Point& bp,
   return dot3(b.v - a.v, n) + dot3(rn_b, b.w) - dot3(rn_a, a.w);
 }
 
+// One projected Gauss-Seidel step at point p of a manifold's normal
+// system (sweep_normal_block).
+template <uint32_t N, class A>
+[[gnu::always_inline]] inline void sweep_step(const A& acc, const ContactBatch& batch, uint32_t p,
+                                              typename A::F gain,
+                                              typename A::F (&residual)[kMaxManifoldPoints],
+                                              typename A::F (&total)[kMaxManifoldPoints]) {
+  using F = typename A::F;
+  const F zero = A::splat(0.0f);
+  F next = total[p] - gain * residual[p];
+  next = select(next < zero, zero, next);
+  const F change = next - total[p];
+  total[p] = next;
+  for (uint32_t j = 0; j < N; ++j) {
+    residual[j] = residual[j] + acc.ld(batch.coupling[j][p]) * change;
+  }
+}
+
 // Projected Gauss-Seidel sweeps over each lane's manifold normal system
 // with the bodies held: impulse total[p] (accumulated, >= 0) moves so the
 // normal velocity residual[p] reaches zero, the first sweep scaled by
@@ -283,18 +301,9 @@ void sweep_normal_block(const A& acc, const ContactBatch& batch,
                         const typename A::F (&later_gain)[kMaxManifoldPoints],
                         typename A::F (&residual)[kMaxManifoldPoints],
                         typename A::F (&total)[kMaxManifoldPoints]) {
-  using F = typename A::F;
-  const F zero = A::splat(0.0f);
   for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
     for (uint32_t p = 0; p < N; ++p) {
-      const F gain = sweep == 0 ? first_gain[p] : later_gain[p];
-      F next = total[p] - gain * residual[p];
-      next = select(next < zero, zero, next);
-      const F change = next - total[p];
-      total[p] = next;
-      for (uint32_t j = 0; j < N; ++j) {
-        residual[j] = residual[j] + acc.ld(batch.coupling[j][p]) * change;
-      }
+      sweep_step<N>(acc, batch, p, sweep == 0 ? first_gain[p] : later_gain[p], residual, total);
     }
   }
 }
@@ -343,23 +352,6 @@ template <uint32_t N, class A>
     s.step[p] = acc.ld(bp.normal_mass);
     s.total[p] = acc.ld(bp.normal_impulse);
     s.start[p] = s.total[p];
-  }
-}
-
-// One Gauss-Seidel step of sweep_normal_block at point p.
-template <uint32_t N, class A>
-[[gnu::always_inline]] inline void sweep_step(const A& acc, const ContactBatch& batch, uint32_t p,
-                                              typename A::F gain,
-                                              typename A::F (&residual)[kMaxManifoldPoints],
-                                              typename A::F (&total)[kMaxManifoldPoints]) {
-  using F = typename A::F;
-  const F zero = A::splat(0.0f);
-  F next = total[p] - gain * residual[p];
-  next = select(next < zero, zero, next);
-  const F change = next - total[p];
-  total[p] = next;
-  for (uint32_t j = 0; j < N; ++j) {
-    residual[j] = residual[j] + acc.ld(batch.coupling[j][p]) * change;
   }
 }
 
