@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
-// Queries through the query trees: overlap and ray queries against a brute
-// force over every body (same exact tests), in a mixed scene that moves,
-// sleeps, is edited and restored between queries; filters; bad arguments.
+// Queries through the query trees: overlap, ray and nearest-body queries
+// against a brute force over every body (same exact tests), in a mixed
+// scene that moves, sleeps, is edited and restored between queries;
+// filters; signed distances to each shape; bad arguments.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -123,6 +125,27 @@ void expect_queries_match(const World3D& world, Rng& rng, const char* when) {
       EXPECT_EQ(all[h].body, expected[h].body) << when << ", ray " << k;
       EXPECT_EQ(all[h].distance, expected[h].distance) << when << ", ray " << k;
     }
+    // The nearest body: a brute force over every body's signed distance.
+    const Vec3 at{rng.uniform(-7.0f, 7.0f), rng.uniform(-0.5f, 8.0f), rng.uniform(-7.0f, 7.0f)};
+    const float reach = rng.uniform(0.0f, 2.0f);
+    std::optional<PointHit> nearest;
+    std::vector<BodyId> every;
+    world.body_ids(every);
+    for (const BodyId id : every) {
+      const BodyInfo& info = world.state().infos[id.index];
+      if (info.enabled == 0 || (info.layer & filter.layer_mask) == 0) continue;
+      if (info.sensor != 0 && !filter.include_sensors) continue;
+      const std::optional<PointHit> d = world.signed_distance(id, at);
+      ASSERT_TRUE(d.has_value());
+      if (d->distance <= reach && (!nearest || d->distance < nearest->distance)) nearest = d;
+    }
+    const std::optional<PointHit> found = world.nearest_body(at, reach, filter);
+    ASSERT_EQ(found.has_value(), nearest.has_value()) << when << ", point " << k;
+    if (found) {
+      EXPECT_EQ(found->body, nearest->body) << when << ", point " << k;
+      EXPECT_EQ(found->distance, nearest->distance) << when << ", point " << k;
+    }
+
     const auto closest = world.raycast(ray, filter);
     ASSERT_EQ(closest.has_value(), !expected.empty()) << when << ", ray " << k;
     if (closest) {
@@ -186,6 +209,50 @@ TEST(Queries, OverlapFindsWhatItTouchesAndRefusesBadShapes) {
   Shape unknown;
   unknown.type = static_cast<ShapeType>(200);
   EXPECT_FALSE(world.overlap(unknown, {}, {}, {}, got).ok());
+}
+
+TEST(Queries, SignedDistanceToEachShape) {
+  World3D world;
+  BodyDef def;
+  def.kind = BodyKind::kStatic;
+  def.shape = Shape::make_box({1.0f, 0.5f, 2.0f});
+  const BodyId box = *world.create_body(def);
+  def.shape = Shape::make_sphere(0.5f);
+  def.position = {10.0f, 0.0f, 0.0f};
+  const BodyId ball = *world.create_body(def);
+  def.shape = Shape::make_capsule(0.25f, 1.0f);
+  def.position = {20.0f, 0.0f, 0.0f};
+  const BodyId cap = *world.create_body(def);
+  // Box: above the top face, beyond a corner, and inside near the +x face.
+  auto d = world.signed_distance(box, {0.2f, 1.5f, 0.3f});
+  ASSERT_TRUE(d.has_value());
+  EXPECT_NEAR(d->distance, 1.0f, 1e-5f);
+  EXPECT_NEAR(d->normal.y, 1.0f, 1e-5f);
+  EXPECT_NEAR(d->point.y, 0.5f, 1e-5f);
+  d = world.signed_distance(box, {2.0f, 1.5f, 3.0f});
+  EXPECT_NEAR(d->distance, std::sqrt(3.0f), 1e-5f);
+  d = world.signed_distance(box, {0.9f, 0.0f, 0.0f});
+  EXPECT_NEAR(d->distance, -0.1f, 1e-5f);
+  EXPECT_NEAR(d->normal.x, 1.0f, 1e-5f);
+  EXPECT_NEAR(d->point.x, 1.0f, 1e-5f);
+  // Sphere and capsule (side and cap).
+  d = world.signed_distance(ball, {10.0f, 2.0f, 0.0f});
+  EXPECT_NEAR(d->distance, 1.5f, 1e-5f);
+  EXPECT_NEAR(d->point.y, 0.5f, 1e-5f);
+  d = world.signed_distance(cap, {20.5f, 0.3f, 0.0f});
+  EXPECT_NEAR(d->distance, 0.25f, 1e-5f);
+  EXPECT_NEAR(d->normal.x, 1.0f, 1e-5f);
+  d = world.signed_distance(cap, {20.0f, 2.0f, 0.0f});
+  EXPECT_NEAR(d->distance, 0.75f, 1e-5f);
+  // Unknown ids and bad points find nothing; a nearest search within
+  // reach finds the sphere, and with no reach nothing.
+  EXPECT_FALSE(world.signed_distance(BodyId{9, 1}, {}).has_value());
+  EXPECT_FALSE(world.signed_distance(box, {std::nanf(""), 0.0f, 0.0f}).has_value());
+  auto n = world.nearest_body({10.0f, 1.2f, 0.0f}, 1.0f);
+  ASSERT_TRUE(n.has_value());
+  EXPECT_EQ(n->body, ball);
+  EXPECT_FALSE(world.nearest_body({10.0f, 1.2f, 0.0f}, 0.5f).has_value());
+  EXPECT_FALSE(world.nearest_body({10.0f, 1.2f, 0.0f}, -1.0f).has_value());
 }
 
 }  // namespace

@@ -27,4 +27,12 @@ struct RayHit {
   Vec3 normal;            ///< outward surface normal at the hit
 };
 
+/// The nearest surface point of a body to a query point.
+struct PointHit {
+  BodyId body;
+  float distance = 0.0f;  ///< metres to the surface; negative inside the body
+  Vec3 point;             ///< the nearest point on the body's surface
+  Vec3 normal;            ///< the surface's outward normal there
+};
+
 }  // namespace rwd::sim

@@ -157,6 +157,16 @@ class World3D {
   /// exactly; they change no state.
   Status overlap(const Shape& shape, Vec3 position, Quat rotation, const QueryFilter& filter,
                  std::vector<BodyId>& out) const;
+  /// The body whose surface is nearest `point` within `max_distance` m
+  /// (a body the point is inside counts, at its negative depth), or
+  /// nullopt; ties go to the lower index. A non-finite point or a negative
+  /// or non-finite distance finds nothing.
+  std::optional<PointHit> nearest_body(Vec3 point, float max_distance,
+                                       const QueryFilter& filter = {}) const;
+  /// Signed distance from `point` to a body's surface (negative inside)
+  /// with the nearest surface point and its normal; nullopt for an unknown
+  /// id or a non-finite point.
+  std::optional<PointHit> signed_distance(BodyId id, Vec3 point) const;
 
   // --- state --------------------------------------------------------------
 

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: MIT
+// Point queries: the signed distance from a point to a body's surface, and
+// the body nearest a point. A point is a sphere of radius zero, so the
+// collide table's sphere routines give the answer: the separation is the
+// signed distance, the manifold point lies midway between the query point
+// and the surface (so the surface point is twice it less the query point),
+// and the normal runs from the point toward the body.
+#include <algorithm>
+#include <cmath>
+
+#include "d3/body_storage.h"
+#include "d3/manifold.h"
+#include "d3/query_trees.h"
+#include "rewind/sim/world3d.h"
+
+namespace rwd::sim {
+namespace {
+
+// The point's distance to body i, if within `reach` (or inside).
+std::optional<PointHit> point_to_body(const WorldState& state, uint32_t i, Vec3 point,
+                                      float reach) {
+  const BodyInfo& info = state.infos[i];
+  const BodySim& sim = state.sims[i];
+  Shape dot = Shape::make_sphere(0.0f);
+  d3::Manifold m;
+  d3::collide_shapes(dot, {point, Quat{}, Mat3{}}, info.shape,
+                     {sim.position, sim.rotation, mat3_from_quat(sim.rotation)}, reach, m);
+  if (m.point_count == 0) return std::nullopt;
+  const d3::ManifoldPoint& p = m.points[0];
+  return PointHit{BodyId{i, info.generation}, p.separation, p.point * 2.0f - point, -m.normal};
+}
+
+}  // namespace
+
+std::optional<PointHit> World3D::signed_distance(BodyId id, Vec3 point) const {
+  if (!d3::is_live(state_, id) || !is_finite(point)) return std::nullopt;
+  // Far enough to reach any surface of a shape the rule allows.
+  const float reach = length(point - state_.sims[id.index].position) + 4.0f * 1000.0f;
+  return point_to_body(state_, id.index, point, reach);
+}
+
+std::optional<PointHit> World3D::nearest_body(Vec3 point, float max_distance,
+                                              const QueryFilter& filter) const {
+  if (!is_finite(point) || !std::isfinite(max_distance) || max_distance < 0.0f) {
+    return std::nullopt;
+  }
+  WorldScratch& scratch = *scratch_;
+  d3::refresh_query_trees(state_, scratch);
+  std::vector<uint32_t>& candidates = scratch.query_hits;
+  candidates.clear();
+  const Vec3 r{max_distance, max_distance, max_distance};
+  const d3::Aabb box{point - r, point + r};
+  const auto collect = [&](uint32_t i) {
+    if (d3::query_accepts(state_, filter, i)) candidates.push_back(i);
+  };
+  scratch.query_static.query(box, collect);
+  scratch.query_movable.query(box, collect);
+  std::sort(candidates.begin(), candidates.end());
+  std::optional<PointHit> best;
+  for (const uint32_t i : candidates) {
+    const std::optional<PointHit> hit = point_to_body(state_, i, point, max_distance);
+    if (!hit || hit->distance > max_distance) continue;
+    if (!best || hit->distance < best->distance) best = hit;
+  }
+  return best;
+}
+
+}  // namespace rwd::sim
