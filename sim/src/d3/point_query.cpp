@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: MIT
-// Point queries: the signed distance from a point to a body's surface, and
-// the body nearest a point. A point is a sphere of radius zero, so the
-// collide table's sphere routines give the answer: the separation is the
-// signed distance, the manifold point lies midway between the query point
-// and the surface (so the surface point is twice it less the query point),
-// and the normal runs from the point toward the body.
+// Point and pair queries: the signed distance from a point to a body's
+// surface, the body nearest a point, and the manifold of two bodies. A point is a sphere of radius
+// zero, so the collide table's sphere routines give the answer: the separation is the signed
+// distance, the manifold point lies midway between the query point and the surface (so the surface
+// point is twice it less the query point), and the normal runs from the point toward the body.
 #include <algorithm>
 #include <cmath>
 
@@ -63,6 +62,29 @@ std::optional<PointHit> World3D::nearest_body(Vec3 point, float max_distance,
     if (!best || hit->distance < best->distance) best = hit;
   }
   return best;
+}
+
+std::optional<ContactManifold> World3D::contact_manifold(BodyId a, BodyId b,
+                                                         float max_separation) const {
+  if (!d3::is_live(state_, a) || !d3::is_live(state_, b) || a == b) return std::nullopt;
+  if (!(std::isfinite(max_separation) && max_separation >= 0.0f && max_separation <= 1000.0f)) {
+    return std::nullopt;
+  }
+  const BodyInfo& ia = state_.infos[a.index];
+  const BodyInfo& ib = state_.infos[b.index];
+  const BodySim& sa = state_.sims[a.index];
+  const BodySim& sb = state_.sims[b.index];
+  d3::Manifold m;
+  d3::collide_shapes(ia.shape, {sa.position, sa.rotation, mat3_from_quat(sa.rotation)}, ib.shape,
+                     {sb.position, sb.rotation, mat3_from_quat(sb.rotation)}, max_separation, m);
+  ContactManifold out;
+  out.normal = m.normal;
+  for (uint32_t p = 0; p < m.point_count; ++p) {
+    if (m.points[p].separation > max_separation) continue;
+    out.points[out.point_count++] = {m.points[p].point, m.points[p].separation};
+  }
+  if (out.point_count == 0) return std::nullopt;
+  return out;
 }
 
 }  // namespace rwd::sim

@@ -255,5 +255,33 @@ TEST(Queries, SignedDistanceToEachShape) {
   EXPECT_FALSE(world.nearest_body({10.0f, 1.2f, 0.0f}, -1.0f).has_value());
 }
 
+TEST(Queries, ContactManifoldOfTwoBodies) {
+  World3D world;
+  test::add_ground(world);
+  const BodyId ground = BodyId{0, 1};
+  const BodyId box = test::add_box(world, {0.0f, 0.49f, 0.0f});  // 1 cm into the ground
+  const BodyId far = test::add_box(world, {5.0f, 0.6f, 0.0f});   // 10 cm above it
+  auto m = world.contact_manifold(ground, box);
+  ASSERT_TRUE(m.has_value());
+  EXPECT_EQ(m->point_count, 4u);
+  EXPECT_NEAR(m->normal.y, 1.0f, 1e-5f);
+  for (uint32_t i = 0; i < m->point_count; ++i) {
+    EXPECT_NEAR(m->points[i].separation, -0.01f, 1e-5f);
+  }
+  // Reversed order: the normal runs from the first body.
+  m = world.contact_manifold(box, ground);
+  ASSERT_TRUE(m.has_value());
+  EXPECT_NEAR(m->normal.y, -1.0f, 1e-5f);
+  // Apart: nothing at 0, the gap within a larger reach.
+  EXPECT_FALSE(world.contact_manifold(ground, far).has_value());
+  m = world.contact_manifold(ground, far, 0.2f);
+  ASSERT_TRUE(m.has_value());
+  EXPECT_NEAR(m->points[0].separation, 0.1f, 1e-5f);
+  // Bad arguments.
+  EXPECT_FALSE(world.contact_manifold(box, box).has_value());
+  EXPECT_FALSE(world.contact_manifold(box, BodyId{40, 1}).has_value());
+  EXPECT_FALSE(world.contact_manifold(ground, far, -1.0f).has_value());
+}
+
 }  // namespace
 }  // namespace rwd::sim

@@ -27,6 +27,19 @@ struct RayHit {
   Vec3 normal;            ///< outward surface normal at the hit
 };
 
+/// Where two bodies touch, as the narrowphase sees them: one normal and up
+/// to four points (World3D::contact_manifold).
+struct ContactManifold {
+  static constexpr uint32_t kMaxPoints = 4;
+  struct Point {
+    Vec3 position;     ///< world, midway between the two surfaces
+    float separation;  ///< metres, negative where the bodies overlap
+  };
+  Vec3 normal;  ///< unit, from the first body toward the second
+  uint32_t point_count = 0;
+  Point points[kMaxPoints];
+};
+
 /// The nearest surface point of a body to a query point.
 struct PointHit {
   BodyId body;

@@ -167,6 +167,12 @@ class World3D {
   /// with the nearest surface point and its normal; nullopt for an unknown
   /// id or a non-finite point.
   std::optional<PointHit> signed_distance(BodyId id, Vec3 point) const;
+  /// The contact manifold of two live bodies as they stand: points whose
+  /// separation is at most `max_separation` m (0: touching or overlapping;
+  /// in [0, 1000]), or nullopt when there are none, an id is unknown or
+  /// both are the same body.
+  std::optional<ContactManifold> contact_manifold(BodyId a, BodyId b,
+                                                  float max_separation = 0.0f) const;
 
   // --- state --------------------------------------------------------------
 
