@@ -252,36 +252,18 @@ TEST(ManifoldReuse, SnapshotsWithABrokenFrameAreRefused) {
   EXPECT_EQ(world.checksum(), before);  // every refusal left the world as it was
 }
 
-// SplitMix64, for reproducible random poses.
-uint64_t next(uint64_t& s) {
-  uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-float uniform(uint64_t& s, float lo, float hi) {
-  return lo + (hi - lo) * static_cast<float>(next(s) >> 40) / static_cast<float>(1ull << 24);
-}
-
 TEST(SeparatingAxis, RetestAgreesWithTheFullTest) {
-  uint64_t seed = 12345;
+  test::Rng rng{12345};
+  const auto uniform = [&rng](float lo, float hi) { return rng.uniform(lo, hi); };
   int separated = 0;
   for (int n = 0; n < 20000; ++n) {
-    const Vec3 half_a{uniform(seed, 0.05f, 1.0f), uniform(seed, 0.05f, 1.0f),
-                      uniform(seed, 0.05f, 1.0f)};
-    const Vec3 half_b{uniform(seed, 0.05f, 1.0f), uniform(seed, 0.05f, 1.0f),
-                      uniform(seed, 0.05f, 1.0f)};
-    const Quat qa = normalize(Quat{uniform(seed, -1.0f, 1.0f), uniform(seed, -1.0f, 1.0f),
-                                   uniform(seed, -1.0f, 1.0f), uniform(seed, -1.0f, 1.0f)});
+    const Vec3 half_a{uniform(0.05f, 1.0f), uniform(0.05f, 1.0f), uniform(0.05f, 1.0f)};
+    const Vec3 half_b{uniform(0.05f, 1.0f), uniform(0.05f, 1.0f), uniform(0.05f, 1.0f)};
+    const Quat qa = rng.rotation();
     // Every fourth pair face-aligned, where parallel edge axes are skipped.
-    const Quat qb = n % 4 == 0
-                        ? qa
-                        : normalize(Quat{uniform(seed, -1.0f, 1.0f), uniform(seed, -1.0f, 1.0f),
-                                         uniform(seed, -1.0f, 1.0f), uniform(seed, -1.0f, 1.0f)});
-    const Vec3 ca{uniform(seed, -1.0f, 1.0f), uniform(seed, -1.0f, 1.0f),
-                  uniform(seed, -1.0f, 1.0f)};
-    const Vec3 cb = ca + Vec3{uniform(seed, -1.5f, 1.5f), uniform(seed, -1.5f, 1.5f),
-                              uniform(seed, -1.5f, 1.5f)};
+    const Quat qb = n % 4 == 0 ? qa : rng.rotation();
+    const Vec3 ca{uniform(-1.0f, 1.0f), uniform(-1.0f, 1.0f), uniform(-1.0f, 1.0f)};
+    const Vec3 cb = ca + Vec3{uniform(-1.5f, 1.5f), uniform(-1.5f, 1.5f), uniform(-1.5f, 1.5f)};
     const Mat3 ra = mat3_from_quat(qa);
     const Mat3 rb = mat3_from_quat(qb);
     Manifold m;

@@ -19,22 +19,8 @@
 namespace rwd::sim {
 namespace {
 
-// SplitMix64, for reproducible scenes and queries.
-struct Rng {
-  uint64_t s;
-  uint64_t next() {
-    uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  float uniform(float lo, float hi) {
-    return lo + (hi - lo) * static_cast<float>(next() >> 40) / static_cast<float>(1ull << 24);
-  }
-  Quat rotation() {
-    return normalize(Quat{uniform(-1.0f, 1.0f), uniform(-1.0f, 1.0f), uniform(-1.0f, 1.0f),
-                          uniform(-1.0f, 1.0f)});
-  }
+// Reproducible random shapes on top of the shared generator.
+struct Rng : test::Rng {
   Shape shape() {
     switch (next() % 3) {
       case 0:
@@ -156,7 +142,8 @@ void expect_queries_match(const World3D& world, Rng& rng, const char* when) {
 
 TEST(Queries, MatchABruteForceThroughStepsSleepEditsAndRestore) {
   World3D world;
-  Rng rng{42};
+  Rng rng;
+  rng.state = 42;
   build_scene(world, rng);
   expect_queries_match(world, rng, "before any step");
   WorldState early;
