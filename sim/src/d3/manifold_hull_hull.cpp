@@ -1,0 +1,572 @@
+// SPDX-License-Identifier: MIT
+// Hull-hull manifold by the separating-axis test (D. Gregorius, "The
+// Separating Axis Test between Convex Polyhedra", GDC 2013):
+//  - face queries: for each face of one hull, the deepest vertex of the
+//    other along the face's inward normal gives the separation;
+//  - edge queries: only edge pairs whose arcs cross on the Gauss map (the
+//    pairs that build a face of the Minkowski difference) are tested, along
+//    cross(edge_a, edge_b) turned away from A's centre;
+// then either
+//  - a face contact: the incident face (the other hull's face most
+//    anti-parallel to the reference face) is clipped against the reference
+//    face's side planes (Sutherland-Hodgman), points within the speculative
+//    distance are kept, midway between the surfaces, and reduced to four; or
+//  - an edge contact: one point midway between the closest points of the
+//    two edges.
+// The other hull is brought into each hull's own frame once (at most 64
+// vertices each way), so every query reads the hulls' stored planes as they
+// are; A's faces are tested in A's frame and B's in B's.
+//
+// Feature ids:
+//   face contact: bit 31 clear; bit 30 = reference face is on hull B;
+//     bits 23-29 reference face index, bits 16-22 incident face index;
+//     bits 7-13 and 0-6 the two lines the point lies on, the polygon side
+//     arriving at it (7-13) and the side leaving it (0-6), in the clipped
+//     polygon's order. A line is incident loop edge k (from loop vertex k
+//     to k + 1) as k, or reference side plane s (the side through reference
+//     loop vertices s and s + 1) as 64 + s. An incident vertex that survives
+//     clipping is (k - 1, k); a point where incident edge k leaves through
+//     side s is (k, 64 + s) and one where it enters is (64 + s, k); a
+//     reference corner inside the incident face is (64 + s', 64 + s). Lines
+//     of a convex polygon meet once, so ids are unique within a manifold,
+//     and they stay the same while the features touching stay the same.
+//   edge contact: bit 31 set; bits 8-15 edge of A, bits 0-7 edge of B.
+// Faces (at most 124) and loop sides (at most 64) fit these fields.
+#include "d3/manifold_hull_sat.h"
+
+#include <cmath>
+#include <limits>
+
+namespace rwd::sim::d3 {
+namespace {
+
+// Euler's formula bounds a hull of V vertices to 2V - 4 faces and 3V - 6
+// edges; the per-call scratch is sized by these.
+constexpr uint32_t kMaxFaces = 2 * kHullMaxVertices - 4;
+constexpr uint32_t kMaxEdges = 3 * kHullMaxVertices - 6;
+
+// Face contacts win near-ties: they give up to four well-spread points and
+// ids that persist, which is what keeps stacks still. B's face is used only
+// when it separates more than A's by kFaceTolerance (as collide_boxes does,
+// so a box and a box-shaped hull choose alike), and an edge only when it
+// separates more than the best face by kEdgeTolerance plus
+// kEdgeRelativeTolerance of the face separation's size: deep overlaps
+// (fast impacts, large hulls) have larger rounding and more room for the
+// edge and face depths to trade places from step to step, so the margin
+// grows with them. At the small depths of resting contact the rule is
+// collide_boxes' (1 mm); it is never weaker than it.
+constexpr float kFaceTolerance = 0.0005f;        // metres
+constexpr float kEdgeTolerance = 0.001f;         // metres
+constexpr float kEdgeRelativeTolerance = 0.02f;  // of |face separation|
+// Edge pairs whose cross product is shorter than this (sin^2 of the angle
+// between them) are parallel; the face axes cover their direction.
+constexpr float kParallelSinSquared = 1e-6f;
+// Side planes are pushed out by this much before clipping, as collide_boxes
+// does: equal hulls stacked flush have incident vertices exactly on the
+// reference face's sides, and without the margin rounding would decide each
+// step whether a vertex survives (keeping its id) or is replaced by clipped
+// points with other ids.
+constexpr float kClipTolerance = 0.001f;  // metres
+// Reduction to four points: candidates within kDepthTie of the deepest
+// count as equally deep, and spreads within kSpreadTie (relative) of the
+// best as equally good; among equals the lowest feature id wins. Resting
+// faces are flat to rounding, so "the deepest" would otherwise be decided by
+// the last bit from one step to the next and the kept corners would flicker;
+// ids are persistent, so this choice is too (and it does not depend on the
+// order clipping produced the candidates in).
+constexpr float kDepthTie = 0.0005f;  // metres
+constexpr float kSpreadTie = 0.01f;
+// Clipping a convex polygon by a plane adds at most one vertex: 64 incident
+// vertices clipped by a 64-sided reference face end with at most 128.
+// Rounding can make a nearly degenerate polygon gain more; clip_polygon
+// drops vertices past the capacity instead of writing beyond it.
+constexpr int kMaxClip = 2 * static_cast<int>(kHullMaxVertices) + 2;
+constexpr uint32_t kReferenceSide = 64;  // line label of reference side s: 64 + s
+
+constexpr float kLowest = -std::numeric_limits<float>::max();
+
+// x -> r x + t.
+struct Transform {
+  Mat3 r;
+  Vec3 t;
+};
+
+Vec3 mul_transpose(const Mat3& m, Vec3 v) {
+  return {dot(m.c0, v), dot(m.c1, v), dot(m.c2, v)};
+}
+
+// From the frame at (p_from, r_from) to the frame at (p_to, r_to), both
+// world poses: r_to^T (r_from x + p_from - p_to). The centre offset is taken
+// in world space first, so far from the origin only the offset rounds.
+Transform relative(Vec3 p_to, const Mat3& r_to, Vec3 p_from, const Mat3& r_from) {
+  return {{mul_transpose(r_to, r_from.c0), mul_transpose(r_to, r_from.c1),
+           mul_transpose(r_to, r_from.c2)},
+          mul_transpose(r_to, p_from - p_to)};
+}
+
+bool view_fits(const HullView& h) {
+  return h.vertex_count > 0 && h.vertex_count <= kHullMaxVertices && h.face_count > 0 &&
+         h.face_count <= kMaxFaces && h.edge_count <= kMaxEdges;
+}
+
+// A loop's length as the scratch can hold it (a valid hull's loops never
+// exceed its vertex count).
+uint32_t loop_count(const HullFace& f) {
+  return f.count < kHullMaxVertices ? f.count : kHullMaxVertices;
+}
+
+struct FaceQuery {
+  float separation = kLowest;
+  uint32_t face = 0;
+};
+
+// The faces of `hull` against `other`'s vertices in hull's frame: the
+// largest separation and its face (ties to the lower index). Stops at a
+// face that separates by more than speculative_m.
+FaceQuery query_faces(const HullView& hull, const Vec3* other, uint32_t other_count,
+                      float speculative_m) {
+  FaceQuery best;
+  for (uint32_t f = 0; f < hull.face_count; ++f) {
+    const Vec3 n = hull.faces[f].normal;
+    float deepest = dot(n, other[0]);
+    for (uint32_t v = 1; v < other_count; ++v) {
+      const float d = dot(n, other[v]);
+      if (d < deepest) deepest = d;
+    }
+    const float sep = deepest - hull.faces[f].offset;
+    if (sep > best.separation) {
+      best.separation = sep;
+      best.face = f;
+      if (sep > speculative_m) break;
+    }
+  }
+  return best;
+}
+
+struct EdgeQuery {
+  float separation = kLowest;
+  uint32_t edge_a = 0;
+  uint32_t edge_b = 0;
+  Vec3 axis;  // unit, A's frame, from A to B
+};
+
+// Edge pairs of A and B (B's vertices and face normals in A's frame) that
+// build a face of the Minkowski difference A - B, each tested along the
+// normal of that face. Ties to the lower (edge_a, edge_b). Stops at a pair
+// that separates by more than speculative_m.
+EdgeQuery query_edges(const HullView& a, const HullView& b, const Vec3* b_vertices,
+                      const Vec3* b_normals, float speculative_m) {
+  // The arc of B's edge on the Gauss map of -B runs between -c and -d (its
+  // faces' normals negated); the plane through that arc has normal
+  // (-d) x (-c) = d x c.
+  Vec3 dxc[kMaxEdges];
+  for (uint32_t j = 0; j < b.edge_count; ++j) {
+    const HullEdge& e = b.edges[j];
+    dxc[j] = cross(b_normals[e.face_right], b_normals[e.face_left]);
+  }
+  // Per edge of A, the side of each of B's normals relative to the plane of
+  // A's arc, once per face instead of twice per edge pair: most pairs fail
+  // the first test below, which then costs two lookups and a product.
+  float side[kMaxFaces];
+  EdgeQuery best;
+  for (uint32_t i = 0; i < a.edge_count; ++i) {
+    const HullEdge& ea = a.edges[i];
+    const Vec3 na = a.faces[ea.face_left].normal;
+    const Vec3 nb = a.faces[ea.face_right].normal;
+    const Vec3 bxa = cross(nb, na);
+    for (uint32_t f = 0; f < b.face_count; ++f) side[f] = dot(b_normals[f], bxa);
+    const Vec3 pa = a.vertices[ea.v0];
+    const Vec3 ua = a.vertices[ea.v1] - pa;
+    const float ua_sq = length_squared(ua);
+    for (uint32_t j = 0; j < b.edge_count; ++j) {
+      const HullEdge& eb = b.edges[j];
+      // Arcs (na, nb) and (-nc, -nd) cross: -nc and -nd lie on opposite
+      // sides of the plane of na nb, na and nb on opposite sides of the
+      // plane of -nc -nd, and both arcs lie in the same hemisphere (not on
+      // the antipodal crossing of the two great circles).
+      const float cba = -side[eb.face_left];
+      const float dba = -side[eb.face_right];
+      if (!(cba * dba < 0.0f)) continue;
+      const float adc = dot(na, dxc[j]);
+      const float bdc = dot(nb, dxc[j]);
+      if (!(adc * bdc < 0.0f && cba * bdc > 0.0f)) continue;
+      const Vec3 pb = b_vertices[eb.v0];
+      const Vec3 ub = b_vertices[eb.v1] - pb;
+      Vec3 l = cross(ua, ub);
+      const float l_sq = length_squared(l);
+      if (l_sq <= kParallelSinSquared * ua_sq * length_squared(ub)) continue;
+      l = l * (1.0f / std::sqrt(l_sq));
+      // A's frame origin is its centre of mass, inside A; the axis points
+      // out of A through its edge.
+      if (dot(l, pa) < 0.0f) l = -l;
+      const float sep = dot(l, pb - pa);
+      if (sep > best.separation) {
+        best.separation = sep;
+        best.edge_a = i;
+        best.edge_b = j;
+        best.axis = l;
+        if (sep > speculative_m) return best;
+      }
+    }
+  }
+  return best;
+}
+
+// A vertex of the clipped polygon: position (reference hull's frame) and the
+// labels of the polygon sides arriving at it and leaving it (see the
+// feature-id notes at the top).
+struct ClipVertex {
+  Vec3 p;
+  uint8_t in;
+  uint8_t out;
+};
+
+// Keeps the part of `in` where dot(plane, x) <= offset; the plane is line
+// `label`. A crossing is made only where the two ends are strictly on
+// opposite sides: an end exactly on the plane is kept as it is rather than
+// doubled by a crossing at the same place.
+int clip_polygon(const ClipVertex* in, int count, Vec3 plane, float offset, uint8_t label,
+                 ClipVertex* out) {
+  float dist[kMaxClip];
+  for (int m = 0; m < count; ++m) dist[m] = dot(plane, in[m].p) - offset;
+  int n = 0;
+  for (int m = 0; m < count; ++m) {
+    const int next = m + 1 == count ? 0 : m + 1;
+    const ClipVertex& p = in[m];
+    const ClipVertex& q = in[next];
+    const float dp = dist[m];
+    const float dq = dist[next];
+    if (dp <= 0.0f && n < kMaxClip) out[n++] = p;
+    if (((dp < 0.0f && dq > 0.0f) || (dp > 0.0f && dq < 0.0f)) && n < kMaxClip) {
+      const float t = dp / (dp - dq);  // signs differ strictly, so dp - dq != 0
+      ClipVertex x;
+      x.p = p.p + (q.p - p.p) * t;
+      // The side p -> q is p.out; leaving, the polygon continues along the
+      // plane, entering it comes off the plane onto that side.
+      x.in = dp < 0.0f ? p.out : label;
+      x.out = dp < 0.0f ? label : p.out;
+      out[n++] = x;
+    }
+  }
+  return n;
+}
+
+struct Candidate {
+  Vec3 point;  // reference hull's frame, midway between the surfaces
+  float separation;
+  uint32_t id;
+};
+
+// Among candidates not yet kept, the one with the highest score; scores
+// within `tie` of the highest count as equal and the lowest id among them
+// wins (then the lower index). -1 when every candidate is kept.
+int pick(const Candidate* c, const float* score, const bool* keep, int count, float tie) {
+  float best = kLowest;
+  bool any = false;
+  for (int i = 0; i < count; ++i) {
+    if (keep[i]) continue;
+    if (!any || score[i] > best) best = score[i];
+    any = true;
+  }
+  if (!any) return -1;
+  const float cutoff = best - tie;
+  int chosen = -1;
+  for (int i = 0; i < count; ++i) {
+    if (keep[i] || score[i] < cutoff) continue;
+    if (chosen < 0 || c[i].id < c[chosen].id) chosen = i;
+  }
+  return chosen;
+}
+
+// Keeps four of `count` (> 4) candidates: the deepest, the farthest from
+// it, the one spanning the largest area with those two, and the one
+// spanning the largest area on the other side (or, when none is there, the
+// next largest area on the same side). Near-ties go by feature id (pick).
+void reduce_to_four(const Candidate* c, int count, Vec3 normal, bool* keep) {
+  float score[kMaxClip];
+  for (int i = 0; i < count; ++i) keep[i] = false;
+  for (int i = 0; i < count; ++i) score[i] = -c[i].separation;
+  const int i1 = pick(c, score, keep, count, kDepthTie);
+  keep[i1] = true;
+  float best = 0.0f;
+  for (int i = 0; i < count; ++i) {
+    score[i] = length_squared(c[i].point - c[i1].point);
+    if (!keep[i] && score[i] > best) best = score[i];
+  }
+  const int i2 = pick(c, score, keep, count, kSpreadTie * best);
+  keep[i2] = true;
+  const Vec3 e = c[i2].point - c[i1].point;
+  float area[kMaxClip];
+  best = 0.0f;
+  for (int i = 0; i < count; ++i) {
+    area[i] = dot(normal, cross(e, c[i].point - c[i1].point));
+    score[i] = std::fabs(area[i]);
+    if (!keep[i] && score[i] > best) best = score[i];
+  }
+  const int i3 = pick(c, score, keep, count, kSpreadTie * best);
+  keep[i3] = true;
+  // Look on the other side of the first two points first.
+  const float side = area[i3] >= 0.0f ? -1.0f : 1.0f;
+  best = 0.0f;
+  bool other_side = false;
+  for (int i = 0; i < count; ++i) {
+    score[i] = side * area[i];
+    if (!keep[i] && score[i] > best) {
+      best = score[i];
+      other_side = true;
+    }
+  }
+  if (!other_side) {
+    for (int i = 0; i < count; ++i) {
+      score[i] = std::fabs(area[i]);
+      if (!keep[i] && score[i] > best) best = score[i];
+    }
+  }
+  const int i4 = pick(c, score, keep, count, kSpreadTie * best);
+  keep[i4] = true;
+}
+
+// Face contact on reference face `ref_face` of `ref`. `inc_vertices` are
+// the incident hull's vertices in ref's frame, `ref_to_inc` turns a ref
+// direction into inc's frame; (ref_position, ref_axes) is ref's world pose.
+void face_contact(const HullView& ref, uint32_t ref_face, const HullView& inc,
+                  const Vec3* inc_vertices, const Mat3& ref_to_inc, bool ref_is_b,
+                  Vec3 ref_position, const Mat3& ref_axes, float speculative_m, Manifold& out) {
+  const HullFace& rf = ref.faces[ref_face];
+  const Vec3 n = rf.normal;
+
+  // Incident face: the most anti-parallel to n (ties to the lower index),
+  // compared in inc's own frame so its stored normals are used as they are.
+  const Vec3 n_inc = ref_to_inc * n;
+  uint32_t inc_face = 0;
+  float lowest = dot(inc.faces[0].normal, n_inc);
+  for (uint32_t f = 1; f < inc.face_count; ++f) {
+    const float d = dot(inc.faces[f].normal, n_inc);
+    if (d < lowest) {
+      lowest = d;
+      inc_face = f;
+    }
+  }
+
+  ClipVertex a[kMaxClip];
+  ClipVertex b[kMaxClip];
+  const HullFace& inf = inc.faces[inc_face];
+  const uint32_t inc_count = loop_count(inf);
+  for (uint32_t k = 0; k < inc_count; ++k) {
+    a[k].p = inc_vertices[inc.face_vertices[inf.first + k]];
+    a[k].in = static_cast<uint8_t>(k == 0 ? inc_count - 1 : k - 1);
+    a[k].out = static_cast<uint8_t>(k);
+  }
+  int count = static_cast<int>(inc_count);
+  ClipVertex* src = a;
+  ClipVertex* dst = b;
+  const uint32_t ref_count = loop_count(rf);
+  const uint8_t* loop = ref.face_vertices + rf.first;
+  for (uint32_t s = 0; s < ref_count && count > 0; ++s) {
+    const Vec3 p = ref.vertices[loop[s]];
+    const Vec3 q = ref.vertices[loop[s + 1 == ref_count ? 0 : s + 1]];
+    // The loop runs counter-clockwise about n, so the face lies to the left
+    // of each side and (q - p) x n points out of it.
+    const Vec3 side = normalize_or_zero(cross(q - p, n));
+    const float offset = dot(side, p) + kClipTolerance;
+    count = clip_polygon(src, count, side, offset, static_cast<uint8_t>(kReferenceSide + s), dst);
+    ClipVertex* t = src;
+    src = dst;
+    dst = t;
+  }
+
+  Candidate cand[kMaxClip];
+  int n_cand = 0;
+  const uint32_t base_id = (ref_is_b ? 1u << 30 : 0u) | (ref_face << 23) | (inc_face << 16);
+  for (int m = 0; m < count; ++m) {
+    const float sep = dot(n, src[m].p) - rf.offset;
+    if (sep > speculative_m) continue;
+    cand[n_cand].point = src[m].p - n * (0.5f * sep);
+    cand[n_cand].separation = sep;
+    cand[n_cand].id = base_id | (static_cast<uint32_t>(src[m].in) << 7) | src[m].out;
+    ++n_cand;
+  }
+  bool keep[kMaxClip];
+  if (n_cand > static_cast<int>(kMaxManifoldPoints)) {
+    reduce_to_four(cand, n_cand, n, keep);
+  } else {
+    for (int m = 0; m < n_cand; ++m) keep[m] = true;
+  }
+  const Vec3 world_n = ref_axes * n;
+  out.normal = ref_is_b ? -world_n : world_n;
+  out.point_count = 0;
+  for (int m = 0; m < n_cand; ++m) {
+    if (!keep[m]) continue;
+    ManifoldPoint& mp = out.points[out.point_count++];
+    mp.point = ref_position + ref_axes * cand[m].point;
+    mp.separation = cand[m].separation;
+    mp.feature_id = cand[m].id;
+  }
+}
+
+float clampf(float v, float lo, float hi) {
+  return v < lo ? lo : (v > hi ? hi : v);
+}
+
+// One point midway between the closest points of A's edge and B's edge
+// (B's vertices in A's frame), which are not parallel.
+void edge_contact(const HullView& a, const HullView& b, const Vec3* b_vertices, const EdgeQuery& q,
+                  Vec3 position_a, const Mat3& axes_a, Manifold& out) {
+  const HullEdge& ea = a.edges[q.edge_a];
+  const HullEdge& eb = b.edges[q.edge_b];
+  const Vec3 pa = a.vertices[ea.v0];
+  const Vec3 da = a.vertices[ea.v1] - pa;
+  const Vec3 pb = b_vertices[eb.v0];
+  const Vec3 db = b_vertices[eb.v1] - pb;
+  // Closest points of the segments pa + s da and pb + t db, s, t in [0, 1]
+  // (Ericson, Real-Time Collision Detection 5.1.9).
+  const Vec3 r = pa - pb;
+  const float aa = dot(da, da);
+  const float bb = dot(db, db);
+  const float ab = dot(da, db);
+  const float ar = dot(da, r);
+  const float br = dot(db, r);
+  const float denom = aa * bb - ab * ab;  // > 0: parallel pairs are skipped
+  float s = denom > 0.0f ? clampf((ab * br - ar * bb) / denom, 0.0f, 1.0f) : 0.0f;
+  float t = (ab * s + br) / bb;
+  if (t < 0.0f) {
+    t = 0.0f;
+    s = clampf(-ar / aa, 0.0f, 1.0f);
+  } else if (t > 1.0f) {
+    t = 1.0f;
+    s = clampf((ab - ar) / aa, 0.0f, 1.0f);
+  }
+  const Vec3 mid = ((pa + da * s) + (pb + db * t)) * 0.5f;
+  out.normal = axes_a * q.axis;
+  out.point_count = 1;
+  out.points[0].point = position_a + axes_a * mid;
+  out.points[0].separation = q.separation;
+  out.points[0].feature_id = 0x80000000u | (q.edge_a << 8) | q.edge_b;
+}
+
+// Vertex i of a box at (+-1, +-1, +-1) by bits 0-2 of i; face 2k is -k and
+// 2k + 1 is +k. Each loop runs counter-clockwise about its face's outward
+// normal.
+constexpr uint8_t kBoxLoops[24] = {
+    0, 4, 6, 2,  // -x
+    1, 3, 7, 5,  // +x
+    0, 1, 5, 4,  // -y
+    2, 6, 7, 3,  // +y
+    0, 2, 3, 1,  // -z
+    4, 5, 7, 6,  // +z
+};
+
+struct BoxEdges {
+  HullEdge e[12];
+};
+
+// Each edge once, as the loops give it: walking a loop from vertex p to q
+// with p < q lists edge (p, q) with this face on its left; the face whose
+// loop runs q -> p is on its right.
+constexpr BoxEdges make_box_edges() {
+  BoxEdges out{};
+  int n = 0;
+  for (int f = 0; f < 6; ++f) {
+    for (int s = 0; s < 4; ++s) {
+      const uint8_t p = kBoxLoops[4 * f + s];
+      const uint8_t q = kBoxLoops[4 * f + (s + 1) % 4];
+      if (p > q) continue;
+      int right = 0;
+      for (int g = 0; g < 6; ++g) {
+        for (int k = 0; k < 4; ++k) {
+          if (kBoxLoops[4 * g + k] == q && kBoxLoops[4 * g + (k + 1) % 4] == p) right = g;
+        }
+      }
+      out.e[n].v0 = p;
+      out.e[n].v1 = q;
+      out.e[n].face_left = static_cast<uint8_t>(f);
+      out.e[n].face_right = static_cast<uint8_t>(right);
+      ++n;
+    }
+  }
+  return out;
+}
+
+constexpr BoxEdges kBoxEdges = make_box_edges();
+
+}  // namespace
+
+HullView BoxHull::view() const {
+  return {vertices, 8, faces, 6, kBoxLoops, kBoxEdges.e, 12};
+}
+
+BoxHull make_box_hull(Vec3 half_extents) {
+  BoxHull box;
+  for (uint32_t i = 0; i < 8; ++i) {
+    box.vertices[i] = {(i & 1u) ? half_extents.x : -half_extents.x,
+                       (i & 2u) ? half_extents.y : -half_extents.y,
+                       (i & 4u) ? half_extents.z : -half_extents.z};
+  }
+  const float half[3] = {half_extents.x, half_extents.y, half_extents.z};
+  for (uint32_t f = 0; f < 6; ++f) {
+    const uint32_t axis = f / 2;
+    const float sign = (f & 1u) ? 1.0f : -1.0f;
+    Vec3 n;
+    n.x = axis == 0 ? sign : 0.0f;
+    n.y = axis == 1 ? sign : 0.0f;
+    n.z = axis == 2 ? sign : 0.0f;
+    box.faces[f].normal = n;
+    box.faces[f].offset = half[axis];
+    box.faces[f].first = static_cast<uint16_t>(4 * f);
+    box.faces[f].count = 4;
+  }
+  return box;
+}
+
+void collide_hulls(const HullView& a, Vec3 position_a, const Mat3& axes_a, const HullView& b,
+                   Vec3 position_b, const Mat3& axes_b, float speculative_m, Manifold& out) {
+  out.point_count = 0;
+  out.separating_axis = kNoSeparatingAxis;
+  if (!view_fits(a) || !view_fits(b)) return;
+  const Transform b_to_a = relative(position_a, axes_a, position_b, axes_b);
+  const Transform a_to_b = relative(position_b, axes_b, position_a, axes_a);
+  Vec3 b_in_a[kHullMaxVertices];
+  Vec3 a_in_b[kHullMaxVertices];
+  for (uint32_t v = 0; v < b.vertex_count; ++v) b_in_a[v] = b_to_a.r * b.vertices[v] + b_to_a.t;
+  for (uint32_t v = 0; v < a.vertex_count; ++v) a_in_b[v] = a_to_b.r * a.vertices[v] + a_to_b.t;
+
+  const FaceQuery face_a = query_faces(a, b_in_a, b.vertex_count, speculative_m);
+  if (face_a.separation > speculative_m) return;
+  const FaceQuery face_b = query_faces(b, a_in_b, a.vertex_count, speculative_m);
+  if (face_b.separation > speculative_m) return;
+
+  Vec3 b_normals[kMaxFaces];
+  for (uint32_t f = 0; f < b.face_count; ++f) b_normals[f] = b_to_a.r * b.faces[f].normal;
+  const EdgeQuery edge = query_edges(a, b, b_in_a, b_normals, speculative_m);
+  if (edge.separation > speculative_m) return;
+
+  const bool use_b = face_b.separation > face_a.separation + kFaceTolerance;
+  const float face_sep =
+      face_a.separation > face_b.separation ? face_a.separation : face_b.separation;
+  const float edge_threshold =
+      face_sep + kEdgeTolerance + kEdgeRelativeTolerance * std::fabs(face_sep);
+  if (edge.separation > edge_threshold) {
+    edge_contact(a, b, b_in_a, edge, position_a, axes_a, out);
+  } else if (use_b) {
+    face_contact(b, face_b.face, a, a_in_b, b_to_a.r, true, position_b, axes_b, speculative_m, out);
+  } else {
+    face_contact(a, face_a.face, b, b_in_a, a_to_b.r, false, position_a, axes_a, speculative_m,
+                 out);
+  }
+}
+
+void collide_hulls(const Hull& a, Vec3 position_a, const Mat3& axes_a, const Hull& b,
+                   Vec3 position_b, const Mat3& axes_b, float speculative_m, Manifold& out) {
+  collide_hulls(hull_view(a), position_a, axes_a, hull_view(b), position_b, axes_b, speculative_m,
+                out);
+}
+
+void collide_box_hull(Vec3 box_center, const Mat3& box_axes, Vec3 half_extents, const Hull& hull,
+                      Vec3 hull_position, const Mat3& hull_axes, float speculative_m,
+                      Manifold& out) {
+  const BoxHull box = make_box_hull(half_extents);
+  collide_hulls(box.view(), box_center, box_axes, hull_view(hull), hull_position, hull_axes,
+                speculative_m, out);
+}
+
+}  // namespace rwd::sim::d3
