@@ -7,13 +7,14 @@
 
 namespace rwd::sim::d3 {
 
-BodyMass compute_mass(BodyKind kind, const Shape& shape, float density) {
+BodyMass compute_mass(BodyKind kind, const Shape& shape, const GeometryStore& store,
+                      float density) {
   const ShapeOps& ops = shape_ops(shape.type);
   BodyMass m;
-  m.extent = ops.extent(shape);
+  m.extent = ops.extent(shape, store);
   if (kind != BodyKind::kDynamic) return m;
-  m.mass = density * ops.volume(shape);
-  const Vec3 i = ops.inertia(shape, m.mass);
+  m.mass = density * ops.volume(shape, store);
+  const Vec3 i = ops.inertia(shape, store, m.mass);
   m.inv_inertia_local = {1.0f / i.x, 1.0f / i.y, 1.0f / i.z};
   m.inv_mass = 1.0f / m.mass;
   return m;

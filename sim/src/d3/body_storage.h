@@ -4,13 +4,15 @@
 // What counts as a valid body is state_rules.h's business.
 #include "d3/world_scratch.h"
 #include "rewind/sim/body.h"
+#include "rewind/sim/geometry.h"
 #include "rewind/sim/world_state.h"
 
 namespace rwd::sim::d3 {
 
-/// Mass, inverse mass and principal inverse inertia from density and shape;
-/// zero for static and kinematic bodies (infinite mass).
-BodyMass compute_mass(BodyKind kind, const Shape& shape, float density);
+/// Mass, inverse mass and principal inverse inertia from density and shape
+/// (its geometry in `store`); zero for static and kinematic bodies
+/// (infinite mass).
+BodyMass compute_mass(BodyKind kind, const Shape& shape, const GeometryStore& store, float density);
 /// Tight world bounds of the shape at a pose (`axes` = mat3_from_quat of
 /// its rotation).
 Aabb shape_aabb(const Shape& shape, Vec3 position, const Mat3& axes);

@@ -7,28 +7,31 @@
 // treats an unknown shape as some other shape.
 #include <cstdint>
 
+#include "d3/hull.h"
 #include "d3/manifold.h"
+#include "d3/manifold_hull.h"
+#include "d3/manifold_hull_sat.h"
 #include "d3/shape_ops.h"
 
 namespace rwd::sim::d3 {
 namespace {
 
 using CollideFn = void (*)(const Shape&, const ShapePose&, const Shape&, const ShapePose&, float,
-                           Manifold&);
+                           const GeometryStore*, Manifold&);
 
 void sphere_sphere(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
-                   float speculative_m, Manifold& out) {
+                   float speculative_m, const GeometryStore* /*store*/, Manifold& out) {
   collide_spheres(pa.position, a.radius, pb.position, b.radius, speculative_m, out);
 }
 
 void box_sphere(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
-                float speculative_m, Manifold& out) {
+                float speculative_m, const GeometryStore* /*store*/, Manifold& out) {
   collide_box_sphere({pa.position, pa.rotation, a.half_extents}, pb.position, b.radius,
                      speculative_m, out);
 }
 
 void box_box(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
-             float speculative_m, Manifold& out) {
+             float speculative_m, const GeometryStore* /*store*/, Manifold& out) {
   collide_boxes(pa.position, pa.axes, a.half_extents, pb.position, pb.axes, b.half_extents,
                 speculative_m, out);
 }
@@ -38,19 +41,47 @@ CapsulePose capsule_pose(const Shape& s, const ShapePose& p) {
 }
 
 void capsule_sphere(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
-                    float speculative_m, Manifold& out) {
+                    float speculative_m, const GeometryStore* /*store*/, Manifold& out) {
   collide_capsule_sphere(capsule_pose(a, pa), pb.position, b.radius, speculative_m, out);
 }
 
 void capsule_capsule(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
-                     float speculative_m, Manifold& out) {
+                     float speculative_m, const GeometryStore* /*store*/, Manifold& out) {
   collide_capsules(capsule_pose(a, pa), capsule_pose(b, pb), speculative_m, out);
 }
 
 void box_capsule(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
-                 float speculative_m, Manifold& out) {
+                 float speculative_m, const GeometryStore* /*store*/, Manifold& out) {
   collide_box_capsule({pa.position, pa.rotation, a.half_extents}, capsule_pose(b, pb),
                       speculative_m, out);
+}
+
+const Hull& hull_of(const Shape& s, const GeometryStore* store) {
+  return *store->hull(s.geometry);
+}
+
+void hull_sphere(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+                 float speculative_m, const GeometryStore* store, Manifold& out) {
+  collide_hull_sphere(hull_of(a, store), pa.position, pa.axes, pb.position, b.radius, speculative_m,
+                      out);
+}
+
+void hull_capsule(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+                  float speculative_m, const GeometryStore* store, Manifold& out) {
+  collide_hull_capsule(hull_of(a, store), pa.position, pa.axes, capsule_pose(b, pb), speculative_m,
+                       out);
+}
+
+void box_hull(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+              float speculative_m, const GeometryStore* store, Manifold& out) {
+  collide_box_hull(pa.position, pa.axes, a.half_extents, hull_of(b, store), pb.position, pb.axes,
+                   speculative_m, out);
+}
+
+void hull_hull(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+               float speculative_m, const GeometryStore* store, Manifold& out) {
+  collide_hulls(hull_of(a, store), pa.position, pa.axes, hull_of(b, store), pb.position, pb.axes,
+                speculative_m, out);
 }
 
 struct Entry {
@@ -76,6 +107,10 @@ constexpr Table make_table() {
   add(ShapeType::kCapsule, ShapeType::kSphere, capsule_sphere);
   add(ShapeType::kCapsule, ShapeType::kCapsule, capsule_capsule);
   add(ShapeType::kBox, ShapeType::kCapsule, box_capsule);
+  add(ShapeType::kHull, ShapeType::kSphere, hull_sphere);
+  add(ShapeType::kHull, ShapeType::kCapsule, hull_capsule);
+  add(ShapeType::kBox, ShapeType::kHull, box_hull);
+  add(ShapeType::kHull, ShapeType::kHull, hull_hull);
   return t;
 }
 
@@ -94,23 +129,25 @@ static_assert(complete(kTable), "every pair of shape types needs a collide routi
 }  // namespace
 
 void collide_shapes(const Shape& shape_a, Vec3 position_a, Quat rotation_a, const Shape& shape_b,
-                    Vec3 position_b, Quat rotation_b, float speculative_m, Manifold& out) {
+                    Vec3 position_b, Quat rotation_b, float speculative_m, Manifold& out,
+                    const GeometryStore* store) {
   collide_shapes(shape_a, {position_a, rotation_a, mat3_from_quat(rotation_a)}, shape_b,
-                 {position_b, rotation_b, mat3_from_quat(rotation_b)}, speculative_m, out);
+                 {position_b, rotation_b, mat3_from_quat(rotation_b)}, speculative_m, out, store);
 }
 
 void collide_shapes(const Shape& shape_a, const ShapePose& pose_a, const Shape& shape_b,
-                    const ShapePose& pose_b, float speculative_m, Manifold& out) {
+                    const ShapePose& pose_b, float speculative_m, Manifold& out,
+                    const GeometryStore* store) {
   out.separating_axis = kNoSeparatingAxis;
   const Entry& e =
       kTable.at[static_cast<uint32_t>(shape_a.type)][static_cast<uint32_t>(shape_b.type)];
   if (e.reversed) {
-    e.fn(shape_b, pose_b, shape_a, pose_a, speculative_m, out);
+    e.fn(shape_b, pose_b, shape_a, pose_a, speculative_m, store, out);
     out.normal = -out.normal;  // the routine's normal ran from B to A
     // A separating axis named in the routine's order means nothing here.
     out.separating_axis = kNoSeparatingAxis;
   } else {
-    e.fn(shape_a, pose_a, shape_b, pose_b, speculative_m, out);
+    e.fn(shape_a, pose_a, shape_b, pose_b, speculative_m, store, out);
   }
   for (uint32_t i = 0; i < out.point_count; ++i) {
     out.points[i].anchor_a = out.points[i].point - pose_a.position;

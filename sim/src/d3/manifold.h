@@ -21,6 +21,7 @@
 //   capsules:        see manifold_capsule.cpp
 #include <cstdint>
 
+#include "rewind/sim/geometry.h"
 #include "rewind/sim/math.h"
 #include "rewind/sim/shape.h"
 #include "rewind/sim/world_state.h"
@@ -102,9 +103,13 @@ struct ShapePose {
 };
 
 /// Dispatches on the shape types; fills anchors. Normal always from A to B.
+/// Poses are of the shapes' mass frames. `store` holds the geometry of
+/// shapes that refer to it (hulls); it may be null when neither does.
 void collide_shapes(const Shape& shape_a, const ShapePose& pose_a, const Shape& shape_b,
-                    const ShapePose& pose_b, float speculative_m, Manifold& out);
+                    const ShapePose& pose_b, float speculative_m, Manifold& out,
+                    const GeometryStore* store = nullptr);
 void collide_shapes(const Shape& shape_a, Vec3 position_a, Quat rotation_a, const Shape& shape_b,
-                    Vec3 position_b, Quat rotation_b, float speculative_m, Manifold& out);
+                    Vec3 position_b, Quat rotation_b, float speculative_m, Manifold& out,
+                    const GeometryStore* store = nullptr);
 
 }  // namespace rwd::sim::d3

@@ -9,8 +9,8 @@
 // each point's A side stays fixed on A, its B side moves with B, and the
 // separation is measured between the two along the normal.
 //
-// Only pairs of shapes whose contact features are fixed on them (boxes)
-// are carried: a rolling sphere's or capsule's contact point moves over its
+// Only pairs of shapes whose contact features are fixed on them (boxes and
+// hulls) are carried: a rolling sphere's or capsule's contact point moves over its
 // surface, which carrying would turn into a tilted normal.
 //
 // The frame is not updated on reuse, so slow drift adds up until it crosses

@@ -39,13 +39,13 @@ float pair_speculative(const WorldState& state, uint32_t a, uint32_t b) {
   return state.config.speculative_distance_m + state.config.tick_seconds * reach;
 }
 
-// Whether a shape's contact features are fixed on it (a box's faces,
-// edges and corners), so a manifold carried forward keeps its points where
-// they are. A round surface's contact point moves over it as the body
+// Whether a shape's contact features are fixed on it (a box's or a hull's
+// faces, edges and corners), so a manifold carried forward keeps its points
+// where they are. A round surface's contact point moves over it as the body
 // rolls; carrying it would tilt the normal with the roll, so pairs with a
 // sphere or a capsule are collided every step.
 bool keeps_features(const Shape& shape) {
-  return shape.type == ShapeType::kBox;
+  return shape.type == ShapeType::kBox || shape.type == ShapeType::kHull;
 }
 
 // Computes the manifold (or carries `old`'s forward, see the top of the
@@ -77,7 +77,7 @@ bool evaluate(const WorldState& state, WorldScratch& scratch, ContactRecord& rec
   if (!carried) {
     collide_shapes(ia.shape, {sa.position, sa.rotation, axes_a}, ib.shape,
                    {sb.position, sb.rotation, body_axes(state, scratch, rec.index_b)},
-                   pair_speculative(state, rec.index_a, rec.index_b), m);
+                   pair_speculative(state, rec.index_a, rec.index_b), m, scratch.store);
     if (m.point_count == 0) {
       rec.touching = 0;
       return false;

@@ -8,6 +8,7 @@
 
 #include "d3/body_storage.h"
 #include "d3/manifold.h"
+#include "d3/mass_frame.h"
 #include "d3/query_trees.h"
 #include "d3/shape_ops.h"
 #include "d3/state_rules.h"
@@ -18,7 +19,8 @@ namespace rwd::sim {
 Status World3D::overlap(const Shape& shape, Vec3 position, Quat rotation, const QueryFilter& filter,
                         std::vector<BodyId>& out) const {
   out.clear();
-  if (Status s = d3::check_shape(shape); !s.ok()) return s;
+  const GeometryStore& store = *geometry_;
+  if (Status s = d3::check_shape(shape, store); !s.ok()) return s;
   if (!is_finite(position) || !is_finite(rotation)) {
     return Status::Error(ErrorCode::kInvalidArgument, "position and rotation must be finite");
   }
@@ -27,9 +29,13 @@ Status World3D::overlap(const Shape& shape, Vec3 position, Quat rotation, const 
     return Status::Error(ErrorCode::kInvalidArgument, "rotation must not be zero");
   }
   Shape query = shape;
-  d3::shape_ops(query.type).canonical(query);
-  const d3::ShapePose pose{position, q, mat3_from_quat(q)};
-  const d3::Aabb box = d3::shape_aabb(query, position, pose.axes);
+  d3::shape_ops(query.type).canonical(query, store);
+  // The pose given is the shape's authored frame; the shapes collide in
+  // their mass frames.
+  d3::ShapePose pose;
+  d3::authored_to_mass(d3::mass_frame(query, store), position, q, pose.position, pose.rotation);
+  pose.axes = mat3_from_quat(pose.rotation);
+  const d3::Aabb box = d3::shape_aabb(query, pose.position, pose.axes);
 
   WorldScratch& scratch = *scratch_;
   d3::refresh_query_trees(state_, scratch);
@@ -46,7 +52,7 @@ Status World3D::overlap(const Shape& shape, Vec3 position, Quat rotation, const 
     const BodyInfo& info = state_.infos[i];
     const BodySim& sim = state_.sims[i];
     d3::collide_shapes(query, pose, info.shape,
-                       {sim.position, sim.rotation, mat3_from_quat(sim.rotation)}, 0.0f, m);
+                       {sim.position, sim.rotation, mat3_from_quat(sim.rotation)}, 0.0f, m, &store);
     bool touching = false;
     for (uint32_t p = 0; p < m.point_count; ++p) {
       if (m.points[p].separation <= 0.0f) touching = true;

@@ -16,14 +16,14 @@ namespace rwd::sim {
 namespace {
 
 // The point's distance to body i, if within `reach` (or inside).
-std::optional<PointHit> point_to_body(const WorldState& state, uint32_t i, Vec3 point,
-                                      float reach) {
+std::optional<PointHit> point_to_body(const WorldState& state, const GeometryStore& store,
+                                      uint32_t i, Vec3 point, float reach) {
   const BodyInfo& info = state.infos[i];
   const BodySim& sim = state.sims[i];
   Shape dot = Shape::make_sphere(0.0f);
   d3::Manifold m;
   d3::collide_shapes(dot, {point, Quat{}, Mat3{}}, info.shape,
-                     {sim.position, sim.rotation, mat3_from_quat(sim.rotation)}, reach, m);
+                     {sim.position, sim.rotation, mat3_from_quat(sim.rotation)}, reach, m, &store);
   if (m.point_count == 0) return std::nullopt;
   const d3::ManifoldPoint& p = m.points[0];
   return PointHit{BodyId{i, info.generation}, p.separation, p.point * 2.0f - point, -m.normal};
@@ -35,7 +35,7 @@ std::optional<PointHit> World3D::signed_distance(BodyId id, Vec3 point) const {
   if (!d3::is_live(state_, id) || !is_finite(point)) return std::nullopt;
   // Far enough to reach any surface of a shape the rule allows.
   const float reach = length(point - state_.sims[id.index].position) + 4.0f * 1000.0f;
-  return point_to_body(state_, id.index, point, reach);
+  return point_to_body(state_, *geometry_, id.index, point, reach);
 }
 
 std::optional<PointHit> World3D::nearest_body(Vec3 point, float max_distance,
@@ -57,7 +57,7 @@ std::optional<PointHit> World3D::nearest_body(Vec3 point, float max_distance,
   std::sort(candidates.begin(), candidates.end());
   std::optional<PointHit> best;
   for (const uint32_t i : candidates) {
-    const std::optional<PointHit> hit = point_to_body(state_, i, point, max_distance);
+    const std::optional<PointHit> hit = point_to_body(state_, *geometry_, i, point, max_distance);
     if (!hit || hit->distance > max_distance) continue;
     if (!best || hit->distance < best->distance) best = hit;
   }
@@ -76,7 +76,8 @@ std::optional<ContactManifold> World3D::contact_manifold(BodyId a, BodyId b,
   const BodySim& sb = state_.sims[b.index];
   d3::Manifold m;
   d3::collide_shapes(ia.shape, {sa.position, sa.rotation, mat3_from_quat(sa.rotation)}, ib.shape,
-                     {sb.position, sb.rotation, mat3_from_quat(sb.rotation)}, max_separation, m);
+                     {sb.position, sb.rotation, mat3_from_quat(sb.rotation)}, max_separation, m,
+                     geometry_.get());
   ContactManifold out;
   out.normal = m.normal;
   for (uint32_t p = 0; p < m.point_count; ++p) {

@@ -45,8 +45,8 @@ void cast(const WorldState& state, WorldScratch& scratch, const Ray& ray, Vec3 d
     float t = 0.0f;
     Vec3 normal;
     if (!d3::shape_ops(info.shape.type)
-             .raycast(info.shape, sim.position, sim.rotation, ray.origin, dir, ray.max_distance, t,
-                      normal)) {
+             .raycast(info.shape, *scratch.store, sim.position, sim.rotation, ray.origin, dir,
+                      ray.max_distance, t, normal)) {
       continue;
     }
     visit(RayHit{BodyId{i, info.generation}, t, ray.origin + dir * t, normal});

@@ -8,7 +8,7 @@
 namespace rwd::sim::d3 {
 namespace {
 
-Status check(const Shape& s) {
+Status check(const Shape& s, const GeometryStore& /*store*/) {
   if (!in_shape_size_range(s.half_extents.x) || !in_shape_size_range(s.half_extents.y) ||
       !in_shape_size_range(s.half_extents.z)) {
     return Status::Error(ErrorCode::kInvalidArgument, "box half extents must be in (0, 1000] m");
@@ -16,21 +16,22 @@ Status check(const Shape& s) {
   return Status::Ok();
 }
 
-void canonical(Shape& s) {
+void canonical(Shape& s, const GeometryStore& /*store*/) {
   s.radius = 0.0f;
   s.half_height = 0.0f;
+  s.geometry = 0;
 }
 
-float extent(const Shape& s) {
+float extent(const Shape& s, const GeometryStore& /*store*/) {
   return length(s.half_extents);
 }
 
-float volume(const Shape& s) {
+float volume(const Shape& s, const GeometryStore& /*store*/) {
   const Vec3 h = s.half_extents;
   return 8.0f * h.x * h.y * h.z;
 }
 
-Vec3 inertia(const Shape& s, float mass) {
+Vec3 inertia(const Shape& s, const GeometryStore& /*store*/, float mass) {
   const Vec3 h = s.half_extents;
   // Solid box: I_x = m/3 (hy^2 + hz^2) with half extents.
   const float k = mass / 3.0f;
@@ -44,8 +45,8 @@ Vec3 half_bounds(const Shape& s, const Mat3& axes) {
 }
 
 // Slabs in the box's frame.
-bool raycast(const Shape& s, Vec3 center, Quat rotation, Vec3 origin, Vec3 dir, float max_distance,
-             float& t, Vec3& normal) {
+bool raycast(const Shape& s, const GeometryStore& /*store*/, Vec3 center, Quat rotation,
+             Vec3 origin, Vec3 dir, float max_distance, float& t, Vec3& normal) {
   const Vec3 half = s.half_extents;
   Vec3 o = inv_rotate(rotation, origin - center);
   Vec3 d = inv_rotate(rotation, dir);
@@ -92,9 +93,23 @@ bool raycast(const Shape& s, Vec3 center, Quat rotation, Vec3 origin, Vec3 dir, 
   return true;
 }
 
+// The eight corners, vertex i at +-h with axis k positive when bit k of i
+// is set.
+ConvexProxy proxy(const Shape& s, const GeometryStore& /*store*/, ProxyPoints& storage) {
+  const Vec3 h = s.half_extents;
+  for (uint32_t i = 0; i < 8; ++i) {
+    storage.points[i] = {(i & 1u) != 0 ? h.x : -h.x, (i & 2u) != 0 ? h.y : -h.y,
+                         (i & 4u) != 0 ? h.z : -h.z};
+  }
+  ConvexProxy p;
+  p.points = storage.points;
+  p.count = 8;
+  return p;
+}
+
 }  // namespace
 
-extern const ShapeOps kBoxOps{"box",  check,   canonical,   extent,
-                              volume, inertia, half_bounds, raycast};
+extern const ShapeOps kBoxOps{"box",   check,       canonical, extent, volume,
+                              inertia, half_bounds, raycast,   proxy};
 
 }  // namespace rwd::sim::d3

@@ -11,7 +11,7 @@
 namespace rwd::sim::d3 {
 namespace {
 
-Status check(const Shape& s) {
+Status check(const Shape& s, const GeometryStore& /*store*/) {
   if (!in_shape_size_range(s.radius) || !in_shape_size_range(s.half_height)) {
     return Status::Error(ErrorCode::kInvalidArgument,
                          "capsule radius and half height must be in (0, 1000] m");
@@ -19,11 +19,12 @@ Status check(const Shape& s) {
   return Status::Ok();
 }
 
-void canonical(Shape& s) {
+void canonical(Shape& s, const GeometryStore& /*store*/) {
   s.half_extents = {};
+  s.geometry = 0;
 }
 
-float extent(const Shape& s) {
+float extent(const Shape& s, const GeometryStore& /*store*/) {
   return s.half_height + s.radius;
 }
 
@@ -36,7 +37,7 @@ float caps_volume(const Shape& s) {
   return (4.0f / 3.0f) * kPi * r * r * r;
 }
 
-float volume(const Shape& s) {
+float volume(const Shape& s, const GeometryStore& /*store*/) {
   return cylinder_volume(s) + caps_volume(s);
 }
 
@@ -46,7 +47,7 @@ float volume(const Shape& s) {
 // r^2 about its flat face moved out to the centre: its own centre of mass
 // sits 3r/8 from that face, so the parallel-axis theorem adds
 // (m_s / 2)(h^2 + 3 h r / 4) per cap.
-Vec3 inertia(const Shape& s, float mass) {
+Vec3 inertia(const Shape& s, const GeometryStore& /*store*/, float mass) {
   const float r = s.radius;
   const float h = s.half_height;
   const float v_c = cylinder_volume(s);
@@ -66,8 +67,8 @@ Vec3 half_bounds(const Shape& s, const Mat3& axes) {
 
 // In the capsule's frame: the side (an infinite cylinder about y, hits
 // with |y| <= h) and the two cap spheres; the nearest hit wins.
-bool raycast(const Shape& s, Vec3 center, Quat rotation, Vec3 origin, Vec3 dir, float max_distance,
-             float& t, Vec3& normal) {
+bool raycast(const Shape& s, const GeometryStore& /*store*/, Vec3 center, Quat rotation,
+             Vec3 origin, Vec3 dir, float max_distance, float& t, Vec3& normal) {
   const float r = s.radius;
   const float h = s.half_height;
   const Vec3 o = inv_rotate(rotation, origin - center);
@@ -116,9 +117,20 @@ bool raycast(const Shape& s, Vec3 center, Quat rotation, Vec3 origin, Vec3 dir, 
   return true;
 }
 
+// The segment between the cap centres, rounded by the radius.
+ConvexProxy proxy(const Shape& s, const GeometryStore& /*store*/, ProxyPoints& storage) {
+  storage.points[0] = {0.0f, -s.half_height, 0.0f};
+  storage.points[1] = {0.0f, s.half_height, 0.0f};
+  ConvexProxy p;
+  p.points = storage.points;
+  p.count = 2;
+  p.radius = s.radius;
+  return p;
+}
+
 }  // namespace
 
-extern const ShapeOps kCapsuleOps{"capsule", check,   canonical,   extent,
-                                  volume,    inertia, half_bounds, raycast};
+extern const ShapeOps kCapsuleOps{"capsule", check,       canonical, extent, volume,
+                                  inertia,   half_bounds, raycast,   proxy};
 
 }  // namespace rwd::sim::d3

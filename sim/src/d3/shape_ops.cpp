@@ -5,10 +5,11 @@ namespace rwd::sim::d3 {
 namespace {
 
 // Indexed by ShapeType.
-const ShapeOps* const kTable[kShapeTypeCount] = {&kSphereOps, &kBoxOps, &kCapsuleOps};
+const ShapeOps* const kTable[kShapeTypeCount] = {&kSphereOps, &kBoxOps, &kCapsuleOps, &kHullOps};
 static_assert(static_cast<uint32_t>(ShapeType::kSphere) == 0 &&
               static_cast<uint32_t>(ShapeType::kBox) == 1 &&
-              static_cast<uint32_t>(ShapeType::kCapsule) == 2);
+              static_cast<uint32_t>(ShapeType::kCapsule) == 2 &&
+              static_cast<uint32_t>(ShapeType::kHull) == 3);
 
 }  // namespace
 

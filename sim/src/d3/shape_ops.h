@@ -6,8 +6,14 @@
 // pair routines live in the collide table (collide_table.cpp). A shape
 // type the table does not know is refused where shapes enter (the API and
 // the snapshot reader), so no stage ever guesses what an unknown shape is.
+//
+// Shapes made of registered geometry (hulls) find it in the world's
+// GeometryStore, which every routine that may need it receives; the
+// bounds, read for every body every step, come from the shape alone.
 #include <cstdint>
 
+#include "d3/gjk.h"
+#include "rewind/sim/geometry.h"
 #include "rewind/sim/math.h"
 #include "rewind/sim/shape.h"
 #include "rewind/sim/status.h"
@@ -15,29 +21,43 @@
 namespace rwd::sim::d3 {
 
 /// Number of shape types; ShapeType values are 0 .. kShapeTypeCount - 1.
-inline constexpr uint32_t kShapeTypeCount = 3;
+inline constexpr uint32_t kShapeTypeCount = 4;
+
+/// Room for the core points a shape computes rather than stores.
+struct ProxyPoints {
+  Vec3 points[8];
+};
 
 struct ShapeOps {
   const char* name;
-  /// The shape's sizes against the state rule (finite, in range).
-  Status (*check)(const Shape& shape);
-  /// Clears the fields this type does not use, so equal shapes are equal
-  /// bits (the fields it uses are quantized by the caller).
-  void (*canonical)(Shape& shape);
-  /// Largest distance from the body's origin to the surface, m.
-  float (*extent)(const Shape& shape);
+  /// The shape's sizes against the state rule (finite, in range), and its
+  /// geometry id against the store.
+  Status (*check)(const Shape& shape, const GeometryStore& store);
+  /// Clears the fields this type does not use and fills those derived from
+  /// its geometry, so equal shapes are equal bits (the fields it uses are
+  /// quantized by the caller). Only for shapes check() accepts.
+  void (*canonical)(Shape& shape, const GeometryStore& store);
+  /// Largest distance from the centre of mass to the surface, m.
+  float (*extent)(const Shape& shape, const GeometryStore& store);
   /// Volume, m^3.
-  float (*volume)(const Shape& shape);
-  /// Principal moments of inertia about the centre for a body of `mass` kg,
-  /// kg m^2, in the shape's frame.
-  Vec3 (*inertia)(const Shape& shape, float mass);
-  /// Half size of the world-axis bounds at rotation `axes` (mat3_from_quat).
+  float (*volume)(const Shape& shape, const GeometryStore& store);
+  /// Principal moments of inertia about the centre of mass for a body of
+  /// `mass` kg, kg m^2, in the shape's mass frame.
+  Vec3 (*inertia)(const Shape& shape, const GeometryStore& store, float mass);
+  /// Half size of the world-axis bounds at rotation `axes` (mat3_from_quat),
+  /// from the shape's own fields.
   Vec3 (*half_bounds)(const Shape& shape, const Mat3& axes);
   /// The first hit along origin + t dir (dir unit), 0 <= t <= max_distance,
-  /// of the shape at `position`, `rotation`: t and the outward normal. A
-  /// ray starting inside hits at t = 0 with the normal facing back.
-  bool (*raycast)(const Shape& shape, Vec3 position, Quat rotation, Vec3 origin, Vec3 dir,
-                  float max_distance, float& t, Vec3& normal);
+  /// of the shape with its centre of mass at `position`, mass frame at
+  /// `rotation`: t and the outward normal. A ray starting inside hits at
+  /// t = 0 with the normal facing back.
+  bool (*raycast)(const Shape& shape, const GeometryStore& store, Vec3 position, Quat rotation,
+                  Vec3 origin, Vec3 dir, float max_distance, float& t, Vec3& normal);
+  /// The shape as GJK sees it (gjk.h): core points in the mass frame and a
+  /// radius, with the pose left at the origin for the caller to set. Core
+  /// points that are not stored anywhere (a box's corners) are written to
+  /// `storage`, which must outlive the proxy.
+  ConvexProxy (*proxy)(const Shape& shape, const GeometryStore& store, ProxyPoints& storage);
 };
 
 inline bool is_known_shape(ShapeType type) {
@@ -51,6 +71,7 @@ const ShapeOps& shape_ops(ShapeType type);
 extern const ShapeOps kSphereOps;
 extern const ShapeOps kBoxOps;
 extern const ShapeOps kCapsuleOps;
+extern const ShapeOps kHullOps;
 
 /// The ray test of a sphere of `radius` at `center` (dir unit), shared by
 /// the shapes made of spheres.

@@ -9,28 +9,29 @@
 namespace rwd::sim::d3 {
 namespace {
 
-Status check(const Shape& s) {
+Status check(const Shape& s, const GeometryStore& /*store*/) {
   if (!in_shape_size_range(s.radius)) {
     return Status::Error(ErrorCode::kInvalidArgument, "sphere radius must be in (0, 1000] m");
   }
   return Status::Ok();
 }
 
-void canonical(Shape& s) {
+void canonical(Shape& s, const GeometryStore& /*store*/) {
   s.half_extents = {};
   s.half_height = 0.0f;
+  s.geometry = 0;
 }
 
-float extent(const Shape& s) {
+float extent(const Shape& s, const GeometryStore& /*store*/) {
   return s.radius;
 }
 
-float volume(const Shape& s) {
+float volume(const Shape& s, const GeometryStore& /*store*/) {
   const float r = s.radius;
   return (4.0f / 3.0f) * kPi * r * r * r;
 }
 
-Vec3 inertia(const Shape& s, float mass) {
+Vec3 inertia(const Shape& s, const GeometryStore& /*store*/, float mass) {
   const float r = s.radius;
   const float i = 0.4f * mass * r * r;  // solid sphere: 2/5 m r^2
   return {i, i, i};
@@ -40,9 +41,18 @@ Vec3 half_bounds(const Shape& s, const Mat3&) {
   return {s.radius, s.radius, s.radius};
 }
 
-bool raycast(const Shape& s, Vec3 center, Quat, Vec3 origin, Vec3 dir, float max_distance, float& t,
-             Vec3& normal) {
+bool raycast(const Shape& s, const GeometryStore& /*store*/, Vec3 center, Quat, Vec3 origin,
+             Vec3 dir, float max_distance, float& t, Vec3& normal) {
   return ray_sphere(origin, dir, max_distance, center, s.radius, t, normal);
+}
+
+ConvexProxy proxy(const Shape& s, const GeometryStore& /*store*/, ProxyPoints& storage) {
+  storage.points[0] = {};
+  ConvexProxy p;
+  p.points = storage.points;
+  p.count = 1;
+  p.radius = s.radius;
+  return p;
 }
 
 }  // namespace
@@ -67,7 +77,7 @@ bool ray_sphere(Vec3 origin, Vec3 dir, float max_distance, Vec3 center, float ra
   return true;
 }
 
-extern const ShapeOps kSphereOps{"sphere", check,   canonical,   extent,
-                                 volume,   inertia, half_bounds, raycast};
+extern const ShapeOps kSphereOps{"sphere", check,       canonical, extent, volume,
+                                 inertia,  half_bounds, raycast,   proxy};
 
 }  // namespace rwd::sim::d3

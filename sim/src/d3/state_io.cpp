@@ -23,7 +23,9 @@ constexpr uint8_t kMagic[4] = {'R', 'W', 'D', '3'};
 // 2: world bounds in the config, the enabled flag per body. 3: each contact
 // record's manifold frame and its points' positions on A (manifold reuse).
 // 4: capsules (each shape's half height), rotation locks and torques.
-constexpr uint32_t kVersion = 4;
+// 5: hulls (a geometry id in place of sizes), and the digest of the
+// geometry the state refers to.
+constexpr uint32_t kVersion = 5;
 // Bounds the allocation a hostile header can request.
 constexpr uint32_t kMaxSlots = 1u << 24;
 
@@ -111,9 +113,14 @@ void write_state(Sink& s, const WorldState& st) {
     s.u8(b.awake);
     s.u8(b.enabled);
     s.u8(static_cast<uint8_t>(b.shape.type));
-    s.f32(b.shape.radius);
-    s.vec3(b.shape.half_extents);
-    s.f32(b.shape.half_height);
+    if (b.shape.type == ShapeType::kHull) {
+      // The hull's sizes are its geometry's; the id names it.
+      s.u32(b.shape.geometry);
+    } else {
+      s.f32(b.shape.radius);
+      s.vec3(b.shape.half_extents);
+      s.f32(b.shape.half_height);
+    }
     s.f32(b.material.friction);
     s.f32(b.material.restitution);
     s.u32(b.layer);
@@ -236,9 +243,13 @@ bool read_body(Reader& r, BodyInfo& b, BodySim& m) {
   uint8_t type = r.u8();
   r.require(d3::is_known_shape(static_cast<ShapeType>(type)));
   b.shape.type = static_cast<ShapeType>(type);
-  b.shape.radius = r.f32();
-  b.shape.half_extents = r.vec3();
-  b.shape.half_height = r.f32();
+  if (b.shape.type == ShapeType::kHull) {
+    b.shape.geometry = r.u32();
+  } else {
+    b.shape.radius = r.f32();
+    b.shape.half_extents = r.vec3();
+    b.shape.half_height = r.f32();
+  }
   b.material.friction = r.f32();
   b.material.restitution = r.f32();
   b.layer = r.u32();
@@ -280,6 +291,18 @@ WorldConfig read_config(Reader& r) {
   return c;
 }
 
+// How many geometry entries the state refers to: one past the highest id a
+// live body's shape names (0 when no body uses geometry).
+uint32_t geometry_used(const WorldState& st) {
+  uint32_t used = 0;
+  for (const BodyInfo& b : st.infos) {
+    if (b.alive != 0 && b.shape.type == ShapeType::kHull && b.shape.geometry + 1 > used) {
+      used = b.shape.geometry + 1;
+    }
+  }
+  return used;
+}
+
 Status corrupt_body(uint32_t index, const std::string& why) {
   return Status::Error(ErrorCode::kCorrupt, "invalid body " + std::to_string(index) + ": " + why);
 }
@@ -296,6 +319,11 @@ void World3D::serialize(std::vector<uint8_t>& out) const {
   for (uint8_t b : kMagic) out.push_back(b);
   Sink sink(&out);
   sink.u32(kVersion);
+  // The geometry this state refers to, so a world holding other geometry
+  // refuses it instead of simulating other shapes under the same ids.
+  const uint32_t used = geometry_used(state_);
+  sink.u32(used);
+  sink.u64(geometry_->digest(used));
   write_state(sink, state_);
 }
 
@@ -321,6 +349,21 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
   }
   Reader r(bytes.subspan(4));
   if (r.u32() != kVersion) return corrupt("unsupported snapshot version");
+  const GeometryStore& store = *geometry_;
+  const uint32_t geometry_count = r.u32();
+  const uint64_t geometry_digest = r.u64();
+  if (!r.ok()) return corrupt("truncated snapshot header");
+  if (geometry_count > store.size()) {
+    return Status::Error(ErrorCode::kCorrupt, "snapshot refers to " +
+                                                  std::to_string(geometry_count) +
+                                                  " geometry entries; this world's store has " +
+                                                  std::to_string(store.size()));
+  }
+  if (geometry_digest != store.digest(geometry_count)) {
+    return corrupt(
+        "snapshot was taken with other geometry (hull digests differ): register the same "
+        "geometry in the same order first");
+  }
   WorldState st;  // built aside: the live state changes only on success
   st.config = read_config(r);
   const WorldConfig& c = st.config;
@@ -344,8 +387,16 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
     if (!r.ok()) return corrupt("truncated body");
     if (b.alive == 0) continue;
     if (!read_body(r, b, st.sims[i])) return corrupt_body(i, "truncated or malformed fields");
-    if (Status s = d3::check_body(c, b, st.sims[i]); !s.ok()) return corrupt_body(i, s.message());
-    st.masses[i] = d3::compute_mass(b.kind, b.shape, b.density);
+    if (Status s = d3::check_body(c, store, b, st.sims[i]); !s.ok()) {
+      return corrupt_body(i, s.message());
+    }
+    if (b.shape.type == ShapeType::kHull) {
+      if (b.shape.geometry >= geometry_count) {
+        return corrupt_body(i, "hull geometry id past the snapshot's geometry count");
+      }
+      d3::shape_ops(b.shape.type).canonical(b.shape, store);  // its sizes, from the store
+    }
+    st.masses[i] = d3::compute_mass(b.kind, b.shape, store, b.density);
     if (Status s = d3::check_mass(b.kind, st.masses[i]); !s.ok()) {
       return corrupt_body(i, s.message());
     }

@@ -42,12 +42,13 @@ float clampf(float v, float lo, float hi) {
 }
 
 // Fields a BodyDef and a stored body share: kind, shape, material, tuning.
-Status check_common(BodyKind kind, const Shape& shape, float density, float linear_damping,
-                    float angular_damping, float gravity_scale, const Material& material) {
+Status check_common(const GeometryStore& store, BodyKind kind, const Shape& shape, float density,
+                    float linear_damping, float angular_damping, float gravity_scale,
+                    const Material& material) {
   if (kind != BodyKind::kStatic && kind != BodyKind::kKinematic && kind != BodyKind::kDynamic) {
     return invalid("unknown body kind");
   }
-  if (Status s = check_shape(shape); !s.ok()) return s;
+  if (Status s = check_shape(shape, store); !s.ok()) return s;
   if (!(std::isfinite(density) && density > 0.0f && density <= 1e9f)) {
     return invalid("density must be in (0, 1e9] kg/m^3");
   }
@@ -113,16 +114,16 @@ Status check_config(const WorldConfig& c) {
   return Status::Ok();
 }
 
-Status check_shape(const Shape& shape) {
+Status check_shape(const Shape& shape, const GeometryStore& store) {
   if (!is_known_shape(shape.type)) return invalid("unknown shape type");
-  return shape_ops(shape.type).check(shape);
+  return shape_ops(shape.type).check(shape, store);
 }
 
-Status check_body_def(const WorldConfig& config, const BodyDef& def) {
+Status check_body_def(const WorldConfig& config, const GeometryStore& store, const BodyDef& def) {
   if (def.lock_rotation > kLockRotationAll) {
     return invalid("lock_rotation must be kLockRotation* bits (0 to 7)");
   }
-  if (Status s = check_common(def.kind, def.shape, def.density, def.linear_damping,
+  if (Status s = check_common(store, def.kind, def.shape, def.density, def.linear_damping,
                               def.angular_damping, def.gravity_scale, def.material);
       !s.ok()) {
     return s;
@@ -152,10 +153,11 @@ Status check_mass(BodyKind kind, const BodyMass& m) {
   return Status::Ok();
 }
 
-Status check_body(const WorldConfig& config, const BodyInfo& info, const BodySim& sim) {
+Status check_body(const WorldConfig& config, const GeometryStore& store, const BodyInfo& info,
+                  const BodySim& sim) {
   if (info.alive != 1 || info.generation == 0) return invalid("not a live body");
   if (info.sensor > 1 || info.awake > 1 || info.enabled > 1) return invalid("flag out of range");
-  if (Status s = check_common(info.kind, info.shape, info.density, info.linear_damping,
+  if (Status s = check_common(store, info.kind, info.shape, info.density, info.linear_damping,
                               info.angular_damping, info.gravity_scale, info.material);
       !s.ok()) {
     return s;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "rewind/sim/body.h"
+#include "rewind/sim/geometry.h"
 #include "rewind/sim/status.h"
 #include "rewind/sim/world_config.h"
 #include "rewind/sim/world_state.h"
@@ -35,16 +36,17 @@ inline constexpr float kRotationTolerance = 1e-3f;
 
 /// Range and finiteness of every config field, bounds included.
 Status check_config(const WorldConfig& config);
-/// Size of a shape.
-Status check_shape(const Shape& shape);
+/// Size of a shape, and the geometry it refers to (in `store`).
+Status check_shape(const Shape& shape, const GeometryStore& store);
 /// A body definition as create_body() receives it (before quantization).
-Status check_body_def(const WorldConfig& config, const BodyDef& def);
+Status check_body_def(const WorldConfig& config, const GeometryStore& store, const BodyDef& def);
 /// Mass properties of a body: finite and positive for dynamic bodies.
 Status check_mass(BodyKind kind, const BodyMass& mass);
 /// A stored body: identity flags, shape, material, pose inside the world
 /// bounds, speeds, accumulated force, sleep timer, and the flags' mutual
 /// consistency (static and disabled bodies never awake nor moving).
-Status check_body(const WorldConfig& config, const BodyInfo& info, const BodySim& sim);
+Status check_body(const WorldConfig& config, const GeometryStore& store, const BodyInfo& info,
+                  const BodySim& sim);
 
 /// A contact cache record against the body slots it names and the record
 /// before it (null for the first): ordered pair of existing slots, sorted

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "d3/body_storage.h"
+#include "d3/mass_frame.h"
 #include "d3/pipeline.h"
 #include "d3/shape_ops.h"
 #include "d3/state_rules.h"
@@ -86,8 +87,11 @@ Quat quantize(Quat q) {
 
 }  // namespace
 
-World3D::World3D(const WorldConfig& config) : scratch_(std::make_unique<WorldScratch>()) {
+World3D::World3D(const WorldConfig& config, std::shared_ptr<GeometryStore> geometry)
+    : geometry_(geometry != nullptr ? std::move(geometry) : std::make_shared<GeometryStore>()),
+      scratch_(std::make_unique<WorldScratch>()) {
   state_.config = sanitize(config);
+  scratch_->store = geometry_.get();
 }
 World3D::~World3D() = default;
 World3D::World3D(World3D&&) noexcept = default;
@@ -97,11 +101,24 @@ Status World3D::validate_config(const WorldConfig& c) {
   return d3::check_config(c);
 }
 
+// --- geometry ---------------------------------------------------------------
+
+GeometryStore& World3D::geometry() {
+  return *geometry_;
+}
+const GeometryStore& World3D::geometry() const {
+  return *geometry_;
+}
+std::shared_ptr<GeometryStore> World3D::shared_geometry() const {
+  return geometry_;
+}
+
 // --- bodies -----------------------------------------------------------------
 
 Result<BodyId> World3D::create_body(const BodyDef& def) {
   const WorldConfig& config = state_.config;
-  if (Status s = d3::check_body_def(config, def); !s.ok()) return s;
+  const GeometryStore& store = *geometry_;
+  if (Status s = d3::check_body_def(config, store, def); !s.ok()) return s;
   if (state_.live_count >= config.max_bodies) {
     return Status::Error(ErrorCode::kCapacity, "world is full (max_bodies)");
   }
@@ -118,7 +135,7 @@ Result<BodyId> World3D::create_body(const BodyDef& def) {
   info.shape.radius = quantize(def.shape.radius);
   info.shape.half_extents = quantize(def.shape.half_extents);
   info.shape.half_height = quantize(def.shape.half_height);
-  d3::shape_ops(def.shape.type).canonical(info.shape);
+  d3::shape_ops(def.shape.type).canonical(info.shape, store);
   info.material = {quantize(def.material.friction), quantize(def.material.restitution)};
   info.layer = def.layer;
   info.mask = def.mask;
@@ -129,18 +146,20 @@ Result<BodyId> World3D::create_body(const BodyDef& def) {
   info.gravity_scale = quantize(def.gravity_scale);
   info.lock_rotation = def.lock_rotation;
   BodySim sim;
-  sim.position = quantize(def.position);
-  sim.rotation = quantize(normalize(def.rotation));
+  d3::authored_to_mass(d3::mass_frame(info.shape, store), quantize(def.position),
+                       quantize(normalize(def.rotation)), sim.position, sim.rotation);
   if (def.kind != BodyKind::kStatic) {
     sim.linear_velocity = quantize(def.linear_velocity);
     sim.angular_velocity =
         d3::without_locked_axes(def.lock_rotation, quantize(def.angular_velocity));
   }
   // Quantizing can round a tiny size to zero or nudge a value over a limit.
-  if (!d3::check_body(config, info, sim).ok()) {
-    return invalid("shape, density or pose leaves the valid range on the canonical grid");
+  if (!d3::check_body(config, store, info, sim).ok()) {
+    return invalid(
+        "shape, density or pose leaves the valid range on the canonical grid (a hull's centre "
+        "of mass must lie inside the world bounds too)");
   }
-  const BodyMass mass = d3::compute_mass(info.kind, info.shape, info.density);
+  const BodyMass mass = d3::compute_mass(info.kind, info.shape, store, info.density);
   if (Status s = d3::check_mass(info.kind, mass); !s.ok()) return s;
 
   uint32_t index = 0;
@@ -200,10 +219,25 @@ BodyKind World3D::kind(BodyId id) const {
   return is_live(state_, id) ? state_.infos[id.index].kind : BodyKind::kStatic;
 }
 Vec3 World3D::position(BodyId id) const {
-  return is_live(state_, id) ? state_.sims[id.index].position : Vec3{};
+  if (!is_live(state_, id)) return {};
+  const BodySim& sim = state_.sims[id.index];
+  Vec3 p;
+  Quat q;
+  d3::mass_to_authored(d3::mass_frame(state_.infos[id.index].shape, *geometry_), sim.position,
+                       sim.rotation, p, q);
+  return p;
 }
 Quat World3D::rotation(BodyId id) const {
-  return is_live(state_, id) ? state_.sims[id.index].rotation : Quat{};
+  if (!is_live(state_, id)) return {};
+  const BodySim& sim = state_.sims[id.index];
+  Vec3 p;
+  Quat q;
+  d3::mass_to_authored(d3::mass_frame(state_.infos[id.index].shape, *geometry_), sim.position,
+                       sim.rotation, p, q);
+  return q;
+}
+Vec3 World3D::center_of_mass(BodyId id) const {
+  return is_live(state_, id) ? state_.sims[id.index].position : Vec3{};
 }
 Vec3 World3D::linear_velocity(BodyId id) const {
   return is_live(state_, id) ? state_.sims[id.index].linear_velocity : Vec3{};
@@ -232,15 +266,18 @@ Status World3D::set_transform(BodyId id, Vec3 position, Quat rotation) {
   if (!is_finite(rotation) || length_squared(rotation) < 1e-6f) {
     return invalid("rotation must be a finite, non-zero quaternion");
   }
-  const Vec3 p = quantize(position);
+  Vec3 p;
+  Quat q;
+  d3::authored_to_mass(d3::mass_frame(state_.infos[id.index].shape, *geometry_), quantize(position),
+                       quantize(normalize(rotation)), p, q);
   if (!d3::inside_bounds(state_.config, p)) {
-    return invalid("position must be inside the world bounds");
+    return invalid("position (and a hull's centre of mass) must be inside the world bounds");
   }
   // A teleported body may leave sleeping bodies unsupported.
   d3::wake_touching(state_, id);
   BodySim& sim = state_.sims[id.index];
   sim.position = p;
-  sim.rotation = quantize(normalize(rotation));
+  sim.rotation = q;
   d3::wake_body(state_, id.index);
   d3::mark_static_dirty(*scratch_);
   return Status::Ok();
@@ -514,8 +551,8 @@ void World3D::dump_bodies(std::vector<BodyRecord>& out) const {
     r.id = {i, info.generation};
     r.kind = info.kind;
     r.user_data = info.user_data;
-    r.position = sim.position;
-    r.rotation = sim.rotation;
+    d3::mass_to_authored(d3::mass_frame(info.shape, *geometry_), sim.position, sim.rotation,
+                         r.position, r.rotation);
     r.linear_velocity = sim.linear_velocity;
     r.angular_velocity = sim.angular_velocity;
     r.awake = info.awake != 0;

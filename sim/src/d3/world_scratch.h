@@ -139,6 +139,11 @@ class WorldScratch {
   using SolverBody = d3::SolverBody;
   using ContactConstraint = d3::ContactConstraint;
 
+  /// The world's geometry store (hulls and the like), which the stages
+  /// that collide shapes read. Not owned: World3D keeps it alive, and its
+  /// entries never change, so this is not state either.
+  const GeometryStore* store = nullptr;
+
   // broadphase (broadphase.cpp)
   /// By body index: this step's bounds of every awake body, fattened by
   /// the speculative distance and its reach this tick (sleeping and static

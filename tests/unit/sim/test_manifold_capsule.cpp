@@ -154,18 +154,19 @@ TEST(ManifoldCapsule, ReachingIntoABoxPushesOutTheShortWay) {
 TEST(ShapeCapsule, MassPropertiesAreTheAnalyticOnes) {
   const Shape cap = Shape::make_capsule(0.3f, 0.5f);
   const ShapeOps& ops = shape_ops(ShapeType::kCapsule);
+  const GeometryStore store;
   const double r = 0.3;
   const double h = 0.5;
   const double pi = 3.14159265358979323846;
   const double v_c = pi * r * r * 2.0 * h;
   const double v_s = 4.0 / 3.0 * pi * r * r * r;
-  EXPECT_NEAR(ops.volume(cap), v_c + v_s, 1e-6);
-  EXPECT_NEAR(ops.extent(cap), 0.8f, 1e-6f);
+  EXPECT_NEAR(ops.volume(cap, store), v_c + v_s, 1e-6);
+  EXPECT_NEAR(ops.extent(cap, store), 0.8f, 1e-6f);
   const double m = 10.0;
   const double m_c = m * v_c / (v_c + v_s);
   const double m_s = m - m_c;
   // Axial: cylinder m r^2/2 plus a solid sphere's 2/5 m r^2.
-  const Vec3 i = ops.inertia(cap, 10.0f);
+  const Vec3 i = ops.inertia(cap, store, 10.0f);
   EXPECT_NEAR(i.y, m_c * r * r / 2.0 + 0.4 * m_s * r * r, 1e-4);
   // Across, by integrating thin discs along the axis (independent of the
   // closed form): a disc of radius a, mass dm at height y contributes

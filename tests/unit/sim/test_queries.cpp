@@ -63,8 +63,9 @@ std::vector<RayHit> brute_ray(const World3D& world, const Ray& ray, const QueryF
     float t = 0.0f;
     Vec3 n;
     if (d3::shape_ops(info.shape.type)
-            .raycast(info.shape, world.position(id), world.rotation(id), ray.origin, dir,
-                     ray.max_distance, t, n)) {
+            .raycast(info.shape, world.geometry(), world.state().sims[id.index].position,
+                     world.state().sims[id.index].rotation, ray.origin, dir, ray.max_distance, t,
+                     n)) {
       out.push_back(RayHit{id, t, ray.origin + dir * t, n});
     }
   }

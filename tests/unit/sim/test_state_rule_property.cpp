@@ -67,12 +67,35 @@ Vec3 inside(Rng& rng, const WorldConfig& c, float spread) {
   return mid + rng.vec(half);
 }
 
-BodyDef random_body(Rng& rng, const WorldConfig& c) {
+// Hulls of a random scene: clouds of random points in boxes of random
+// sizes, registered through the cloud builder.
+std::vector<GeometryId> random_hulls(Rng& rng, GeometryStore& store) {
+  std::vector<GeometryId> out;
+  for (int h = 0; h < 3; ++h) {
+    const Vec3 size{rng.log_uniform(0.05f, 4.0f), rng.log_uniform(0.05f, 4.0f),
+                    rng.log_uniform(0.05f, 4.0f)};
+    std::vector<Vec3> cloud;
+    const uint32_t n = 4 + rng.below(40);
+    for (uint32_t i = 0; i < n; ++i) {
+      const Vec3 v = rng.vec(1.0f);
+      cloud.push_back({v.x * size.x, v.y * size.y, v.z * size.z});
+    }
+    if (auto id = store.add_hull_from_points(cloud); id.ok()) out.push_back(*id);
+  }
+  return out;
+}
+
+BodyDef random_body(Rng& rng, const WorldConfig& c, const std::vector<GeometryId>& hulls) {
   BodyDef def;
   const uint32_t k = rng.below(10);
   def.kind = k == 0 ? BodyKind::kStatic : (k == 1 ? BodyKind::kKinematic : BodyKind::kDynamic);
-  if (rng.chance(0.5f)) {
+  const uint32_t shape = rng.below(8);
+  if (shape < 3) {
     def.shape = Shape::make_sphere(rng.log_uniform(0.02f, 8.0f));
+  } else if (shape == 3) {
+    def.shape = Shape::make_capsule(rng.log_uniform(0.02f, 4.0f), rng.log_uniform(0.02f, 4.0f));
+  } else if (shape == 4 && !hulls.empty()) {
+    def.shape = Shape::make_hull(hulls[rng.below(static_cast<uint32_t>(hulls.size()))]);
   } else {
     def.shape = Shape::make_box(
         {rng.log_uniform(0.02f, 8.0f), rng.log_uniform(0.02f, 8.0f), rng.log_uniform(0.02f, 8.0f)});
@@ -96,7 +119,8 @@ BodyDef random_body(Rng& rng, const WorldConfig& c) {
 
 // One random thing a game might do between ticks. Refusals are fine (and
 // must leave the world valid); what the world accepts must stay loadable.
-void random_action(Rng& rng, World3D& world, std::vector<BodyId>& ids) {
+void random_action(Rng& rng, World3D& world, std::vector<BodyId>& ids,
+                   const std::vector<GeometryId>& hulls) {
   if (ids.empty()) return;
   const BodyId id = ids[rng.below(static_cast<uint32_t>(ids.size()))];
   const WorldConfig& c = world.config();
@@ -123,7 +147,7 @@ void random_action(Rng& rng, World3D& world, std::vector<BodyId>& ids) {
     case 6:
       if (rng.chance(0.3f) || ids.size() >= 40) {
         (void)world.destroy_body(id);
-      } else if (auto created = world.create_body(random_body(rng, c)); created.ok()) {
+      } else if (auto created = world.create_body(random_body(rng, c, hulls)); created.ok()) {
         ids.push_back(*created);
       }
       break;
@@ -163,18 +187,21 @@ struct Totals {
 void run_scene(uint64_t seed, int ticks, Totals& totals) {
   Rng rng(seed);
   World3D world(random_config(rng));
+  const std::vector<GeometryId> hulls = random_hulls(rng, world.geometry());
   std::vector<BodyId> ids;
   const uint32_t count = 5 + rng.below(30);
   for (uint32_t i = 0; i < count; ++i) {
-    if (auto id = world.create_body(random_body(rng, world.config())); id.ok()) ids.push_back(*id);
+    if (auto id = world.create_body(random_body(rng, world.config(), hulls)); id.ok()) {
+      ids.push_back(*id);
+    }
   }
-  World3D loaded;
+  World3D loaded({}, world.shared_geometry());
   WorldState saved;
   std::vector<uint8_t> bytes;
   std::vector<uint64_t> replay_sums;
   for (int t = 0; t < ticks; ++t) {
     if (rng.chance(0.3f)) {
-      random_action(rng, world, ids);
+      random_action(rng, world, ids, hulls);
       ASSERT_TRUE(loads_back(world, loaded, bytes)) << "seed " << seed << " before tick " << t;
     }
     world.step();

@@ -249,9 +249,9 @@ TEST(WorldBounds, RestoreAndReStepAcrossTheEdgeIsBitExact) {
   }
 }
 
-// Offsets into a snapshot: "RWD3" + version, then the config; the bounds are
-// its last 24 bytes (lower xyz, upper xyz).
-constexpr size_t kConfigStart = 8;
+// Offsets into a snapshot: "RWD3" + version, the geometry count and digest,
+// then the config; the bounds are its last 24 bytes (lower xyz, upper xyz).
+constexpr size_t kConfigStart = 8 + 4 + 8;
 constexpr size_t kBoundsLowerX = kConfigStart + 61;
 
 void put_f32(std::vector<uint8_t>& bytes, size_t at, float v) {

@@ -45,9 +45,11 @@ inline constexpr uint8_t kLockRotationAll = 7;
 struct BodyDef {
   BodyKind kind = BodyKind::kDynamic;
   Shape shape = Shape::make_box({0.5f, 0.5f, 0.5f});
-  Vec3 position;                  ///< metres, of the shape's centre
+  /// metres: the shape's centre; for a hull, the origin of the frame its
+  /// points were given in (the body turns about its centre of mass)
+  Vec3 position;
   Quat rotation;                  ///< normalized on creation
-  Vec3 linear_velocity;           ///< m/s
+  Vec3 linear_velocity;           ///< m/s, of the centre of mass
   Vec3 angular_velocity;          ///< rad/s, world frame
   float density = 1000.0f;        ///< kg/m^3, > 0; dynamic bodies only
   float linear_damping = 0.0f;    ///< 1/s, >= 0

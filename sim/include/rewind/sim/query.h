@@ -27,6 +27,16 @@ struct RayHit {
   Vec3 normal;            ///< outward surface normal at the hit
 };
 
+/// Where a swept shape first touches a body (World3D::shape_cast).
+struct ShapeCastHit {
+  BodyId body;
+  /// Metres the shape travels along the translation before it touches;
+  /// 0 when it starts touching or overlapping the body.
+  float distance = 0.0f;
+  Vec3 point;   ///< world, the contact point on the body's surface then
+  Vec3 normal;  ///< unit, the body's surface normal there (toward the swept shape)
+};
+
 /// Where two bodies touch, as the narrowphase sees them: one normal and up
 /// to four points (World3D::contact_manifold).
 struct ContactManifold {

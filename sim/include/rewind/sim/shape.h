@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 
+#include "rewind/sim/geometry_id.h"
 #include "rewind/sim/math.h"
 
 namespace rwd::sim {
@@ -12,15 +13,22 @@ enum class ShapeType : uint8_t {
   /// A segment along the body's local y axis, from -half_height to
   /// +half_height, swept by a sphere of `radius`.
   kCapsule = 2,
+  /// A convex hull registered in the world's GeometryStore (geometry.h),
+  /// referred to by id.
+  kHull = 3,
 };
 
-/// A collision shape centred on its body's origin. Plain data, trivially
-/// copyable, part of world state. Sizes are in metres, each in (0, 1000].
+/// A collision shape on its body's origin. Plain data, trivially copyable,
+/// part of world state. Sizes are in metres, each in (0, 1000]. Shapes
+/// made of registered geometry (hulls) hold its id, never the data.
 struct Shape {
   ShapeType type = ShapeType::kBox;
-  float radius = 0.0f;       ///< sphere and capsule radius, m
-  Vec3 half_extents;         ///< box half sizes, m
+  float radius = 0.0f;  ///< sphere and capsule radius, m
+  /// Box half sizes, m. For a hull, filled by the world when the body is
+  /// made: half the size of the hull's bounds in its mass frame.
+  Vec3 half_extents;
   float half_height = 0.0f;  ///< capsule: half the distance between its cap centres, m
+  uint32_t geometry = 0;     ///< hull: its GeometryId in the world's store
 
   static Shape make_sphere(float radius_m) {
     Shape s;
@@ -41,6 +49,15 @@ struct Shape {
     s.type = ShapeType::kCapsule;
     s.radius = radius_m;
     s.half_height = half_height_m;
+    return s;
+  }
+  /// A registered convex hull (GeometryStore::add_hull). The body turns
+  /// about the hull's centre of mass; its position is the origin of the
+  /// frame the hull's points were given in.
+  static Shape make_hull(GeometryId id) {
+    Shape s;
+    s.type = ShapeType::kHull;
+    s.geometry = id.value;
     return s;
   }
 };

@@ -14,6 +14,7 @@
 #include "rewind/sim/body_event.h"
 #include "rewind/sim/body_record.h"
 #include "rewind/sim/contact_event.h"
+#include "rewind/sim/geometry.h"
 #include "rewind/sim/query.h"
 #include "rewind/sim/state_hasher.h"
 #include "rewind/sim/status.h"
@@ -47,8 +48,11 @@ class WorldScratch;  // per-step working memory; not state
 class World3D {
  public:
   /// Creates an empty world. An invalid config is replaced field by field
-  /// with defaults; use validate_config() first to report errors.
-  explicit World3D(const WorldConfig& config = {});
+  /// with defaults; use validate_config() first to report errors. The world
+  /// reads hulls and other registered geometry from `geometry` (a new,
+  /// empty store when null); worlds that share a store share its ids.
+  explicit World3D(const WorldConfig& config = {},
+                   std::shared_ptr<GeometryStore> geometry = nullptr);
   ~World3D();
   World3D(const World3D&) = delete;
   World3D& operator=(const World3D&) = delete;
@@ -65,6 +69,14 @@ class World3D {
   /// validate_config() refuses.
   static Result<WorldConfig> decode_config(std::span<const uint8_t> bytes);
 
+  // --- geometry -----------------------------------------------------------
+
+  /// The store this world's hull shapes refer to: register geometry here
+  /// (GeometryStore::add_hull) before making bodies of it.
+  GeometryStore& geometry();
+  const GeometryStore& geometry() const;
+  std::shared_ptr<GeometryStore> shared_geometry() const;
+
   // --- bodies -------------------------------------------------------------
 
   /// Creates a body. Rejects non-finite or out-of-range values and full
@@ -80,9 +92,16 @@ class World3D {
   void body_ids(std::vector<BodyId>& out) const;
 
   // Accessors return zero values for invalid ids.
+  //
+  // A body's position and rotation are those of the frame its shape was
+  // authored in (for a hull, the frame of its points); it turns about its
+  // centre of mass, and its linear velocity is that of the centre of mass.
+  // For spheres, boxes and capsules the two points are the same.
   BodyKind kind(BodyId id) const;
   Vec3 position(BodyId id) const;
   Quat rotation(BodyId id) const;
+  /// The centre of mass in the world, m.
+  Vec3 center_of_mass(BodyId id) const;
   Vec3 linear_velocity(BodyId id) const;
   Vec3 angular_velocity(BodyId id) const;
   float mass(BodyId id) const;  ///< kg; 0 for static and kinematic
@@ -157,6 +176,20 @@ class World3D {
   /// exactly; they change no state.
   Status overlap(const Shape& shape, Vec3 position, Quat rotation, const QueryFilter& filter,
                  std::vector<BodyId>& out) const;
+  /// Sweeps `shape` from `position`, `rotation` (its authored frame, as a
+  /// body of it would be placed) along `translation` (m) and reports the
+  /// first body it touches, or nullopt in `out` when none is in the way;
+  /// ties go to the lower index. A body the shape starts in touching or
+  /// overlapping is hit at distance 0. kInvalidArgument, with `out` empty,
+  /// for a shape the body rule refuses or a non-finite or zero pose or
+  /// translation. Sweeps through the query trees (the bounds of the whole
+  /// sweep); allocates nothing once warm.
+  Status shape_cast(const Shape& shape, Vec3 position, Quat rotation, Vec3 translation,
+                    const QueryFilter& filter, std::optional<ShapeCastHit>& out) const;
+  /// Every body the sweep touches, nearest first (ties by index), each at
+  /// its first touch, into `out` (cleared first; keeps its capacity).
+  Status shape_cast_all(const Shape& shape, Vec3 position, Quat rotation, Vec3 translation,
+                        const QueryFilter& filter, std::vector<ShapeCastHit>& out) const;
   /// The body whose surface is nearest `point` within `max_distance` m
   /// (a body the point is inside counts, at its negative depth), or
   /// nullopt; ties go to the lower index. A non-finite point or a negative
@@ -202,6 +235,7 @@ class World3D {
 
  private:
   WorldState state_;
+  std::shared_ptr<GeometryStore> geometry_;
   std::unique_ptr<WorldScratch> scratch_;
 };
 

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// A body's two frames. The simulation keeps every body at its centre of
+// mass, turned to its principal axes (the mass frame), so the solver sees
+// a diagonal inertia for every shape. The game places a body by the
+// origin and axes it authored the shape in. For spheres, boxes and
+// capsules the two are the same; a hull's mass frame sits where its
+// registration found it (HullFrame). The API converts at its edge, so
+// state holds mass-frame poses only.
+#include "d3/hull.h"
+#include "rewind/sim/geometry.h"
+#include "rewind/sim/shape.h"
+
+namespace rwd::sim::d3 {
+
+/// Where a shape's mass frame sits in its authored frame.
+struct MassFrame {
+  Vec3 center;    ///< metres, in the authored frame
+  Quat rotation;  ///< mass-frame axes in the authored frame
+  bool identity = true;
+};
+
+/// The mass frame of a shape the state rule accepts (check_shape).
+inline MassFrame mass_frame(const Shape& shape, const GeometryStore& store) {
+  if (shape.type != ShapeType::kHull) return {};
+  const HullFrame& f = store.hull(shape.geometry)->frame;
+  return {f.center, f.rotation, false};
+}
+
+/// The mass-frame pose of a body whose authored frame is at `position`,
+/// `rotation`.
+inline void authored_to_mass(const MassFrame& f, Vec3 position, Quat rotation, Vec3& mass_position,
+                             Quat& mass_rotation) {
+  if (f.identity) {
+    mass_position = position;
+    mass_rotation = rotation;
+    return;
+  }
+  mass_position = position + rotate(rotation, f.center);
+  mass_rotation = normalize(rotation * f.rotation);
+}
+
+/// The authored pose of a body whose mass frame is at `mass_position`,
+/// `mass_rotation`.
+inline void mass_to_authored(const MassFrame& f, Vec3 mass_position, Quat mass_rotation,
+                             Vec3& position, Quat& rotation) {
+  if (f.identity) {
+    position = mass_position;
+    rotation = mass_rotation;
+    return;
+  }
+  rotation = normalize(mass_rotation * conjugate(f.rotation));
+  position = mass_position - rotate(rotation, f.center);
+}
+
+}  // namespace rwd::sim::d3
