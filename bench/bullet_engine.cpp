@@ -11,10 +11,19 @@
 // - shapes keep Bullet's default collision margin (0.04 m, inside a box's
 //   half extents; a sphere's margin is its radius), so sizes are exact;
 //   boxes thinner than 8 cm get half their smallest half extent instead;
-// - `continuous` bodies get Bullet's swept-sphere CCD.
+// - `continuous` bodies get Bullet's swept-sphere CCD;
+// - a hull becomes a btConvexHullShape of its corners moved into its mass
+//   frame (centre of mass, principal axes: Bullet turns a body about its
+//   origin), with the exact principal inertia rather than Bullet's
+//   bounding-box estimate; positions are reported back in the frame the
+//   points were given in, as Rewind reports them. Rewind's hull builder
+//   supplies the corners, mass frame and inertia, so both engines simulate
+//   the same solid.
 // Everything else is Bullet's default: split impulse, erp 0.2, warm starting,
 // SIMD solver, dynamic AABB tree broadphase, gyroscopic term on.
 #include "bullet_engine.h"
+
+#include "rewind/sim/geometry.h"
 
 #include <btBulletDynamicsCommon.h>
 
@@ -57,6 +66,17 @@ bool combine_like_rewind(btManifoldPoint& cp, const btCollisionObjectWrapper* a,
 
 }  // namespace
 
+// A registered hull as Bullet gets it.
+struct BulletHull {
+  std::vector<btVector3> corners;  // in the mass frame
+  float volume = 0.0f;
+  Vec3 unit_inertia;  // principal moments per kg
+  float extent = 0.0f;
+  float smallest = 0.0f;  // smallest half size of the mass-frame bounds
+  Vec3 center;            // mass frame in the authored frame
+  Quat rotation;
+};
+
 struct BulletEngine::World {
   btDefaultCollisionConfiguration config;
   btCollisionDispatcher dispatcher{&config};
@@ -66,6 +86,8 @@ struct BulletEngine::World {
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::vector<Surface> surfaces;  // reserved up front: bodies point into it
+  std::vector<BulletHull> hulls;
+  std::vector<int> body_hull;  // per body: its hull, or -1
   scenes::WorldSpec spec;
   float substep_s = 1.0f / 60.0f;
 
@@ -99,12 +121,45 @@ void BulletEngine::reset(const scenes::WorldSpec& world, uint32_t body_capacity)
   gDeactivationTime = 0.5f;
 }
 
+bool BulletEngine::add_hull(std::span<const Vec3> points, sim::GeometryId& out,
+                            std::string& error) {
+  sim::GeometryStore store;
+  auto id = store.add_hull(points);
+  if (!id.ok()) {
+    error = id.status().message();
+    return false;
+  }
+  const auto info = store.hull_info(*id);
+  std::vector<Vec3> corners;
+  store.hull_vertices(*id, corners);
+  BulletHull h;
+  h.volume = info->volume;
+  h.unit_inertia = info->unit_inertia;
+  h.center = info->center_of_mass;
+  h.rotation = info->principal_axes;
+  Vec3 lo{1e30f, 1e30f, 1e30f};
+  Vec3 hi{-1e30f, -1e30f, -1e30f};
+  for (const Vec3& c : corners) {
+    const Vec3 m = sim::inv_rotate(h.rotation, c - h.center);
+    h.corners.push_back(bt(m));
+    h.extent = std::max(h.extent, sim::length(m));
+    lo = sim::min(lo, m);
+    hi = sim::max(hi, m);
+  }
+  const Vec3 half = (hi - lo) * 0.5f;
+  h.smallest = std::min(half.x, std::min(half.y, half.z));
+  world_->hulls.push_back(std::move(h));
+  out = sim::GeometryId{static_cast<uint32_t>(world_->hulls.size() - 1)};
+  return true;
+}
+
 bool BulletEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& error) {
   if (world_->surfaces.size() == world_->surfaces.capacity()) {
     error = "more bodies than the scene's body_capacity";
     return false;
   }
   std::unique_ptr<btCollisionShape> shape;
+  int hull_index = -1;
   float volume = 0.0f;
   float extent = 0.0f;
   float smallest = 0.0f;
@@ -123,7 +178,24 @@ bool BulletEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& 
     volume = 3.14159265f * r * r * 2.0f * h + 4.0f / 3.0f * 3.14159265f * r * r * r;
     extent = h + r;
     smallest = r;
-  } else {
+  } else if (spec.shape.type == sim::ShapeType::kHull) {
+    if (spec.shape.geometry >= world_->hulls.size()) {
+      error = "unknown hull";
+      return false;
+    }
+    const BulletHull& h = world_->hulls[spec.shape.geometry];
+    auto hull = std::make_unique<btConvexHullShape>(h.corners[0].m_floats,
+                                                    static_cast<int>(h.corners.size()),
+                                                    static_cast<int>(sizeof(btVector3)));
+    // Bullet's margin rounds a hull outward; keep it, but no larger than
+    // a thin hull can carry.
+    if (hull->getMargin() > 0.5f * h.smallest) hull->setMargin(0.5f * h.smallest);
+    shape = std::move(hull);
+    volume = h.volume;
+    extent = h.extent;
+    smallest = h.smallest;
+    hull_index = static_cast<int>(spec.shape.geometry);
+  } else if (spec.shape.type == sim::ShapeType::kBox) {
     const Vec3 h = spec.shape.half_extents;
     smallest = std::min(h.x, std::min(h.y, h.z));
     auto box = std::make_unique<btBoxShape>(bt(h));
@@ -134,15 +206,25 @@ bool BulletEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& 
     shape = std::move(box);
     volume = 8.0f * h.x * h.y * h.z;
     extent = std::sqrt(sim::length_squared(h));
+  } else {
+    error = "shape type this adapter does not map";
+    return false;
   }
   const bool dynamic = spec.kind == sim::BodyKind::kDynamic;
   const float mass = dynamic ? spec.density * volume : 0.0f;
   btVector3 inertia(0.0f, 0.0f, 0.0f);
   if (dynamic) shape->calculateLocalInertia(mass, inertia);
+  Vec3 position = spec.position;
+  Quat rotation = spec.rotation;
+  if (hull_index >= 0) {
+    const BulletHull& h = world_->hulls[static_cast<size_t>(hull_index)];
+    if (dynamic) inertia = bt(h.unit_inertia * mass);
+    position = spec.position + sim::rotate(spec.rotation, h.center);
+    rotation = spec.rotation * h.rotation;
+  }
   btTransform pose;
-  pose.setOrigin(bt(spec.position));
-  pose.setRotation(
-      btQuaternion(spec.rotation.x, spec.rotation.y, spec.rotation.z, spec.rotation.w));
+  pose.setOrigin(bt(position));
+  pose.setRotation(btQuaternion(rotation.x, rotation.y, rotation.z, rotation.w));
   btRigidBody::btRigidBodyConstructionInfo ci(mass, nullptr, shape.get(), inertia);
   ci.m_startWorldTransform = pose;
   ci.m_friction = spec.friction;
@@ -173,6 +255,7 @@ bool BulletEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& 
   out = static_cast<BodyHandle>(world_->bodies.size());
   world_->shapes.push_back(std::move(shape));
   world_->bodies.push_back(std::move(body));
+  world_->body_hull.push_back(hull_index);
   return true;
 }
 
@@ -185,12 +268,18 @@ void BulletEngine::step() {
   }
 }
 
-Vec3 BulletEngine::position(BodyHandle body) const {
-  return rw(world_->bodies[body]->getWorldTransform().getOrigin());
-}
 Quat BulletEngine::rotation(BodyHandle body) const {
   const btQuaternion q = world_->bodies[body]->getWorldTransform().getRotation();
-  return {q.x(), q.y(), q.z(), q.w()};
+  const Quat mass_rotation{q.x(), q.y(), q.z(), q.w()};
+  const int hull = world_->body_hull[body];
+  if (hull < 0) return mass_rotation;
+  return mass_rotation * sim::conjugate(world_->hulls[static_cast<size_t>(hull)].rotation);
+}
+Vec3 BulletEngine::position(BodyHandle body) const {
+  const Vec3 p = rw(world_->bodies[body]->getWorldTransform().getOrigin());
+  const int hull = world_->body_hull[body];
+  if (hull < 0) return p;
+  return p - sim::rotate(rotation(body), world_->hulls[static_cast<size_t>(hull)].center);
 }
 Vec3 BulletEngine::linear_velocity(BodyHandle body) const {
   return rw(world_->bodies[body]->getLinearVelocity());

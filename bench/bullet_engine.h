@@ -28,6 +28,8 @@ class BulletEngine final : public scenes::Engine {
   std::string name() const override { return "bullet"; }
   std::string settings() const override;
   void reset(const scenes::WorldSpec& world, uint32_t body_capacity) override;
+  bool add_hull(std::span<const scenes::Vec3> points, sim::GeometryId& out,
+                std::string& error) override;
   bool add_body(const scenes::BodySpec& spec, scenes::BodyHandle& out, std::string& error) override;
   void step() override;
   scenes::Vec3 position(scenes::BodyHandle body) const override;

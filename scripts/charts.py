@@ -243,6 +243,18 @@ def main():
     pile_awake_chart = cost_chart(args.out, "cost_pile_awake", "pile of boxes, every body awake: "
                                   "cost per step (60 Hz, 1 thread, default settings)", pile_awake)
 
+    shape_piles = OrderedDict()
+    for scene in ("mixed_pile", "convex_pile"):
+        rs = [r for r in awake_rows if r["scene"] == scene and r["metric"] == "escaped"]
+        if rs:
+            shape_piles[scene] = rs
+    convex_chart = None
+    if "convex_pile" in shape_piles:
+        convex_chart = cost_chart(args.out, "cost_convex_pile_awake", "convex pile (boxes, "
+                                  "capsules, spheres, hulls), every body awake: cost per step "
+                                  "(60 Hz, 1 thread, default settings)",
+                                  shape_piles["convex_pile"])
+
     def ratios(rs):
         return OrderedDict((k, e["rewind"] / e["bullet"]) for k, e in by_size(rs).items()
                            if "rewind" in e and "bullet" in e)
@@ -271,6 +283,11 @@ def main():
           "%.2f–%.2f (bases %s), piles %.2f–%.2f (%s boxes).\n"
           % (min(pr.values()), max(pr.values()), ", ".join(str(k) for k in pr),
              min(pl.values()), max(pl.values()), ", ".join(str(k) for k in pl)))
+    for scene, rs in shape_piles.items():
+        rr = ratios(rs)
+        if rr:
+            w("**%s, every body awake, Rewind ÷ Bullet:** %.2f–%.2f (%s bodies).\n"
+              % (scene, min(rr.values()), max(rr.values()), ", ".join(str(k) for k in rr)))
 
     w("## Cost\n")
     w("### Pile of boxes poured into a bin (default settings, sleeping on)\n")
@@ -318,6 +335,22 @@ def main():
       "AABB trees) stays about a tenth of the step and the narrowphase falls from about "
       "22% to 15% (most of a settled pile's contacts carry their manifolds forward). "
       "Fewer bytes per contact or fewer passes are the remedies.\n")
+
+    for scene, rs in shape_piles.items():
+        w("### %s, every body kept awake (default settings otherwise)\n" % scene)
+        if scene == "convex_pile" and convex_chart:
+            w("![convex pile cost awake](%s/%s)\n" % (rel_out, convex_chart))
+        w("Bodies cycle %s; the hulls are a stretched icosahedron (12 corners) and a "
+          "hexagonal prism (12 corners, 8 faces).\n" % ("box, capsule" if scene == "mixed_pile"
+                                                       else "box, capsule, sphere, rock hull, "
+                                                       "prism hull"))
+        w("| bodies | Rewind ms/step | Bullet ms/step | Rewind / Bullet |")
+        w("|---:|---:|---:|---:|")
+        for size, e in by_size(rs).items():
+            if "rewind" in e and "bullet" in e:
+                w("| %d | %.2f | %.2f | %.2f |" % (size, e["rewind"], e["bullet"],
+                                                  e["rewind"] / e["bullet"]))
+        w("")
 
     w("### Every body awake: what stands without sleeping\n")
     w("The same default settings with sleeping off in both engines: a structure "

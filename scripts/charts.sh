@@ -56,11 +56,14 @@ pyramid_sizes=(--size 10 --size 20 --size 30)
 [[ $mode == full ]] && pyramid_sizes+=(--size 40)
 pile_sizes=(--size 250 --size 500 --size 1000 --size 2000)
 [[ $mode == full ]] && pile_sizes+=(--size 4000 --size 8000)
-step "stacks, pyramids, card houses, log cabins and piles with every body awake (the solver without sleeping)"
+step "stacks, pyramids, card houses, log cabins, hull stacks and piles with every body awake (the solver without sleeping)"
 "$sweep" --mode defaults --no-sleep --scene pyramid "${pyramid_sizes[@]}" >"$out/awake.csv"
 "$sweep" --mode defaults --no-sleep --scene stack | tail -n +2 >>"$out/awake.csv"
 "$sweep" --mode defaults --no-sleep --scene card_house | tail -n +2 >>"$out/awake.csv"
 "$sweep" --mode defaults --no-sleep --scene log_cabin | tail -n +2 >>"$out/awake.csv"
+"$sweep" --mode defaults --no-sleep --scene hull_stack | tail -n +2 >>"$out/awake.csv"
+"$sweep" --mode defaults --no-sleep --scene mixed_pile | tail -n +2 >>"$out/awake.csv"
+"$sweep" --mode defaults --no-sleep --scene convex_pile | tail -n +2 >>"$out/awake.csv"
 "$sweep" --mode defaults --no-sleep --scene pile "${pile_sizes[@]}" | tail -n +2 >>"$out/awake.csv"
 
 "$sweep" --list >"$out/catalog.txt"

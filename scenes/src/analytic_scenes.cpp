@@ -125,21 +125,29 @@ struct Incline {
 };
 
 /// A box on an incline. Sticking (tan angle < mu): it must not creep.
-/// Slipping (tan angle > mu): it travels g (sin - mu cos) t^2 / 2.
+/// Slipping (tan angle > mu): it travels g (sin - mu cos) t^2 / 2, whatever
+/// its shape: the hull variant slides an octagonal prism hull (0.5 m
+/// circumradius, 0.6 m tall, its points' origin at the centre of its base,
+/// so it also checks that a hull body turns about its centre of mass).
 class InclineScene final : public kit::SpecScene {
  public:
-  InclineScene(int degrees, float mu, bool stick)
+  InclineScene(int degrees, float mu, bool stick, bool hull = false)
       : SpecScene(degrees),
         incline_(kit::radians(static_cast<float>(degrees))),
         mu_(mu),
-        stick_(stick) {
+        stick_(stick),
+        hull_(hull) {
     add(incline_.slab(mu));
-    BodySpec b = kit::box(incline_.at(10.0f, 0.5f), {0.5f, 0.5f, 0.5f}, mu);
+    BodySpec b =
+        hull ? kit::hull(add_hull(kit::prism_points(8, 0.5f, 0.6f)), incline_.at(10.0f, 0.0f), mu)
+             : kit::box(incline_.at(10.0f, 0.5f), {0.5f, 0.5f, 0.5f}, mu);
     b.rotation = incline_.rotation;
     add(b);
     start_ = incline_.up_slope(b.position);
   }
-  std::string_view name() const override { return stick_ ? "incline_stick" : "incline_slip"; }
+  std::string_view name() const override {
+    return stick_ ? "incline_stick" : (hull_ ? "hull_slip" : "incline_slip");
+  }
   Tick ticks() const override { return stick_ ? 180 : 120; }
   void after_step(Tick, const Engine& engine) override {
     travel_m_ = start_ - incline_.up_slope(engine.position(handles_[1]));
@@ -162,6 +170,7 @@ class InclineScene final : public kit::SpecScene {
   Incline incline_;
   float mu_;
   bool stick_;
+  bool hull_;
   float start_ = 0.0f;
   double travel_m_ = 0.0;
   double max_travel_m_ = 0.0;
@@ -279,6 +288,10 @@ std::unique_ptr<Scene> make_incline_stick(int degrees) {
 std::unique_ptr<Scene> make_incline_slip(int degrees) {
   if (degrees < 17 || degrees > 60) return nullptr;  // tan 17 deg > 0.3
   return std::make_unique<InclineScene>(degrees, 0.3f, false);
+}
+std::unique_ptr<Scene> make_hull_slip(int degrees) {
+  if (degrees < 20 || degrees > 40) return nullptr;
+  return std::make_unique<InclineScene>(degrees, 0.3f, false, true);
 }
 std::unique_ptr<Scene> make_roll(int degrees) {
   // Rolling without slipping needs mu >= 2/7 tan(angle); mu is 0.8.

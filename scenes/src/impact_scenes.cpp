@@ -47,10 +47,20 @@ class ProjectileScene final : public kit::SpecScene {
 /// fall, tumble and settle. None may leave the bin, and after 6 s the pile
 /// should be nearly at rest. The mixed pile makes every other body a
 /// capsule (0.15 m radius, 0.7 m long), so boxes and capsules meet in every
-/// pairing.
+/// pairing; the convex pile cycles through box, capsule, sphere, rock (a
+/// stretched icosahedron hull) and hexagonal prism hull.
+enum class PileMix : uint8_t { kBoxes, kCapsules, kConvex };
+
 class PileScene final : public kit::SpecScene {
  public:
-  PileScene(int count, bool mixed) : SpecScene(count), mixed_(mixed) {
+  PileScene(int count, PileMix mix) : SpecScene(count), mix_(mix) {
+    if (mix == PileMix::kConvex) {
+      rock_ = add_hull(kit::rock_points({0.3f, 0.22f, 0.26f}));
+      // Points about the prism's middle, so it turns about its centre.
+      std::vector<Vec3> prism = kit::prism_points(6, 0.28f, 0.36f);
+      for (Vec3& p : prism) p.y -= 0.18f;
+      prism_ = add_hull(std::move(prism));
+    }
     // About ten layers of k x k boxes, 0.8 m apart (a turned box reaches
     // at most 0.39 m from its centre, so none starts touching another).
     const int k = std::max(2, static_cast<int>(std::ceil(std::sqrt(count / 10.0))));
@@ -76,14 +86,16 @@ class PileScene final : public kit::SpecScene {
       Vec3 p{(static_cast<float>(col) - 0.5f * static_cast<float>(k - 1)) * pitch + shift,
              1.0f + pitch * static_cast<float>(layer),
              (static_cast<float>(row) - 0.5f * static_cast<float>(k - 1)) * pitch - shift};
-      BodySpec b =
-          mixed && i % 2 == 1 ? kit::capsule(p, 0.15f, 0.2f) : kit::box(p, {0.25f, 0.25f, 0.25f});
+      BodySpec b = make_body(i, p);
       const float turn = 0.3f * static_cast<float>((i * 7) % 5 - 2);
       b.rotation = kit::axis_angle({0.6f, 0.0f, 0.8f}, turn);
       add(b);
     }
   }
-  std::string_view name() const override { return mixed_ ? "mixed_pile" : "pile"; }
+  std::string_view name() const override {
+    return mix_ == PileMix::kBoxes ? "pile"
+                                   : (mix_ == PileMix::kCapsules ? "mixed_pile" : "convex_pile");
+  }
   Tick ticks() const override { return 360; }
   void after_step(Tick tick, const Engine& engine) override {
     if (tick + 1 != ticks()) return;
@@ -108,7 +120,33 @@ class PileScene final : public kit::SpecScene {
   }
 
  private:
-  bool mixed_ = false;
+  BodySpec make_body(int i, Vec3 p) const {
+    const BodySpec box = kit::box(p, {0.25f, 0.25f, 0.25f});
+    switch (mix_) {
+      case PileMix::kBoxes:
+        return box;
+      case PileMix::kCapsules:
+        return i % 2 == 1 ? kit::capsule(p, 0.15f, 0.2f) : box;
+      case PileMix::kConvex:
+        switch (i % 5) {
+          case 1:
+            return kit::capsule(p, 0.15f, 0.2f);
+          case 2:
+            return kit::sphere(p, 0.25f);
+          case 3:
+            return kit::hull(rock_, p);
+          case 4:
+            return kit::hull(prism_, p);
+          default:
+            return box;
+        }
+    }
+    return box;
+  }
+
+  PileMix mix_ = PileMix::kBoxes;
+  Shape rock_;
+  Shape prism_;
   float inner_half_ = 0.0f;
   float wall_top_ = 0.0f;
   size_t first_box_ = 0;
@@ -172,11 +210,15 @@ std::unique_ptr<Scene> make_projectile(int speed) {
 }
 std::unique_ptr<Scene> make_pile(int count) {
   if (count < 1 || count > 100000) return nullptr;
-  return std::make_unique<PileScene>(count, false);
+  return std::make_unique<PileScene>(count, PileMix::kBoxes);
 }
 std::unique_ptr<Scene> make_mixed_pile(int count) {
   if (count < 1 || count > 100000) return nullptr;
-  return std::make_unique<PileScene>(count, true);
+  return std::make_unique<PileScene>(count, PileMix::kCapsules);
+}
+std::unique_ptr<Scene> make_convex_pile(int count) {
+  if (count < 1 || count > 100000) return nullptr;
+  return std::make_unique<PileScene>(count, PileMix::kConvex);
 }
 std::unique_ptr<Scene> make_overlap(int count) {
   if (count < 1 || count > 50) return nullptr;

@@ -30,6 +30,17 @@ void RewindEngine::reset(const WorldSpec& world, uint32_t body_capacity) {
   ids_.clear();
 }
 
+bool RewindEngine::add_hull(std::span<const Vec3> points, sim::GeometryId& out,
+                            std::string& error) {
+  auto id = world_->geometry().add_hull(points);
+  if (!id.ok()) {
+    error = id.status().message();
+    return false;
+  }
+  out = *id;
+  return true;
+}
+
 bool RewindEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& error) {
   sim::BodyDef def;
   def.kind = spec.kind;

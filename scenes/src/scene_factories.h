@@ -26,6 +26,9 @@ std::unique_ptr<Scene> make_projectile(int speed);
 std::unique_ptr<Scene> make_pile(int count);
 std::unique_ptr<Scene> make_mixed_pile(int count);
 std::unique_ptr<Scene> make_log_cabin(int layers);
+std::unique_ptr<Scene> make_hull_stack(int count);
+std::unique_ptr<Scene> make_hull_slip(int degrees);
+std::unique_ptr<Scene> make_convex_pile(int count);
 std::unique_ptr<Scene> make_overlap(int count);
 
 }  // namespace rwd::scenes

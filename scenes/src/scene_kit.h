@@ -55,6 +55,47 @@ inline BodySpec capsule(Vec3 position, float radius, float half_height, float fr
   return s;
 }
 
+/// A body of a hull shape (SpecScene::add_hull) whose points' origin is at
+/// `position`.
+inline BodySpec hull(Shape shape, Vec3 position, float friction = 0.6f) {
+  BodySpec s;
+  s.shape = shape;
+  s.position = position;
+  s.friction = friction;
+  return s;
+}
+
+/// The corners of a prism standing on the plane y = 0 (its points' origin
+/// is the centre of its base): a regular `sides`-gon of circumradius
+/// `radius`, `height` tall.
+inline std::vector<Vec3> prism_points(int sides, float radius, float height) {
+  std::vector<Vec3> points;
+  for (float y : {0.0f, height}) {
+    for (int i = 0; i < sides; ++i) {
+      const float a = 2.0f * kPi * static_cast<float>(i) / static_cast<float>(sides);
+      points.push_back({radius * std::cos(a), y, radius * std::sin(a)});
+    }
+  }
+  return points;
+}
+
+/// The corners of a rock: an icosahedron stretched to half sizes `half`
+/// about its centre (every vertex stays a corner).
+inline std::vector<Vec3> rock_points(Vec3 half) {
+  const float g = 1.6180339887f;  // the golden ratio
+  const float n = 1.0f / std::sqrt(1.0f + g * g);
+  std::vector<Vec3> points;
+  for (float s1 : {-1.0f, 1.0f}) {
+    for (float s2 : {-1.0f, 1.0f}) {
+      points.push_back({0.0f, s1 * n, s2 * g * n});
+      points.push_back({s1 * n, s2 * g * n, 0.0f});
+      points.push_back({s2 * g * n, 0.0f, s1 * n});
+    }
+  }
+  for (Vec3& p : points) p = {p.x * half.x, p.y * half.y, p.z * half.z};
+  return points;
+}
+
 inline BodySpec fixed(BodySpec s) {
   s.kind = BodyKind::kStatic;
   return s;
@@ -69,9 +110,18 @@ inline BodySpec ground(float top_y = 0.0f, float x = 0.0f, float z = 0.0f, float
 class SpecScene : public Scene {
  public:
   uint32_t body_capacity() const override { return static_cast<uint32_t>(specs_.size()); }
+  /// Registers the scene's hulls with the engine, then adds its bodies,
+  /// each hull shape pointing at the id the engine gave its hull.
   bool build(Engine& engine, std::string& error) override {
     handles_.clear();
-    for (const BodySpec& s : specs_) {
+    std::vector<sim::GeometryId> ids;
+    for (const std::vector<Vec3>& points : hulls_) {
+      sim::GeometryId id;
+      if (!engine.add_hull(points, id, error)) return false;
+      ids.push_back(id);
+    }
+    for (BodySpec s : specs_) {
+      if (s.shape.type == sim::ShapeType::kHull) s.shape.geometry = ids[s.shape.geometry].value;
       BodyHandle h = 0;
       if (!engine.add_body(s, h, error)) return false;
       handles_.push_back(h);
@@ -86,7 +136,15 @@ class SpecScene : public Scene {
     specs_.push_back(s);
     return specs_.size() - 1;
   }
+  /// Adds a hull's corners (m, in the frame bodies of it are placed by);
+  /// returns the shape bodies of it take (its id is the scene's own index
+  /// until build() maps it to the engine's).
+  Shape add_hull(std::vector<Vec3> points) {
+    hulls_.push_back(std::move(points));
+    return Shape::make_hull(sim::GeometryId{static_cast<uint32_t>(hulls_.size() - 1)});
+  }
   std::vector<BodySpec> specs_;
+  std::vector<std::vector<Vec3>> hulls_;
   std::vector<BodyHandle> handles_;
 };
 

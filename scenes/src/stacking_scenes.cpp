@@ -338,7 +338,44 @@ class LogCabinScene final : public kit::SpecScene {
   RestingBoxes rest_;
 };
 
+/// A column of `count` hexagonal prism hulls (0.5 m circumradius, 0.4 m
+/// tall) on the ground, each turned 30 degrees from the one below so edges
+/// cross faces. The prism's points have their origin at the centre of its
+/// base, so the column also checks that hull bodies turn about their centre
+/// of mass while reporting their authored origin.
+class HullStackScene final : public kit::SpecScene {
+ public:
+  explicit HullStackScene(int count) : SpecScene(count) {
+    add(kit::ground());
+    rest_.set_ground(0.0f);
+    const Shape prism = add_hull(kit::prism_points(6, 0.5f, kHeight));
+    for (int i = 0; i < count; ++i) {
+      const Vec3 p{0.0f, kHeight * static_cast<float>(i), 0.0f};
+      BodySpec b = kit::hull(prism, p);
+      b.rotation = kit::axis_angle({0.0f, 1.0f, 0.0f}, kit::radians(i % 2 == 0 ? 0.0f : 30.0f));
+      const int body = static_cast<int>(add(b));
+      rest_.track(body, p);
+      rest_.support(i == 0 ? -1 : body - 1, body, i == 0 ? 0.0f : kHeight);
+    }
+  }
+  std::string_view name() const override { return "hull_stack"; }
+  Tick ticks() const override { return 600; }
+  void after_step(Tick tick, const Engine& engine) override {
+    rest_.observe(engine, handles_, tick >= ticks() - kLastSecond);
+  }
+  std::vector<Metric> metrics() const override { return standing_metrics(rest_, 10.0f); }
+
+ private:
+  static constexpr float kHeight = 0.4f;
+  RestingBoxes rest_;
+};
+
 }  // namespace
+
+std::unique_ptr<Scene> make_hull_stack(int count) {
+  if (count < 1 || count > 100) return nullptr;
+  return std::make_unique<HullStackScene>(count);
+}
 
 std::unique_ptr<Scene> make_log_cabin(int layers) {
   if (layers < 1 || layers > 50) return nullptr;

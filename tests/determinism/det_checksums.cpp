@@ -116,6 +116,21 @@ rwd::sim::BodyDef floor_def() {
   return ground;
 }
 
+// Two hulls every scene registers: a wedge (a triangular prism whose points'
+// origin is its corner, so its centre of mass is off the origin) and an
+// irregular gem of eight corners.
+void add_hulls(rwd::sim::GeometryStore& store, rwd::sim::GeometryId& wedge,
+               rwd::sim::GeometryId& gem) {
+  using rwd::sim::Vec3;
+  const Vec3 wedge_points[] = {{0.0f, 0.0f, 0.0f}, {0.8f, 0.0f, 0.0f}, {0.0f, 0.5f, 0.0f},
+                               {0.0f, 0.0f, 0.6f}, {0.8f, 0.0f, 0.6f}, {0.0f, 0.5f, 0.6f}};
+  const Vec3 gem_points[] = {{0.35f, 0.0f, 0.0f},   {-0.3f, 0.05f, 0.1f}, {0.0f, 0.4f, 0.05f},
+                             {0.05f, -0.35f, 0.0f}, {0.0f, 0.0f, 0.3f},   {0.1f, 0.0f, -0.32f},
+                             {0.2f, 0.2f, 0.2f},    {-0.2f, -0.2f, -0.2f}};
+  wedge = *store.add_hull(wedge_points);
+  gem = *store.add_hull(gem_points);
+}
+
 // Steps the world four ticks, restores it and steps them again: the second
 // pass must print the first pass's checksums. Leaves the world restored.
 // Prints "ROLLBACK-MISMATCH <scene> <tick>" and returns false otherwise.
@@ -147,13 +162,18 @@ bool run_edge_scene(Tick ticks) {
   config.bounds_lower = {-30.0f, -30.0f, -30.0f};
   config.bounds_upper = {30.0f, 30.0f, 30.0f};
   auto world = std::make_unique<sim::World3D>(config);
+  sim::GeometryId wedge;
+  sim::GeometryId gem;
+  add_hulls(world->geometry(), wedge, gem);
   SplitMix64 rng{0xED6E'0F'7E11'0001ull};
   auto coord = [&rng](float half) { return uniform(rng, half); };
   (void)world->create_body(floor_def());
   std::vector<sim::BodyId> bodies;
   for (int i = 0; i < 24; ++i) {
     sim::BodyDef def;
-    def.shape = i % 2 ? sim::Shape::make_sphere(0.4f) : sim::Shape::make_box({0.3f, 0.5f, 0.4f});
+    def.shape = i % 4 == 1   ? sim::Shape::make_sphere(0.4f)
+                : i % 4 == 3 ? sim::Shape::make_hull(i % 8 == 3 ? wedge : gem)
+                             : sim::Shape::make_box({0.3f, 0.5f, 0.4f});
     def.position = {coord(8.0f), 1.0f + static_cast<float>(i) * 0.5f, coord(8.0f)};
     def.material.restitution = i % 3 == 0 ? 0.5f : 0.0f;
     bodies.push_back(*world->create_body(def));
@@ -173,7 +193,8 @@ bool run_edge_scene(Tick ticks) {
     }
     if (t % 50 == 0) {
       world->serialize(bytes);
-      auto loaded = std::make_unique<sim::World3D>();
+      // A snapshot loads into a world with the same geometry.
+      auto loaded = std::make_unique<sim::World3D>(sim::WorldConfig{}, world->shared_geometry());
       if (rwd::Status s = loaded->deserialize(bytes); !s.ok()) {
         std::fprintf(stderr, "det_checksums: edge scene tick %d does not load: %s\n",
                      static_cast<int>(t), s.message().c_str());
@@ -191,7 +212,7 @@ bool run_edge_scene(Tick ticks) {
 
 // The heap scene: a column of boxes built half inside each other (deep
 // overlaps, pushed out one at a time from the ground up) beside a heap of
-// boxes, spheres and capsules dropped into a corner overlapping a little (shallow
+// boxes, spheres, capsules and hulls dropped into a corner overlapping a little (shallow
 // overlaps, pushed out in the solver's lanes), with sleeping on, so bodies
 // fall asleep, are kicked awake and pile up again (resting contacts carry
 // their manifolds forward in between). Every 30 ticks a restore
@@ -199,6 +220,9 @@ bool run_edge_scene(Tick ticks) {
 bool run_heap_scene(Tick ticks) {
   namespace sim = rwd::sim;
   sim::World3D world;
+  sim::GeometryId wedge;
+  sim::GeometryId gem;
+  add_hulls(world.geometry(), wedge, gem);
   SplitMix64 rng{0x4EA9'0F'B0C5'0002ull};
   auto coord = [&rng](float half) { return uniform(rng, half); };
   const sim::BodyDef ground = floor_def();
@@ -219,9 +243,11 @@ bool run_heap_scene(Tick ticks) {
   }
   for (int i = 0; i < 40; ++i) {  // the heap: a loose lattice, a little overlapping
     sim::BodyDef def;
-    // Boxes, spheres and capsules: every pair of shape types meets.
+    // Boxes, spheres, capsules and hulls: every pair of shape types meets.
     def.shape = i % 4 == 3   ? sim::Shape::make_sphere(0.35f)
                 : i % 4 == 1 ? sim::Shape::make_capsule(0.2f, 0.15f)
+                : i % 8 == 2 ? sim::Shape::make_hull(wedge)
+                : i % 8 == 6 ? sim::Shape::make_hull(gem)
                              : sim::Shape::make_box({0.35f, 0.35f, 0.35f});
     // Every other capsule is a character: locked upright.
     if (i % 8 == 1) def.lock_rotation = sim::kLockRotationX | sim::kLockRotationZ;

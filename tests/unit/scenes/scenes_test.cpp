@@ -21,6 +21,10 @@ class BallisticEngine final : public Engine {
     world_ = world;
     bodies_.clear();
   }
+  bool add_hull(std::span<const Vec3>, sim::GeometryId& out, std::string&) override {
+    out = sim::GeometryId{hulls_++};
+    return true;
+  }
   bool add_body(const BodySpec& spec, BodyHandle& out, std::string& error) override {
     if (refuse_spheres && spec.shape.type == sim::ShapeType::kSphere) {
       error = "spheres refused";
@@ -55,6 +59,7 @@ class BallisticEngine final : public Engine {
  private:
   WorldSpec world_;
   std::vector<BodySpec> bodies_;
+  uint32_t hulls_ = 0;
 };
 
 SceneResult run(const char* name, int size, Engine& engine) {

@@ -5,6 +5,7 @@
 // reads body states back, so the same scene code runs on Rewind and on peer
 // engines (bench/ only) and their results can be compared.
 #include <cstdint>
+#include <span>
 #include <string>
 
 #include "rewind/sim/body.h"
@@ -22,7 +23,7 @@ using sim::Vec3;
 struct BodySpec {
   BodyKind kind = BodyKind::kDynamic;
   Shape shape = Shape::make_box({0.5f, 0.5f, 0.5f});
-  Vec3 position;            ///< m, of the shape's centre
+  Vec3 position;            ///< m, of the shape's centre (a hull's: the origin of its points)
   Quat rotation;            ///< unit quaternion
   Vec3 linear_velocity;     ///< m/s
   Vec3 angular_velocity;    ///< rad/s, world frame
@@ -66,6 +67,12 @@ class Engine {
   /// Discards the current world and starts an empty one. `body_capacity` is
   /// how many bodies the scene will create.
   virtual void reset(const WorldSpec& world, uint32_t body_capacity) = 0;
+  /// Registers a convex hull whose corners are `points` (m, in the frame
+  /// bodies of it are placed by) for this world; bodies use it through
+  /// Shape::make_hull(out). Bodies of a hull turn about its centre of mass
+  /// and report the pose of the frame its points were given in. False
+  /// (with a reason in `error`) if the engine refuses the points.
+  virtual bool add_hull(std::span<const Vec3> points, sim::GeometryId& out, std::string& error) = 0;
   /// Adds a body; false (with a reason in `error`) if the engine refuses it.
   virtual bool add_body(const BodySpec& spec, BodyHandle& out, std::string& error) = 0;
   /// Advances the world by one tick.

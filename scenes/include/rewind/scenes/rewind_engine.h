@@ -19,6 +19,7 @@ class RewindEngine final : public Engine {
   std::string name() const override { return "rewind"; }
   std::string settings() const override;
   void reset(const WorldSpec& world, uint32_t body_capacity) override;
+  bool add_hull(std::span<const Vec3> points, sim::GeometryId& out, std::string& error) override;
   bool add_body(const BodySpec& spec, BodyHandle& out, std::string& error) override;
   void step() override;
   Vec3 position(BodyHandle body) const override;
