@@ -35,6 +35,12 @@ void refresh_contact(WorldState& state, WorldScratch& scratch, uint32_t index);
 
 /// Wakes every sleeping island that touches an awake body.
 void wake_touched_islands(WorldState& state, WorldScratch& scratch);
+/// Sweeps the continuous bodies that moved this tick from where they
+/// started and moves any that would cross a shape back to the first touch
+/// (continuous.cpp). Runs after solve, which leaves each body's motion in
+/// scratch.solver_bodies.
+void continuous_collision(WorldState& state, WorldScratch& scratch);
+
 /// Advances sleep timers and puts islands at rest to sleep.
 void update_sleep(WorldState& state, WorldScratch& scratch);
 /// Wakes one body (no island propagation: the next step does that).

@@ -23,8 +23,8 @@ constexpr uint8_t kMagic[4] = {'R', 'W', 'D', '3'};
 // 2: world bounds in the config, the enabled flag per body. 3: each contact
 // record's manifold frame and its points' positions on A (manifold reuse).
 // 4: capsules (each shape's half height), rotation locks and torques.
-// 5: hulls (a geometry id in place of sizes), and the digest of the
-// geometry the state refers to.
+// 5: hulls (a geometry id in place of sizes), the digest of the geometry
+// the state refers to, and each body's continuous flag.
 constexpr uint32_t kVersion = 5;
 // Bounds the allocation a hostile header can request.
 constexpr uint32_t kMaxSlots = 1u << 24;
@@ -137,6 +137,7 @@ void write_state(Sink& s, const WorldState& st) {
     s.vec3(m.force);
     s.vec3(m.torque);
     s.u8(b.lock_rotation);
+    s.u8(b.continuous);
     s.f32(m.sleep_time);
   }
   s.u32(static_cast<uint32_t>(st.contacts.size()));
@@ -266,6 +267,7 @@ bool read_body(Reader& r, BodyInfo& b, BodySim& m) {
   m.force = r.vec3();
   m.torque = r.vec3();
   b.lock_rotation = r.u8();
+  b.continuous = r.flag();
   m.sleep_time = r.f32();
   return r.ok();
 }

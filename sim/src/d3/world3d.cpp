@@ -145,6 +145,7 @@ Result<BodyId> World3D::create_body(const BodyDef& def) {
   info.angular_damping = quantize(def.angular_damping);
   info.gravity_scale = quantize(def.gravity_scale);
   info.lock_rotation = def.lock_rotation;
+  info.continuous = def.continuous ? 1 : 0;
   BodySim sim;
   d3::authored_to_mass(d3::mass_frame(info.shape, store), quantize(def.position),
                        quantize(normalize(def.rotation)), sim.position, sim.rotation);
@@ -445,6 +446,16 @@ bool World3D::is_enabled(BodyId id) const {
   return is_live(state_, id) && state_.infos[id.index].enabled != 0;
 }
 
+Status World3D::set_continuous(BodyId id, bool continuous) {
+  if (!is_live(state_, id)) return not_found();
+  state_.infos[id.index].continuous = continuous ? 1 : 0;
+  return Status::Ok();
+}
+
+bool World3D::is_continuous(BodyId id) const {
+  return is_live(state_, id) && state_.infos[id.index].continuous != 0;
+}
+
 Status World3D::set_user_data(BodyId id, uint64_t user_data) {
   if (!is_live(state_, id)) return not_found();
   state_.infos[id.index].user_data = user_data;
@@ -463,6 +474,7 @@ void World3D::step() {
     d3::wake_touched_islands(state_, s);
     d3::build_events(state_, s);
     d3::solve(state_, s);
+    d3::continuous_collision(state_, s);
     d3::update_sleep(state_, s);
     ++state_.step_count;
     return;
@@ -482,6 +494,7 @@ void World3D::step() {
   d3::build_events(state_, s);
   const Clock::time_point t3 = Clock::now();
   d3::solve(state_, s);
+  d3::continuous_collision(state_, s);
   const Clock::time_point t4 = Clock::now();
   d3::update_sleep(state_, s);
   const Clock::time_point t5 = Clock::now();

@@ -191,8 +191,9 @@ namespace {
 // colour by colour. Revision 6: box manifolds are carried forward while
 // their bodies barely move, box faces are clipped in the reference frame,
 // and the checksum covers each shape's half height (capsules), each body's
-// rotation locks and pending torque.
-constexpr uint64_t kPinnedPileChecksum = 0xb27774ac5eb1e101ull;
+// rotation locks and pending torque. Revision 7: the checksum covers each
+// body's continuous-collision flag.
+constexpr uint64_t kPinnedPileChecksum = 0x960cc2fb8c0ff745ull;
 
 TEST(StateIo, PinnedChecksumOfTheReferencePile) {
   World3D world;

@@ -36,8 +36,9 @@ struct BodySpec {
   /// Exponential decay rates, 1/s: without contacts v(t) = v0 exp(-c t).
   float linear_damping = 0.0f;
   float angular_damping = 0.0f;
-  /// A fast projectile: engines whose continuous collision is optional turn
-  /// it on for this body (Rewind's speculative contacts are always on).
+  /// A fast projectile: the engine's continuous collision is on for this
+  /// body (Rewind: BodyDef::continuous, on top of its speculative contacts;
+  /// Bullet: its swept-sphere CCD).
   bool continuous = false;
 };
 

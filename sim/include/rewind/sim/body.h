@@ -63,6 +63,11 @@ struct BodyDef {
   /// kLockRotation* bits: world axes the body never turns about (its
   /// angular velocity about them stays zero, whatever pushes it), [0, 7].
   uint8_t lock_rotation = 0;
+  /// Continuous collision: after each step the body is swept along its
+  /// motion against every shape in its path and, if it would have crossed
+  /// one, moved back to the first touch (a bullet through a thin wall).
+  /// Dynamic bodies only; costs nothing for bodies that leave it off.
+  bool continuous = false;
 };
 
 }  // namespace rwd::sim

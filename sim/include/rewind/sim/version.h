@@ -33,9 +33,12 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///      frame); box-box clipping in the reference face's frame; push-out
 ///      batches with nothing to push skipped; capsules; rotation locks,
 ///      torques and forces at a point
-inline constexpr uint32_t kSimRevision = 6;
+///   7  convex hulls (mass frames, SAT and GJK manifolds, carried forward
+///      like boxes'), a continuous flag per body in the checksum, and
+///      continuous collision after the solve
+inline constexpr uint32_t kSimRevision = 7;
 
-/// "rewind-sim r6": the engine identity a replay records.
+/// "rewind-sim r7": the engine identity a replay records.
 inline std::string engine_version() {
   return std::string(kEngineName) + " r" + std::to_string(kSimRevision);
 }

@@ -135,6 +135,10 @@ class World3D {
   /// live body, disabled ones included (they stay disabled).
   Status set_rotation_lock(BodyId id, uint8_t locks);
   Status set_user_data(BodyId id, uint64_t user_data);
+  /// Turns continuous collision on or off for a body (BodyDef::continuous);
+  /// it acts on dynamic bodies.
+  Status set_continuous(BodyId id, bool continuous);
+  bool is_continuous(BodyId id) const;
   /// Takes a body out of the simulation (false) or puts it back (true). A
   /// disabled body keeps its pose, has no velocity, no contacts (they end
   /// with exit events on the next step), is not found by queries and is

@@ -38,6 +38,7 @@ struct BodyInfo {
   float angular_damping = 0.0f;  ///< 1/s
   float gravity_scale = 1.0f;
   uint8_t lock_rotation = 0;  ///< kLockRotation* bits (body.h)
+  uint8_t continuous = 0;     ///< 1: swept for time of impact after each step (BodyDef)
 };
 
 /// Hot simulation state of one body slot, written every step while awake.
