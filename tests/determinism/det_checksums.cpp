@@ -279,9 +279,21 @@ bool run_heap_scene(Tick ticks) {
     if (t % 30 == 0 && !restep_matches(world, "heap", t)) return false;
     world.step();
     // Contact points and reused manifolds too: every build must carry the
-    // same manifolds forward on the same ticks.
-    std::printf("heap %d %016" PRIx64 " %u %u\n", static_cast<int>(t), world.checksum(),
-                world.stats().contact_points, world.stats().reused_manifolds);
+    // same manifolds forward on the same ticks; and the events a game reads
+    // (with their points, normals, depths and impulses) must agree as well.
+    rwd::sim::StateHasher events;
+    for (const sim::ContactEvent& e : world.events()) {
+      events.add_u8(static_cast<uint8_t>(e.type));
+      events.add_u32(e.a.index);
+      events.add_u32(e.b.index);
+      events.add_vec3(e.point);
+      events.add_vec3(e.normal);
+      events.add_f32(e.depth);
+      events.add_f32(e.impulse);
+    }
+    std::printf("heap %d %016" PRIx64 " %u %u %016" PRIx64 "\n", static_cast<int>(t),
+                world.checksum(), world.stats().contact_points, world.stats().reused_manifolds,
+                events.digest());
   }
   return true;
 }

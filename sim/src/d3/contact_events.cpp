@@ -2,7 +2,10 @@
 // Contact events: a merge of last step's cache and this step's, both sorted
 // by (index_a, index_b). A pair that keeps its indices but changed
 // generation (a body destroyed and its slot reused) is two different pairs:
-// the old one exits and the new one enters.
+// the old one exits and the new one enters. Only pairs where either body
+// reports contacts (BodyInfo::contact_events) make events; the details of
+// enter and stay events (point, normal, depth, impulse) are filled after
+// the solve, from the contact cache (fill_event_details).
 #include "d3/pipeline.h"
 
 namespace rwd::sim::d3 {
@@ -25,17 +28,39 @@ bool same_bodies(const ContactRecord& x, const ContactRecord& y) {
   return x.generation_a == y.generation_a && x.generation_b == y.generation_b;
 }
 
+// Whether body (index, generation) reports its contacts; a body destroyed
+// since (its slot dead or reused) is taken to, so its exits are not lost.
+bool reports(const WorldState& state, uint32_t index, uint32_t generation) {
+  const BodyInfo& info = state.infos[index];
+  if (info.alive == 0 || info.generation != generation) return true;
+  return info.contact_events != 0;
+}
+
+bool reported(const WorldState& state, const ContactRecord& r) {
+  return reports(state, r.index_a, r.generation_a) || reports(state, r.index_b, r.generation_b);
+}
+
 }  // namespace
 
 void build_events(const WorldState& state, WorldScratch& scratch) {
   std::vector<ContactEvent>& events = scratch.events;
+  std::vector<uint32_t>& records = scratch.event_records;
   events.clear();
+  records.clear();
+  // An event of this step's record `index`, or of last step's (no record
+  // now: an exit), if either body reports.
+  const auto add = [&](ContactEventType type, const ContactRecord& r, uint32_t index) {
+    if (!reported(state, r)) return;
+    events.push_back(make_event(type, r));
+    records.push_back(index);
+  };
   if (scratch.contacts_unchanged) {
     // The cache carried over whole: every touching pair stays.
     uint32_t touching = 0;
-    for (const ContactRecord& r : state.contacts) {
+    for (uint32_t k = 0; k < state.contacts.size(); ++k) {
+      const ContactRecord& r = state.contacts[k];
       if (r.touching == 0) continue;
-      events.push_back(make_event(ContactEventType::kStay, r));
+      add(ContactEventType::kStay, r, k);
       ++touching;
     }
     scratch.stats.touching_manifolds = touching;
@@ -50,11 +75,11 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
     bool take_old = j == now.size() || (i < old.size() && key(old[i]) < key(now[j]));
     bool take_new = i == old.size() || (j < now.size() && key(now[j]) < key(old[i]));
     if (take_old) {
-      if (old[i].touching != 0) events.push_back(make_event(ContactEventType::kExit, old[i]));
+      if (old[i].touching != 0) add(ContactEventType::kExit, old[i], kNoRecord);
       ++i;
     } else if (take_new) {
       if (now[j].touching != 0) {
-        events.push_back(make_event(ContactEventType::kEnter, now[j]));
+        add(ContactEventType::kEnter, now[j], static_cast<uint32_t>(j));
         ++touching;
       }
       ++j;
@@ -63,14 +88,14 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
       const ContactRecord& c = now[j];
       bool was = o.touching != 0;
       bool is = c.touching != 0;
+      const auto at = static_cast<uint32_t>(j);
       if (same_bodies(o, c)) {
-        if (is)
-          events.push_back(make_event(was ? ContactEventType::kStay : ContactEventType::kEnter, c));
-        if (was && !is) events.push_back(make_event(ContactEventType::kExit, o));
+        if (is) add(was ? ContactEventType::kStay : ContactEventType::kEnter, c, at);
+        if (was && !is) add(ContactEventType::kExit, o, kNoRecord);
       } else {
         // Type order within a key: enter (0) before exit (2).
-        if (is) events.push_back(make_event(ContactEventType::kEnter, c));
-        if (was) events.push_back(make_event(ContactEventType::kExit, o));
+        if (is) add(ContactEventType::kEnter, c, at);
+        if (was) add(ContactEventType::kExit, o, kNoRecord);
       }
       if (is) ++touching;
       ++i;
@@ -78,6 +103,44 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
     }
   }
   scratch.stats.touching_manifolds = touching;
+}
+
+void fill_event_details(const WorldState& state, WorldScratch& scratch) {
+  const float substeps = static_cast<float>(state.config.substeps);
+  for (size_t e = 0; e < scratch.events.size(); ++e) {
+    const uint32_t index = scratch.event_records[e];
+    if (index == kNoRecord) continue;
+    ContactEvent& event = scratch.events[e];
+    const ContactRecord& rec = state.contacts[index];
+    if (rec.point_count > 0) {
+      // The manifold as the cache keeps it, on A as A stands now.
+      const BodySim& a = state.sims[rec.index_a];
+      uint32_t deepest = 0;
+      float impulse = 0.0f;
+      for (uint32_t p = 0; p < rec.point_count; ++p) {
+        if (rec.points[p].separation < rec.points[deepest].separation) deepest = p;
+        impulse += rec.points[p].normal_impulse;
+      }
+      const CachedContactPoint& cp = rec.points[deepest];
+      const Vec3 n = rec.frame_normal;
+      event.normal = rotate(a.rotation, n);
+      event.point = a.position + rotate(a.rotation, cp.local_a + n * (0.5f * cp.separation));
+      event.depth = cp.separation < 0.0f ? -cp.separation : 0.0f;
+      event.impulse = impulse * substeps;
+      continue;
+    }
+    // A sensor pair: the overlap as this step's manifold saw it.
+    if (index >= scratch.geometry.size() || scratch.geometry[index].valid == 0) continue;
+    const Manifold& m = scratch.geometry[index].manifold;
+    if (m.point_count == 0) continue;
+    uint32_t deepest = 0;
+    for (uint32_t p = 1; p < m.point_count; ++p) {
+      if (m.points[p].separation < m.points[deepest].separation) deepest = p;
+    }
+    event.normal = m.normal;
+    event.point = m.points[deepest].point;
+    event.depth = m.points[deepest].separation < 0.0f ? -m.points[deepest].separation : 0.0f;
+  }
 }
 
 }  // namespace rwd::sim::d3

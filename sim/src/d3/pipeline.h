@@ -49,8 +49,12 @@ void wake_body(WorldState& state, uint32_t index);
 void wake_touching(WorldState& state, BodyId id);
 
 /// Fills scratch.events from scratch.other_contacts (last step) and
-/// state.contacts (this step).
+/// state.contacts (this step), and scratch.event_records with each event's
+/// record in state.contacts (kNoRecord for exits).
 void build_events(const WorldState& state, WorldScratch& scratch);
+/// Fills the point, normal, depth and impulse of the enter and stay events
+/// once the solve has stored the tick's impulses.
+void fill_event_details(const WorldState& state, WorldScratch& scratch);
 
 /// Levels the solver bodies by contacts from the immovable ones and fills
 /// scratch.push_order and each constraint's push_fixed (support_order.cpp).

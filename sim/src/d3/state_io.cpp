@@ -24,7 +24,7 @@ constexpr uint8_t kMagic[4] = {'R', 'W', 'D', '3'};
 // record's manifold frame and its points' positions on A (manifold reuse).
 // 4: capsules (each shape's half height), rotation locks and torques.
 // 5: hulls (a geometry id in place of sizes), the digest of the geometry
-// the state refers to, and each body's continuous flag.
+// the state refers to, and each body's continuous and contact-events flags.
 constexpr uint32_t kVersion = 5;
 // Bounds the allocation a hostile header can request.
 constexpr uint32_t kMaxSlots = 1u << 24;
@@ -138,6 +138,7 @@ void write_state(Sink& s, const WorldState& st) {
     s.vec3(m.torque);
     s.u8(b.lock_rotation);
     s.u8(b.continuous);
+    s.u8(b.contact_events);
     s.f32(m.sleep_time);
   }
   s.u32(static_cast<uint32_t>(st.contacts.size()));
@@ -268,6 +269,7 @@ bool read_body(Reader& r, BodyInfo& b, BodySim& m) {
   m.torque = r.vec3();
   b.lock_rotation = r.u8();
   b.continuous = r.flag();
+  b.contact_events = r.flag();
   m.sleep_time = r.f32();
   return r.ok();
 }

@@ -156,7 +156,8 @@ Status check_mass(BodyKind kind, const BodyMass& m) {
 Status check_body(const WorldConfig& config, const GeometryStore& store, const BodyInfo& info,
                   const BodySim& sim) {
   if (info.alive != 1 || info.generation == 0) return invalid("not a live body");
-  if (info.sensor > 1 || info.awake > 1 || info.enabled > 1 || info.continuous > 1) {
+  if (info.sensor > 1 || info.awake > 1 || info.enabled > 1 || info.continuous > 1 ||
+      info.contact_events > 1) {
     return invalid("flag out of range");
   }
   if (Status s = check_common(store, info.kind, info.shape, info.density, info.linear_damping,

@@ -146,6 +146,7 @@ Result<BodyId> World3D::create_body(const BodyDef& def) {
   info.gravity_scale = quantize(def.gravity_scale);
   info.lock_rotation = def.lock_rotation;
   info.continuous = def.continuous ? 1 : 0;
+  info.contact_events = def.contact_events ? 1 : 0;
   BodySim sim;
   d3::authored_to_mass(d3::mass_frame(info.shape, store), quantize(def.position),
                        quantize(normalize(def.rotation)), sim.position, sim.rotation);
@@ -452,6 +453,12 @@ Status World3D::set_continuous(BodyId id, bool continuous) {
   return Status::Ok();
 }
 
+Status World3D::set_contact_events(BodyId id, bool report) {
+  if (!is_live(state_, id)) return not_found();
+  state_.infos[id.index].contact_events = report ? 1 : 0;
+  return Status::Ok();
+}
+
 bool World3D::is_continuous(BodyId id) const {
   return is_live(state_, id) && state_.infos[id.index].continuous != 0;
 }
@@ -475,6 +482,7 @@ void World3D::step() {
     d3::build_events(state_, s);
     d3::solve(state_, s);
     d3::continuous_collision(state_, s);
+    d3::fill_event_details(state_, s);
     d3::update_sleep(state_, s);
     ++state_.step_count;
     return;
@@ -495,6 +503,7 @@ void World3D::step() {
   const Clock::time_point t3 = Clock::now();
   d3::solve(state_, s);
   d3::continuous_collision(state_, s);
+  d3::fill_event_details(state_, s);
   const Clock::time_point t4 = Clock::now();
   d3::update_sleep(state_, s);
   const Clock::time_point t5 = Clock::now();

@@ -18,6 +18,9 @@
 
 namespace rwd::sim::d3 {
 
+/// No contact record (an exit event's pair has none this step).
+inline constexpr uint32_t kNoRecord = 0xFFFFFFFFu;
+
 struct BodyPair {
   uint32_t a;  ///< lower index
   uint32_t b;  ///< higher index
@@ -244,6 +247,7 @@ class WorldScratch {
   // output
   bool stage_timing = false;  ///< World3D::set_stage_timing
   std::vector<ContactEvent> events;
+  std::vector<uint32_t> event_records;  ///< per event: its record, or kNoRecord (exits)
   std::vector<BodyEvent> body_events;
   StepStats stats;
 };

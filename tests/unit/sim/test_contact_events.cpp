@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Contact events: enter / stay / exit sequences and their order.
+// Contact events: enter / stay / exit sequences and their order, the
+// details they carry (point, normal, depth, impulse), and the per-body
+// switch that keeps a body's contacts out of them.
 #include <gtest/gtest.h>
 
 #include "rewind/sim/world3d.h"
@@ -110,6 +112,74 @@ TEST(ContactEvents, OrderedByIndexPairAndSensorsReportButDoNotPush) {
   for (int i = 0; i < 60; ++i) world.step();
   EXPECT_NEAR(world.position(b1).y, 0.5f, 0.01f);
   EXPECT_NEAR(world.position(b1).x, 1.0f, 0.01f);
+}
+
+TEST(ContactEvents, StayEventsCarryPointNormalDepthAndImpulse) {
+  WorldConfig c;
+  c.enable_sleep = false;
+  World3D world(c);
+  const BodyId ground = add_ground(world);
+  const BodyId box = add_box(world, {1.0f, 0.52f, 2.0f});
+  test::step_seconds(world, 1.0f);
+  ASSERT_EQ(world.events().size(), 1u);
+  const ContactEvent e = world.events()[0];
+  EXPECT_EQ(e.type, ContactEventType::kStay);
+  EXPECT_EQ(e.a, ground);
+  EXPECT_EQ(e.b, box);
+  EXPECT_NEAR(e.normal.y, 1.0f, 1e-4f);  // from the ground up to the box
+  EXPECT_NEAR(e.point.y, 0.0f, c.linear_slop_m);
+  EXPECT_NEAR(e.point.x, 1.0f, 0.51f);  // a corner of the box's base
+  EXPECT_NEAR(e.point.z, 2.0f, 0.51f);
+  EXPECT_GE(e.depth, 0.0f);
+  EXPECT_LE(e.depth, c.linear_slop_m + 1e-3f);
+  // At rest the ground holds the box's weight: m g per tick.
+  const float weight_per_tick = world.mass(box) * 9.81f * c.tick_seconds;
+  EXPECT_NEAR(e.impulse, weight_per_tick, 0.05f * weight_per_tick);
+}
+
+TEST(ContactEvents, SensorEventsCarryTheOverlap) {
+  World3D world;
+  BodyDef zone;
+  zone.kind = BodyKind::kStatic;
+  zone.sensor = true;
+  zone.shape = Shape::make_box({1.0f, 1.0f, 1.0f});
+  const BodyId z = *world.create_body(zone);
+  BodyDef ball;
+  ball.shape = Shape::make_sphere(0.5f);
+  ball.position = {0.0f, 1.3f, 0.0f};
+  ball.gravity_scale = 0.0f;
+  const BodyId b = *world.create_body(ball);
+  world.step();
+  ASSERT_EQ(world.events().size(), 1u);
+  const ContactEvent e = world.events()[0];
+  EXPECT_TRUE(e.sensor);
+  EXPECT_EQ(e.a, z);
+  EXPECT_EQ(e.b, b);
+  EXPECT_NEAR(e.normal.y, 1.0f, 1e-4f);
+  EXPECT_NEAR(e.depth, 0.2f, 1e-3f);  // the ball reaches 0.2 m into the zone
+  EXPECT_EQ(e.impulse, 0.0f);
+}
+
+TEST(ContactEvents, BodiesCanKeepTheirContactsOutOfEvents) {
+  World3D world;
+  const BodyId ground = add_ground(world);
+  BodyDef quiet;
+  quiet.position = {0.0f, 0.5f, 0.0f};
+  quiet.contact_events = false;
+  const BodyId debris = *world.create_body(quiet);
+  const BodyId loud = add_box(world, {3.0f, 0.5f, 0.0f});
+  world.step();
+  // The ground reports, so both pairs would show; switch the ground off.
+  EXPECT_EQ(world.events().size(), 2u);
+  ASSERT_TRUE(world.set_contact_events(ground, false).ok());
+  world.step();
+  ASSERT_EQ(world.events().size(), 1u);
+  EXPECT_EQ(world.events()[0].b, loud);
+  // The debris's pair still exists (it rests); it just is not reported.
+  ASSERT_TRUE(world.set_contact_events(debris, true).ok());
+  world.step();
+  EXPECT_EQ(world.events().size(), 2u);
+  EXPECT_EQ(world.set_contact_events(BodyId{77, 1}, true).code(), ErrorCode::kNotFound);
 }
 
 }  // namespace

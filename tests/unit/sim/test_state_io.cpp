@@ -192,8 +192,8 @@ namespace {
 // their bodies barely move, box faces are clipped in the reference frame,
 // and the checksum covers each shape's half height (capsules), each body's
 // rotation locks and pending torque. Revision 7: the checksum covers each
-// body's continuous-collision flag.
-constexpr uint64_t kPinnedPileChecksum = 0x960cc2fb8c0ff745ull;
+// body's continuous-collision and contact-events flags.
+constexpr uint64_t kPinnedPileChecksum = 0xf2a32b9f03698c35ull;
 
 TEST(StateIo, PinnedChecksumOfTheReferencePile) {
   World3D world;

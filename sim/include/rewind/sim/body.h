@@ -68,6 +68,10 @@ struct BodyDef {
   /// one, moved back to the first touch (a bullet through a thin wall).
   /// Dynamic bodies only; costs nothing for bodies that leave it off.
   bool continuous = false;
+  /// Report this body's contacts in World3D::events() (a pair is reported
+  /// when either body reports). Off for bodies whose contacts no game rule
+  /// reads (debris), so a big pile does not fill the event list.
+  bool contact_events = true;
 };
 
 }  // namespace rwd::sim

@@ -15,11 +15,23 @@ enum class ContactEventType : uint8_t {
 /// One contact event from the last step. `a.index < b.index` always; events
 /// are ordered by (a.index, b.index, type) so every machine sees the same
 /// list.
+///
+/// Enter and stay events of solid pairs carry where the bodies touch, as of
+/// the contact's manifold this tick: the deepest point, the normal, the
+/// depth and the impulse the solver pushed them apart with. Sensor events
+/// carry the point, normal and depth of the overlap (no impulse); exit
+/// events carry none of these (zeros).
 struct ContactEvent {
   ContactEventType type = ContactEventType::kEnter;
   BodyId a;
   BodyId b;
   bool sensor = false;  ///< at least one of the bodies is a sensor
+  Vec3 point;           ///< world, midway between the surfaces at the deepest point
+  Vec3 normal;          ///< unit, from a toward b
+  float depth = 0.0f;   ///< metres the shapes overlap there (0 when only touching)
+  /// Total normal impulse of the tick's last substep times the substeps,
+  /// N*s: what the solver pushed the pair apart with over the tick.
+  float impulse = 0.0f;
 };
 
 }  // namespace rwd::sim

@@ -139,6 +139,9 @@ class World3D {
   /// it acts on dynamic bodies.
   Status set_continuous(BodyId id, bool continuous);
   bool is_continuous(BodyId id) const;
+  /// Whether the body's contacts are reported in events()
+  /// (BodyDef::contact_events); takes effect on the next step.
+  Status set_contact_events(BodyId id, bool report);
   /// Takes a body out of the simulation (false) or puts it back (true). A
   /// disabled body keeps its pose, has no velocity, no contacts (they end
   /// with exit events on the next step), is not found by queries and is
@@ -150,7 +153,8 @@ class World3D {
 
   /// Advances the world by config().tick_seconds.
   void step();
-  /// Contact events of the last step, ordered by (a.index, b.index).
+  /// Contact events of the last step, ordered by (a.index, b.index), for
+  /// the pairs where either body reports them (BodyDef::contact_events).
   std::span<const ContactEvent> events() const;
   /// Body events of the last step (bodies that left the world bounds),
   /// ordered by body index. Not state: restore() clears them.

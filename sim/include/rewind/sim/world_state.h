@@ -37,8 +37,9 @@ struct BodyInfo {
   float linear_damping = 0.0f;   ///< 1/s
   float angular_damping = 0.0f;  ///< 1/s
   float gravity_scale = 1.0f;
-  uint8_t lock_rotation = 0;  ///< kLockRotation* bits (body.h)
-  uint8_t continuous = 0;     ///< 1: swept for time of impact after each step (BodyDef)
+  uint8_t lock_rotation = 0;   ///< kLockRotation* bits (body.h)
+  uint8_t continuous = 0;      ///< 1: swept for time of impact after each step (BodyDef)
+  uint8_t contact_events = 1;  ///< 1: its contacts are reported in events() (BodyDef)
 };
 
 /// Hot simulation state of one body slot, written every step while awake.
