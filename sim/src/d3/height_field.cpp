@@ -1,0 +1,255 @@
+// SPDX-License-Identifier: MIT
+// Height field build, triangles with their active edges, and the ray walk.
+//
+// Ray: the segment is clipped to the field's bounds, then the rows of cells
+// it crosses are visited in the ray's direction. In each row the cells
+// under the part of the segment within the row (widened by half a cell
+// along z and one cell along x, against rounding) are tested exactly with
+// ray_triangle; the walk stops at the first row whose widened slab starts
+// beyond the best hit. Every triangle that could hit at or before the best
+// t is therefore tested, so the answer (closest t, ties to the lower id) is
+// the brute-force one, and the work is about the number of cells under the
+// segment.
+#include <cmath>
+#include <string>
+
+#include "d3/height_field.h"
+
+namespace rwd::sim::d3 {
+namespace {
+
+Status invalid(std::string message) {
+  return Status::Error(ErrorCode::kInvalidArgument, std::move(message));
+}
+
+bool positive_finite(float v) {
+  return std::isfinite(v) && v > 0.0f;
+}
+
+Vec3 unit_normal(const Vec3 p[3]) {
+  return normalize_or_zero(triangle_cross(p[0], p[1], p[2]));
+}
+
+// Active bits of edge e of triangle `id` (corners p, unit normal n) whose
+// neighbour across the edge is triangle `other` of cell (r, c) (or none
+// when outside the grid or a hole): boundary bits, or the classification
+// against the neighbour's far corner `far_corner` (its corner index).
+uint8_t edge_bits(const HeightField& hf, const Vec3 p[3], Vec3 n, uint32_t e, int64_t r, int64_t c,
+                  uint32_t half, uint32_t far_corner) {
+  const uint32_t cells_r = hf.rows - 1;
+  const uint32_t cells_c = hf.cols - 1;
+  if (r < 0 || c < 0 || r >= cells_r || c >= cells_c) return kBoundaryEdgeBits;
+  const uint32_t cell = static_cast<uint32_t>(r) * cells_c + static_cast<uint32_t>(c);
+  if (height_field_is_hole(hf, cell)) return kBoundaryEdgeBits;
+  Vec3 q[3];
+  height_field_corners(hf, cell * 2 + half, q);
+  return classify_shared_edge(n, unit_normal(q), p[e], q[far_corner]);
+}
+
+}  // namespace
+
+namespace height_field_detail {
+
+bool cell_range(float lo, float hi, float spacing, uint32_t cells, uint32_t& first,
+                uint32_t& last) {
+  if (!(lo <= hi)) return false;
+  const float a = std::floor(lo / spacing) - 1.0f;
+  const float b = std::floor(hi / spacing) + 1.0f;
+  const float top = static_cast<float>(cells - 1);
+  if (!(b >= 0.0f) || !(a <= top)) return false;
+  first = a > 0.0f ? static_cast<uint32_t>(a) : 0;
+  last = b < top ? static_cast<uint32_t>(b) : cells - 1;
+  return true;
+}
+
+}  // namespace height_field_detail
+
+Result<HeightField> build_height_field(uint32_t rows, uint32_t cols, Vec3 scale,
+                                       std::span<const float> heights,
+                                       std::span<const uint8_t> holes) {
+  if (rows < kHeightFieldMinSamples || rows > kHeightFieldMaxSamples ||
+      cols < kHeightFieldMinSamples || cols > kHeightFieldMaxSamples) {
+    return invalid("height field: rows " + std::to_string(rows) + " and cols " +
+                   std::to_string(cols) + " must lie in 2..4096");
+  }
+  const size_t samples = static_cast<size_t>(rows) * cols;
+  const size_t cells = static_cast<size_t>(rows - 1) * (cols - 1);
+  if (heights.size() != samples) {
+    return invalid("height field: " + std::to_string(heights.size()) + " heights for " +
+                   std::to_string(samples) + " samples");
+  }
+  if (!holes.empty() && holes.size() != cells) {
+    return invalid("height field: " + std::to_string(holes.size()) + " hole flags for " +
+                   std::to_string(cells) + " cells");
+  }
+  if (!positive_finite(scale.x) || !positive_finite(scale.y) || !positive_finite(scale.z)) {
+    return invalid("height field: scale components must be finite and positive");
+  }
+  if (!(static_cast<float>(cols - 1) * scale.x <= kHeightFieldMaxCoordinate) ||
+      !(static_cast<float>(rows - 1) * scale.z <= kHeightFieldMaxCoordinate)) {
+    return invalid("height field: extent beyond 1e5 m");
+  }
+  for (size_t i = 0; i < holes.size(); ++i) {
+    if (holes[i] > 1) {
+      return invalid("height field: hole flag of cell " + std::to_string(i) + " is not 0 or 1");
+    }
+  }
+  float lo = 0.0f;
+  float hi = 0.0f;
+  for (size_t i = 0; i < samples; ++i) {
+    const float y = heights[i] * scale.y;
+    if (!std::isfinite(heights[i]) || !(std::fabs(y) <= kHeightFieldMaxCoordinate)) {
+      return invalid("height field: height of sample " + std::to_string(i) + " (row " +
+                     std::to_string(i / cols) + ", col " + std::to_string(i % cols) +
+                     ") is not finite or beyond 1e5 m");
+    }
+    lo = i == 0 || y < lo ? y : lo;
+    hi = i == 0 || y > hi ? y : hi;
+  }
+  HeightField hf;
+  hf.rows = rows;
+  hf.cols = cols;
+  hf.scale = scale;
+  hf.heights.assign(heights.begin(), heights.end());
+  hf.holes.assign(holes.begin(), holes.end());
+  hf.bounds = {
+      {0.0f, lo, 0.0f},
+      {static_cast<float>(cols - 1) * scale.x, hi, static_cast<float>(rows - 1) * scale.z}};
+  return hf;
+}
+
+TriangleRef height_field_triangle(const HeightField& hf, uint32_t id) {
+  TriangleRef t;
+  t.id = id;
+  height_field_corners(hf, id, t.p);
+  t.normal = unit_normal(t.p);
+  const uint32_t cell = id >> 1;
+  const int64_t r = cell / (hf.cols - 1);
+  const int64_t c = cell % (hf.cols - 1);
+  uint8_t bits[3];
+  if ((id & 1) == 0) {
+    // (p00, p01, p11): left edge to cell (r, c - 1) half 1 (far corner its
+    // p00, index 0); top edge to (r + 1, c) half 1 (far corner p11, index
+    // 1); the diagonal to this cell's half 1 (far corner p10, index 2).
+    bits[0] = edge_bits(hf, t.p, t.normal, 0, r, c - 1, 1, 0);
+    bits[1] = edge_bits(hf, t.p, t.normal, 1, r + 1, c, 1, 1);
+    bits[2] = edge_bits(hf, t.p, t.normal, 2, r, c, 1, 2);
+  } else {
+    // (p00, p11, p10): the diagonal to half 0 (far corner p01, index 1);
+    // right edge to (r, c + 1) half 0 (far corner p11, index 2); bottom
+    // edge to (r - 1, c) half 0 (far corner p00, index 0).
+    bits[0] = edge_bits(hf, t.p, t.normal, 0, r, c, 0, 1);
+    bits[1] = edge_bits(hf, t.p, t.normal, 1, r, c + 1, 0, 2);
+    bits[2] = edge_bits(hf, t.p, t.normal, 2, r - 1, c, 0, 0);
+  }
+  t.active_edges = static_cast<uint8_t>(bits[0] | (bits[1] << 1) | (bits[2] << 2));
+  return t;
+}
+
+namespace {
+
+// The part [t_lo, t_hi] of the segment origin + t dir, 0 <= t <= max_t,
+// within the closed box; false when none.
+bool clip_segment(const Aabb& box, Vec3 origin, Vec3 dir, float max_t, float& t_lo, float& t_hi) {
+  t_lo = 0.0f;
+  t_hi = max_t;
+  for (int i = 0; i < 3; ++i) {
+    const float o = component(origin, i);
+    const float d = component(dir, i);
+    const float lo = component(box.lower, i);
+    const float hi = component(box.upper, i);
+    if (d == 0.0f) {
+      if (o < lo || o > hi) return false;
+      continue;
+    }
+    float t0 = (lo - o) / d;
+    float t1 = (hi - o) / d;
+    if (t0 > t1) std::swap(t0, t1);
+    if (t0 > t_lo) t_lo = t0;
+    if (t1 < t_hi) t_hi = t1;
+    if (!(t_lo <= t_hi)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool height_field_raycast(const HeightField& hf, Vec3 origin, Vec3 dir, float max_t, float& t,
+                          Vec3& normal, uint32_t& id) {
+  if (!(max_t >= 0.0f)) return false;
+  // Clip to the bounds widened by a cell and a little height, so rounding
+  // at the bounds' faces cannot lose a hit there.
+  const float pad_y =
+      1e-5f * (1.0f + std::fmax(std::fabs(hf.bounds.lower.y), std::fabs(hf.bounds.upper.y)));
+  const Aabb wide{
+      {hf.bounds.lower.x - hf.scale.x, hf.bounds.lower.y - pad_y, hf.bounds.lower.z - hf.scale.z},
+      {hf.bounds.upper.x + hf.scale.x, hf.bounds.upper.y + pad_y, hf.bounds.upper.z + hf.scale.z}};
+  float s0 = 0.0f;
+  float s1 = 0.0f;
+  if (!clip_segment(wide, origin, dir, max_t, s0, s1)) return false;
+  const float za = origin.z + dir.z * s0;
+  const float zb = origin.z + dir.z * s1;
+  uint32_t r_first = 0, r_last = 0;
+  if (!height_field_detail::cell_range(za < zb ? za : zb, za < zb ? zb : za, hf.scale.z,
+                                       hf.rows - 1, r_first, r_last)) {
+    return false;
+  }
+  bool hit = false;
+  float best_t = max_t;
+  uint32_t best = 0;
+  const uint32_t row_count = r_last - r_first + 1;
+  for (uint32_t k = 0; k < row_count; ++k) {
+    const uint32_t r = dir.z >= 0.0f ? r_first + k : r_last - k;
+    // The row's slab widened by half a cell: the t range of the segment in it.
+    const float z_lo = (static_cast<float>(r) - 0.5f) * hf.scale.z;
+    const float z_hi = (static_cast<float>(r) + 1.5f) * hf.scale.z;
+    float t0 = s0;
+    float t1 = s1;
+    if (dir.z != 0.0f) {
+      float ta = (z_lo - origin.z) / dir.z;
+      float tb = (z_hi - origin.z) / dir.z;
+      if (ta > tb) std::swap(ta, tb);
+      // Rows come in ray order, so once a row starts beyond the best hit
+      // every later one does too.
+      if (hit && ta > best_t) break;
+      t0 = ta > s0 ? ta : s0;
+      t1 = tb < s1 ? tb : s1;
+      if (!(t0 <= t1)) continue;
+    } else if (origin.z < z_lo || origin.z > z_hi) {
+      continue;
+    }
+    const float xa = origin.x + dir.x * t0;
+    const float xb = origin.x + dir.x * t1;
+    uint32_t c_first = 0, c_last = 0;
+    if (!height_field_detail::cell_range(xa < xb ? xa : xb, xa < xb ? xb : xa, hf.scale.x,
+                                         hf.cols - 1, c_first, c_last)) {
+      continue;
+    }
+    for (uint32_t c = c_first; c <= c_last; ++c) {
+      const uint32_t cell = r * (hf.cols - 1) + c;
+      if (height_field_is_hole(hf, cell)) continue;
+      for (uint32_t half = 0; half < 2; ++half) {
+        Vec3 p[3];
+        height_field_corners(hf, cell * 2 + half, p);
+        float tk = 0.0f;
+        if (!ray_triangle(origin, dir, p[0], p[1], p[2], max_t, false, tk)) continue;
+        const uint32_t tid = cell * 2 + half;
+        if (!hit || tk < best_t || (tk == best_t && tid < best)) {
+          hit = true;
+          best_t = tk;
+          best = tid;
+        }
+      }
+    }
+  }
+  if (!hit) return false;
+  Vec3 p[3];
+  height_field_corners(hf, best, p);
+  const Vec3 n = unit_normal(p);
+  t = best_t;
+  id = best;
+  normal = dot(n, dir) > 0.0f ? -n : n;
+  return true;
+}
+
+}  // namespace rwd::sim::d3

@@ -1,0 +1,406 @@
+// SPDX-License-Identifier: MIT
+// One triangle against a convex shape's core: the raw contact (GJK, EPA or
+// a segment SAT), the internal-edge fix, and face clipping. Conventions are
+// manifold_triangles.h's. Everything here works in the source's frame, on
+// fixed arrays.
+#include <algorithm>
+#include <cmath>
+
+#include "d3/manifold_triangles.h"
+
+namespace rwd::sim::d3 {
+namespace {
+
+// A triangle feature lies along the normal when its edges make an angle
+// with the contact plane whose sine is below this (GJK's and EPA's normals
+// are good to far better).
+constexpr float kFeatureSin = 1e-3f;
+
+constexpr uint32_t kEdgeCode = 24;
+constexpr uint32_t kVertexCode = 27;
+constexpr uint32_t kFaceCode = 30;
+constexpr uint32_t kCrossCode = 16;
+
+// Outline points this close to a triangle's edge count as over it when
+// the clipped outline is empty (metres, scaled by the edge's length).
+constexpr float kEdgeSlack = 1e-5f;
+
+// Largest outline: every core point, plus one per clipping edge.
+constexpr uint32_t kMaxOutline = kProxyMaxPoints + 4;
+
+// A point of the shape's outline in the triangle's plane coordinates:
+// (u, v) along the tangents, h the height of the core point above the
+// plane, code as manifold_triangles.h numbers it.
+struct OutlinePoint {
+  float u;
+  float v;
+  float h;
+  uint32_t code;
+};
+
+float cross2(float ax, float ay, float bx, float by) {
+  return ax * by - ay * bx;
+}
+
+OutlinePoint lerp(const OutlinePoint& a, const OutlinePoint& b, float t, uint32_t code) {
+  return {a.u + (b.u - a.u) * t, a.v + (b.v - a.v) * t, a.h + (b.h - a.h) * t, code};
+}
+
+bool outline_less(const OutlinePoint& a, const OutlinePoint& b) {
+  if (a.u != b.u) return a.u < b.u;
+  if (a.v != b.v) return a.v < b.v;
+  if (a.h != b.h) return a.h < b.h;
+  return a.code < b.code;
+}
+
+// Convex hull (Andrew's monotone chain, counter-clockwise in (u, v)) of
+// `count` points, in place; returns the hull's size. Points sharing (u, v)
+// keep the lowest (sorted first); collinear points are dropped. The sort
+// is on a total order, so the hull is a function of the points' bits.
+uint32_t outline_hull(OutlinePoint* p, uint32_t count) {
+  std::sort(p, p + count, outline_less);
+  uint32_t n = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    if (n > 0 && p[i].u == p[n - 1].u && p[i].v == p[n - 1].v) continue;
+    p[n++] = p[i];
+  }
+  if (n < 3) return n;
+  OutlinePoint hull[2 * kMaxOutline];
+  uint32_t k = 0;
+  auto turn = [&](const OutlinePoint& o, const OutlinePoint& a, const OutlinePoint& b) {
+    return cross2(a.u - o.u, a.v - o.v, b.u - o.u, b.v - o.v);
+  };
+  for (uint32_t i = 0; i < n; ++i) {
+    while (k >= 2 && !(turn(hull[k - 2], hull[k - 1], p[i]) > 0.0f)) --k;
+    hull[k++] = p[i];
+  }
+  const uint32_t lower = k + 1;
+  for (uint32_t i = n - 1; i-- > 0;) {
+    while (k >= lower && !(turn(hull[k - 2], hull[k - 1], p[i]) > 0.0f)) --k;
+    hull[k++] = p[i];
+  }
+  --k;                           // the last point repeats the first
+  if (k < 2) k = n < 2 ? n : 2;  // all collinear: the chain's ends
+  for (uint32_t i = 0; i < k; ++i) p[i] = hull[i];
+  return k;
+}
+
+// Clips the outline (1, 2 or >= 3 points, counter-clockwise) to the
+// triangle (q, oriented by `orient` so that inside is >= 0), in place;
+// returns the count left.
+uint32_t clip_outline(OutlinePoint* poly, uint32_t n, const float q[3][2], float orient) {
+  OutlinePoint tmp[kMaxOutline];
+  for (uint32_t e = 0; e < 3 && n > 0; ++e) {
+    const float ax = q[e][0];
+    const float ay = q[e][1];
+    const float ex = q[(e + 1) % 3][0] - ax;
+    const float ey = q[(e + 1) % 3][1] - ay;
+    auto side = [&](const OutlinePoint& p) { return orient * cross2(ex, ey, p.u - ax, p.v - ay); };
+    if (n == 1) {
+      if (!(side(poly[0]) >= 0.0f)) n = 0;
+      continue;
+    }
+    if (n == 2) {  // a segment: move its outside end to the crossing
+      const float s0 = side(poly[0]);
+      const float s1 = side(poly[1]);
+      if (!(s0 >= 0.0f) && !(s1 >= 0.0f)) {
+        n = 0;
+      } else if (!(s0 >= 0.0f)) {
+        poly[0] = lerp(poly[0], poly[1], s0 / (s0 - s1), kCrossCode + 2 * e);
+      } else if (!(s1 >= 0.0f)) {
+        poly[1] = lerp(poly[0], poly[1], s0 / (s0 - s1), kCrossCode + 2 * e + 1);
+      }
+      continue;
+    }
+    uint32_t m = 0;  // Sutherland-Hodgman
+    for (uint32_t i = 0; i < n; ++i) {
+      const OutlinePoint& prev = poly[(i + n - 1) % n];
+      const OutlinePoint& cur = poly[i];
+      const float sp = side(prev);
+      const float sc = side(cur);
+      if (sc >= 0.0f) {
+        if (!(sp >= 0.0f)) tmp[m++] = lerp(prev, cur, sp / (sp - sc), kCrossCode + 2 * e);
+        tmp[m++] = cur;
+      } else if (sp >= 0.0f) {
+        tmp[m++] = lerp(prev, cur, sp / (sp - sc), kCrossCode + 2 * e + 1);
+      }
+    }
+    n = m;
+    for (uint32_t i = 0; i < n; ++i) poly[i] = tmp[i];
+  }
+  return n;
+}
+
+// Whether (u, v) lies within kEdgeSlack of the triangle q (orientation
+// `orient`), whose edges have lengths len.
+bool near_triangle(float u, float v, const float q[3][2], const float len[3], float orient) {
+  for (uint32_t e = 0; e < 3; ++e) {
+    const float ex = q[(e + 1) % 3][0] - q[e][0];
+    const float ey = q[(e + 1) % 3][1] - q[e][1];
+    const float s = orient * cross2(ex, ey, u - q[e][0], v - q[e][1]);
+    if (!(s >= -kEdgeSlack * len[e])) return false;
+  }
+  return true;
+}
+
+// The face contact along `side` (unit face normal toward the shape): the
+// shape's lowest core points as an outline clipped to the triangle. When
+// the outline misses the triangle, `slack` keeps its deepest point lying
+// within kEdgeSlack of the triangle (a shape exactly over a shared edge or
+// vertex, which rounding may put outside every triangle there). Returns
+// whether any point is within speculative_m.
+bool face_contact(const ShapeCore& core, const TriangleRef& tri, Vec3 side, bool slack,
+                  float speculative_m, TriangleContact& out) {
+  Vec3 t1;
+  Vec3 t2;
+  tangent_basis(side, t1, t2);
+  const Vec3 o = tri.p[0];
+  float q[3][2];
+  float len[3];
+  for (int k = 0; k < 3; ++k) {
+    q[k][0] = dot(tri.p[k] - o, t1);
+    q[k][1] = dot(tri.p[k] - o, t2);
+    len[k] = length(tri.p[(k + 1) % 3] - tri.p[k]);
+  }
+  const float orient =
+      cross2(q[1][0] - q[0][0], q[1][1] - q[0][1], q[2][0] - q[0][0], q[2][1] - q[0][1]) > 0.0f
+          ? 1.0f
+          : -1.0f;
+  float h[kProxyMaxPoints];
+  float h_min = 0.0f;
+  for (uint32_t i = 0; i < core.count; ++i) {
+    h[i] = dot(core.points[i] - o, side);
+    h_min = i == 0 || h[i] < h_min ? h[i] : h_min;
+  }
+  const float sep_min = h_min - core.radius;
+  if (!(sep_min <= speculative_m)) return false;
+  const float limit = (speculative_m > sep_min ? speculative_m : sep_min) + kFaceSlab;
+  OutlinePoint poly[kMaxOutline];
+  uint32_t n = 0;
+  for (uint32_t i = 0; i < core.count; ++i) {
+    if (!(h[i] - core.radius <= limit)) continue;
+    const Vec3 d = core.points[i] - o;
+    poly[n++] = {dot(d, t1), dot(d, t2), h[i], i & 15u};
+  }
+  n = outline_hull(poly, n);
+  OutlinePoint outline[kMaxOutline];
+  for (uint32_t i = 0; i < n; ++i) outline[i] = poly[i];
+  const uint32_t outline_count = n;
+  n = clip_outline(poly, n, q, orient);
+  if (n == 0 && slack) {
+    for (uint32_t i = 0; i < outline_count; ++i) {
+      const OutlinePoint& p = outline[i];
+      if (!near_triangle(p.u, p.v, q, len, orient)) continue;
+      if (n == 0 || p.h < poly[0].h || (p.h == poly[0].h && p.code < poly[0].code)) {
+        poly[0] = p;
+        n = 1;
+      }
+    }
+  }
+
+  out.normal = side;
+  out.id = tri.id;
+  out.count = 0;
+  TrianglePoint pts[kMaxOutline];
+  uint32_t m = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    const float sep = poly[i].h - core.radius;
+    if (!(sep <= speculative_m)) continue;
+    pts[m++] = {o + t1 * poly[i].u + t2 * poly[i].v + side * (0.5f * sep), sep,
+                (tri.id << kTriangleFeatureShift) | poly[i].code};
+  }
+  if (m == 0) return false;
+  if (m <= kMaxTrianglePoints) {
+    for (uint32_t i = 0; i < m; ++i) out.points[out.count++] = pts[i];
+  } else {
+    uint32_t chosen[4];
+    const uint32_t c = reduce_triangle_points(pts, m, side, chosen);
+    for (uint32_t i = 0; i < c; ++i) out.points[out.count++] = pts[chosen[i]];
+  }
+  out.separation = out.points[0].separation;
+  for (uint32_t i = 1; i < out.count; ++i) {
+    if (out.points[i].separation < out.separation) out.separation = out.points[i].separation;
+  }
+  return true;
+}
+
+// A contact of one point at the witness points.
+bool single_point(const TriangleRef& tri, Vec3 normal, Vec3 p_tri, Vec3 p_shape, float sep,
+                  uint32_t code, float speculative_m, TriangleContact& out) {
+  if (!(sep <= speculative_m)) return false;
+  out.normal = normal;
+  out.id = tri.id;
+  out.separation = sep;
+  out.count = 1;
+  out.points[0] = {(p_tri + p_shape) * 0.5f, sep, (tri.id << kTriangleFeatureShift) | code};
+  return true;
+}
+
+// Segment (or point) core against the triangle when they intersect: the
+// least overlap over the face normal and the segment crossed with each
+// edge (the faces of their Minkowski difference, so the test is exact).
+// Fills the normal and the witness points as GJK would.
+void segment_sat(const ShapeCore& core, const TriangleRef& tri, Vec3 side, Vec3& normal,
+                 Vec3& p_tri, Vec3& p_core, float& overlap) {
+  const Vec3 tri_mid = (tri.p[0] + tri.p[1] + tri.p[2]) * (1.0f / 3.0f);
+  const Vec3 d = core.count > 1 ? core.points[1] - core.points[0] : Vec3{};
+  normal = side;
+  overlap = -1.0f;
+  for (int k = 0; k < 4; ++k) {
+    Vec3 axis = side;
+    if (k > 0) {
+      axis = normalize_or_zero(cross(d, tri.p[k % 3] - tri.p[k - 1]));
+      if (length_squared(axis) == 0.0f) continue;
+      if (dot(axis, core.centroid - tri_mid) < 0.0f) axis = -axis;
+    }
+    float tri_max = dot(tri.p[0], axis);
+    for (int i = 1; i < 3; ++i) tri_max = std::fmax(tri_max, dot(tri.p[i], axis));
+    float seg_min = dot(core.points[0], axis);
+    for (uint32_t i = 1; i < core.count; ++i)
+      seg_min = std::fmin(seg_min, dot(core.points[i], axis));
+    const float o = tri_max - seg_min;
+    if (overlap < 0.0f || o < overlap) {
+      overlap = o;
+      normal = axis;
+    }
+  }
+  // The core's point deepest along -normal (the segment's middle when both
+  // ends are equally deep).
+  p_core = core.points[0];
+  if (core.count > 1) {
+    const float a = dot(core.points[0], normal);
+    const float b = dot(core.points[1], normal);
+    p_core = a < b ? core.points[0] : (b < a ? core.points[1] : (core.points[0] + d * 0.5f));
+  }
+  p_tri = p_core + normal * overlap;
+}
+
+}  // namespace
+
+namespace triangle_detail {
+
+Vec3 fix_internal_edge(const TriangleRef& tri, Vec3 side, Vec3 normal, bool& replaced,
+                       uint32_t& code) {
+  const uint32_t bits = dot(side, tri.normal) > 0.0f
+                            ? (tri.active_edges & kFrontEdgesMask)
+                            : ((tri.active_edges >> kBackEdgesShift) & kFrontEdgesMask);
+  // The triangle's support along the normal: the vertex farthest toward
+  // the shape (ties to the lower index) and those level with it.
+  uint32_t top = 0;
+  float best = dot(tri.p[0], normal);
+  for (uint32_t k = 1; k < 3; ++k) {
+    const float dk = dot(tri.p[k], normal);
+    if (dk > best) {
+      best = dk;
+      top = k;
+    }
+  }
+  bool on[3];
+  uint32_t count = 0;
+  for (uint32_t k = 0; k < 3; ++k) {
+    const Vec3 e = tri.p[top] - tri.p[k];
+    on[k] = k == top || dot(e, normal) <= kFeatureSin * length(e);
+    count += on[k] ? 1 : 0;
+  }
+  replaced = false;
+  if (count == 3) {
+    code = kFaceCode;
+    replaced = true;
+  } else if (count == 2) {
+    const uint32_t e = !on[2] ? 0 : (!on[0] ? 1 : 2);  // edge e joins k = e and e + 1
+    code = kEdgeCode + e;
+    replaced = (bits & (1u << e)) == 0;
+  } else {
+    code = kVertexCode + top;
+    const uint32_t before = (top + 2) % 3;
+    replaced = (bits & ((1u << top) | (1u << before))) == 0;
+  }
+  return replaced ? side : normal;
+}
+
+}  // namespace triangle_detail
+
+ShapeCore make_shape_core(const ConvexProxy& shape) {
+  ShapeCore core;
+  core.proxy = &shape;
+  core.count = shape.count < kProxyMaxPoints ? shape.count : kProxyMaxPoints;
+  core.radius = shape.radius;
+  Vec3 sum;
+  for (uint32_t i = 0; i < core.count; ++i) {
+    core.points[i] = shape.position + shape.axes * shape.points[i];
+    sum += core.points[i];
+  }
+  core.centroid = core.count > 0 ? sum * (1.0f / static_cast<float>(core.count)) : shape.position;
+  return core;
+}
+
+bool collide_convex_triangle(const ShapeCore& core, const TriangleRef& tri, bool one_sided,
+                             float speculative_m, TriangleContact& out) {
+  if (core.count == 0) return false;
+  const bool front = dot(core.centroid - tri.p[0], tri.normal) >= 0.0f;
+  if (one_sided && !front) return false;
+  const Vec3 side = front ? tri.normal : -tri.normal;
+  // The triangle's plane first: a shape whose every core point stands
+  // farther off it than its radius and the speculative distance cannot
+  // reach the triangle (most of a body's neighbours on a floor), and this
+  // costs a few dot products where GJK costs iterations.
+  float lowest = dot(core.points[0] - tri.p[0], side);
+  for (uint32_t i = 1; i < core.count; ++i) {
+    const float d = dot(core.points[i] - tri.p[0], side);
+    if (d < lowest) lowest = d;
+  }
+  if (lowest - core.radius > speculative_m) return false;
+
+  ConvexProxy tri_proxy;
+  tri_proxy.points = tri.p;
+  tri_proxy.count = 3;
+  const GjkOutput g = gjk_distance(tri_proxy, *core.proxy);
+  Vec3 normal;
+  Vec3 p_tri;
+  Vec3 p_shape;  // on the shape's surface
+  float sep = 0.0f;
+  if (!g.overlap) {
+    sep = g.distance - core.radius;
+    if (!(sep <= speculative_m)) return false;
+    normal = g.normal;
+    p_tri = g.point_a;
+    p_shape = g.point_b - normal * core.radius;
+  } else if (core.count >= 3) {
+    const EpaOutput e = epa_penetration(tri_proxy, *core.proxy, g.simplex);
+    normal = e.depth > 0.0f ? e.normal : side;  // a flat difference: no EPA normal
+    p_tri = e.point_a;
+    p_shape = e.point_b - normal * core.radius;
+    sep = -e.depth - core.radius;
+  } else {
+    float overlap = 0.0f;
+    Vec3 p_core;
+    segment_sat(core, tri, side, normal, p_tri, p_core, overlap);
+    p_shape = p_core - normal * core.radius;
+    sep = -overlap - core.radius;
+  }
+
+  // Near the face normal, or pushed out through the front of a one-sided
+  // triangle the shape reaches through: the face's clipped outline. If the
+  // outline misses the triangle, one point at the witness points (code 30;
+  // the reduction prefers any other point).
+  const bool forced = one_sided && !(dot(normal, side) > 0.0f);
+  if (forced || dot(normal, side) >= kFaceSnapCos) {
+    if (face_contact(core, tri, side, false, speculative_m, out)) return true;
+    if (forced) {
+      return single_point(tri, side, p_tri, p_shape, dot(p_shape - p_tri, side), kFaceCode,
+                          speculative_m, out);
+    }
+    return single_point(tri, normal, p_tri, p_shape, sep, kFaceCode, speculative_m, out);
+  }
+  // An edge or vertex: kept if active, else made a face contact. When the
+  // shape's outline does not reach over the triangle, the inactive
+  // feature's neighbour (flat or concave, so the shape lies over it) has
+  // the real contact, and this triangle gives none.
+  bool replaced = false;
+  uint32_t code = kFaceCode;
+  normal = triangle_detail::fix_internal_edge(tri, side, normal, replaced, code);
+  if (replaced) return face_contact(core, tri, side, true, speculative_m, out);
+  return single_point(tri, normal, p_tri, p_shape, sep, code, speculative_m, out);
+}
+
+}  // namespace rwd::sim::d3
