@@ -18,13 +18,20 @@
 //   bounding-box estimate; positions are reported back in the frame the
 //   points were given in, as Rewind reports them. Rewind's hull builder
 //   supplies the corners, mass frame and inertia, so both engines simulate
-//   the same solid.
+//   the same solid;
+// - a mesh becomes a btBvhTriangleMeshShape (quantized AABB tree) over the
+//   same vertices and indices, a height field a btHeightfieldTerrainShape
+//   over the same samples (Bullet centres it on its bounds, so its body sits
+//   at the centre of the field's bounds, as Rewind's does); both keep
+//   Bullet's default margin and no internal-edge correction (Bullet's
+//   default).
 // Everything else is Bullet's default: split impulse, erp 0.2, warm starting,
 // SIMD solver, dynamic AABB tree broadphase, gyroscopic term on.
 #include "bullet_engine.h"
 
 #include "rewind/sim/geometry.h"
 
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
@@ -77,6 +84,18 @@ struct BulletHull {
   Quat rotation;
 };
 
+// A registered mesh or height field: the data Bullet's shapes point into
+// (kept alive and unmoved for the world's lifetime) and the shape itself,
+// shared by the bodies of it.
+struct BulletSurface {
+  std::vector<btVector3> vertices;
+  std::vector<int> indices;
+  std::vector<float> heights;
+  std::unique_ptr<btTriangleIndexVertexArray> arrays;
+  std::unique_ptr<btCollisionShape> shape;
+  Vec3 offset;  // where the shape's origin sits from the body's position
+};
+
 struct BulletEngine::World {
   btDefaultCollisionConfiguration config;
   btCollisionDispatcher dispatcher{&config};
@@ -87,6 +106,10 @@ struct BulletEngine::World {
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::vector<Surface> surfaces;  // reserved up front: bodies point into it
   std::vector<BulletHull> hulls;
+  // Geometry ids: hulls and surfaces share one numbering, as in Rewind.
+  std::vector<int> geometry_hull;     // per id: index in hulls, or -1
+  std::vector<int> geometry_surface;  // per id: index in surfaces, or -1
+  std::vector<std::unique_ptr<BulletSurface>> surfaces_geometry;
   std::vector<int> body_hull;  // per body: its hull, or -1
   scenes::WorldSpec spec;
   float substep_s = 1.0f / 60.0f;
@@ -149,7 +172,66 @@ bool BulletEngine::add_hull(std::span<const Vec3> points, sim::GeometryId& out,
   const Vec3 half = (hi - lo) * 0.5f;
   h.smallest = std::min(half.x, std::min(half.y, half.z));
   world_->hulls.push_back(std::move(h));
-  out = sim::GeometryId{static_cast<uint32_t>(world_->hulls.size() - 1)};
+  out = sim::GeometryId{static_cast<uint32_t>(world_->geometry_hull.size())};
+  world_->geometry_hull.push_back(static_cast<int>(world_->hulls.size() - 1));
+  world_->geometry_surface.push_back(-1);
+  return true;
+}
+
+bool BulletEngine::add_mesh(std::span<const Vec3> vertices, std::span<const uint32_t> indices,
+                            sim::GeometryId& out, std::string& error) {
+  if (vertices.size() < 3 || indices.empty() || indices.size() % 3 != 0) {
+    error = "a mesh needs 3 or more vertices and whole triangles";
+    return false;
+  }
+  auto s = std::make_unique<BulletSurface>();
+  for (const Vec3& v : vertices) s->vertices.push_back(bt(v));
+  for (uint32_t i : indices) {
+    if (i >= vertices.size()) {
+      error = "mesh index out of range";
+      return false;
+    }
+    s->indices.push_back(static_cast<int>(i));
+  }
+  s->arrays = std::make_unique<btTriangleIndexVertexArray>(
+      static_cast<int>(s->indices.size() / 3), s->indices.data(), 3 * static_cast<int>(sizeof(int)),
+      static_cast<int>(s->vertices.size()), s->vertices[0].m_floats,
+      static_cast<int>(sizeof(btVector3)));
+  s->shape = std::make_unique<btBvhTriangleMeshShape>(s->arrays.get(), true);
+  world_->surfaces_geometry.push_back(std::move(s));
+  out = sim::GeometryId{static_cast<uint32_t>(world_->geometry_hull.size())};
+  world_->geometry_hull.push_back(-1);
+  world_->geometry_surface.push_back(static_cast<int>(world_->surfaces_geometry.size() - 1));
+  return true;
+}
+
+bool BulletEngine::add_height_field(uint32_t rows, uint32_t cols, Vec3 scale,
+                                    std::span<const float> heights, sim::GeometryId& out,
+                                    std::string& error) {
+  if (rows < 2 || cols < 2 || heights.size() != static_cast<size_t>(rows) * cols) {
+    error = "a height field needs 2 x 2 samples or more, one height each";
+    return false;
+  }
+  auto s = std::make_unique<BulletSurface>();
+  s->heights.assign(heights.begin(), heights.end());
+  float lo = s->heights[0];
+  float hi = s->heights[0];
+  for (float h : s->heights) {
+    lo = std::min(lo, h);
+    hi = std::max(hi, h);
+  }
+  auto field = std::make_unique<btHeightfieldTerrainShape>(
+      static_cast<int>(cols), static_cast<int>(rows), s->heights.data(), 1.0f, lo, hi, 1, PHY_FLOAT,
+      false);
+  field->setLocalScaling(btVector3(scale.x, scale.y, scale.z));
+  s->shape = std::move(field);
+  // Bullet puts the field's origin at the centre of its bounds.
+  s->offset = {0.5f * static_cast<float>(cols - 1) * scale.x, 0.5f * (lo + hi) * scale.y,
+               0.5f * static_cast<float>(rows - 1) * scale.z};
+  world_->surfaces_geometry.push_back(std::move(s));
+  out = sim::GeometryId{static_cast<uint32_t>(world_->geometry_hull.size())};
+  world_->geometry_hull.push_back(-1);
+  world_->geometry_surface.push_back(static_cast<int>(world_->surfaces_geometry.size() - 1));
   return true;
 }
 
@@ -159,6 +241,7 @@ bool BulletEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& 
     return false;
   }
   std::unique_ptr<btCollisionShape> shape;
+  const BulletSurface* surface = nullptr;  // shared, owned by the world
   int hull_index = -1;
   float volume = 0.0f;
   float extent = 0.0f;
@@ -178,12 +261,27 @@ bool BulletEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& 
     volume = 3.14159265f * r * r * 2.0f * h + 4.0f / 3.0f * 3.14159265f * r * r * r;
     extent = h + r;
     smallest = r;
+  } else if (spec.shape.type == sim::ShapeType::kMesh ||
+             spec.shape.type == sim::ShapeType::kHeightField) {
+    if (spec.shape.geometry >= world_->geometry_surface.size() ||
+        world_->geometry_surface[spec.shape.geometry] < 0 || spec.kind == sim::BodyKind::kDynamic) {
+      error = "unknown surface, or a dynamic one";
+      return false;
+    }
+    surface =
+        world_
+            ->surfaces_geometry[static_cast<size_t>(world_->geometry_surface[spec.shape.geometry])]
+            .get();
+    extent = 1.0f;
+    smallest = 1.0f;
   } else if (spec.shape.type == sim::ShapeType::kHull) {
-    if (spec.shape.geometry >= world_->hulls.size()) {
+    if (spec.shape.geometry >= world_->geometry_hull.size() ||
+        world_->geometry_hull[spec.shape.geometry] < 0) {
       error = "unknown hull";
       return false;
     }
-    const BulletHull& h = world_->hulls[spec.shape.geometry];
+    const size_t hull_at = static_cast<size_t>(world_->geometry_hull[spec.shape.geometry]);
+    const BulletHull& h = world_->hulls[hull_at];
     auto hull = std::make_unique<btConvexHullShape>(h.corners[0].m_floats,
                                                     static_cast<int>(h.corners.size()),
                                                     static_cast<int>(sizeof(btVector3)));
@@ -194,7 +292,7 @@ bool BulletEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& 
     volume = h.volume;
     extent = h.extent;
     smallest = h.smallest;
-    hull_index = static_cast<int>(spec.shape.geometry);
+    hull_index = static_cast<int>(hull_at);
   } else if (spec.shape.type == sim::ShapeType::kBox) {
     const Vec3 h = spec.shape.half_extents;
     smallest = std::min(h.x, std::min(h.y, h.z));
@@ -213,7 +311,8 @@ bool BulletEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& 
   const bool dynamic = spec.kind == sim::BodyKind::kDynamic;
   const float mass = dynamic ? spec.density * volume : 0.0f;
   btVector3 inertia(0.0f, 0.0f, 0.0f);
-  if (dynamic) shape->calculateLocalInertia(mass, inertia);
+  btCollisionShape* collision_shape = surface != nullptr ? surface->shape.get() : shape.get();
+  if (dynamic) collision_shape->calculateLocalInertia(mass, inertia);
   Vec3 position = spec.position;
   Quat rotation = spec.rotation;
   if (hull_index >= 0) {
@@ -222,10 +321,11 @@ bool BulletEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& 
     position = spec.position + sim::rotate(spec.rotation, h.center);
     rotation = spec.rotation * h.rotation;
   }
+  if (surface != nullptr) position = spec.position + sim::rotate(spec.rotation, surface->offset);
   btTransform pose;
   pose.setOrigin(bt(position));
   pose.setRotation(btQuaternion(rotation.x, rotation.y, rotation.z, rotation.w));
-  btRigidBody::btRigidBodyConstructionInfo ci(mass, nullptr, shape.get(), inertia);
+  btRigidBody::btRigidBodyConstructionInfo ci(mass, nullptr, collision_shape, inertia);
   ci.m_startWorldTransform = pose;
   ci.m_friction = spec.friction;
   ci.m_restitution = spec.restitution;

@@ -30,6 +30,11 @@ class BulletEngine final : public scenes::Engine {
   void reset(const scenes::WorldSpec& world, uint32_t body_capacity) override;
   bool add_hull(std::span<const scenes::Vec3> points, sim::GeometryId& out,
                 std::string& error) override;
+  bool add_mesh(std::span<const scenes::Vec3> vertices, std::span<const uint32_t> indices,
+                sim::GeometryId& out, std::string& error) override;
+  bool add_height_field(uint32_t rows, uint32_t cols, scenes::Vec3 scale,
+                        std::span<const float> heights, sim::GeometryId& out,
+                        std::string& error) override;
   bool add_body(const scenes::BodySpec& spec, scenes::BodyHandle& out, std::string& error) override;
   void step() override;
   scenes::Vec3 position(scenes::BodyHandle body) const override;

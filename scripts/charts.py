@@ -244,7 +244,7 @@ def main():
                                   "cost per step (60 Hz, 1 thread, default settings)", pile_awake)
 
     shape_piles = OrderedDict()
-    for scene in ("mixed_pile", "convex_pile"):
+    for scene in ("mixed_pile", "convex_pile", "mesh_pile"):
         rs = [r for r in awake_rows if r["scene"] == scene and r["metric"] == "escaped"]
         if rs:
             shape_piles[scene] = rs
@@ -341,9 +341,10 @@ def main():
         if scene == "convex_pile" and convex_chart:
             w("![convex pile cost awake](%s/%s)\n" % (rel_out, convex_chart))
         w("Bodies cycle %s; the hulls are a stretched icosahedron (12 corners) and a "
-          "hexagonal prism (12 corners, 8 faces).\n" % ("box, capsule" if scene == "mixed_pile"
-                                                       else "box, capsule, sphere, rock hull, "
-                                                       "prism hull"))
+          "hexagonal prism (12 corners, 8 faces)%s.\n"
+          % ("box, capsule" if scene == "mixed_pile"
+             else "box, capsule, sphere, rock hull, prism hull",
+             "; the floor is a bumpy triangle mesh (0.5 m cells)" if scene == "mesh_pile" else ""))
         w("| bodies | Rewind ms/step | Bullet ms/step | Rewind / Bullet |")
         w("|---:|---:|---:|---:|")
         for size, e in by_size(rs).items():

@@ -64,6 +64,8 @@ step "stacks, pyramids, card houses, log cabins, hull stacks and piles with ever
 "$sweep" --mode defaults --no-sleep --scene hull_stack | tail -n +2 >>"$out/awake.csv"
 "$sweep" --mode defaults --no-sleep --scene mixed_pile | tail -n +2 >>"$out/awake.csv"
 "$sweep" --mode defaults --no-sleep --scene convex_pile | tail -n +2 >>"$out/awake.csv"
+"$sweep" --mode defaults --no-sleep --scene mesh_pile | tail -n +2 >>"$out/awake.csv"
+"$sweep" --mode defaults --no-sleep --scene field_boxes | tail -n +2 >>"$out/awake.csv"
 "$sweep" --mode defaults --no-sleep --scene pile "${pile_sizes[@]}" | tail -n +2 >>"$out/awake.csv"
 
 "$sweep" --list >"$out/catalog.txt"

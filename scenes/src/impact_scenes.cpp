@@ -48,13 +48,15 @@ class ProjectileScene final : public kit::SpecScene {
 /// should be nearly at rest. The mixed pile makes every other body a
 /// capsule (0.15 m radius, 0.7 m long), so boxes and capsules meet in every
 /// pairing; the convex pile cycles through box, capsule, sphere, rock (a
-/// stretched icosahedron hull) and hexagonal prism hull.
-enum class PileMix : uint8_t { kBoxes, kCapsules, kConvex };
+/// stretched icosahedron hull) and hexagonal prism hull; the mesh pile drops
+/// the convex mix onto a bumpy triangle-mesh floor (0.5 m cells, bumps of
+/// +-8 cm) instead of a box.
+enum class PileMix : uint8_t { kBoxes, kCapsules, kConvex, kOnMesh };
 
 class PileScene final : public kit::SpecScene {
  public:
   PileScene(int count, PileMix mix) : SpecScene(count), mix_(mix) {
-    if (mix == PileMix::kConvex) {
+    if (mix == PileMix::kConvex || mix == PileMix::kOnMesh) {
       rock_ = add_hull(kit::rock_points({0.3f, 0.22f, 0.26f}));
       // Points about the prism's middle, so it turns about its centre.
       std::vector<Vec3> prism = kit::prism_points(6, 0.28f, 0.36f);
@@ -68,7 +70,14 @@ class PileScene final : public kit::SpecScene {
     inner_half_ = 0.5f * pitch * static_cast<float>(k) + 0.5f;
     const int layers = (count + k * k - 1) / (k * k);
     wall_top_ = 1.0f + pitch * static_cast<float>(layers) + 1.0f;
-    add(kit::ground());
+    if (mix == PileMix::kOnMesh) {
+      BodySpec floor;
+      floor.kind = BodyKind::kStatic;
+      floor.shape = bumpy_floor(inner_half_ + 1.0f);
+      add(floor);
+    } else {
+      add(kit::ground());
+    }
     const float t = 0.25f;  // wall half thickness
     const float h = 0.5f * wall_top_;
     const float span = inner_half_ + 2.0f * t;
@@ -93,8 +102,17 @@ class PileScene final : public kit::SpecScene {
     }
   }
   std::string_view name() const override {
-    return mix_ == PileMix::kBoxes ? "pile"
-                                   : (mix_ == PileMix::kCapsules ? "mixed_pile" : "convex_pile");
+    switch (mix_) {
+      case PileMix::kBoxes:
+        return "pile";
+      case PileMix::kCapsules:
+        return "mixed_pile";
+      case PileMix::kConvex:
+        return "convex_pile";
+      case PileMix::kOnMesh:
+        return "mesh_pile";
+    }
+    return "pile";
   }
   Tick ticks() const override { return 360; }
   void after_step(Tick tick, const Engine& engine) override {
@@ -120,6 +138,31 @@ class PileScene final : public kit::SpecScene {
   }
 
  private:
+  // A square triangle mesh reaching `half` m from the origin each way, top
+  // near y = 0 with bumps of +-8 cm (shared vertices, so the edges between
+  // its cells are internal).
+  Shape bumpy_floor(float half) {
+    const int n = std::max(2, static_cast<int>(std::ceil(2.0f * half / 0.5f)));
+    const float cell = 2.0f * half / static_cast<float>(n);
+    std::vector<Vec3> vertices;
+    std::vector<uint32_t> indices;
+    for (int r = 0; r <= n; ++r) {
+      for (int c = 0; c <= n; ++c) {
+        const float x = static_cast<float>(c) * cell - half;
+        const float z = static_cast<float>(r) * cell - half;
+        vertices.push_back({x, 0.08f * std::sin(1.3f * x) * std::cos(1.1f * z), z});
+      }
+    }
+    const auto at = [n](int r, int c) { return static_cast<uint32_t>(r * (n + 1) + c); };
+    for (int r = 0; r < n; ++r) {
+      for (int c = 0; c < n; ++c) {
+        indices.insert(indices.end(), {at(r, c), at(r + 1, c), at(r + 1, c + 1)});
+        indices.insert(indices.end(), {at(r, c), at(r + 1, c + 1), at(r, c + 1)});
+      }
+    }
+    return add_mesh(std::move(vertices), std::move(indices));
+  }
+
   BodySpec make_body(int i, Vec3 p) const {
     const BodySpec box = kit::box(p, {0.25f, 0.25f, 0.25f});
     switch (mix_) {
@@ -128,6 +171,7 @@ class PileScene final : public kit::SpecScene {
       case PileMix::kCapsules:
         return i % 2 == 1 ? kit::capsule(p, 0.15f, 0.2f) : box;
       case PileMix::kConvex:
+      case PileMix::kOnMesh:
         switch (i % 5) {
           case 1:
             return kit::capsule(p, 0.15f, 0.2f);
@@ -219,6 +263,10 @@ std::unique_ptr<Scene> make_mixed_pile(int count) {
 std::unique_ptr<Scene> make_convex_pile(int count) {
   if (count < 1 || count > 100000) return nullptr;
   return std::make_unique<PileScene>(count, PileMix::kConvex);
+}
+std::unique_ptr<Scene> make_mesh_pile(int count) {
+  if (count < 1 || count > 100000) return nullptr;
+  return std::make_unique<PileScene>(count, PileMix::kOnMesh);
 }
 std::unique_ptr<Scene> make_overlap(int count) {
   if (count < 1 || count > 50) return nullptr;

@@ -41,6 +41,29 @@ bool RewindEngine::add_hull(std::span<const Vec3> points, sim::GeometryId& out,
   return true;
 }
 
+bool RewindEngine::add_mesh(std::span<const Vec3> vertices, std::span<const uint32_t> indices,
+                            sim::GeometryId& out, std::string& error) {
+  auto id = world_->geometry().add_mesh(vertices, indices);
+  if (!id.ok()) {
+    error = id.status().message();
+    return false;
+  }
+  out = *id;
+  return true;
+}
+
+bool RewindEngine::add_height_field(uint32_t rows, uint32_t cols, Vec3 scale,
+                                    std::span<const float> heights, sim::GeometryId& out,
+                                    std::string& error) {
+  auto id = world_->geometry().add_height_field(rows, cols, scale, heights);
+  if (!id.ok()) {
+    error = id.status().message();
+    return false;
+  }
+  out = *id;
+  return true;
+}
+
 bool RewindEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& error) {
   sim::BodyDef def;
   def.kind = spec.kind;

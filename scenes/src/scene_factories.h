@@ -29,6 +29,8 @@ std::unique_ptr<Scene> make_log_cabin(int layers);
 std::unique_ptr<Scene> make_hull_stack(int count);
 std::unique_ptr<Scene> make_hull_slip(int degrees);
 std::unique_ptr<Scene> make_convex_pile(int count);
+std::unique_ptr<Scene> make_mesh_pile(int count);
+std::unique_ptr<Scene> make_field_boxes(int count);
 std::unique_ptr<Scene> make_overlap(int count);
 
 }  // namespace rwd::scenes

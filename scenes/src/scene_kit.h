@@ -110,18 +110,22 @@ inline BodySpec ground(float top_y = 0.0f, float x = 0.0f, float z = 0.0f, float
 class SpecScene : public Scene {
  public:
   uint32_t body_capacity() const override { return static_cast<uint32_t>(specs_.size()); }
-  /// Registers the scene's hulls with the engine, then adds its bodies,
-  /// each hull shape pointing at the id the engine gave its hull.
+  /// Registers the scene's geometry with the engine, then adds its bodies,
+  /// each shape of registered geometry pointing at the id the engine gave.
   bool build(Engine& engine, std::string& error) override {
     handles_.clear();
     std::vector<sim::GeometryId> ids;
-    for (const std::vector<Vec3>& points : hulls_) {
+    for (const Geometry& g : geometry_) {
       sim::GeometryId id;
-      if (!engine.add_hull(points, id, error)) return false;
+      const bool ok = g.kind == sim::ShapeType::kHull ? engine.add_hull(g.points, id, error)
+                      : g.kind == sim::ShapeType::kMesh
+                          ? engine.add_mesh(g.points, g.indices, id, error)
+                          : engine.add_height_field(g.rows, g.cols, g.scale, g.heights, id, error);
+      if (!ok) return false;
       ids.push_back(id);
     }
     for (BodySpec s : specs_) {
-      if (s.shape.type == sim::ShapeType::kHull) s.shape.geometry = ids[s.shape.geometry].value;
+      if (s.shape.uses_geometry()) s.shape.geometry = ids[s.shape.geometry].value;
       BodyHandle h = 0;
       if (!engine.add_body(s, h, error)) return false;
       handles_.push_back(h);
@@ -140,12 +144,49 @@ class SpecScene : public Scene {
   /// returns the shape bodies of it take (its id is the scene's own index
   /// until build() maps it to the engine's).
   Shape add_hull(std::vector<Vec3> points) {
-    hulls_.push_back(std::move(points));
-    return Shape::make_hull(sim::GeometryId{static_cast<uint32_t>(hulls_.size() - 1)});
+    Geometry g;
+    g.kind = sim::ShapeType::kHull;
+    g.points = std::move(points);
+    geometry_.push_back(std::move(g));
+    return Shape::make_hull(next_geometry());
+  }
+  /// The same for a triangle mesh (Engine::add_mesh).
+  Shape add_mesh(std::vector<Vec3> vertices, std::vector<uint32_t> indices) {
+    Geometry g;
+    g.kind = sim::ShapeType::kMesh;
+    g.points = std::move(vertices);
+    g.indices = std::move(indices);
+    geometry_.push_back(std::move(g));
+    return Shape::make_mesh(next_geometry());
+  }
+  /// The same for a height field (Engine::add_height_field).
+  Shape add_height_field(uint32_t rows, uint32_t cols, Vec3 scale, std::vector<float> heights) {
+    Geometry g;
+    g.kind = sim::ShapeType::kHeightField;
+    g.rows = rows;
+    g.cols = cols;
+    g.scale = scale;
+    g.heights = std::move(heights);
+    geometry_.push_back(std::move(g));
+    return Shape::make_height_field(next_geometry());
   }
   std::vector<BodySpec> specs_;
-  std::vector<std::vector<Vec3>> hulls_;
   std::vector<BodyHandle> handles_;
+
+ private:
+  struct Geometry {
+    sim::ShapeType kind = sim::ShapeType::kHull;
+    std::vector<Vec3> points;  // hull corners or mesh vertices
+    std::vector<uint32_t> indices;
+    uint32_t rows = 0;
+    uint32_t cols = 0;
+    Vec3 scale;
+    std::vector<float> heights;
+  };
+  sim::GeometryId next_geometry() const {
+    return sim::GeometryId{static_cast<uint32_t>(geometry_.size() - 1)};
+  }
+  std::vector<Geometry> geometry_;
 };
 
 /// Boxes resting on one another: records how far each wanders sideways from

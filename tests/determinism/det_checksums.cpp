@@ -234,6 +234,31 @@ bool run_heap_scene(Tick ticks) {
     wall.position = w == 0 ? sim::Vec3{-6.5f, 3.0f, 0.0f} : sim::Vec3{0.0f, 3.0f, -6.5f};
     (void)world.create_body(wall);
   }
+  // Terrain under the heap: a bumpy height field patch, and a mesh ramp
+  // beside it, so bodies meet triangles (internal edges, folds, and the
+  // blended normals of bodies across them) on every build.
+  {
+    std::vector<float> heights(9 * 9);
+    for (size_t k = 0; k < heights.size(); ++k) {
+      heights[k] = 0.02f * static_cast<float>((k * 7) % 5) + 0.01f;
+    }
+    const sim::GeometryId field =
+        *world.geometry().add_height_field(9, 9, {0.5f, 1.0f, 0.5f}, heights);
+    sim::BodyDef patch;
+    patch.kind = sim::BodyKind::kStatic;
+    patch.shape = sim::Shape::make_height_field(field);
+    patch.position = {-6.0f, 0.0f, -6.0f};
+    (void)world.create_body(patch);
+    const sim::Vec3 ramp_points[] = {{0.0f, 0.0f, 0.0f}, {2.0f, 0.0f, 0.0f}, {2.0f, 0.0f, 2.0f},
+                                     {0.0f, 0.0f, 2.0f}, {0.0f, 0.8f, 0.0f}, {0.0f, 0.8f, 2.0f}};
+    const uint32_t ramp_indices[] = {0, 4, 1, 1, 4, 5, 1, 5, 2, 0, 3, 4, 3, 5, 4};
+    const sim::GeometryId ramp = *world.geometry().add_mesh(ramp_points, ramp_indices);
+    sim::BodyDef r;
+    r.kind = sim::BodyKind::kStatic;
+    r.shape = sim::Shape::make_mesh(ramp);
+    r.position = {1.0f, 0.0f, -5.5f};
+    (void)world.create_body(r);
+  }
   std::vector<sim::BodyId> bodies;
   for (int i = 0; i < 8; ++i) {  // the column: each box half inside the one below
     sim::BodyDef def;

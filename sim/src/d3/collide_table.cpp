@@ -84,6 +84,25 @@ void hull_hull(const Shape& a, const ShapePose& pa, const Shape& b, const ShapeP
                 speculative_m, out);
 }
 
+void mesh_convex(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+                 float speculative_m, const GeometryStore* store, Manifold& out) {
+  collide_mesh_convex(a, pa, b, pb, speculative_m, *store, out);
+}
+
+void field_convex(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+                  float speculative_m, const GeometryStore* store, Manifold& out) {
+  collide_height_field_convex(a, pa, b, pb, speculative_m, *store, out);
+}
+
+// Meshes and height fields belong to static and kinematic bodies, which
+// never need contacts with each other: the pair has no points.
+void surfaces(const Shape& /*a*/, const ShapePose& /*pa*/, const Shape& /*b*/,
+              const ShapePose& /*pb*/, float /*speculative_m*/, const GeometryStore* /*store*/,
+              Manifold& out) {
+  out.point_count = 0;
+  out.normal = {0.0f, 1.0f, 0.0f};
+}
+
 struct Entry {
   CollideFn fn = nullptr;
   bool reversed = false;  // fn takes (b, a)
@@ -111,6 +130,14 @@ constexpr Table make_table() {
   add(ShapeType::kHull, ShapeType::kCapsule, hull_capsule);
   add(ShapeType::kBox, ShapeType::kHull, box_hull);
   add(ShapeType::kHull, ShapeType::kHull, hull_hull);
+  for (ShapeType convex :
+       {ShapeType::kSphere, ShapeType::kBox, ShapeType::kCapsule, ShapeType::kHull}) {
+    add(ShapeType::kMesh, convex, mesh_convex);
+    add(ShapeType::kHeightField, convex, field_convex);
+  }
+  add(ShapeType::kMesh, ShapeType::kMesh, surfaces);
+  add(ShapeType::kMesh, ShapeType::kHeightField, surfaces);
+  add(ShapeType::kHeightField, ShapeType::kHeightField, surfaces);
   return t;
 }
 

@@ -72,12 +72,10 @@ void continuous_collision(WorldState& state, WorldScratch& scratch) {
     for (const uint32_t j : candidates) {
       const BodyInfo& other_info = state.infos[j];
       const BodySim& other_sim = state.sims[j];
-      ProxyPoints other_points;
-      ConvexProxy other =
-          shape_ops(other_info.shape.type).proxy(other_info.shape, *scratch.store, other_points);
-      other.position = other_sim.position;
-      other.axes = mat3_from_quat(other_sim.rotation);
-      const ShapeCastOutput hit = shape_cast(other, mover, move, first);
+      const ShapeCastOutput hit =
+          shape_ops(other_info.shape.type)
+              .sweep(other_info.shape, *scratch.store, other_sim.position,
+                     mat3_from_quat(other_sim.rotation), mover, move, first);
       // Shapes touching at the start are a contact's business, and so is
       // motion along or away from the surface: only a crossing counts.
       if (!hit.hit || hit.initially_overlapping || hit.fraction >= first) continue;

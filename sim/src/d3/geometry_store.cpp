@@ -2,10 +2,13 @@
 // The geometry store: registration (validate, build, hash once) and lookup.
 #include "rewind/sim/geometry.h"
 
+#include <cmath>
 #include <string>
 
+#include "d3/height_field.h"
 #include "d3/hull.h"
 #include "d3/hull_builder.h"
+#include "d3/mesh.h"
 #include "rewind/sim/state_hasher.h"
 #include "rewind/sim/world3d.h"
 
@@ -15,6 +18,8 @@ struct GeometryStore::Entry {
   GeometryKind kind = GeometryKind::kHull;
   uint64_t hash = 0;
   std::unique_ptr<const d3::Hull> hull;
+  std::unique_ptr<const d3::TriangleMesh> mesh;
+  std::unique_ptr<const d3::HeightField> height_field;
 };
 
 namespace {
@@ -51,12 +56,79 @@ uint64_t hash_hull(const d3::Hull& h) {
   return s.digest();
 }
 
-bool same_hull(const d3::Hull& a, const d3::Hull& b) {
-  if (a.vertices.size() != b.vertices.size()) return false;
-  for (size_t i = 0; i < a.vertices.size(); ++i) {
-    if (!(a.vertices[i] == b.vertices[i])) return false;
+// The mesh as given (vertices, triangles, sidedness): the tree and the edge
+// flags are functions of it.
+uint64_t hash_mesh(const d3::TriangleMesh& m) {
+  StateHasher s;
+  s.add_u8(static_cast<uint8_t>(GeometryKind::kMesh));
+  s.add_u8(m.one_sided ? 1 : 0);
+  s.add_u32(static_cast<uint32_t>(m.vertices.size()));
+  for (const Vec3& v : m.vertices) s.add_vec3(v);
+  s.add_u32(static_cast<uint32_t>(m.triangles.size()));
+  for (const d3::MeshTriangle& t : m.triangles) {
+    s.add_u32(t.v[0]);
+    s.add_u32(t.v[1]);
+    s.add_u32(t.v[2]);
   }
-  return a.frame.center == b.frame.center && a.frame.rotation == b.frame.rotation;
+  return s.digest();
+}
+
+uint64_t hash_height_field(const d3::HeightField& h) {
+  StateHasher s;
+  s.add_u8(static_cast<uint8_t>(GeometryKind::kHeightField));
+  s.add_u32(h.rows);
+  s.add_u32(h.cols);
+  s.add_vec3(h.scale);
+  for (float v : h.heights) s.add_f32(v);
+  s.add_u32(static_cast<uint32_t>(h.holes.size()));
+  for (uint8_t v : h.holes) s.add_u8(v);
+  return s.digest();
+}
+
+bool same_points(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (!(a[i] == b[i])) return false;
+  }
+  return true;
+}
+
+// Equal hashes are checked field by field before two entries count as one.
+bool same_entry(const GeometryStore& store, uint32_t id, GeometryKind kind, const d3::Hull* hull,
+                const d3::TriangleMesh* mesh, const d3::HeightField* field) {
+  switch (kind) {
+    case GeometryKind::kHull: {
+      const d3::Hull* h = store.hull(id);
+      return h != nullptr && same_points(h->vertices, hull->vertices) &&
+             h->frame.center == hull->frame.center && h->frame.rotation == hull->frame.rotation;
+    }
+    case GeometryKind::kMesh: {
+      const d3::TriangleMesh* m = store.mesh(id);
+      if (m == nullptr || m->one_sided != mesh->one_sided ||
+          m->triangles.size() != mesh->triangles.size() ||
+          !same_points(m->vertices, mesh->vertices)) {
+        return false;
+      }
+      for (size_t t = 0; t < m->triangles.size(); ++t) {
+        for (int k = 0; k < 3; ++k) {
+          if (m->triangles[t].v[k] != mesh->triangles[t].v[k]) return false;
+        }
+      }
+      return true;
+    }
+    case GeometryKind::kHeightField: {
+      const d3::HeightField* h = store.height_field(id);
+      if (h == nullptr || h->rows != field->rows || h->cols != field->cols ||
+          !(h->scale == field->scale) || h->holes != field->holes) {
+        return false;
+      }
+      for (size_t i = 0; i < h->heights.size(); ++i) {
+        if (!(h->heights[i] == field->heights[i])) return false;
+      }
+      return true;
+    }
+  }
+  return false;
 }
 
 // Outside points enter the canonical grid first, so every client builds
@@ -77,20 +149,58 @@ GeometryStore::~GeometryStore() = default;
 Result<GeometryId> GeometryStore::add_hull(std::span<const Vec3> points) {
   Result<d3::Hull> hull = d3::make_hull(snapped(points));
   if (!hull.ok()) return hull.status();
-  return add(std::make_unique<d3::Hull>(std::move(*hull)));
+  Entry e;
+  e.kind = GeometryKind::kHull;
+  e.hash = hash_hull(*hull);
+  e.hull = std::make_unique<d3::Hull>(std::move(*hull));
+  return add(std::move(e));
 }
 
 Result<GeometryId> GeometryStore::add_hull_from_points(std::span<const Vec3> points) {
   Result<d3::Hull> hull = d3::hull_from_points(snapped(points));
   if (!hull.ok()) return hull.status();
-  return add(std::make_unique<d3::Hull>(std::move(*hull)));
+  Entry e;
+  e.kind = GeometryKind::kHull;
+  e.hash = hash_hull(*hull);
+  e.hull = std::make_unique<d3::Hull>(std::move(*hull));
+  return add(std::move(e));
 }
 
-Result<GeometryId> GeometryStore::add(std::unique_ptr<d3::Hull> hull) {
-  const uint64_t h = hash_hull(*hull);
+Result<GeometryId> GeometryStore::add_mesh(std::span<const Vec3> vertices,
+                                           std::span<const uint32_t> indices, bool one_sided) {
+  Result<d3::TriangleMesh> mesh = d3::build_mesh(snapped(vertices), indices, one_sided);
+  if (!mesh.ok()) return mesh.status();
+  Entry e;
+  e.kind = GeometryKind::kMesh;
+  e.hash = hash_mesh(*mesh);
+  e.mesh = std::make_unique<d3::TriangleMesh>(std::move(*mesh));
+  return add(std::move(e));
+}
+
+Result<GeometryId> GeometryStore::add_height_field(uint32_t rows, uint32_t cols, Vec3 scale,
+                                                   std::span<const float> heights,
+                                                   std::span<const uint8_t> holes) {
+  // Outside values enter the canonical grid, as points do.
+  std::vector<float> on_grid(heights.begin(), heights.end());
+  for (float& h : on_grid) {
+    if (std::isfinite(h)) h = quantize(h);
+  }
+  const Vec3 s = is_finite(scale) ? quantize(scale) : scale;
+  Result<d3::HeightField> field = d3::build_height_field(rows, cols, s, on_grid, holes);
+  if (!field.ok()) return field.status();
+  Entry e;
+  e.kind = GeometryKind::kHeightField;
+  e.hash = hash_height_field(*field);
+  e.height_field = std::make_unique<d3::HeightField>(std::move(*field));
+  return add(std::move(e));
+}
+
+Result<GeometryId> GeometryStore::add(Entry entry) {
   for (uint32_t i = 0; i < entries_.size(); ++i) {
     const Entry& e = entries_[i];
-    if (e.hash == h && e.kind == GeometryKind::kHull && same_hull(*e.hull, *hull)) {
+    if (e.hash == entry.hash && e.kind == entry.kind &&
+        same_entry(*this, i, entry.kind, entry.hull.get(), entry.mesh.get(),
+                   entry.height_field.get())) {
       return GeometryId{i};
     }
   }
@@ -98,11 +208,7 @@ Result<GeometryId> GeometryStore::add(std::unique_ptr<d3::Hull> hull) {
     return Status::Error(ErrorCode::kCapacity,
                          "geometry store is full (" + std::to_string(kMaxEntries) + " entries)");
   }
-  Entry e;
-  e.kind = GeometryKind::kHull;
-  e.hash = h;
-  e.hull = std::move(hull);
-  entries_.push_back(std::move(e));
+  entries_.push_back(std::move(entry));
   return GeometryId{static_cast<uint32_t>(entries_.size() - 1)};
 }
 
@@ -133,6 +239,16 @@ uint64_t GeometryStore::digest(uint32_t count) const {
 const d3::Hull* GeometryStore::hull(uint32_t id) const {
   if (id >= entries_.size() || entries_[id].kind != GeometryKind::kHull) return nullptr;
   return entries_[id].hull.get();
+}
+
+const d3::TriangleMesh* GeometryStore::mesh(uint32_t id) const {
+  if (id >= entries_.size() || entries_[id].kind != GeometryKind::kMesh) return nullptr;
+  return entries_[id].mesh.get();
+}
+
+const d3::HeightField* GeometryStore::height_field(uint32_t id) const {
+  if (id >= entries_.size() || entries_[id].kind != GeometryKind::kHeightField) return nullptr;
+  return entries_[id].height_field.get();
 }
 
 std::optional<HullInfo> GeometryStore::hull_info(GeometryId id) const {

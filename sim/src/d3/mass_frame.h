@@ -7,7 +7,9 @@
 // capsules the two are the same; a hull's mass frame sits where its
 // registration found it (HullFrame). The API converts at its edge, so
 // state holds mass-frame poses only.
+#include "d3/height_field.h"
 #include "d3/hull.h"
+#include "d3/mesh.h"
 #include "rewind/sim/geometry.h"
 #include "rewind/sim/shape.h"
 
@@ -20,11 +22,30 @@ struct MassFrame {
   bool identity = true;
 };
 
-/// The mass frame of a shape the state rule accepts (check_shape).
+/// The mass frame of a shape the state rule accepts (check_shape). A mesh
+/// or a height field has no mass; its frame is the centre of its bounds
+/// (so its bounds are symmetric about the body's position and the
+/// broadphase bounds it like a box), axes unturned.
 inline MassFrame mass_frame(const Shape& shape, const GeometryStore& store) {
-  if (shape.type != ShapeType::kHull) return {};
-  const HullFrame& f = store.hull(shape.geometry)->frame;
-  return {f.center, f.rotation, false};
+  switch (shape.type) {
+    case ShapeType::kHull: {
+      const HullFrame& f = store.hull(shape.geometry)->frame;
+      return {f.center, f.rotation, false};
+    }
+    case ShapeType::kMesh: {
+      const Aabb& b = store.mesh(shape.geometry)->bounds;
+      return {(b.lower + b.upper) * 0.5f, Quat{}, false};
+    }
+    case ShapeType::kHeightField: {
+      const Aabb& b = store.height_field(shape.geometry)->bounds;
+      return {(b.lower + b.upper) * 0.5f, Quat{}, false};
+    }
+    case ShapeType::kSphere:
+    case ShapeType::kBox:
+    case ShapeType::kCapsule:
+      break;
+  }
+  return {};
 }
 
 /// The mass-frame pose of a body whose authored frame is at `position`,

@@ -40,12 +40,13 @@ float pair_speculative(const WorldState& state, uint32_t a, uint32_t b) {
 }
 
 // Whether a shape's contact features are fixed on it (a box's or a hull's
-// faces, edges and corners), so a manifold carried forward keeps its points
-// where they are. A round surface's contact point moves over it as the body
-// rolls; carrying it would tilt the normal with the roll, so pairs with a
+// faces, edges and corners, a mesh's or a height field's triangles), so a
+// manifold carried forward keeps its points where they are. A round surface's contact point moves
+// over it as the body rolls; carrying it would tilt the normal with the roll, so pairs with a
 // sphere or a capsule are collided every step.
 bool keeps_features(const Shape& shape) {
-  return shape.type == ShapeType::kBox || shape.type == ShapeType::kHull;
+  return shape.type == ShapeType::kBox || shape.type == ShapeType::kHull ||
+         shape.type == ShapeType::kMesh || shape.type == ShapeType::kHeightField;
 }
 
 // Computes the manifold (or carries `old`'s forward, see the top of the

@@ -109,7 +109,7 @@ ConvexProxy proxy(const Shape& s, const GeometryStore& /*store*/, ProxyPoints& s
 
 }  // namespace
 
-extern const ShapeOps kBoxOps{"box",   check,       canonical, extent, volume,
-                              inertia, half_bounds, raycast,   proxy};
+extern const ShapeOps kBoxOps{"box",   true,        check,   canonical, extent,      volume,
+                              inertia, half_bounds, raycast, proxy,     sweep_convex};
 
 }  // namespace rwd::sim::d3

@@ -130,7 +130,7 @@ ConvexProxy proxy(const Shape& s, const GeometryStore& /*store*/, ProxyPoints& s
 
 }  // namespace
 
-extern const ShapeOps kCapsuleOps{"capsule", check,       canonical, extent, volume,
-                                  inertia,   half_bounds, raycast,   proxy};
+extern const ShapeOps kCapsuleOps{"capsule", true,        check,   canonical, extent,      volume,
+                                  inertia,   half_bounds, raycast, proxy,     sweep_convex};
 
 }  // namespace rwd::sim::d3

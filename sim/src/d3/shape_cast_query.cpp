@@ -33,6 +33,14 @@ struct CastSetup {
 Status prepare_cast(const GeometryStore& store, const Shape& shape, Vec3 position, Quat rotation,
                     Vec3 translation, CastSetup& c) {
   if (Status s = d3::check_shape(shape, store); !s.ok()) return s;
+  if (d3::shape_ops(shape.type).proxy == nullptr) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "only convex shapes can be swept (not a mesh or a height field)");
+  }
+  if (d3::shape_ops(shape.type).proxy == nullptr) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "only convex shapes can be swept (not a mesh or a height field)");
+  }
   if (!is_finite(position) || !is_finite(rotation) || !is_finite(translation)) {
     return Status::Error(ErrorCode::kInvalidArgument,
                          "position, rotation and translation must be finite");
@@ -76,12 +84,10 @@ void sweep(const WorldState& state, WorldScratch& scratch, const CastSetup& c,
   for (const uint32_t i : candidates) {
     const BodyInfo& info = state.infos[i];
     const BodySim& sim = state.sims[i];
-    d3::ProxyPoints storage;
-    d3::ConvexProxy body =
-        d3::shape_ops(info.shape.type).proxy(info.shape, *scratch.store, storage);
-    body.position = sim.position;
-    body.axes = mat3_from_quat(sim.rotation);
-    const d3::ShapeCastOutput hit = d3::shape_cast(body, c.proxy, c.translation, 1.0f);
+    const d3::ShapeCastOutput hit =
+        d3::shape_ops(info.shape.type)
+            .sweep(info.shape, *scratch.store, sim.position, mat3_from_quat(sim.rotation), c.proxy,
+                   c.translation, 1.0f);
     if (!hit.hit) continue;
     visit(ShapeCastHit{BodyId{i, info.generation}, hit.fraction * c.length, hit.point, hit.normal});
   }

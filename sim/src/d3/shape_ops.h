@@ -21,7 +21,7 @@
 namespace rwd::sim::d3 {
 
 /// Number of shape types; ShapeType values are 0 .. kShapeTypeCount - 1.
-inline constexpr uint32_t kShapeTypeCount = 4;
+inline constexpr uint32_t kShapeTypeCount = 6;
 
 /// Room for the core points a shape computes rather than stores.
 struct ProxyPoints {
@@ -30,6 +30,9 @@ struct ProxyPoints {
 
 struct ShapeOps {
   const char* name;
+  /// Whether a dynamic body may have it (a closed solid with a volume);
+  /// meshes and height fields are surfaces, for static and kinematic bodies.
+  bool solid;
   /// The shape's sizes against the state rule (finite, in range), and its
   /// geometry id against the store.
   Status (*check)(const Shape& shape, const GeometryStore& store);
@@ -58,7 +61,19 @@ struct ShapeOps {
   /// points that are not stored anywhere (a box's corners) are written to
   /// `storage`, which must outlive the proxy.
   ConvexProxy (*proxy)(const Shape& shape, const GeometryStore& store, ProxyPoints& storage);
+  /// The first touch of `swept` (a convex proxy, world frame) moved by
+  /// fraction * translation, fraction in [0, max_fraction], against this
+  /// shape with its mass frame at `position`, `axes` (shape_cast's
+  /// conventions: normal from this shape to the swept one).
+  ShapeCastOutput (*sweep)(const Shape& shape, const GeometryStore& store, Vec3 position,
+                           const Mat3& axes, const ConvexProxy& swept, Vec3 translation,
+                           float max_fraction);
 };
+
+/// ShapeOps::sweep of the convex shapes: their proxy against the swept one.
+ShapeCastOutput sweep_convex(const Shape& shape, const GeometryStore& store, Vec3 position,
+                             const Mat3& axes, const ConvexProxy& swept, Vec3 translation,
+                             float max_fraction);
 
 inline bool is_known_shape(ShapeType type) {
   return static_cast<uint32_t>(type) < kShapeTypeCount;
@@ -72,6 +87,20 @@ extern const ShapeOps kSphereOps;
 extern const ShapeOps kBoxOps;
 extern const ShapeOps kCapsuleOps;
 extern const ShapeOps kHullOps;
+extern const ShapeOps kMeshOps;
+extern const ShapeOps kHeightFieldOps;
+
+struct ShapePose;
+struct Manifold;
+/// A mesh or height field (A, mass-frame pose `pose`) against a convex
+/// shape (B): one manifold, normal from A to B (shape_mesh.cpp,
+/// shape_height_field.cpp).
+void collide_mesh_convex(const Shape& mesh, const ShapePose& pose, const Shape& shape,
+                         const ShapePose& shape_pose, float speculative_m,
+                         const GeometryStore& store, Manifold& out);
+void collide_height_field_convex(const Shape& field, const ShapePose& pose, const Shape& shape,
+                                 const ShapePose& shape_pose, float speculative_m,
+                                 const GeometryStore& store, Manifold& out);
 
 /// The ray test of a sphere of `radius` at `center` (dir unit), shared by
 /// the shapes made of spheres.

@@ -113,8 +113,8 @@ void write_state(Sink& s, const WorldState& st) {
     s.u8(b.awake);
     s.u8(b.enabled);
     s.u8(static_cast<uint8_t>(b.shape.type));
-    if (b.shape.type == ShapeType::kHull) {
-      // The hull's sizes are its geometry's; the id names it.
+    if (b.shape.uses_geometry()) {
+      // The shape's sizes are its geometry's; the id names it.
       s.u32(b.shape.geometry);
     } else {
       s.f32(b.shape.radius);
@@ -245,7 +245,7 @@ bool read_body(Reader& r, BodyInfo& b, BodySim& m) {
   uint8_t type = r.u8();
   r.require(d3::is_known_shape(static_cast<ShapeType>(type)));
   b.shape.type = static_cast<ShapeType>(type);
-  if (b.shape.type == ShapeType::kHull) {
+  if (b.shape.uses_geometry()) {
     b.shape.geometry = r.u32();
   } else {
     b.shape.radius = r.f32();
@@ -300,7 +300,7 @@ WorldConfig read_config(Reader& r) {
 uint32_t geometry_used(const WorldState& st) {
   uint32_t used = 0;
   for (const BodyInfo& b : st.infos) {
-    if (b.alive != 0 && b.shape.type == ShapeType::kHull && b.shape.geometry + 1 > used) {
+    if (b.alive != 0 && b.shape.uses_geometry() && b.shape.geometry + 1 > used) {
       used = b.shape.geometry + 1;
     }
   }
@@ -394,9 +394,9 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
     if (Status s = d3::check_body(c, store, b, st.sims[i]); !s.ok()) {
       return corrupt_body(i, s.message());
     }
-    if (b.shape.type == ShapeType::kHull) {
+    if (b.shape.uses_geometry()) {
       if (b.shape.geometry >= geometry_count) {
-        return corrupt_body(i, "hull geometry id past the snapshot's geometry count");
+        return corrupt_body(i, "geometry id past the snapshot's geometry count");
       }
       d3::shape_ops(b.shape.type).canonical(b.shape, store);  // its sizes, from the store
     }

@@ -49,6 +49,9 @@ Status check_common(const GeometryStore& store, BodyKind kind, const Shape& shap
     return invalid("unknown body kind");
   }
   if (Status s = check_shape(shape, store); !s.ok()) return s;
+  if (kind == BodyKind::kDynamic && !shape_ops(shape.type).solid) {
+    return invalid("a triangle mesh or height field cannot be dynamic (static or kinematic only)");
+  }
   if (!(std::isfinite(density) && density > 0.0f && density <= 1e9f)) {
     return invalid("density must be in (0, 1e9] kg/m^3");
   }

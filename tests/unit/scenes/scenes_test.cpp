@@ -25,6 +25,16 @@ class BallisticEngine final : public Engine {
     out = sim::GeometryId{hulls_++};
     return true;
   }
+  bool add_mesh(std::span<const Vec3>, std::span<const uint32_t>, sim::GeometryId& out,
+                std::string&) override {
+    out = sim::GeometryId{hulls_++};
+    return true;
+  }
+  bool add_height_field(uint32_t, uint32_t, Vec3, std::span<const float>, sim::GeometryId& out,
+                        std::string&) override {
+    out = sim::GeometryId{hulls_++};
+    return true;
+  }
   bool add_body(const BodySpec& spec, BodyHandle& out, std::string& error) override {
     if (refuse_spheres && spec.shape.type == sim::ShapeType::kSphere) {
       error = "spheres refused";

@@ -74,6 +74,18 @@ class Engine {
   /// and report the pose of the frame its points were given in. False
   /// (with a reason in `error`) if the engine refuses the points.
   virtual bool add_hull(std::span<const Vec3> points, sim::GeometryId& out, std::string& error) = 0;
+  /// Registers a triangle mesh (`vertices` in m, three `indices` per
+  /// triangle, counter-clockwise seen from the front) for static bodies
+  /// (Shape::make_mesh(out)).
+  virtual bool add_mesh(std::span<const Vec3> vertices, std::span<const uint32_t> indices,
+                        sim::GeometryId& out, std::string& error) = 0;
+  /// Registers a height field for static bodies
+  /// (Shape::make_height_field(out)): `rows` x `cols` samples, row-major;
+  /// sample (r, c) at (c * scale.x, height * scale.y, r * scale.z) from the
+  /// body's position.
+  virtual bool add_height_field(uint32_t rows, uint32_t cols, Vec3 scale,
+                                std::span<const float> heights, sim::GeometryId& out,
+                                std::string& error) = 0;
   /// Adds a body; false (with a reason in `error`) if the engine refuses it.
   virtual bool add_body(const BodySpec& spec, BodyHandle& out, std::string& error) = 0;
   /// Advances the world by one tick.

@@ -28,10 +28,14 @@ namespace rwd::sim {
 
 namespace d3 {
 struct Hull;
-}
+struct TriangleMesh;
+struct HeightField;
+}  // namespace d3
 
 enum class GeometryKind : uint8_t {
-  kHull = 0,  ///< a convex hull of 4 to 64 vertices
+  kHull = 0,         ///< a convex hull of 4 to 64 vertices
+  kMesh = 1,         ///< a triangle mesh (static or kinematic bodies only)
+  kHeightField = 2,  ///< a grid of heights (static or kinematic bodies only)
 };
 
 /// What a registered hull turned out to be.
@@ -78,6 +82,28 @@ class GeometryStore {
   /// and clouds without volume.
   Result<GeometryId> add_hull_from_points(std::span<const Vec3> points);
 
+  /// Registers a triangle mesh for static and kinematic bodies (a level, a
+  /// moving platform): `vertices` (m, in the body's frame; 3 to 2^20, each
+  /// within 1e5 m of the origin) and `indices`, three per triangle (1 to
+  /// 2^21 triangles), counter-clockwise seen from the front. Vertices shared
+  /// by index make shared edges, across which bodies slide without catching
+  /// (flat and concave edges give no edge contacts). A one-sided mesh
+  /// collides and is hit by rays only from the front. Refused with the
+  /// index of the problem: indices out of range, degenerate triangles,
+  /// non-finite or out-of-range coordinates. A bounding-volume hierarchy is
+  /// built once, here.
+  Result<GeometryId> add_mesh(std::span<const Vec3> vertices, std::span<const uint32_t> indices,
+                              bool one_sided = false);
+  /// Registers a height field for static and kinematic bodies: `rows` x
+  /// `cols` samples (2 to 4096 each), row-major in `heights`; sample (r, c)
+  /// is at (c * scale.x, heights[r * cols + c] * scale.y, r * scale.z) in
+  /// the body's frame, so the surface faces +y. `holes`, empty or one byte
+  /// per cell ((rows - 1) x (cols - 1), 1 = no ground there). Two triangles
+  /// per cell; bodies slide across cell edges without catching.
+  Result<GeometryId> add_height_field(uint32_t rows, uint32_t cols, Vec3 scale,
+                                      std::span<const float> heights,
+                                      std::span<const uint8_t> holes = {});
+
   /// Number of entries; ids run from 0 to size() - 1.
   uint32_t size() const;
   bool contains(GeometryId id) const;
@@ -98,11 +124,14 @@ class GeometryStore {
   /// The engine's form of a hull (internal), or nullptr when `id` is not a
   /// hull. The pointer stays valid for the store's lifetime.
   const d3::Hull* hull(uint32_t id) const;
+  /// The same for meshes and height fields.
+  const d3::TriangleMesh* mesh(uint32_t id) const;
+  const d3::HeightField* height_field(uint32_t id) const;
 
  private:
-  Result<GeometryId> add(std::unique_ptr<d3::Hull> hull);
-
   struct Entry;
+  Result<GeometryId> add(Entry entry);
+
   std::vector<Entry> entries_;
 };
 

@@ -16,6 +16,10 @@ enum class ShapeType : uint8_t {
   /// A convex hull registered in the world's GeometryStore (geometry.h),
   /// referred to by id.
   kHull = 3,
+  /// A triangle mesh registered in the store (static and kinematic bodies).
+  kMesh = 4,
+  /// A height field registered in the store (static and kinematic bodies).
+  kHeightField = 5,
 };
 
 /// A collision shape on its body's origin. Plain data, trivially copyable,
@@ -28,7 +32,7 @@ struct Shape {
   /// made: half the size of the hull's bounds in its mass frame.
   Vec3 half_extents;
   float half_height = 0.0f;  ///< capsule: half the distance between its cap centres, m
-  uint32_t geometry = 0;     ///< hull: its GeometryId in the world's store
+  uint32_t geometry = 0;     ///< hull, mesh, height field: its GeometryId in the world's store
 
   static Shape make_sphere(float radius_m) {
     Shape s;
@@ -59,6 +63,28 @@ struct Shape {
     s.type = ShapeType::kHull;
     s.geometry = id.value;
     return s;
+  }
+  /// A registered triangle mesh (GeometryStore::add_mesh), for static and
+  /// kinematic bodies; its position is the origin of its vertices' frame.
+  static Shape make_mesh(GeometryId id) {
+    Shape s;
+    s.type = ShapeType::kMesh;
+    s.geometry = id.value;
+    return s;
+  }
+  /// A registered height field (GeometryStore::add_height_field), for
+  /// static and kinematic bodies; its position is where sample (0, 0) sits
+  /// at height 0.
+  static Shape make_height_field(GeometryId id) {
+    Shape s;
+    s.type = ShapeType::kHeightField;
+    s.geometry = id.value;
+    return s;
+  }
+  /// Whether the shape refers to registered geometry.
+  bool uses_geometry() const {
+    return type == ShapeType::kHull || type == ShapeType::kMesh ||
+           type == ShapeType::kHeightField;
   }
 };
 

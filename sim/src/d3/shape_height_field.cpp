@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: MIT
+// The height field: registered geometry (height_field.h) for static and
+// kinematic bodies, found in the world's GeometryStore by the shape's id.
+// Like a mesh (shape_mesh.cpp): its mass frame is the centre of its bounds,
+// convex shapes meet it triangle by triangle (triangle_source.h), and it
+// never collides with a mesh or another height field.
+#include <string>
+
+#include "d3/height_field.h"
+#include "d3/shape_ops.h"
+#include "d3/triangle_source.h"
+
+namespace rwd::sim::d3 {
+namespace {
+
+const HeightField& field_of(const Shape& s, const GeometryStore& store) {
+  return *store.height_field(s.geometry);
+}
+
+Vec3 center_of(const HeightField& h) {
+  return (h.bounds.lower + h.bounds.upper) * 0.5f;
+}
+
+Status check(const Shape& s, const GeometryStore& store) {
+  if (store.height_field(s.geometry) == nullptr) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "height field shape refers to geometry " + std::to_string(s.geometry) +
+                             ", which is not a height field in this world's geometry store");
+  }
+  return Status::Ok();
+}
+
+void canonical(Shape& s, const GeometryStore& store) {
+  const HeightField& h = field_of(s, store);
+  s.radius = 0.0f;
+  s.half_height = 0.0f;
+  s.half_extents = (h.bounds.upper - h.bounds.lower) * 0.5f;
+}
+
+float extent(const Shape& s, const GeometryStore& /*store*/) {
+  return length(s.half_extents);
+}
+
+// A surface has no volume; the state rule keeps height fields off dynamic
+// bodies.
+float volume(const Shape& /*s*/, const GeometryStore& /*store*/) {
+  return 0.0f;
+}
+
+Vec3 inertia(const Shape& /*s*/, const GeometryStore& /*store*/, float /*mass*/) {
+  return {};
+}
+
+Vec3 half_bounds(const Shape& s, const Mat3& axes) {
+  const Vec3 h = s.half_extents;
+  return abs(axes.c0) * h.x + abs(axes.c1) * h.y + abs(axes.c2) * h.z;
+}
+
+bool raycast(const Shape& s, const GeometryStore& store, Vec3 position, Quat rotation, Vec3 origin,
+             Vec3 dir, float max_distance, float& t, Vec3& normal) {
+  const HeightField& h = field_of(s, store);
+  const SourceFrame f = source_frame(position, mat3_from_quat(rotation), center_of(h));
+  uint32_t id = 0;
+  Vec3 n;
+  if (!height_field_raycast(h, to_local(f, origin), gjk_detail::mul_transpose(f.axes, dir),
+                            max_distance, t, n, id)) {
+    return false;
+  }
+  normal = f.axes * n;
+  return true;
+}
+
+auto triangles_of(const HeightField& h) {
+  return [&h](const Aabb& box, auto&& visit) { height_field_query(h, box, visit); };
+}
+
+ShapeCastOutput sweep(const Shape& s, const GeometryStore& store, Vec3 position, const Mat3& axes,
+                      const ConvexProxy& swept, Vec3 translation, float max_fraction) {
+  const HeightField& h = field_of(s, store);
+  return sweep_source(source_frame(position, axes, center_of(h)), false, triangles_of(h), swept,
+                      translation, max_fraction);
+}
+
+}  // namespace
+
+void collide_height_field_convex(const Shape& field, const ShapePose& pose, const Shape& shape,
+                                 const ShapePose& shape_pose, float speculative_m,
+                                 const GeometryStore& store, Manifold& out) {
+  const HeightField& h = field_of(field, store);
+  collide_source_convex(source_frame(pose.position, pose.axes, center_of(h)), false,
+                        triangles_of(h), shape, shape_pose, store, speculative_m, out);
+}
+
+extern const ShapeOps kHeightFieldOps{"height field", false,   check,   canonical,
+                                      extent,         volume,  inertia, half_bounds,
+                                      raycast,        nullptr, sweep};
+
+}  // namespace rwd::sim::d3

@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: MIT
+// The triangle mesh: registered geometry (mesh.h) for static and kinematic
+// bodies, found in the world's GeometryStore by the shape's id. The body's
+// mass frame is the centre of the mesh's bounds (mass_frame.h), so the
+// shape's half extents are half the size of those bounds and the
+// broadphase bounds it like a box. Convex shapes meet it triangle by
+// triangle (triangle_source.h); two meshes never collide.
+#include <string>
+
+#include "d3/mesh.h"
+#include "d3/shape_ops.h"
+#include "d3/triangle_source.h"
+
+namespace rwd::sim::d3 {
+namespace {
+
+const TriangleMesh& mesh_of(const Shape& s, const GeometryStore& store) {
+  return *store.mesh(s.geometry);
+}
+
+Vec3 center_of(const TriangleMesh& m) {
+  return (m.bounds.lower + m.bounds.upper) * 0.5f;
+}
+
+Status check(const Shape& s, const GeometryStore& store) {
+  if (store.mesh(s.geometry) == nullptr) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "mesh shape refers to geometry " + std::to_string(s.geometry) +
+                             ", which is not a mesh in this world's geometry store");
+  }
+  return Status::Ok();
+}
+
+void canonical(Shape& s, const GeometryStore& store) {
+  const TriangleMesh& m = mesh_of(s, store);
+  s.radius = 0.0f;
+  s.half_height = 0.0f;
+  s.half_extents = (m.bounds.upper - m.bounds.lower) * 0.5f;
+}
+
+float extent(const Shape& s, const GeometryStore& /*store*/) {
+  return length(s.half_extents);
+}
+
+// A surface has no volume; the state rule keeps meshes off dynamic bodies.
+float volume(const Shape& /*s*/, const GeometryStore& /*store*/) {
+  return 0.0f;
+}
+
+Vec3 inertia(const Shape& /*s*/, const GeometryStore& /*store*/, float /*mass*/) {
+  return {};
+}
+
+Vec3 half_bounds(const Shape& s, const Mat3& axes) {
+  const Vec3 h = s.half_extents;
+  return abs(axes.c0) * h.x + abs(axes.c1) * h.y + abs(axes.c2) * h.z;
+}
+
+bool raycast(const Shape& s, const GeometryStore& store, Vec3 position, Quat rotation, Vec3 origin,
+             Vec3 dir, float max_distance, float& t, Vec3& normal) {
+  const TriangleMesh& m = mesh_of(s, store);
+  const SourceFrame f = source_frame(position, mat3_from_quat(rotation), center_of(m));
+  uint32_t triangle = 0;
+  Vec3 n;
+  if (!mesh_raycast(m, to_local(f, origin), gjk_detail::mul_transpose(f.axes, dir), max_distance, t,
+                    n, triangle)) {
+    return false;
+  }
+  normal = f.axes * n;
+  return true;
+}
+
+auto triangles_of(const TriangleMesh& m) {
+  return [&m](const Aabb& box, auto&& visit) {
+    mesh_query(m, box, [&](uint32_t t) { visit(mesh_triangle(m, t)); });
+  };
+}
+
+ShapeCastOutput sweep(const Shape& s, const GeometryStore& store, Vec3 position, const Mat3& axes,
+                      const ConvexProxy& swept, Vec3 translation, float max_fraction) {
+  const TriangleMesh& m = mesh_of(s, store);
+  return sweep_source(source_frame(position, axes, center_of(m)), m.one_sided, triangles_of(m),
+                      swept, translation, max_fraction);
+}
+
+}  // namespace
+
+void collide_mesh_convex(const Shape& mesh, const ShapePose& pose, const Shape& shape,
+                         const ShapePose& shape_pose, float speculative_m,
+                         const GeometryStore& store, Manifold& out) {
+  const TriangleMesh& m = mesh_of(mesh, store);
+  collide_source_convex(source_frame(pose.position, pose.axes, center_of(m)), m.one_sided,
+                        triangles_of(m), shape, shape_pose, store, speculative_m, out);
+}
+
+extern const ShapeOps kMeshOps{"mesh",  false,       check,   canonical, extent, volume,
+                               inertia, half_bounds, raycast, nullptr,   sweep};
+
+}  // namespace rwd::sim::d3

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// What meshes and height fields share as shapes: both are static triangle
+// sources in a local frame (the frame their data was given in), placed by
+// a body whose mass frame sits at the centre of their bounds (mass_frame.h).
+// A convex shape meets them in that local frame: its proxy is mapped in,
+// the triangles near it are streamed to the manifold builder or the caster
+// (manifold_triangles.h), and the results are mapped back.
+//
+// `Query` is a callable (const Aabb& local_box, Visit&& visit) that calls
+// visit(const TriangleRef&) for every triangle whose bounds meet the box,
+// in an order that is a pure function of the source and the box.
+#include "d3/body_storage.h"
+#include "d3/gjk.h"
+#include "d3/manifold.h"
+#include "d3/manifold_triangles.h"
+#include "d3/shape_ops.h"
+
+namespace rwd::sim::d3 {
+
+/// The source's local frame in the world: x_world = origin + axes * x_local.
+struct SourceFrame {
+  Vec3 origin;
+  Mat3 axes;
+};
+
+/// The frame of a source whose body's mass frame is at `position`, `axes`,
+/// with `center` the centre of its bounds in its local frame.
+inline SourceFrame source_frame(Vec3 position, const Mat3& axes, Vec3 center) {
+  return {position - axes * center, axes};
+}
+
+inline Vec3 to_local(const SourceFrame& f, Vec3 world) {
+  return gjk_detail::mul_transpose(f.axes, world - f.origin);
+}
+
+inline Mat3 to_local_axes(const SourceFrame& f, const Mat3& axes) {
+  return {gjk_detail::mul_transpose(f.axes, axes.c0), gjk_detail::mul_transpose(f.axes, axes.c1),
+          gjk_detail::mul_transpose(f.axes, axes.c2)};
+}
+
+/// The source (A) against the convex `shape` (B) at `pose`: one manifold,
+/// normal from the source to the shape, in the world frame.
+template <class Query>
+void collide_source_convex(const SourceFrame& f, bool one_sided, Query&& query, const Shape& shape,
+                           const ShapePose& pose, const GeometryStore& store, float speculative_m,
+                           Manifold& out) {
+  ProxyPoints storage;
+  ConvexProxy proxy = shape_ops(shape.type).proxy(shape, store, storage);
+  proxy.position = to_local(f, pose.position);
+  proxy.axes = to_local_axes(f, pose.axes);
+  Aabb box = shape_aabb(shape, proxy.position, proxy.axes);
+  const Vec3 reach{speculative_m, speculative_m, speculative_m};
+  box = {box.lower - reach, box.upper + reach};
+  TriangleManifoldBuilder builder(proxy, one_sided, speculative_m);
+  query(box, [&builder](const TriangleRef& tri) { builder.add(tri); });
+  builder.finish(out);
+  out.separating_axis = kNoSeparatingAxis;
+  out.normal = f.axes * out.normal;
+  for (uint32_t i = 0; i < out.point_count; ++i) {
+    out.points[i].point = f.origin + f.axes * out.points[i].point;
+  }
+}
+
+/// ShapeOps::sweep of a triangle source: the convex `swept` (world frame)
+/// moved by fraction * translation against the triangles in its path.
+template <class Query>
+ShapeCastOutput sweep_source(const SourceFrame& f, bool one_sided, Query&& query,
+                             const ConvexProxy& swept, Vec3 translation, float max_fraction) {
+  ConvexProxy local = swept;
+  local.position = to_local(f, swept.position);
+  local.axes = to_local_axes(f, swept.axes);
+  const Vec3 move = gjk_detail::mul_transpose(f.axes, translation);
+  // The path's bounds in the local frame: the proxy's bounds at both ends.
+  Vec3 lo{1e30f, 1e30f, 1e30f};
+  Vec3 hi{-1e30f, -1e30f, -1e30f};
+  for (uint32_t i = 0; i < local.count; ++i) {
+    const Vec3 p = local.position + local.axes * local.points[i];
+    lo = min(lo, min(p, p + move * max_fraction));
+    hi = max(hi, max(p, p + move * max_fraction));
+  }
+  const Vec3 r{local.radius, local.radius, local.radius};
+  TriangleCaster caster(local, move, one_sided, max_fraction);
+  query(Aabb{lo - r, hi + r}, [&caster](const TriangleRef& tri) { caster.add(tri); });
+  const TriangleCastOutput& hit = caster.result();
+  ShapeCastOutput out;
+  out.hit = hit.hit;
+  out.initially_overlapping = hit.initially_overlapping;
+  out.fraction = hit.fraction;
+  out.point = f.origin + f.axes * hit.point;
+  out.normal = f.axes * hit.normal;
+  return out;
+}
+
+}  // namespace rwd::sim::d3
