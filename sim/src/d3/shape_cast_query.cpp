@@ -27,7 +27,7 @@ struct CastSetup {
   d3::ProxyPoints storage;
   Vec3 translation;
   float length = 0.0f;
-  d3::Aabb sweep_bounds;
+  d3::Aabb start_bounds;
 };
 
 Status prepare_cast(const GeometryStore& store, const Shape& shape, Vec3 position, Quat rotation,
@@ -62,9 +62,7 @@ Status prepare_cast(const GeometryStore& store, const Shape& shape, Vec3 positio
   c.proxy.position = p;
   c.proxy.axes = mat3_from_quat(r);
   c.translation = translation;
-  const d3::Aabb start = d3::shape_aabb(c.shape, p, c.proxy.axes);
-  c.sweep_bounds = {min(start.lower, start.lower + translation),
-                    max(start.upper, start.upper + translation)};
+  c.start_bounds = d3::shape_aabb(c.shape, p, c.proxy.axes);
   return Status::Ok();
 }
 
@@ -78,8 +76,8 @@ void sweep(const WorldState& state, WorldScratch& scratch, const CastSetup& c,
   const auto collect = [&](uint32_t i) {
     if (d3::query_accepts(state, filter, i)) candidates.push_back(i);
   };
-  scratch.query_static.query(c.sweep_bounds, collect);
-  scratch.query_movable.query(c.sweep_bounds, collect);
+  scratch.query_static.sweep_query(c.start_bounds, c.translation, collect);
+  scratch.query_movable.sweep_query(c.start_bounds, c.translation, collect);
   std::sort(candidates.begin(), candidates.end());
   for (const uint32_t i : candidates) {
     const BodyInfo& info = state.infos[i];
