@@ -223,6 +223,12 @@ bool run_heap_scene(Tick ticks) {
   sim::GeometryId wedge;
   sim::GeometryId gem;
   add_hulls(world.geometry(), wedge, gem);
+  // A compound of a box, a sphere and the gem, off-centre.
+  const sim::CompoundChild dumbbell_parts[] = {
+      {sim::Shape::make_box({0.2f, 0.15f, 0.15f}), {0.0f, 0.0f, 0.0f}, {}},
+      {sim::Shape::make_sphere(0.18f), {0.4f, 0.05f, 0.0f}, {}},
+      {sim::Shape::make_hull(gem), {-0.3f, 0.0f, 0.1f}, {}}};
+  const sim::GeometryId dumbbell = *world.geometry().add_compound(dumbbell_parts);
   SplitMix64 rng{0x4EA9'0F'B0C5'0002ull};
   auto coord = [&rng](float half) { return uniform(rng, half); };
   const sim::BodyDef ground = floor_def();
@@ -268,12 +274,14 @@ bool run_heap_scene(Tick ticks) {
   }
   for (int i = 0; i < 40; ++i) {  // the heap: a loose lattice, a little overlapping
     sim::BodyDef def;
-    // Boxes, spheres, capsules and hulls: every pair of shape types meets.
-    def.shape = i % 4 == 3   ? sim::Shape::make_sphere(0.35f)
-                : i % 4 == 1 ? sim::Shape::make_capsule(0.2f, 0.15f)
-                : i % 8 == 2 ? sim::Shape::make_hull(wedge)
-                : i % 8 == 6 ? sim::Shape::make_hull(gem)
-                             : sim::Shape::make_box({0.35f, 0.35f, 0.35f});
+    // Boxes, spheres, capsules, hulls and compounds: every pair of shape
+    // types meets.
+    def.shape = i % 4 == 3    ? sim::Shape::make_sphere(0.35f)
+                : i % 4 == 1  ? sim::Shape::make_capsule(0.2f, 0.15f)
+                : i % 8 == 2  ? sim::Shape::make_hull(wedge)
+                : i % 8 == 6  ? sim::Shape::make_hull(gem)
+                : i % 16 == 4 ? sim::Shape::make_compound(dumbbell)
+                              : sim::Shape::make_box({0.35f, 0.35f, 0.35f});
     // Every other capsule is a character: locked upright.
     if (i % 8 == 1) def.lock_rotation = sim::kLockRotationX | sim::kLockRotationZ;
     def.position = {-5.0f + 0.65f * static_cast<float>(i % 4),

@@ -103,6 +103,11 @@ void surfaces(const Shape& /*a*/, const ShapePose& /*pa*/, const Shape& /*b*/,
   out.normal = {0.0f, 1.0f, 0.0f};
 }
 
+void compound_any(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+                  float speculative_m, const GeometryStore* store, Manifold& out) {
+  collide_compound(a, pa, b, pb, speculative_m, *store, out);
+}
+
 struct Entry {
   CollideFn fn = nullptr;
   bool reversed = false;  // fn takes (b, a)
@@ -138,6 +143,9 @@ constexpr Table make_table() {
   add(ShapeType::kMesh, ShapeType::kMesh, surfaces);
   add(ShapeType::kMesh, ShapeType::kHeightField, surfaces);
   add(ShapeType::kHeightField, ShapeType::kHeightField, surfaces);
+  for (uint32_t other = 0; other < kShapeTypeCount; ++other) {
+    add(ShapeType::kCompound, static_cast<ShapeType>(other), compound_any);
+  }
   return t;
 }
 

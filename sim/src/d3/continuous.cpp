@@ -40,8 +40,9 @@ void continuous_collision(WorldState& state, WorldScratch& scratch) {
   for (size_t s = 1; s < scratch.solver_bodies.size(); ++s) {
     const uint32_t i = scratch.solver_body_ids[s];
     const BodyInfo& info = state.infos[i];
+    // Only convex shapes are swept (a compound's children are not).
     if (info.continuous == 0 || info.kind != BodyKind::kDynamic || info.enabled == 0 ||
-        info.sensor != 0) {
+        info.sensor != 0 || shape_ops(info.shape.type).proxy == nullptr) {
       continue;
     }
     BodySim& sim = state.sims[i];

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "d3/compound.h"
+#include "d3/compound_builder.h"
 #include "d3/height_field.h"
 #include "d3/hull.h"
 #include "d3/hull_builder.h"
@@ -20,6 +22,7 @@ struct GeometryStore::Entry {
   std::unique_ptr<const d3::Hull> hull;
   std::unique_ptr<const d3::TriangleMesh> mesh;
   std::unique_ptr<const d3::HeightField> height_field;
+  std::unique_ptr<const d3::Compound> compound;
 };
 
 namespace {
@@ -85,6 +88,28 @@ uint64_t hash_height_field(const d3::HeightField& h) {
   return s.digest();
 }
 
+// The children as built (canonical shapes, mass-frame poses; a hull child
+// by its hash) and the mass frame.
+uint64_t hash_compound(const d3::Compound& c, const GeometryStore& store) {
+  StateHasher s;
+  s.add_u8(static_cast<uint8_t>(GeometryKind::kCompound));
+  s.add_u32(static_cast<uint32_t>(c.parts.size()));
+  for (const d3::CompoundPart& p : c.parts) {
+    s.add_u8(static_cast<uint8_t>(p.shape.type));
+    s.add_f32(p.shape.radius);
+    s.add_vec3(p.shape.half_extents);
+    s.add_f32(p.shape.half_height);
+    s.add_u64(p.shape.uses_geometry() ? store.hash(GeometryId{p.shape.geometry}) : 0);
+    s.add_vec3(p.position);
+    s.add_quat(p.rotation);
+  }
+  s.add_vec3(c.frame.center);
+  s.add_quat(c.frame.rotation);
+  s.add_f32(c.volume);
+  s.add_vec3(c.unit_inertia);
+  return s.digest();
+}
+
 bool same_points(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i) {
@@ -95,8 +120,24 @@ bool same_points(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
 
 // Equal hashes are checked field by field before two entries count as one.
 bool same_entry(const GeometryStore& store, uint32_t id, GeometryKind kind, const d3::Hull* hull,
-                const d3::TriangleMesh* mesh, const d3::HeightField* field) {
+                const d3::TriangleMesh* mesh, const d3::HeightField* field,
+                const d3::Compound* compound) {
   switch (kind) {
+    case GeometryKind::kCompound: {
+      const d3::Compound* c = store.compound(id);
+      if (c == nullptr || c->parts.size() != compound->parts.size()) return false;
+      for (size_t i = 0; i < c->parts.size(); ++i) {
+        const d3::CompoundPart& a = c->parts[i];
+        const d3::CompoundPart& b = compound->parts[i];
+        if (a.shape.type != b.shape.type || a.shape.geometry != b.shape.geometry ||
+            !(a.shape.half_extents == b.shape.half_extents) || a.shape.radius != b.shape.radius ||
+            a.shape.half_height != b.shape.half_height || !(a.position == b.position) ||
+            !(a.rotation == b.rotation)) {
+          return false;
+        }
+      }
+      return true;
+    }
     case GeometryKind::kHull: {
       const d3::Hull* h = store.hull(id);
       return h != nullptr && same_points(h->vertices, hull->vertices) &&
@@ -195,12 +236,22 @@ Result<GeometryId> GeometryStore::add_height_field(uint32_t rows, uint32_t cols,
   return add(std::move(e));
 }
 
+Result<GeometryId> GeometryStore::add_compound(std::span<const CompoundChild> children) {
+  Result<d3::Compound> compound = d3::build_compound(children, *this);
+  if (!compound.ok()) return compound.status();
+  Entry e;
+  e.kind = GeometryKind::kCompound;
+  e.hash = hash_compound(*compound, *this);
+  e.compound = std::make_unique<d3::Compound>(std::move(*compound));
+  return add(std::move(e));
+}
+
 Result<GeometryId> GeometryStore::add(Entry entry) {
   for (uint32_t i = 0; i < entries_.size(); ++i) {
     const Entry& e = entries_[i];
     if (e.hash == entry.hash && e.kind == entry.kind &&
         same_entry(*this, i, entry.kind, entry.hull.get(), entry.mesh.get(),
-                   entry.height_field.get())) {
+                   entry.height_field.get(), entry.compound.get())) {
       return GeometryId{i};
     }
   }
@@ -249,6 +300,11 @@ const d3::TriangleMesh* GeometryStore::mesh(uint32_t id) const {
 const d3::HeightField* GeometryStore::height_field(uint32_t id) const {
   if (id >= entries_.size() || entries_[id].kind != GeometryKind::kHeightField) return nullptr;
   return entries_[id].height_field.get();
+}
+
+const d3::Compound* GeometryStore::compound(uint32_t id) const {
+  if (id >= entries_.size() || entries_[id].kind != GeometryKind::kCompound) return nullptr;
+  return entries_[id].compound.get();
 }
 
 std::optional<HullInfo> GeometryStore::hull_info(GeometryId id) const {

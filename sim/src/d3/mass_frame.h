@@ -7,6 +7,7 @@
 // capsules the two are the same; a hull's mass frame sits where its
 // registration found it (HullFrame). The API converts at its edge, so
 // state holds mass-frame poses only.
+#include "d3/compound.h"
 #include "d3/height_field.h"
 #include "d3/hull.h"
 #include "d3/mesh.h"
@@ -39,6 +40,10 @@ inline MassFrame mass_frame(const Shape& shape, const GeometryStore& store) {
     case ShapeType::kHeightField: {
       const Aabb& b = store.height_field(shape.geometry)->bounds;
       return {(b.lower + b.upper) * 0.5f, Quat{}, false};
+    }
+    case ShapeType::kCompound: {
+      const HullFrame& f = store.compound(shape.geometry)->frame;
+      return {f.center, f.rotation, false};
     }
     case ShapeType::kSphere:
     case ShapeType::kBox:

@@ -6,13 +6,15 @@ namespace {
 
 // Indexed by ShapeType.
 const ShapeOps* const kTable[kShapeTypeCount] = {&kSphereOps, &kBoxOps,  &kCapsuleOps,
-                                                 &kHullOps,   &kMeshOps, &kHeightFieldOps};
+                                                 &kHullOps,   &kMeshOps, &kHeightFieldOps,
+                                                 &kCompoundOps};
 static_assert(static_cast<uint32_t>(ShapeType::kSphere) == 0 &&
               static_cast<uint32_t>(ShapeType::kBox) == 1 &&
               static_cast<uint32_t>(ShapeType::kCapsule) == 2 &&
               static_cast<uint32_t>(ShapeType::kHull) == 3 &&
               static_cast<uint32_t>(ShapeType::kMesh) == 4 &&
-              static_cast<uint32_t>(ShapeType::kHeightField) == 5);
+              static_cast<uint32_t>(ShapeType::kHeightField) == 5 &&
+              static_cast<uint32_t>(ShapeType::kCompound) == 6);
 
 }  // namespace
 

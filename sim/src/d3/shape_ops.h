@@ -21,7 +21,7 @@
 namespace rwd::sim::d3 {
 
 /// Number of shape types; ShapeType values are 0 .. kShapeTypeCount - 1.
-inline constexpr uint32_t kShapeTypeCount = 6;
+inline constexpr uint32_t kShapeTypeCount = 7;
 
 /// Room for the core points a shape computes rather than stores.
 struct ProxyPoints {
@@ -89,6 +89,7 @@ extern const ShapeOps kCapsuleOps;
 extern const ShapeOps kHullOps;
 extern const ShapeOps kMeshOps;
 extern const ShapeOps kHeightFieldOps;
+extern const ShapeOps kCompoundOps;
 
 struct ShapePose;
 struct Manifold;
@@ -101,6 +102,10 @@ void collide_mesh_convex(const Shape& mesh, const ShapePose& pose, const Shape& 
 void collide_height_field_convex(const Shape& field, const ShapePose& pose, const Shape& shape,
                                  const ShapePose& shape_pose, float speculative_m,
                                  const GeometryStore& store, Manifold& out);
+/// A compound (A) against any shape (B): its children's manifolds merged
+/// into one, normal from A to B (shape_compound.cpp).
+void collide_compound(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+                      float speculative_m, const GeometryStore& store, Manifold& out);
 
 /// The ray test of a sphere of `radius` at `center` (dir unit), shared by
 /// the shapes made of spheres.

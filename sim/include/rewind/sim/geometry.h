@@ -22,6 +22,7 @@
 
 #include "rewind/sim/geometry_id.h"
 #include "rewind/sim/math.h"
+#include "rewind/sim/shape.h"
 #include "rewind/sim/status.h"
 
 namespace rwd::sim {
@@ -30,12 +31,22 @@ namespace d3 {
 struct Hull;
 struct TriangleMesh;
 struct HeightField;
+struct Compound;
 }  // namespace d3
 
 enum class GeometryKind : uint8_t {
   kHull = 0,         ///< a convex hull of 4 to 64 vertices
   kMesh = 1,         ///< a triangle mesh (static or kinematic bodies only)
   kHeightField = 2,  ///< a grid of heights (static or kinematic bodies only)
+  kCompound = 3,     ///< a rigid group of convex children
+};
+
+/// One child of a compound: a sphere, box, capsule or hull (of the same
+/// store), placed by its own authored frame in the compound's frame.
+struct CompoundChild {
+  Shape shape;
+  Vec3 position;  ///< metres, within 1000 m of the compound's origin
+  Quat rotation;  ///< normalized when registered
 };
 
 /// What a registered hull turned out to be.
@@ -104,6 +115,16 @@ class GeometryStore {
                                       std::span<const float> heights,
                                       std::span<const uint8_t> holes = {});
 
+  /// Registers a compound of 1 to 16 convex children (spheres, boxes,
+  /// capsules, hulls registered before it). Its mass comes from the
+  /// children's volumes at the body's density, its centre of mass and
+  /// principal inertia from their poses (parallel-axis theorem); a body of
+  /// it turns about that centre, while its position is the origin of the
+  /// frame the children were placed in. Children may overlap (their overlap
+  /// counts twice in the mass). Refused with the child's index: another
+  /// shape type, an unknown hull, sizes out of range, a non-finite pose.
+  Result<GeometryId> add_compound(std::span<const CompoundChild> children);
+
   /// Number of entries; ids run from 0 to size() - 1.
   uint32_t size() const;
   bool contains(GeometryId id) const;
@@ -127,6 +148,7 @@ class GeometryStore {
   /// The same for meshes and height fields.
   const d3::TriangleMesh* mesh(uint32_t id) const;
   const d3::HeightField* height_field(uint32_t id) const;
+  const d3::Compound* compound(uint32_t id) const;
 
  private:
   struct Entry;

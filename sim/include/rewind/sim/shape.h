@@ -20,6 +20,8 @@ enum class ShapeType : uint8_t {
   kMesh = 4,
   /// A height field registered in the store (static and kinematic bodies).
   kHeightField = 5,
+  /// A compound of convex children registered in the store.
+  kCompound = 6,
 };
 
 /// A collision shape on its body's origin. Plain data, trivially copyable,
@@ -81,10 +83,19 @@ struct Shape {
     s.geometry = id.value;
     return s;
   }
+  /// A registered compound (GeometryStore::add_compound). The body turns
+  /// about the compound's centre of mass; its position is the origin of
+  /// the frame its children were placed in.
+  static Shape make_compound(GeometryId id) {
+    Shape s;
+    s.type = ShapeType::kCompound;
+    s.geometry = id.value;
+    return s;
+  }
   /// Whether the shape refers to registered geometry.
   bool uses_geometry() const {
     return type == ShapeType::kHull || type == ShapeType::kMesh ||
-           type == ShapeType::kHeightField;
+           type == ShapeType::kHeightField || type == ShapeType::kCompound;
   }
 };
 
