@@ -74,7 +74,15 @@ bool combine_like_rewind(btManifoldPoint& cp, const btCollisionObjectWrapper* a,
 }  // namespace
 
 // A registered hull as Bullet gets it.
+struct BulletChild {
+  sim::Shape shape;  // sphere, box, capsule, or hull (geometry: index in hulls)
+  Vec3 position;     // in the compound's mass frame
+  Quat rotation;
+};
+
+// A registered hull, or a compound (children non-empty, corners empty).
 struct BulletHull {
+  std::vector<Vec3> authored;      // the corners as given (hulls)
   std::vector<btVector3> corners;  // in the mass frame
   float volume = 0.0f;
   Vec3 unit_inertia;  // principal moments per kg
@@ -82,7 +90,18 @@ struct BulletHull {
   float smallest = 0.0f;  // smallest half size of the mass-frame bounds
   Vec3 center;            // mass frame in the authored frame
   Quat rotation;
+  std::vector<BulletChild> children;
 };
+
+// A hull's corners as Bullet's convex hull, its margin no larger than a thin
+// hull can carry (Bullet's margin rounds a hull outward).
+static std::unique_ptr<btCollisionShape> convex_hull_shape(const BulletHull& h) {
+  auto hull =
+      std::make_unique<btConvexHullShape>(h.corners[0].m_floats, static_cast<int>(h.corners.size()),
+                                          static_cast<int>(sizeof(btVector3)));
+  if (hull->getMargin() > 0.5f * h.smallest) hull->setMargin(0.5f * h.smallest);
+  return hull;
+}
 
 // A registered mesh or height field: the data Bullet's shapes point into
 // (kept alive and unmoved for the world's lifetime) and the shape itself,
@@ -156,6 +175,7 @@ bool BulletEngine::add_hull(std::span<const Vec3> points, sim::GeometryId& out,
   std::vector<Vec3> corners;
   store.hull_vertices(*id, corners);
   BulletHull h;
+  h.authored.assign(points.begin(), points.end());
   h.volume = info->volume;
   h.unit_inertia = info->unit_inertia;
   h.center = info->center_of_mass;
@@ -171,6 +191,75 @@ bool BulletEngine::add_hull(std::span<const Vec3> points, sim::GeometryId& out,
   }
   const Vec3 half = (hi - lo) * 0.5f;
   h.smallest = std::min(half.x, std::min(half.y, half.z));
+  world_->hulls.push_back(std::move(h));
+  out = sim::GeometryId{static_cast<uint32_t>(world_->geometry_hull.size())};
+  world_->geometry_hull.push_back(static_cast<int>(world_->hulls.size() - 1));
+  world_->geometry_surface.push_back(-1);
+  return true;
+}
+
+bool BulletEngine::add_compound(std::span<const sim::CompoundChild> children, sim::GeometryId& out,
+                                std::string& error) {
+  // Rewind's builder gives the mass frame; hull children are registered in
+  // its store again from the corners they were given.
+  sim::GeometryStore store;
+  std::vector<sim::CompoundChild> local(children.begin(), children.end());
+  std::vector<int> child_hull(children.size(), -1);
+  for (size_t i = 0; i < local.size(); ++i) {
+    if (local[i].shape.type != sim::ShapeType::kHull) continue;
+    const uint32_t g = local[i].shape.geometry;
+    if (g >= world_->geometry_hull.size() || world_->geometry_hull[g] < 0 ||
+        !world_->hulls[static_cast<size_t>(world_->geometry_hull[g])].children.empty()) {
+      error = "compound child refers to an unknown hull";
+      return false;
+    }
+    child_hull[i] = world_->geometry_hull[g];
+    auto id = store.add_hull(world_->hulls[static_cast<size_t>(child_hull[i])].authored);
+    if (!id.ok()) {
+      error = id.status().message();
+      return false;
+    }
+    local[i].shape.geometry = id->value;
+  }
+  auto id = store.add_compound(local);
+  if (!id.ok()) {
+    error = id.status().message();
+    return false;
+  }
+  const auto info = store.compound_info(*id);
+  BulletHull h;
+  h.volume = info->volume;
+  h.unit_inertia = info->unit_inertia;
+  h.center = info->center_of_mass;
+  h.rotation = info->principal_axes;
+  h.smallest = 1e30f;
+  for (size_t i = 0; i < children.size(); ++i) {
+    Vec3 p = children[i].position;
+    Quat q = sim::normalize(children[i].rotation);
+    float reach = 0.0f;
+    const sim::Shape& s = children[i].shape;
+    if (child_hull[i] >= 0) {
+      const BulletHull& hull = world_->hulls[static_cast<size_t>(child_hull[i])];
+      p = p + sim::rotate(q, hull.center);
+      q = q * hull.rotation;
+      reach = hull.extent;
+      h.smallest = std::min(h.smallest, hull.smallest);
+    } else {
+      reach =
+          s.type == sim::ShapeType::kBox ? sim::length(s.half_extents) : s.radius + s.half_height;
+      h.smallest = std::min(
+          h.smallest, s.type == sim::ShapeType::kBox
+                          ? std::min(s.half_extents.x, std::min(s.half_extents.y, s.half_extents.z))
+                          : s.radius);
+    }
+    BulletChild c;
+    c.shape = s;
+    if (child_hull[i] >= 0) c.shape.geometry = static_cast<uint32_t>(child_hull[i]);
+    c.position = sim::inv_rotate(h.rotation, p - h.center);
+    c.rotation = sim::conjugate(h.rotation) * q;
+    h.extent = std::max(h.extent, sim::length(c.position) + reach);
+    h.children.push_back(c);
+  }
   world_->hulls.push_back(std::move(h));
   out = sim::GeometryId{static_cast<uint32_t>(world_->geometry_hull.size())};
   world_->geometry_hull.push_back(static_cast<int>(world_->hulls.size() - 1));
@@ -274,21 +363,44 @@ bool BulletEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& 
             .get();
     extent = 1.0f;
     smallest = 1.0f;
-  } else if (spec.shape.type == sim::ShapeType::kHull) {
+  } else if (spec.shape.type == sim::ShapeType::kHull ||
+             spec.shape.type == sim::ShapeType::kCompound) {
     if (spec.shape.geometry >= world_->geometry_hull.size() ||
         world_->geometry_hull[spec.shape.geometry] < 0) {
-      error = "unknown hull";
+      error = "unknown hull or compound";
       return false;
     }
     const size_t hull_at = static_cast<size_t>(world_->geometry_hull[spec.shape.geometry]);
     const BulletHull& h = world_->hulls[hull_at];
-    auto hull = std::make_unique<btConvexHullShape>(h.corners[0].m_floats,
-                                                    static_cast<int>(h.corners.size()),
-                                                    static_cast<int>(sizeof(btVector3)));
-    // Bullet's margin rounds a hull outward; keep it, but no larger than
-    // a thin hull can carry.
-    if (hull->getMargin() > 0.5f * h.smallest) hull->setMargin(0.5f * h.smallest);
-    shape = std::move(hull);
+    if (h.children.empty()) {
+      shape = convex_hull_shape(h);
+    } else {
+      // The children in the compound's mass frame, owned with the world's
+      // shapes (the compound only points at them).
+      auto compound = std::make_unique<btCompoundShape>();
+      for (const BulletChild& c : h.children) {
+        std::unique_ptr<btCollisionShape> child;
+        if (c.shape.type == sim::ShapeType::kSphere) {
+          child = std::make_unique<btSphereShape>(c.shape.radius);
+        } else if (c.shape.type == sim::ShapeType::kCapsule) {
+          child = std::make_unique<btCapsuleShape>(c.shape.radius, 2.0f * c.shape.half_height);
+        } else if (c.shape.type == sim::ShapeType::kBox) {
+          auto box = std::make_unique<btBoxShape>(bt(c.shape.half_extents));
+          const Vec3 e = c.shape.half_extents;
+          const float thin = std::min(e.x, std::min(e.y, e.z));
+          if (box->getMargin() > 0.5f * thin) box->setMargin(0.5f * thin);
+          child = std::move(box);
+        } else {
+          child = convex_hull_shape(world_->hulls[c.shape.geometry]);
+        }
+        btTransform at;
+        at.setOrigin(bt(c.position));
+        at.setRotation(btQuaternion(c.rotation.x, c.rotation.y, c.rotation.z, c.rotation.w));
+        compound->addChildShape(at, child.get());
+        world_->shapes.push_back(std::move(child));
+      }
+      shape = std::move(compound);
+    }
     volume = h.volume;
     extent = h.extent;
     smallest = h.smallest;

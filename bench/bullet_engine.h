@@ -30,6 +30,8 @@ class BulletEngine final : public scenes::Engine {
   void reset(const scenes::WorldSpec& world, uint32_t body_capacity) override;
   bool add_hull(std::span<const scenes::Vec3> points, sim::GeometryId& out,
                 std::string& error) override;
+  bool add_compound(std::span<const sim::CompoundChild> children, sim::GeometryId& out,
+                    std::string& error) override;
   bool add_mesh(std::span<const scenes::Vec3> vertices, std::span<const uint32_t> indices,
                 sim::GeometryId& out, std::string& error) override;
   bool add_height_field(uint32_t rows, uint32_t cols, scenes::Vec3 scale,

@@ -41,6 +41,17 @@ bool RewindEngine::add_hull(std::span<const Vec3> points, sim::GeometryId& out,
   return true;
 }
 
+bool RewindEngine::add_compound(std::span<const sim::CompoundChild> children, sim::GeometryId& out,
+                                std::string& error) {
+  auto id = world_->geometry().add_compound(children);
+  if (!id.ok()) {
+    error = id.status().message();
+    return false;
+  }
+  out = *id;
+  return true;
+}
+
 bool RewindEngine::add_mesh(std::span<const Vec3> vertices, std::span<const uint32_t> indices,
                             sim::GeometryId& out, std::string& error) {
   auto id = world_->geometry().add_mesh(vertices, indices);

@@ -117,10 +117,21 @@ class SpecScene : public Scene {
     std::vector<sim::GeometryId> ids;
     for (const Geometry& g : geometry_) {
       sim::GeometryId id;
-      const bool ok = g.kind == sim::ShapeType::kHull ? engine.add_hull(g.points, id, error)
-                      : g.kind == sim::ShapeType::kMesh
-                          ? engine.add_mesh(g.points, g.indices, id, error)
-                          : engine.add_height_field(g.rows, g.cols, g.scale, g.heights, id, error);
+      bool ok = false;
+      if (g.kind == sim::ShapeType::kCompound) {
+        // Children of registered geometry (hulls) point at the engine's ids.
+        std::vector<sim::CompoundChild> children = g.children;
+        for (sim::CompoundChild& c : children) {
+          if (c.shape.uses_geometry()) c.shape.geometry = ids[c.shape.geometry].value;
+        }
+        ok = engine.add_compound(children, id, error);
+      } else if (g.kind == sim::ShapeType::kHull) {
+        ok = engine.add_hull(g.points, id, error);
+      } else if (g.kind == sim::ShapeType::kMesh) {
+        ok = engine.add_mesh(g.points, g.indices, id, error);
+      } else {
+        ok = engine.add_height_field(g.rows, g.cols, g.scale, g.heights, id, error);
+      }
       if (!ok) return false;
       ids.push_back(id);
     }
@@ -149,6 +160,15 @@ class SpecScene : public Scene {
     g.points = std::move(points);
     geometry_.push_back(std::move(g));
     return Shape::make_hull(next_geometry());
+  }
+  /// The same for a compound (Engine::add_compound); hull children name the
+  /// scene's own hull shapes (add_hull's).
+  Shape add_compound(std::vector<sim::CompoundChild> children) {
+    Geometry g;
+    g.kind = sim::ShapeType::kCompound;
+    g.children = std::move(children);
+    geometry_.push_back(std::move(g));
+    return Shape::make_compound(next_geometry());
   }
   /// The same for a triangle mesh (Engine::add_mesh).
   Shape add_mesh(std::vector<Vec3> vertices, std::vector<uint32_t> indices) {
@@ -182,6 +202,7 @@ class SpecScene : public Scene {
     uint32_t cols = 0;
     Vec3 scale;
     std::vector<float> heights;
+    std::vector<sim::CompoundChild> children;
   };
   sim::GeometryId next_geometry() const {
     return sim::GeometryId{static_cast<uint32_t>(geometry_.size() - 1)};

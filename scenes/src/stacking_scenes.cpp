@@ -370,7 +370,60 @@ class HullStackScene final : public kit::SpecScene {
   RestingBoxes rest_;
 };
 
+/// `count` lopsided props (a 1 m cube with a 3 m arm of 0.2 m square
+/// section: a compound whose centre of mass is 0.21 m from the cube's
+/// centre, toward the arm), each set on a 5 cm post right under its centre
+/// of mass, so it balances only if the engine turns it about its true
+/// centre of mass; every other prop is turned 90 degrees about y.
+class CompoundBalanceScene final : public kit::SpecScene {
+ public:
+  explicit CompoundBalanceScene(int count) : SpecScene(count) {
+    add(kit::ground());
+    const Shape prop =
+        add_compound({{Shape::make_box({0.5f, 0.5f, 0.5f}), {}, {}},
+                      {Shape::make_box({1.5f, 0.1f, 0.1f}), {2.0f, 0.0f, 0.0f}, {}}});
+    // Centre of mass along the arm: volumes 1 and 0.12 m^3 at 0 and 2 m.
+    const float com = 0.24f / 1.12f;
+    for (int i = 0; i < count; ++i) {
+      const float x = 6.0f * static_cast<float>(i);
+      add(kit::fixed(kit::box({x, 1.0f, 0.0f}, {0.025f, 1.0f, 0.025f})));
+      BodySpec b = kit::hull(prop, {x - com, 2.5f, 0.0f});
+      if (i % 2 == 1) {
+        // A quarter turn about y takes the arm from +x to -z: the origin
+        // goes com along +z so the centre of mass stays over the post.
+        b.rotation = kit::axis_angle({0.0f, 1.0f, 0.0f}, kit::radians(90.0f));
+        b.position = {x, 2.5f, com};
+      }
+      props_.push_back(add(b));
+    }
+  }
+  std::string_view name() const override { return "compound_balance"; }
+  Tick ticks() const override { return 300; }
+  void after_step(Tick, const Engine& engine) override {
+    for (size_t body : props_) {
+      const Quat q = engine.rotation(handles_[body]);
+      const double turn =
+          2.0 * std::asin(std::min(1.0, std::sqrt(static_cast<double>(q.x * q.x + q.z * q.z))));
+      tilt_ = std::max(tilt_, turn);
+    }
+  }
+  std::vector<Metric> metrics() const override {
+    return {kit::at_most("tilt_rad", "rad", tilt_, 0.02,
+                         "each prop, set on a post under its centre of mass, tilts less than "
+                         "0.02 rad in 5 s")};
+  }
+
+ private:
+  std::vector<size_t> props_;
+  double tilt_ = 0.0;
+};
+
 }  // namespace
+
+std::unique_ptr<Scene> make_compound_balance(int count) {
+  if (count < 1 || count > 100) return nullptr;
+  return std::make_unique<CompoundBalanceScene>(count);
+}
 
 std::unique_ptr<Scene> make_hull_stack(int count) {
   if (count < 1 || count > 100) return nullptr;

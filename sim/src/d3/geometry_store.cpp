@@ -307,6 +307,17 @@ const d3::Compound* GeometryStore::compound(uint32_t id) const {
   return entries_[id].compound.get();
 }
 
+std::optional<HullInfo> GeometryStore::compound_info(GeometryId id) const {
+  const d3::Compound* c = compound(id.value);
+  if (c == nullptr) return std::nullopt;
+  HullInfo info;
+  info.volume = c->volume;
+  info.center_of_mass = c->frame.center;
+  info.principal_axes = c->frame.rotation;
+  info.unit_inertia = c->unit_inertia;
+  return info;
+}
+
 std::optional<HullInfo> GeometryStore::hull_info(GeometryId id) const {
   const d3::Hull* h = hull(id.value);
   if (h == nullptr) return std::nullopt;

@@ -25,6 +25,11 @@ class BallisticEngine final : public Engine {
     out = sim::GeometryId{hulls_++};
     return true;
   }
+  bool add_compound(std::span<const sim::CompoundChild>, sim::GeometryId& out,
+                    std::string&) override {
+    out = sim::GeometryId{hulls_++};
+    return true;
+  }
   bool add_mesh(std::span<const Vec3>, std::span<const uint32_t>, sim::GeometryId& out,
                 std::string&) override {
     out = sim::GeometryId{hulls_++};

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "rewind/sim/body.h"
+#include "rewind/sim/geometry.h"
 #include "rewind/sim/math.h"
 #include "rewind/sim/shape.h"
 
@@ -74,6 +75,12 @@ class Engine {
   /// and report the pose of the frame its points were given in. False
   /// (with a reason in `error`) if the engine refuses the points.
   virtual bool add_hull(std::span<const Vec3> points, sim::GeometryId& out, std::string& error) = 0;
+  /// Registers a compound of spheres, boxes, capsules and hulls registered
+  /// before it, each placed by its own pose (Shape::make_compound(out));
+  /// bodies of it turn about its centre of mass (mass by child volume) and
+  /// report the pose of the frame the children were placed in.
+  virtual bool add_compound(std::span<const sim::CompoundChild> children, sim::GeometryId& out,
+                            std::string& error) = 0;
   /// Registers a triangle mesh (`vertices` in m, three `indices` per
   /// triangle, counter-clockwise seen from the front) for static bodies
   /// (Shape::make_mesh(out)).

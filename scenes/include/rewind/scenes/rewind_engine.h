@@ -20,6 +20,8 @@ class RewindEngine final : public Engine {
   std::string settings() const override;
   void reset(const WorldSpec& world, uint32_t body_capacity) override;
   bool add_hull(std::span<const Vec3> points, sim::GeometryId& out, std::string& error) override;
+  bool add_compound(std::span<const sim::CompoundChild> children, sim::GeometryId& out,
+                    std::string& error) override;
   bool add_mesh(std::span<const Vec3> vertices, std::span<const uint32_t> indices,
                 sim::GeometryId& out, std::string& error) override;
   bool add_height_field(uint32_t rows, uint32_t cols, Vec3 scale, std::span<const float> heights,

@@ -136,6 +136,10 @@ class GeometryStore {
   /// in id order: what a snapshot records of the geometry it refers to.
   uint64_t digest(uint32_t count) const;
 
+  /// A compound's summary (its centre_of_mass, principal_axes and
+  /// unit_inertia as a hull's; vertex, face and edge counts zero), or
+  /// nullopt when `id` is not a compound.
+  std::optional<HullInfo> compound_info(GeometryId id) const;
   /// A hull's summary, or nullopt when `id` is not a hull.
   std::optional<HullInfo> hull_info(GeometryId id) const;
   /// A hull's corners in the frame its points were given in (after
