@@ -14,6 +14,7 @@
 #include "d3/pipeline.h"
 #include "d3/shape_ops.h"
 #include "d3/state_rules.h"
+#include "d3/state_schema.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim {
@@ -78,27 +79,37 @@ class Sink {
   std::vector<uint8_t>* bytes_ = nullptr;
 };
 
+// The schema's visitor over a Sink: names are for the dump only.
+class SinkIo {
+ public:
+  explicit SinkIo(Sink& s) : s_(s) {}
+  void u8(const char*, uint8_t v) { s_.u8(v); }
+  void flag(const char*, uint8_t v) { s_.u8(v); }
+  void boolean(const char*, bool v) { s_.u8(v ? 1 : 0); }
+  template <class E>
+  void enumeration(const char*, E v, E) {
+    s_.u8(static_cast<uint8_t>(v));
+  }
+  void count(const char*, uint8_t v, uint8_t) { s_.u8(v); }
+  void u32(const char*, uint32_t v) { s_.u32(v); }
+  void i32(const char*, int32_t v) { s_.u32(static_cast<uint32_t>(v)); }
+  void u64(const char*, uint64_t v) { s_.u64(v); }
+  void f32(const char*, float v) { s_.f32(v); }
+  void vec3(const char*, Vec3 v) { s_.vec3(v); }
+  void quat(const char*, Quat q) { s_.quat(q); }
+
+ private:
+  Sink& s_;
+};
+
 void write_config(Sink& s, const WorldConfig& c) {
-  s.vec3(c.gravity);
-  s.f32(c.tick_seconds);
-  s.u32(static_cast<uint32_t>(c.substeps));
-  s.u32(static_cast<uint32_t>(c.relax_iterations));
-  s.f32(c.contact_hertz);
-  s.f32(c.contact_damping_ratio);
-  s.f32(c.contact_push_max_mps);
-  s.f32(c.restitution_threshold_mps);
-  s.f32(c.linear_slop_m);
-  s.f32(c.speculative_distance_m);
-  s.u8(c.enable_sleep ? 1 : 0);
-  s.f32(c.sleep_threshold_mps);
-  s.f32(c.time_to_sleep_s);
-  s.u32(c.max_bodies);
-  s.vec3(c.bounds_lower);
-  s.vec3(c.bounds_upper);
+  SinkIo io(s);
+  d3::visit_config(io, c);
 }
 
 void write_state(Sink& s, const WorldState& st) {
   write_config(s, st.config);
+  SinkIo io(s);
   s.u64(st.step_count);
   s.u32(static_cast<uint32_t>(st.infos.size()));
   for (size_t i = 0; i < st.infos.size(); ++i) {
@@ -107,63 +118,10 @@ void write_state(Sink& s, const WorldState& st) {
     s.u32(b.generation);
     s.u8(b.alive);
     if (b.alive == 0) continue;
-    const BodySim& m = st.sims[i];
-    s.u8(static_cast<uint8_t>(b.kind));
-    s.u8(b.sensor);
-    s.u8(b.awake);
-    s.u8(b.enabled);
-    s.u8(static_cast<uint8_t>(b.shape.type));
-    if (b.shape.uses_geometry()) {
-      // The shape's sizes are its geometry's; the id names it.
-      s.u32(b.shape.geometry);
-    } else {
-      s.f32(b.shape.radius);
-      s.vec3(b.shape.half_extents);
-      s.f32(b.shape.half_height);
-    }
-    s.f32(b.material.friction);
-    s.f32(b.material.restitution);
-    s.u32(b.layer);
-    s.u32(b.mask);
-    s.u64(b.user_data);
-    s.f32(b.density);
-    s.f32(b.linear_damping);
-    s.f32(b.angular_damping);
-    s.f32(b.gravity_scale);
-    s.vec3(m.position);
-    s.quat(m.rotation);
-    s.vec3(m.linear_velocity);
-    s.vec3(m.angular_velocity);
-    s.vec3(m.force);
-    s.vec3(m.torque);
-    s.u8(b.lock_rotation);
-    s.u8(b.continuous);
-    s.u8(b.contact_events);
-    s.f32(m.sleep_time);
+    d3::visit_body(io, b, st.sims[i]);
   }
   s.u32(static_cast<uint32_t>(st.contacts.size()));
-  for (const ContactRecord& r : st.contacts) {
-    s.u32(r.index_a);
-    s.u32(r.generation_a);
-    s.u32(r.index_b);
-    s.u32(r.generation_b);
-    s.u8(r.touching);
-    s.u8(r.sensor);
-    s.u8(r.point_count);
-    for (uint32_t p = 0; p < r.point_count; ++p) {
-      s.u32(r.points[p].feature_id);
-      s.f32(r.points[p].normal_impulse);
-      s.f32(r.points[p].tangent_impulse1);
-      s.f32(r.points[p].tangent_impulse2);
-      s.vec3(r.points[p].local_a);
-      s.f32(r.points[p].separation);
-    }
-    // A record without points has no manifold, so no frame.
-    if (r.point_count == 0) continue;
-    s.vec3(r.frame_position);
-    s.quat(r.frame_rotation);
-    s.vec3(r.frame_normal);
-  }
+  for (const ContactRecord& r : st.contacts) d3::visit_contact(io, r);
 }
 
 class Reader {
@@ -234,64 +192,50 @@ Status corrupt(const char* what) {
   return Status::Error(ErrorCode::kCorrupt, what);
 }
 
+// The schema's visitor over a Reader: fills the fields in order, and marks
+// the input malformed (Reader::ok) at the first value out of its range.
+class ReaderIo {
+ public:
+  explicit ReaderIo(Reader& r) : r_(r) {}
+  void u8(const char*, uint8_t& v) { v = r_.u8(); }
+  void flag(const char*, uint8_t& v) { v = r_.flag(); }
+  void boolean(const char*, bool& v) { v = r_.flag() != 0; }
+  template <class E>
+  void enumeration(const char*, E& v, E last) {
+    const uint8_t raw = r_.u8();
+    const bool known = raw <= static_cast<uint8_t>(last);
+    r_.require(known);
+    v = known ? static_cast<E>(raw) : E{};
+  }
+  void count(const char*, uint8_t& v, uint8_t max) {
+    v = r_.u8();
+    if (v > max) {
+      r_.require(false);
+      v = 0;  // nothing follows a refused count
+    }
+  }
+  void u32(const char*, uint32_t& v) { v = r_.u32(); }
+  void i32(const char*, int32_t& v) { v = static_cast<int32_t>(r_.u32()); }
+  void u64(const char*, uint64_t& v) { v = r_.u64(); }
+  void f32(const char*, float& v) { v = r_.f32(); }
+  void vec3(const char*, Vec3& v) { v = r_.vec3(); }
+  void quat(const char*, Quat& q) { q = r_.quat(); }
+
+ private:
+  Reader& r_;
+};
+
 // Reads the fields of a live body; the state rule judges them afterwards.
 bool read_body(Reader& r, BodyInfo& b, BodySim& m) {
-  uint8_t kind = r.u8();
-  r.require(kind <= 2);
-  b.kind = static_cast<BodyKind>(kind);
-  b.sensor = r.flag();
-  b.awake = r.flag();
-  b.enabled = r.flag();
-  uint8_t type = r.u8();
-  r.require(d3::is_known_shape(static_cast<ShapeType>(type)));
-  b.shape.type = static_cast<ShapeType>(type);
-  if (b.shape.uses_geometry()) {
-    b.shape.geometry = r.u32();
-  } else {
-    b.shape.radius = r.f32();
-    b.shape.half_extents = r.vec3();
-    b.shape.half_height = r.f32();
-  }
-  b.material.friction = r.f32();
-  b.material.restitution = r.f32();
-  b.layer = r.u32();
-  b.mask = r.u32();
-  b.user_data = r.u64();
-  b.density = r.f32();
-  b.linear_damping = r.f32();
-  b.angular_damping = r.f32();
-  b.gravity_scale = r.f32();
-  m.position = r.vec3();
-  m.rotation = r.quat();
-  m.linear_velocity = r.vec3();
-  m.angular_velocity = r.vec3();
-  m.force = r.vec3();
-  m.torque = r.vec3();
-  b.lock_rotation = r.u8();
-  b.continuous = r.flag();
-  b.contact_events = r.flag();
-  m.sleep_time = r.f32();
+  ReaderIo io(r);
+  d3::visit_body(io, b, m);
   return r.ok();
 }
 
 WorldConfig read_config(Reader& r) {
   WorldConfig c;
-  c.gravity = r.vec3();
-  c.tick_seconds = r.f32();
-  c.substeps = static_cast<int32_t>(r.u32());
-  c.relax_iterations = static_cast<int32_t>(r.u32());
-  c.contact_hertz = r.f32();
-  c.contact_damping_ratio = r.f32();
-  c.contact_push_max_mps = r.f32();
-  c.restitution_threshold_mps = r.f32();
-  c.linear_slop_m = r.f32();
-  c.speculative_distance_m = r.f32();
-  c.enable_sleep = r.flag() != 0;
-  c.sleep_threshold_mps = r.f32();
-  c.time_to_sleep_s = r.f32();
-  c.max_bodies = r.u32();
-  c.bounds_lower = r.vec3();
-  c.bounds_upper = r.vec3();
+  ReaderIo io(r);
+  d3::visit_config(io, c);
   return c;
 }
 
@@ -415,28 +359,9 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
   st.contacts.resize(contacts);
   for (uint32_t k = 0; k < contacts; ++k) {
     ContactRecord& rec = st.contacts[k];
-    rec.index_a = r.u32();
-    rec.generation_a = r.u32();
-    rec.index_b = r.u32();
-    rec.generation_b = r.u32();
-    rec.touching = r.flag();
-    rec.sensor = r.flag();
-    rec.point_count = r.u8();
-    if (!r.ok() || rec.point_count > kMaxManifoldPoints) return corrupt("invalid contact record");
-    for (uint32_t p = 0; p < rec.point_count; ++p) {
-      rec.points[p].feature_id = r.u32();
-      rec.points[p].normal_impulse = r.f32();
-      rec.points[p].tangent_impulse1 = r.f32();
-      rec.points[p].tangent_impulse2 = r.f32();
-      rec.points[p].local_a = r.vec3();
-      rec.points[p].separation = r.f32();
-    }
-    if (rec.point_count > 0) {
-      rec.frame_position = r.vec3();
-      rec.frame_rotation = r.quat();
-      rec.frame_normal = r.vec3();
-    }
-    if (!r.ok()) return corrupt("invalid contact point");
+    ReaderIo io(r);
+    d3::visit_contact(io, rec);
+    if (!r.ok()) return corrupt("invalid contact record");
     if (Status s = d3::check_contact(st.infos, rec, k > 0 ? &st.contacts[k - 1] : nullptr);
         !s.ok()) {
       return Status::Error(ErrorCode::kCorrupt,

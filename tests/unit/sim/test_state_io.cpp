@@ -204,5 +204,26 @@ TEST(StateIo, PinnedChecksumOfTheReferencePile) {
   EXPECT_EQ(world.checksum(), kPinnedPileChecksum);
 }
 
+TEST(StateIo, TheDumpNamesEveryFieldTheSnapshotHolds) {
+  World3D world;
+  build_pile(world);
+  for (int i = 0; i < 30; ++i) world.step();
+  std::string text;
+  world.dump_state(text);
+  for (const char* field :
+       {"config.gravity = ", "step_count = 30", "body[0].generation = ", "body[1].position = ",
+        "body[1].continuous = ", "body[1].contact_events = ", "contact[0].frame_normal = "}) {
+    EXPECT_NE(text.find(field), std::string::npos) << field;
+  }
+  // One bit of one field changes the text.
+  WorldState s = world.state();
+  s.sims[1].linear_velocity.x = std::nextafter(s.sims[1].linear_velocity.x, 1e9f);
+  World3D other;
+  other.restore(s);
+  std::string changed;
+  other.dump_state(changed);
+  EXPECT_NE(text, changed);
+}
+
 }  // namespace
 }  // namespace rwd::sim

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "rewind/sim/body.h"
@@ -228,6 +229,12 @@ class World3D {
   uint64_t checksum() const;
   /// Same as hash() but for a saved state, without restoring it.
   static void hash_state(const WorldState& state, StateHasher& hasher);
+  /// Every persisted field of the state as text, one "name = value" line
+  /// each in the canonical order (the same description the snapshot, the
+  /// reader and the checksum use): config.*, step_count, body[i].* for every
+  /// slot, contact[k].* for every cache record. For forensics; `out` is
+  /// cleared first.
+  void dump_state(std::string& out) const;
   /// Readable dump of every live body in index order.
   void dump_bodies(std::vector<BodyRecord>& out) const;
 

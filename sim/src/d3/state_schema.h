@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The one description of every persisted field of WorldState: its name, its
+// encoding and its place in the canonical order. The snapshot writer, the
+// checksum (state_io.cpp), the snapshot reader (state_io.cpp) and the
+// readable dump (state_dump.cpp) all walk these functions, so a new field is
+// added here once and every view of the state has it, in the same place.
+//
+// An Io visits each field through one of these members, by name:
+//   u8, u32, u64, f32, vec3, quat   plain values
+//   i32                             a signed 32-bit count, stored as u32
+//   flag                            0 or 1 in a byte (a reader refuses more)
+//   boolean                         a bool as a flag
+//   enumeration(name, v, last)      an enum stored in a byte, 0 .. last
+//   count(name, v, max)             a byte count of what follows, <= max
+// The visited structs may be const (writers, the dump) or not (the reader,
+// which fills them as it goes: a field decided by an earlier one, such as
+// the shape's sizes by its type, is read after it).
+#include <cstdint>
+
+#include "d3/shape_ops.h"
+#include "rewind/sim/world_state.h"
+
+namespace rwd::sim::d3 {
+
+template <class Io, class Config>
+void visit_config(Io& io, Config& c) {
+  io.vec3("gravity", c.gravity);
+  io.f32("tick_seconds", c.tick_seconds);
+  io.i32("substeps", c.substeps);
+  io.i32("relax_iterations", c.relax_iterations);
+  io.f32("contact_hertz", c.contact_hertz);
+  io.f32("contact_damping_ratio", c.contact_damping_ratio);
+  io.f32("contact_push_max_mps", c.contact_push_max_mps);
+  io.f32("restitution_threshold_mps", c.restitution_threshold_mps);
+  io.f32("linear_slop_m", c.linear_slop_m);
+  io.f32("speculative_distance_m", c.speculative_distance_m);
+  io.boolean("enable_sleep", c.enable_sleep);
+  io.f32("sleep_threshold_mps", c.sleep_threshold_mps);
+  io.f32("time_to_sleep_s", c.time_to_sleep_s);
+  io.u32("max_bodies", c.max_bodies);
+  io.vec3("bounds_lower", c.bounds_lower);
+  io.vec3("bounds_upper", c.bounds_upper);
+}
+
+/// The fields of a live body slot (its generation and alive flag, which
+/// every slot has, are the caller's).
+template <class Io, class Info, class Sim>
+void visit_body(Io& io, Info& b, Sim& m) {
+  io.enumeration("kind", b.kind, BodyKind::kDynamic);
+  io.flag("sensor", b.sensor);
+  io.flag("awake", b.awake);
+  io.flag("enabled", b.enabled);
+  io.enumeration("shape.type", b.shape.type, static_cast<ShapeType>(kShapeTypeCount - 1));
+  if (b.shape.uses_geometry()) {
+    // The shape's sizes are its geometry's; the id names it.
+    io.u32("shape.geometry", b.shape.geometry);
+  } else {
+    io.f32("shape.radius", b.shape.radius);
+    io.vec3("shape.half_extents", b.shape.half_extents);
+    io.f32("shape.half_height", b.shape.half_height);
+  }
+  io.f32("material.friction", b.material.friction);
+  io.f32("material.restitution", b.material.restitution);
+  io.u32("layer", b.layer);
+  io.u32("mask", b.mask);
+  io.u64("user_data", b.user_data);
+  io.f32("density", b.density);
+  io.f32("linear_damping", b.linear_damping);
+  io.f32("angular_damping", b.angular_damping);
+  io.f32("gravity_scale", b.gravity_scale);
+  io.vec3("position", m.position);
+  io.quat("rotation", m.rotation);
+  io.vec3("linear_velocity", m.linear_velocity);
+  io.vec3("angular_velocity", m.angular_velocity);
+  io.vec3("force", m.force);
+  io.vec3("torque", m.torque);
+  io.u8("lock_rotation", b.lock_rotation);
+  io.flag("continuous", b.continuous);
+  io.flag("contact_events", b.contact_events);
+  io.f32("sleep_time", m.sleep_time);
+}
+
+/// The fields of one contact cache record.
+template <class Io, class Record>
+void visit_contact(Io& io, Record& r) {
+  io.u32("index_a", r.index_a);
+  io.u32("generation_a", r.generation_a);
+  io.u32("index_b", r.index_b);
+  io.u32("generation_b", r.generation_b);
+  io.flag("touching", r.touching);
+  io.flag("sensor", r.sensor);
+  io.count("point_count", r.point_count, static_cast<uint8_t>(kMaxManifoldPoints));
+  for (uint32_t p = 0; p < r.point_count; ++p) {
+    auto& point = r.points[p];
+    io.u32("point.feature_id", point.feature_id);
+    io.f32("point.normal_impulse", point.normal_impulse);
+    io.f32("point.tangent_impulse1", point.tangent_impulse1);
+    io.f32("point.tangent_impulse2", point.tangent_impulse2);
+    io.vec3("point.local_a", point.local_a);
+    io.f32("point.separation", point.separation);
+  }
+  // A record without points has no manifold, so no frame.
+  if (r.point_count == 0) return;
+  io.vec3("frame_position", r.frame_position);
+  io.quat("frame_rotation", r.frame_rotation);
+  io.vec3("frame_normal", r.frame_normal);
+}
+
+}  // namespace rwd::sim::d3
