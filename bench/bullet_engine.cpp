@@ -59,6 +59,7 @@ Vec3 rw(const btVector3& v) {
 struct Surface {
   float friction = 0.0f;
   float restitution = 0.0f;
+  float rolling = 0.0f;  // Bullet's rolling friction (a length)
 };
 
 bool combine_like_rewind(btManifoldPoint& cp, const btCollisionObjectWrapper* a, int, int,
@@ -68,6 +69,7 @@ bool combine_like_rewind(btManifoldPoint& cp, const btCollisionObjectWrapper* a,
   if (sa == nullptr || sb == nullptr) return false;
   cp.m_combinedFriction = std::sqrt(sa->friction * sb->friction);
   cp.m_combinedRestitution = std::max(sa->restitution, sb->restitution);
+  cp.m_combinedRollingFriction = std::max(sa->rolling, sb->rolling);
   return true;
 }
 
@@ -441,12 +443,16 @@ bool BulletEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& 
   ci.m_startWorldTransform = pose;
   ci.m_friction = spec.friction;
   ci.m_restitution = spec.restitution;
+  // Bullet's rolling friction is an angular impulse per unit normal impulse
+  // (a length): the coefficient times the body's smallest half size (a
+  // ball's radius).
+  ci.m_rollingFriction = spec.rolling_resistance * smallest;
   ci.m_linearDamping = 1.0f - std::exp(-spec.linear_damping);
   ci.m_angularDamping = 1.0f - std::exp(-spec.angular_damping);
   ci.m_linearSleepingThreshold = 0.05f;
   ci.m_angularSleepingThreshold = 0.05f / extent;
   auto body = std::make_unique<btRigidBody>(ci);
-  world_->surfaces.push_back({spec.friction, spec.restitution});
+  world_->surfaces.push_back({spec.friction, spec.restitution, ci.m_rollingFriction});
   body->setUserPointer(&world_->surfaces.back());
   body->setCollisionFlags(body->getCollisionFlags() |
                           btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);

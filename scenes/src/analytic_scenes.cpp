@@ -100,6 +100,40 @@ class SlideScene final : public kit::SpecScene {
   double distance_m_ = 0.0;
 };
 
+/// A ball rolling on flat ground at 2 m/s with a coefficient of rolling
+/// resistance of N/10 (the seeds' authoring scale): it stops after v^2 /
+/// (2 a), a = c g / (1 + I / (m r^2)) = c g / 1.4 for a solid ball.
+class RollStopScene final : public kit::SpecScene {
+ public:
+  explicit RollStopScene(int tenths) : SpecScene(tenths) {
+    BodySpec ground = kit::ground(0.0f, 0.0f, 0.0f, 0.8f);
+    add(ground);
+    BodySpec ball = kit::sphere({-20.0f, kRadius, 0.0f}, kRadius, 0.8f);
+    ball.linear_velocity = {kSpeed, 0.0f, 0.0f};
+    ball.angular_velocity = {0.0f, 0.0f, -kSpeed / kRadius};  // rolling from the start
+    ball.rolling_resistance = coefficient();
+    ball.angular_damping = 0.0f;
+    add(ball);
+  }
+  std::string_view name() const override { return "roll_stop"; }
+  Tick ticks() const override { return 180; }
+  void after_step(Tick, const Engine& engine) override {
+    distance_m_ = engine.position(handles_[1]).x + 20.0f;
+  }
+  std::vector<Metric> metrics() const override {
+    const double a = coefficient() * kG / 1.4;
+    const double expected = kSpeed * kSpeed / (2.0 * a);
+    return {kit::at_most("stop_error_pct", "%", kit::error_pct(distance_m_, expected), 5.0,
+                         "a ball rolling at 2 m/s stops within 5% of v^2 / (2 c g / 1.4)")};
+  }
+
+ private:
+  float coefficient() const { return 0.1f * static_cast<float>(size()); }
+  static constexpr float kRadius = 0.25f;
+  static constexpr float kSpeed = 2.0f;
+  double distance_m_ = 0.0;
+};
+
 /// An inclined static slab and the frame of its top surface.
 struct Incline {
   float angle = 0.0f;
@@ -288,6 +322,10 @@ std::unique_ptr<Scene> make_incline_stick(int degrees) {
 std::unique_ptr<Scene> make_incline_slip(int degrees) {
   if (degrees < 17 || degrees > 60) return nullptr;  // tan 17 deg > 0.3
   return std::make_unique<InclineScene>(degrees, 0.3f, false);
+}
+std::unique_ptr<Scene> make_roll_stop(int tenths) {
+  if (tenths < 1 || tenths > 10) return nullptr;
+  return std::make_unique<RollStopScene>(tenths);
 }
 std::unique_ptr<Scene> make_hull_slip(int degrees) {
   if (degrees < 20 || degrees > 40) return nullptr;

@@ -88,6 +88,7 @@ bool RewindEngine::add_body(const BodySpec& spec, BodyHandle& out, std::string& 
   def.angular_damping = spec.angular_damping;
   def.material.friction = spec.friction;
   def.material.restitution = spec.restitution;
+  def.material.rolling_resistance = spec.rolling_resistance;
   def.continuous = spec.continuous;
   auto id = world_->create_body(def);
   if (!id.ok()) {

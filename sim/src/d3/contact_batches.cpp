@@ -106,6 +106,7 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
     bp.tangent_impulse1[lane] = cp.tangent_impulse1;
     bp.tangent_impulse2[lane] = cp.tangent_impulse2;
     bp.max_normal_impulse[lane] = cp.max_normal_impulse;
+    bp.tick_normal_impulse[lane] = 0.0f;
     bp.push_impulse[lane] = 0.0f;
   }
 }
@@ -438,6 +439,7 @@ void unpack_batches(WorldScratch& scratch) {
         cp.tangent_impulse1 = bp.tangent_impulse1[lane];
         cp.tangent_impulse2 = bp.tangent_impulse2[lane];
         cp.max_normal_impulse = bp.max_normal_impulse[lane];
+        cp.tick_normal_impulse = bp.tick_normal_impulse[lane];
       }
     });
   }

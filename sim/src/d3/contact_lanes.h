@@ -102,7 +102,7 @@ void prepare_lanes(const A& acc, const std::vector<SolverBody>& bodies) {
 template <uint32_t N, class A>
 void warm_start_lanes(const A& acc, std::vector<SolverBody>& bodies) {
   using F = typename A::F;
-  const ContactBatch& batch = acc.first();
+  ContactBatch& batch = acc.first();
   LaneBodies<F> a = gather_bodies(acc, bodies, false);
   LaneBodies<F> b = gather_bodies(acc, bodies, true);
   const V3<F> n = ld3(acc, batch.normal);
@@ -113,8 +113,9 @@ void warm_start_lanes(const A& acc, std::vector<SolverBody>& bodies) {
   V3<F> turn_a = linear;
   V3<F> turn_b = linear;
   for (uint32_t k = 0; k < N; ++k) {
-    const ContactBatch::Point& p = batch.points[k];
+    ContactBatch::Point& p = batch.points[k];
     const F ln = acc.ld(p.normal_impulse);
+    acc.st(p.tick_normal_impulse, acc.ld(p.tick_normal_impulse) + ln);
     const F l1 = acc.ld(p.tangent_impulse1);
     const F l2 = acc.ld(p.tangent_impulse2);
     linear = linear + (n * ln + t1 * l1 + t2 * l2);

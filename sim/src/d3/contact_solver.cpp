@@ -163,6 +163,7 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
       cp.tangent_impulse1 = rec.points[p].tangent_impulse1;
       cp.tangent_impulse2 = rec.points[p].tangent_impulse2;
       cp.max_normal_impulse = 0.0f;
+      cp.tick_normal_impulse = 0.0f;
       // Only restitution reads the approach speed: a contact that cannot
       // bounce does not pay for it.
       cp.relative_velocity = c.restitution == 0.0f

@@ -24,6 +24,7 @@ void find_pairs(const WorldState& state, WorldScratch& scratch);
 inline void mark_static_dirty(WorldScratch& scratch) {
   scratch.static_dirty = true;
   scratch.query_edited = true;
+  ++scratch.edit_serial;
 }
 
 /// Replaces state.contacts with this step's cache (old one kept in
@@ -40,6 +41,10 @@ void wake_touched_islands(WorldState& state, WorldScratch& scratch);
 /// (continuous.cpp). Runs after solve, which leaves each body's motion in
 /// scratch.solver_bodies.
 void continuous_collision(WorldState& state, WorldScratch& scratch);
+
+/// Takes rolling out of touching contacts whose materials resist it, after
+/// the solve (rolling_resistance.cpp).
+void apply_rolling_resistance(WorldState& state, WorldScratch& scratch);
 
 /// Advances sleep timers and puts islands at rest to sleep.
 void update_sleep(WorldState& state, WorldScratch& scratch);

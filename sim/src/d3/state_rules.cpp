@@ -62,6 +62,9 @@ Status check_common(const GeometryStore& store, BodyKind kind, const Shape& shap
     return invalid("gravity_scale must be finite, |g| <= 1000");
   }
   if (!finite_in(material.friction, 0.0f, 10.0f)) return invalid("friction must be in [0, 10]");
+  if (!finite_in(material.rolling_resistance, 0.0f, 1.0f)) {
+    return invalid("rolling resistance must be in [0, 1]");
+  }
   if (!finite_in(material.restitution, 0.0f, 1.0f)) {
     return invalid("restitution must be in [0, 1]");
   }

@@ -62,6 +62,7 @@ void visit_body(Io& io, Info& b, Sim& m) {
   }
   io.f32("material.friction", b.material.friction);
   io.f32("material.restitution", b.material.restitution);
+  io.f32("material.rolling_resistance", b.material.rolling_resistance);
   io.u32("layer", b.layer);
   io.u32("mask", b.mask);
   io.u64("user_data", b.user_data);

@@ -136,7 +136,8 @@ Result<BodyId> World3D::create_body(const BodyDef& def) {
   info.shape.half_extents = quantize(def.shape.half_extents);
   info.shape.half_height = quantize(def.shape.half_height);
   d3::shape_ops(def.shape.type).canonical(info.shape, store);
-  info.material = {quantize(def.material.friction), quantize(def.material.restitution)};
+  info.material = {quantize(def.material.friction), quantize(def.material.restitution),
+                   quantize(def.material.rolling_resistance)};
   info.layer = def.layer;
   info.mask = def.mask;
   info.user_data = def.user_data;
@@ -481,6 +482,7 @@ void World3D::step() {
     d3::wake_touched_islands(state_, s);
     d3::build_events(state_, s);
     d3::solve(state_, s);
+    d3::apply_rolling_resistance(state_, s);
     d3::continuous_collision(state_, s);
     d3::fill_event_details(state_, s);
     d3::update_sleep(state_, s);
@@ -502,6 +504,7 @@ void World3D::step() {
   d3::build_events(state_, s);
   const Clock::time_point t3 = Clock::now();
   d3::solve(state_, s);
+  d3::apply_rolling_resistance(state_, s);
   d3::continuous_collision(state_, s);
   d3::fill_event_details(state_, s);
   const Clock::time_point t4 = Clock::now();

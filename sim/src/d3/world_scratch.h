@@ -97,6 +97,8 @@ struct ConstraintPoint {
   float tangent_impulse1;
   float tangent_impulse2;
   float max_normal_impulse;
+  /// N*s: the substeps' warm-start impulses summed (ContactBatch).
+  float tick_normal_impulse;
 };
 
 /// Which body the push-out holds fixed (support_order.cpp).
@@ -146,6 +148,12 @@ class WorldScratch {
   /// that collide shapes read. Not owned: World3D keeps it alive, and its
   /// entries never change, so this is not state either.
   const GeometryStore* store = nullptr;
+  /// Counts edits of the world (mark_static_dirty), so derived facts about
+  /// its bodies can be recomputed only after one.
+  uint64_t edit_serial = 1;
+  /// Whether some body has rolling resistance, as of edit rolling_serial.
+  uint64_t rolling_serial = 0;
+  bool rolling_any = false;
 
   // broadphase (broadphase.cpp)
   /// By body index: this step's bounds of every awake body, fattened by

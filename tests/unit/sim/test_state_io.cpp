@@ -151,11 +151,17 @@ TEST(StateIo, CorruptOrTruncatedBytesAreRejectedAndStateKept) {
   bad.push_back(0);
   EXPECT_EQ(target.deserialize(bad).code(), ErrorCode::kCorrupt);
   // A NaN in the first body's position (slot 0 follows the 8-byte header,
-  // the 85-byte config, the step count and the slot count; the body's five
-  // one-byte fields precede its shape).
+  // the geometry count and digest, the 85-byte config, the step count and
+  // the slot count; then its generation and alive flag, five one-byte
+  // fields, the shape's five floats, the material's three, layer and mask,
+  // user data, and four floats of tuning).
   bad = bytes;
-  const size_t slot0 = 8 + 85 + 8 + 4;
-  const size_t position_x = slot0 + 5 + 5 + 4 * 4 + 2 * 4 + 2 * 4 + 8 + 4 * 4;
+  const size_t slot0 = 8 + 12 + 85 + 8 + 4;
+  const size_t position_x = slot0 + 5 + 5 + 5 * 4 + 3 * 4 + 2 * 4 + 8 + 4 * 4;
+  ASSERT_EQ(bytes.size() > position_x + 4, true);
+  float original = 0.0f;
+  std::memcpy(&original, &bytes[position_x], 4);
+  EXPECT_EQ(original, world.state().sims[0].position.x);  // the offset is right
   const float nan = std::numeric_limits<float>::quiet_NaN();
   std::memcpy(&bad[position_x], &nan, 4);
   EXPECT_EQ(target.deserialize(bad).code(), ErrorCode::kCorrupt);
@@ -192,8 +198,9 @@ namespace {
 // their bodies barely move, box faces are clipped in the reference frame,
 // and the checksum covers each shape's half height (capsules), each body's
 // rotation locks and pending torque. Revision 7: the checksum covers each
-// body's continuous-collision and contact-events flags.
-constexpr uint64_t kPinnedPileChecksum = 0xf2a32b9f03698c35ull;
+// body's continuous-collision and contact-events flags and its rolling
+// resistance.
+constexpr uint64_t kPinnedPileChecksum = 0x1b817efb0de05e7full;
 
 TEST(StateIo, PinnedChecksumOfTheReferencePile) {
   World3D world;

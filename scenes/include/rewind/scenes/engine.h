@@ -34,6 +34,8 @@ struct BodySpec {
   float friction = 0.6f;
   /// Bounce of this surface; two surfaces combine by maximum (Rewind's rule).
   float restitution = 0.0f;
+  /// Coefficient of rolling resistance, [0, 1] (Material::rolling_resistance).
+  float rolling_resistance = 0.0f;
   /// Exponential decay rates, 1/s: without contacts v(t) = v0 exp(-c t).
   float linear_damping = 0.0f;
   float angular_damping = 0.0f;

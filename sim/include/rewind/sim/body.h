@@ -26,10 +26,24 @@ enum class BodyKind : uint8_t {
 };
 
 /// Surface response, combined per contact: friction by geometric mean,
-/// restitution by maximum.
+/// restitution and rolling resistance by maximum.
 struct Material {
   float friction = 0.6f;     ///< Coulomb coefficient, [0, 10]
   float restitution = 0.0f;  ///< bounce, [0, 1]
+  /// Coefficient of rolling resistance, [0, 1]: a rolling contact is
+  /// resisted by a torque up to this times the normal force times the
+  /// lever from the body's centre of mass to the contact (a ball of radius
+  /// r on flat ground slows by c g / (1 + I / (m r^2))). It opposes only
+  /// turning about axes in the contact plane, never spinning about the
+  /// normal. 0 (the default) costs nothing.
+  float rolling_resistance = 0.0f;
+
+  /// A material from the 0-10 authoring scale (each value / 10: friction
+  /// 2 against 8 gives sqrt(0.2 * 0.8) = 0.4), as level tools author them.
+  static Material from_authoring(float friction_0_10, float restitution_0_10,
+                                 float rolling_0_10 = 0.0f) {
+    return {friction_0_10 * 0.1f, restitution_0_10 * 0.1f, rolling_0_10 * 0.1f};
+  }
 };
 
 /// World axes a dynamic body never turns about (BodyDef::lock_rotation):

@@ -34,8 +34,9 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///      batches with nothing to push skipped; capsules; rotation locks,
 ///      torques and forces at a point
 ///   7  convex hulls (mass frames, SAT and GJK manifolds, carried forward
-///      like boxes'), continuous and contact-events flags per body in the
-///      checksum, and continuous collision after the solve
+///      like boxes'), continuous and contact-events flags and rolling
+///      resistance per body in the checksum, continuous collision and
+///      rolling resistance after the solve
 inline constexpr uint32_t kSimRevision = 7;
 
 /// "rewind-sim r7": the engine identity a replay records.
