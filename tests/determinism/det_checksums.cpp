@@ -282,6 +282,8 @@ bool run_heap_scene(Tick ticks) {
                 : i % 8 == 6  ? sim::Shape::make_hull(gem)
                 : i % 16 == 4 ? sim::Shape::make_compound(dumbbell)
                               : sim::Shape::make_box({0.35f, 0.35f, 0.35f});
+    // Spheres and capsules resist rolling (a few more than others).
+    if (i % 2 == 1) def.material.rolling_resistance = 0.05f * static_cast<float>(i % 5);
     // Every other capsule is a character: locked upright.
     if (i % 8 == 1) def.lock_rotation = sim::kLockRotationX | sim::kLockRotationZ;
     def.position = {-5.0f + 0.65f * static_cast<float>(i % 4),

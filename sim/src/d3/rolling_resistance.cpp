@@ -13,6 +13,7 @@
 
 #include "d3/body_storage.h"
 #include "d3/pipeline.h"
+#include "d3/state_rules.h"
 
 namespace rwd::sim::d3 {
 namespace {
@@ -29,6 +30,11 @@ bool any_rolling(const WorldState& state, WorldScratch& scratch) {
   scratch.rolling_any = any;
   scratch.rolling_serial = scratch.edit_serial;
   return any;
+}
+
+void keep_within_rule(Vec3& w, Vec3 change) {
+  const Vec3 next = w + change;
+  if (is_finite(next) && length_squared(next) <= kMaxSpeed * kMaxSpeed) w = next;
 }
 
 }  // namespace
@@ -87,8 +93,10 @@ void apply_rolling_resistance(WorldState& state, WorldScratch& scratch) {
     float impulse = speed / k;
     const float limit = c * normal_impulse * lever;
     if (impulse > limit) impulse = limit;
-    if (move_a) a.angular_velocity += inv_a * (d * impulse);
-    if (move_b) b.angular_velocity -= inv_b * (d * impulse);
+    // The state rule's speed bound holds after the solve; a turn that would
+    // break it (a body already at the limit) is not taken.
+    if (move_a) keep_within_rule(a.angular_velocity, inv_a * (d * impulse));
+    if (move_b) keep_within_rule(b.angular_velocity, -(inv_b * (d * impulse)));
   }
 }
 

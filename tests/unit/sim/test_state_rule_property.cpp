@@ -105,6 +105,7 @@ BodyDef random_body(Rng& rng, const WorldConfig& c, const std::vector<GeometryId
   def.density = rng.log_uniform(1.0f, 1e5f);
   def.material.friction = rng.uniform(0.0f, 2.0f);
   def.material.restitution = rng.chance(0.3f) ? rng.uniform(0.0f, 1.0f) : 0.0f;
+  def.material.rolling_resistance = rng.chance(0.3f) ? rng.uniform(0.0f, 1.0f) : 0.0f;
   def.linear_damping = rng.chance(0.2f) ? rng.uniform(0.0f, 5.0f) : 0.0f;
   def.gravity_scale = rng.chance(0.8f) ? 1.0f : rng.uniform(-2.0f, 20.0f);
   def.sensor = rng.chance(0.05f);
