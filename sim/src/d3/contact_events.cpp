@@ -107,6 +107,18 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
 
 void fill_event_details(const WorldState& state, WorldScratch& scratch) {
   const float substeps = static_cast<float>(state.config.substeps);
+  if (scratch.events.empty()) return;
+  // The tick's normal impulse of each record the solver handled: the
+  // substeps' warm-start impulses summed (a rolling body's last substep can
+  // carry none); a record it did not (both bodies asleep) falls back to the
+  // last substep's times the substeps.
+  std::vector<float>& tick_impulse = scratch.record_impulse;
+  tick_impulse.assign(state.contacts.size(), -1.0f);
+  for (const ContactConstraint& c : scratch.constraints) {
+    float sum = 0.0f;
+    for (uint32_t p = 0; p < c.point_count; ++p) sum += c.points[p].tick_normal_impulse;
+    tick_impulse[c.record] = sum;
+  }
   for (size_t e = 0; e < scratch.events.size(); ++e) {
     const uint32_t index = scratch.event_records[e];
     if (index == kNoRecord) continue;
@@ -126,7 +138,7 @@ void fill_event_details(const WorldState& state, WorldScratch& scratch) {
       event.normal = rotate(a.rotation, n);
       event.point = a.position + rotate(a.rotation, cp.local_a + n * (0.5f * cp.separation));
       event.depth = cp.separation < 0.0f ? -cp.separation : 0.0f;
-      event.impulse = impulse * substeps;
+      event.impulse = tick_impulse[index] >= 0.0f ? tick_impulse[index] : impulse * substeps;
       continue;
     }
     // A sensor pair: the overlap as this step's manifold saw it.

@@ -256,6 +256,7 @@ class WorldScratch {
   bool stage_timing = false;  ///< World3D::set_stage_timing
   std::vector<ContactEvent> events;
   std::vector<uint32_t> event_records;  ///< per event: its record, or kNoRecord (exits)
+  std::vector<float> record_impulse;    ///< per record: the tick's normal impulse, or -1
   std::vector<BodyEvent> body_events;
   StepStats stats;
 };

@@ -137,6 +137,25 @@ TEST(ContactEvents, StayEventsCarryPointNormalDepthAndImpulse) {
   EXPECT_NEAR(e.impulse, weight_per_tick, 0.05f * weight_per_tick);
 }
 
+TEST(ContactEvents, ARollingBallReportsItsWeight) {
+  // A rolling ball's contact lifts off its anchor late in each tick; the
+  // event still reports the tick's whole normal impulse, m g per tick.
+  WorldConfig c;
+  c.enable_sleep = false;
+  World3D world(c);
+  add_ground(world);
+  BodyDef ball;
+  ball.shape = Shape::make_sphere(0.25f);
+  ball.position = {-20.0f, 0.25f, 0.0f};
+  ball.linear_velocity = {3.0f, 0.0f, 0.0f};
+  ball.angular_velocity = {0.0f, 0.0f, -12.0f};
+  const BodyId b = *world.create_body(ball);
+  test::step_seconds(world, 0.5f);
+  ASSERT_EQ(world.events().size(), 1u);
+  const float weight_per_tick = world.mass(b) * 9.81f * c.tick_seconds;
+  EXPECT_NEAR(world.events()[0].impulse, weight_per_tick, 0.1f * weight_per_tick);
+}
+
 TEST(ContactEvents, SensorEventsCarryTheOverlap) {
   World3D world;
   BodyDef zone;

@@ -29,8 +29,8 @@ struct ContactEvent {
   Vec3 point;           ///< world, midway between the surfaces at the deepest point
   Vec3 normal;          ///< unit, from a toward b
   float depth = 0.0f;   ///< metres the shapes overlap there (0 when only touching)
-  /// Total normal impulse of the tick's last substep times the substeps,
-  /// N*s: what the solver pushed the pair apart with over the tick.
+  /// N*s: the normal impulse the solver pushed the pair apart with over the
+  /// tick (its substeps' impulses summed).
   float impulse = 0.0f;
 };
 
