@@ -140,9 +140,14 @@ void wake_touched_islands(WorldState& state, WorldScratch& scratch) {
 void update_sleep(WorldState& state, WorldScratch& scratch) {
   const WorldConfig& config = state.config;
   const uint32_t n = static_cast<uint32_t>(state.infos.size());
+  // The bodies this tick solved, in ascending index (solver body 0 is the
+  // shared immovable one): every body awake now was among them (the stages
+  // after the solve wake nobody), so a level's thousands of static bodies
+  // are never scanned here.
+  const std::vector<uint32_t>& solved = scratch.solver_body_ids;
   uint32_t awake = 0;
-  for (uint32_t i = 0; i < n; ++i) {
-    if (is_active(state.infos[i])) ++awake;
+  for (size_t s = 1; s < solved.size(); ++s) {
+    if (is_active(state.infos[solved[s]])) ++awake;
   }
   scratch.stats.awake_bodies = awake;
   if (!config.enable_sleep || awake == 0) return;
@@ -151,7 +156,8 @@ void update_sleep(WorldState& state, WorldScratch& scratch) {
   scratch.island_sleep_time.assign(n, config.time_to_sleep_s);
   auto& parent = scratch.island_parent;
   auto& min_time = scratch.island_sleep_time;
-  for (uint32_t i = 0; i < n; ++i) {
+  for (size_t s = 1; s < solved.size(); ++s) {
+    const uint32_t i = solved[s];
     const BodyInfo& info = state.infos[i];
     if (!is_active(info)) continue;
     float t = state.sims[i].sleep_time;
@@ -169,7 +175,8 @@ void update_sleep(WorldState& state, WorldScratch& scratch) {
       min_time[find_root(parent, r.index_a)] = 0.0f;
     }
   }
-  for (uint32_t i = 0; i < n; ++i) {
+  for (size_t s = 1; s < solved.size(); ++s) {
+    const uint32_t i = solved[s];
     BodyInfo& info = state.infos[i];
     if (!is_active(info)) continue;
     uint32_t root = info.kind == BodyKind::kDynamic ? find_root(parent, i) : i;

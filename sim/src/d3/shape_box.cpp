@@ -107,9 +107,48 @@ ConvexProxy proxy(const Shape& s, const GeometryStore& /*store*/, ProxyPoints& s
   return p;
 }
 
+// A box swept at: first the segment of the swept shape's centre against the
+// box grown by the radius of a ball around the swept shape (in the box's
+// frame, slab by slab), which holds every point the shape can touch from;
+// most candidates a query's tree gives miss it, and skip the GJK sweep.
+ShapeCastOutput sweep(const Shape& s, const GeometryStore& store, Vec3 position, const Mat3& axes,
+                      const ConvexProxy& swept, Vec3 translation, float max_fraction) {
+  float reach = 0.0f;
+  for (uint32_t i = 0; i < swept.count; ++i) {
+    const float d = length_squared(swept.points[i]);
+    if (d > reach) reach = d;
+  }
+  // Plus the gap a sweep counts as touching (gjk.h), with room to spare.
+  reach = std::sqrt(reach) + swept.radius + 0.01f;
+  const Vec3 o = gjk_detail::mul_transpose(axes, swept.position - position);
+  const Vec3 d = gjk_detail::mul_transpose(axes, translation);
+  float t_lo = 0.0f;
+  float t_hi = max_fraction;
+  for (int i = 0; i < 3; ++i) {
+    const float oi = component(o, i);
+    const float di = component(d, i);
+    const float hi = component(s.half_extents, i) + reach;
+    if (di == 0.0f) {
+      if (oi < -hi || oi > hi) return {};
+      continue;
+    }
+    float t0 = (-hi - oi) / di;
+    float t1 = (hi - oi) / di;
+    if (t0 > t1) {
+      const float t = t0;
+      t0 = t1;
+      t1 = t;
+    }
+    if (t0 > t_lo) t_lo = t0;
+    if (t1 < t_hi) t_hi = t1;
+    if (t_lo > t_hi) return {};
+  }
+  return sweep_convex(s, store, position, axes, swept, translation, max_fraction);
+}
+
 }  // namespace
 
-extern const ShapeOps kBoxOps{"box",   true,        check,   canonical, extent,      volume,
-                              inertia, half_bounds, raycast, proxy,     sweep_convex};
+extern const ShapeOps kBoxOps{"box",   true,        check,   canonical, extent, volume,
+                              inertia, half_bounds, raycast, proxy,     sweep};
 
 }  // namespace rwd::sim::d3
