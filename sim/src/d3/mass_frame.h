@@ -13,6 +13,7 @@
 #include "d3/mesh.h"
 #include "rewind/sim/geometry.h"
 #include "rewind/sim/shape.h"
+#include "rewind/sim/world_state.h"
 
 namespace rwd::sim::d3 {
 
@@ -77,6 +78,20 @@ inline void mass_to_authored(const MassFrame& f, Vec3 mass_position, Quat mass_r
   }
   rotation = normalize(mass_rotation * conjugate(f.rotation));
   position = mass_position - rotate(rotation, f.center);
+}
+
+struct AuthoredPose {
+  Vec3 position;
+  Quat rotation;
+};
+
+/// Body slot i's pose in the frame its shape was authored in.
+inline AuthoredPose authored_pose(const WorldState& state, const GeometryStore& store, uint32_t i) {
+  const BodySim& sim = state.sims[i];
+  AuthoredPose pose;
+  mass_to_authored(mass_frame(state.infos[i].shape, store), sim.position, sim.rotation,
+                   pose.position, pose.rotation);
+  return pose;
 }
 
 }  // namespace rwd::sim::d3

@@ -31,29 +31,7 @@ Status check(const Shape& s, const GeometryStore& store) {
 }
 
 void canonical(Shape& s, const GeometryStore& store) {
-  const HeightField& h = field_of(s, store);
-  s.radius = 0.0f;
-  s.half_height = 0.0f;
-  s.half_extents = (h.bounds.upper - h.bounds.lower) * 0.5f;
-}
-
-float extent(const Shape& s, const GeometryStore& /*store*/) {
-  return length(s.half_extents);
-}
-
-// A surface has no volume; the state rule keeps height fields off dynamic
-// bodies.
-float volume(const Shape& /*s*/, const GeometryStore& /*store*/) {
-  return 0.0f;
-}
-
-Vec3 inertia(const Shape& /*s*/, const GeometryStore& /*store*/, float /*mass*/) {
-  return {};
-}
-
-Vec3 half_bounds(const Shape& s, const Mat3& axes) {
-  const Vec3 h = s.half_extents;
-  return abs(axes.c0) * h.x + abs(axes.c1) * h.y + abs(axes.c2) * h.z;
+  surface_canonical(s, field_of(s, store).bounds);
 }
 
 bool raycast(const Shape& s, const GeometryStore& store, Vec3 position, Quat rotation, Vec3 origin,
@@ -91,8 +69,16 @@ void collide_height_field_convex(const Shape& field, const ShapePose& pose, cons
                         triangles_of(h), shape, shape_pose, store, speculative_m, out);
 }
 
-extern const ShapeOps kHeightFieldOps{"height field", false,   check,   canonical,
-                                      extent,         volume,  inertia, half_bounds,
-                                      raycast,        nullptr, sweep};
+extern const ShapeOps kHeightFieldOps{"height field",
+                                      false,
+                                      check,
+                                      canonical,
+                                      surface_extent,
+                                      surface_volume,
+                                      surface_inertia,
+                                      surface_half_bounds,
+                                      raycast,
+                                      nullptr,
+                                      sweep};
 
 }  // namespace rwd::sim::d3

@@ -18,6 +18,29 @@
 
 namespace rwd::sim::d3 {
 
+// The table entries meshes and height fields share: surfaces have no
+// volume (the state rule keeps them off dynamic bodies), and their shape's
+// half extents are half the size of their data's bounds, about whose centre
+// the body sits.
+inline void surface_canonical(Shape& s, const Aabb& bounds) {
+  s.radius = 0.0f;
+  s.half_height = 0.0f;
+  s.half_extents = (bounds.upper - bounds.lower) * 0.5f;
+}
+inline float surface_extent(const Shape& s, const GeometryStore& /*store*/) {
+  return length(s.half_extents);
+}
+inline float surface_volume(const Shape& /*s*/, const GeometryStore& /*store*/) {
+  return 0.0f;
+}
+inline Vec3 surface_inertia(const Shape& /*s*/, const GeometryStore& /*store*/, float /*mass*/) {
+  return {};
+}
+inline Vec3 surface_half_bounds(const Shape& s, const Mat3& axes) {
+  const Vec3 h = s.half_extents;
+  return abs(axes.c0) * h.x + abs(axes.c1) * h.y + abs(axes.c2) * h.z;
+}
+
 /// The source's local frame in the world: x_world = origin + axes * x_local.
 struct SourceFrame {
   Vec3 origin;

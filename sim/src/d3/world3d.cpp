@@ -222,22 +222,10 @@ BodyKind World3D::kind(BodyId id) const {
   return is_live(state_, id) ? state_.infos[id.index].kind : BodyKind::kStatic;
 }
 Vec3 World3D::position(BodyId id) const {
-  if (!is_live(state_, id)) return {};
-  const BodySim& sim = state_.sims[id.index];
-  Vec3 p;
-  Quat q;
-  d3::mass_to_authored(d3::mass_frame(state_.infos[id.index].shape, *geometry_), sim.position,
-                       sim.rotation, p, q);
-  return p;
+  return is_live(state_, id) ? d3::authored_pose(state_, *geometry_, id.index).position : Vec3{};
 }
 Quat World3D::rotation(BodyId id) const {
-  if (!is_live(state_, id)) return {};
-  const BodySim& sim = state_.sims[id.index];
-  Vec3 p;
-  Quat q;
-  d3::mass_to_authored(d3::mass_frame(state_.infos[id.index].shape, *geometry_), sim.position,
-                       sim.rotation, p, q);
-  return q;
+  return is_live(state_, id) ? d3::authored_pose(state_, *geometry_, id.index).rotation : Quat{};
 }
 Vec3 World3D::center_of_mass(BodyId id) const {
   return is_live(state_, id) ? state_.sims[id.index].position : Vec3{};
@@ -576,8 +564,9 @@ void World3D::dump_bodies(std::vector<BodyRecord>& out) const {
     r.id = {i, info.generation};
     r.kind = info.kind;
     r.user_data = info.user_data;
-    d3::mass_to_authored(d3::mass_frame(info.shape, *geometry_), sim.position, sim.rotation,
-                         r.position, r.rotation);
+    const d3::AuthoredPose pose = d3::authored_pose(state_, *geometry_, i);
+    r.position = pose.position;
+    r.rotation = pose.rotation;
     r.linear_velocity = sim.linear_velocity;
     r.angular_velocity = sim.angular_velocity;
     r.awake = info.awake != 0;
