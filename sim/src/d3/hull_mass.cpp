@@ -78,7 +78,8 @@ void jacobi(double a[3][3], double v[3][3]) {
       const double apq = a[p][q];
       if (!(std::fabs(apq) > threshold)) continue;
       // The rotation that zeroes a[p][q] (Numerical Recipes, section 11.1):
-      // t = tan(angle), the smaller root of t^2 + 2 t theta - 1 = 0.
+      // t is the tangent of the rotation angle: the smaller root of
+      // t^2 + 2 t theta - 1 = 0.
       const double theta = (a[q][q] - a[p][p]) / (2.0 * apq);
       double t = 1.0 / (std::fabs(theta) + std::sqrt(theta * theta + 1.0));
       if (theta < 0.0) t = -t;
