@@ -26,9 +26,6 @@ namespace {
 
 // Two support points closer than this are the same point (metres^2).
 constexpr float kSamePointSq = 1e-12f;
-// As gjk.cpp: a triangle whose two shortest edges make an angle with sin^2
-// below this has no reliable normal.
-constexpr float kDegenerateSinSq = 1e-9f;
 // A polytope face sees the new point when it lies this far above it; less
 // counts as coplanar and the face stays (keeping slivers out).
 constexpr float kVisibleEpsilon = 1e-6f;  // metres
@@ -56,30 +53,10 @@ bool make_face(const Polytope& p, uint32_t i0, uint32_t i1, uint32_t i2, Face& f
   const Vec3 a = p.verts[i0].w;
   const Vec3 b = p.verts[i1].w;
   const Vec3 c = p.verts[i2].w;
-  const Vec3 ab = b - a;
-  const Vec3 ac = c - a;
-  const Vec3 bc = c - b;
-  const float ab_sq = length_squared(ab);
-  const float ac_sq = length_squared(ac);
-  const float bc_sq = length_squared(bc);
   Vec3 n;
-  float e1_sq = 0.0f;
-  float e2_sq = 0.0f;
-  if (bc_sq >= ab_sq && bc_sq >= ac_sq) {
-    n = cross(ab, ac);
-    e1_sq = ab_sq;
-    e2_sq = ac_sq;
-  } else if (ac_sq >= ab_sq) {
-    n = cross(ab, bc);
-    e1_sq = ab_sq;
-    e2_sq = bc_sq;
-  } else {
-    n = cross(ac, bc);
-    e1_sq = ac_sq;
-    e2_sq = bc_sq;
-  }
+  if (!gjk_detail::triangle_normal(a, b, c, n)) return false;
   const float n_sq = length_squared(n);
-  if (!(n_sq > kDegenerateSinSq * e1_sq * e2_sq) || !(n_sq > 0.0f)) return false;
+  if (!(n_sq > 0.0f)) return false;
   f.v[0] = static_cast<uint8_t>(i0);
   f.v[1] = static_cast<uint8_t>(i1);
   f.v[2] = static_cast<uint8_t>(i2);

@@ -29,10 +29,8 @@ constexpr float kStepRounding = 16.0f * std::numeric_limits<float>::epsilon();
 // A bound on the rounding of a dot product of three terms, relative to the
 // sum of the terms' magnitudes (a few float epsilons).
 constexpr float kDotRounding = 4.0f * std::numeric_limits<float>::epsilon();
-// A triangle whose two shortest edges make an angle with sin^2 below this
-// (or a tetrahedron flatter than kFlatVolume) is handled by its edges
-// (faces): its normal would be rounding noise.
-constexpr float kDegenerateSinSq = 1e-9f;
+// A triangle with no reliable normal (gjk_detail::triangle_normal) or a
+// tetrahedron flatter than kFlatVolume is handled by its edges (faces).
 constexpr float kFlatVolume = 1e-6f;
 
 uint32_t support_local(const Vec3* points, uint32_t count, Vec3 dir) {
@@ -80,29 +78,8 @@ Vec3 closest_on_triangle_masked(Vec3 a, Vec3 b, Vec3 c, float weights[3], uint32
   const Vec3 ab = b - a;
   const Vec3 ac = c - a;
   const Vec3 bc = c - b;
-  const float ab_sq = length_squared(ab);
-  const float ac_sq = length_squared(ac);
-  const float bc_sq = length_squared(bc);
-  // The normal from the two shortest edges (all three crosses are equal
-  // in exact arithmetic; these lose the least).
   Vec3 n;
-  float e1_sq = 0.0f;
-  float e2_sq = 0.0f;
-  if (bc_sq >= ab_sq && bc_sq >= ac_sq) {
-    n = cross(ab, ac);
-    e1_sq = ab_sq;
-    e2_sq = ac_sq;
-  } else if (ac_sq >= ab_sq) {
-    n = cross(ab, bc);
-    e1_sq = ab_sq;
-    e2_sq = bc_sq;
-  } else {
-    n = cross(ac, bc);
-    e1_sq = ac_sq;
-    e2_sq = bc_sq;
-  }
-  const float n_sq = length_squared(n);
-  if (!(n_sq > kDegenerateSinSq * e1_sq * e2_sq)) {
+  if (!gjk_detail::triangle_normal(a, b, c, n)) {
     // Degenerate: the nearest of the three edges (ties to the first).
     const Vec3 ends[3][2] = {{a, b}, {a, c}, {b, c}};
     const uint32_t bits[3][2] = {{1u, 2u}, {1u, 4u}, {2u, 4u}};
@@ -197,7 +174,7 @@ Vec3 closest_on_triangle_masked(Vec3 a, Vec3 b, Vec3 c, float weights[3], uint32
   const float b_sq = length_squared(b);
   const float c_sq = length_squared(c);
   const Vec3 base = (a_sq <= b_sq && a_sq <= c_sq) ? a : (b_sq <= c_sq ? b : c);
-  return n * (dot(base, n) / n_sq);
+  return n * (dot(base, n) / length_squared(n));
 }
 
 // Tetrahedron version: `inside` when the origin is within it (then the

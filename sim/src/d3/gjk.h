@@ -164,6 +164,39 @@ SimplexVertex support_vertex(const ConvexProxy& a, const ConvexProxy& b, const R
 /// The point of triangle (p0, p1, p2) nearest the origin and its
 /// barycentric weights (a degenerate triangle falls back to its edges).
 Vec3 closest_on_triangle(Vec3 p0, Vec3 p1, Vec3 p2, float weights[3]);
+/// A triangle whose two shortest edges make an angle with sin^2 below this
+/// has no reliable normal (it would be rounding noise).
+inline constexpr float kDegenerateSinSq = 1e-9f;
+
+/// The (unnormalized) normal of triangle (a, b, c), (b - a) x (c - a) up to
+/// sign-preserving rounding, taken from its two shortest edges (all three
+/// crosses are equal in exact arithmetic; these lose the least), or false
+/// when the triangle is degenerate (kDegenerateSinSq).
+inline bool triangle_normal(Vec3 a, Vec3 b, Vec3 c, Vec3& n) {
+  const Vec3 ab = b - a;
+  const Vec3 ac = c - a;
+  const Vec3 bc = c - b;
+  const float ab_sq = length_squared(ab);
+  const float ac_sq = length_squared(ac);
+  const float bc_sq = length_squared(bc);
+  float e1_sq = 0.0f;
+  float e2_sq = 0.0f;
+  if (bc_sq >= ab_sq && bc_sq >= ac_sq) {
+    n = cross(ab, ac);
+    e1_sq = ab_sq;
+    e2_sq = ac_sq;
+  } else if (ac_sq >= ab_sq) {
+    n = cross(ab, bc);
+    e1_sq = ab_sq;
+    e2_sq = bc_sq;
+  } else {
+    n = cross(ac, bc);
+    e1_sq = ac_sq;
+    e2_sq = bc_sq;
+  }
+  return length_squared(n) > kDegenerateSinSq * e1_sq * e2_sq;
+}
+
 /// m^T v.
 inline Vec3 mul_transpose(const Mat3& m, Vec3 v) {
   return {dot(m.c0, v), dot(m.c1, v), dot(m.c2, v)};

@@ -66,6 +66,11 @@ struct CapsulePose {
   float radius;
 };
 
+/// The closest points of the segments p + s d and q + t e, s and t in
+/// [0, 1] (Ericson, Real-Time Collision Detection 5.1.9); a segment of zero
+/// length is a point. Shared by the capsule and hull-capsule manifolds.
+void closest_on_segments(Vec3 p, Vec3 d, Vec3 q, Vec3 e, float& s, float& t);
+
 void collide_spheres(Vec3 center_a, float radius_a, Vec3 center_b, float radius_b,
                      float speculative_m, Manifold& out);
 /// Capsule A against sphere B (normal from the capsule to the sphere).

@@ -56,6 +56,14 @@ bool sphere_point(Vec3 qa, float ra, Vec3 qb, float rb, Vec3 fallback, float spe
   return true;
 }
 
+// Any unit vector perpendicular to u.
+Vec3 perpendicular(Vec3 u) {
+  const Vec3 other = std::fabs(u.x) < 0.6f ? Vec3{1.0f, 0.0f, 0.0f} : Vec3{0.0f, 1.0f, 0.0f};
+  return normalize_or_zero(cross(u, other));
+}
+
+}  // namespace
+
 // The closest points of the segments p + s d and q + t e, s and t in
 // [0, 1] (Ericson, Real-Time Collision Detection 5.1.9); a segment of zero
 // length is a point.
@@ -92,14 +100,6 @@ void closest_on_segments(Vec3 p, Vec3 d, Vec3 q, Vec3 e, float& s, float& t) {
     s = clampf((b - g) / a, 0.0f, 1.0f);
   }
 }
-
-// Any unit vector perpendicular to u.
-Vec3 perpendicular(Vec3 u) {
-  const Vec3 other = std::fabs(u.x) < 0.6f ? Vec3{1.0f, 0.0f, 0.0f} : Vec3{0.0f, 1.0f, 0.0f};
-  return normalize_or_zero(cross(u, other));
-}
-
-}  // namespace
 
 void collide_capsule_sphere(const CapsulePose& capsule, Vec3 center, float radius,
                             float speculative_m, Manifold& out) {

@@ -68,10 +68,6 @@ constexpr uint32_t kEdgeKind = 2u << 16;
 constexpr uint32_t kVertexKind = 3u << 16;
 constexpr uint32_t kAxisKind = 4u << 16;
 
-float clampf(float v, float lo, float hi) {
-  return v < lo ? lo : (v > hi ? hi : v);
-}
-
 uint32_t face_id(uint32_t face, uint32_t k) {
   return kFaceKind | (face << 8) | k;
 }
@@ -224,43 +220,6 @@ void face_end_point(const Hull& hull, uint32_t fi, const Vec3 seg[2], float radi
   const Vec3 p = seg[end];
   one_point(hull_position, hull_axes, face.normal, p - face.normal * height, p, radius, separation,
             face_id(fi, end), out);
-}
-
-// The closest points of the segments p + s d and q + t e, s and t in
-// [0, 1] (Ericson 5.1.9, as manifold_capsule.cpp); a zero-length segment
-// is a point.
-void closest_on_segments(Vec3 p, Vec3 d, Vec3 q, Vec3 e, float& s, float& t) {
-  const Vec3 w = p - q;
-  const float a = dot(d, d);
-  const float b = dot(d, e);
-  const float c = dot(e, e);
-  const float f = dot(e, w);
-  const float g = dot(d, w);
-  if (a <= 1e-12f && c <= 1e-12f) {
-    s = 0.0f;
-    t = 0.0f;
-    return;
-  }
-  if (a <= 1e-12f) {
-    s = 0.0f;
-    t = clampf(f / c, 0.0f, 1.0f);
-    return;
-  }
-  if (c <= 1e-12f) {
-    t = 0.0f;
-    s = clampf(-g / a, 0.0f, 1.0f);
-    return;
-  }
-  const float denom = a * c - b * b;
-  s = denom > 1e-12f * a * c ? clampf((b * f - g * c) / denom, 0.0f, 1.0f) : 0.0f;
-  t = (b * s + f) / c;
-  if (t < 0.0f) {
-    t = 0.0f;
-    s = clampf(-g / a, 0.0f, 1.0f);
-  } else if (t > 1.0f) {
-    t = 1.0f;
-    s = clampf((b - g) / a, 0.0f, 1.0f);
-  }
 }
 
 }  // namespace
