@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 #include "d3/compound.h"
 #include "d3/compound_builder.h"
@@ -188,34 +189,16 @@ GeometryStore::GeometryStore() = default;
 GeometryStore::~GeometryStore() = default;
 
 Result<GeometryId> GeometryStore::add_hull(std::span<const Vec3> points) {
-  Result<d3::Hull> hull = d3::make_hull(snapped(points));
-  if (!hull.ok()) return hull.status();
-  Entry e;
-  e.kind = GeometryKind::kHull;
-  e.hash = hash_hull(*hull);
-  e.hull = std::make_unique<d3::Hull>(std::move(*hull));
-  return add(std::move(e));
+  return add_built(d3::make_hull(snapped(points)));
 }
 
 Result<GeometryId> GeometryStore::add_hull_from_points(std::span<const Vec3> points) {
-  Result<d3::Hull> hull = d3::hull_from_points(snapped(points));
-  if (!hull.ok()) return hull.status();
-  Entry e;
-  e.kind = GeometryKind::kHull;
-  e.hash = hash_hull(*hull);
-  e.hull = std::make_unique<d3::Hull>(std::move(*hull));
-  return add(std::move(e));
+  return add_built(d3::hull_from_points(snapped(points)));
 }
 
 Result<GeometryId> GeometryStore::add_mesh(std::span<const Vec3> vertices,
                                            std::span<const uint32_t> indices, bool one_sided) {
-  Result<d3::TriangleMesh> mesh = d3::build_mesh(snapped(vertices), indices, one_sided);
-  if (!mesh.ok()) return mesh.status();
-  Entry e;
-  e.kind = GeometryKind::kMesh;
-  e.hash = hash_mesh(*mesh);
-  e.mesh = std::make_unique<d3::TriangleMesh>(std::move(*mesh));
-  return add(std::move(e));
+  return add_built(d3::build_mesh(snapped(vertices), indices, one_sided));
 }
 
 Result<GeometryId> GeometryStore::add_height_field(uint32_t rows, uint32_t cols, Vec3 scale,
@@ -227,22 +210,37 @@ Result<GeometryId> GeometryStore::add_height_field(uint32_t rows, uint32_t cols,
     if (std::isfinite(h)) h = quantize(h);
   }
   const Vec3 s = is_finite(scale) ? quantize(scale) : scale;
-  Result<d3::HeightField> field = d3::build_height_field(rows, cols, s, on_grid, holes);
-  if (!field.ok()) return field.status();
-  Entry e;
-  e.kind = GeometryKind::kHeightField;
-  e.hash = hash_height_field(*field);
-  e.height_field = std::make_unique<d3::HeightField>(std::move(*field));
-  return add(std::move(e));
+  return add_built(d3::build_height_field(rows, cols, s, on_grid, holes));
 }
 
 Result<GeometryId> GeometryStore::add_compound(std::span<const CompoundChild> children) {
-  Result<d3::Compound> compound = d3::build_compound(children, *this);
-  if (!compound.ok()) return compound.status();
+  return add_built(d3::build_compound(children, *this));
+}
+
+// A built piece of geometry (or why it was refused) as an entry: its kind,
+// its hash, and the data behind the matching pointer.
+template <class T>
+Result<GeometryId> GeometryStore::add_built(Result<T> built) {
+  if (!built.ok()) return built.status();
   Entry e;
-  e.kind = GeometryKind::kCompound;
-  e.hash = hash_compound(*compound, *this);
-  e.compound = std::make_unique<d3::Compound>(std::move(*compound));
+  if constexpr (std::is_same_v<T, d3::Hull>) {
+    e.kind = GeometryKind::kHull;
+    e.hash = hash_hull(*built);
+    e.hull = std::make_unique<d3::Hull>(std::move(*built));
+  } else if constexpr (std::is_same_v<T, d3::TriangleMesh>) {
+    e.kind = GeometryKind::kMesh;
+    e.hash = hash_mesh(*built);
+    e.mesh = std::make_unique<d3::TriangleMesh>(std::move(*built));
+  } else if constexpr (std::is_same_v<T, d3::HeightField>) {
+    e.kind = GeometryKind::kHeightField;
+    e.hash = hash_height_field(*built);
+    e.height_field = std::make_unique<d3::HeightField>(std::move(*built));
+  } else {
+    static_assert(std::is_same_v<T, d3::Compound>);
+    e.kind = GeometryKind::kCompound;
+    e.hash = hash_compound(*built, *this);
+    e.compound = std::make_unique<d3::Compound>(std::move(*built));
+  }
   return add(std::move(e));
 }
 

@@ -156,6 +156,8 @@ class GeometryStore {
 
  private:
   struct Entry;
+  template <class T>
+  Result<GeometryId> add_built(Result<T> built);
   Result<GeometryId> add(Entry entry);
 
   std::vector<Entry> entries_;
