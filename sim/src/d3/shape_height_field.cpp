@@ -17,17 +17,8 @@ const HeightField& field_of(const Shape& s, const GeometryStore& store) {
   return *store.height_field(s.geometry);
 }
 
-Vec3 center_of(const HeightField& h) {
-  return (h.bounds.lower + h.bounds.upper) * 0.5f;
-}
-
 Status check(const Shape& s, const GeometryStore& store) {
-  if (store.height_field(s.geometry) == nullptr) {
-    return Status::Error(ErrorCode::kInvalidArgument,
-                         "height field shape refers to geometry " + std::to_string(s.geometry) +
-                             ", which is not a height field in this world's geometry store");
-  }
-  return Status::Ok();
+  return check_surface(store.height_field(s.geometry) != nullptr, "height field", s.geometry);
 }
 
 void canonical(Shape& s, const GeometryStore& store) {
@@ -37,15 +28,12 @@ void canonical(Shape& s, const GeometryStore& store) {
 bool raycast(const Shape& s, const GeometryStore& store, Vec3 position, Quat rotation, Vec3 origin,
              Vec3 dir, float max_distance, float& t, Vec3& normal) {
   const HeightField& h = field_of(s, store);
-  const SourceFrame f = source_frame(position, mat3_from_quat(rotation), center_of(h));
-  uint32_t id = 0;
-  Vec3 n;
-  if (!height_field_raycast(h, to_local(f, origin), gjk_detail::mul_transpose(f.axes, dir),
-                            max_distance, t, n, id)) {
-    return false;
-  }
-  normal = f.axes * n;
-  return true;
+  const SourceFrame f = source_frame(position, mat3_from_quat(rotation), bounds_center(h.bounds));
+  return raycast_source(f, origin, dir, max_distance, t, normal,
+                        [&h](Vec3 o, Vec3 d, float max_t, float& hit_t, Vec3& n) {
+                          uint32_t id = 0;
+                          return height_field_raycast(h, o, d, max_t, hit_t, n, id);
+                        });
 }
 
 auto triangles_of(const HeightField& h) {
@@ -55,8 +43,8 @@ auto triangles_of(const HeightField& h) {
 ShapeCastOutput sweep(const Shape& s, const GeometryStore& store, Vec3 position, const Mat3& axes,
                       const ConvexProxy& swept, Vec3 translation, float max_fraction) {
   const HeightField& h = field_of(s, store);
-  return sweep_source(source_frame(position, axes, center_of(h)), false, triangles_of(h), swept,
-                      translation, max_fraction);
+  return sweep_source(source_frame(position, axes, bounds_center(h.bounds)), false, triangles_of(h),
+                      swept, translation, max_fraction);
 }
 
 }  // namespace
@@ -65,7 +53,7 @@ void collide_height_field_convex(const Shape& field, const ShapePose& pose, cons
                                  const ShapePose& shape_pose, float speculative_m,
                                  const GeometryStore& store, Manifold& out) {
   const HeightField& h = field_of(field, store);
-  collide_source_convex(source_frame(pose.position, pose.axes, center_of(h)), false,
+  collide_source_convex(source_frame(pose.position, pose.axes, bounds_center(h.bounds)), false,
                         triangles_of(h), shape, shape_pose, store, speculative_m, out);
 }
 

@@ -18,17 +18,8 @@ const TriangleMesh& mesh_of(const Shape& s, const GeometryStore& store) {
   return *store.mesh(s.geometry);
 }
 
-Vec3 center_of(const TriangleMesh& m) {
-  return (m.bounds.lower + m.bounds.upper) * 0.5f;
-}
-
 Status check(const Shape& s, const GeometryStore& store) {
-  if (store.mesh(s.geometry) == nullptr) {
-    return Status::Error(ErrorCode::kInvalidArgument,
-                         "mesh shape refers to geometry " + std::to_string(s.geometry) +
-                             ", which is not a mesh in this world's geometry store");
-  }
-  return Status::Ok();
+  return check_surface(store.mesh(s.geometry) != nullptr, "mesh", s.geometry);
 }
 
 void canonical(Shape& s, const GeometryStore& store) {
@@ -38,15 +29,12 @@ void canonical(Shape& s, const GeometryStore& store) {
 bool raycast(const Shape& s, const GeometryStore& store, Vec3 position, Quat rotation, Vec3 origin,
              Vec3 dir, float max_distance, float& t, Vec3& normal) {
   const TriangleMesh& m = mesh_of(s, store);
-  const SourceFrame f = source_frame(position, mat3_from_quat(rotation), center_of(m));
-  uint32_t triangle = 0;
-  Vec3 n;
-  if (!mesh_raycast(m, to_local(f, origin), gjk_detail::mul_transpose(f.axes, dir), max_distance, t,
-                    n, triangle)) {
-    return false;
-  }
-  normal = f.axes * n;
-  return true;
+  const SourceFrame f = source_frame(position, mat3_from_quat(rotation), bounds_center(m.bounds));
+  return raycast_source(f, origin, dir, max_distance, t, normal,
+                        [&m](Vec3 o, Vec3 d, float max_t, float& hit_t, Vec3& n) {
+                          uint32_t triangle = 0;
+                          return mesh_raycast(m, o, d, max_t, hit_t, n, triangle);
+                        });
 }
 
 auto triangles_of(const TriangleMesh& m) {
@@ -58,8 +46,8 @@ auto triangles_of(const TriangleMesh& m) {
 ShapeCastOutput sweep(const Shape& s, const GeometryStore& store, Vec3 position, const Mat3& axes,
                       const ConvexProxy& swept, Vec3 translation, float max_fraction) {
   const TriangleMesh& m = mesh_of(s, store);
-  return sweep_source(source_frame(position, axes, center_of(m)), m.one_sided, triangles_of(m),
-                      swept, translation, max_fraction);
+  return sweep_source(source_frame(position, axes, bounds_center(m.bounds)), m.one_sided,
+                      triangles_of(m), swept, translation, max_fraction);
 }
 
 }  // namespace
@@ -68,8 +56,8 @@ void collide_mesh_convex(const Shape& mesh, const ShapePose& pose, const Shape& 
                          const ShapePose& shape_pose, float speculative_m,
                          const GeometryStore& store, Manifold& out) {
   const TriangleMesh& m = mesh_of(mesh, store);
-  collide_source_convex(source_frame(pose.position, pose.axes, center_of(m)), m.one_sided,
-                        triangles_of(m), shape, shape_pose, store, speculative_m, out);
+  collide_source_convex(source_frame(pose.position, pose.axes, bounds_center(m.bounds)),
+                        m.one_sided, triangles_of(m), shape, shape_pose, store, speculative_m, out);
 }
 
 extern const ShapeOps kMeshOps{"mesh",

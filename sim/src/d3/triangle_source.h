@@ -10,6 +10,8 @@
 // `Query` is a callable (const Aabb& local_box, Visit&& visit) that calls
 // visit(const TriangleRef&) for every triangle whose bounds meet the box,
 // in an order that is a pure function of the source and the box.
+#include <string>
+
 #include "d3/body_storage.h"
 #include "d3/gjk.h"
 #include "d3/manifold.h"
@@ -41,6 +43,17 @@ inline Vec3 surface_half_bounds(const Shape& s, const Mat3& axes) {
   return abs(axes.c0) * h.x + abs(axes.c1) * h.y + abs(axes.c2) * h.z;
 }
 
+inline Vec3 bounds_center(const Aabb& b) {
+  return (b.lower + b.upper) * 0.5f;
+}
+/// ShapeOps::check of a surface: its id must name a `kind` in the store.
+inline Status check_surface(bool found, const char* kind, uint32_t id) {
+  if (found) return Status::Ok();
+  return Status::Error(ErrorCode::kInvalidArgument,
+                       std::string(kind) + " shape refers to geometry " + std::to_string(id) +
+                           ", which is not a " + kind + " in this world's geometry store");
+}
+
 /// The source's local frame in the world: x_world = origin + axes * x_local.
 struct SourceFrame {
   Vec3 origin;
@@ -60,6 +73,19 @@ inline Vec3 to_local(const SourceFrame& f, Vec3 world) {
 inline Mat3 to_local_axes(const SourceFrame& f, const Mat3& axes) {
   return {gjk_detail::mul_transpose(f.axes, axes.c0), gjk_detail::mul_transpose(f.axes, axes.c1),
           gjk_detail::mul_transpose(f.axes, axes.c2)};
+}
+
+/// A ray against a source: `cast(origin, dir, max_distance, t, normal)` in
+/// the local frame; the normal comes back in the world frame.
+template <class Cast>
+bool raycast_source(const SourceFrame& f, Vec3 origin, Vec3 dir, float max_distance, float& t,
+                    Vec3& normal, Cast&& cast) {
+  Vec3 n;
+  if (!cast(to_local(f, origin), gjk_detail::mul_transpose(f.axes, dir), max_distance, t, n)) {
+    return false;
+  }
+  normal = f.axes * n;
+  return true;
 }
 
 /// The source (A) against the convex `shape` (B) at `pose`: one manifold,
