@@ -18,8 +18,8 @@ constexpr float kSpec = 0.02f;
 
 // A hull from its vertices and its faces' vertex loops (counter-clockwise
 // seen from outside): planes from the loops, edges listed once with the
-// face whose loop runs v0 -> v1 on the left. The hull builder is written
-// elsewhere; this is enough for the manifold routines.
+// face whose loop runs v0 -> v1 on the left. Built by hand so these tests
+// check the manifold routines apart from the hull builder.
 inline Hull make_hull(const std::vector<Vec3>& vertices,
                       const std::vector<std::vector<uint8_t>>& loops) {
   Hull h;
