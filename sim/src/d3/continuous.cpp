@@ -5,14 +5,14 @@
 // shape the tick's manifolds did not hold apart (a thin wall whose contact
 // normal flipped, a shape it reached only through another contact). So each
 // continuous body that moved this tick is swept, by its translation, from
-// where it started against every shape its path's bounds meet (static,
+// where it started against every shape whose bounds its swept bounds meet (static,
 // kinematic and dynamic ones at their poses after the solve), and if it
 // would cross one it is moved back to the first time of impact, keeping its
 // velocity: the next tick's contact then stops it, and the impulse passes
 // to what it struck through the solver, as Box2D v3 does for its bullets.
 //
 // Bodies that do not opt in cost nothing beyond skipping their flag; a
-// world without moving continuous bodies never touches the query trees.
+// world without moving continuous bodies never asks the broadphase for queries.
 // Rotation during the tick is not swept (the sweep uses the end rotation).
 #include <algorithm>
 #include <cmath>
@@ -20,7 +20,7 @@
 #include "d3/body_storage.h"
 #include "d3/gjk.h"
 #include "d3/pipeline.h"
-#include "d3/query_trees.h"
+#include "d3/query_filter.h"
 #include "d3/shape_ops.h"
 
 namespace rwd::sim::d3 {
@@ -52,17 +52,14 @@ void continuous_collision(WorldState& state, WorldScratch& scratch) {
     const Vec3 start = sim.position - move;
     const Mat3 axes = mat3_from_quat(sim.rotation);
     const Aabb from = shape_aabb(info.shape, start, axes);
-    const Aabb to = shape_aabb(info.shape, sim.position, axes);
-    const Aabb path{min(from.lower, to.lower), max(from.upper, to.upper)};
 
-    refresh_query_trees(state, scratch);
+    prepare_queries(state, scratch);
     std::vector<uint32_t>& candidates = scratch.query_hits;
     candidates.clear();
     const auto collect = [&](uint32_t j) {
       if (j != i && can_hit(info, state.infos[j])) candidates.push_back(j);
     };
-    scratch.query_static.query(path, collect);
-    scratch.query_movable.query(path, collect);
+    scratch.broadphase.sweep_query(from, move, collect);
     std::sort(candidates.begin(), candidates.end());
 
     ProxyPoints mover_points;
@@ -92,7 +89,7 @@ void continuous_collision(WorldState& state, WorldScratch& scratch) {
     sim.position = start + move * back;
     sim.sleep_time = 0.0f;
     // Query trees built before the move no longer hold this body.
-    scratch.query_serial = ~0ull;
+    scratch.broadphase.forget_poses();
   }
 }
 

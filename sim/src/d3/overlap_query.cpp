@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Overlap queries: which bodies a shape placed in the world overlaps or
-// touches. The query trees (query_trees.h) give the bodies whose bounds
+// touches. The broadphase (broadphase.h) gives the bodies whose bounds
 // meet the shape's; each is tested with the collide table at zero
 // speculative distance (a point at separation <= 0 is an overlap), and the
 // result is in index order, whatever the trees' shapes.
@@ -9,7 +9,8 @@
 #include "d3/body_storage.h"
 #include "d3/manifold.h"
 #include "d3/mass_frame.h"
-#include "d3/query_trees.h"
+#include "d3/pipeline.h"
+#include "d3/query_filter.h"
 #include "d3/shape_ops.h"
 #include "d3/state_rules.h"
 #include "rewind/sim/world3d.h"
@@ -38,14 +39,13 @@ Status World3D::overlap(const Shape& shape, Vec3 position, Quat rotation, const 
   const d3::Aabb box = d3::shape_aabb(query, pose.position, pose.axes);
 
   WorldScratch& scratch = *scratch_;
-  d3::refresh_query_trees(state_, scratch);
+  d3::prepare_queries(state_, scratch);
   std::vector<uint32_t>& candidates = scratch.query_hits;
   candidates.clear();
   const auto collect = [&](uint32_t i) {
     if (d3::query_accepts(state_, filter, i)) candidates.push_back(i);
   };
-  scratch.query_static.query(box, collect);
-  scratch.query_movable.query(box, collect);
+  scratch.broadphase.query(box, collect);
   std::sort(candidates.begin(), candidates.end());
   d3::Manifold m;
   for (const uint32_t i : candidates) {

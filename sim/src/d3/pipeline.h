@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The stages of World3D::step(), one file each, in the order they run:
-//   broadphase.cpp     find_pairs: candidate pairs from two AABB trees
+//   find_pairs.cpp     find_pairs: candidate pairs from the broadphase
 //   narrowphase.cpp    update_contacts: manifolds, feature-id warm starting,
 //                      sleeping contacts carried over
 //   island_sleep.cpp   wake_touched_islands: sleeping islands touched by an
@@ -20,11 +20,15 @@ namespace rwd::sim::d3 {
 /// stage of a step: it starts the step's body frames (body_axes).
 void find_pairs(const WorldState& state, WorldScratch& scratch);
 /// The world was edited (create, destroy, teleport, enable, restore): the
-/// broadphase rebuilds its trees before the next pairs.
-inline void mark_static_dirty(WorldScratch& scratch) {
-  scratch.static_dirty = true;
-  scratch.query_edited = true;
+/// broadphase rebuilds its trees before their next use.
+inline void mark_world_edited(WorldScratch& scratch) {
+  scratch.broadphase.mark_edited();
   ++scratch.edit_serial;
+}
+
+/// Readies the broadphase's query side for the poses in `state`.
+inline void prepare_queries(const WorldState& state, WorldScratch& scratch) {
+  scratch.broadphase.prepare_queries(state, scratch.step_serial);
 }
 
 /// Replaces state.contacts with this step's cache (old one kept in

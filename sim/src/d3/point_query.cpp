@@ -9,7 +9,8 @@
 
 #include "d3/body_storage.h"
 #include "d3/manifold.h"
-#include "d3/query_trees.h"
+#include "d3/pipeline.h"
+#include "d3/query_filter.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim {
@@ -44,7 +45,7 @@ std::optional<PointHit> World3D::nearest_body(Vec3 point, float max_distance,
     return std::nullopt;
   }
   WorldScratch& scratch = *scratch_;
-  d3::refresh_query_trees(state_, scratch);
+  d3::prepare_queries(state_, scratch);
   std::vector<uint32_t>& candidates = scratch.query_hits;
   candidates.clear();
   const Vec3 r{max_distance, max_distance, max_distance};
@@ -52,8 +53,7 @@ std::optional<PointHit> World3D::nearest_body(Vec3 point, float max_distance,
   const auto collect = [&](uint32_t i) {
     if (d3::query_accepts(state_, filter, i)) candidates.push_back(i);
   };
-  scratch.query_static.query(box, collect);
-  scratch.query_movable.query(box, collect);
+  scratch.broadphase.query(box, collect);
   std::sort(candidates.begin(), candidates.end());
   std::optional<PointHit> best;
   for (const uint32_t i : candidates) {

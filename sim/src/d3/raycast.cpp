@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Ray queries, through the query trees (query_trees.h): the bodies whose
+// Ray queries, through the broadphase (broadphase.h): the bodies whose
 // bounds the ray's segment touches are tested exactly, in index order, so
 // ties go to the lower index and no tree shape reaches a result. Rays that
 // start inside a shape hit it at distance 0 with the normal facing back
@@ -8,7 +8,8 @@
 #include <cmath>
 
 #include "d3/body_storage.h"
-#include "d3/query_trees.h"
+#include "d3/pipeline.h"
+#include "d3/query_filter.h"
 #include "d3/shape_ops.h"
 #include "rewind/sim/world3d.h"
 
@@ -25,19 +26,18 @@ bool prepare_ray(const Ray& ray, Vec3& dir) {
 }
 
 // Calls visit(hit) for every body the ray hits, in index order: the
-// candidates the query trees give for the ray's segment, sorted, each
+// candidates the broadphase gives for the ray's segment, sorted, each
 // tested exactly.
 template <class Visit>
 void cast(const WorldState& state, WorldScratch& scratch, const Ray& ray, Vec3 dir,
           const QueryFilter& filter, Visit&& visit) {
-  d3::refresh_query_trees(state, scratch);
+  d3::prepare_queries(state, scratch);
   std::vector<uint32_t>& candidates = scratch.query_hits;
   candidates.clear();
   const auto collect = [&](uint32_t i) {
     if (d3::query_accepts(state, filter, i)) candidates.push_back(i);
   };
-  scratch.query_static.ray_query(ray.origin, dir, ray.max_distance, collect);
-  scratch.query_movable.ray_query(ray.origin, dir, ray.max_distance, collect);
+  scratch.broadphase.ray_query(ray.origin, dir, ray.max_distance, collect);
   std::sort(candidates.begin(), candidates.end());
   for (const uint32_t i : candidates) {
     const BodyInfo& info = state.infos[i];

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Shape casts: a shape swept along a straight line against the world's
-// bodies. The query trees (query_trees.h) give the bodies whose bounds meet
+// bodies. The broadphase (broadphase.h) gives the bodies whose bounds meet
 // the bounds of the whole sweep; each is swept exactly by conservative
 // advancement on GJK (gjk.h), in index order, so ties go to the lower
 // index whatever the trees' shapes.
@@ -10,7 +10,8 @@
 #include "d3/body_storage.h"
 #include "d3/gjk.h"
 #include "d3/mass_frame.h"
-#include "d3/query_trees.h"
+#include "d3/pipeline.h"
+#include "d3/query_filter.h"
 #include "d3/shape_ops.h"
 #include "d3/state_rules.h"
 #include "rewind/sim/world3d.h"
@@ -70,14 +71,13 @@ Status prepare_cast(const GeometryStore& store, const Shape& shape, Vec3 positio
 template <class Visit>
 void sweep(const WorldState& state, WorldScratch& scratch, const CastSetup& c,
            const QueryFilter& filter, Visit&& visit) {
-  d3::refresh_query_trees(state, scratch);
+  d3::prepare_queries(state, scratch);
   std::vector<uint32_t>& candidates = scratch.query_hits;
   candidates.clear();
   const auto collect = [&](uint32_t i) {
     if (d3::query_accepts(state, filter, i)) candidates.push_back(i);
   };
-  scratch.query_static.sweep_query(c.start_bounds, c.translation, collect);
-  scratch.query_movable.sweep_query(c.start_bounds, c.translation, collect);
+  scratch.broadphase.sweep_query(c.start_bounds, c.translation, collect);
   std::sort(candidates.begin(), candidates.end());
   for (const uint32_t i : candidates) {
     const BodyInfo& info = state.infos[i];

@@ -370,7 +370,7 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
   }
   if (!r.at_end()) return corrupt("trailing bytes after snapshot");
   state_ = std::move(st);
-  d3::mark_static_dirty(*scratch_);
+  d3::mark_world_edited(*scratch_);
   scratch_->events.clear();
   scratch_->body_events.clear();
   return Status::Ok();

@@ -182,7 +182,7 @@ Result<BodyId> World3D::create_body(const BodyDef& def) {
   state_.sims[index] = sim;
   state_.masses[index] = mass;
   ++state_.live_count;
-  d3::mark_static_dirty(*scratch_);
+  d3::mark_world_edited(*scratch_);
   return BodyId{index, generation};
 }
 
@@ -200,7 +200,7 @@ Status World3D::destroy_body(BodyId id) {
   free.insert(std::lower_bound(free.begin(), free.end(), id.index, std::greater<uint32_t>()),
               id.index);
   --state_.live_count;
-  d3::mark_static_dirty(*scratch_);
+  d3::mark_world_edited(*scratch_);
   return Status::Ok();
 }
 
@@ -270,7 +270,7 @@ Status World3D::set_transform(BodyId id, Vec3 position, Quat rotation) {
   sim.position = p;
   sim.rotation = q;
   d3::wake_body(state_, id.index);
-  d3::mark_static_dirty(*scratch_);
+  d3::mark_world_edited(*scratch_);
   return Status::Ok();
 }
 
@@ -428,7 +428,7 @@ Status World3D::set_enabled(BodyId id, bool enabled) {
     d3::wake_touching(state_, id);
     d3::disable_body(info, state_.sims[id.index]);
   }
-  d3::mark_static_dirty(*scratch_);
+  d3::mark_world_edited(*scratch_);
   return Status::Ok();
 }
 
@@ -535,7 +535,7 @@ void World3D::save(WorldState& out) const {
 void World3D::restore(const WorldState& in) {
   state_ = in;
   // Scratch derived from the old state must not leak into the next step.
-  d3::mark_static_dirty(*scratch_);
+  d3::mark_world_edited(*scratch_);
   scratch_->events.clear();
   scratch_->body_events.clear();
 }

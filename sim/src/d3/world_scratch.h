@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "d3/aabb_tree.h"
+#include "d3/broadphase.h"
 #include "d3/contact_batches.h"
 #include "d3/manifold.h"
 #include "rewind/sim/body_event.h"
@@ -20,11 +21,6 @@ namespace rwd::sim::d3 {
 
 /// No contact record (an exit event's pair has none this step).
 inline constexpr uint32_t kNoRecord = 0xFFFFFFFFu;
-
-struct BodyPair {
-  uint32_t a;  ///< lower index
-  uint32_t b;  ///< higher index
-};
 
 /// This step's manifold for one contact record, parallel to
 /// WorldState::contacts (the vector may be longer; entries past the
@@ -148,50 +144,23 @@ class WorldScratch {
   /// that collide shapes read. Not owned: World3D keeps it alive, and its
   /// entries never change, so this is not state either.
   const GeometryStore* store = nullptr;
-  /// Counts edits of the world (mark_static_dirty), so derived facts about
+  /// Counts edits of the world (mark_world_edited), so derived facts about
   /// its bodies can be recomputed only after one.
   uint64_t edit_serial = 1;
   /// Whether some body has rolling resistance, as of edit rolling_serial.
   uint64_t rolling_serial = 0;
   bool rolling_any = false;
 
-  // broadphase (broadphase.cpp)
+  // broadphase (find_pairs.cpp, broadphase.h)
   /// By body index: this step's bounds of every awake body, fattened by
-  /// the speculative distance and its reach this tick (sleeping and static
-  /// bodies' exact bounds live in their trees' leaves).
+  /// the speculative distance and its reach this tick.
   std::vector<Aabb> aabbs;
   std::vector<uint32_t> active;  ///< awake movable bodies, ascending
-  /// The awake bodies sorted along the sweep axis, kept from step to step
-  /// so re-sorting a scene that moved a little is nearly free; the bounds
-  /// are copied beside them in that order so the sweep reads memory in
-  /// sequence.
-  std::vector<uint32_t> sweep_order;
-  std::vector<float> sweep_lower;  ///< on the sweep axis
-  std::vector<float> sweep_upper;
-  std::vector<float> sweep_cross[4];  ///< lower, upper, lower, upper on the other two axes
-  std::vector<uint32_t> sweep_hits;   ///< one body's overlaps, positions in the order
-  int sweep_axis = 0;
-  d3::AabbTree sleeping_tree;            ///< sleeping movable bodies, exact leaves
-  d3::AabbTree static_tree;              ///< static bodies, exact leaves, built in bulk
-  std::vector<uint32_t> sleeping_proxy;  ///< by body index; AabbTree::kNull if none
-  std::vector<uint32_t> tree_bodies;     ///< bulk-build input
-  std::vector<Aabb> tree_boxes;
-  std::vector<uint32_t> tree_proxies;
-  bool static_dirty = true;  ///< the world was edited: both trees are rebuilt
+  /// Pairs, sweep and trees; the queries and continuous collision use it
+  /// too (prepare_queries first).
+  d3::Broadphase broadphase;
   std::vector<BodyPair> pairs;
-  // queries (query_trees.cpp): trees over every simulated body's exact
-  // bounds, made current when a query first needs them after a step or an
-  // edit, so a world nobody queries never pays for them
-  d3::AabbTree query_static;      ///< static bodies; rebuilt after edits
-  d3::AabbTree query_movable;     ///< every other simulated body; rebuilt per step
-  uint64_t query_serial = ~0ull;  ///< step_serial the movable tree was built at
-  bool query_edited = true;       ///< the world was edited since the trees were built
-  std::vector<uint32_t> query_bodies;
-  std::vector<Aabb> query_boxes;
-  std::vector<uint32_t> query_proxies;
   std::vector<uint32_t> query_hits;  ///< one query's candidates
-  std::vector<uint32_t> pair_start;  ///< counting sort of the pairs by a
-  std::vector<BodyPair> pair_spare;
   // body frames (body_storage.h: body_axes)
   /// By body index: the rotation matrix of the body's pose at the start of
   /// this step, valid where axes_step[i] == step_serial. The broadphase

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Queries through the query trees: overlap, ray and nearest-body queries
+// Queries through the broadphase: overlap, ray and nearest-body queries
 // against a brute force over every body (same exact tests), in a mixed
 // scene that moves, sleeps, is edited and restored between queries;
 // filters; signed distances to each shape; bad arguments.

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Shape casts through the public API: analytic distances for each swept
 // shape against boxes, hulls and capsules, nearest-first ordering, filters,
-// shapes that start touching, bad arguments, and the query trees against a
+// shapes that start touching, bad arguments, and the broadphase against a
 // sweep of every body one by one.
 #include <cmath>
 #include <vector>
