@@ -291,16 +291,24 @@ bool run_heap_scene(Tick ticks) {
                     -5.0f + 0.65f * static_cast<float>((i / 4) % 4)};
     bodies.push_back(*world.create_body(def));
   }
-  // A bullet (continuous collision) fired at the corner's walls now and then.
+  // Bullets (continuous collision), a ball and a dumbbell (swept by its
+  // children), fired at the corner's walls now and then.
   sim::BodyDef bullet_def;
   bullet_def.shape = sim::Shape::make_sphere(0.05f);
   bullet_def.position = {3.0f, 1.0f, 2.0f};
   bullet_def.continuous = true;
   const sim::BodyId bullet = *world.create_body(bullet_def);
+  bullet_def.shape = sim::Shape::make_compound(dumbbell);
+  bullet_def.position = {5.0f, 2.0f, 2.0f};
+  const sim::BodyId heavy_bullet = *world.create_body(bullet_def);
   for (Tick t = 0; t < ticks; ++t) {
     if (t % 60 == 30) {
       (void)world.set_transform(bullet, {3.0f, 1.0f + 0.1f * static_cast<float>(t % 7), 2.0f}, {});
       (void)world.set_linear_velocity(bullet, {coord(40.0f), 3.0f, -400.0f});
+    }
+    if (t % 60 == 45) {
+      (void)world.set_transform(heavy_bullet, {5.0f, 2.0f, 2.0f}, {});
+      (void)world.set_linear_velocity(heavy_bullet, {-300.0f, coord(5.0f), coord(30.0f)});
     }
     if (t % 90 == 60) {  // a kick wakes part of the heap
       const sim::BodyId id = bodies[8 + rng.below(40)];

@@ -22,6 +22,7 @@
 #include "d3/pipeline.h"
 #include "d3/query_filter.h"
 #include "d3/shape_ops.h"
+#include "d3/swept_shape.h"
 
 namespace rwd::sim::d3 {
 namespace {
@@ -40,9 +41,10 @@ void continuous_collision(WorldState& state, WorldScratch& scratch) {
   for (size_t s = 1; s < scratch.solver_bodies.size(); ++s) {
     const uint32_t i = scratch.solver_body_ids[s];
     const BodyInfo& info = state.infos[i];
-    // Only convex shapes are swept (a compound's children are not).
+    // Dynamic bodies are never meshes or height fields, so every one that
+    // opts in can be swept (a compound by each of its children).
     if (info.continuous == 0 || info.kind != BodyKind::kDynamic || info.enabled == 0 ||
-        info.sensor != 0 || shape_ops(info.shape.type).proxy == nullptr) {
+        info.sensor != 0 || !can_sweep(info.shape)) {
       continue;
     }
     BodySim& sim = state.sims[i];
@@ -62,18 +64,15 @@ void continuous_collision(WorldState& state, WorldScratch& scratch) {
     scratch.broadphase.sweep_query(from, move, collect);
     std::sort(candidates.begin(), candidates.end());
 
-    ProxyPoints mover_points;
-    ConvexProxy mover = shape_ops(info.shape.type).proxy(info.shape, *scratch.store, mover_points);
-    mover.position = start;
-    mover.axes = axes;
+    SweptShape& mover = scratch.swept;
+    make_swept_shape(info.shape, *scratch.store, start, axes, mover);
     float first = 1.0f;
     for (const uint32_t j : candidates) {
       const BodyInfo& other_info = state.infos[j];
       const BodySim& other_sim = state.sims[j];
       const ShapeCastOutput hit =
-          shape_ops(other_info.shape.type)
-              .sweep(other_info.shape, *scratch.store, other_sim.position,
-                     mat3_from_quat(other_sim.rotation), mover, move, first);
+          sweep_against(other_info.shape, *scratch.store, other_sim.position,
+                        mat3_from_quat(other_sim.rotation), mover, move, first);
       // Shapes touching at the start are a contact's business, and so is
       // motion along or away from the surface: only a crossing counts.
       if (!hit.hit || hit.initially_overlapping || hit.fraction >= first) continue;

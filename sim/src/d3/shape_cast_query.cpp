@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Shape casts: a shape swept along a straight line against the world's
-// bodies. The broadphase (broadphase.h) gives the bodies whose bounds meet
-// the bounds of the whole sweep; each is swept exactly by conservative
+// bodies. The swept shape is convex or a compound (swept_shape.h). The
+// broadphase (broadphase.h) gives the bodies whose bounds the shape's
+// bounds meet on the way; each is swept exactly by conservative
 // advancement on GJK (gjk.h), in index order, so ties go to the lower
 // index whatever the trees' shapes.
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include "d3/query_filter.h"
 #include "d3/shape_ops.h"
 #include "d3/state_rules.h"
+#include "d3/swept_shape.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim {
@@ -24,8 +26,7 @@ constexpr float kMaxCastLength = 1e5f;
 
 struct CastSetup {
   Shape shape;
-  d3::ConvexProxy proxy;
-  d3::ProxyPoints storage;
+  d3::SweptShape swept;
   Vec3 translation;
   float length = 0.0f;
   d3::Aabb start_bounds;
@@ -34,13 +35,10 @@ struct CastSetup {
 Status prepare_cast(const GeometryStore& store, const Shape& shape, Vec3 position, Quat rotation,
                     Vec3 translation, CastSetup& c) {
   if (Status s = d3::check_shape(shape, store); !s.ok()) return s;
-  if (d3::shape_ops(shape.type).proxy == nullptr) {
-    return Status::Error(ErrorCode::kInvalidArgument,
-                         "only convex shapes can be swept (not a mesh or a height field)");
-  }
-  if (d3::shape_ops(shape.type).proxy == nullptr) {
-    return Status::Error(ErrorCode::kInvalidArgument,
-                         "only convex shapes can be swept (not a mesh or a height field)");
+  if (!d3::can_sweep(shape)) {
+    return Status::Error(
+        ErrorCode::kInvalidArgument,
+        "a mesh or a height field cannot be swept (convex shapes and compounds can)");
   }
   if (!is_finite(position) || !is_finite(rotation) || !is_finite(translation)) {
     return Status::Error(ErrorCode::kInvalidArgument,
@@ -59,11 +57,10 @@ Status prepare_cast(const GeometryStore& store, const Shape& shape, Vec3 positio
   Vec3 p;
   Quat r;
   d3::authored_to_mass(d3::mass_frame(c.shape, store), position, q, p, r);
-  c.proxy = d3::shape_ops(c.shape.type).proxy(c.shape, store, c.storage);
-  c.proxy.position = p;
-  c.proxy.axes = mat3_from_quat(r);
+  const Mat3 axes = mat3_from_quat(r);
+  d3::make_swept_shape(c.shape, store, p, axes, c.swept);
   c.translation = translation;
-  c.start_bounds = d3::shape_aabb(c.shape, p, c.proxy.axes);
+  c.start_bounds = d3::shape_aabb(c.shape, p, axes);
   return Status::Ok();
 }
 
@@ -83,9 +80,8 @@ void sweep(const WorldState& state, WorldScratch& scratch, const CastSetup& c,
     const BodyInfo& info = state.infos[i];
     const BodySim& sim = state.sims[i];
     const d3::ShapeCastOutput hit =
-        d3::shape_ops(info.shape.type)
-            .sweep(info.shape, *scratch.store, sim.position, mat3_from_quat(sim.rotation), c.proxy,
-                   c.translation, 1.0f);
+        d3::sweep_against(info.shape, *scratch.store, sim.position, mat3_from_quat(sim.rotation),
+                          c.swept, c.translation, 1.0f);
     if (!hit.hit) continue;
     visit(ShapeCastHit{BodyId{i, info.generation}, hit.fraction * c.length, hit.point, hit.normal});
   }

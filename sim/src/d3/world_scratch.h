@@ -13,6 +13,7 @@
 #include "d3/broadphase.h"
 #include "d3/contact_batches.h"
 #include "d3/manifold.h"
+#include "d3/swept_shape.h"
 #include "rewind/sim/body_event.h"
 #include "rewind/sim/contact_event.h"
 #include "rewind/sim/world3d.h"
@@ -161,6 +162,7 @@ class WorldScratch {
   d3::Broadphase broadphase;
   std::vector<BodyPair> pairs;
   std::vector<uint32_t> query_hits;  ///< one query's candidates
+  d3::SweptShape swept;              ///< continuous collision's mover
   // body frames (body_storage.h: body_axes)
   /// By body index: the rotation matrix of the body's pose at the start of
   /// this step, valid where axes_step[i] == step_serial. The broadphase

@@ -146,6 +146,35 @@ TEST(ShapeCast, AShapeThatStartsInsideHitsAtZero) {
   EXPECT_EQ(hit->distance, 0.0f);
 }
 
+// A compound sweeps by its children: a dumbbell (two 0.2 m balls 1 m
+// apart on a thin bar) dropped onto the ground stops when its lower ball
+// touches, and one swept toward a wall that only its near ball can reach
+// stops at that ball, whatever the authored origin.
+TEST(ShapeCast, ACompoundSweepsByItsChildren) {
+  World3D world;
+  test::add_ground(world);
+  const std::vector<CompoundChild> parts = {
+      {Shape::make_sphere(0.2f), {-0.5f, 0.0f, 0.0f}, {}},
+      {Shape::make_sphere(0.2f), {0.5f, 0.0f, 0.0f}, {}},
+      {Shape::make_capsule(0.05f, 0.3f), {0.0f, 0.0f, 0.0f}, {}}};
+  const GeometryId dumbbell = *world.geometry().add_compound(parts);
+  const Shape shape = Shape::make_compound(dumbbell);
+  // Tilted 90 degrees about z: the balls sit at y = +-0.5 about the origin.
+  const Quat upright = Quat{0.0f, 0.0f, 0.70710678f, 0.70710678f};
+  const auto down = cast(world, shape, {3.0f, 4.0f, 0.0f}, {0.0f, -10.0f, 0.0f}, upright);
+  ASSERT_TRUE(down.has_value());
+  // The lower ball's bottom starts at 4 - 0.5 - 0.2 = 3.3 m above y = 0.
+  EXPECT_NEAR(down->distance, 3.3f, 2e-3f);
+  EXPECT_NEAR(down->normal.y, 1.0f, 1e-3f);
+
+  const BodyId wall = test::add_box(world, {5.0f, 1.5f, 0.0f}, {0.1f, 0.3f, 2.0f});
+  const auto side = cast(world, shape, {0.0f, 1.5f, 0.0f}, {10.0f, 0.0f, 0.0f});
+  ASSERT_TRUE(side.has_value());
+  EXPECT_EQ(side->body, wall);
+  // The near ball's front is at 0.5 + 0.2 = 0.7 m; the wall's face at 4.9 m.
+  EXPECT_NEAR(side->distance, 4.2f, 2e-3f);
+}
+
 TEST(ShapeCast, RefusesBadArguments) {
   World3D world;
   test::add_ground(world);
@@ -174,6 +203,12 @@ TEST(ShapeCast, RefusesBadArguments) {
                 .code(),
             ErrorCode::kInvalidArgument);
   EXPECT_TRUE(all.empty());
+  // Meshes and height fields stand still to be struck; they are not swept.
+  const std::vector<Vec3> corners = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}};
+  const std::vector<uint32_t> tri = {0, 1, 2};
+  const GeometryId mesh = *world.geometry().add_mesh(corners, tri);
+  EXPECT_EQ(world.shape_cast(Shape::make_mesh(mesh), {}, {}, {0.0f, -1.0f, 0.0f}, {}, hit).code(),
+            ErrorCode::kInvalidArgument);
 }
 
 // Random boxes, capsules and spheres; random sweeps: the query (through the

@@ -77,10 +77,11 @@ struct BodyDef {
   /// kLockRotation* bits: world axes the body never turns about (its
   /// angular velocity about them stays zero, whatever pushes it), [0, 7].
   uint8_t lock_rotation = 0;
-  /// Continuous collision: after each step the body is swept along its
-  /// motion against every shape in its path and, if it would have crossed
-  /// one, moved back to the first touch (a bullet through a thin wall).
-  /// Dynamic bodies only; costs nothing for bodies that leave it off.
+  /// Continuous collision: after each step the body (a compound by each
+  /// of its children) is swept along the tick's translation, at its end
+  /// rotation, against every shape in its path and, if it would have
+  /// crossed one, moved back to the first touch (a bullet through a thin
+  /// wall). Dynamic bodies only; costs nothing for bodies that leave it off.
   bool continuous = false;
   /// Report this body's contacts in World3D::events() (a pair is reported
   /// when either body reports). Off for bodies whose contacts no game rule

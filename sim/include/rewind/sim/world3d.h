@@ -185,14 +185,15 @@ class World3D {
   /// exactly; they change no state.
   Status overlap(const Shape& shape, Vec3 position, Quat rotation, const QueryFilter& filter,
                  std::vector<BodyId>& out) const;
-  /// Sweeps `shape` from `position`, `rotation` (its authored frame, as a
-  /// body of it would be placed) along `translation` (m) and reports the
-  /// first body it touches, or nullopt in `out` when none is in the way;
-  /// ties go to the lower index. A body the shape starts in touching or
-  /// overlapping is hit at distance 0. kInvalidArgument, with `out` empty,
-  /// for a shape the body rule refuses or a non-finite or zero pose or
-  /// translation. Sweeps through the query trees (the bounds of the whole
-  /// sweep); allocates nothing once warm.
+  /// Sweeps `shape` (a sphere, box, capsule, hull or compound) from
+  /// `position`, `rotation` (its authored frame, as a body of it would be
+  /// placed) along `translation` (m) and reports the first body it
+  /// touches, or nullopt in `out` when none is in the way; ties go to the
+  /// lower index. A body the shape starts in touching or overlapping is
+  /// hit at distance 0. kInvalidArgument, with `out` empty, for a mesh or
+  /// height field, a shape the body rule refuses, or a non-finite or zero
+  /// pose or translation. Candidates come from the broadphase (bounds the
+  /// shape's bounds meet on the way); allocates nothing once warm.
   Status shape_cast(const Shape& shape, Vec3 position, Quat rotation, Vec3 translation,
                     const QueryFilter& filter, std::optional<ShapeCastHit>& out) const;
   /// Every body the sweep touches, nearest first (ties by index), each at
