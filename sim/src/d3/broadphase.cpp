@@ -286,18 +286,25 @@ void Broadphase::sort_pairs(std::vector<BodyPair>& pairs, uint32_t body_count) {
   pairs.swap(sorted);
 }
 
-// The query side: the static and sleeping trees are the step's own (made
-// current with the flags as they stand), and the awake bodies get a tree
-// over their exact bounds at these poses. Every simulated body is in
-// exactly one of the three, so a query never meets a body twice.
+// The query side: the static and sleeping trees are the step's own, and the
+// bodies in neither get a tree over their exact bounds at these poses, so
+// every simulated body is in exactly one of the three and a query never
+// meets a body twice. All three are made current once per pose serial: a
+// body cannot move between steps without an edit (which rebuilds them), so
+// one woken by a velocity between steps is still exactly where its
+// sleeping leaf says, and a world queried many times per step scans its
+// bodies once.
 void Broadphase::prepare_queries(const WorldState& state, uint64_t pose_serial) {
+  if (query_serial_ == pose_serial && !edited_) return;
   update_sleeping_tree(state);
-  if (query_serial_ == pose_serial) return;
   build_bodies_.clear();
   build_boxes_.clear();
   for (uint32_t i = 0; i < state.infos.size(); ++i) {
     const BodyInfo& info = state.infos[i];
-    if (!is_simulated(info) || !is_active(info)) continue;
+    if (!is_simulated(info) || info.kind == BodyKind::kStatic ||
+        sleeping_proxy_[i] != AabbTree::kNull) {
+      continue;
+    }
     build_bodies_.push_back(i);
     build_boxes_.push_back(exact_bounds(state, i));
   }

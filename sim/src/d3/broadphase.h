@@ -56,8 +56,8 @@ class Broadphase {
                   std::vector<BodyPair>& out);
 
   /// Readies the query side for the poses in `state`. `pose_serial`
-  /// names those poses (the step they were reached in): the awake tree is
-  /// rebuilt only when it changes, or after an edit or forget_poses().
+  /// names those poses (the step they were reached in): nothing is done
+  /// until it changes, or after an edit or forget_poses().
   void prepare_queries(const WorldState& state, uint64_t pose_serial);
   /// The awake bodies moved without a new serial (mid-step): the next
   /// prepare_queries() rebuilds the awake tree.
