@@ -20,7 +20,7 @@ packages=(
   # clang: second compiler of the matrix; its runtime for -fsanitize=fuzzer
   clang libclang-rt-14-dev clang-format
   # libraries
-  libasio-dev libprotobuf-dev protobuf-compiler libxxhash-dev
+  libasio-dev libprotobuf-dev protobuf-compiler libxxhash-dev libsodium-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   # peer engine for the side-by-side benchmarks (bench/ only) and the charts
   libbullet-dev gnuplot-nox

@@ -18,3 +18,8 @@ int fuzz_replay_reader_one(const uint8_t* data, size_t size);
 /// Serialized simulations (resync snapshots, desync dumps):
 /// Simulation::deserialize, then round trip and step what it accepts.
 int fuzz_sim_snapshot_one(const uint8_t* data, size_t size);
+
+/// Secure-connection packets and tokens: read_connect_token, from_hex, the
+/// server's request and response handlers, the client's challenge handler
+/// and a session's payload opener; none may accept what lacks the keys.
+int fuzz_secure_packet_one(const uint8_t* data, size_t size);
