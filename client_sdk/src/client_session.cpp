@@ -51,8 +51,21 @@ Result<std::unique_ptr<ClientSession>> ClientSession::create(asio::io_context& i
   }
   auto socket = net::UdpEndpoint::open(io, address.is_v6() ? "::" : "0.0.0.0", 0);
   if (!socket.ok()) return socket.status();
-  return std::make_unique<ClientSession>(io, config, std::move(*socket),
-                                         asio::ip::udp::endpoint(address, config.server_port));
+  auto session = std::make_unique<ClientSession>(
+      io, config, std::move(*socket), asio::ip::udp::endpoint(address, config.server_port));
+  if (Status status = use_connect_token(*session, config); !status.ok()) return status;
+  return session;
+}
+
+Status ClientSession::use_connect_token(ClientSession& session, const ClientConfig& config) {
+  if (config.connect_token.empty()) return Status::Ok();
+  Result<net::ConnectToken> token = net::read_connect_token(config.connect_token);
+  if (!token.ok()) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "bad connect token: " + token.status().message());
+  }
+  session.handshake_.emplace(*token);
+  return Status::Ok();
 }
 
 Result<std::unique_ptr<ClientSession>> ClientSession::create_detached(const ClientConfig& config,
@@ -63,7 +76,9 @@ Result<std::unique_ptr<ClientSession>> ClientSession::create_detached(const Clie
                          "network faults are injected on a socket; a detached session has none");
   }
   if (!send) return Status::Error(ErrorCode::kInvalidArgument, "a detached session needs a sender");
-  return std::make_unique<ClientSession>(config, std::move(send));
+  auto session = std::make_unique<ClientSession>(config, std::move(send));
+  if (Status status = use_connect_token(*session, config); !status.ok()) return status;
+  return session;
 }
 
 ClientSession::ClientSession(const ClientConfig& config, SendFn send)
@@ -166,10 +181,15 @@ int ClientSession::update(TimePoint now) {
       }
       if (now - last_join_sent_ >= kJoinResend) {
         last_join_sent_ = now;
+        if (handshake_ && !handshake_->session()) {
+          transmit(handshake_->request());  // until a challenge comes back
+          return 0;
+        }
+        // Until the server speaks, it may have missed our response.
+        if (handshake_ && !secure_confirmed_) transmit(handshake_response_);
         v1::Envelope envelope;
         v1::JoinRequest* request = envelope.mutable_join_request();
         request->set_game(config_.game);
-        request->set_token(std::string(config_.join_token.begin(), config_.join_token.end()));
         request->set_client_name(config_.name.substr(0, net::kMaxClientNameBytes));
         request->set_nonce(nonce_);
         send(envelope, now);
@@ -271,6 +291,27 @@ void ClientSession::on_datagram(std::span<const uint8_t> bytes,
 
 void ClientSession::receive(std::span<const uint8_t> datagram, TimePoint now) {
   ++stats_.packets_received;
+  if (handshake_) {
+    // A secure server: a challenge answers our request; anything else must
+    // be a payload sealed for our session.
+    const std::optional<net::SecurePacket> kind = net::secure_packet_kind(datagram);
+    if (kind == net::SecurePacket::kChallenge && phase_ == Phase::kJoining) {
+      if (!handshake_->on_challenge(datagram, handshake_response_).ok()) {
+        ++stats_.packets_rejected;
+        return;
+      }
+      transmit(handshake_response_);
+      last_join_sent_ = now - kJoinResend;  // the join goes out on the next update
+      return;
+    }
+    if (kind != net::SecurePacket::kPayload || !handshake_->session() ||
+        !handshake_->session()->open(datagram, opened_buffer_).ok()) {
+      ++stats_.packets_rejected;
+      return;
+    }
+    secure_confirmed_ = true;
+    datagram = opened_buffer_;
+  }
   auto decoded = net::decode_envelope(datagram);
   if (!decoded.ok()) {
     ++stats_.packets_rejected;
@@ -521,13 +562,23 @@ void ClientSession::verify_finals(TimePoint now) {
 void ClientSession::send(v1::Envelope& envelope, TimePoint now) {
   connection_.stamp(envelope, now);
   if (!net::encode_envelope(envelope, encode_buffer_).ok()) return;
+  if (!handshake_) {
+    transmit(encode_buffer_);
+    return;
+  }
+  if (!handshake_->session()) return;  // nothing leaves in the clear
+  handshake_->session()->seal(encode_buffer_, sealed_buffer_);
+  transmit(sealed_buffer_);
+}
+
+void ClientSession::transmit(std::span<const uint8_t> datagram) {
   ++stats_.packets_sent;
   if (send_) {
-    send_(encode_buffer_);
+    send_(datagram);
   } else if (outbound_faults_) {
-    outbound_faults_->send(encode_buffer_, server_);
+    outbound_faults_->send(datagram, server_);
   } else {
-    socket_->send_to(encode_buffer_, server_);
+    socket_->send_to(datagram, server_);
   }
 }
 

@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
           window = config.match.window_ticks, ticks = config.match.max_ticks,
           seed = static_cast<int64_t>(config.match.seed), keyframe = config.match.keyframe_interval;
   double join_timeout = config.match.join_timeout_s, peer_timeout = config.match.peer_timeout_s;
-  std::string replay, desync_dir, token_secret, match_id = config.match.match_id;
+  std::string replay, desync_dir, key_file, match_id = config.match.match_id;
   bool summary_json = false;
   std::string port_file;
 
@@ -37,8 +37,10 @@ int main(int argc, char** argv) {
                 "ticks between replay keyframes (0 = none)");
   flags.add_string("desync-dir", &desync_dir,
                    "store desync reports in this directory (empty = count only)");
-  flags.add_string("token-secret", &token_secret, "require join tokens signed with this secret");
-  flags.add_string("match-id", &match_id, "match id bound into join tokens");
+  flags.add_string("key-file", &key_file,
+                   "server key shared with the token backend (rewind-token keygen): secure "
+                   "connections only; without it the server is TOKENLESS (local tests only)");
+  flags.add_string("match-id", &match_id, "match id bound into connect tokens");
   flags.add_double("join-timeout", &join_timeout, 0.1, 86400, "seconds to wait for all players");
   flags.add_double("peer-timeout", &peer_timeout, 0.1, 3600,
                    "seconds of silence before a player is dropped");
@@ -64,7 +66,19 @@ int main(int argc, char** argv) {
   config.match.replay_path = replay;
   config.match.keyframe_interval = static_cast<int32_t>(keyframe);
   config.match.desync_dir = desync_dir;
-  config.match.token_secret = token_secret;
+  if (!key_file.empty()) {
+    std::FILE* file = std::fopen(key_file.c_str(), "r");
+    char text[130] = {};
+    const size_t read = file != nullptr ? std::fread(text, 1, sizeof text - 1, file) : 0;
+    if (file != nullptr) std::fclose(file);
+    auto key = rwd::net::key_from_hex(std::string_view(text, read));
+    if (file == nullptr || !key.ok()) {
+      std::fprintf(stderr, "rewind-server: --key-file %s: %s\n", key_file.c_str(),
+                   file == nullptr ? "cannot read it" : key.status().message().c_str());
+      return rwd::cli::kExitUsage;
+    }
+    config.server_key = *key;
+  }
   config.match.match_id = match_id;
   config.match.join_timeout_s = join_timeout;
   config.match.peer_timeout_s = peer_timeout;

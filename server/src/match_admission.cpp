@@ -6,7 +6,6 @@
 #include "host_log.h"
 #include "rewind/net/connection_id.h"
 #include "rewind/net/envelope_codec.h"
-#include "rewind/net/join_token.h"
 #include "rewind/server/match_host.h"
 
 namespace rwd::server {
@@ -17,7 +16,8 @@ using detail::printable;
 
 }  // namespace
 
-void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, TimePoint now) {
+void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, TimePoint now,
+                            const Admission* who) {
   const v1::JoinRequest& request = envelope.join_request();
   auto reject = [&](const std::string& reason) {
     ++stats_.rejected_packets;
@@ -58,24 +58,25 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
     return;
   }
   std::optional<uint32_t> slot;
-  if (!config_.token_secret.empty()) {
-    const auto now_unix = std::chrono::duration_cast<std::chrono::seconds>(
-                              std::chrono::system_clock::now().time_since_epoch())
-                              .count();
-    const std::string& token = request.token();
-    auto verified = net::verify_join_token(
-        config_.token_secret,
-        std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(token.data()), token.size()),
-        config_.match_id, static_cast<int64_t>(now_unix));
-    if (!verified.ok()) {
-      reject("join token refused: " + verified.status().message());
+  if (config_.secure) {
+    // The slot is the one the sender's token names (the gateway checked
+    // the token and the keys). A client restarted in the lobby comes back
+    // from a new address with the same token and takes its slot again;
+    // another client's token for a held slot is refused.
+    if (who->slot >= config_.players) {
+      reject("player slot " + std::to_string(who->slot) + " does not exist");
       return;
     }
-    if (*verified >= config_.players || peers_[*verified].joined) {
-      reject("player slot " + std::to_string(*verified) + " is not available");
+    const Peer& held = peers_[who->slot];
+    if (held.joined && held.client_id != who->client_id) {
+      reject("player slot " + std::to_string(who->slot) + " is held by another client");
       return;
     }
-    slot = *verified;
+    if (held.joined && phase_ != Phase::kLobby) {
+      reject("match already running");
+      return;
+    }
+    slot = who->slot;
   } else if (phase_ == Phase::kLobby) {
     for (uint32_t p = 0; p < peers_.size() && !slot; ++p) {
       if (!peers_[p].joined) slot = p;
@@ -90,17 +91,20 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
     return;
   }
   Peer& peer = peers_[*slot];
+  const bool rejoin = peer.joined;
   const uint64_t id = ids_.next();
   peer.joined = true;
   peer.connected = true;
   peer.endpoint = from;
   peer.join_nonce = request.nonce();
+  peer.client_id = who != nullptr ? who->client_id : 0;
   peer.connection.emplace(now, id);
   peer.last_receive = now;
   peer.name = request.client_name();
-  ++stats_.players_joined;
-  log_line("player " + std::to_string(*slot) + " joined from " + from.address().to_string() + ":" +
-           std::to_string(from.port()) + " (" + printable(peer.name) + ")");
+  if (!rejoin) ++stats_.players_joined;
+  log_line("player " + std::to_string(*slot) + (rejoin ? " rejoined from " : " joined from ") +
+           from.address().to_string() + ":" + std::to_string(from.port()) + " (" +
+           printable(peer.name) + ")");
   accept(*slot);
   const bool full =
       std::all_of(peers_.begin(), peers_.end(), [](const Peer& p) { return p.joined; });

@@ -10,7 +10,6 @@
 #include "host_log.h"
 #include "rewind/net/connection_id.h"
 #include "rewind/net/envelope_codec.h"
-#include "rewind/net/join_token.h"
 #include "rewind/proto/input_wire.h"
 #include "rewind/replay/replay_header.h"
 
@@ -115,10 +114,15 @@ MatchHost::Peer* MatchHost::find_peer(uint64_t connection_id, uint32_t* player) 
   return nullptr;
 }
 
-void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from, TimePoint now) {
+void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from, TimePoint now,
+                            const Admission* who) {
   ++stats_.packets_in;
   stats_.bytes_in += bytes.size();
   if (phase_ == Phase::kEnded) return;
+  if (config_.secure && who == nullptr) {
+    ++stats_.rejected_packets;
+    return;
+  }
   auto decoded = net::decode_envelope(bytes);
   if (!decoded.ok()) {
     ++stats_.rejected_packets;
@@ -126,7 +130,7 @@ void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from
   }
   const v1::Envelope& envelope = *decoded;
   if (envelope.has_join_request()) {
-    handle_join(envelope, from, now);
+    handle_join(envelope, from, now, who);
     return;
   }
   uint32_t player = 0;

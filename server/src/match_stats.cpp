@@ -32,7 +32,10 @@ std::string MatchStats::to_json() const {
       << ",\"bytes_in\":" << bytes_in << ",\"bytes_out\":" << bytes_out
       << ",\"players_joined\":" << players_joined << ",\"last_final_tick\":" << last_final_tick
       << ",\"final_checksum\":\"" << hex64(final_checksum) << "\",\"duration_s\":" << duration_s
-      << ",\"end_reason\":\"" << end_reason << "\"}";
+      << ",\"end_reason\":\"" << end_reason << "\",\"secure\":" << (secure ? "true" : "false")
+      << ",\"secure_challenges\":" << secure_challenges
+      << ",\"secure_sessions\":" << secure_sessions << ",\"secure_refused\":" << secure_refused
+      << ",\"secure_dropped\":" << secure_dropped << "}";
   return out.str();
 }
 
@@ -48,6 +51,12 @@ std::string MatchStats::to_text() const {
       << " not written), resyncs sent " << resyncs_sent << " (" << resync_snapshot_failures
       << " snapshots did not load here, " << resyncs_refused << " refused by clients)"
       << ", keyframes that did not load " << keyframe_load_failures;
+  if (secure) {
+    out << "; secure: " << secure_challenges << " challenges, " << secure_sessions << " sessions, "
+        << secure_refused << " handshakes refused, " << secure_dropped << " datagrams dropped";
+  } else {
+    out << "; tokenless";
+  }
   return out.str();
 }
 

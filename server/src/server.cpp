@@ -1,27 +1,64 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/server/server.h"
 
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 
 namespace rwd::server {
 
-Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
+namespace {
+
+int64_t unix_seconds() {
+  return std::chrono::duration_cast<std::chrono::seconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Server>> Server::create(const ServerConfig& given) {
+  ServerConfig config = given;
+  config.match.secure = config.server_key.has_value();
   if (Status status = config.match.validate(); !status.ok()) return status;
   auto io = std::make_unique<asio::io_context>(1);
   auto socket = net::UdpEndpoint::open(*io, config.bind_address, config.port);
   if (!socket.ok()) return socket.status();
   auto server = std::make_unique<Server>(config, std::move(io), std::move(*socket));
   Server* self = server.get();
+  if (config.server_key) {
+    server->gateway_ = std::make_unique<SecureGateway>(
+        *config.server_key, config.match.match_id, config.match.players,
+        [self](const Endpoint& to, std::span<const uint8_t> bytes) {
+          self->socket_->send_to(bytes, to);
+        });
+  }
   auto host = MatchHost::create(
       config.match,
       [self](const Endpoint& to, std::span<const uint8_t> bytes) {
-        self->socket_->send_to(bytes, to);
+        if (self->gateway_) {
+          self->gateway_->send(to, bytes);
+        } else {
+          self->socket_->send_to(bytes, to);
+        }
       },
       net::SteadyClock::now());
   if (!host.ok()) return host.status();
   server->host_ = std::move(*host);
   return server;
+}
+
+MatchStats Server::stats() const {
+  MatchStats stats = host_->stats();
+  if (gateway_) {
+    const SecureGateway::Stats& g = gateway_->stats();
+    stats.secure = true;
+    stats.secure_challenges = g.challenges;
+    stats.secure_sessions = g.connects;
+    stats.secure_refused = g.refused;
+    stats.secure_dropped = g.dropped;
+  }
+  return stats;
 }
 
 Server::Server(const ServerConfig& config, std::unique_ptr<asio::io_context> io,
@@ -35,17 +72,28 @@ Server::Server(const ServerConfig& config, std::unique_ptr<asio::io_context> io,
 
 void Server::run() {
   socket_->start_receiving([this](std::span<const uint8_t> bytes, const Endpoint& from) {
-    host_->on_datagram(bytes, from, net::SteadyClock::now());
+    const TimePoint now = net::SteadyClock::now();
+    if (!gateway_) {
+      host_->on_datagram(bytes, from, now);
+      return;
+    }
+    gateway_->on_datagram(
+        bytes, from, unix_seconds(),
+        [this, now](std::span<const uint8_t> envelope, const Endpoint& sender,
+                    const Admission& who) { host_->on_datagram(envelope, sender, now, &who); });
   });
   signals_.async_wait([this](const std::error_code& error, int signal) {
     if (error) return;
     host_->end(std::string("stopped by signal ") + (signal == SIGINT ? "SIGINT" : "SIGTERM"),
                net::SteadyClock::now());
   });
-  std::fprintf(stderr, "[rewind-server] hosting '%s' for %u players on %s:%u at %u Hz, window %d\n",
+  std::fprintf(stderr,
+               "[rewind-server] hosting '%s' for %u players on %s:%u at %u Hz, window %d, %s\n",
                config_.match.game.c_str(), config_.match.players, config_.bind_address.c_str(),
                static_cast<unsigned>(socket_->local_port()), config_.match.tick_rate_hz,
-               config_.match.window_ticks);
+               config_.match.window_ticks,
+               gateway_ ? "secure connections (connect tokens)"
+                        : "TOKENLESS (any address takes a free slot: local tests only)");
   next_tick_ = net::SteadyClock::now() + period_;
   schedule_tick();
   io_->run();

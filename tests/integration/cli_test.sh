@@ -35,4 +35,13 @@ check 64 "--script: expected random, circle or idle" rewind-bots --script dance
 check 64 "--corrupt-bot and --corrupt-at-tick go together" rewind-bots --corrupt-bot 1
 check 64 "usage" rewind-replay
 check 2 "" rewind-replay verify /nonexistent/file.rwr
+check 0 "keygen" rewind-token --help
+check 64 "unknown command 'frobnicate'" rewind-token frobnicate
+check 64 "--slot: 99 is outside [0, 63]" rewind-token mint --slot 99
+check 64 "are required" rewind-token mint --match m
+check 1 "cannot read /nonexistent/key" rewind-token mint --key-file /nonexistent/key --match m --slot 0 --client-id 1
+check 64 "--key-file /nonexistent/key: cannot read it" rewind-server --key-file /nonexistent/key --port 0
+check 64 "connect token 0: not a hex digit" rewind-bots --token nothex
+check 64 "connect token 0: a connect token is" rewind-bots --token 00ff
+check 64 "1 connect tokens for 4 bots" rewind-bots --bots 4 --token "$("$bin/rewind-token" mint --key-file <(echo 0000000000000000000000000000000000000000000000000000000000000000) --match m --slot 0 --client-id 1)"
 [ "$failures" = 0 ] && echo "PASS: cli" || exit 1

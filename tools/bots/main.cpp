@@ -5,12 +5,14 @@
 #include <asio/ip/udp.hpp>
 #include <asio/steady_timer.hpp>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "rewind/cli/flag_parser.h"
 #include "rewind/client/client_session.h"
+#include "rewind/net/connect_token.h"
 #include "rewind/tools/bot_script.h"
 
 namespace {
@@ -71,6 +73,8 @@ int main(int argc, char** argv) {
   int64_t latency_ms = 0, jitter_ms = 0;
   double loss = 0, duplicate = 0, reorder = 0, duration_s = 600;
   bool summary_json = false;
+  std::string token_file;
+  std::vector<std::string> tokens;
 
   rwd::cli::FlagParser flags(
       "rewind-bots", "rewind-bots [flags]",
@@ -95,6 +99,10 @@ int main(int argc, char** argv) {
   flags.add_int("corrupt-at-tick", &corrupt_at, -1, INT32_MAX,
                 "test: tick at which --corrupt-bot corrupts");
   flags.add_bool("summary-json", &summary_json, "print one JSON summary line on stdout at exit");
+  flags.add_string("token-file", &token_file,
+                   "connect tokens for a secure server, one hex line per bot (rewind-token mint)");
+  flags.add_string_list("token", &tokens,
+                        "a connect token (hex) for the next bot; repeat once per bot");
 
   if (rwd::Status status = flags.parse(argc, argv); !status.ok()) {
     std::fprintf(stderr, "rewind-bots: %s\n", status.message().c_str());
@@ -121,6 +129,35 @@ int main(int argc, char** argv) {
     return rwd::cli::kExitUsage;
   }
 
+  if (!token_file.empty()) {
+    std::ifstream in(token_file);
+    if (!in) {
+      std::fprintf(stderr, "rewind-bots: --token-file: cannot read %s\n", token_file.c_str());
+      return rwd::cli::kExitUsage;
+    }
+    for (std::string line; std::getline(in, line);) {
+      if (line.find_first_not_of(" \t\r") != std::string::npos) tokens.push_back(line);
+    }
+  }
+  std::vector<std::vector<uint8_t>> connect_tokens;
+  for (size_t i = 0; i < tokens.size(); ++i) {
+    auto bytes = rwd::net::from_hex(tokens[i]);
+    if (bytes.ok() && !rwd::net::read_connect_token(*bytes).ok()) {
+      bytes = rwd::net::read_connect_token(*bytes).status();
+    }
+    if (!bytes.ok()) {
+      std::fprintf(stderr, "rewind-bots: connect token %zu: %s\n", i,
+                   bytes.status().message().c_str());
+      return rwd::cli::kExitUsage;
+    }
+    connect_tokens.push_back(std::move(*bytes));
+  }
+  if (!connect_tokens.empty() && connect_tokens.size() != static_cast<size_t>(bots)) {
+    std::fprintf(stderr, "rewind-bots: %zu connect tokens for %lld bots (one each)\n",
+                 connect_tokens.size(), static_cast<long long>(bots));
+    return rwd::cli::kExitUsage;
+  }
+
   asio::io_context io(1);
   std::string address, resolve_error;
   if (!resolve(io, host, &address, &resolve_error)) {
@@ -137,6 +174,7 @@ int main(int argc, char** argv) {
     config.game = game;
     config.name = "bot-" + std::to_string(i);
     config.snapshot_ticks = static_cast<int32_t>(snapshot_ticks);
+    if (!connect_tokens.empty()) config.connect_token = connect_tokens[i];
     if (latency_ms || jitter_ms || loss > 0 || duplicate > 0 || reorder > 0) {
       rwd::net::FaultConfig faults;
       faults.latency_ms = static_cast<uint32_t>(latency_ms);

@@ -105,8 +105,6 @@ Status check_payload(const Envelope& e) {
       const auto& m = e.join_request();
       if (Status s = check_string("join_request.game", m.game(), kMaxStringBytes); !s.ok())
         return s;
-      if (Status s = check_string("join_request.token", m.token(), kMaxTokenBytes); !s.ok())
-        return s;
       return check_string("join_request.client_name", m.client_name(), kMaxClientNameBytes);
     }
     case Envelope::kJoinAccept: {

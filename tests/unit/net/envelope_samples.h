@@ -34,7 +34,6 @@ inline std::vector<v1::Envelope> sample_envelopes() {
     v1::Envelope e = header(0);
     auto* m = e.mutable_join_request();
     m->set_game("crates");
-    m->set_token(std::string(37, '\x7f'));
     m->set_client_name("bot-17");
     m->set_nonce(0xDEAD'BEEF'CAFE'F00Dull);
     out.push_back(e);

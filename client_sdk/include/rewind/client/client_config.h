@@ -13,13 +13,16 @@ namespace rwd::client {
 struct ClientConfig {
   std::string server_address = "127.0.0.1";  ///< IPv4 or IPv6 literal
   uint16_t server_port = 7777;
-  std::string game = "crates";      ///< must match the server's game
-  std::string name = "client";      ///< shown in server logs, <= 64 bytes
-  std::vector<uint8_t> join_token;  ///< required when the server has a token secret
-  int32_t snapshot_ticks = 96;      ///< rollback depth; must exceed lead + window + RTT in ticks
-  double join_timeout_s = 10.0;     ///< give up joining after this long
-  double server_timeout_s = 5.0;    ///< silence after which the server is considered gone
-  double target_lead_ticks = 2.0;   ///< how early our inputs should reach the server
+  std::string game = "crates";  ///< must match the server's game
+  std::string name = "client";  ///< shown in server logs, <= 64 bytes
+  /// A serialized connect token (rewind-token mint; read_connect_token):
+  /// required by a secure server, which names the slot by it; every
+  /// datagram is then sealed. Empty: the tokenless mode of local tests.
+  std::vector<uint8_t> connect_token;
+  int32_t snapshot_ticks = 96;     ///< rollback depth; must exceed lead + window + RTT in ticks
+  double join_timeout_s = 10.0;    ///< give up joining after this long
+  double server_timeout_s = 5.0;   ///< silence after which the server is considered gone
+  double target_lead_ticks = 2.0;  ///< how early our inputs should reach the server
   /// Network faults applied to both directions (tests and load tests).
   std::optional<net::FaultConfig> faults;
   /// Test hook: perturb the state right after simulating this tick, every

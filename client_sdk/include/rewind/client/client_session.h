@@ -29,6 +29,7 @@
 #include "rewind/net/connection.h"
 #include "rewind/net/fault_injector.h"
 #include "rewind/net/rollback_session.h"
+#include "rewind/net/secure_channel.h"
 #include "rewind/net/time_sync.h"
 #include "rewind/net/udp_endpoint.h"
 #include "rewind/v1/envelope.pb.h"
@@ -108,6 +109,10 @@ class ClientSession {
   void send_inputs(TimePoint now);
   void send_desync_report(TimePoint now);
   void send(v1::Envelope& envelope, TimePoint now);
+  /// Puts a datagram on the wire (or the detached sender, or the faults).
+  void transmit(std::span<const uint8_t> datagram);
+  /// Reads config.connect_token into the session's handshake.
+  static Status use_connect_token(ClientSession& session, const ClientConfig& config);
   void emit(ClientEvent event) { events_.push_back(std::move(event)); }
   double period_s() const { return 1.0 / tick_rate_hz_; }
 
@@ -167,6 +172,13 @@ class ClientSession {
   std::deque<ClientEvent> events_;
   ClientStats stats_;
   std::vector<uint8_t> encode_buffer_;
+  // Secure connections (ClientConfig::connect_token): the handshake, its
+  // response (resent with the join until the server speaks), and buffers.
+  std::optional<net::ClientHandshake> handshake_;
+  std::vector<uint8_t> handshake_response_;
+  bool secure_confirmed_ = false;
+  std::vector<uint8_t> sealed_buffer_;
+  std::vector<uint8_t> opened_buffer_;
   std::vector<uint8_t> state_buffer_;
 };
 

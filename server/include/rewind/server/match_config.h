@@ -15,9 +15,12 @@ struct MatchConfig {
   int32_t window_ticks = 8;        ///< finalization deadline, [1, 120]
   int64_t max_ticks = 0;           ///< end after this many final ticks; 0 = until stopped
   uint64_t seed = 1;               ///< the game's RNG seed
-  std::string match_id = "match";  ///< bound into join tokens
-  std::string token_secret;        ///< empty: no join tokens required
-  std::string replay_path;         ///< empty: no replay file
+  std::string match_id = "match";  ///< bound into connect tokens
+  /// Connections come through a SecureGateway (connect tokens, sealed
+  /// packets) and every join names its slot by its token. False: the
+  /// tokenless mode for local tests, where any address takes a free slot.
+  bool secure = false;
+  std::string replay_path;  ///< empty: no replay file
   bool replay_overwrite = true;
   int32_t keyframe_interval = 300;  ///< ticks between replay keyframes, 0 = none
   std::string desync_dir;           ///< empty: desync reports are counted, not stored

@@ -22,6 +22,7 @@
 #include "rewind/replay/replay_writer.h"
 #include "rewind/server/match_config.h"
 #include "rewind/server/match_stats.h"
+#include "rewind/server/secure_gateway.h"
 #include "rewind/v1/envelope.pb.h"
 
 namespace rwd::server {
@@ -43,8 +44,11 @@ class MatchHost {
 
   /// Handles one received datagram. Anything malformed, spoofed or not
   /// allowed is counted and dropped; nothing a client sends can stop the
-  /// match or act for another player.
-  void on_datagram(std::span<const uint8_t> bytes, const Endpoint& from, TimePoint now);
+  /// match or act for another player. In secure mode (MatchConfig::secure)
+  /// `who` is what the sender's connect token names (SecureGateway), and a
+  /// datagram without it is dropped.
+  void on_datagram(std::span<const uint8_t> bytes, const Endpoint& from, TimePoint now,
+                   const Admission* who = nullptr);
   /// Runs one tick of the loop: re-simulate on late input, finalize, step,
   /// broadcast. Call at the tick's scheduled time.
   void on_tick(TimePoint now);
@@ -88,6 +92,7 @@ class MatchHost {
     bool connected = false;
     Endpoint endpoint;
     uint64_t join_nonce = 0;
+    uint64_t client_id = 0;  // secure mode: the client its token names
     std::optional<net::Connection> connection;
     Tick final_seen = kNoTick;          // newest final tick the client has acknowledged
     Tick final_sent = kNoTick;          // newest final tick sent at least once
@@ -109,7 +114,8 @@ class MatchHost {
     uint32_t reports_stored = 0;
   };
 
-  void handle_join(const v1::Envelope& envelope, const Endpoint& from, TimePoint now);
+  void handle_join(const v1::Envelope& envelope, const Endpoint& from, TimePoint now,
+                   const Admission* who);
   void handle_input(Peer& peer, uint32_t player, const v1::InputFrame& frame, TimePoint now);
   void handle_desync(Peer& peer, uint32_t player, const v1::DesyncReport& report, TimePoint now);
   void store_desync_report(uint32_t player, const DesyncAssembly& assembly,

@@ -40,6 +40,16 @@ struct MatchStats {
   uint64_t final_checksum = 0;  ///< checksum of the last final tick
   Tick last_final_tick = kNoTick;
   uint32_t players_joined = 0;
+  /// Secure connections (zero in tokenless mode): requests answered with
+  /// a challenge, sessions opened, handshake packets refused (bad, expired
+  /// or foreign tokens, responses from the wrong address or without the
+  /// keys) and datagrams dropped before the match saw them (payloads that
+  /// did not authenticate or replayed ones, anything not a secure packet).
+  bool secure = false;
+  uint64_t secure_challenges = 0;
+  uint64_t secure_sessions = 0;
+  uint64_t secure_refused = 0;
+  uint64_t secure_dropped = 0;
   double duration_s = 0.0;
   std::string end_reason;
 

@@ -11,6 +11,7 @@
 
 #include "rewind/net/udp_endpoint.h"
 #include "rewind/server/match_host.h"
+#include "rewind/server/secure_gateway.h"
 
 namespace rwd::server {
 
@@ -18,6 +19,9 @@ struct ServerConfig {
   MatchConfig match;
   std::string bind_address = "0.0.0.0";
   uint16_t port = 7777;
+  /// The key shared with the match backend that mints connect tokens
+  /// (rewind-token). Set: secure connections only. Empty: tokenless.
+  std::optional<net::Key> server_key;
 };
 
 class Server {
@@ -27,7 +31,8 @@ class Server {
   static Result<std::unique_ptr<Server>> create(const ServerConfig& config);
   /// Runs until the match ends (tick budget, lobby timeout, SIGINT/SIGTERM).
   void run();
-  MatchStats stats() const { return host_->stats(); }
+  /// The match's counters, with the secure gateway's folded in.
+  MatchStats stats() const;
   uint16_t port() const { return socket_->local_port(); }
 
   Server(const ServerConfig& config, std::unique_ptr<asio::io_context> io,
@@ -40,6 +45,7 @@ class Server {
   ServerConfig config_;
   std::unique_ptr<asio::io_context> io_;
   std::optional<net::UdpEndpoint> socket_;
+  std::unique_ptr<SecureGateway> gateway_;  ///< null in tokenless mode
   std::unique_ptr<MatchHost> host_;
   asio::steady_timer timer_;
   asio::signal_set signals_;

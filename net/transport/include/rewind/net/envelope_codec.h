@@ -23,7 +23,6 @@ inline constexpr size_t kMaxFinalTicksPerPacket = 64;       ///< FinalTicks.tick
 inline constexpr uint32_t kMaxPlayerSlots = 64;             ///< substituted_mask has 64 bits
 inline constexpr size_t kMaxStringBytes = 256;              ///< any string field
 inline constexpr size_t kMaxClientNameBytes = 64;           ///< JoinRequest.client_name
-inline constexpr size_t kMaxTokenBytes = 256;               ///< JoinRequest.token
 inline constexpr size_t kMaxChunkBytes = 1100;              ///< DesyncReport / ResyncChunk chunk
 inline constexpr uint32_t kMaxDesyncChunks = 256;           ///< DesyncReport.chunk_count
 inline constexpr uint32_t kMaxResyncChunks = 1024;          ///< ResyncChunk.chunk_count
