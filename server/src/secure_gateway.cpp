@@ -55,6 +55,7 @@ void SecureGateway::on_datagram(std::span<const uint8_t> bytes, const Endpoint& 
         ++stats_.dropped;
         return;
       }
+      client->last_heard_unix_s = now_unix_s;
       deliver(plain_, from, Admission{client->slot, client->client_id});
       return;
     }
@@ -77,6 +78,15 @@ void SecureGateway::on_response(std::span<const uint8_t> bytes, const Endpoint& 
       same != nullptr && same->slot == connected->slot && same->salt == connected->salt) {
     return;
   }
+  // Another client's token for a slot whose holder is still talking is
+  // refused here: it must not cut the holder off.
+  for (const Client& c : clients_) {
+    if (c.slot == connected->slot && c.client_id != connected->client_id &&
+        now_unix_s - c.last_heard_unix_s < kHolderQuietS) {
+      ++stats_.refused;
+      return;
+    }
+  }
   // One session per slot and per address: a new handshake (a restarted
   // client, a new address) replaces what either held. Only the holder of
   // the token's keys can get here.
@@ -87,6 +97,7 @@ void SecureGateway::on_response(std::span<const uint8_t> bytes, const Endpoint& 
   client.client_id = connected->client_id;
   client.slot = connected->slot;
   client.salt = connected->salt;
+  client.last_heard_unix_s = now_unix_s;
   client.session = std::move(connected->session);
   clients_.push_back(std::move(client));
   ++stats_.connects;

@@ -34,6 +34,10 @@ class SecureGateway {
   using DeliverFn =
       std::function<void(std::span<const uint8_t> envelope, const Endpoint&, const Admission&)>;
 
+  /// A slot's session gives way to another client's handshake (a second
+  /// token minted for the slot) only after this long without a word.
+  static constexpr int64_t kHolderQuietS = 10;
+
   /// `slots`: tokens for slots at or past it are refused.
   SecureGateway(const net::Key& server_key, std::string_view match_id, uint32_t slots, SendFn send);
 
@@ -61,6 +65,7 @@ class SecureGateway {
     Endpoint endpoint;
     uint64_t client_id = 0;
     uint32_t slot = 0;
+    int64_t last_heard_unix_s = 0;  ///< the handshake, then each payload that opened
     std::array<uint8_t, net::kSaltBytes> salt{};
     net::SecureSession session;
   };
