@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 #
-# Hosted demo match on loopback: builds the release preset, starts
-# rewind-server (4-player "crates", 60 Hz, 1200 ticks = 20 s), plays it with
-# 4 bots over an impaired link (40 ms latency, 15 ms jitter, 5 % loss,
+# Hosted demo match on loopback: builds the release preset, mints a server
+# key and one connect token per player (rewind-token, as a match backend
+# would), starts a secure rewind-server (4-player "crates", 60 Hz, 1200
+# ticks = 20 s), plays it with 4 bots over an impaired link (40 ms latency, 15 ms jitter, 5 % loss,
 # duplication, reordering), prints both summaries, then re-simulates the
 # recorded replay with `rewind-replay verify`.
 #
@@ -12,7 +13,7 @@
 #                when 7777 is taken; an explicit --port must be free)
 #   --no-build   use the binaries already in build/release/bin
 # Output files: build/demo/{match.rwr, desyncs/, server.log, bots.log,
-#               server.json, bots.json}
+#               server.json, bots.json, server.key, tokens}
 # Exit codes: 0 the match ran and its replay verified; 1 a step failed (build,
 # server, bots, missing summary); rewind-replay verify's own status when the
 # replay does not verify (1 diverged, 2 corrupt, 3 recorded by another engine
@@ -69,12 +70,12 @@ print(s.getsockname()[1])'
 if ((build)); then
   step "system packages"
   bash scripts/setup.sh
-  step "build (preset release: rewind-server rewind-bots rewind-replay)"
+  step "build (preset release: rewind-server rewind-bots rewind-replay rewind-token)"
   cmake --preset release
   cmake --build --preset release -j"$(nproc 2>/dev/null || echo 2)" \
-    --target rewind-server rewind-bots rewind-replay
+    --target rewind-server rewind-bots rewind-replay rewind-token
 fi
-for tool in rewind-server rewind-bots rewind-replay; do
+for tool in rewind-server rewind-bots rewind-replay rewind-token; do
   [[ -x $bin/$tool ]] || fail "$bin/$tool is missing (build the release preset first)"
 done
 
@@ -130,9 +131,18 @@ summary_line() {
   printf '%s\n' "$line"
 }
 
-step "server: 127.0.0.1:$port, crates, 4 players, $tick_rate Hz, $ticks ticks"
+step "backend: a server key and a connect token for each of the 4 players"
+rm -f "$demo_dir/server.key" "$demo_dir/tokens"
+"$bin/rewind-token" keygen --out "$demo_dir/server.key" >/dev/null
+for slot in 0 1 2 3; do
+  "$bin/rewind-token" mint --key-file "$demo_dir/server.key" --match demo --slot "$slot" \
+    --client-id $((slot + 1)) --expires-in 600 >>"$demo_dir/tokens"
+done
+
+step "server: 127.0.0.1:$port, crates, 4 players, $tick_rate Hz, $ticks ticks, secure connections"
 "$bin/rewind-server" --game crates --port "$port" --bind 127.0.0.1 --players 4 \
   --tick-rate "$tick_rate" --window 8 --ticks "$ticks" \
+  --key-file "$demo_dir/server.key" --match-id demo \
   --replay "$demo_dir/match.rwr" --desync-dir "$demo_dir/desyncs" --summary-json \
   >"$demo_dir/server.json" 2>"$demo_dir/server.log" &
 server_pid=$!
@@ -152,7 +162,7 @@ udp_port_in_use "$port" || fail "rewind-server did not bind UDP port $port withi
 
 step "bots: 4 clients, 40 ms latency, 15 ms jitter, 5% loss, 1% duplicates, 2% reordering (~20 s)"
 "$bin/rewind-bots" --bots 4 --connect "127.0.0.1:$port" --game crates \
-  --latency-ms 40 --jitter-ms 15 --loss 0.05 --duplicate 0.01 --reorder 0.02 --summary-json \
+  --token-file "$demo_dir/tokens" --latency-ms 40 --jitter-ms 15 --loss 0.05 --duplicate 0.01 --reorder 0.02 --summary-json \
   >"$demo_dir/bots.json" 2>"$demo_dir/bots.log" &
 bots_pid=$!
 
