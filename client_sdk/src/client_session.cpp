@@ -289,6 +289,16 @@ void ClientSession::on_datagram(std::span<const uint8_t> bytes,
   receive(bytes, net::SteadyClock::now());
 }
 
+void ClientSession::on_relayed(const v1::RelayedInputs& relayed) {
+  if (relayed.player() >= player_count_ || relayed.player() == player_) return;
+  // decode_envelope has checked every axis, so conversion cannot fail.
+  for (int i = 0; i < relayed.inputs_size(); ++i) {
+    if (auto input = proto::from_wire(relayed.inputs(i)); input.ok()) {
+      (void)session_->add_input(relayed.player(), relayed.first_tick() + i, *input);
+    }
+  }
+}
+
 void ClientSession::receive(std::span<const uint8_t> datagram, TimePoint now) {
   ++stats_.packets_received;
   if (handshake_) {
@@ -375,20 +385,13 @@ void ClientSession::handle(const v1::Envelope& envelope, TimePoint now) {
       server_tick_ = std::max(server_tick_, envelope.pong().server_tick());
       break;
     }
-    case v1::Envelope::kRelayedInputs: {
-      if (!session_) break;
-      const v1::RelayedInputs& relayed = envelope.relayed_inputs();
-      if (relayed.player() >= player_count_ || relayed.player() == player_) break;
-      // decode_envelope has checked every axis, so conversion cannot fail.
-      for (int i = 0; i < relayed.inputs_size(); ++i) {
-        if (auto input = proto::from_wire(relayed.inputs(i)); input.ok()) {
-          (void)session_->add_input(relayed.player(), relayed.first_tick() + i, *input);
-        }
-      }
+    case v1::Envelope::kRelayedInputs:
+      if (session_) on_relayed(envelope.relayed_inputs());
       break;
-    }
     case v1::Envelope::kFinalTicks:
-      if (session_) on_final_ticks(envelope.final_ticks(), now);
+      if (!session_) break;
+      for (const v1::RelayedInputs& run : envelope.final_ticks().relayed()) on_relayed(run);
+      on_final_ticks(envelope.final_ticks(), now);
       break;
     case v1::Envelope::kResyncChunk:
       if (session_ && (phase_ == Phase::kRunning || phase_ == Phase::kEnding))

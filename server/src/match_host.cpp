@@ -161,7 +161,7 @@ void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from
   switch (envelope.payload_case()) {
     case v1::Envelope::kInputFrame:
       if (phase_ == Phase::kRunning) {
-        handle_input(*peer, player, envelope.input_frame(), now);
+        handle_input(*peer, player, envelope.input_frame());
       } else if (envelope.input_frame().player() == player) {
         // Closing: only the acknowledgement of final ticks still matters.
         peer->final_seen =
@@ -203,8 +203,7 @@ void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from
   }
 }
 
-void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& frame,
-                             TimePoint now) {
+void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& frame) {
   if (frame.player() != player) {
     // Inputs for another slot: never applied, whoever sent them.
     ++stats_.rejected_packets;
@@ -217,21 +216,20 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
   }
   const Tick now_tick = session_->current_tick();
   const Tick clock_tick = server_tick();
-  v1::Envelope relay;
-  v1::RelayedInputs* relayed = relay.mutable_relayed_inputs();
+  v1::RelayedInputs run;
+  v1::RelayedInputs* relayed = &run;
   relayed->set_player(player);
   Tick relay_next = kNoTick;
   Tick newest = kNoTick;
 
+  // New inputs wait for the tick's one datagram to each client (broadcast)
+  // instead of going out at once: O(players) datagrams a tick, not
+  // O(players^2).
   auto flush_relay = [&]() {
     if (relayed->inputs_size() == 0) return;
-    for (uint32_t p = 0; p < peers_.size(); ++p) {
-      if (p != player && peers_[p].joined && peers_[p].connected) {
-        v1::Envelope copy = relay;
-        send(peers_[p], copy, now);
-      }
-    }
     stats_.relayed_inputs += static_cast<uint64_t>(relayed->inputs_size());
+    relay_sizes_.push_back(relayed->ByteSizeLong() + 3);  // tag + length prefix
+    relay_batch_.push_back(*relayed);
     relayed->clear_inputs();
   };
 
@@ -428,18 +426,30 @@ void MatchHost::broadcast(TimePoint now) {
     out->set_input_ack_tick(session_->queue(p).contiguous_through());
     out->set_input_lead_ticks(peer.last_lead);
     out->set_server_tick(server_tick());
+    // The other players' new inputs first (they are what prediction waits
+    // for), up to part of the budget: what does not fit arrives in final
+    // ticks soon anyway.
+    size_t budget = kFinalTicksBudgetBytes;
+    for (size_t r = 0; r < relay_batch_.size(); ++r) {
+      if (relay_batch_[r].player() == p || relay_sizes_[r] > budget - kFinalTicksBudgetBytes / 3) {
+        continue;
+      }
+      budget -= relay_sizes_[r];
+      *out->add_relayed() = relay_batch_[r];
+    }
     // While a snapshot is on its way the client ignores final ticks, but
     // still needs the server's clock and its input acknowledgements.
-    if (!resync_pending) add_final_ticks(peer, *out);
+    if (!resync_pending) add_final_ticks(peer, *out, budget);
     send(peer, envelope, now);
   }
+  relay_batch_.clear();
+  relay_sizes_.clear();
 }
 
-void MatchHost::add_final_ticks(Peer& peer, v1::FinalTicks& out) {
+void MatchHost::add_final_ticks(Peer& peer, v1::FinalTicks& out, size_t budget) {
   if (finals_.empty()) return;
   const Tick oldest_held = finals_.front().tick();
   const Tick newest = next_final_ - 1;
-  size_t budget = kFinalTicksBudgetBytes;
   auto add = [&](Tick t) {
     const size_t index = static_cast<size_t>(t - oldest_held);
     const size_t size = final_sizes_[index] + 3;  // tag + length prefix

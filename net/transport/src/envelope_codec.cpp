@@ -170,6 +170,18 @@ Status check_payload(const Envelope& e) {
             return input_error(field() + ".inputs", i, ft.inputs(i));
         }
       }
+      if (static_cast<uint32_t>(m.relayed_size()) > kMaxPlayerSlots * 4) {
+        return corrupt("final_ticks has " + std::to_string(m.relayed_size()) +
+                       " relayed runs, limit " + std::to_string(kMaxPlayerSlots * 4));
+      }
+      for (int r = 0; r < m.relayed_size(); ++r) {
+        const auto& run = m.relayed(r);
+        if (Status s = check_input_run("final_ticks.relayed[" + std::to_string(r) + "]",
+                                       run.player(), run.first_tick(), run.inputs());
+            !s.ok()) {
+          return s;
+        }
+      }
       return check_tick("final_ticks.input_ack_tick", m.input_ack_tick(), -1);
     }
     case Envelope::kDesyncReport: {

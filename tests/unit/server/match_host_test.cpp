@@ -19,6 +19,44 @@ TEST(MatchHost, FinalizesWithLateInputsAndRollsBack) {
   EXPECT_EQ(stats.rejected_packets, 0u);
 }
 
+// Each client gets one datagram a tick: the final ticks, its own input
+// acknowledgement and the other players' new inputs (never its own),
+// however many inputs arrived in between.
+TEST(MatchHost, OneDatagramPerClientPerTickCarriesTheOthersInputs) {
+  MatchConfig config = test_config();
+  config.players = 4;
+  HostHarness h(config);
+  std::vector<FakeClient> clients;
+  for (uint16_t port = 4101; port < 4105; ++port) clients.push_back(h.join(port));
+  ASSERT_EQ(h.host().phase(), MatchHost::Phase::kRunning);
+  for (Tick t = 0; t < 30; ++t) {
+    for (FakeClient& c : clients) h.outbox().received[c.endpoint].clear();
+    for (FakeClient& c : clients) {
+      // Two packets each: the tick's input, then the same again (a resend).
+      h.send_input(c, t, scripted(c.player, t), c.player);
+      h.send_input(c, t, scripted(c.player, t), c.player);
+    }
+    for (FakeClient& c : clients) {
+      EXPECT_TRUE(h.outbox().received[c.endpoint].empty()) << "nothing before the tick";
+    }
+    h.tick();
+    for (FakeClient& c : clients) {
+      const std::vector<v1::Envelope>& got = h.outbox().received[c.endpoint];
+      ASSERT_EQ(got.size(), 1u) << "tick " << t << " player " << c.player;
+      ASSERT_TRUE(got[0].has_final_ticks());
+      uint64_t from = 0;
+      for (const v1::RelayedInputs& run : got[0].final_ticks().relayed()) {
+        EXPECT_NE(run.player(), c.player);
+        EXPECT_EQ(run.first_tick(), t);
+        EXPECT_EQ(run.inputs_size(), 1);
+        from |= uint64_t{1} << run.player();
+      }
+      EXPECT_EQ(from, 0xFull & ~(uint64_t{1} << c.player)) << "tick " << t;
+    }
+  }
+  EXPECT_EQ(h.host().stats().relayed_inputs, 4u * 30u);
+}
+
 TEST(MatchHost, MissingInputsAreSubstitutedAtTheDeadline) {
   HostHarness h(test_config());
   FakeClient a = h.join(4001);

@@ -109,6 +109,8 @@ class ClientSession {
   void send_inputs(TimePoint now);
   void send_desync_report(TimePoint now);
   void send(v1::Envelope& envelope, TimePoint now);
+  /// Another player's inputs as the server relayed them.
+  void on_relayed(const v1::RelayedInputs& relayed);
   /// Puts a datagram on the wire (or the detached sender, or the faults).
   void transmit(std::span<const uint8_t> datagram);
   /// Reads config.connect_token into the session's handshake.

@@ -116,7 +116,7 @@ class MatchHost {
 
   void handle_join(const v1::Envelope& envelope, const Endpoint& from, TimePoint now,
                    const Admission* who);
-  void handle_input(Peer& peer, uint32_t player, const v1::InputFrame& frame, TimePoint now);
+  void handle_input(Peer& peer, uint32_t player, const v1::InputFrame& frame);
   void handle_desync(Peer& peer, uint32_t player, const v1::DesyncReport& report, TimePoint now);
   void store_desync_report(uint32_t player, const DesyncAssembly& assembly,
                            const std::vector<uint8_t>& dump);
@@ -125,7 +125,8 @@ class MatchHost {
   void on_resync_refused(Peer& peer, uint32_t player, const v1::ResyncRequest& request);
   std::optional<uint64_t> final_checksum(Tick tick) const;
   void send_resync_chunks(Peer& peer, TimePoint now);
-  void add_final_ticks(Peer& peer, v1::FinalTicks& out);
+  /// Adds final ticks to `out` within `budget` encoded bytes.
+  void add_final_ticks(Peer& peer, v1::FinalTicks& out, size_t budget);
   void start_match(TimePoint now);
   void send_match_start(Peer& peer, TimePoint now);
   void send_match_end(TimePoint now);
@@ -144,6 +145,10 @@ class MatchHost {
   Phase phase_ = Phase::kLobby;
   std::vector<Peer> peers_;
   std::deque<v1::FinalTick> finals_;  // contiguous ticks, oldest first
+  // Inputs accepted since the last broadcast, relayed in it to every other
+  // client; with each run's encoded size.
+  std::vector<v1::RelayedInputs> relay_batch_;
+  std::vector<size_t> relay_sizes_;
   std::deque<uint32_t> final_sizes_;  // encoded size of each, in step with finals_
   Tick next_final_ = 0;
   int32_t countdown_ticks_ = 0;
