@@ -338,6 +338,7 @@ void HeadlessMatch::transmit(Direction direction, uint32_t peer, std::span<const
   item.order = next_order_++;
   item.direction = direction;
   item.peer = peer;
+  if (direction == Direction::kToClient) ++datagrams_to_clients_;
   in_flight_.push(std::move(item));
 }
 
@@ -347,7 +348,9 @@ void HeadlessMatch::deliver_due() {
     InFlight item = std::move(const_cast<InFlight&>(in_flight_.top()));
     in_flight_.pop();
     if (item.direction == Direction::kToServer) {
+      const auto begin = std::chrono::steady_clock::now();
       host_->on_datagram(item.bytes, endpoint_of(item.peer), item.at);
+      host_busy_ += std::chrono::steady_clock::now() - begin;
     } else {
       peers_[item.peer]->receive(item.bytes, item.at);
     }
@@ -367,7 +370,10 @@ HeadlessResult HeadlessMatch::run() {
     now_ += step;
     deliver_due();
     if (now_ >= next_tick) {
+      const auto begin = std::chrono::steady_clock::now();
       host_->on_tick(now_);
+      host_busy_ += std::chrono::steady_clock::now() - begin;
+      ++host_ticks_;
       next_tick += period;
     }
     bool all_done = host_->phase() == server::MatchHost::Phase::kEnded;
@@ -383,6 +389,9 @@ HeadlessResult HeadlessMatch::run() {
   }
   result.server = host_->stats();
   result.simulated_seconds = std::chrono::duration<double>(now_ - start).count();
+  result.host_busy_seconds = std::chrono::duration<double>(host_busy_).count();
+  result.host_ticks = host_ticks_;
+  result.datagrams_to_clients = datagrams_to_clients_;
   for (uint32_t i = 0; i < peers_.size(); ++i) {
     if (i < config_.sdk_clients) {
       result.clients.push_back(static_cast<const SdkPeer&>(*peers_[i]).result());

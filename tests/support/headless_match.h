@@ -13,6 +13,7 @@
 // final ticks and say goodbye. They let a 16-player match run at the cost
 // of a few simulations instead of seventeen.
 #include <cstdint>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <queue>
@@ -69,6 +70,12 @@ struct HeadlessResult {
   uint32_t scripted_peers_finished = 0;  ///< scripted peers that saw the end and left
   double simulated_seconds = 0.0;
   bool timed_out = false;  ///< max_match_seconds passed before everything ended
+  /// Wall time the host spent in on_tick and on_datagram (the server's
+  /// whole work: simulation, finalization, intake, broadcast, encoding),
+  /// and the server ticks it ran, for the host benchmark.
+  double host_busy_seconds = 0.0;
+  uint64_t host_ticks = 0;
+  uint64_t datagrams_to_clients = 0;
 };
 
 /// Which way a datagram travels; for link filters.
@@ -117,6 +124,9 @@ class HeadlessMatch {
   uint64_t next_order_ = 0;
   std::mt19937_64 rng_;
   LinkFilter filter_;
+  std::chrono::steady_clock::duration host_busy_{};
+  uint64_t host_ticks_ = 0;
+  uint64_t datagrams_to_clients_ = 0;
 };
 
 /// Aggressive crates play for long matches: everyone drives into the same
