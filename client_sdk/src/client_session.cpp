@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/client/client_session.h"
 
+#include "rewind/proto/message_inputs.h"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -291,11 +293,11 @@ void ClientSession::on_datagram(std::span<const uint8_t> bytes,
 
 void ClientSession::on_relayed(const v1::RelayedInputs& relayed) {
   if (relayed.player() >= player_count_ || relayed.player() == player_) return;
-  // decode_envelope has checked every axis, so conversion cannot fail.
-  for (int i = 0; i < relayed.inputs_size(); ++i) {
-    if (auto input = proto::from_wire(relayed.inputs(i)); input.ok()) {
-      (void)session_->add_input(relayed.player(), relayed.first_tick() + i, *input);
-    }
+  // decode_envelope has read and checked the run, so this cannot fail.
+  if (!proto::relayed_run_inputs(relayed, relayed_buffer_).ok()) return;
+  for (size_t i = 0; i < relayed_buffer_.size(); ++i) {
+    (void)session_->add_input(relayed.player(), relayed.first_tick() + static_cast<Tick>(i),
+                              relayed_buffer_[i]);
   }
 }
 
@@ -480,44 +482,44 @@ void ClientSession::on_final_ticks(const v1::FinalTicks& finals, TimePoint now) 
   // While desynced, final ticks are neither applied nor acknowledged: the
   // server resends them from the resync snapshot's tick on.
   if (awaiting_resync_) return;
-  for (const v1::FinalTick& final_tick : finals.ticks()) {
+  // decode_envelope has read every tick's inputs already; this cannot fail.
+  if (!proto::final_tick_inputs(finals, final_inputs_buffer_).ok()) return;
+  for (int t = 0; t < finals.ticks_size(); ++t) {
+    const v1::FinalTick& final_tick = finals.ticks(t);
     const Tick tick = final_tick.tick();
     if (tick <= last_final_received_) continue;  // duplicate
+    FinalTickData data{std::move(final_inputs_buffer_[static_cast<size_t>(t)]),
+                       final_tick.checksum()};
     if (tick == last_final_received_ + 1) {
-      if (!apply_final_tick(final_tick, now)) return;
+      if (!apply_final_tick(tick, data, now)) return;
       // Ticks that arrived ahead of this one can follow now.
       for (auto it = early_finals_.begin();
            it != early_finals_.end() && it->first == last_final_received_ + 1;
            it = early_finals_.erase(it)) {
-        if (!apply_final_tick(it->second, now)) return;
+        if (!apply_final_tick(it->first, it->second, now)) return;
       }
     } else if (tick <= last_final_received_ + config_.snapshot_ticks &&
                early_finals_.size() < static_cast<size_t>(config_.snapshot_ticks)) {
-      early_finals_.emplace(tick, final_tick);  // a gap: keep it for later
+      early_finals_.emplace(tick, std::move(data));  // a gap: keep it for later
     }
   }
 }
 
-bool ClientSession::apply_final_tick(const v1::FinalTick& final_tick, TimePoint now) {
-  if (final_tick.inputs_size() != static_cast<int>(player_count_)) {
+bool ClientSession::apply_final_tick(Tick tick, const FinalTickData& data, TimePoint now) {
+  if (data.inputs.size() != player_count_) {
     ++stats_.packets_rejected;
     return false;
   }
   for (uint32_t p = 0; p < player_count_; ++p) {
-    auto input = proto::from_wire(final_tick.inputs(static_cast<int>(p)));
-    if (!input.ok()) {
-      ++stats_.packets_rejected;
-      return false;
-    }
-    const net::InputResult result = session_->add_final_input(p, final_tick.tick(), *input);
+    const net::InputResult result = session_->add_final_input(p, tick, data.inputs[p]);
     if (result == net::InputResult::kTooFar) {
       // Beyond our input window: we cannot apply it, so we cannot verify it.
       request_resync(now);
       return false;
     }
   }
-  pending_finals_.emplace_back(final_tick.tick(), final_tick.checksum());
-  last_final_received_ = final_tick.tick();
+  pending_finals_.emplace_back(tick, data.checksum);
+  last_final_received_ = tick;
   return true;
 }
 

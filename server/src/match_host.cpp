@@ -10,6 +10,7 @@
 #include "host_log.h"
 #include "rewind/net/connection_id.h"
 #include "rewind/net/envelope_codec.h"
+#include "rewind/proto/input_packing.h"
 #include "rewind/proto/input_wire.h"
 #include "rewind/replay/replay_header.h"
 
@@ -216,21 +217,24 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
   }
   const Tick now_tick = session_->current_tick();
   const Tick clock_tick = server_tick();
-  v1::RelayedInputs run;
-  v1::RelayedInputs* relayed = &run;
-  relayed->set_player(player);
+  Tick relay_first = kNoTick;
   Tick relay_next = kNoTick;
   Tick newest = kNoTick;
 
   // New inputs wait for the tick's one datagram to each client (broadcast)
   // instead of going out at once: O(players) datagrams a tick, not
   // O(players^2).
+  // Runs are packed (each input against the one before it) and at most
+  // kMaxPackedInputs long.
   auto flush_relay = [&]() {
-    if (relayed->inputs_size() == 0) return;
-    stats_.relayed_inputs += static_cast<uint64_t>(relayed->inputs_size());
-    relay_sizes_.push_back(relayed->ByteSizeLong() + 3);  // tag + length prefix
-    relay_batch_.push_back(*relayed);
-    relayed->clear_inputs();
+    if (relay_run_.empty()) return;
+    stats_.relayed_inputs += relay_run_.size();
+    v1::RelayedInputs& run = relay_batch_.emplace_back();
+    run.set_player(player);
+    run.set_first_tick(relay_first);
+    proto::pack_run(relay_run_, *run.mutable_packed_inputs());
+    relay_sizes_.push_back(run.ByteSizeLong() + 3);  // tag + length prefix
+    relay_run_.clear();
   };
 
   for (int i = 0; i < frame.inputs_size(); ++i) {
@@ -244,11 +248,11 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
       case net::InputResult::kAccepted:
         newest = std::max(newest, tick);
         if (tick < now_tick) ++stats_.late_inputs;
-        if (relay_next != tick) {
+        if (relay_next != tick || relay_run_.size() == proto::kMaxPackedInputs) {
           flush_relay();
-          relayed->set_first_tick(tick);
+          relay_first = tick;
         }
-        *relayed->add_inputs() = frame.inputs(i);
+        relay_run_.push_back(*input);
         relay_next = tick + 1;
         break;
       case net::InputResult::kDuplicate:
@@ -352,8 +356,8 @@ void MatchHost::finalize_ready_ticks() {
         ++stats_.substituted_inputs;
       }
       final_inputs_[p] = session_->input_for(p, t);
-      *final_tick.add_inputs() = proto::to_wire(final_inputs_[p]);
     }
+    proto::pack_inputs(final_inputs_, {}, *final_tick.mutable_packed_inputs());
     const std::optional<uint64_t> checksum = session_->checksum_after(t);
     final_tick.set_substituted_mask(substituted);
     final_tick.set_checksum(checksum.value_or(0));
@@ -384,6 +388,19 @@ void MatchHost::finalize_ready_ticks() {
     }
     (void)session_->finalize_through(t);
     final_sizes_.push_back(static_cast<uint32_t>(final_tick.ByteSizeLong()));
+    // The same tick against the one before: a pair of neighbours in one
+    // message costs a byte per unchanged input.
+    std::string delta;
+    if (previous_final_inputs_.size() == final_inputs_.size()) {
+      proto::pack_inputs(final_inputs_, previous_final_inputs_, delta);
+    }
+    v1::FinalTick as_delta = final_tick;
+    as_delta.set_packed_inputs(delta);
+    as_delta.set_delta(true);
+    final_delta_sizes_.push_back(delta.empty() ? 0
+                                               : static_cast<uint32_t>(as_delta.ByteSizeLong()));
+    final_deltas_.push_back(std::move(delta));
+    previous_final_inputs_ = final_inputs_;
     finals_.push_back(std::move(final_tick));
     ++next_final_;
   }
@@ -396,6 +413,8 @@ void MatchHost::finalize_ready_ticks() {
          (finals_.front().tick() <= acked_by_all || finals_.size() > kMaxFinalHistory)) {
     finals_.pop_front();
     final_sizes_.pop_front();
+    final_deltas_.pop_front();
+    final_delta_sizes_.pop_front();
   }
 }
 
@@ -450,14 +469,23 @@ void MatchHost::add_final_ticks(Peer& peer, v1::FinalTicks& out, size_t budget) 
   if (finals_.empty()) return;
   const Tick oldest_held = finals_.front().tick();
   const Tick newest = next_final_ - 1;
+  Tick last_added = kNoTick;
   auto add = [&](Tick t) {
     const size_t index = static_cast<size_t>(t - oldest_held);
-    const size_t size = final_sizes_[index] + 3;  // tag + length prefix
+    // Right after the tick before it, a tick goes as a delta against it.
+    const bool as_delta = last_added == t - 1 && !final_deltas_[index].empty();
+    const size_t size = (as_delta ? final_delta_sizes_[index] : final_sizes_[index]) + 3;
     if (size > budget || out.ticks_size() >= static_cast<int>(net::kMaxFinalTicksPerPacket)) {
       return false;
     }
     budget -= size;
-    *out.add_ticks() = finals_[index];
+    v1::FinalTick* added = out.add_ticks();
+    *added = finals_[index];
+    if (as_delta) {
+      added->set_packed_inputs(final_deltas_[index]);
+      added->set_delta(true);
+    }
+    last_added = t;
     return true;
   };
   // New ticks first, so a round trip never limits how fast finals flow;

@@ -12,8 +12,8 @@
 // join, send their inputs ahead of the server with redundancy, acknowledge
 // final ticks and say goodbye. They let a 16-player match run at the cost
 // of a few simulations instead of seventeen.
-#include <cstdint>
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <queue>

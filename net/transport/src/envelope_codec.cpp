@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/net/envelope_codec.h"
 
+#include "rewind/proto/message_inputs.h"
+
 #include <limits>
 #include <string>
 #include <string_view>
@@ -58,6 +60,24 @@ Status check_input_run(std::string_view field, uint32_t player, int32_t first_ti
     if (!axes_in_range(inputs.Get(i))) {
       return input_error(std::string(field) + ".inputs", i, inputs.Get(i));
     }
+  }
+  return Status::Ok();
+}
+
+// A relayed run: its header and repeated inputs as any run, and its packed
+// inputs (if any) readable, in range and not longer than a run may be.
+Status check_relayed(std::string_view field, const v1::RelayedInputs& run) {
+  std::vector<game::PlayerInput> inputs;
+  if (Status s = proto::relayed_run_inputs(run, inputs); !s.ok()) {
+    return corrupt(std::string(field) + ": " + s.message());
+  }
+  if (Status s = check_input_run(field, run.player(), run.first_tick(), run.inputs()); !s.ok()) {
+    return s;
+  }
+  if (run.first_tick() >
+      std::numeric_limits<int32_t>::max() - static_cast<int32_t>(inputs.size())) {
+    return corrupt(std::string(field) + ".first_tick " + std::to_string(run.first_tick()) +
+                   " out of range");
   }
   return Status::Ok();
 }
@@ -147,10 +167,8 @@ Status check_payload(const Envelope& e) {
       }
       return check_input_run("input_frame", m.player(), m.first_tick(), m.inputs());
     }
-    case Envelope::kRelayedInputs: {
-      const auto& m = e.relayed_inputs();
-      return check_input_run("relayed_inputs", m.player(), m.first_tick(), m.inputs());
-    }
+    case Envelope::kRelayedInputs:
+      return check_relayed("relayed_inputs", e.relayed_inputs());
     case Envelope::kFinalTicks: {
       const auto& m = e.final_ticks();
       if (static_cast<size_t>(m.ticks_size()) > kMaxFinalTicksPerPacket) {
@@ -175,13 +193,14 @@ Status check_payload(const Envelope& e) {
                        " relayed runs, limit " + std::to_string(kMaxPlayerSlots * 4));
       }
       for (int r = 0; r < m.relayed_size(); ++r) {
-        const auto& run = m.relayed(r);
-        if (Status s = check_input_run("final_ticks.relayed[" + std::to_string(r) + "]",
-                                       run.player(), run.first_tick(), run.inputs());
+        if (Status s =
+                check_relayed("final_ticks.relayed[" + std::to_string(r) + "]", m.relayed(r));
             !s.ok()) {
           return s;
         }
       }
+      std::vector<std::vector<game::PlayerInput>> tick_inputs;
+      if (Status s = proto::final_tick_inputs(m, tick_inputs); !s.ok()) return s;
       return check_tick("final_ticks.input_ack_tick", m.input_ack_tick(), -1);
     }
     case Envelope::kDesyncReport: {

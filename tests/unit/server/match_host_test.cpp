@@ -2,6 +2,7 @@
 // MatchHost driven without sockets: scripted clients build envelopes by
 // hand, and the clock is whatever the test says.
 #include "match_host_harness.h"
+#include "rewind/proto/message_inputs.h"
 
 namespace rwd::server {
 namespace {
@@ -48,7 +49,10 @@ TEST(MatchHost, OneDatagramPerClientPerTickCarriesTheOthersInputs) {
       for (const v1::RelayedInputs& run : got[0].final_ticks().relayed()) {
         EXPECT_NE(run.player(), c.player);
         EXPECT_EQ(run.first_tick(), t);
-        EXPECT_EQ(run.inputs_size(), 1);
+        std::vector<game::PlayerInput> inputs;
+        ASSERT_TRUE(proto::relayed_run_inputs(run, inputs).ok());
+        ASSERT_EQ(inputs.size(), 1u);
+        EXPECT_EQ(inputs[0], scripted(run.player(), t));
         from |= uint64_t{1} << run.player();
       }
       EXPECT_EQ(from, 0xFull & ~(uint64_t{1} << c.player)) << "tick " << t;

@@ -149,7 +149,14 @@ class MatchHost {
   // client; with each run's encoded size.
   std::vector<v1::RelayedInputs> relay_batch_;
   std::vector<size_t> relay_sizes_;
-  std::deque<uint32_t> final_sizes_;  // encoded size of each, in step with finals_
+  std::vector<game::PlayerInput> relay_run_;  // the run being gathered
+  std::deque<uint32_t> final_sizes_;          // encoded size of each, in step with finals_
+  // Each held final tick's inputs packed against the tick before (sent
+  // when that tick precedes it in the same message), and the encoded size
+  // of the tick sent that way; in step with finals_.
+  std::deque<std::string> final_deltas_;
+  std::deque<uint32_t> final_delta_sizes_;
+  std::vector<game::PlayerInput> previous_final_inputs_;  // of tick next_final_ - 1
   Tick next_final_ = 0;
   int32_t countdown_ticks_ = 0;
   // Substitution masks of the last kFinalHistory final ticks, to tell a

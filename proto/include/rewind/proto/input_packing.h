@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Inputs packed against a reference, for the datagrams that carry many of
+// them (final ticks, relayed runs). Consecutive inputs of a player, and a
+// player's input on consecutive ticks, are mostly equal, so each input is
+// sent as its XOR with a reference input: one mask byte naming the bytes
+// that differ (axis_x low and high, axis_y low and high, buttons bytes 0
+// to 3, little-endian), then those bytes. An unchanged input costs one
+// byte, a changed stick three.
+//
+// A packed list is a count byte (0 to 64) followed by the inputs; the
+// references are the caller's (the neutral input, the previous input of a
+// run, or the same players on the previous tick).
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rewind/game/player_input.h"
+#include "rewind/sim/status.h"
+
+namespace rwd::proto {
+
+/// Largest number of inputs in one packed list (the player slot limit).
+inline constexpr size_t kMaxPackedInputs = 64;
+
+/// Appends `values` packed against `references` (same size, or empty for
+/// the neutral input) to `out`. At most kMaxPackedInputs values.
+void pack_inputs(std::span<const game::PlayerInput> values,
+                 std::span<const game::PlayerInput> references, std::string& out);
+
+/// Appends a run of one player's inputs, each packed against the one
+/// before it (the first against the neutral input).
+void pack_run(std::span<const game::PlayerInput> run, std::string& out);
+
+/// Reads a packed list against `references` (empty: the neutral input;
+/// else as many as the list holds) into `out` (replaced). kCorrupt for a
+/// truncated list, trailing bytes, a count above kMaxPackedInputs, a
+/// reference count that does not match, or an axis outside [-1000, 1000].
+Status unpack_inputs(std::string_view bytes, std::span<const game::PlayerInput> references,
+                     std::vector<game::PlayerInput>& out);
+
+/// Reads a run packed by pack_run.
+Status unpack_run(std::string_view bytes, std::vector<game::PlayerInput>& out);
+
+}  // namespace rwd::proto
