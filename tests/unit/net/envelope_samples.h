@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rewind/net/envelope_codec.h"
+#include "rewind/proto/input_packing.h"
 #include "rewind/v1/envelope.pb.h"
 
 namespace rwd::net::testing {
@@ -146,6 +147,40 @@ inline std::vector<v1::Envelope> sample_envelopes() {
   {
     v1::Envelope e = header();
     e.mutable_resync_request()->set_desync_tick(321);
+    out.push_back(e);
+  }
+  {
+    // Final ticks with packed inputs, a delta chain and packed relayed
+    // runs, as servers send them.
+    v1::Envelope e = header();
+    auto* m = e.mutable_final_ticks();
+    std::vector<game::PlayerInput> previous;
+    for (int t = 0; t < 3; ++t) {
+      std::vector<game::PlayerInput> inputs;
+      for (int p = 0; p < 4; ++p) {
+        inputs.push_back({static_cast<int16_t>(p * 250 - 500),
+                          static_cast<int16_t>(t == 2 ? 707 : 0),
+                          static_cast<uint32_t>(p == 1 ? 3 : 0)});
+      }
+      auto* ft = m->add_ticks();
+      ft->set_tick(300 + t);
+      ft->set_checksum(0xFEDCull + static_cast<uint64_t>(t));
+      if (t == 0) {
+        proto::pack_inputs(inputs, {}, *ft->mutable_packed_inputs());
+      } else {
+        proto::pack_inputs(inputs, previous, *ft->mutable_packed_inputs());
+        ft->set_delta(true);
+      }
+      previous = inputs;
+    }
+    auto* run = m->add_relayed();
+    run->set_player(3);
+    run->set_first_tick(304);
+    const std::vector<game::PlayerInput> run_inputs = {
+        {1000, -1000, 1}, {1000, -1000, 1}, {0, 0, 0}};
+    proto::pack_run(run_inputs, *run->mutable_packed_inputs());
+    m->set_input_ack_tick(305);
+    m->set_server_tick(306);
     out.push_back(e);
   }
   return out;

@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: MIT
+// Packed inputs: lists and runs round-trip for any values in range, an
+// unchanged input costs one byte, and every malformed list (cut short,
+// trailing bytes, too many inputs, wrong reference count, an axis out of
+// range) is kCorrupt. Final ticks read a delta only right after the tick
+// it follows.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "rewind/proto/input_packing.h"
+#include "rewind/proto/message_inputs.h"
+
+namespace rwd::proto {
+namespace {
+
+using game::PlayerInput;
+
+std::vector<PlayerInput> random_inputs(std::mt19937& rng, size_t n) {
+  std::uniform_int_distribution<int> axis(-1000, 1000);
+  std::uniform_int_distribution<uint32_t> buttons(0, 0xFFFFFFFFu);
+  std::vector<PlayerInput> out;
+  for (size_t i = 0; i < n; ++i) {
+    out.push_back({static_cast<int16_t>(axis(rng)), static_cast<int16_t>(axis(rng)),
+                   i % 3 == 0 ? buttons(rng) : 0u});
+  }
+  return out;
+}
+
+TEST(InputPacking, ListsAndRunsRoundTrip) {
+  std::mt19937 rng(5);
+  for (size_t n : {size_t{0}, size_t{1}, size_t{8}, size_t{64}}) {
+    const std::vector<PlayerInput> values = random_inputs(rng, n);
+    const std::vector<PlayerInput> refs = random_inputs(rng, n);
+    std::string bytes;
+    pack_inputs(values, refs, bytes);
+    std::vector<PlayerInput> back;
+    ASSERT_TRUE(unpack_inputs(bytes, refs, back).ok());
+    EXPECT_EQ(back, values);
+    bytes.clear();
+    pack_inputs(values, {}, bytes);
+    ASSERT_TRUE(unpack_inputs(bytes, {}, back).ok());
+    EXPECT_EQ(back, values);
+    bytes.clear();
+    pack_run(values, bytes);
+    ASSERT_TRUE(unpack_run(bytes, back).ok());
+    EXPECT_EQ(back, values);
+  }
+}
+
+TEST(InputPacking, UnchangedInputsCostAByte) {
+  const std::vector<PlayerInput> same(8, PlayerInput{-707, 707, 2});
+  std::string bytes;
+  pack_inputs(same, same, bytes);
+  EXPECT_EQ(bytes.size(), 1u + 8u);
+  bytes.clear();
+  pack_run(same, bytes);
+  EXPECT_EQ(bytes.size(), 1u + (1u + 5u) + 7u);  // the first against neutral
+}
+
+TEST(InputPacking, MalformedListsAreCorrupt) {
+  const std::vector<PlayerInput> values = {{10, -20, 1}, {300, 0, 0}};
+  std::string bytes;
+  pack_inputs(values, {}, bytes);
+  std::vector<PlayerInput> out;
+  for (size_t cut = 0; cut < bytes.size(); ++cut) {
+    EXPECT_EQ(unpack_inputs(bytes.substr(0, cut), {}, out).code(), ErrorCode::kCorrupt) << cut;
+    EXPECT_TRUE(out.empty());
+  }
+  EXPECT_EQ(unpack_inputs(bytes + '\0', {}, out).code(), ErrorCode::kCorrupt);
+  EXPECT_EQ(unpack_inputs(bytes, std::vector<PlayerInput>(3), out).code(), ErrorCode::kCorrupt);
+  EXPECT_EQ(unpack_inputs(std::string(1, '\x41'), {}, out).code(), ErrorCode::kCorrupt);
+  // An axis of 2000: the mask names both axis_x bytes.
+  const std::string wide = {'\x01', '\x03', '\xD0', '\x07'};
+  EXPECT_EQ(unpack_inputs(wide, {}, out).code(), ErrorCode::kCorrupt);
+  EXPECT_EQ(unpack_run(wide, out).code(), ErrorCode::kCorrupt);
+}
+
+TEST(MessageInputs, ADeltaNeedsTheTickBeforeIt) {
+  const std::vector<PlayerInput> a = {{1, 2, 3}, {4, 5, 6}};
+  const std::vector<PlayerInput> b = {{1, 2, 3}, {-4, 5, 0}};
+  v1::FinalTicks finals;
+  v1::FinalTick* first = finals.add_ticks();
+  first->set_tick(10);
+  pack_inputs(a, {}, *first->mutable_packed_inputs());
+  v1::FinalTick* second = finals.add_ticks();
+  second->set_tick(11);
+  pack_inputs(b, a, *second->mutable_packed_inputs());
+  second->set_delta(true);
+  std::vector<std::vector<PlayerInput>> out;
+  ASSERT_TRUE(final_tick_inputs(finals, out).ok());
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0], a);
+  EXPECT_EQ(out[1], b);
+  second->set_tick(12);  // no longer the tick after
+  EXPECT_EQ(final_tick_inputs(finals, out).code(), ErrorCode::kCorrupt);
+  second->set_tick(11);
+  finals.mutable_ticks()->SwapElements(0, 1);  // the delta first
+  EXPECT_EQ(final_tick_inputs(finals, out).code(), ErrorCode::kCorrupt);
+}
+
+}  // namespace
+}  // namespace rwd::proto
