@@ -291,13 +291,11 @@ void ClientSession::on_datagram(std::span<const uint8_t> bytes,
   receive(bytes, net::SteadyClock::now());
 }
 
-void ClientSession::on_relayed(const v1::RelayedInputs& relayed) {
-  if (relayed.player() >= player_count_ || relayed.player() == player_) return;
-  // decode_envelope has read and checked the run, so this cannot fail.
-  if (!proto::relayed_run_inputs(relayed, relayed_buffer_).ok()) return;
-  for (size_t i = 0; i < relayed_buffer_.size(); ++i) {
-    (void)session_->add_input(relayed.player(), relayed.first_tick() + static_cast<Tick>(i),
-                              relayed_buffer_[i]);
+void ClientSession::on_relayed(uint32_t player, Tick first_tick,
+                               std::span<const game::PlayerInput> inputs) {
+  if (player >= player_count_ || player == player_) return;
+  for (size_t i = 0; i < inputs.size(); ++i) {
+    (void)session_->add_input(player, first_tick + static_cast<Tick>(i), inputs[i]);
   }
 }
 
@@ -388,11 +386,20 @@ void ClientSession::handle(const v1::Envelope& envelope, TimePoint now) {
       break;
     }
     case v1::Envelope::kRelayedInputs:
-      if (session_) on_relayed(envelope.relayed_inputs());
+      // decode_envelope has read and checked the run.
+      if (session_ && proto::relayed_run_inputs(envelope.relayed_inputs(), relayed_buffer_).ok()) {
+        on_relayed(envelope.relayed_inputs().player(), envelope.relayed_inputs().first_tick(),
+                   relayed_buffer_);
+      }
       break;
     case v1::Envelope::kFinalTicks:
       if (!session_) break;
-      for (const v1::RelayedInputs& run : envelope.final_ticks().relayed()) on_relayed(run);
+      // decode_envelope has read and checked the runs.
+      if (proto::relayed_runs(envelope.final_ticks(), relayed_runs_).ok()) {
+        for (const proto::RelayedRun& run : relayed_runs_) {
+          on_relayed(run.player, run.first_tick, run.inputs);
+        }
+      }
       on_final_ticks(envelope.final_ticks(), now);
       break;
     case v1::Envelope::kResyncChunk:

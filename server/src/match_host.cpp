@@ -12,6 +12,7 @@
 #include "rewind/net/envelope_codec.h"
 #include "rewind/proto/input_packing.h"
 #include "rewind/proto/input_wire.h"
+#include "rewind/proto/message_inputs.h"
 #include "rewind/replay/replay_header.h"
 
 namespace rwd::server {
@@ -229,11 +230,7 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
   auto flush_relay = [&]() {
     if (relay_run_.empty()) return;
     stats_.relayed_inputs += relay_run_.size();
-    v1::RelayedInputs& run = relay_batch_.emplace_back();
-    run.set_player(player);
-    run.set_first_tick(relay_first);
-    proto::pack_run(relay_run_, *run.mutable_packed_inputs());
-    relay_sizes_.push_back(run.ByteSizeLong() + 3);  // tag + length prefix
+    relay_batch_.push_back({player, relay_first, relay_run_});
     relay_run_.clear();
   };
 
@@ -387,19 +384,18 @@ void MatchHost::finalize_ready_ticks() {
       if (!status.ok()) record_replay_error(status);
     }
     (void)session_->finalize_through(t);
-    final_sizes_.push_back(static_cast<uint32_t>(final_tick.ByteSizeLong()));
+    HeldFinal& held = held_.emplace_back();
+    held.size = static_cast<uint32_t>(final_tick.ByteSizeLong());
+    held.made_at = current;
     // The same tick against the one before: a pair of neighbours in one
     // message costs a byte per unchanged input.
-    std::string delta;
     if (previous_final_inputs_.size() == final_inputs_.size()) {
-      proto::pack_inputs(final_inputs_, previous_final_inputs_, delta);
+      proto::pack_inputs(final_inputs_, previous_final_inputs_, held.delta);
+      v1::FinalTick as_delta = final_tick;
+      as_delta.set_packed_inputs(held.delta);
+      as_delta.set_delta(true);
+      held.delta_size = static_cast<uint32_t>(as_delta.ByteSizeLong());
     }
-    v1::FinalTick as_delta = final_tick;
-    as_delta.set_packed_inputs(delta);
-    as_delta.set_delta(true);
-    final_delta_sizes_.push_back(delta.empty() ? 0
-                                               : static_cast<uint32_t>(as_delta.ByteSizeLong()));
-    final_deltas_.push_back(std::move(delta));
     previous_final_inputs_ = final_inputs_;
     finals_.push_back(std::move(final_tick));
     ++next_final_;
@@ -412,14 +408,19 @@ void MatchHost::finalize_ready_ticks() {
   while (!finals_.empty() &&
          (finals_.front().tick() <= acked_by_all || finals_.size() > kMaxFinalHistory)) {
     finals_.pop_front();
-    final_sizes_.pop_front();
-    final_deltas_.pop_front();
-    final_delta_sizes_.pop_front();
+    held_.pop_front();
   }
 }
 
 void MatchHost::broadcast(TimePoint now) {
   const Tick oldest_held = finals_.empty() ? next_final_ : finals_.front().tick();
+  // Each run packed once, for every client but its player.
+  relay_packed_.resize(relay_batch_.size());
+  for (size_t r = 0; r < relay_batch_.size(); ++r) {
+    relay_packed_[r].clear();
+    proto::append_relayed_run(relay_batch_[r].player, relay_batch_[r].first_tick, server_tick(),
+                              relay_batch_[r].inputs, relay_packed_[r]);
+  }
   for (uint32_t p = 0; p < peers_.size(); ++p) {
     Peer& peer = peers_[p];
     if (!peer.joined || !peer.connected) continue;
@@ -448,13 +449,13 @@ void MatchHost::broadcast(TimePoint now) {
     // The other players' new inputs first (they are what prediction waits
     // for), up to part of the budget: what does not fit arrives in final
     // ticks soon anyway.
-    size_t budget = kFinalTicksBudgetBytes;
+    size_t budget = kFinalTicksBudgetBytes - 3;  // the relayed field's tag and length
+    std::string* relayed = out->mutable_relayed();
     for (size_t r = 0; r < relay_batch_.size(); ++r) {
-      if (relay_batch_[r].player() == p || relay_sizes_[r] > budget - kFinalTicksBudgetBytes / 3) {
-        continue;
-      }
-      budget -= relay_sizes_[r];
-      *out->add_relayed() = relay_batch_[r];
+      const size_t size = relay_packed_[r].size();
+      if (relay_batch_[r].player == p || size > budget - kFinalTicksBudgetBytes / 3) continue;
+      budget -= size;
+      *relayed += relay_packed_[r];
     }
     // While a snapshot is on its way the client ignores final ticks, but
     // still needs the server's clock and its input acknowledgements.
@@ -462,7 +463,7 @@ void MatchHost::broadcast(TimePoint now) {
     send(peer, envelope, now);
   }
   relay_batch_.clear();
-  relay_sizes_.clear();
+  relay_packed_.clear();
 }
 
 void MatchHost::add_final_ticks(Peer& peer, v1::FinalTicks& out, size_t budget) {
@@ -473,8 +474,9 @@ void MatchHost::add_final_ticks(Peer& peer, v1::FinalTicks& out, size_t budget) 
   auto add = [&](Tick t) {
     const size_t index = static_cast<size_t>(t - oldest_held);
     // Right after the tick before it, a tick goes as a delta against it.
-    const bool as_delta = last_added == t - 1 && !final_deltas_[index].empty();
-    const size_t size = (as_delta ? final_delta_sizes_[index] : final_sizes_[index]) + 3;
+    const HeldFinal& held = held_[index];
+    const bool as_delta = last_added == t - 1 && !held.delta.empty();
+    const size_t size = (as_delta ? held.delta_size : held.size) + 3;
     if (size > budget || out.ticks_size() >= static_cast<int>(net::kMaxFinalTicksPerPacket)) {
       return false;
     }
@@ -482,7 +484,7 @@ void MatchHost::add_final_ticks(Peer& peer, v1::FinalTicks& out, size_t budget) 
     v1::FinalTick* added = out.add_ticks();
     *added = finals_[index];
     if (as_delta) {
-      added->set_packed_inputs(final_deltas_[index]);
+      added->set_packed_inputs(held.delta);
       added->set_delta(true);
     }
     last_added = t;
@@ -495,14 +497,27 @@ void MatchHost::add_final_ticks(Peer& peer, v1::FinalTicks& out, size_t budget) 
   Tick t = first_new;
   while (t <= newest && add(t)) ++t;
   peer.final_sent = std::max(peer.final_sent, t - 1);
-  // The resend cursor walks round-robin through the unacknowledged range,
-  // so after a loss burst every missing tick comes back within a few
-  // packets instead of the oldest few being resent over and over.
+  // Ticks sent less than a round trip (and two ticks) ago are not resent:
+  // their acknowledgement cannot be back yet. The resend cursor walks
+  // round-robin through the overdue range, so after a loss burst every
+  // missing tick comes back within a few packets instead of the oldest few
+  // being resent over and over.
   const Tick lowest = std::max(peer.final_seen + 1, oldest_held);
-  if (lowest >= first_new) return;
-  Tick r = std::clamp(peer.resend_cursor, lowest, first_new - 1);
-  for (Tick sent = 0; sent < first_new - lowest && add(r); ++sent) {
-    r = r + 1 < first_new ? r + 1 : lowest;
+  const double rtt_ticks =
+      peer.connection->has_rtt()
+          ? static_cast<double>(peer.connection->smoothed_rtt_us()) * config_.tick_rate_hz / 1e6
+          : 0.0;
+  const Tick due_before = session_->current_tick() - static_cast<Tick>(std::ceil(rtt_ticks)) - 2;
+  Tick overdue_end = lowest;
+  while (overdue_end < first_new &&
+         held_[static_cast<size_t>(overdue_end - oldest_held)].made_at <= due_before) {
+    ++overdue_end;
+  }
+  if (lowest >= overdue_end) return;
+  Tick r = std::clamp(peer.resend_cursor, lowest, overdue_end - 1);
+  last_added = kNoTick;
+  for (Tick sent = 0; sent < overdue_end - lowest && add(r); ++sent) {
+    r = r + 1 < overdue_end ? r + 1 : lowest;
   }
   peer.resend_cursor = r;
 }

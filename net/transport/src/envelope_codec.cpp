@@ -188,17 +188,8 @@ Status check_payload(const Envelope& e) {
             return input_error(field() + ".inputs", i, ft.inputs(i));
         }
       }
-      if (static_cast<uint32_t>(m.relayed_size()) > kMaxPlayerSlots * 4) {
-        return corrupt("final_ticks has " + std::to_string(m.relayed_size()) +
-                       " relayed runs, limit " + std::to_string(kMaxPlayerSlots * 4));
-      }
-      for (int r = 0; r < m.relayed_size(); ++r) {
-        if (Status s =
-                check_relayed("final_ticks.relayed[" + std::to_string(r) + "]", m.relayed(r));
-            !s.ok()) {
-          return s;
-        }
-      }
+      std::vector<proto::RelayedRun> runs;
+      if (Status s = proto::relayed_runs(m, runs); !s.ok()) return s;
       std::vector<std::vector<game::PlayerInput>> tick_inputs;
       if (Status s = proto::final_tick_inputs(m, tick_inputs); !s.ok()) return s;
       return check_tick("final_ticks.input_ack_tick", m.input_ack_tick(), -1);

@@ -8,6 +8,7 @@
 
 #include "rewind/net/envelope_codec.h"
 #include "rewind/proto/input_packing.h"
+#include "rewind/proto/message_inputs.h"
 #include "rewind/v1/envelope.pb.h"
 
 namespace rwd::net::testing {
@@ -173,12 +174,10 @@ inline std::vector<v1::Envelope> sample_envelopes() {
       }
       previous = inputs;
     }
-    auto* run = m->add_relayed();
-    run->set_player(3);
-    run->set_first_tick(304);
     const std::vector<game::PlayerInput> run_inputs = {
         {1000, -1000, 1}, {1000, -1000, 1}, {0, 0, 0}};
-    proto::pack_run(run_inputs, *run->mutable_packed_inputs());
+    proto::append_relayed_run(3, 304, 306, run_inputs, *m->mutable_relayed());
+    proto::append_relayed_run(1, 309, 306, run_inputs, *m->mutable_relayed());
     m->set_input_ack_tick(305);
     m->set_server_tick(306);
     out.push_back(e);

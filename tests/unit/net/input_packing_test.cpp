@@ -99,5 +99,42 @@ TEST(MessageInputs, ADeltaNeedsTheTickBeforeIt) {
   EXPECT_EQ(final_tick_inputs(finals, out).code(), ErrorCode::kCorrupt);
 }
 
+TEST(MessageInputs, RelayedRunsRoundTripAndRefuseBadBytes) {
+  const std::vector<PlayerInput> a = {{5, 5, 0}, {5, 6, 0}};
+  const std::vector<PlayerInput> b = {{-1000, 1000, 9}};
+  v1::FinalTicks finals;
+  finals.set_server_tick(1000);
+  append_relayed_run(2, 1003, 1000, a, *finals.mutable_relayed());
+  append_relayed_run(7, 990, 1000, b, *finals.mutable_relayed());
+  std::vector<RelayedRun> runs;
+  ASSERT_TRUE(relayed_runs(finals, runs).ok());
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[0].player, 2u);
+  EXPECT_EQ(runs[0].first_tick, 1003);
+  EXPECT_EQ(runs[0].inputs, a);
+  EXPECT_EQ(runs[1].player, 7u);
+  EXPECT_EQ(runs[1].first_tick, 990);
+  EXPECT_EQ(runs[1].inputs, b);
+  const std::string whole = finals.relayed();
+  for (size_t cut = 1; cut < whole.size(); ++cut) {
+    finals.set_relayed(whole.substr(0, cut));
+    // Every prefix ends on a run boundary (then it holds the first run)
+    // or is refused; none is read as something else.
+    const Status s = relayed_runs(finals, runs);
+    if (s.ok()) {
+      EXPECT_EQ(runs.size(), 1u) << cut;
+    } else {
+      EXPECT_EQ(s.code(), ErrorCode::kCorrupt);
+      EXPECT_TRUE(runs.empty());
+    }
+  }
+  finals.set_relayed(std::string(1, '\x40'));  // player 64
+  EXPECT_FALSE(relayed_runs(finals, runs).ok());
+  finals.set_server_tick(0);
+  finals.clear_relayed();
+  append_relayed_run(1, 0, 5, a, *finals.mutable_relayed());  // tick -5
+  EXPECT_FALSE(relayed_runs(finals, runs).ok());
+}
+
 }  // namespace
 }  // namespace rwd::proto

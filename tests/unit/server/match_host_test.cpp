@@ -46,14 +46,14 @@ TEST(MatchHost, OneDatagramPerClientPerTickCarriesTheOthersInputs) {
       ASSERT_EQ(got.size(), 1u) << "tick " << t << " player " << c.player;
       ASSERT_TRUE(got[0].has_final_ticks());
       uint64_t from = 0;
-      for (const v1::RelayedInputs& run : got[0].final_ticks().relayed()) {
-        EXPECT_NE(run.player(), c.player);
-        EXPECT_EQ(run.first_tick(), t);
-        std::vector<game::PlayerInput> inputs;
-        ASSERT_TRUE(proto::relayed_run_inputs(run, inputs).ok());
-        ASSERT_EQ(inputs.size(), 1u);
-        EXPECT_EQ(inputs[0], scripted(run.player(), t));
-        from |= uint64_t{1} << run.player();
+      std::vector<proto::RelayedRun> runs;
+      ASSERT_TRUE(proto::relayed_runs(got[0].final_ticks(), runs).ok());
+      for (const proto::RelayedRun& run : runs) {
+        EXPECT_NE(run.player, c.player);
+        EXPECT_EQ(run.first_tick, t);
+        ASSERT_EQ(run.inputs.size(), 1u);
+        EXPECT_EQ(run.inputs[0], scripted(run.player, t));
+        from |= uint64_t{1} << run.player;
       }
       EXPECT_EQ(from, 0xFull & ~(uint64_t{1} << c.player)) << "tick " << t;
     }

@@ -32,6 +32,7 @@
 #include "rewind/net/secure_channel.h"
 #include "rewind/net/time_sync.h"
 #include "rewind/net/udp_endpoint.h"
+#include "rewind/proto/message_inputs.h"
 #include "rewind/v1/envelope.pb.h"
 
 namespace rwd::client {
@@ -115,7 +116,7 @@ class ClientSession {
   void send_desync_report(TimePoint now);
   void send(v1::Envelope& envelope, TimePoint now);
   /// Another player's inputs as the server relayed them.
-  void on_relayed(const v1::RelayedInputs& relayed);
+  void on_relayed(uint32_t player, Tick first_tick, std::span<const game::PlayerInput> inputs);
   /// Puts a datagram on the wire (or the detached sender, or the faults).
   void transmit(std::span<const uint8_t> datagram);
   /// Reads config.connect_token into the session's handshake.
@@ -155,6 +156,7 @@ class ClientSession {
   std::map<Tick, FinalTickData> early_finals_;            // arrived ahead of a gap, bounded
   std::vector<std::vector<game::PlayerInput>> final_inputs_buffer_;
   std::vector<game::PlayerInput> relayed_buffer_;
+  std::vector<proto::RelayedRun> relayed_runs_;
   Tick last_final_acked_ = kNoTick;  // last_final_received_ as last sent
   int report_sends_ = 0;
   int32_t server_tick_ = 0;

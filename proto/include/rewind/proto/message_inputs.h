@@ -3,6 +3,8 @@
 // The inputs carried by the messages that may pack them (final ticks and
 // relayed runs), read one way for the envelope codec's checks and for the
 // client: packed bytes when present, the repeated Input fields otherwise.
+#include <span>
+#include <string>
 #include <vector>
 
 #include "rewind/game/player_input.h"
@@ -17,6 +19,22 @@ namespace rwd::proto {
 /// packing or an axis outside [-1000, 1000].
 Status final_tick_inputs(const v1::FinalTicks& finals,
                          std::vector<std::vector<game::PlayerInput>>& out);
+
+/// One run of a player's inputs from a FinalTicks message's `relayed`.
+struct RelayedRun {
+  uint32_t player = 0;
+  int32_t first_tick = 0;
+  std::vector<game::PlayerInput> inputs;
+};
+
+/// Appends a run (at most kMaxPackedInputs inputs) to a FinalTicks
+/// message's `relayed` bytes, its first tick relative to `server_tick`.
+void append_relayed_run(uint32_t player, int32_t first_tick, int32_t server_tick,
+                        std::span<const game::PlayerInput> inputs, std::string& out);
+
+/// The runs of `finals.relayed()`: kCorrupt for bad packing, a player past
+/// the slot limit, a tick outside [0, 2^31) or more than 256 runs.
+Status relayed_runs(const v1::FinalTicks& finals, std::vector<RelayedRun>& out);
 
 /// A relayed run's inputs, packed or repeated (not both).
 Status relayed_run_inputs(const v1::RelayedInputs& run, std::vector<game::PlayerInput>& out);

@@ -147,15 +147,24 @@ class MatchHost {
   std::deque<v1::FinalTick> finals_;  // contiguous ticks, oldest first
   // Inputs accepted since the last broadcast, relayed in it to every other
   // client; with each run's encoded size.
-  std::vector<v1::RelayedInputs> relay_batch_;
-  std::vector<size_t> relay_sizes_;
+  struct RelayRun {
+    uint32_t player = 0;
+    Tick first_tick = 0;
+    std::vector<game::PlayerInput> inputs;
+  };
+  std::vector<RelayRun> relay_batch_;
+  std::vector<std::string> relay_packed_;     // each run packed, at broadcast
   std::vector<game::PlayerInput> relay_run_;  // the run being gathered
-  std::deque<uint32_t> final_sizes_;          // encoded size of each, in step with finals_
-  // Each held final tick's inputs packed against the tick before (sent
-  // when that tick precedes it in the same message), and the encoded size
-  // of the tick sent that way; in step with finals_.
-  std::deque<std::string> final_deltas_;
-  std::deque<uint32_t> final_delta_sizes_;
+  // What the broadcast needs of each held final tick, in step with finals_.
+  struct HeldFinal {
+    uint32_t size = 0;  // encoded size
+    // The inputs packed against the tick before (sent when that tick
+    // precedes it in the same message), and the tick's size sent that way.
+    std::string delta;
+    uint32_t delta_size = 0;
+    Tick made_at = 0;  // the server's tick when it was finalized (first sent)
+  };
+  std::deque<HeldFinal> held_;
   std::vector<game::PlayerInput> previous_final_inputs_;  // of tick next_final_ - 1
   Tick next_final_ = 0;
   int32_t countdown_ticks_ = 0;
