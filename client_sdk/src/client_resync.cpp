@@ -98,6 +98,7 @@ void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now)
   }
   const Tick tick = done.tick;
   last_final_received_ = tick - 1;  // the server resends final ticks from here
+  last_final_inputs_.clear();       // ... and sends the first one standalone
   pending_finals_.clear();
   early_finals_.clear();
   next_input_tick_ = std::max(next_input_tick_, tick);

@@ -489,44 +489,44 @@ void ClientSession::on_final_ticks(const v1::FinalTicks& finals, TimePoint now) 
   // While desynced, final ticks are neither applied nor acknowledged: the
   // server resends them from the resync snapshot's tick on.
   if (awaiting_resync_) return;
-  // decode_envelope has read every tick's inputs already; this cannot fail.
-  if (!proto::final_tick_inputs(finals, final_inputs_buffer_).ok()) return;
-  for (int t = 0; t < finals.ticks_size(); ++t) {
-    const v1::FinalTick& final_tick = finals.ticks(t);
+  for (const v1::FinalTick& final_tick : finals.ticks()) {
     const Tick tick = final_tick.tick();
     if (tick <= last_final_received_) continue;  // duplicate
-    FinalTickData data{std::move(final_inputs_buffer_[static_cast<size_t>(t)]),
-                       final_tick.checksum()};
     if (tick == last_final_received_ + 1) {
-      if (!apply_final_tick(tick, data, now)) return;
+      if (!apply_final_tick(final_tick, now)) return;
       // Ticks that arrived ahead of this one can follow now.
       for (auto it = early_finals_.begin();
            it != early_finals_.end() && it->first == last_final_received_ + 1;
            it = early_finals_.erase(it)) {
-        if (!apply_final_tick(it->first, it->second, now)) return;
+        if (!apply_final_tick(it->second, now)) return;
       }
     } else if (tick <= last_final_received_ + config_.snapshot_ticks &&
                early_finals_.size() < static_cast<size_t>(config_.snapshot_ticks)) {
-      early_finals_.emplace(tick, std::move(data));  // a gap: keep it for later
+      early_finals_.emplace(tick, final_tick);  // a gap: keep it for later
     }
   }
 }
 
-bool ClientSession::apply_final_tick(Tick tick, const FinalTickData& data, TimePoint now) {
-  if (data.inputs.size() != player_count_) {
+bool ClientSession::apply_final_tick(const v1::FinalTick& final_tick, TimePoint now) {
+  // Packed against the tick before, which is always the one applied last:
+  // final ticks are applied in order.
+  if (!proto::final_tick_inputs(final_tick, last_final_inputs_, final_inputs_buffer_).ok() ||
+      final_inputs_buffer_.size() != player_count_) {
     ++stats_.packets_rejected;
     return false;
   }
+  const Tick tick = final_tick.tick();
   for (uint32_t p = 0; p < player_count_; ++p) {
-    const net::InputResult result = session_->add_final_input(p, tick, data.inputs[p]);
+    const net::InputResult result = session_->add_final_input(p, tick, final_inputs_buffer_[p]);
     if (result == net::InputResult::kTooFar) {
       // Beyond our input window: we cannot apply it, so we cannot verify it.
       request_resync(now);
       return false;
     }
   }
-  pending_finals_.emplace_back(tick, data.checksum);
+  pending_finals_.emplace_back(tick, final_tick.checksum());
   last_final_received_ = tick;
+  last_final_inputs_.swap(final_inputs_buffer_);
   return true;
 }
 

@@ -120,6 +120,22 @@ Status unpack_inputs(std::string_view bytes, std::span<const game::PlayerInput> 
   return Status::Ok();
 }
 
+Status check_packed_inputs(std::string_view bytes) {
+  if (bytes.empty()) return corrupt("packed inputs: no count");
+  const auto count = static_cast<uint8_t>(bytes[0]);
+  if (count > kMaxPackedInputs) return corrupt("packed inputs: more than 64");
+  size_t at = 1;
+  for (size_t i = 0; i < count; ++i) {
+    if (at >= bytes.size())
+      return corrupt("packed inputs: cut short at input " + std::to_string(i));
+    const auto mask = static_cast<uint8_t>(bytes[at++]);
+    at += static_cast<size_t>(__builtin_popcount(mask));
+    if (at > bytes.size()) return corrupt("packed inputs: cut short at input " + std::to_string(i));
+  }
+  if (at != bytes.size()) return corrupt("packed inputs: trailing bytes");
+  return Status::Ok();
+}
+
 Status unpack_run(std::string_view bytes, std::vector<game::PlayerInput>& out) {
   out.clear();
   if (bytes.empty()) return corrupt("packed run: no count");

@@ -98,30 +98,39 @@ Status relayed_runs(const v1::FinalTicks& finals, std::vector<RelayedRun>& out) 
   return Status::Ok();
 }
 
-Status final_tick_inputs(const v1::FinalTicks& finals,
-                         std::vector<std::vector<game::PlayerInput>>& out) {
-  out.resize(static_cast<size_t>(finals.ticks_size()));
+Status check_final_tick_inputs(const v1::FinalTicks& finals) {
+  std::vector<game::PlayerInput> scratch;
   for (int t = 0; t < finals.ticks_size(); ++t) {
     const v1::FinalTick& tick = finals.ticks(t);
-    std::vector<game::PlayerInput>& inputs = out[static_cast<size_t>(t)];
     const std::string name = "final_ticks.ticks[" + std::to_string(t) + "]";
     Status status = Status::Ok();
     if (tick.packed_inputs().empty()) {
       if (tick.delta()) return corrupt(name + " is a delta without packed inputs");
-      status = repeated_inputs(tick.inputs(), inputs);
+      status = repeated_inputs(tick.inputs(), scratch);
     } else if (tick.inputs_size() != 0) {
       return corrupt(name + " has packed and repeated inputs");
     } else if (tick.delta()) {
-      if (t == 0 || finals.ticks(t - 1).tick() != tick.tick() - 1) {
-        return corrupt(name + " is a delta but does not follow the tick before it");
-      }
-      status = unpack_inputs(tick.packed_inputs(), out[static_cast<size_t>(t) - 1], inputs);
+      status = check_packed_inputs(tick.packed_inputs());
     } else {
-      status = unpack_inputs(tick.packed_inputs(), {}, inputs);
+      status = unpack_inputs(tick.packed_inputs(), {}, scratch);
     }
     if (!status.ok()) return corrupt(name + ": " + status.message());
   }
   return Status::Ok();
+}
+
+Status final_tick_inputs(const v1::FinalTick& tick, std::span<const game::PlayerInput> previous,
+                         std::vector<game::PlayerInput>& out) {
+  if (tick.packed_inputs().empty()) {
+    if (tick.delta()) return corrupt("a delta final tick without packed inputs");
+    return repeated_inputs(tick.inputs(), out);
+  }
+  if (!tick.delta()) return unpack_inputs(tick.packed_inputs(), {}, out);
+  if (previous.empty()) {
+    out.clear();
+    return corrupt("a delta final tick without the inputs of the tick before it");
+  }
+  return unpack_inputs(tick.packed_inputs(), previous, out);
 }
 
 Status relayed_run_inputs(const v1::RelayedInputs& run, std::vector<game::PlayerInput>& out) {

@@ -387,8 +387,8 @@ void MatchHost::finalize_ready_ticks() {
     HeldFinal& held = held_.emplace_back();
     held.size = static_cast<uint32_t>(final_tick.ByteSizeLong());
     held.made_at = current;
-    // The same tick against the one before: a pair of neighbours in one
-    // message costs a byte per unchanged input.
+    // The same tick packed against the one before, as clients that have
+    // applied that one receive it: a byte per unchanged input.
     if (previous_final_inputs_.size() == final_inputs_.size()) {
       proto::pack_inputs(final_inputs_, previous_final_inputs_, held.delta);
       v1::FinalTick as_delta = final_tick;
@@ -470,12 +470,12 @@ void MatchHost::add_final_ticks(Peer& peer, v1::FinalTicks& out, size_t budget) 
   if (finals_.empty()) return;
   const Tick oldest_held = finals_.front().tick();
   const Tick newest = next_final_ - 1;
-  Tick last_added = kNoTick;
   auto add = [&](Tick t) {
     const size_t index = static_cast<size_t>(t - oldest_held);
-    // Right after the tick before it, a tick goes as a delta against it.
+    // Packed against the tick before, which the client has applied by the
+    // time it applies this one (final ticks are applied in order).
     const HeldFinal& held = held_[index];
-    const bool as_delta = last_added == t - 1 && !held.delta.empty();
+    const bool as_delta = t > peer.standalone_from && !held.delta.empty();
     const size_t size = (as_delta ? held.delta_size : held.size) + 3;
     if (size > budget || out.ticks_size() >= static_cast<int>(net::kMaxFinalTicksPerPacket)) {
       return false;
@@ -487,7 +487,6 @@ void MatchHost::add_final_ticks(Peer& peer, v1::FinalTicks& out, size_t budget) 
       added->set_packed_inputs(held.delta);
       added->set_delta(true);
     }
-    last_added = t;
     return true;
   };
   // New ticks first, so a round trip never limits how fast finals flow;
@@ -515,7 +514,6 @@ void MatchHost::add_final_ticks(Peer& peer, v1::FinalTicks& out, size_t budget) 
   }
   if (lowest >= overdue_end) return;
   Tick r = std::clamp(peer.resend_cursor, lowest, overdue_end - 1);
-  last_added = kNoTick;
   for (Tick sent = 0; sent < overdue_end - lowest && add(r); ++sent) {
     r = r + 1 < overdue_end ? r + 1 : lowest;
   }

@@ -218,6 +218,7 @@ bool MatchHost::start_resync_episode(Peer& peer) {
       continue;
     }
     peer.resync_tick = tick;
+    peer.standalone_from = tick;
     peer.resync_checksum = *checksum;
     peer.resync_id = next_snapshot_id_++;
     // Final ticks from here on are (re)sent once the client acknowledges

@@ -190,8 +190,7 @@ Status check_payload(const Envelope& e) {
       }
       std::vector<proto::RelayedRun> runs;
       if (Status s = proto::relayed_runs(m, runs); !s.ok()) return s;
-      std::vector<std::vector<game::PlayerInput>> tick_inputs;
-      if (Status s = proto::final_tick_inputs(m, tick_inputs); !s.ok()) return s;
+      if (Status s = proto::check_final_tick_inputs(m); !s.ok()) return s;
       return check_tick("final_ticks.input_ack_tick", m.input_ack_tick(), -1);
     }
     case Envelope::kDesyncReport: {

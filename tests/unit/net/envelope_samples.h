@@ -151,8 +151,9 @@ inline std::vector<v1::Envelope> sample_envelopes() {
     out.push_back(e);
   }
   {
-    // Final ticks with packed inputs, a delta chain and packed relayed
-    // runs, as servers send them.
+    // Final ticks with packed inputs (the first standalone, the others
+    // against the tick before) and packed relayed runs, as servers send
+    // them.
     v1::Envelope e = header();
     auto* m = e.mutable_final_ticks();
     std::vector<game::PlayerInput> previous;

@@ -2,8 +2,8 @@
 // Packed inputs: lists and runs round-trip for any values in range, an
 // unchanged input costs one byte, and every malformed list (cut short,
 // trailing bytes, too many inputs, wrong reference count, an axis out of
-// range) is kCorrupt. Final ticks read a delta only right after the tick
-// it follows.
+// range) is kCorrupt. A delta final tick reads against the tick before
+// it and is checked for its form where that is unknown.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -76,7 +76,7 @@ TEST(InputPacking, MalformedListsAreCorrupt) {
   EXPECT_EQ(unpack_run(wide, out).code(), ErrorCode::kCorrupt);
 }
 
-TEST(MessageInputs, ADeltaNeedsTheTickBeforeIt) {
+TEST(MessageInputs, ADeltaReadsAgainstTheTickBeforeAndIsCheckedForItsForm) {
   const std::vector<PlayerInput> a = {{1, 2, 3}, {4, 5, 6}};
   const std::vector<PlayerInput> b = {{1, 2, 3}, {-4, 5, 0}};
   v1::FinalTicks finals;
@@ -87,16 +87,21 @@ TEST(MessageInputs, ADeltaNeedsTheTickBeforeIt) {
   second->set_tick(11);
   pack_inputs(b, a, *second->mutable_packed_inputs());
   second->set_delta(true);
-  std::vector<std::vector<PlayerInput>> out;
-  ASSERT_TRUE(final_tick_inputs(finals, out).ok());
-  ASSERT_EQ(out.size(), 2u);
-  EXPECT_EQ(out[0], a);
-  EXPECT_EQ(out[1], b);
-  second->set_tick(12);  // no longer the tick after
-  EXPECT_EQ(final_tick_inputs(finals, out).code(), ErrorCode::kCorrupt);
-  second->set_tick(11);
-  finals.mutable_ticks()->SwapElements(0, 1);  // the delta first
-  EXPECT_EQ(final_tick_inputs(finals, out).code(), ErrorCode::kCorrupt);
+  EXPECT_TRUE(check_final_tick_inputs(finals).ok());
+  std::vector<PlayerInput> out;
+  ASSERT_TRUE(final_tick_inputs(*first, {}, out).ok());
+  EXPECT_EQ(out, a);
+  ASSERT_TRUE(final_tick_inputs(*second, a, out).ok());
+  EXPECT_EQ(out, b);
+  // Without the tick before, a delta cannot be read.
+  EXPECT_EQ(final_tick_inputs(*second, {}, out).code(), ErrorCode::kCorrupt);
+  // A delta cut short is refused by its form alone.
+  second->mutable_packed_inputs()->pop_back();
+  EXPECT_EQ(check_final_tick_inputs(finals).code(), ErrorCode::kCorrupt);
+  // A standalone tick is checked for its values too.
+  second->set_delta(false);
+  first->set_packed_inputs(std::string{'\x01', '\x03', '\xD0', '\x07'});  // an axis of 2000
+  EXPECT_EQ(check_final_tick_inputs(finals).code(), ErrorCode::kCorrupt);
 }
 
 TEST(MessageInputs, RelayedRunsRoundTripAndRefuseBadBytes) {

@@ -99,12 +99,9 @@ class ClientSession {
   void on_join_accept(const v1::JoinAccept& accept, TimePoint now);
   void on_match_start(const v1::MatchStart& start, TimePoint now);
   void on_final_ticks(const v1::FinalTicks& finals, TimePoint now);
-  /// A final tick's inputs (one per slot) and checksum, decoded.
-  struct FinalTickData {
-    std::vector<game::PlayerInput> inputs;
-    uint64_t checksum = 0;
-  };
-  bool apply_final_tick(Tick tick, const FinalTickData& data, TimePoint now);
+  /// Applies the next final tick; its inputs may be packed against those
+  /// of the tick before (last_final_inputs_).
+  bool apply_final_tick(const v1::FinalTick& final_tick, TimePoint now);
   void request_resync(TimePoint now);
   void finish_ending(TimePoint now);
   void on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now);
@@ -153,8 +150,11 @@ class ClientSession {
   Tick input_ack_ = kNoTick;
   Tick last_final_received_ = kNoTick;
   std::deque<std::pair<Tick, uint64_t>> pending_finals_;  // (tick, server checksum)
-  std::map<Tick, FinalTickData> early_finals_;            // arrived ahead of a gap, bounded
-  std::vector<std::vector<game::PlayerInput>> final_inputs_buffer_;
+  std::map<Tick, v1::FinalTick> early_finals_;            // arrived ahead of a gap, bounded
+  /// The final inputs of tick last_final_received_ (empty after a resync:
+  /// the server then sends the next tick standalone).
+  std::vector<game::PlayerInput> last_final_inputs_;
+  std::vector<game::PlayerInput> final_inputs_buffer_;
   std::vector<game::PlayerInput> relayed_buffer_;
   std::vector<proto::RelayedRun> relayed_runs_;
   Tick last_final_acked_ = kNoTick;  // last_final_received_ as last sent

@@ -41,6 +41,11 @@ void pack_run(std::span<const game::PlayerInput> run, std::string& out);
 Status unpack_inputs(std::string_view bytes, std::span<const game::PlayerInput> references,
                      std::vector<game::PlayerInput>& out);
 
+/// Checks that `bytes` is a well-formed packed list (count, masks and
+/// bytes agree, nothing trailing) without its references: the values are
+/// known only to a receiver holding them.
+Status check_packed_inputs(std::string_view bytes);
+
 /// Reads a run packed by pack_run.
 Status unpack_run(std::string_view bytes, std::vector<game::PlayerInput>& out);
 

@@ -13,12 +13,18 @@
 
 namespace rwd::proto {
 
-/// The inputs of each final tick of `finals`, in order, into `out`: a
-/// `delta` tick against the previous tick of the message, which must be
-/// the tick before it. kCorrupt (naming the tick) otherwise, or for bad
-/// packing or an axis outside [-1000, 1000].
-Status final_tick_inputs(const v1::FinalTicks& finals,
-                         std::vector<std::vector<game::PlayerInput>>& out);
+/// Checks the inputs of every final tick of `finals`: standalone ones
+/// (packed or repeated) fully, `delta` ones (packed against the inputs of
+/// the tick before, which only the receiver holds) for their form.
+/// kCorrupt naming the tick otherwise.
+Status check_final_tick_inputs(const v1::FinalTicks& finals);
+
+/// One final tick's inputs into `out`: a `delta` tick against `previous`
+/// (the final inputs of the tick before, as the receiver applied them;
+/// kCorrupt when it has none), a standalone one on its own. kCorrupt for
+/// bad packing or an axis outside [-1000, 1000].
+Status final_tick_inputs(const v1::FinalTick& tick, std::span<const game::PlayerInput> previous,
+                         std::vector<game::PlayerInput>& out);
 
 /// One run of a player's inputs from a FinalTicks message's `relayed`.
 struct RelayedRun {

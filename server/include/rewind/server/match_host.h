@@ -101,7 +101,11 @@ class MatchHost {
     uint64_t resync_checksum = 0;
     uint32_t resync_id = 0;
     Tick resend_cursor = kNoTick;  // round-robin position among unacknowledged finals
-    bool left = false;             // sent Disconnect: nothing more is taken from it
+    // The first final tick the client applies without the one before it
+    // (the match's first, or a resync snapshot's): sent standalone; later
+    // ticks go packed against the tick before.
+    Tick standalone_from = 0;
+    bool left = false;  // sent Disconnect: nothing more is taken from it
     int32_t last_lead = 0;
     bool sent_input = false;
     TimePoint last_receive;
