@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rewind/cli/flag_parser.h"
+#include "rewind/cli/host_port.h"
 #include "rewind/client/client_session.h"
 #include "rewind/net/connect_token.h"
 #include "rewind/tools/bot_script.h"
@@ -28,20 +29,6 @@ struct Bot {
   bool failed = false;
   std::string failure;
 };
-
-bool split_host_port(const std::string& text, std::string* host, uint16_t* port) {
-  const size_t colon = text.rfind(':');
-  if (colon == std::string::npos || colon == 0 || colon + 1 == text.size()) return false;
-  std::string h = text.substr(0, colon);
-  if (h.size() > 2 && h.front() == '[' && h.back() == ']') h = h.substr(1, h.size() - 2);
-  const std::string p = text.substr(colon + 1);
-  if (p.find_first_not_of("0123456789") != std::string::npos || p.size() > 5) return false;
-  const long value = std::stol(p);
-  if (value < 1 || value > 65535) return false;
-  *host = h;
-  *port = static_cast<uint16_t>(value);
-  return true;
-}
 
 // Names (e.g. "server" on a compose network) are resolved once, up front;
 // the sessions take an address literal.
@@ -114,7 +101,7 @@ int main(int argc, char** argv) {
   }
   std::string host;
   uint16_t port = 0;
-  if (!split_host_port(connect, &host, &port)) {
+  if (!rwd::cli::split_host_port(connect, &host, &port) || port == 0) {
     std::fprintf(stderr, "rewind-bots: --connect: expected HOST:PORT, got '%s'\n", connect.c_str());
     return rwd::cli::kExitUsage;
   }
