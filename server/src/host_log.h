@@ -5,10 +5,15 @@
 #include <cstdio>
 #include <string>
 
+#include "rewind/server/server_log.h"
+
 namespace rwd::server::detail {
 
 inline void log_line(const std::string& text) {
-  std::fprintf(stderr, "[rewind-server] %s\n", text.c_str());
+  write_log(LogLevel::kInfo, text);
+}
+inline void log_warning(const std::string& text) {
+  write_log(LogLevel::kWarning, text);
 }
 
 // Text that came from a client goes into our logs only printable and short,

@@ -5,6 +5,26 @@
 
 #include "rewind/cli/flag_parser.h"
 #include "rewind/server/server.h"
+#include "rewind/server/server_log.h"
+
+namespace {
+
+using rwd::server::LogLevel;
+using rwd::server::write_log;
+
+// Written to a temporary name and renamed, so a reader never sees half a number.
+bool write_port_file(const std::string& path, uint16_t port) {
+  const std::string temporary = path + ".tmp";
+  std::FILE* file = std::fopen(temporary.c_str(), "w");
+  bool written = file != nullptr;
+  if (written) {
+    written = std::fprintf(file, "%u\n", static_cast<unsigned>(port)) >= 0;
+    written = std::fclose(file) == 0 && written;  // closed whatever happened
+  }
+  return written && std::rename(temporary.c_str(), path.c_str()) == 0;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using rwd::cli::FlagParser;
@@ -16,7 +36,7 @@ int main(int argc, char** argv) {
           seed = static_cast<int64_t>(config.match.seed), keyframe = config.match.keyframe_interval;
   double join_timeout = config.match.join_timeout_s, peer_timeout = config.match.peer_timeout_s;
   std::string replay, desync_dir, key_file, match_id = config.match.match_id;
-  bool summary_json = false;
+  bool summary_json = false, log_json = false;
   std::string port_file;
 
   FlagParser flags("rewind-server", "rewind-server [flags]",
@@ -46,7 +66,11 @@ int main(int argc, char** argv) {
                    "seconds of silence before a player is dropped");
   flags.add_string("port-file", &port_file, "write the bound UDP port to this file once listening");
   flags.add_bool("summary-json", &summary_json, "print one JSON summary line on stdout at exit");
+  flags.add_bool("log-json", &log_json,
+                 "log lines on stderr as JSON objects {\"ts\",\"level\",\"msg\"}, one a line");
 
+  // A usage error answers the person at the terminal, before --log-json is
+  // known, so it stays plain text whatever the flags say.
   if (rwd::Status status = flags.parse(argc, argv); !status.ok()) {
     std::fprintf(stderr, "rewind-server: %s\n", status.message().c_str());
     return rwd::cli::kExitUsage;
@@ -55,6 +79,7 @@ int main(int argc, char** argv) {
     std::fputs(flags.help_text().c_str(), stdout);
     return 0;
   }
+  if (log_json) rwd::server::set_log_format(rwd::server::LogFormat::kJson);
   config.match.game = game;
   config.bind_address = bind;
   config.port = static_cast<uint16_t>(port);
@@ -73,8 +98,9 @@ int main(int argc, char** argv) {
     if (file != nullptr) std::fclose(file);
     auto key = rwd::net::key_from_hex(std::string_view(text, read));
     if (file == nullptr || !key.ok()) {
-      std::fprintf(stderr, "rewind-server: --key-file %s: %s\n", key_file.c_str(),
-                   file == nullptr ? "cannot read it" : key.status().message().c_str());
+      write_log(LogLevel::kError,
+                "--key-file " + key_file + ": " +
+                    (file == nullptr ? "cannot read it" : key.status().message()));
       return rwd::cli::kExitUsage;
     }
     config.server_key = *key;
@@ -85,28 +111,18 @@ int main(int argc, char** argv) {
 
   auto server = rwd::server::Server::create(config);
   if (!server.ok()) {
-    std::fprintf(stderr, "rewind-server: %s\n", server.status().message().c_str());
+    write_log(LogLevel::kError, server.status().message());
     return 1;
   }
-  if (!port_file.empty()) {
-    // Written to a temporary name and renamed, so a reader never sees half a number.
-    const std::string temporary = port_file + ".tmp";
-    std::FILE* file = std::fopen(temporary.c_str(), "w");
-    bool written = file != nullptr;
-    if (written) {
-      written = std::fprintf(file, "%u\n", static_cast<unsigned>((*server)->port())) >= 0;
-      written = std::fclose(file) == 0 && written;  // closed whatever happened
-    }
-    if (!written || std::rename(temporary.c_str(), port_file.c_str()) != 0) {
-      std::fprintf(stderr, "rewind-server: cannot write --port-file %s\n", port_file.c_str());
-      return 1;
-    }
+  if (!port_file.empty() && !write_port_file(port_file, (*server)->port())) {
+    write_log(LogLevel::kError, "cannot write --port-file " + port_file);
+    return 1;
   }
   (*server)->run();
   const rwd::server::MatchStats stats = (*server)->stats();
-  std::fprintf(stderr, "[rewind-server] %s\n", stats.to_text().c_str());
+  write_log(LogLevel::kInfo, stats.to_text());
   if (const std::string problems = stats.problems(); !problems.empty()) {
-    std::fprintf(stderr, "[rewind-server] WARNING: %s\n", problems.c_str());
+    write_log(LogLevel::kWarning, problems);
   }
   if (summary_json) std::printf("%s\n", stats.to_json().c_str());
   std::fflush(stdout);

@@ -20,6 +20,7 @@ namespace {
 
 using detail::hex64;
 using detail::log_line;
+using detail::log_warning;
 using detail::printable;
 using detail::worth_logging;
 
@@ -375,9 +376,9 @@ void MatchHost::finalize_ready_ticks() {
         } else {
           ++stats_.keyframe_load_failures;
           if (worth_logging(stats_.keyframe_load_failures)) {
-            log_line("WARNING: replay keyframe after tick " + std::to_string(t) +
-                     " does not load on the server, left out: " + loaded.status().message() + " (" +
-                     std::to_string(stats_.keyframe_load_failures) + " so far)");
+            log_warning("replay keyframe after tick " + std::to_string(t) +
+                        " does not load on the server, left out: " + loaded.status().message() +
+                        " (" + std::to_string(stats_.keyframe_load_failures) + " so far)");
           }
         }
       }

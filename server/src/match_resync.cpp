@@ -19,6 +19,7 @@ namespace {
 
 using detail::hex64;
 using detail::log_line;
+using detail::log_warning;
 using detail::printable;
 using detail::worth_logging;
 
@@ -152,7 +153,7 @@ void MatchHost::store_desync_report(uint32_t player, const DesyncAssembly& assem
     report.close();
     if (!raw || !report) {
       ++stats_.desync_report_write_failures;
-      log_line("WARNING: cannot write desync report " + base + ".{txt,bin}");
+      log_warning("cannot write desync report " + base + ".{txt,bin}");
     } else {
       stored = " (" + base + ".txt)";
     }
@@ -160,7 +161,7 @@ void MatchHost::store_desync_report(uint32_t player, const DesyncAssembly& assem
   if (problem.empty()) {
     log_line(headline + stored);
   } else {
-    log_line("WARNING: " + headline + "; " + problem + stored);
+    log_warning(headline + "; " + problem + stored);
   }
 }
 
@@ -211,9 +212,9 @@ bool MatchHost::start_resync_episode(Peer& peer) {
     if (!status.ok()) {
       ++stats_.resync_snapshot_failures;
       if (worth_logging(stats_.resync_snapshot_failures)) {
-        log_line("WARNING: resync snapshot for tick " + std::to_string(tick) +
-                 " does not load on the server, not sent: " + status.message() + " (" +
-                 std::to_string(stats_.resync_snapshot_failures) + " so far)");
+        log_warning("resync snapshot for tick " + std::to_string(tick) +
+                    " does not load on the server, not sent: " + status.message() + " (" +
+                    std::to_string(stats_.resync_snapshot_failures) + " so far)");
       }
       continue;
     }
@@ -240,10 +241,10 @@ void MatchHost::on_resync_refused(Peer& peer, uint32_t player, const v1::ResyncR
   }
   ++stats_.resyncs_refused;
   if (worth_logging(stats_.resyncs_refused)) {
-    log_line("WARNING: player " + std::to_string(player) + " could not load resync snapshot " +
-             std::to_string(peer.resync_id) + " (tick " + std::to_string(peer.resync_tick) +
-             "): " + printable(request.refused_reason()) + "; building another (" +
-             std::to_string(stats_.resyncs_refused) + " so far)");
+    log_warning("player " + std::to_string(player) + " could not load resync snapshot " +
+                std::to_string(peer.resync_id) + " (tick " + std::to_string(peer.resync_tick) +
+                "): " + printable(request.refused_reason()) + "; building another (" +
+                std::to_string(stats_.resyncs_refused) + " so far)");
   }
   // Resending the same bytes cannot help: the next send starts a new episode.
   peer.resync_tick = kNoTick;

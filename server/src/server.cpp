@@ -3,7 +3,8 @@
 
 #include <chrono>
 #include <csignal>
-#include <cstdio>
+
+#include "rewind/server/server_log.h"
 
 namespace rwd::server {
 
@@ -87,13 +88,14 @@ void Server::run() {
     host_->end(std::string("stopped by signal ") + (signal == SIGINT ? "SIGINT" : "SIGTERM"),
                net::SteadyClock::now());
   });
-  std::fprintf(stderr,
-               "[rewind-server] hosting '%s' for %u players on %s:%u at %u Hz, window %d, %s\n",
-               config_.match.game.c_str(), config_.match.players, config_.bind_address.c_str(),
-               static_cast<unsigned>(socket_->local_port()), config_.match.tick_rate_hz,
-               config_.match.window_ticks,
-               gateway_ ? "secure connections (connect tokens)"
-                        : "TOKENLESS (any address takes a free slot: local tests only)");
+  const std::string hosting =
+      "hosting '" + config_.match.game + "' for " + std::to_string(config_.match.players) +
+      " players on " + config_.bind_address + ":" + std::to_string(socket_->local_port()) + " at " +
+      std::to_string(config_.match.tick_rate_hz) + " Hz, window " +
+      std::to_string(config_.match.window_ticks) + ", " +
+      (gateway_ ? "secure connections (connect tokens)"
+                : "TOKENLESS (any address takes a free slot: local tests only)");
+  write_log(LogLevel::kInfo, hosting);
   next_tick_ = net::SteadyClock::now() + period_;
   schedule_tick();
   io_->run();
@@ -120,7 +122,7 @@ void Server::on_tick_timer() {
   // long stall (a stopped process) the grid restarts instead of bursting.
   next_tick_ += period_;
   if (now - next_tick_ > 10 * period_) {
-    std::fprintf(stderr, "[rewind-server] tick loop stalled; resetting the schedule\n");
+    write_log(LogLevel::kInfo, "tick loop stalled; resetting the schedule");
     next_tick_ = now + period_;
   }
   schedule_tick();

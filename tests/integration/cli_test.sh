@@ -29,6 +29,7 @@ check 64 "--players: expected an integer, got 'four'" rewind-server --players fo
 check 64 "--window: missing value" rewind-server --window
 check 64 "--tick-rate: 0 is outside [1, 1000]" rewind-server --tick-rate 0
 check 1 "unknown game 'chess'" rewind-server --game chess --port 0
+check 1 '"level":"error","msg":"unknown game' rewind-server --game chess --port 0 --log-json
 check 64 "--loss: 1.5 is outside [0, 1]" rewind-bots --loss 1.5
 check 64 "--connect: expected HOST:PORT" rewind-bots --connect nowhere
 check 64 "--script: expected random, circle or idle" rewind-bots --script dance

@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+#include "rewind/server/server_log.h"
+
+#include <cstdio>
+#include <ctime>
+
+#include "rewind/cli/json_text.h"
+
+namespace rwd::server {
+namespace {
+
+// Process-wide because a log is: every part of the server writes to the one
+// stderr, and main() sets the format once before anything runs.
+LogFormat g_format = LogFormat::kText;
+
+const char* level_name(LogLevel level) {
+  switch (level) {
+    case LogLevel::kWarning:
+      return "warning";
+    case LogLevel::kError:
+      return "error";
+    case LogLevel::kInfo:
+      break;
+  }
+  return "info";
+}
+
+}  // namespace
+
+void set_log_format(LogFormat format) {
+  g_format = format;
+}
+
+std::string log_json_line(LogLevel level, std::string_view text,
+                          std::chrono::system_clock::time_point when) {
+  using namespace std::chrono;
+  const auto since_epoch_ms = duration_cast<milliseconds>(when.time_since_epoch()).count();
+  const std::time_t seconds = static_cast<std::time_t>(since_epoch_ms / 1000);
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  char ts[48];
+  const size_t length = std::strftime(ts, sizeof ts, "%Y-%m-%dT%H:%M:%S", &utc);
+  std::snprintf(ts + length, sizeof ts - length, ".%03dZ", static_cast<int>(since_epoch_ms % 1000));
+  return std::string("{\"ts\":\"") + ts + "\",\"level\":\"" + level_name(level) +
+         "\",\"msg\":" + cli::json_string(text) + "}";
+}
+
+void write_log(LogLevel level, std::string_view text) {
+  const int size = static_cast<int>(text.size());
+  if (g_format == LogFormat::kJson) {
+    const std::string line = log_json_line(level, text, std::chrono::system_clock::now());
+    std::fprintf(stderr, "%s\n", line.c_str());
+  } else if (level == LogLevel::kError) {
+    std::fprintf(stderr, "rewind-server: %.*s\n", size, text.data());
+  } else {
+    std::fprintf(stderr, "[rewind-server] %s%.*s\n", level == LogLevel::kWarning ? "WARNING: " : "",
+                 size, text.data());
+  }
+}
+
+}  // namespace rwd::server
