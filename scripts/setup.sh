@@ -26,6 +26,8 @@ packages=(
   libbullet-dev gnuplot-nox
   # determinism matrix: aarch64 cross compiler, run under qemu-user
   g++-aarch64-linux-gnu qemu-user
+  # the metrics integration test scrapes a match with a real Prometheus
+  prometheus
 )
 
 check_only=0

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "rewind/cli/flag_parser.h"
+#include "rewind/cli/host_port.h"
 #include "rewind/server/server.h"
 #include "rewind/server/server_log.h"
 
@@ -37,7 +38,7 @@ int main(int argc, char** argv) {
   double join_timeout = config.match.join_timeout_s, peer_timeout = config.match.peer_timeout_s;
   std::string replay, desync_dir, key_file, match_id = config.match.match_id;
   bool summary_json = false, log_json = false;
-  std::string port_file;
+  std::string port_file, metrics_bind, metrics_port_file;
 
   FlagParser flags("rewind-server", "rewind-server [flags]",
                    "Hosts one authoritative rollback match over UDP: ticks the deterministic "
@@ -66,6 +67,11 @@ int main(int argc, char** argv) {
                    "seconds of silence before a player is dropped");
   flags.add_string("port-file", &port_file, "write the bound UDP port to this file once listening");
   flags.add_bool("summary-json", &summary_json, "print one JSON summary line on stdout at exit");
+  flags.add_string("metrics-bind", &metrics_bind,
+                   "serve Prometheus metrics over HTTP on HOST:PORT at /metrics (port 0 = any "
+                   "free port; empty = off)");
+  flags.add_string("metrics-port-file", &metrics_port_file,
+                   "write the bound metrics TCP port to this file once listening");
   flags.add_bool("log-json", &log_json,
                  "log lines on stderr as JSON objects {\"ts\",\"level\",\"msg\"}, one a line");
 
@@ -105,6 +111,17 @@ int main(int argc, char** argv) {
     }
     config.server_key = *key;
   }
+  if (!metrics_bind.empty()) {
+    rwd::server::ServerConfig::MetricsBind metrics;
+    if (!rwd::cli::split_host_port(metrics_bind, &metrics.address, &metrics.port)) {
+      write_log(LogLevel::kError, "--metrics-bind: expected HOST:PORT, got '" + metrics_bind + "'");
+      return rwd::cli::kExitUsage;
+    }
+    config.metrics = metrics;
+  } else if (!metrics_port_file.empty()) {
+    write_log(LogLevel::kError, "--metrics-port-file needs --metrics-bind");
+    return rwd::cli::kExitUsage;
+  }
   config.match.match_id = match_id;
   config.match.join_timeout_s = join_timeout;
   config.match.peer_timeout_s = peer_timeout;
@@ -116,6 +133,11 @@ int main(int argc, char** argv) {
   }
   if (!port_file.empty() && !write_port_file(port_file, (*server)->port())) {
     write_log(LogLevel::kError, "cannot write --port-file " + port_file);
+    return 1;
+  }
+  if (!metrics_port_file.empty() &&
+      !write_port_file(metrics_port_file, (*server)->metrics_port())) {
+    write_log(LogLevel::kError, "cannot write --metrics-port-file " + metrics_port_file);
     return 1;
   }
   (*server)->run();

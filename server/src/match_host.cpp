@@ -106,6 +106,12 @@ MatchStats MatchHost::stats() const {
   return out;
 }
 
+uint32_t MatchHost::players_connected() const {
+  uint32_t count = 0;
+  for (const Peer& peer : peers_) count += (peer.joined && peer.connected) ? 1 : 0;
+  return count;
+}
+
 MatchHost::Peer* MatchHost::find_peer(uint64_t connection_id, uint32_t* player) {
   for (uint32_t p = 0; p < peers_.size(); ++p) {
     Peer& peer = peers_[p];

@@ -46,6 +46,12 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& given) {
       net::SteadyClock::now());
   if (!host.ok()) return host.status();
   server->host_ = std::move(*host);
+  if (config.metrics) {
+    auto metrics = MetricsHttp::open(*server->io_, config.metrics->address, config.metrics->port,
+                                     [self] { return render_metrics(self->metrics_sample()); });
+    if (!metrics.ok()) return metrics.status();
+    server->metrics_ = std::move(*metrics);
+  }
   return server;
 }
 
@@ -60,6 +66,15 @@ MatchStats Server::stats() const {
     stats.secure_dropped = g.dropped;
   }
   return stats;
+}
+
+MetricsSample Server::metrics_sample() const {
+  MetricsSample sample;
+  sample.stats = stats();
+  sample.phase = host_->phase();
+  sample.players_connected = host_->players_connected();
+  sample.tick_time = tick_time_;
+  return sample;
 }
 
 Server::Server(const ServerConfig& config, std::unique_ptr<asio::io_context> io,
@@ -88,13 +103,19 @@ void Server::run() {
     host_->end(std::string("stopped by signal ") + (signal == SIGINT ? "SIGINT" : "SIGTERM"),
                net::SteadyClock::now());
   });
-  const std::string hosting =
-      "hosting '" + config_.match.game + "' for " + std::to_string(config_.match.players) +
-      " players on " + config_.bind_address + ":" + std::to_string(socket_->local_port()) + " at " +
-      std::to_string(config_.match.tick_rate_hz) + " Hz, window " +
-      std::to_string(config_.match.window_ticks) + ", " +
-      (gateway_ ? "secure connections (connect tokens)"
-                : "TOKENLESS (any address takes a free slot: local tests only)");
+  std::string hosting = "hosting '" + config_.match.game + "' for " +
+                        std::to_string(config_.match.players) + " players on " +
+                        config_.bind_address + ":" + std::to_string(socket_->local_port()) +
+                        " at " + std::to_string(config_.match.tick_rate_hz) + " Hz, window " +
+                        std::to_string(config_.match.window_ticks) + ", " +
+                        (gateway_ ? "secure connections (connect tokens)"
+                                  : "TOKENLESS (any address takes a free slot: local tests only)");
+  if (metrics_) {
+    const std::string& address = config_.metrics->address;
+    const bool v6 = address.find(':') != std::string::npos;
+    hosting += "; metrics on http://" + (v6 ? "[" + address + "]" : address) + ":" +
+               std::to_string(metrics_->port()) + "/metrics";
+  }
   write_log(LogLevel::kInfo, hosting);
   next_tick_ = net::SteadyClock::now() + period_;
   schedule_tick();
@@ -111,8 +132,11 @@ void Server::schedule_tick() {
 void Server::on_tick_timer() {
   const TimePoint now = net::SteadyClock::now();
   host_->on_tick(now);
+  // Wall time, for operators only: nothing in the match reads it.
+  tick_time_.observe(net::SteadyClock::now() - now);
   if (host_->phase() == MatchHost::Phase::kEnded) {
     // Let the last datagrams leave, then stop everything.
+    if (metrics_) metrics_->close();
     signals_.cancel();
     socket_->close();
     io_->stop();

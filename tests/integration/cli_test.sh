@@ -29,6 +29,9 @@ check 64 "--players: expected an integer, got 'four'" rewind-server --players fo
 check 64 "--window: missing value" rewind-server --window
 check 64 "--tick-rate: 0 is outside [1, 1000]" rewind-server --tick-rate 0
 check 1 "unknown game 'chess'" rewind-server --game chess --port 0
+check 64 "--metrics-bind: expected HOST:PORT, got 'nowhere'" rewind-server --metrics-bind nowhere
+check 64 "--metrics-port-file needs --metrics-bind" rewind-server --metrics-port-file x --port 0
+check 1 "metrics: bad address 'nowhere.invalid'" rewind-server --metrics-bind nowhere.invalid:0 --port 0
 check 1 '"level":"error","msg":"unknown game' rewind-server --game chess --port 0 --log-json
 check 64 "--loss: 1.5 is outside [0, 1]" rewind-bots --loss 1.5
 check 64 "--connect: expected HOST:PORT" rewind-bots --connect nowhere

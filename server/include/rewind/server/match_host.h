@@ -60,6 +60,8 @@ class MatchHost {
   const MatchConfig& config() const { return config_; }
   /// Counters, with the rollback figures folded in.
   MatchStats stats() const;
+  /// Joined players still heard from: not timed out, not gone.
+  uint32_t players_connected() const;
   Tick current_tick() const { return session_->current_tick(); }
   /// The server's clock in ticks: negative during the start countdown.
   Tick server_tick() const { return session_->current_tick() - countdown_ticks_; }
