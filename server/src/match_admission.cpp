@@ -72,26 +72,36 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
       reject("player slot " + std::to_string(who->slot) + " is held by another client");
       return;
     }
-    if (held.joined && phase_ != Phase::kLobby) {
-      reject("match already running");
-      return;
-    }
+    // Running: a client that lost its connection or restarted takes its
+    // slot back by its token and catches up from a snapshot.
     slot = who->slot;
   } else if (phase_ == Phase::kLobby) {
     for (uint32_t p = 0; p < peers_.size() && !slot; ++p) {
       if (!peers_[p].joined) slot = p;
+    }
+  } else if (phase_ == Phase::kRunning) {
+    // Tokenless: a slot whose player timed out or left is free again for
+    // the next joiner, who catches up from a snapshot.
+    for (uint32_t p = 0; p < peers_.size() && !slot; ++p) {
+      if (peers_[p].joined && (!peers_[p].connected || peers_[p].left)) slot = p;
     }
   }
   if (!slot) {
     reject(phase_ == Phase::kLobby ? "match is full" : "match already running");
     return;
   }
-  if (phase_ != Phase::kLobby) {
-    reject("match already running");
+  if (phase_ != Phase::kLobby && phase_ != Phase::kRunning) {
+    reject("the match is over");
     return;
   }
   Peer& peer = peers_[*slot];
   const bool rejoin = peer.joined;
+  if (phase_ == Phase::kRunning) {
+    // Whatever the old connection had in flight is void: the newcomer gets
+    // a snapshot (its final_seen is before everything held) and final
+    // ticks from there.
+    restart_peer(peer);
+  }
   const uint64_t id = ids_.next();
   peer.joined = true;
   peer.connected = true;
@@ -108,7 +118,23 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
   accept(*slot);
   const bool full =
       std::all_of(peers_.begin(), peers_.end(), [](const Peer& p) { return p.joined; });
-  if (full) start_match(now);
+  if (full && phase_ == Phase::kLobby) start_match(now);
+}
+
+void MatchHost::restart_peer(Peer& peer) {
+  peer.final_seen = kNoTick;
+  peer.final_sent = kNoTick;
+  peer.resync_tick = kNoTick;
+  peer.resync_bytes.clear();
+  peer.resync_checksum = 0;
+  peer.resend_cursor = kNoTick;
+  peer.standalone_from = 0;
+  peer.left = false;
+  peer.last_lead = 0;
+  peer.sent_input = false;
+  peer.desync = DesyncAssembly{};
+  peer.handled_reports.clear();
+  peer.resynced_once = false;
 }
 
 void MatchHost::start_match(TimePoint now) {

@@ -3,8 +3,11 @@
 // connect tokens and take the slots their tokens name; another client's
 // token for a held slot cannot cut the holder off; a client restarted in the lobby takes
 // its slot back from its new address (and the old address loses its
-// session); clear-text datagrams reach nothing and get no answer.
+// session), and one restarted mid-match takes it back and is sent a
+// snapshot; clear-text datagrams reach nothing and get no answer.
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include <map>
 
@@ -161,6 +164,58 @@ TEST(SecureGateway, AClientRestartedInTheLobbyTakesItsSlotBack) {
   first.handshake.session()->seal(std::vector<uint8_t>{1, 2, 3}, sealed);
   match.to_server(first.endpoint, sealed);
   EXPECT_EQ(match.gateway_->stats().dropped, dropped + 1);
+}
+
+TEST(SecureGateway, AClientRestartedMidMatchRejoinsItsSlotFromASnapshot) {
+  SecureMatch match(2);
+  SecureClient a(at(6100), match.token(0, 31));
+  SecureClient b(at(6101), match.token(1, 32));
+  match.connect_and_join(a);
+  match.connect_and_join(b);
+  ASSERT_EQ(match.host_->phase(), MatchHost::Phase::kRunning);
+  // Play a while: both send inputs; the final ticks of the early ticks
+  // are acknowledged, so the history moves on.
+  const auto send_input = [&](SecureClient& c, Tick tick, Tick seen) {
+    v1::Envelope e;
+    e.set_protocol_version(net::kProtocolVersion);
+    e.set_connection_id(c.connection_id);
+    e.set_sequence(static_cast<uint32_t>(tick + 2));
+    e.mutable_input_frame()->set_player(c.player);
+    e.mutable_input_frame()->set_first_tick(tick);
+    e.mutable_input_frame()->add_inputs();
+    e.mutable_input_frame()->set_last_final_tick_seen(seen);
+    std::vector<uint8_t> bytes;
+    ASSERT_TRUE(net::encode_envelope(e, bytes).ok());
+    std::vector<uint8_t> sealed;
+    c.handshake.session()->seal(bytes, sealed);
+    match.to_server(c.endpoint, sealed);
+  };
+  for (Tick t = 0; t < 80; ++t) {
+    const Tick tick = std::max<Tick>(match.host_->current_tick(), 0);
+    send_input(a, tick, match.host_->last_final_tick());
+    send_input(b, tick, match.host_->last_final_tick());
+    match.now_ += std::chrono::milliseconds(16);
+    match.host_->on_tick(match.now_);
+    match.wire_.clear();
+  }
+  ASSERT_GT(match.host_->last_final_tick(), 40);
+  // b's process dies and starts again from a new port, with its token.
+  SecureClient again(at(6102), match.token(1, 32));
+  match.connect_and_join(again);
+  EXPECT_EQ(again.player, 1u);
+  EXPECT_NE(again.connection_id, b.connection_id);
+  EXPECT_TRUE(std::any_of(again.inbox.begin(), again.inbox.end(),
+                          [](const v1::Envelope& e) { return e.has_match_start(); }));
+  // The next broadcasts bring it a snapshot to start from.
+  bool snapshot = false;
+  for (int t = 0; t < 5 && !snapshot; ++t) {
+    match.now_ += std::chrono::milliseconds(16);
+    match.host_->on_tick(match.now_);
+    match.read(again);
+    for (const v1::Envelope& e : again.inbox) snapshot = snapshot || e.has_resync_chunk();
+  }
+  EXPECT_TRUE(snapshot);
+  EXPECT_EQ(match.host_->stats().players_joined, 2u);
 }
 
 TEST(SecureGateway, ClearTextReachesNothing) {

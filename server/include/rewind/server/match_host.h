@@ -133,6 +133,9 @@ class MatchHost {
   void send_resync_chunks(Peer& peer, TimePoint now);
   /// Adds final ticks to `out` within `budget` encoded bytes.
   void add_final_ticks(Peer& peer, v1::FinalTicks& out, size_t budget);
+  /// A new connection takes a slot mid-match: per-connection state starts
+  /// over, so the broadcast sends it a snapshot and final ticks after it.
+  void restart_peer(Peer& peer);
   void start_match(TimePoint now);
   void send_match_start(Peer& peer, TimePoint now);
   void send_match_end(TimePoint now);
