@@ -34,12 +34,11 @@ set -euo pipefail
 mode=$1
 bin=$2
 work=$3
-rm -rf "$work"
-mkdir -p "$work"
-cd "$work"
+test_name="$mode"
+# shellcheck source=script_common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/script_common.sh"
+enter_work_dir "$work"
 
-fail() { echo "FAIL [$mode]: $*" >&2; exit 1; }
-json() { python3 -c "import json,sys; print(json.loads(open(sys.argv[1]).read().strip().splitlines()[-1])[sys.argv[2]])" "$1" "$2"; }
 
 server_pid=""
 cleanup() { [ -n "$server_pid" ] && kill "$server_pid" 2>/dev/null || true; }

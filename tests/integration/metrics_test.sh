@@ -14,14 +14,13 @@
 set -euo pipefail
 bin=$1
 work=$2
-rm -rf "$work"
-mkdir -p "$work"
-cd "$work"
+test_name=metrics
+# shellcheck source=script_common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/script_common.sh"
+enter_work_dir "$work"
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 probe() { python3 "$here/metrics_probe.py" "$@"; }
 
-fail() { echo "FAIL [metrics]: $*" >&2; exit 1; }
-json() { python3 -c "import json,sys; print(json.loads(open(sys.argv[1]).read().strip().splitlines()[-1])[sys.argv[2]])" "$1" "$2"; }
 
 command -v prometheus >/dev/null || fail "prometheus is not installed (scripts/setup.sh installs it)"
 command -v promtool >/dev/null || fail "promtool is not installed (it comes with prometheus)"

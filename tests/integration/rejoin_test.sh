@@ -14,12 +14,11 @@ set -euo pipefail
 mode=$1
 bin=$2
 work=$3
-rm -rf "$work"
-mkdir -p "$work"
-cd "$work"
+test_name="rejoin $mode"
+# shellcheck source=script_common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/script_common.sh"
+enter_work_dir "$work"
 
-fail() { echo "FAIL [rejoin $mode]: $*" >&2; exit 1; }
-json() { python3 -c "import json,sys; print(json.loads(open(sys.argv[1]).read().strip().splitlines()[-1])[sys.argv[2]])" "$1" "$2"; }
 
 pids=()
 cleanup() { for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; }

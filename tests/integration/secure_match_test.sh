@@ -14,13 +14,12 @@
 set -euo pipefail
 bin=$1
 work=$2
-rm -rf "$work"
-mkdir -p "$work"
-cd "$work"
+test_name=secure
+# shellcheck source=script_common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/script_common.sh"
+enter_work_dir "$work"
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 
-fail() { echo "FAIL [secure]: $*" >&2; exit 1; }
-json() { python3 -c "import json,sys; print(json.loads(open(sys.argv[1]).read().strip().splitlines()[-1])[sys.argv[2]])" "$1" "$2"; }
 
 pids=()
 cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; }
