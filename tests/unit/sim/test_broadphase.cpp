@@ -45,6 +45,27 @@ std::vector<BodyPair> reference_pairs(const WorldState& state) {
   return expected;
 }
 
+// A ground and `count` bodies in a loose lattice above it that falls into a
+// heap; every `sphere_every`-th body a sphere (0: boxes only).
+std::vector<BodyId> add_heap(World3D& world, int count, int sphere_every) {
+  BodyDef ground;
+  ground.kind = BodyKind::kStatic;
+  ground.shape = Shape::make_box({20.0f, 0.5f, 20.0f});
+  ground.position = {0.0f, -0.5f, 0.0f};
+  EXPECT_TRUE(world.create_body(ground).ok());
+  std::vector<BodyId> bodies;
+  for (int i = 0; i < count; ++i) {
+    BodyDef def;
+    def.shape = sphere_every > 0 && i % sphere_every == 0 ? Shape::make_sphere(0.25f)
+                                                          : Shape::make_box({0.25f, 0.25f, 0.25f});
+    def.position = {static_cast<float>(i % 5) * 0.6f - 1.2f,
+                    0.5f + static_cast<float>(i / 25) * 0.6f,
+                    static_cast<float>((i / 5) % 5) * 0.6f - 1.2f};
+    bodies.push_back(world.create_body(def).value());
+  }
+  return bodies;
+}
+
 void expect_pairs(const std::vector<BodyPair>& got, const std::vector<BodyPair>& expected,
                   int tick) {
   ASSERT_EQ(got.size(), expected.size()) << "tick " << tick;
@@ -85,20 +106,7 @@ TEST(Broadphase, MatchesBruteForceAndIsSorted) {
 // order across all of it reports exactly the reference pairs every tick.
 TEST(Broadphase, KeptStructuresMatchFreshOnesThroughSleepWakeAndRestore) {
   World3D world;
-  BodyDef ground;
-  ground.kind = BodyKind::kStatic;
-  ground.shape = Shape::make_box({20.0f, 0.5f, 20.0f});
-  ground.position = {0.0f, -0.5f, 0.0f};
-  ASSERT_TRUE(world.create_body(ground).ok());
-  std::vector<BodyId> boxes;
-  for (int i = 0; i < 60; ++i) {
-    BodyDef def;
-    def.shape = Shape::make_box({0.25f, 0.25f, 0.25f});
-    def.position = {static_cast<float>(i % 5) * 0.6f - 1.2f,
-                    0.5f + static_cast<float>(i / 25) * 0.6f,
-                    static_cast<float>((i / 5) % 5) * 0.6f - 1.2f};
-    boxes.push_back(world.create_body(def).value());
-  }
+  const std::vector<BodyId> boxes = add_heap(world, 60, 0);
   WorldScratch kept;
   WorldState saved;
   uint32_t asleep_seen = 0;
@@ -144,20 +152,7 @@ namespace {
 // restore, an overlap covering the world reports every body, once.
 TEST(Broadphase, QueriesMatchExactBoundsThroughSleepWakeAndRestore) {
   World3D world;
-  BodyDef ground;
-  ground.kind = BodyKind::kStatic;
-  ground.shape = Shape::make_box({20.0f, 0.5f, 20.0f});
-  ground.position = {0.0f, -0.5f, 0.0f};
-  ASSERT_TRUE(world.create_body(ground).ok());
-  std::vector<BodyId> boxes;
-  for (int i = 0; i < 40; ++i) {
-    BodyDef def;
-    def.shape = i % 3 == 0 ? Shape::make_sphere(0.25f) : Shape::make_box({0.25f, 0.25f, 0.25f});
-    def.position = {static_cast<float>(i % 5) * 0.6f - 1.2f,
-                    0.5f + static_cast<float>(i / 25) * 0.6f,
-                    static_cast<float>((i / 5) % 5) * 0.6f - 1.2f};
-    boxes.push_back(world.create_body(def).value());
-  }
+  const std::vector<BodyId> boxes = add_heap(world, 40, 3);
   WorldState saved;
   uint32_t sleeping_seen = 0;
   const Shape everything = Shape::make_box({50.0f, 50.0f, 50.0f});
