@@ -351,8 +351,6 @@ void MatchHost::finalize_ready_ticks() {
     // The deadline passed: missing inputs become the prediction the
     // simulation already used, so finalizing never re-simulates.
     uint64_t substituted = 0;
-    v1::FinalTick final_tick;
-    final_tick.set_tick(t);
     for (uint32_t p = 0; p < peers_.size(); ++p) {
       if (!session_->queue(p).is_confirmed(t)) {
         substituted |= uint64_t{1} << p;
@@ -361,23 +359,18 @@ void MatchHost::finalize_ready_ticks() {
       }
       final_inputs_[p] = session_->input_for(p, t);
     }
-    proto::pack_inputs(final_inputs_, {}, *final_tick.mutable_packed_inputs());
-    const std::optional<uint64_t> checksum = session_->checksum_after(t);
-    final_tick.set_substituted_mask(substituted);
-    final_tick.set_checksum(checksum.value_or(0));
-    final_history_[static_cast<size_t>(t) % kFinalHistory] = {t, substituted,
-                                                              final_tick.checksum()};
-    stats_.final_checksum = final_tick.checksum();
+    const uint64_t checksum = session_->checksum_after(t).value_or(0);
+    final_history_[static_cast<size_t>(t) % kFinalHistory] = {t, substituted, checksum};
+    stats_.final_checksum = checksum;
 
     if (replay_ && !replay_failed_) {
-      Status status = replay_->append_tick(t, final_inputs_, substituted, final_tick.checksum());
+      Status status = replay_->append_tick(t, final_inputs_, substituted, checksum);
       if (status.ok() && config_.keyframe_interval > 0 &&
           (t + 1) % config_.keyframe_interval == 0 &&
           session_->serialize_state_at(t + 1, state_buffer_)) {
         // A keyframe the verifier could not load would stop it there: check
         // it as a resync snapshot is checked, and leave out one that fails.
-        if (auto loaded = session_->load_snapshot(state_buffer_, final_tick.checksum());
-            loaded.ok()) {
+        if (auto loaded = session_->load_snapshot(state_buffer_, checksum); loaded.ok()) {
           status = replay_->append_keyframe(t, state_buffer_);
         } else {
           ++stats_.keyframe_load_failures;
@@ -391,20 +384,7 @@ void MatchHost::finalize_ready_ticks() {
       if (!status.ok()) record_replay_error(status);
     }
     (void)session_->finalize_through(t);
-    HeldFinal& held = held_.emplace_back();
-    held.size = static_cast<uint32_t>(final_tick.ByteSizeLong());
-    held.made_at = current;
-    // The same tick packed against the one before, as clients that have
-    // applied that one receive it: a byte per unchanged input.
-    if (previous_final_inputs_.size() == final_inputs_.size()) {
-      proto::pack_inputs(final_inputs_, previous_final_inputs_, held.delta);
-      v1::FinalTick as_delta = final_tick;
-      as_delta.set_packed_inputs(held.delta);
-      as_delta.set_delta(true);
-      held.delta_size = static_cast<uint32_t>(as_delta.ByteSizeLong());
-    }
-    previous_final_inputs_ = final_inputs_;
-    finals_.push_back(std::move(final_tick));
+    finals_.append(t, final_inputs_, substituted, checksum, current);
     ++next_final_;
   }
   // Drop history every connected client has; keep a bounded tail for the rest.
@@ -412,15 +392,11 @@ void MatchHost::finalize_ready_ticks() {
   for (const Peer& peer : peers_) {
     if (peer.joined && peer.connected) acked_by_all = std::min(acked_by_all, peer.final_seen);
   }
-  while (!finals_.empty() &&
-         (finals_.front().tick() <= acked_by_all || finals_.size() > kMaxFinalHistory)) {
-    finals_.pop_front();
-    held_.pop_front();
-  }
+  finals_.trim(acked_by_all, kMaxFinalHistory);
 }
 
 void MatchHost::broadcast(TimePoint now) {
-  const Tick oldest_held = finals_.empty() ? next_final_ : finals_.front().tick();
+  const Tick oldest_held = finals_.oldest();
   // Each run packed once, for every client but its player.
   relay_packed_.resize(relay_batch_.size());
   for (size_t r = 0; r < relay_batch_.size(); ++r) {
@@ -474,57 +450,15 @@ void MatchHost::broadcast(TimePoint now) {
 }
 
 void MatchHost::add_final_ticks(Peer& peer, v1::FinalTicks& out, size_t budget) {
-  if (finals_.empty()) return;
-  const Tick oldest_held = finals_.front().tick();
-  const Tick newest = next_final_ - 1;
-  auto add = [&](Tick t) {
-    const size_t index = static_cast<size_t>(t - oldest_held);
-    // Packed against the tick before, which the client has applied by the
-    // time it applies this one (final ticks are applied in order).
-    const HeldFinal& held = held_[index];
-    const bool as_delta = t > peer.standalone_from && !held.delta.empty();
-    const size_t size = (as_delta ? held.delta_size : held.size) + 3;
-    if (size > budget || out.ticks_size() >= static_cast<int>(net::kMaxFinalTicksPerPacket)) {
-      return false;
-    }
-    budget -= size;
-    v1::FinalTick* added = out.add_ticks();
-    *added = finals_[index];
-    if (as_delta) {
-      added->set_packed_inputs(held.delta);
-      added->set_delta(true);
-    }
-    return true;
-  };
-  // New ticks first, so a round trip never limits how fast finals flow;
-  // then the oldest unacknowledged ones again, for loss. Clients accept
-  // them in any order.
-  const Tick first_new = std::max({peer.final_sent + 1, peer.final_seen + 1, oldest_held});
-  Tick t = first_new;
-  while (t <= newest && add(t)) ++t;
-  peer.final_sent = std::max(peer.final_sent, t - 1);
-  // Ticks sent less than a round trip (and two ticks) ago are not resent:
-  // their acknowledgement cannot be back yet. The resend cursor walks
-  // round-robin through the overdue range, so after a loss burst every
-  // missing tick comes back within a few packets instead of the oldest few
-  // being resent over and over.
-  const Tick lowest = std::max(peer.final_seen + 1, oldest_held);
   const double rtt_ticks =
       peer.connection->has_rtt()
           ? static_cast<double>(peer.connection->smoothed_rtt_us()) * config_.tick_rate_hz / 1e6
           : 0.0;
-  const Tick due_before = session_->current_tick() - static_cast<Tick>(std::ceil(rtt_ticks)) - 2;
-  Tick overdue_end = lowest;
-  while (overdue_end < first_new &&
-         held_[static_cast<size_t>(overdue_end - oldest_held)].made_at <= due_before) {
-    ++overdue_end;
-  }
-  if (lowest >= overdue_end) return;
-  Tick r = std::clamp(peer.resend_cursor, lowest, overdue_end - 1);
-  for (Tick sent = 0; sent < overdue_end - lowest && add(r); ++sent) {
-    r = r + 1 < overdue_end ? r + 1 : lowest;
-  }
-  peer.resend_cursor = r;
+  FinalTickLog::Cursor cursor{peer.final_seen, peer.final_sent, peer.resend_cursor,
+                              peer.standalone_from};
+  finals_.add_to(out, budget, cursor, session_->current_tick(), rtt_ticks);
+  peer.final_sent = cursor.sent;
+  peer.resend_cursor = cursor.resend;
 }
 
 void MatchHost::end(const std::string& reason, TimePoint now) {

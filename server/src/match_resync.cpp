@@ -191,7 +191,7 @@ bool MatchHost::start_resync_episode(Peer& peer) {
   // acknowledged at once, so it goes out once instead of until
   // acknowledged; a client that misses a chunk asks again.)
   const Tick newest = next_final_;
-  const Tick oldest_final_held = finals_.empty() ? next_final_ : finals_.front().tick();
+  const Tick oldest_final_held = finals_.oldest();
   const Tick fallback = std::max(peer.final_seen + 1, oldest_final_held);
   for (int attempt = 0; attempt < 2; ++attempt) {
     const Tick tick = attempt == 0 ? newest : fallback;

@@ -20,6 +20,7 @@
 #include "rewind/net/connection_id.h"
 #include "rewind/net/rollback_session.h"
 #include "rewind/replay/replay_writer.h"
+#include "rewind/server/final_tick_log.h"
 #include "rewind/server/match_config.h"
 #include "rewind/server/match_stats.h"
 #include "rewind/server/secure_gateway.h"
@@ -68,7 +69,7 @@ class MatchHost {
   Tick last_final_tick() const { return next_final_ - 1; }
   const net::RollbackSession& session() const { return *session_; }
   /// Final ticks still held for resending, oldest first.
-  const std::deque<v1::FinalTick>& recent_finals() const { return finals_; }
+  const std::deque<v1::FinalTick>& recent_finals() const { return finals_.ticks(); }
 
   /// Test hook: sees every resync snapshot right after it is serialized,
   /// before the server checks that it loads, and may damage it; fault
@@ -153,7 +154,7 @@ class MatchHost {
   std::optional<replay::ReplayWriter> replay_;
   Phase phase_ = Phase::kLobby;
   std::vector<Peer> peers_;
-  std::deque<v1::FinalTick> finals_;  // contiguous ticks, oldest first
+  FinalTickLog finals_;  // held for the clients, oldest first
   // Inputs accepted since the last broadcast, relayed in it to every other
   // client; with each run's encoded size.
   struct RelayRun {
@@ -164,17 +165,6 @@ class MatchHost {
   std::vector<RelayRun> relay_batch_;
   std::vector<std::string> relay_packed_;     // each run packed, at broadcast
   std::vector<game::PlayerInput> relay_run_;  // the run being gathered
-  // What the broadcast needs of each held final tick, in step with finals_.
-  struct HeldFinal {
-    uint32_t size = 0;  // encoded size
-    // The inputs packed against the tick before (sent when that tick
-    // precedes it in the same message), and the tick's size sent that way.
-    std::string delta;
-    uint32_t delta_size = 0;
-    Tick made_at = 0;  // the server's tick when it was finalized (first sent)
-  };
-  std::deque<HeldFinal> held_;
-  std::vector<game::PlayerInput> previous_final_inputs_;  // of tick next_final_ - 1
   Tick next_final_ = 0;
   int32_t countdown_ticks_ = 0;
   // Substitution masks of the last kFinalHistory final ticks, to tell a
