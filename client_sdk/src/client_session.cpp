@@ -192,6 +192,7 @@ int ClientSession::update(TimePoint now) {
         v1::Envelope envelope;
         v1::JoinRequest* request = envelope.mutable_join_request();
         request->set_game(config_.game);
+        request->set_spectator(config_.spectator);
         request->set_client_name(config_.name.substr(0, net::kMaxClientNameBytes));
         request->set_nonce(nonce_);
         send(envelope, now);
@@ -246,7 +247,7 @@ void ClientSession::step_due_ticks(TimePoint now) {
                       session_->current_tick() < barrier;
        ++steps) {
     const Tick t = session_->current_tick();
-    if (t >= next_input_tick_) {
+    if (!spectator_ && t >= next_input_tick_) {
       game::PlayerInput input = provider_ ? provider_(t) : held_input_;
       input.axis_x =
           static_cast<int16_t>(std::clamp<int>(input.axis_x, -game::kAxisMax, game::kAxisMax));
@@ -419,7 +420,10 @@ void ClientSession::handle(const v1::Envelope& envelope, TimePoint now) {
 
 void ClientSession::on_join_accept(const v1::JoinAccept& accept, TimePoint now) {
   auto sim = game::Simulation::create(accept.game(), {accept.player_count(), accept.seed()});
-  if (!sim.ok() || accept.player() >= accept.player_count() || accept.tick_rate_hz() == 0) {
+  // A player's slot is below player_count, a spectator's seat past it.
+  const bool seat_ok = accept.spectator() ? accept.player() >= accept.player_count()
+                                          : accept.player() < accept.player_count();
+  if (!sim.ok() || !seat_ok || accept.tick_rate_hz() == 0) {
     phase_ = Phase::kEnded;
     emit({ClientEventType::kRejected, kNoTick, 0, 0, 0,
           "cannot build the server's match: " + sim.status().message()});
@@ -434,6 +438,7 @@ void ClientSession::on_join_accept(const v1::JoinAccept& accept, TimePoint now) 
   }
   player_ = accept.player();
   player_count_ = accept.player_count();
+  spectator_ = accept.spectator();
   tick_rate_hz_ = accept.tick_rate_hz();
   if (static_cast<int64_t>(accept.window_ticks()) + 16 > config_.snapshot_ticks) {
     phase_ = Phase::kEnded;

@@ -48,6 +48,10 @@ int main(int argc, char** argv) {
   flags.add_string("bind", &bind, "address to bind (IPv4 or IPv6 literal)");
   flags.add_int("port", &port, 0, 65535, "UDP port (0 = any free port)");
   flags.add_int("players", &players, 1, 32, "player slots; the match starts when all are joined");
+  int64_t spectators = config.match.max_spectators;
+  flags.add_int("spectators", &spectators, 0, 63,
+                "read-only seats (players + spectators <= 64); a secure server's token slots "
+                "from --players on are spectator seats");
   flags.add_int("tick-rate", &tick_rate, 1, 1000, "ticks per second");
   flags.add_int("window", &window, 1, 120, "ticks before a missing input is substituted");
   flags.add_int("ticks", &ticks, 0, int64_t{1} << 31,
@@ -90,6 +94,7 @@ int main(int argc, char** argv) {
   config.bind_address = bind;
   config.port = static_cast<uint16_t>(port);
   config.match.players = static_cast<uint32_t>(players);
+  config.match.max_spectators = static_cast<uint32_t>(spectators);
   config.match.tick_rate_hz = static_cast<uint32_t>(tick_rate);
   config.match.window_ticks = static_cast<int32_t>(window);
   config.match.max_ticks = ticks;

@@ -27,12 +27,14 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
     send_unconnected(from, reply);
   };
   auto accept = [&](uint32_t player) {
-    Peer& peer = peers_[player];
+    const bool spectator = player >= config_.players;
+    Peer& peer = spectator ? spectators_[player - config_.players] : peers_[player];
     v1::Envelope reply;
     v1::JoinAccept* answer = reply.mutable_join_accept();
     answer->set_nonce(request.nonce());
     answer->set_connection_id(peer.connection->connection_id());
     answer->set_player(player);
+    answer->set_spectator(spectator);
     answer->set_player_count(config_.players);
     answer->set_game(config_.game);
     answer->set_seed(config_.seed);
@@ -43,18 +45,28 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
   };
 
   // A repeated request from a joined address lost our answer: answer again.
-  for (uint32_t p = 0; p < peers_.size(); ++p) {
-    if (peers_[p].joined && peers_[p].endpoint == from) {
-      if (peers_[p].join_nonce == request.nonce()) {
+  for (uint32_t p = 0; p < peers_.size() + spectators_.size(); ++p) {
+    const Peer& held = p < peers_.size() ? peers_[p] : spectators_[p - peers_.size()];
+    if (held.joined && held.connected && held.endpoint == from) {
+      if (held.join_nonce == request.nonce()) {
         accept(p);
       } else {
-        reject("this address already holds player slot " + std::to_string(p));
+        reject("this address already holds seat " + std::to_string(p));
       }
       return;
     }
   }
   if (request.game() != config_.game) {
     reject("this server hosts '" + config_.game + "', not '" + request.game() + "'");
+    return;
+  }
+  if (config_.secure ? who->slot >= config_.players : request.spectator()) {
+    uint32_t id = 0;
+    if (!seat_spectator(request, from, now, who, &id)) {
+      reject("no spectator seat is free");
+      return;
+    }
+    accept(id);
     return;
   }
   std::optional<uint32_t> slot;
@@ -119,6 +131,40 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
   const bool full =
       std::all_of(peers_.begin(), peers_.end(), [](const Peer& p) { return p.joined; });
   if (full && phase_ == Phase::kLobby) start_match(now);
+}
+
+bool MatchHost::seat_spectator(const v1::JoinRequest& request, const Endpoint& from, TimePoint now,
+                               const Admission* who, uint32_t* id) {
+  if (phase_ != Phase::kLobby && phase_ != Phase::kRunning) return false;
+  // A secure server seats a spectator where its token says; a tokenless
+  // one in the first seat nobody holds (or whose holder went silent).
+  std::optional<uint32_t> seat;
+  if (who != nullptr) {
+    const uint32_t s = who->slot - config_.players;
+    if (s < spectators_.size()) {
+      const Peer& held = spectators_[s];
+      if (!held.joined || !held.connected || held.client_id == who->client_id) seat = s;
+    }
+  } else {
+    for (uint32_t s = 0; s < spectators_.size() && !seat; ++s) {
+      if (!spectators_[s].joined || !spectators_[s].connected) seat = s;
+    }
+  }
+  if (!seat) return false;
+  Peer& peer = spectators_[*seat];
+  peer = Peer{};
+  peer.joined = true;
+  peer.connected = true;
+  peer.endpoint = from;
+  peer.join_nonce = request.nonce();
+  peer.client_id = who != nullptr ? who->client_id : 0;
+  peer.connection.emplace(now, ids_.next());
+  peer.last_receive = now;
+  peer.name = request.client_name();
+  *id = config_.players + *seat;
+  log_line("spectator " + std::to_string(*seat) + " joined from " + from.address().to_string() +
+           ":" + std::to_string(from.port()) + " (" + printable(peer.name) + ")");
+  return true;
 }
 
 void MatchHost::restart_peer(Peer& peer) {

@@ -87,6 +87,7 @@ MatchHost::MatchHost(const MatchConfig& config, SendFn send,
       session_(std::move(session)),
       replay_(std::move(replay)),
       peers_(config.players),
+      spectators_(config.max_spectators),
       created_(now),
       started_(now),
       tick_started_(now),
@@ -113,8 +114,8 @@ uint32_t MatchHost::players_connected() const {
 }
 
 MatchHost::Peer* MatchHost::find_peer(uint64_t connection_id, uint32_t* player) {
-  for (uint32_t p = 0; p < peers_.size(); ++p) {
-    Peer& peer = peers_[p];
+  for (uint32_t p = 0; p < peers_.size() + spectators_.size(); ++p) {
+    Peer& peer = p < peers_.size() ? peers_[p] : spectators_[p - peers_.size()];
     if (peer.joined && peer.connection && peer.connection->connection_id() == connection_id) {
       *player = p;
       return &peer;
@@ -169,10 +170,15 @@ void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from
 
   switch (envelope.payload_case()) {
     case v1::Envelope::kInputFrame:
-      if (phase_ == Phase::kRunning) {
+      if (phase_ == Phase::kRunning && player < config_.players) {
         handle_input(*peer, player, envelope.input_frame());
       } else if (envelope.input_frame().player() == player) {
-        // Closing: only the acknowledgement of final ticks still matters.
+        // A spectator, or closing: only the acknowledgement of final ticks
+        // matters (a spectator's inputs are never taken).
+        if (envelope.input_frame().inputs_size() > 0 && player >= config_.players) {
+          ++stats_.rejected_inputs;
+        }
+        peer->sent_input = true;
         peer->final_seen =
             std::max(peer->final_seen,
                      std::min(envelope.input_frame().last_final_tick_seen(), next_final_ - 1));
@@ -309,6 +315,7 @@ void MatchHost::on_tick(TimePoint now) {
   if (countdown_ticks_ > 0) {
     --countdown_ticks_;
     for (Peer& peer : peers_) send_match_start(peer, now);
+    for (Peer& peer : spectators_) send_match_start(peer, now);
     return;
   }
   for (uint32_t p = 0; p < peers_.size(); ++p) {
@@ -316,6 +323,11 @@ void MatchHost::on_tick(TimePoint now) {
     if (peer.connected && seconds_between(peer.last_receive, now) > config_.peer_timeout_s) {
       peer.connected = false;
       log_line("player " + std::to_string(p) + " timed out; substituting its inputs");
+    }
+  }
+  for (Peer& peer : spectators_) {  // a silent spectator's seat is free again
+    if (peer.connected && seconds_between(peer.last_receive, now) > config_.peer_timeout_s) {
+      peer.connected = false;
     }
   }
 
@@ -404,49 +416,54 @@ void MatchHost::broadcast(TimePoint now) {
     proto::append_relayed_run(relay_batch_[r].player, relay_batch_[r].first_tick, server_tick(),
                               relay_batch_[r].inputs, relay_packed_[r]);
   }
-  for (uint32_t p = 0; p < peers_.size(); ++p) {
-    Peer& peer = peers_[p];
-    if (!peer.joined || !peer.connected) continue;
-    if (!peer.sent_input && phase_ == Phase::kRunning && session_->current_tick() % 10 == 0) {
-      send_match_start(peer, now);  // every MatchStart so far may have been lost
-    }
-    // A client that fell behind the history we keep can only catch up from
-    // a snapshot; one with a snapshot on the way gets it again until it
-    // acknowledges the snapshot's tick.
-    if (peer.final_seen + 1 < oldest_held && peer.resync_tick == kNoTick) send_resync(peer, now);
-    bool resync_pending = false;
-    if (peer.resync_tick != kNoTick) {
-      if (peer.final_seen >= peer.resync_tick - 1) {
-        peer.resync_tick = kNoTick;
-        peer.resync_bytes.clear();
-      } else {
-        send_resync(peer, now);
-        resync_pending = true;
-      }
-    }
-    v1::Envelope envelope;
-    v1::FinalTicks* out = envelope.mutable_final_ticks();
-    out->set_input_ack_tick(session_->queue(p).contiguous_through());
-    out->set_input_lead_ticks(peer.last_lead);
-    out->set_server_tick(server_tick());
-    // The other players' new inputs first (they are what prediction waits
-    // for), up to part of the budget: what does not fit arrives in final
-    // ticks soon anyway.
-    size_t budget = kFinalTicksBudgetBytes - 3;  // the relayed field's tag and length
-    std::string* relayed = out->mutable_relayed();
-    for (size_t r = 0; r < relay_batch_.size(); ++r) {
-      const size_t size = relay_packed_[r].size();
-      if (relay_batch_[r].player == p || size > budget - kFinalTicksBudgetBytes / 3) continue;
-      budget -= size;
-      *relayed += relay_packed_[r];
-    }
-    // While a snapshot is on its way the client ignores final ticks, but
-    // still needs the server's clock and its input acknowledgements.
-    if (!resync_pending) add_final_ticks(peer, *out, budget);
-    send(peer, envelope, now);
+  for (uint32_t p = 0; p < peers_.size(); ++p) broadcast_to(peers_[p], p, oldest_held, now);
+  for (uint32_t s = 0; s < spectators_.size(); ++s) {
+    broadcast_to(spectators_[s], config_.players + s, oldest_held, now);
   }
   relay_batch_.clear();
   relay_packed_.clear();
+}
+
+void MatchHost::broadcast_to(Peer& peer, uint32_t p, Tick oldest_held, TimePoint now) {
+  if (!peer.joined || !peer.connected) return;
+  if (!peer.sent_input && phase_ == Phase::kRunning && session_->current_tick() % 10 == 0) {
+    send_match_start(peer, now);  // every MatchStart so far may have been lost
+  }
+  // A client that fell behind the history we keep can only catch up from
+  // a snapshot; one with a snapshot on the way gets it again until it
+  // acknowledges the snapshot's tick.
+  if (peer.final_seen + 1 < oldest_held && peer.resync_tick == kNoTick) send_resync(peer, now);
+  bool resync_pending = false;
+  if (peer.resync_tick != kNoTick) {
+    if (peer.final_seen >= peer.resync_tick - 1) {
+      peer.resync_tick = kNoTick;
+      peer.resync_bytes.clear();
+    } else {
+      send_resync(peer, now);
+      resync_pending = true;
+    }
+  }
+  v1::Envelope envelope;
+  v1::FinalTicks* out = envelope.mutable_final_ticks();
+  const bool player = p < config_.players;  // spectators send no inputs
+  out->set_input_ack_tick(player ? session_->queue(p).contiguous_through() : kNoTick);
+  out->set_input_lead_ticks(peer.last_lead);
+  out->set_server_tick(server_tick());
+  // The other players' new inputs first (they are what prediction waits
+  // for), up to part of the budget: what does not fit arrives in final
+  // ticks soon anyway.
+  size_t budget = kFinalTicksBudgetBytes - 3;  // the relayed field's tag and length
+  std::string* relayed = out->mutable_relayed();
+  for (size_t r = 0; r < relay_batch_.size(); ++r) {
+    const size_t size = relay_packed_[r].size();
+    if (relay_batch_[r].player == p || size > budget - kFinalTicksBudgetBytes / 3) continue;
+    budget -= size;
+    *relayed += relay_packed_[r];
+  }
+  // While a snapshot is on its way the client ignores final ticks, but
+  // still needs the server's clock and its input acknowledgements.
+  if (!resync_pending) add_final_ticks(peer, *out, budget);
+  send(peer, envelope, now);
 }
 
 void MatchHost::add_final_ticks(Peer& peer, v1::FinalTicks& out, size_t budget) {
@@ -485,7 +502,8 @@ void MatchHost::end(const std::string& reason, TimePoint now) {
 }
 
 void MatchHost::send_match_end(TimePoint now) {
-  for (Peer& peer : peers_) {
+  for (uint32_t p = 0; p < peers_.size() + spectators_.size(); ++p) {
+    Peer& peer = p < peers_.size() ? peers_[p] : spectators_[p - peers_.size()];
     if (!peer.joined || !peer.connected) continue;
     v1::Envelope envelope;
     envelope.mutable_match_end()->set_last_final_tick(next_final_ - 1);

@@ -28,11 +28,12 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& given) {
   auto server = std::make_unique<Server>(config, std::move(io), std::move(*socket));
   Server* self = server.get();
   if (config.server_key) {
-    server->gateway_ = std::make_unique<SecureGateway>(
-        *config.server_key, config.match.match_id, config.match.players,
-        [self](const Endpoint& to, std::span<const uint8_t> bytes) {
-          self->socket_->send_to(bytes, to);
-        });
+    server->gateway_ =
+        std::make_unique<SecureGateway>(*config.server_key, config.match.match_id,
+                                        config.match.players + config.match.max_spectators,
+                                        [self](const Endpoint& to, std::span<const uint8_t> bytes) {
+                                          self->socket_->send_to(bytes, to);
+                                        });
   }
   auto host = MatchHost::create(
       config.match,

@@ -47,5 +47,6 @@ check 1 "cannot read /nonexistent/key" rewind-token mint --key-file /nonexistent
 check 64 "--key-file /nonexistent/key: cannot read it" rewind-server --key-file /nonexistent/key --port 0
 check 64 "connect token 0: not a hex digit" rewind-bots --token nothex
 check 64 "connect token 0: a connect token is" rewind-bots --token 00ff
-check 64 "1 connect tokens for 4 bots" rewind-bots --bots 4 --token "$("$bin/rewind-token" mint --key-file <(echo 0000000000000000000000000000000000000000000000000000000000000000) --match m --slot 0 --client-id 1)"
+check 64 "--bots and --spectators are both 0" rewind-bots --bots 0
+check 64 "1 connect tokens for 4 clients" rewind-bots --bots 4 --token "$("$bin/rewind-token" mint --key-file <(echo 0000000000000000000000000000000000000000000000000000000000000000) --match m --slot 0 --client-id 1)"
 [ "$failures" = 0 ] && echo "PASS: cli" || exit 1

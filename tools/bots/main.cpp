@@ -55,7 +55,8 @@ bool resolve(asio::io_context& io, const std::string& host, std::string* address
 }  // namespace
 
 int main(int argc, char** argv) {
-  int64_t bots = 4, seed = 1, corrupt_bot = -1, corrupt_at = -1, snapshot_ticks = 96;
+  int64_t bots = 4, seed = 1, corrupt_bot = -1, corrupt_at = -1, snapshot_ticks = 96,
+          spectators = 0;
   std::string connect = "127.0.0.1:7777", game = "crates", script_name = "random";
   int64_t latency_ms = 0, jitter_ms = 0;
   double loss = 0, duplicate = 0, reorder = 0, duration_s = 600;
@@ -69,7 +70,9 @@ int main(int argc, char** argv) {
       "checks, desync reports) against a rewind-server, with optional injected network faults.\n"
       "Exit status: 0 = every bot played the match to its end with no desync; 1 = a desync\n"
       "was detected; 2 = a bot could not join or lost the server.");
-  flags.add_int("bots", &bots, 1, 1000, "number of bot clients");
+  flags.add_int("bots", &bots, 0, 1000, "number of bot clients (players)");
+  flags.add_int("spectators", &spectators, 0, 64,
+                "spectator clients besides the bots (read-only: they verify every final tick)");
   flags.add_string("connect", &connect, "server HOST:PORT (a name, an IPv4 literal or [IPv6])");
   flags.add_string("game", &game, "game the server hosts");
   flags.add_string("script", &script_name, "input script: random, circle or idle");
@@ -139,9 +142,14 @@ int main(int argc, char** argv) {
     }
     connect_tokens.push_back(std::move(*bytes));
   }
-  if (!connect_tokens.empty() && connect_tokens.size() != static_cast<size_t>(bots)) {
-    std::fprintf(stderr, "rewind-bots: %zu connect tokens for %lld bots (one each)\n",
-                 connect_tokens.size(), static_cast<long long>(bots));
+  if (bots + spectators == 0) {
+    std::fprintf(stderr, "rewind-bots: --bots and --spectators are both 0: nobody to run\n");
+    return rwd::cli::kExitUsage;
+  }
+  const int64_t clients = bots + spectators;
+  if (!connect_tokens.empty() && connect_tokens.size() != static_cast<size_t>(clients)) {
+    std::fprintf(stderr, "rewind-bots: %zu connect tokens for %lld clients (one each)\n",
+                 connect_tokens.size(), static_cast<long long>(clients));
     return rwd::cli::kExitUsage;
   }
 
@@ -152,14 +160,16 @@ int main(int argc, char** argv) {
                  resolve_error.c_str());
     return 2;
   }
-  std::vector<Bot> fleet(static_cast<size_t>(bots));
+  std::vector<Bot> fleet(static_cast<size_t>(clients));
   const auto start = rwd::net::SteadyClock::now();
   for (size_t i = 0; i < fleet.size(); ++i) {
     rwd::client::ClientConfig config;
     config.server_address = address;
     config.server_port = port;
     config.game = game;
-    config.name = "bot-" + std::to_string(i);
+    config.spectator = static_cast<int64_t>(i) >= bots;
+    config.name = config.spectator ? "spectator-" + std::to_string(i - static_cast<size_t>(bots))
+                                   : "bot-" + std::to_string(i);
     config.snapshot_ticks = static_cast<int32_t>(snapshot_ticks);
     if (!connect_tokens.empty()) config.connect_token = connect_tokens[i];
     if (latency_ms || jitter_ms || loss > 0 || duplicate > 0 || reorder > 0) {
@@ -265,23 +275,28 @@ int main(int argc, char** argv) {
   const double elapsed =
       std::chrono::duration<double>(rwd::net::SteadyClock::now() - start).count();
   std::fprintf(
-      stderr, "[rewind-bots] %lld bots: %llu finished the match, %llu desyncs, %llu rollbacks\n",
-      static_cast<long long>(bots), static_cast<unsigned long long>(ended_ok),
-      static_cast<unsigned long long>(desync_events), static_cast<unsigned long long>(rollbacks));
+      stderr,
+      "[rewind-bots] %lld bots, %lld spectators: %llu finished the match, %llu desyncs, %llu "
+      "rollbacks\n",
+      static_cast<long long>(bots), static_cast<long long>(spectators),
+      static_cast<unsigned long long>(ended_ok), static_cast<unsigned long long>(desync_events),
+      static_cast<unsigned long long>(rollbacks));
   if (summary_json) {
     std::printf(
-        "{\"bots\":%lld,\"joined\":%llu,\"finished\":%llu,\"failed\":%llu,\"desyncs\":%llu,"
+        "{\"bots\":%lld,\"spectators\":%lld,\"joined\":%llu,\"finished\":%llu,\"failed\":%llu,"
+        "\"desyncs\":%llu,"
         "\"resyncs\":%llu,\"resyncs_refused\":%llu,\"rollbacks\":%llu,\"resimulated_ticks\":%llu,"
         "\"ticks_final\":%lld,"
         "\"final_ticks_verified\":%llu,\"rtt_ms_avg\":%.2f,\"duration_s\":%.2f}\n",
-        static_cast<long long>(bots), static_cast<unsigned long long>(joined_ok),
-        static_cast<unsigned long long>(ended_ok), static_cast<unsigned long long>(failed),
-        static_cast<unsigned long long>(desync_events),
+        static_cast<long long>(bots), static_cast<long long>(spectators),
+        static_cast<unsigned long long>(joined_ok), static_cast<unsigned long long>(ended_ok),
+        static_cast<unsigned long long>(failed), static_cast<unsigned long long>(desync_events),
         static_cast<unsigned long long>(resync_events),
         static_cast<unsigned long long>(refused_events), static_cast<unsigned long long>(rollbacks),
         static_cast<unsigned long long>(resimulated),
         static_cast<long long>(min_final == INT64_MAX ? 0 : min_final),
-        static_cast<unsigned long long>(verified), rtt_sum / static_cast<double>(bots), elapsed);
+        static_cast<unsigned long long>(verified), rtt_sum / static_cast<double>(fleet.size()),
+        elapsed);
   }
   std::fflush(stdout);
   if (failed > 0) return 2;

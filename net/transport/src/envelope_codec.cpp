@@ -134,9 +134,13 @@ Status check_payload(const Envelope& e) {
         return corrupt("join_accept.player_count " + std::to_string(m.player_count()) +
                        " not in [1, " + std::to_string(kMaxPlayerSlots) + "]");
       }
-      if (m.player() >= m.player_count()) {
-        return corrupt("join_accept.player " + std::to_string(m.player()) + " >= player_count " +
-                       std::to_string(m.player_count()));
+      // A spectator's seat id follows the player slots.
+      if (m.spectator() ? m.player() < m.player_count() || m.player() >= kMaxPlayerSlots
+                        : m.player() >= m.player_count()) {
+        return corrupt(
+            "join_accept.player " + std::to_string(m.player()) +
+            (m.spectator() ? " is not a spectator seat after player_count " : " >= player_count ") +
+            std::to_string(m.player_count()));
       }
       if (m.tick_rate_hz() == 0 || m.tick_rate_hz() > kMaxTickRateHz) {
         return corrupt("join_accept.tick_rate_hz " + std::to_string(m.tick_rate_hz()) +

@@ -61,6 +61,43 @@ TEST(MatchHost, OneDatagramPerClientPerTickCarriesTheOthersInputs) {
   EXPECT_EQ(h.host().stats().relayed_inputs, 4u * 30u);
 }
 
+// A spectator takes a read-only seat past the player slots: it is not a
+// player (the match starts without it), it gets the tick's datagram, and
+// inputs it sends are never taken.
+TEST(MatchHost, ASpectatorWatchesButNeverPlays) {
+  HostHarness h(test_config());
+  FakeClient watcher;
+  watcher.endpoint = Endpoint(make_address("127.0.0.1"), 4300);
+  v1::Envelope join;
+  join.mutable_join_request()->set_game("crates");
+  join.mutable_join_request()->set_spectator(true);
+  join.mutable_join_request()->set_nonce(7);
+  h.raw(watcher.endpoint, h.encode(join));
+  const std::vector<v1::Envelope>& answers = h.outbox().received[watcher.endpoint];
+  ASSERT_EQ(answers.size(), 1u);
+  ASSERT_TRUE(answers[0].has_join_accept());
+  EXPECT_TRUE(answers[0].join_accept().spectator());
+  EXPECT_EQ(answers[0].join_accept().player(), 2u);  // after the two player slots
+  watcher.connection_id = answers[0].join_accept().connection_id();
+  watcher.player = 2;
+  EXPECT_EQ(h.host().phase(), MatchHost::Phase::kLobby);
+  FakeClient a = h.join(4301);
+  FakeClient b = h.join(4302);
+  ASSERT_EQ(h.host().phase(), MatchHost::Phase::kRunning);
+  EXPECT_EQ(h.host().stats().players_joined, 2u);
+  for (Tick t = 0; t < 20; ++t) {
+    h.send_input(a, t, scripted(a.player, t), a.player);
+    h.send_input(b, t, scripted(b.player, t), b.player);
+    h.send_input(watcher, t, {1000, 1000, 1}, watcher.player);  // never taken
+    h.tick();
+  }
+  EXPECT_GT(h.host().stats().rejected_inputs, 0u);
+  EXPECT_EQ(h.host().stats().substituted_inputs, 0u);
+  size_t finals = 0;
+  for (const v1::Envelope& e : h.outbox().received[watcher.endpoint]) finals += e.has_final_ticks();
+  EXPECT_GE(finals, 15u);
+}
+
 TEST(MatchHost, MissingInputsAreSubstitutedAtTheDeadline) {
   HostHarness h(test_config());
   FakeClient a = h.join(4001);

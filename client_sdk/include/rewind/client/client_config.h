@@ -19,6 +19,11 @@ struct ClientConfig {
   /// required by a secure server, which names the slot by it; every
   /// datagram is then sealed. Empty: the tokenless mode of local tests.
   std::vector<uint8_t> connect_token;
+  /// Join as a spectator: a read-only seat that receives every final tick
+  /// and verifies its checksum but sends no inputs (the input provider is
+  /// never called). Joins at any time; a running match is caught up from a
+  /// snapshot. On a secure server the token's slot names the seat.
+  bool spectator = false;
   int32_t snapshot_ticks = 96;     ///< rollback depth; must exceed lead + window + RTT in ticks
   double join_timeout_s = 10.0;    ///< give up joining after this long
   double server_timeout_s = 5.0;   ///< silence after which the server is considered gone

@@ -131,6 +131,7 @@ class ClientSession {
   Phase phase_ = Phase::kIdle;
   uint64_t nonce_ = 0;
   uint32_t player_ = 0;
+  bool spectator_ = false;  // a read-only seat: no inputs of our own
   uint32_t player_count_ = 0;
   uint32_t tick_rate_hz_ = 60;
   std::unique_ptr<net::RollbackSession> session_;

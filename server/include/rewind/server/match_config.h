@@ -9,8 +9,13 @@ namespace rwd::server {
 
 /// Everything one hosted match is configured with.
 struct MatchConfig {
-  std::string game = "crates";     ///< a built-in game name
-  uint32_t players = 2;            ///< slots; the match starts when all are joined
+  std::string game = "crates";  ///< a built-in game name
+  uint32_t players = 2;         ///< slots; the match starts when all are joined
+  /// Read-only seats: spectators get every final tick and verify its
+  /// checksum but send no inputs; they may join at any time. players +
+  /// max_spectators <= 64. On a secure server token slots from `players`
+  /// on are spectator seats.
+  uint32_t max_spectators = 8;
   uint32_t tick_rate_hz = 60;      ///< [1, 1000]
   int32_t window_ticks = 8;        ///< finalization deadline, [1, 120]
   int64_t max_ticks = 0;           ///< end after this many final ticks; 0 = until stopped

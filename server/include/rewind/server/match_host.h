@@ -143,6 +143,11 @@ class MatchHost {
   void close_if_done(TimePoint now);
   void finalize_ready_ticks();
   void broadcast(TimePoint now);
+  /// One client's datagram of the tick (`id`: slot, or players + seat).
+  void broadcast_to(Peer& peer, uint32_t id, Tick oldest_held, TimePoint now);
+  /// Takes a spectator seat for a join request; false when none is free.
+  bool seat_spectator(const v1::JoinRequest& request, const Endpoint& from, TimePoint now,
+                      const Admission* who, uint32_t* id);
   void send(Peer& peer, v1::Envelope& envelope, TimePoint now);
   void send_unconnected(const Endpoint& to, v1::Envelope& envelope);
   Peer* find_peer(uint64_t connection_id, uint32_t* player);
@@ -153,8 +158,9 @@ class MatchHost {
   std::unique_ptr<net::RollbackSession> session_;
   std::optional<replay::ReplayWriter> replay_;
   Phase phase_ = Phase::kLobby;
-  std::vector<Peer> peers_;
-  FinalTickLog finals_;  // held for the clients, oldest first
+  std::vector<Peer> peers_;       // the player slots, by slot
+  std::vector<Peer> spectators_;  // read-only seats; seat s is id players + s
+  FinalTickLog finals_;           // held for the clients, oldest first
   // Inputs accepted since the last broadcast, relayed in it to every other
   // client; with each run's encoded size.
   struct RelayRun {
