@@ -25,9 +25,6 @@ probe() { python3 "$here/metrics_probe.py" "$@"; }
 command -v prometheus >/dev/null || fail "prometheus is not installed (scripts/setup.sh installs it)"
 command -v promtool >/dev/null || fail "promtool is not installed (it comes with prometheus)"
 
-pids=()
-cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; }
-trap cleanup EXIT
 
 tick_rate=${REWIND_TEST_TICK_RATE:-60}
 # Long enough (15 s) for Prometheus to scrape the running match several times.

@@ -20,28 +20,19 @@ source "$(dirname "${BASH_SOURCE[0]}")/script_common.sh"
 enter_work_dir "$work"
 
 
-pids=()
-cleanup() { for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; }
-trap cleanup EXIT
-
 tick_rate=${REWIND_TEST_TICK_RATE:-60}
 ticks=$(( tick_rate * 12 ))
 server_args=(--game crates --bind 127.0.0.1 --port 0 --port-file port --players 2
              --tick-rate "$tick_rate" --ticks "$ticks" --replay match.rwr --join-timeout 30
              --peer-timeout 1 --summary-json)
-bot_args=()
 if [ "$mode" = token ]; then
   "$bin/rewind-token" keygen --out server.key >/dev/null
   "$bin/rewind-token" mint --key-file server.key --match m --slot 0 --client-id 1 >token0
   "$bin/rewind-token" mint --key-file server.key --match m --slot 1 --client-id 2 >token1
   server_args+=(--key-file server.key --match-id m)
 fi
-"$bin/rewind-server" "${server_args[@]}" >server.json 2>server.log &
-server_pid=$!
-pids+=("$server_pid")
-for _ in $(seq 1 100); do [ -s port ] && break; sleep 0.1; done
-[ -s port ] || fail "server did not start: $(cat server.log)"
-connect=(--connect "127.0.0.1:$(cat port)" --duration $(( ticks / tick_rate + 30 )) --summary-json)
+start_server "${server_args[@]}"
+connect=(--connect "127.0.0.1:$port" --duration $(( ticks / tick_rate + 30 )) --summary-json)
 token_for() { [ "$mode" = token ] && echo "--token-file token$1" || true; }
 
 # shellcheck disable=SC2046

@@ -16,3 +16,21 @@ fail() { echo "FAIL [$test_name]: $*" >&2; exit 1; }
 json() {
   python3 -c "import json,sys; print(json.loads(open(sys.argv[1]).read().strip().splitlines()[-1])[sys.argv[2]])" "$1" "$2"
 }
+
+# Background processes the script starts (start_server, or pids+=(...)),
+# killed when it exits.
+pids=()
+kill_started() { for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; }
+trap kill_started EXIT
+
+# start_server ARGS...: rewind-server from $bin with ARGS (which include
+# --port-file port) in the background, stdout to server.json and stderr to
+# server.log; waits for the port it bound. Sets server_pid and port.
+start_server() {
+  "$bin/rewind-server" "$@" >server.json 2>server.log &
+  server_pid=$!
+  pids+=("$server_pid")
+  for _ in $(seq 1 100); do [ -s port ] && break; sleep 0.1; done
+  [ -s port ] || fail "server did not start: $(cat server.log)"
+  port=$(cat port)
+}

@@ -21,9 +21,6 @@ enter_work_dir "$work"
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 
 
-pids=()
-cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; }
-trap cleanup EXIT
 
 tick_rate=${REWIND_TEST_TICK_RATE:-60}
 ticks=${REWIND_TEST_TICKS:-480}
@@ -37,14 +34,9 @@ done
 "$bin/rewind-token" mint --key-file other.key --match duel-7 --slot 0 --client-id 1 >foreign
 "$bin/rewind-token" inspect --token-file foreign | grep -q "^slot 0$" || fail "inspect"
 
-"$bin/rewind-server" --game crates --bind 127.0.0.1 --port 0 --port-file port --players "$players" \
+start_server --game crates --bind 127.0.0.1 --port 0 --port-file port --players "$players" \
   --tick-rate "$tick_rate" --ticks "$ticks" --replay match.rwr --join-timeout 30 \
-  --key-file server.key --match-id duel-7 --summary-json >server.json 2>server.log &
-pids+=($!)
-server_pid=$!
-for _ in $(seq 1 100); do [ -s port ] && break; sleep 0.1; done
-[ -s port ] || fail "server did not start: $(cat server.log)"
-port=$(cat port)
+  --key-file server.key --match-id duel-7 --summary-json
 grep -q "secure connections" server.log || fail "the server does not say it is secure"
 
 python3 "$here/hostile_secure.py" probe "$port" tokens foreign >probe.json || fail "probe: $(cat probe.json)"

@@ -14,10 +14,6 @@ test_name="spectator $mode"
 source "$(dirname "${BASH_SOURCE[0]}")/script_common.sh"
 enter_work_dir "$work"
 
-pids=()
-cleanup() { for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; }
-trap cleanup EXIT
-
 tick_rate=${REWIND_TEST_TICK_RATE:-60}
 ticks=$(( tick_rate * 10 ))
 server_args=(--game crates --bind 127.0.0.1 --port 0 --port-file port --players 2 --spectators 4
@@ -37,12 +33,8 @@ if [ "$mode" = token ]; then
   player_tokens=(--token-file players.tokens)
   watcher_tokens=(--token-file watchers.tokens)
 fi
-"$bin/rewind-server" "${server_args[@]}" >server.json 2>server.log &
-server_pid=$!
-pids+=("$server_pid")
-for _ in $(seq 1 100); do [ -s port ] && break; sleep 0.1; done
-[ -s port ] || fail "server did not start: $(cat server.log)"
-connect=(--connect "127.0.0.1:$(cat port)" --duration $(( ticks / tick_rate + 30 )) --summary-json)
+start_server "${server_args[@]}"
+connect=(--connect "127.0.0.1:$port" --duration $(( ticks / tick_rate + 30 )) --summary-json)
 
 "$bin/rewind-bots" --bots 2 "${connect[@]}" "${player_tokens[@]}" >players.json 2>players.log &
 players=$!
