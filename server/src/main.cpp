@@ -2,6 +2,7 @@
 // rewind-server: flags -> config -> run -> summary.
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "rewind/cli/flag_parser.h"
 #include "rewind/cli/host_port.h"
@@ -13,13 +14,16 @@ namespace {
 using rwd::server::LogLevel;
 using rwd::server::write_log;
 
-// Written to a temporary name and renamed, so a reader never sees half a number.
-bool write_port_file(const std::string& path, uint16_t port) {
+// One port a line, written to a temporary name and renamed, so a reader
+// never sees half a number.
+bool write_port_file(const std::string& path, const std::vector<uint16_t>& ports) {
   const std::string temporary = path + ".tmp";
   std::FILE* file = std::fopen(temporary.c_str(), "w");
   bool written = file != nullptr;
   if (written) {
-    written = std::fprintf(file, "%u\n", static_cast<unsigned>(port)) >= 0;
+    for (const uint16_t port : ports) {
+      written = std::fprintf(file, "%u\n", static_cast<unsigned>(port)) >= 0 && written;
+    }
     written = std::fclose(file) == 0 && written;  // closed whatever happened
   }
   return written && std::rename(temporary.c_str(), path.c_str()) == 0;
@@ -40,13 +44,27 @@ int main(int argc, char** argv) {
   bool summary_json = false, log_json = false;
   std::string port_file, metrics_bind, metrics_port_file;
 
+  int64_t matches = config.matches, max_matches = config.max_matches, threads = config.threads;
+  bool control = false;
   FlagParser flags("rewind-server", "rewind-server [flags]",
-                   "Hosts one authoritative rollback match over UDP: ticks the deterministic "
+                   "Hosts authoritative rollback matches over UDP: ticks the deterministic "
                    "simulation, finalizes ticks,\nbroadcasts their inputs and checksums, records "
-                   "a replay. Logs go to stderr.");
+                   "a replay. One match by default; several\n(--matches, or allocated through "
+                   "the control API) each tick on their own port and strand. Logs go to stderr.");
   flags.add_string("game", &game, "built-in game to host");
   flags.add_string("bind", &bind, "address to bind (IPv4 or IPv6 literal)");
-  flags.add_int("port", &port, 0, 65535, "UDP port (0 = any free port)");
+  flags.add_int("port", &port, 0, 65535,
+                "UDP port (0 = any free port); with --matches N, match i binds port + i - 1");
+  flags.add_int("matches", &matches, 0, 256,
+                "matches started at launch, named <match-id>-1.. when more than one (0 needs "
+                "--control)");
+  flags.add_int("max-matches", &max_matches, 1, 256,
+                "most matches alive at once, launch and control together");
+  flags.add_int("threads", &threads, 0, 64,
+                "threads running the matches (0 = one per core, at most one per match)");
+  flags.add_bool("control", &control,
+                 "serve the control API on --metrics-bind: GET/POST /matches, DELETE "
+                 "/matches/<id>; the process then runs until signalled (bind it privately)");
   flags.add_int("players", &players, 1, 32, "player slots; the match starts when all are joined");
   int64_t spectators = config.match.max_spectators;
   flags.add_int("spectators", &spectators, 0, 63,
@@ -57,7 +75,9 @@ int main(int argc, char** argv) {
   flags.add_int("ticks", &ticks, 0, int64_t{1} << 31,
                 "exit after N final ticks (0 = run until signalled)");
   flags.add_int("seed", &seed, 0, INT64_MAX, "game RNG seed");
-  flags.add_string("replay", &replay, "write the replay file here (empty = none)");
+  flags.add_string("replay", &replay,
+                   "write the replay file here (empty = none); with several matches '{match}' "
+                   "in it becomes the match id (else the id goes before the extension)");
   flags.add_int("keyframe-interval", &keyframe, 0, 1 << 20,
                 "ticks between replay keyframes (0 = none)");
   flags.add_string("desync-dir", &desync_dir,
@@ -69,7 +89,9 @@ int main(int argc, char** argv) {
   flags.add_double("join-timeout", &join_timeout, 0.1, 86400, "seconds to wait for all players");
   flags.add_double("peer-timeout", &peer_timeout, 0.1, 3600,
                    "seconds of silence before a player is dropped");
-  flags.add_string("port-file", &port_file, "write the bound UDP port to this file once listening");
+  flags.add_string("port-file", &port_file,
+                   "write the launch matches' bound UDP ports to this file, one a line, once "
+                   "listening");
   flags.add_bool("summary-json", &summary_json, "print one JSON summary line on stdout at exit");
   flags.add_string("metrics-bind", &metrics_bind,
                    "serve Prometheus metrics over HTTP on HOST:PORT at /metrics (port 0 = any "
@@ -90,6 +112,10 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (log_json) rwd::server::set_log_format(rwd::server::LogFormat::kJson);
+  config.matches = static_cast<uint32_t>(matches);
+  config.max_matches = static_cast<uint32_t>(max_matches);
+  config.threads = static_cast<uint32_t>(threads);
+  config.control = control;
   config.match.game = game;
   config.bind_address = bind;
   config.port = static_cast<uint16_t>(port);
@@ -136,23 +162,36 @@ int main(int argc, char** argv) {
     write_log(LogLevel::kError, server.status().message());
     return 1;
   }
-  if (!port_file.empty() && !write_port_file(port_file, (*server)->port())) {
+  if (!port_file.empty() && !write_port_file(port_file, (*server)->ports())) {
     write_log(LogLevel::kError, "cannot write --port-file " + port_file);
     return 1;
   }
   if (!metrics_port_file.empty() &&
-      !write_port_file(metrics_port_file, (*server)->metrics_port())) {
+      !write_port_file(metrics_port_file, {(*server)->metrics_port()})) {
     write_log(LogLevel::kError, "cannot write --metrics-port-file " + metrics_port_file);
     return 1;
   }
   (*server)->run();
-  const rwd::server::MatchStats stats = (*server)->stats();
-  write_log(LogLevel::kInfo, stats.to_text());
-  if (const std::string problems = stats.problems(); !problems.empty()) {
-    write_log(LogLevel::kWarning, problems);
+  // One summary per match: the one line of a single match, or a line per
+  // match (JSON with its "match" id) when the process hosted several.
+  const std::vector<rwd::server::MetricsSample> samples = (*server)->samples();
+  const bool many = samples.size() > 1 || control;
+  bool lobby_timeout = false;
+  for (const rwd::server::MetricsSample& sample : samples) {
+    const rwd::server::MatchStats& stats = sample.stats;
+    rwd::server::LogMatchScope scope(many ? std::string_view(sample.match) : std::string_view());
+    write_log(LogLevel::kInfo, stats.to_text());
+    if (const std::string problems = stats.problems(); !problems.empty()) {
+      write_log(LogLevel::kWarning, problems);
+    }
+    if (summary_json) {
+      std::string json = stats.to_json();
+      if (many && json.size() > 1) json.insert(1, "\"match\":\"" + sample.match + "\",");
+      std::printf("%s\n", json.c_str());
+    }
+    lobby_timeout = lobby_timeout || stats.end_reason.rfind("lobby timeout", 0) == 0;
   }
-  if (summary_json) std::printf("%s\n", stats.to_json().c_str());
   std::fflush(stdout);
   // A lobby that never filled is a failed match for scripts.
-  return stats.end_reason.rfind("lobby timeout", 0) == 0 ? 2 : 0;
+  return lobby_timeout ? 2 : 0;
 }

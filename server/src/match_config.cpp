@@ -5,6 +5,16 @@
 
 namespace rwd::server {
 
+bool is_match_id(std::string_view id) {
+  if (id.empty() || id.size() > 64) return false;
+  for (const char c : id) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '.' || c == '_' || c == '-';
+    if (!ok) return false;
+  }
+  return true;
+}
+
 Status MatchConfig::validate() const {
   auto bad = [](const std::string& message) {
     return Status::Error(ErrorCode::kInvalidArgument, message);
@@ -13,6 +23,10 @@ Status MatchConfig::validate() const {
     std::string known;
     for (std::string_view name : game::builtin_game_names()) known += " " + std::string(name);
     return bad("unknown game '" + game + "' (known:" + known + ")");
+  }
+  if (!is_match_id(match_id)) {
+    return bad("match id '" + match_id.substr(0, 64) +
+               "' must be 1 to 64 characters of A-Z a-z 0-9 . _ -");
   }
   if (players < 1 || players > game::kMaxPlayers) {
     return bad("players must be in [1, " + std::to_string(game::kMaxPlayers) + "]");

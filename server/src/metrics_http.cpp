@@ -67,12 +67,17 @@ bool is_header_line(std::string_view line) {
 }  // namespace
 
 struct MetricsHttp::State {
-  State(asio::io_context& io, RenderFn render_fn, Limits given)
-      : acceptor(io), retry(io), render(std::move(render_fn)), limits(given) {}
+  State(const asio::any_io_executor& executor, RenderFn render_fn, RouteFn route_fn, Limits given)
+      : acceptor(executor),
+        retry(executor),
+        render(std::move(render_fn)),
+        route(std::move(route_fn)),
+        limits(given) {}
 
   asio::ip::tcp::acceptor acceptor;
   asio::steady_timer retry;
   RenderFn render;
+  RouteFn route;
   Limits limits;
   Stats stats;
   bool open = true;
@@ -127,8 +132,9 @@ class MetricsHttp::Connection : public std::enable_shared_from_this<Connection> 
       stop();
       return;
     }
-    std::string response = respond(std::string_view(head_).substr(0, length), state_->render);
-    if (response.starts_with("HTTP/1.1 200")) {
+    std::string response =
+        respond(std::string_view(head_).substr(0, length), state_->render, state_->route);
+    if (response.starts_with("HTTP/1.1 2")) {
       ++state_->stats.answered;
     } else if (response.starts_with("HTTP/1.1 404")) {
       ++state_->stats.not_found;
@@ -175,14 +181,22 @@ class MetricsHttp::Connection : public std::enable_shared_from_this<Connection> 
 
 Result<std::unique_ptr<MetricsHttp>> MetricsHttp::open(asio::io_context& io,
                                                        std::string_view address, uint16_t port,
-                                                       RenderFn render, Limits limits) {
+                                                       RenderFn render, Limits limits,
+                                                       RouteFn route) {
+  return open(io.get_executor(), address, port, std::move(render), limits, std::move(route));
+}
+
+Result<std::unique_ptr<MetricsHttp>> MetricsHttp::open(const asio::any_io_executor& executor,
+                                                       std::string_view address, uint16_t port,
+                                                       RenderFn render, Limits limits,
+                                                       RouteFn route) {
   std::error_code ec;
   const asio::ip::address ip = asio::ip::make_address(std::string(address), ec);
   if (ec) {
     return Status::Error(ErrorCode::kInvalidArgument,
                          "metrics: bad address '" + std::string(address) + "': " + ec.message());
   }
-  auto state = std::make_shared<State>(io, std::move(render), limits);
+  auto state = std::make_shared<State>(executor, std::move(render), std::move(route), limits);
   const asio::ip::tcp::endpoint endpoint(ip, port);
   state->acceptor.open(endpoint.protocol(), ec);
   if (!ec) state->acceptor.set_option(asio::ip::tcp::acceptor::reuse_address(true), ec);
@@ -244,7 +258,8 @@ void MetricsHttp::accept_next(const std::shared_ptr<State>& state) {
   });
 }
 
-std::string MetricsHttp::respond(std::string_view head, const RenderFn& render) {
+std::string MetricsHttp::respond(std::string_view head, const RenderFn& render,
+                                 const RouteFn& route) {
   if (!head.ends_with(kHeadEnd)) return bad_request();
   // Request line: METHOD SP TARGET SP HTTP/1.x
   const size_t line_end = head.find("\r\n");
@@ -268,6 +283,11 @@ std::string MetricsHttp::respond(std::string_view head, const RenderFn& render) 
     rest.remove_prefix(end + 2);
   }
   const std::string_view path = target.substr(0, target.find('?'));
+  if (path != kMetricsPath && route) {
+    if (std::optional<HttpAnswer> answer = route(method, target)) {
+      return reply(answer->status, answer->content_type, answer->body, method != "HEAD");
+    }
+  }
   if (path != kMetricsPath || (method != "GET" && method != "HEAD")) {
     return reply("404 Not Found", "text/plain; charset=utf-8", "not found\n", method != "HEAD");
   }

@@ -10,7 +10,8 @@ namespace {
 struct Metric {
   std::string_view name;  // without the rewind_ prefix
   std::string_view help;
-  uint64_t value;
+  uint64_t MatchStats::*counter;  // null: a gauge read by `gauge`
+  uint64_t (*gauge)(const MetricsSample&);
 };
 
 void add_header(std::string& out, std::string_view name, std::string_view help,
@@ -34,15 +35,10 @@ void add_seconds(std::string& out, int64_t ns) {
   out.append(text, end);
 }
 
-void add_sample(std::string& out, std::string_view name, uint64_t value) {
-  out.append("rewind_").append(name).append(" ");
-  add_number(out, value);
-  out.append("\n");
-}
-
-void add_family(std::string& out, const Metric& metric, std::string_view type) {
-  add_header(out, metric.name, metric.help, type);
-  add_sample(out, metric.name, metric.value);
+// Match ids are [A-Za-z0-9._-] (MatchConfig::validate), so they need no
+// escaping inside the label's quotes.
+void add_label(std::string& out, std::string_view name, const MetricsSample& match) {
+  out.append("rewind_").append(name).append("{match=\"").append(match.match).append("\"");
 }
 
 const char* phase_name(MatchHost::Phase phase) {
@@ -59,103 +55,137 @@ const char* phase_name(MatchHost::Phase phase) {
   return "ended";
 }
 
-void add_phase(std::string& out, MatchHost::Phase current) {
+void add_phase(std::string& out, std::span<const MetricsSample> matches) {
   add_header(out, "match_phase",
              "1 for the phase the match is in (lobby, running, closing, ended), 0 for the others.",
              "gauge");
-  for (const MatchHost::Phase phase : {MatchHost::Phase::kLobby, MatchHost::Phase::kRunning,
-                                       MatchHost::Phase::kClosing, MatchHost::Phase::kEnded}) {
-    out.append("rewind_match_phase{phase=\"").append(phase_name(phase)).append("\"} ");
-    out.append(phase == current ? "1\n" : "0\n");
+  for (const MetricsSample& match : matches) {
+    for (const MatchHost::Phase phase : {MatchHost::Phase::kLobby, MatchHost::Phase::kRunning,
+                                         MatchHost::Phase::kClosing, MatchHost::Phase::kEnded}) {
+      add_label(out, "match_phase", match);
+      out.append(",phase=\"").append(phase_name(phase)).append("\"} ");
+      out.append(phase == match.phase ? "1\n" : "0\n");
+    }
   }
 }
 
-void add_tick_time(std::string& out, const TickHistogram& ticks) {
-  add_header(out, "tick_seconds", "Wall time of each tick of the server's loop.", "histogram");
-  uint64_t cumulative = 0;
-  for (size_t bucket = 0; bucket < TickHistogram::bucket_total(); ++bucket) {
-    cumulative += ticks.bucket_count(bucket);
-    out.append("rewind_tick_seconds_bucket{le=\"");
-    if (bucket < TickHistogram::kBoundsNs.size()) {
-      add_seconds(out, TickHistogram::kBoundsNs[bucket]);
-    } else {
-      out.append("+Inf");
+void add_tick_time(std::string& out, std::span<const MetricsSample> matches) {
+  add_header(out, "tick_seconds", "Wall time of each tick of the match's loop.", "histogram");
+  for (const MetricsSample& match : matches) {
+    const TickHistogram& ticks = match.tick_time;
+    uint64_t cumulative = 0;
+    for (size_t bucket = 0; bucket < TickHistogram::bucket_total(); ++bucket) {
+      cumulative += ticks.bucket_count(bucket);
+      add_label(out, "tick_seconds_bucket", match);
+      out.append(",le=\"");
+      if (bucket < TickHistogram::kBoundsNs.size()) {
+        add_seconds(out, TickHistogram::kBoundsNs[bucket]);
+      } else {
+        out.append("+Inf");
+      }
+      out.append("\"} ");
+      add_number(out, cumulative);
+      out.append("\n");
     }
-    out.append("\"} ");
-    add_number(out, cumulative);
+    add_label(out, "tick_seconds_sum", match);
+    out.append("} ");
+    add_seconds(out, static_cast<int64_t>(ticks.sum_ns()));
+    out.append("\n");
+    add_label(out, "tick_seconds_count", match);
+    out.append("} ");
+    add_number(out, ticks.count());
     out.append("\n");
   }
-  out.append("rewind_tick_seconds_sum ");
-  add_seconds(out, static_cast<int64_t>(ticks.sum_ns()));
-  out.append("\nrewind_tick_seconds_count ");
-  add_number(out, ticks.count());
-  out.append("\n");
-  add_header(out, "tick_seconds_max", "Longest tick of the server's loop so far.", "gauge");
-  out.append("rewind_tick_seconds_max ");
-  add_seconds(out, ticks.max_ns());
-  out.append("\n");
+  add_header(out, "tick_seconds_max", "Longest tick of the match's loop so far.", "gauge");
+  for (const MetricsSample& match : matches) {
+    add_label(out, "tick_seconds_max", match);
+    out.append("} ");
+    add_seconds(out, match.tick_time.max_ns());
+    out.append("\n");
+  }
+}
+
+void add_family(std::string& out, const Metric& metric, std::string_view type,
+                std::span<const MetricsSample> matches) {
+  add_header(out, metric.name, metric.help, type);
+  for (const MetricsSample& match : matches) {
+    add_label(out, metric.name, match);
+    out.append("} ");
+    add_number(out, metric.counter ? match.stats.*metric.counter : metric.gauge(match));
+    out.append("\n");
+  }
 }
 
 }  // namespace
 
-std::string render_metrics(const MetricsSample& sample) {
-  const MatchStats& s = sample.stats;
+std::string render_metrics(std::span<const MetricsSample> matches) {
+  using S = MatchStats;
   const Metric gauges[] = {
-      {"matches", "Matches this process hosts.", 1},
-      {"players_joined", "Player slots taken.", s.players_joined},
-      {"players_connected", "Joined players the server currently hears from.",
-       sample.players_connected},
+      {"players_joined", "Player slots taken.", nullptr,
+       [](const MetricsSample& m) { return uint64_t{m.stats.players_joined}; }},
+      {"players_connected", "Joined players the server currently hears from.", nullptr,
+       [](const MetricsSample& m) { return uint64_t{m.players_connected}; }},
   };
   const Metric counters[] = {
       {"ticks_final_total", "Ticks made final (inputs fixed, broadcast with their checksum).",
-       static_cast<uint64_t>(s.ticks_final)},
-      {"rollbacks_total", "Rollbacks on late input.", s.rollbacks},
-      {"resimulated_ticks_total", "Ticks simulated again after a rollback.", s.resimulated_ticks},
+       nullptr, [](const MetricsSample& m) { return static_cast<uint64_t>(m.stats.ticks_final); }},
+      {"rollbacks_total", "Rollbacks on late input.", &S::rollbacks, nullptr},
+      {"resimulated_ticks_total", "Ticks simulated again after a rollback.", &S::resimulated_ticks,
+       nullptr},
       {"late_inputs_total",
-       "Inputs that arrived after their tick was simulated, in time to be final.", s.late_inputs},
+       "Inputs that arrived after their tick was simulated, in time to be final.", &S::late_inputs,
+       nullptr},
       {"substituted_inputs_total", "Inputs missing at their deadline and substituted.",
-       s.substituted_inputs},
+       &S::substituted_inputs, nullptr},
       {"rejected_inputs_total",
        "Inputs refused: for final ticks, too far ahead, conflicting, or claiming another slot.",
-       s.rejected_inputs},
+       &S::rejected_inputs, nullptr},
       {"rejected_packets_total",
        "Datagrams refused: undecodable, wrong version, unknown or spoofed connection.",
-       s.rejected_packets},
-      {"duplicate_packets_total", "Datagrams received twice.", s.duplicate_packets},
-      {"relayed_inputs_total", "Inputs relayed to the other players.", s.relayed_inputs},
-      {"desync_reports_total", "Desync reports received from clients.", s.desync_reports},
-      {"resyncs_sent_total", "Resync snapshots sent to clients.", s.resyncs_sent},
+       &S::rejected_packets, nullptr},
+      {"duplicate_packets_total", "Datagrams received twice.", &S::duplicate_packets, nullptr},
+      {"relayed_inputs_total", "Inputs relayed to the other players.", &S::relayed_inputs, nullptr},
+      {"desync_reports_total", "Desync reports received from clients.", &S::desync_reports,
+       nullptr},
+      {"resyncs_sent_total", "Resync snapshots sent to clients.", &S::resyncs_sent, nullptr},
       {"resync_snapshot_failures_total",
        "Resync snapshots that did not load on the server itself and were not sent.",
-       s.resync_snapshot_failures},
-      {"resyncs_refused_total", "Resync snapshots clients could not load.", s.resyncs_refused},
+       &S::resync_snapshot_failures, nullptr},
+      {"resyncs_refused_total", "Resync snapshots clients could not load.", &S::resyncs_refused,
+       nullptr},
       {"desync_dumps_unreadable_total", "Desync reports whose client state could not be parsed.",
-       s.desync_dumps_unreadable},
+       &S::desync_dumps_unreadable, nullptr},
       {"desync_report_write_failures_total", "Desync reports that could not be written.",
-       s.desync_report_write_failures},
+       &S::desync_report_write_failures, nullptr},
       {"keyframe_load_failures_total",
        "Replay keyframes that did not load on the server and were left out.",
-       s.keyframe_load_failures},
-      {"packets_in_total", "Datagrams the match received.", s.packets_in},
-      {"packets_out_total", "Datagrams the match sent.", s.packets_out},
-      {"bytes_in_total", "Bytes the match received.", s.bytes_in},
-      {"bytes_out_total", "Bytes the match sent.", s.bytes_out},
+       &S::keyframe_load_failures, nullptr},
+      {"packets_in_total", "Datagrams the match received.", &S::packets_in, nullptr},
+      {"packets_out_total", "Datagrams the match sent.", &S::packets_out, nullptr},
+      {"bytes_in_total", "Bytes the match received.", &S::bytes_in, nullptr},
+      {"bytes_out_total", "Bytes the match sent.", &S::bytes_out, nullptr},
       {"secure_challenges_total", "Connection requests answered with a challenge.",
-       s.secure_challenges},
-      {"secure_sessions_total", "Secure handshakes completed.", s.secure_sessions},
+       &S::secure_challenges, nullptr},
+      {"secure_sessions_total", "Secure handshakes completed.", &S::secure_sessions, nullptr},
       {"secure_refused_total",
        "Handshake packets refused (bad, expired or foreign tokens, wrong address).",
-       s.secure_refused},
+       &S::secure_refused, nullptr},
       {"secure_dropped_total",
        "Datagrams dropped before the match saw them (unauthenticated, replayed, not secure).",
-       s.secure_dropped},
+       &S::secure_dropped, nullptr},
   };
   std::string out;
-  out.reserve(8192);
-  for (const Metric& metric : gauges) add_family(out, metric, "gauge");
-  add_phase(out, sample.phase);
-  for (const Metric& metric : counters) add_family(out, metric, "counter");
-  add_tick_time(out, sample.tick_time);
+  out.reserve(4096 + 6144 * matches.size());
+  uint64_t live = 0;
+  for (const MetricsSample& match : matches) live += match.phase != MatchHost::Phase::kEnded;
+  add_header(out, "matches", "Matches this process hosts that have not ended.", "gauge");
+  out.append("rewind_matches ");
+  add_number(out, live);
+  out.append("\n");
+  for (const Metric& metric : gauges) add_family(out, metric, "gauge", matches);
+  add_phase(out, matches);
+  for (const Metric& metric : counters) add_family(out, metric, "counter", matches);
+  add_tick_time(out, matches);
   return out;
 }
 

@@ -12,6 +12,7 @@ namespace {
 // Process-wide because a log is: every part of the server writes to the one
 // stderr, and main() sets the format once before anything runs.
 LogFormat g_format = LogFormat::kText;
+thread_local std::string_view t_match;
 
 const char* level_name(LogLevel level) {
   switch (level) {
@@ -31,8 +32,16 @@ void set_log_format(LogFormat format) {
   g_format = format;
 }
 
+LogMatchScope::LogMatchScope(std::string_view match) : previous_(t_match) {
+  t_match = match;
+}
+
+LogMatchScope::~LogMatchScope() {
+  t_match = previous_;
+}
+
 std::string log_json_line(LogLevel level, std::string_view text,
-                          std::chrono::system_clock::time_point when) {
+                          std::chrono::system_clock::time_point when, std::string_view match) {
   using namespace std::chrono;
   const auto since_epoch_ms = duration_cast<milliseconds>(when.time_since_epoch()).count();
   const std::time_t seconds = static_cast<std::time_t>(since_epoch_ms / 1000);
@@ -41,16 +50,26 @@ std::string log_json_line(LogLevel level, std::string_view text,
   char ts[48];
   const size_t length = std::strftime(ts, sizeof ts, "%Y-%m-%dT%H:%M:%S", &utc);
   std::snprintf(ts + length, sizeof ts - length, ".%03dZ", static_cast<int>(since_epoch_ms % 1000));
-  return std::string("{\"ts\":\"") + ts + "\",\"level\":\"" + level_name(level) +
-         "\",\"msg\":" + cli::json_string(text) + "}";
+  std::string line = std::string("{\"ts\":\"") + ts + "\",\"level\":\"" + level_name(level) + "\",";
+  if (!match.empty()) line += "\"match\":" + cli::json_string(match) + ",";
+  return line + "\"msg\":" + cli::json_string(text) + "}";
 }
 
 void write_log(LogLevel level, std::string_view text) {
-  const int size = static_cast<int>(text.size());
+  // One fprintf a line: stdio locks the stream for each call, so lines from
+  // several matches' threads never interleave.
   if (g_format == LogFormat::kJson) {
-    const std::string line = log_json_line(level, text, std::chrono::system_clock::now());
+    const std::string line = log_json_line(level, text, std::chrono::system_clock::now(), t_match);
     std::fprintf(stderr, "%s\n", line.c_str());
-  } else if (level == LogLevel::kError) {
+    return;
+  }
+  std::string prefixed;
+  if (!t_match.empty()) {
+    prefixed.append(t_match).append(": ").append(text);
+    text = prefixed;
+  }
+  const int size = static_cast<int>(text.size());
+  if (level == LogLevel::kError) {
     std::fprintf(stderr, "rewind-server: %.*s\n", size, text.data());
   } else {
     std::fprintf(stderr, "[rewind-server] %s%.*s\n", level == LogLevel::kWarning ? "WARNING: " : "",

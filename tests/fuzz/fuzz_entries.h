@@ -23,3 +23,7 @@ int fuzz_sim_snapshot_one(const uint8_t* data, size_t size);
 /// server's request and response handlers, the client's challenge handler
 /// and a session's payload opener; none may accept what lacks the keys.
 int fuzz_secure_packet_one(const uint8_t* data, size_t size);
+
+/// Control API requests: MetricsHttp::respond's request-line and header
+/// checks, and parse_match_request on the query of routed targets.
+int fuzz_control_request_one(const uint8_t* data, size_t size);

@@ -5,7 +5,8 @@
   get    PORT PATH        GET http://127.0.0.1:PORT/PATH; prints the status line
                           "HTTP <code>" and then the body. Exit 0 whatever the code.
   status PORT PATH        Only the status code of that GET.
-  value  PORT NAME        The value of sample NAME in a scrape of /metrics.
+  value  PORT NAME        The value of sample NAME in a scrape of /metrics: the
+                          series NAME itself, or the first NAME{...} series.
   query  PROM_PORT EXPR   An instant query to Prometheus's HTTP API; prints one line
                           per result, "labels value", nothing when there is none.
   hostile PORT DEADLINE_S Clients that never finish their request: one that stops
@@ -44,8 +45,8 @@ def metric_value(port: int, name: str) -> str:
     if status != 200:
         return ""
     for line in body.splitlines():
-        if line.startswith(name + " "):
-            return line.split(" ", 1)[1]
+        if line.startswith(name + " ") or line.startswith(name + "{"):
+            return line.rsplit(" ", 1)[1]
     return ""
 
 

@@ -87,13 +87,17 @@ std::map<std::string, Family> parse(const std::string& text) {
     const std::string name = series.substr(0, brace);
     EXPECT_TRUE(is_name(name));
     if (brace != std::string::npos) {
-      // One label, name="value" (the text renders no more than one).
-      const std::string labels = series.substr(brace);
+      // Labels name="value" joined by commas, values without quotes.
+      const std::string labels = series.substr(brace + 1);
       EXPECT_TRUE(labels.ends_with("\"}"));
-      const size_t equals = labels.find("=\"");
-      EXPECT_NE(equals, std::string::npos);
-      if (equals != std::string::npos) {
-        EXPECT_TRUE(is_name(labels.substr(1, equals - 1)));
+      std::istringstream pairs(labels.substr(0, labels.size() - 1));
+      for (std::string pair; std::getline(pairs, pair, ',');) {
+        const size_t equals = pair.find("=\"");
+        EXPECT_NE(equals, std::string::npos) << pair;
+        if (equals == std::string::npos) continue;
+        EXPECT_TRUE(is_name(pair.substr(0, equals))) << pair;
+        EXPECT_TRUE(pair.ends_with("\"")) << pair;
+        EXPECT_EQ(pair.find('"', equals + 2), pair.size() - 1) << pair;
       }
     }
     const std::string family_name = family_of(name, families);
@@ -113,6 +117,7 @@ std::map<std::string, Family> parse(const std::string& text) {
 
 MetricsSample sample_with_counts() {
   MetricsSample sample;
+  sample.match = "m";
   sample.stats.ticks_final = 600;
   sample.stats.rollbacks = 3;
   sample.stats.rejected_packets = 7;
@@ -128,8 +133,18 @@ MetricsSample sample_with_counts() {
   return sample;
 }
 
+MetricsSample empty_sample() {
+  MetricsSample sample;
+  sample.match = "m";
+  return sample;
+}
+
+std::string render_one(const MetricsSample& sample) {
+  return render_metrics(std::span<const MetricsSample>(&sample, 1));
+}
+
 TEST(MetricsText, IsValidExpositionWithHelpAndTypeForEveryFamily) {
-  const std::map<std::string, Family> families = parse(render_metrics(sample_with_counts()));
+  const std::map<std::string, Family> families = parse(render_one(sample_with_counts()));
   for (const auto& [name, family] : families) {
     SCOPED_TRACE(name);
     EXPECT_TRUE(family.help);
@@ -167,35 +182,42 @@ TEST(MetricsText, IsValidExpositionWithHelpAndTypeForEveryFamily) {
 }
 
 TEST(MetricsText, CarriesTheCountersAndGauges) {
-  const std::map<std::string, Family> f = parse(render_metrics(sample_with_counts()));
+  const std::map<std::string, Family> f = parse(render_one(sample_with_counts()));
   EXPECT_EQ(f.at("rewind_matches").samples.at("rewind_matches"), 1);
-  EXPECT_EQ(f.at("rewind_ticks_final_total").samples.at("rewind_ticks_final_total"), 600);
-  EXPECT_EQ(f.at("rewind_rollbacks_total").samples.at("rewind_rollbacks_total"), 3);
-  EXPECT_EQ(f.at("rewind_rejected_packets_total").samples.at("rewind_rejected_packets_total"), 7);
-  EXPECT_EQ(f.at("rewind_secure_dropped_total").samples.at("rewind_secure_dropped_total"), 42);
-  EXPECT_EQ(f.at("rewind_players_joined").samples.at("rewind_players_joined"), 2);
-  EXPECT_EQ(f.at("rewind_players_connected").samples.at("rewind_players_connected"), 1);
+  EXPECT_EQ(f.at("rewind_ticks_final_total").samples.at("rewind_ticks_final_total{match=\"m\"}"),
+            600);
+  EXPECT_EQ(f.at("rewind_rollbacks_total").samples.at("rewind_rollbacks_total{match=\"m\"}"), 3);
+  EXPECT_EQ(f.at("rewind_rejected_packets_total")
+                .samples.at("rewind_rejected_packets_total{match=\"m\"}"),
+            7);
+  EXPECT_EQ(
+      f.at("rewind_secure_dropped_total").samples.at("rewind_secure_dropped_total{match=\"m\"}"),
+      42);
+  EXPECT_EQ(f.at("rewind_players_joined").samples.at("rewind_players_joined{match=\"m\"}"), 2);
+  EXPECT_EQ(f.at("rewind_players_connected").samples.at("rewind_players_connected{match=\"m\"}"),
+            1);
   // Large counters print as integers, not in exponent form.
-  EXPECT_NE(render_metrics(sample_with_counts()).find("\nrewind_bytes_out_total 123456789012\n"),
-            std::string::npos);
+  EXPECT_NE(
+      render_one(sample_with_counts()).find("\nrewind_bytes_out_total{match=\"m\"} 123456789012\n"),
+      std::string::npos);
   const auto& phase = f.at("rewind_match_phase").samples;
   EXPECT_EQ(phase.size(), 4u);
-  EXPECT_EQ(phase.at("rewind_match_phase{phase=\"running\"}"), 1);
-  EXPECT_EQ(phase.at("rewind_match_phase{phase=\"lobby\"}"), 0);
-  EXPECT_EQ(phase.at("rewind_match_phase{phase=\"closing\"}"), 0);
-  EXPECT_EQ(phase.at("rewind_match_phase{phase=\"ended\"}"), 0);
+  EXPECT_EQ(phase.at("rewind_match_phase{match=\"m\",phase=\"running\"}"), 1);
+  EXPECT_EQ(phase.at("rewind_match_phase{match=\"m\",phase=\"lobby\"}"), 0);
+  EXPECT_EQ(phase.at("rewind_match_phase{match=\"m\",phase=\"closing\"}"), 0);
+  EXPECT_EQ(phase.at("rewind_match_phase{match=\"m\",phase=\"ended\"}"), 0);
 }
 
 TEST(MetricsText, TickHistogramIsCumulativeWithSumCountAndMax) {
-  const std::map<std::string, Family> f = parse(render_metrics(sample_with_counts()));
+  const std::map<std::string, Family> f = parse(render_one(sample_with_counts()));
   const auto& h = f.at("rewind_tick_seconds").samples;
-  EXPECT_EQ(h.at("rewind_tick_seconds_bucket{le=\"2.5e-05\"}"), 2);
-  EXPECT_EQ(h.at("rewind_tick_seconds_bucket{le=\"5e-05\"}"), 3);
-  EXPECT_EQ(h.at("rewind_tick_seconds_bucket{le=\"0.0001\"}"), 3);
-  EXPECT_EQ(h.at("rewind_tick_seconds_bucket{le=\"0.01\"}"), 3);
-  EXPECT_EQ(h.at("rewind_tick_seconds_bucket{le=\"+Inf\"}"), 4);
-  EXPECT_EQ(h.at("rewind_tick_seconds_count"), 4);
-  EXPECT_DOUBLE_EQ(h.at("rewind_tick_seconds_sum"), 0.020065);
+  EXPECT_EQ(h.at("rewind_tick_seconds_bucket{match=\"m\",le=\"2.5e-05\"}"), 2);
+  EXPECT_EQ(h.at("rewind_tick_seconds_bucket{match=\"m\",le=\"5e-05\"}"), 3);
+  EXPECT_EQ(h.at("rewind_tick_seconds_bucket{match=\"m\",le=\"0.0001\"}"), 3);
+  EXPECT_EQ(h.at("rewind_tick_seconds_bucket{match=\"m\",le=\"0.01\"}"), 3);
+  EXPECT_EQ(h.at("rewind_tick_seconds_bucket{match=\"m\",le=\"+Inf\"}"), 4);
+  EXPECT_EQ(h.at("rewind_tick_seconds_count{match=\"m\"}"), 4);
+  EXPECT_DOUBLE_EQ(h.at("rewind_tick_seconds_sum{match=\"m\"}"), 0.020065);
   EXPECT_EQ(h.size(), TickHistogram::bucket_total() + 2);
   // Ordered by their bounds, the buckets never decrease.
   std::map<double, double> by_bound;
@@ -209,15 +231,44 @@ TEST(MetricsText, TickHistogramIsCumulativeWithSumCountAndMax) {
     EXPECT_GE(value, previous) << bound;
     previous = value;
   }
-  EXPECT_DOUBLE_EQ(f.at("rewind_tick_seconds_max").samples.at("rewind_tick_seconds_max"), 0.02);
+  EXPECT_DOUBLE_EQ(
+      f.at("rewind_tick_seconds_max").samples.at("rewind_tick_seconds_max{match=\"m\"}"), 0.02);
 }
 
 TEST(MetricsText, ATickHistogramWithNoTicksIsAllZero) {
-  const std::map<std::string, Family> f = parse(render_metrics(MetricsSample{}));
+  const std::map<std::string, Family> f = parse(render_one(empty_sample()));
   for (const auto& [series, value] : f.at("rewind_tick_seconds").samples) {
     EXPECT_EQ(value, 0) << series;
   }
-  EXPECT_EQ(f.at("rewind_match_phase").samples.at("rewind_match_phase{phase=\"lobby\"}"), 1);
+  EXPECT_EQ(
+      f.at("rewind_match_phase").samples.at("rewind_match_phase{match=\"m\",phase=\"lobby\"}"), 1);
+}
+
+TEST(MetricsText, SeveralMatchesAreSeriesOfOneFamily) {
+  MetricsSample first = sample_with_counts();
+  MetricsSample second;
+  second.match = "duel-2";
+  second.stats.ticks_final = 40;
+  second.phase = MatchHost::Phase::kEnded;
+  const MetricsSample both[] = {first, second};
+  const std::map<std::string, Family> f = parse(render_metrics(both));
+  const auto& ticks = f.at("rewind_ticks_final_total").samples;
+  EXPECT_EQ(ticks.size(), 2u);
+  EXPECT_EQ(ticks.at("rewind_ticks_final_total{match=\"m\"}"), 600);
+  EXPECT_EQ(ticks.at("rewind_ticks_final_total{match=\"duel-2\"}"), 40);
+  EXPECT_EQ(
+      f.at("rewind_match_phase").samples.at("rewind_match_phase{match=\"duel-2\",phase=\"ended\"}"),
+      1);
+  // An ended match is still reported but no longer counted as hosted.
+  EXPECT_EQ(f.at("rewind_matches").samples.at("rewind_matches"), 1);
+  EXPECT_EQ(f.at("rewind_tick_seconds").samples.size(), 2 * (TickHistogram::bucket_total() + 2));
+}
+
+TEST(MetricsText, NoMatchesStillDescribesEveryFamily) {
+  const std::map<std::string, Family> f = parse(render_metrics({}));
+  EXPECT_EQ(f.at("rewind_matches").samples.at("rewind_matches"), 0);
+  EXPECT_TRUE(f.count("rewind_ticks_final_total"));
+  EXPECT_TRUE(f.at("rewind_ticks_final_total").help);
 }
 
 }  // namespace

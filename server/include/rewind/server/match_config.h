@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "rewind/sim/status.h"
 
@@ -16,11 +17,13 @@ struct MatchConfig {
   /// max_spectators <= 64. On a secure server token slots from `players`
   /// on are spectator seats.
   uint32_t max_spectators = 8;
-  uint32_t tick_rate_hz = 60;      ///< [1, 1000]
-  int32_t window_ticks = 8;        ///< finalization deadline, [1, 120]
-  int64_t max_ticks = 0;           ///< end after this many final ticks; 0 = until stopped
-  uint64_t seed = 1;               ///< the game's RNG seed
-  std::string match_id = "match";  ///< bound into connect tokens
+  uint32_t tick_rate_hz = 60;  ///< [1, 1000]
+  int32_t window_ticks = 8;    ///< finalization deadline, [1, 120]
+  int64_t max_ticks = 0;       ///< end after this many final ticks; 0 = until stopped
+  uint64_t seed = 1;           ///< the game's RNG seed
+  /// Bound into connect tokens, names the match in logs, metrics and the
+  /// control API: 1 to 64 characters of [A-Za-z0-9._-].
+  std::string match_id = "match";
   /// Connections come through a SecureGateway (connect tokens, sealed
   /// packets) and every join names its slot by its token. False: the
   /// tokenless mode for local tests, where any address takes a free slot.
@@ -49,5 +52,8 @@ struct MatchConfig {
   /// Checks ranges and that the game exists.
   Status validate() const;
 };
+
+/// True for a valid MatchConfig::match_id.
+bool is_match_id(std::string_view id);
 
 }  // namespace rwd::server

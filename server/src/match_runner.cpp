@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: MIT
+#include "rewind/server/match_runner.h"
+
+#include <asio/post.hpp>
+#include <chrono>
+#include <exception>
+
+#include "rewind/server/server_log.h"
+
+namespace rwd::server {
+namespace {
+
+int64_t unix_seconds() {
+  return std::chrono::duration_cast<std::chrono::seconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+Result<std::shared_ptr<MatchRunner>> MatchRunner::create(asio::io_context& io,
+                                                         const Settings& given, EndedFn on_ended) {
+  Settings settings = given;
+  settings.match.secure = settings.server_key.has_value();
+  if (Status status = settings.match.validate(); !status.ok()) return status;
+  auto runner = std::make_shared<MatchRunner>(io, settings, std::move(on_ended));
+  MatchRunner* self = runner.get();
+  auto socket = net::UdpEndpoint::open(runner->strand_, settings.bind_address, settings.port);
+  if (!socket.ok()) return socket.status();
+  runner->socket_ = std::move(*socket);
+  runner->port_ = runner->socket_->local_port();
+  // The callbacks below run on the strand only (from the match's own
+  // handlers), and the runner outlives them: they die with its members.
+  if (settings.server_key) {
+    runner->gateway_ =
+        std::make_unique<SecureGateway>(*settings.server_key, settings.match.match_id,
+                                        settings.match.players + settings.match.max_spectators,
+                                        [self](const Endpoint& to, std::span<const uint8_t> bytes) {
+                                          self->socket_->send_to(bytes, to);
+                                        });
+  }
+  LogMatchScope scope(runner->log_name());
+  auto host = MatchHost::create(
+      settings.match,
+      [self](const Endpoint& to, std::span<const uint8_t> bytes) {
+        if (self->gateway_) {
+          self->gateway_->send(to, bytes);
+        } else {
+          self->socket_->send_to(bytes, to);
+        }
+      },
+      net::SteadyClock::now());
+  if (!host.ok()) return host.status();
+  runner->host_ = std::move(*host);
+  runner->publish();
+  return runner;
+}
+
+MatchRunner::MatchRunner(asio::io_context& io, const Settings& settings, EndedFn on_ended)
+    : settings_(settings),
+      strand_(asio::make_strand(io)),
+      timer_(strand_),
+      on_ended_(std::move(on_ended)),
+      period_(std::chrono::nanoseconds(1'000'000'000LL / settings.match.tick_rate_hz)) {}
+
+void MatchRunner::start() {
+  asio::post(strand_, [self = shared_from_this()] {
+    if (self->started_ || self->finished_) return;
+    self->started_ = true;
+    self->socket_->start_receiving(
+        [raw = self.get()](std::span<const uint8_t> bytes, const Endpoint& from) {
+          raw->on_datagram(bytes, from);
+        });
+    self->next_tick_ = net::SteadyClock::now() + self->period_;
+    self->schedule_tick();
+  });
+}
+
+void MatchRunner::stop(std::string reason) {
+  asio::post(strand_, [self = shared_from_this(), reason = std::move(reason)] {
+    if (self->finished_) return;
+    if (!self->started_) {
+      // Never ticked: nobody to tell; end it now.
+      self->guarded("ending", [&] { self->host_->end(reason, net::SteadyClock::now()); });
+      self->finish();
+      return;
+    }
+    self->guarded("ending", [&] { self->host_->end(reason, net::SteadyClock::now()); });
+  });
+}
+
+MetricsSample MatchRunner::sample() const {
+  std::lock_guard lock(published_mutex_);
+  return published_;
+}
+
+template <typename Work>
+void MatchRunner::guarded(const char* what, Work&& work) {
+  LogMatchScope scope(log_name());
+  try {
+    work();
+    return;
+  } catch (const std::exception& error) {
+    fail(std::string("game logic failed while ") + what + ": " + error.what());
+  } catch (...) {
+    fail(std::string("game logic failed while ") + what + ": unknown exception");
+  }
+}
+
+void MatchRunner::fail(const std::string& reason) {
+  if (!failure_.empty()) return;
+  failure_ = reason;
+  write_log(LogLevel::kError, reason + "; ending this match (the process goes on)");
+  // The simulation may be half stepped: nothing more runs on it. end()
+  // tells the clients and closes the replay after the last final tick,
+  // which was made before the failure.
+  try {
+    host_->end(reason, net::SteadyClock::now());
+  } catch (...) {
+    write_log(LogLevel::kError, "ending the failed match failed too; its replay may be cut short");
+  }
+  finish();
+}
+
+void MatchRunner::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from) {
+  if (finished_) return;
+  const TimePoint now = net::SteadyClock::now();
+  if (!gateway_) {
+    guarded("handling a datagram", [&] { host_->on_datagram(bytes, from, now); });
+    return;
+  }
+  guarded("handling a datagram", [&] {
+    gateway_->on_datagram(
+        bytes, from, unix_seconds(),
+        [this, now](std::span<const uint8_t> envelope, const Endpoint& sender,
+                    const Admission& who) { host_->on_datagram(envelope, sender, now, &who); });
+  });
+}
+
+void MatchRunner::schedule_tick() {
+  timer_.expires_at(next_tick_);
+  timer_.async_wait([self = shared_from_this()](const std::error_code& error) {
+    if (!error) self->on_tick_timer();
+  });
+}
+
+void MatchRunner::on_tick_timer() {
+  if (finished_) return;
+  const TimePoint now = net::SteadyClock::now();
+  guarded("ticking", [&] { host_->on_tick(now); });
+  if (finished_) return;
+  // Wall time, for operators only: nothing in the match reads it.
+  tick_time_.observe(net::SteadyClock::now() - now);
+  publish();
+  if (host_->phase() == MatchHost::Phase::kEnded) {
+    finish();
+    return;
+  }
+  // Ticks are scheduled on an absolute grid so they never drift; after a
+  // long stall (a stopped process) the grid restarts instead of bursting.
+  next_tick_ += period_;
+  if (now - next_tick_ > 10 * period_) {
+    LogMatchScope scope(log_name());
+    write_log(LogLevel::kInfo, "tick loop stalled; resetting the schedule");
+    next_tick_ = now + period_;
+  }
+  schedule_tick();
+}
+
+void MatchRunner::finish() {
+  if (finished_) return;
+  finished_ = true;
+  timer_.cancel();
+  socket_->close();
+  publish();
+  ended_.store(true, std::memory_order_release);
+  if (on_ended_) on_ended_(*this);
+}
+
+void MatchRunner::publish() {
+  MetricsSample sample;
+  sample.match = id();
+  sample.stats = host_->stats();
+  if (gateway_) {
+    const SecureGateway::Stats& g = gateway_->stats();
+    sample.stats.secure = true;
+    sample.stats.secure_challenges = g.challenges;
+    sample.stats.secure_sessions = g.connects;
+    sample.stats.secure_refused = g.refused;
+    sample.stats.secure_dropped = g.dropped;
+  }
+  if (!failure_.empty()) sample.stats.end_reason = failure_;
+  sample.phase = finished_ ? MatchHost::Phase::kEnded : host_->phase();
+  sample.players_connected = finished_ ? 0 : host_->players_connected();
+  sample.tick_time = tick_time_;
+  std::lock_guard lock(published_mutex_);
+  published_ = std::move(sample);
+}
+
+}  // namespace rwd::server

@@ -1,0 +1,226 @@
+// SPDX-License-Identifier: MIT
+// One server process hosting several matches on real loopback sockets and
+// a pool of threads: matches allocated through the control API side by
+// side, and a match whose game logic throws ending alone.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <stdexcept>
+#include <thread>
+
+#include "rewind/client/client_session.h"
+#include "rewind/game/crates_game.h"
+#include "rewind/game/game_registry.h"
+#include "rewind/server/server.h"
+
+namespace rwd::server {
+namespace {
+
+constexpr Tick kFaultTick = 30;
+
+// Set on the thread that runs the test's clients: their rules stay clean,
+// while the server's threads meet the fault.
+thread_local bool t_client_thread = false;
+
+// Crates whose rules throw after stepping kFaultTick on the server,
+// standing in for a game with a bug.
+class FaultyCrates final : public game::Game {
+ public:
+  std::string_view name() const override { return "faulty-crates"; }
+  uint32_t rules_version() const override { return crates_.rules_version(); }
+  sim::WorldConfig world_config() const override { return crates_.world_config(); }
+  size_t state_size() const override { return crates_.state_size(); }
+  void build(const game::MatchSetup& setup, sim::World3D& world,
+             std::span<std::byte> state) const override {
+    crates_.build(setup, world, state);
+  }
+  void apply_inputs(Tick tick, std::span<const game::PlayerInput> inputs, sim::World3D& world,
+                    std::span<std::byte> state) const override {
+    crates_.apply_inputs(tick, inputs, world, state);
+  }
+  void after_step(Tick tick, sim::World3D& world, std::span<std::byte> state) const override {
+    crates_.after_step(tick, world, state);
+    if (!t_client_thread && tick == kFaultTick) {
+      throw std::runtime_error("score table out of range");
+    }
+  }
+  void hash_state(std::span<const std::byte> state, sim::StateHasher& hasher) const override {
+    crates_.hash_state(state, hasher);
+  }
+  Status validate_state(const game::MatchSetup& setup,
+                        std::span<const std::byte> state) const override {
+    return crates_.validate_state(setup, state);
+  }
+
+ private:
+  game::CratesGame crates_;
+};
+
+void register_faulty_game() {
+  static const bool registered = [] {
+    const Status status =
+        game::register_game("faulty-crates", [] { return std::make_unique<FaultyCrates>(); });
+    EXPECT_TRUE(status.ok()) << status.message();
+    return true;
+  }();
+  (void)registered;
+}
+
+ServerConfig control_config() {
+  ServerConfig config;
+  config.bind_address = "127.0.0.1";
+  config.port = 0;
+  config.matches = 0;
+  config.control = true;
+  config.threads = 2;
+  config.metrics = ServerConfig::MetricsBind{"127.0.0.1", 0};
+  config.match.players = 1;
+  config.match.max_spectators = 0;
+  config.match.join_timeout_s = 20;
+  return config;
+}
+
+struct Player {
+  std::unique_ptr<client::ClientSession> session;
+  bool ended = false;
+  std::string end_reason;
+  uint32_t finals = 0;
+};
+
+// Plays every player until each has ended or the deadline passes.
+void play(asio::io_context& io, std::vector<Player>& players, std::chrono::seconds deadline) {
+  t_client_thread = true;
+  const auto start = net::SteadyClock::now();
+  for (Player& p : players) p.session->connect(start);
+  while (net::SteadyClock::now() - start < deadline) {
+    io.poll();
+    bool all_ended = true;
+    for (Player& p : players) {
+      p.session->update(net::SteadyClock::now());
+      client::ClientEvent event;
+      while (p.session->poll_event(event)) {
+        if (event.type == client::ClientEventType::kFinalTick) ++p.finals;
+        if (event.type == client::ClientEventType::kMatchEnded ||
+            event.type == client::ClientEventType::kDisconnected) {
+          p.ended = true;
+          p.end_reason = event.reason;
+        }
+      }
+      all_ended = all_ended && p.ended;
+    }
+    if (all_ended) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
+Player make_player(asio::io_context& io, uint16_t port, const std::string& game) {
+  client::ClientConfig config;
+  config.server_port = port;
+  config.game = game;
+  config.server_timeout_s = 3;
+  auto session = client::ClientSession::create(io, config);
+  EXPECT_TRUE(session.ok()) << session.status().message();
+  Player player;
+  player.session = std::move(*session);
+  return player;
+}
+
+TEST(ServerMatches, AFailingGameEndsItsMatchOnlyAndTheProcessHostsOn) {
+  register_faulty_game();
+  auto server = Server::create(control_config());
+  ASSERT_TRUE(server.ok()) << server.status().message();
+  std::thread runner([&] { (*server)->run(); });
+
+  MatchRequest faulty;
+  faulty.match = control_config().match;
+  faulty.match.game = "faulty-crates";
+  faulty.match.match_id = "buggy";
+  MatchRequest healthy = faulty;
+  healthy.match.game = "crates";
+  healthy.match.match_id = "healthy";
+  healthy.match.max_ticks = 180;
+  auto bad = (*server)->allocate(faulty);
+  auto good = (*server)->allocate(healthy);
+  ASSERT_TRUE(bad.ok()) << bad.status().message();
+  ASSERT_TRUE(good.ok()) << good.status().message();
+  EXPECT_NE((*bad)->port(), (*good)->port());
+  // The same id cannot be taken twice while its match runs.
+  EXPECT_FALSE((*server)->allocate(healthy).ok());
+
+  asio::io_context io;
+  std::vector<Player> players;
+  players.push_back(make_player(io, (*bad)->port(), "faulty-crates"));
+  players.push_back(make_player(io, (*good)->port(), "crates"));
+  play(io, players, std::chrono::seconds(20));
+
+  EXPECT_TRUE((*bad)->ended());
+  const MetricsSample failed = (*bad)->sample();
+  EXPECT_EQ(failed.phase, MatchHost::Phase::kEnded);
+  EXPECT_NE(failed.stats.end_reason.find("game logic failed"), std::string::npos)
+      << failed.stats.end_reason;
+  EXPECT_NE(failed.stats.end_reason.find("score table out of range"), std::string::npos);
+  EXPECT_LE(failed.stats.ticks_final, kFaultTick + 1);
+
+  // The other match played to its end, every final tick verified.
+  ASSERT_TRUE(players[1].ended);
+  EXPECT_EQ(players[1].finals, 180u);
+  const MetricsSample played = (*good)->sample();
+  EXPECT_EQ(played.stats.ticks_final, 180);
+  EXPECT_EQ(played.stats.end_reason, "tick budget reached");
+
+  // The process still takes new matches.
+  MatchRequest later = healthy;
+  later.match.match_id = "after-the-fault";
+  auto again = (*server)->allocate(later);
+  ASSERT_TRUE(again.ok()) << again.status().message();
+  EXPECT_FALSE((*again)->ended());
+  EXPECT_EQ((*server)->samples().size(), 3u);
+
+  (*server)->shutdown("test over");
+  runner.join();
+  EXPECT_TRUE((*again)->ended());
+  EXPECT_EQ((*again)->sample().stats.end_reason, "test over");
+}
+
+TEST(ServerMatches, LaunchMatchesTakeConsecutiveIdsAndPaths) {
+  ServerConfig config = control_config();
+  config.control = false;
+  config.metrics.reset();
+  config.matches = 3;
+  const auto dir = std::filesystem::path(testing::TempDir()) / "rewind_server_matches";
+  std::filesystem::create_directories(dir);
+  config.match.replay_path = (dir / "game.rwr").string();
+  config.match.join_timeout_s = 0.2;
+  auto server = Server::create(config);
+  ASSERT_TRUE(server.ok()) << server.status().message();
+  EXPECT_EQ((*server)->ports().size(), 3u);
+  (*server)->run();  // nobody joins: every lobby times out and the process ends
+  const std::vector<MetricsSample> samples = (*server)->samples();
+  ASSERT_EQ(samples.size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(samples[i].match, "match-" + std::to_string(i + 1));
+    EXPECT_EQ(samples[i].phase, MatchHost::Phase::kEnded);
+    EXPECT_EQ(samples[i].stats.end_reason.rfind("lobby timeout", 0), 0u);
+    EXPECT_TRUE(std::filesystem::exists(dir / ("game-match-" + std::to_string(i + 1) + ".rwr")));
+  }
+}
+
+TEST(ServerMatches, BadProcessConfigsAreRefused) {
+  ServerConfig config = control_config();
+  config.metrics.reset();
+  EXPECT_FALSE(Server::create(config).ok());  // control without the endpoint
+  config = control_config();
+  config.control = false;
+  EXPECT_FALSE(Server::create(config).ok());  // no matches and no control
+  config = control_config();
+  config.matches = 20;
+  config.max_matches = 4;
+  EXPECT_FALSE(Server::create(config).ok());
+  config = control_config();
+  config.match.match_id = "no spaces";
+  EXPECT_FALSE(Server::create(config).ok());
+}
+
+}  // namespace
+}  // namespace rwd::server
