@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: MIT
 // rewind-server: flags -> config -> run -> summary.
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "rewind/cli/flag_parser.h"
 #include "rewind/cli/host_port.h"
+#include "rewind/server/agones_lifecycle.h"
 #include "rewind/server/server.h"
 #include "rewind/server/server_log.h"
 
@@ -27,6 +29,54 @@ bool write_port_file(const std::string& path, const std::vector<uint16_t>& ports
     written = std::fclose(file) == 0 && written;  // closed whatever happened
   }
   return written && std::rename(temporary.c_str(), path.c_str()) == 0;
+}
+
+// Where a hosted match reports: the port files and the summary line.
+struct MatchOutputs {
+  std::string port_file;
+  std::string metrics_port_file;
+  bool summary_json = false;
+};
+
+// Binds, runs the match to its end and reports; the process exit status.
+int host_match(const rwd::server::ServerConfig& config, const MatchOutputs& outputs) {
+  auto server = rwd::server::Server::create(config);
+  if (!server.ok()) {
+    write_log(LogLevel::kError, server.status().message());
+    return 1;
+  }
+  if (!outputs.port_file.empty() && !write_port_file(outputs.port_file, (*server)->ports())) {
+    write_log(LogLevel::kError, "cannot write --port-file " + outputs.port_file);
+    return 1;
+  }
+  if (!outputs.metrics_port_file.empty() &&
+      !write_port_file(outputs.metrics_port_file, {(*server)->metrics_port()})) {
+    write_log(LogLevel::kError, "cannot write --metrics-port-file " + outputs.metrics_port_file);
+    return 1;
+  }
+  (*server)->run();
+  // One summary per match: the one line of a single match, or a line per
+  // match (JSON with its "match" id) when the process hosted several.
+  const std::vector<rwd::server::MetricsSample> samples = (*server)->samples();
+  const bool many = samples.size() > 1 || config.control;
+  bool lobby_timeout = false;
+  for (const rwd::server::MetricsSample& sample : samples) {
+    const rwd::server::MatchStats& stats = sample.stats;
+    rwd::server::LogMatchScope scope(many ? std::string_view(sample.match) : std::string_view());
+    write_log(LogLevel::kInfo, stats.to_text());
+    if (const std::string problems = stats.problems(); !problems.empty()) {
+      write_log(LogLevel::kWarning, problems);
+    }
+    if (outputs.summary_json) {
+      std::string json = stats.to_json();
+      if (many && json.size() > 1) json.insert(1, "\"match\":\"" + sample.match + "\",");
+      std::printf("%s\n", json.c_str());
+    }
+    lobby_timeout = lobby_timeout || stats.end_reason.rfind("lobby timeout", 0) == 0;
+  }
+  std::fflush(stdout);
+  // A lobby that never filled is a failed match for scripts.
+  return lobby_timeout ? 2 : 0;
 }
 
 }  // namespace
@@ -98,6 +148,20 @@ int main(int argc, char** argv) {
                    "free port; empty = off)");
   flags.add_string("metrics-port-file", &metrics_port_file,
                    "write the bound metrics TCP port to this file once listening");
+  bool agones = false;
+  rwd::server::AgonesLifecycleOptions agones_options;
+  flags.add_bool("agones", &agones,
+                 "run as an Agones GameServer: Ready, wait for an allocation, take its "
+                 "rewind.dev/* match settings, host, Shutdown (sidecar REST port from "
+                 "AGONES_SDK_HTTP_PORT, default 9358)");
+  flags.add_double("agones-allocation-timeout", &agones_options.allocation_timeout_s, 1, 604800,
+                   "with --agones: seconds from Ready to an allocation before giving up "
+                   "(Shutdown, exit 1)");
+  flags.add_double("agones-health-period", &agones_options.health_period_s, 0.1, 60,
+                   "with --agones: seconds between health pings (keep it below the Fleet's "
+                   "health.periodSeconds)");
+  flags.add_double("agones-sidecar-timeout", &agones_options.sidecar_timeout_s, 0.1, 3600,
+                   "with --agones: seconds to wait for the SDK sidecar's first answer");
   flags.add_bool("log-json", &log_json,
                  "log lines on stderr as JSON objects {\"ts\",\"level\",\"msg\"}, one a line");
 
@@ -157,41 +221,23 @@ int main(int argc, char** argv) {
   config.match.join_timeout_s = join_timeout;
   config.match.peer_timeout_s = peer_timeout;
 
-  auto server = rwd::server::Server::create(config);
-  if (!server.ok()) {
-    write_log(LogLevel::kError, server.status().message());
-    return 1;
+  const MatchOutputs outputs{port_file, metrics_port_file, summary_json};
+  if (!agones) return host_match(config, outputs);
+  if (config.matches != 1 || config.control) {
+    // An Agones GameServer is one allocation, so one match.
+    write_log(LogLevel::kError, "--agones hosts one match: no --matches or --control with it");
+    return rwd::cli::kExitUsage;
   }
-  if (!port_file.empty() && !write_port_file(port_file, (*server)->ports())) {
-    write_log(LogLevel::kError, "cannot write --port-file " + port_file);
-    return 1;
+  auto sdk_port = rwd::server::agones_port_from_env(std::getenv("AGONES_SDK_HTTP_PORT"));
+  if (!sdk_port.ok()) {
+    write_log(LogLevel::kError, "--agones: " + sdk_port.status().message());
+    return rwd::cli::kExitUsage;
   }
-  if (!metrics_port_file.empty() &&
-      !write_port_file(metrics_port_file, {(*server)->metrics_port()})) {
-    write_log(LogLevel::kError, "cannot write --metrics-port-file " + metrics_port_file);
-    return 1;
-  }
-  (*server)->run();
-  // One summary per match: the one line of a single match, or a line per
-  // match (JSON with its "match" id) when the process hosted several.
-  const std::vector<rwd::server::MetricsSample> samples = (*server)->samples();
-  const bool many = samples.size() > 1 || control;
-  bool lobby_timeout = false;
-  for (const rwd::server::MetricsSample& sample : samples) {
-    const rwd::server::MatchStats& stats = sample.stats;
-    rwd::server::LogMatchScope scope(many ? std::string_view(sample.match) : std::string_view());
-    write_log(LogLevel::kInfo, stats.to_text());
-    if (const std::string problems = stats.problems(); !problems.empty()) {
-      write_log(LogLevel::kWarning, problems);
-    }
-    if (summary_json) {
-      std::string json = stats.to_json();
-      if (many && json.size() > 1) json.insert(1, "\"match\":\"" + sample.match + "\",");
-      std::printf("%s\n", json.c_str());
-    }
-    lobby_timeout = lobby_timeout || stats.end_reason.rfind("lobby timeout", 0) == 0;
-  }
-  std::fflush(stdout);
-  // A lobby that never filled is a failed match for scripts.
-  return lobby_timeout ? 2 : 0;
+  rwd::server::AgonesSdk::Options sdk_options;
+  sdk_options.port = *sdk_port;
+  const rwd::server::AgonesSdk sdk(sdk_options);
+  return rwd::server::run_agones_match(config, sdk, agones_options,
+                                       [&outputs](const rwd::server::ServerConfig& allocated) {
+                                         return host_match(allocated, outputs);
+                                       });
 }
