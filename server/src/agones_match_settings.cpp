@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <map>
 #include <system_error>
@@ -46,6 +47,13 @@ Result<int64_t> parse_integer(const std::string& key, const std::string& value, 
   return n;
 }
 
+// "0.1", "3600": a bound as the flags' help shows it.
+std::string decimal(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
 // Decimal number (fixed or exponent form), finite, within [min, max].
 Result<double> parse_seconds(const std::string& key, const std::string& value, double min,
                              double max) {
@@ -56,8 +64,7 @@ Result<double> parse_seconds(const std::string& key, const std::string& value, d
     return refuse(key, value, "is not a number of seconds");
   }
   if (!(n >= min && n <= max)) {
-    return refuse(key, value,
-                  "is outside [" + std::to_string(min) + ", " + std::to_string(max) + "] s");
+    return refuse(key, value, "is outside [" + decimal(min) + ", " + decimal(max) + "] s");
   }
   return n;
 }

@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: MIT
+// Health pings on their own thread: one at once and then every period,
+// failures counted without stopping, and stop() prompt even mid-period.
+#include "rewind/server/agones_health_pinger.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "local_http_server.h"
+
+namespace rwd::server {
+namespace {
+
+using namespace std::chrono_literals;
+using testing::LocalHttpServer;
+
+AgonesSdk sdk_for(uint16_t port) {
+  AgonesSdk::Options options;
+  options.host = "127.0.0.1";
+  options.port = port;
+  options.call_deadline = 500ms;
+  return AgonesSdk(options);
+}
+
+TEST(AgonesHealthPinger, PingsEveryPeriod) {
+  LocalHttpServer sidecar(
+      [](const std::string&) { return LocalHttpServer::json_answer("200 OK", "{}"); });
+  const AgonesSdk sdk = sdk_for(sidecar.port());
+  AgonesHealthPinger pinger(sdk, 50ms);
+  std::this_thread::sleep_for(500ms);
+  pinger.stop();
+  // 11 at an exact 50 ms grid; a loaded machine may fall behind, never ahead.
+  EXPECT_GE(pinger.sent(), 4u);
+  EXPECT_LE(pinger.sent(), 12u);
+  EXPECT_EQ(pinger.failed(), 0u);
+  const std::vector<std::string> requests = sidecar.requests();
+  EXPECT_EQ(requests.size(), pinger.sent());
+  for (const std::string& request : requests) {
+    EXPECT_EQ(request.rfind("POST /health HTTP/1.1\r\n", 0), 0u);
+  }
+}
+
+TEST(AgonesHealthPinger, FailuresAreCountedAndPingingGoesOn) {
+  LocalHttpServer sidecar([](const std::string&) {
+    return LocalHttpServer::json_answer("503 Service Unavailable", "{}");
+  });
+  const AgonesSdk sdk = sdk_for(sidecar.port());
+  AgonesHealthPinger pinger(sdk, 20ms);
+  std::this_thread::sleep_for(200ms);
+  pinger.stop();
+  EXPECT_GE(pinger.sent(), 3u);
+  EXPECT_EQ(pinger.failed(), pinger.sent());
+}
+
+TEST(AgonesHealthPinger, StopDoesNotWaitForTheNextPeriod) {
+  LocalHttpServer sidecar(
+      [](const std::string&) { return LocalHttpServer::json_answer("200 OK", "{}"); });
+  const AgonesSdk sdk = sdk_for(sidecar.port());
+  AgonesHealthPinger pinger(sdk, 60s);
+  std::this_thread::sleep_for(100ms);
+  const auto start = std::chrono::steady_clock::now();
+  pinger.stop();
+  EXPECT_LT(std::chrono::steady_clock::now() - start, 1s);
+  EXPECT_EQ(pinger.sent(), 1u);  // the first ping goes out at once
+  pinger.stop();                 // idempotent
+}
+
+}  // namespace
+}  // namespace rwd::server
