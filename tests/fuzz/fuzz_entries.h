@@ -27,3 +27,11 @@ int fuzz_secure_packet_one(const uint8_t* data, size_t size);
 /// Control API requests: MetricsHttp::respond's request-line and header
 /// checks, and parse_match_request on the query of routed targets.
 int fuzz_control_request_one(const uint8_t* data, size_t size);
+/// JSON documents (the Agones GameServer record): parse_json, then write
+/// what it accepts canonically and read it back equal; the GameServer reader
+/// over the same bytes.
+int fuzz_json_value_one(const uint8_t* data, size_t size);
+
+/// Whole HTTP/1.1 responses: parse_http_response, then re-frame what it
+/// accepts by Content-Length and read it back the same.
+int fuzz_http_response_one(const uint8_t* data, size_t size);
