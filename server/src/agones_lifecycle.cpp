@@ -172,8 +172,8 @@ int run_agones_match(const ServerConfig& base, const AgonesSdk& sdk,
   // Ready GameServers, and the settings (the player count above all) arrive
   // with the allocation. So the UDP socket is bound after the allocation,
   // when the Server can be created with them; the port is fixed by the
-  // Fleet manifest, so players are told it before it is bound, and they
-  // retry their connect until the server answers.
+  // Fleet manifest, so players may be told it before it is bound: clients
+  // resend their join until the server answers.
   if (Status ready = sdk.ready(); !ready.ok()) {
     write_log(LogLevel::kError, "agones: Ready failed: " + ready.message());
     return finish(1, "Ready failed");

@@ -33,6 +33,8 @@ check 64 "--metrics-bind: expected HOST:PORT, got 'nowhere'" rewind-server --met
 check 64 "--metrics-port-file needs --metrics-bind" rewind-server --metrics-port-file x --port 0
 check 1 "metrics: bad address 'nowhere.invalid'" rewind-server --metrics-bind nowhere.invalid:0 --port 0
 check 1 '"level":"error","msg":"unknown game' rewind-server --game chess --port 0 --log-json
+check 64 "--agones-health-period: 0 is outside [0.1, 60]" rewind-server --agones --agones-health-period 0
+AGONES_SDK_HTTP_PORT=x check 64 "AGONES_SDK_HTTP_PORT='x' is not a port number" rewind-server --agones
 check 64 "--loss: 1.5 is outside [0, 1]" rewind-bots --loss 1.5
 check 64 "--connect: expected HOST:PORT" rewind-bots --connect nowhere
 check 64 "--script: expected random, circle or idle" rewind-bots --script dance
