@@ -10,6 +10,8 @@
 # MODE refused: the allocation asks for 99 players. The server must log a
 #   clear error naming the annotation, send Shutdown once, host nothing and
 #   exit 1.
+# MODE signal: SIGTERM while waiting for an allocation. The server must send
+#   Shutdown once and exit 0 without hosting.
 # MODE unreachable: no sidecar at AGONES_SDK_HTTP_PORT. The server must say
 #   so and exit 1 within its sidecar timeout; a malformed
 #   AGONES_SDK_HTTP_PORT is a usage error (64).
@@ -136,6 +138,26 @@ refused)
   [ "$(last_call)" = "POST /shutdown" ] || fail "calls after Shutdown: last is $(last_call)"
   grep -q "agones: Shutdown sent (allocation refused)" server.log || fail "$(cat server.log)"
   echo "agones refused: $(grep -o 'rewind.dev/players: .*' server.log)"
+  ;;
+signal)
+  allocate_after=100000
+  start_sidecar
+  "$bin/rewind-server" --agones --agones-health-period "$health_period" --bind 127.0.0.1 \
+    --port 0 --port-file port >server.json 2>server.log &
+  server_pid=$!
+  pids+=("$server_pid")
+  for _ in $(seq 1 100); do [ "$(calls POST /ready)" = 1 ] && break; sleep 0.1; done
+  [ "$(calls POST /ready)" = 1 ] || fail "no Ready: $(cat server.log)"
+  sleep 1
+  kill -TERM "$server_pid"
+  status=0
+  wait "$server_pid" || status=$?
+  [ "$status" = 0 ] || fail "exit $status after SIGTERM (want 0): $(cat server.log)"
+  [ "$(calls POST /shutdown)" = 1 ] || fail "Shutdown sent $(calls POST /shutdown) times"
+  [ "$(last_call)" = "POST /shutdown" ] || fail "calls after Shutdown: last is $(last_call)"
+  grep -q "agones: Shutdown sent (stopped by SIGTERM)" server.log || fail "$(cat server.log)"
+  [ ! -e port ] || fail "a port was bound without an allocation"
+  echo "agones signal: $(grep 'Shutdown sent' server.log)"
   ;;
 unreachable)
   # A port nothing listens on: bound and closed again at once.
