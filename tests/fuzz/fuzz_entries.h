@@ -27,6 +27,7 @@ int fuzz_secure_packet_one(const uint8_t* data, size_t size);
 /// Control API requests: MetricsHttp::respond's request-line and header
 /// checks, and parse_match_request on the query of routed targets.
 int fuzz_control_request_one(const uint8_t* data, size_t size);
+
 /// JSON documents (the Agones GameServer record): parse_json, then write
 /// what it accepts canonically and read it back equal; the GameServer reader
 /// over the same bytes.
