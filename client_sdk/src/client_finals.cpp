@@ -1,22 +1,22 @@
 // SPDX-License-Identifier: MIT
-// The client session's authoritative inputs: other players' inputs as the
+// The client protocol's authoritative inputs: other players' inputs as the
 // server relays them, and final ticks applied strictly in order (each one's
 // inputs may be packed against the tick before, which is then always the
 // one applied last), with ticks that arrive ahead of a gap held back.
-#include "rewind/client/client_session.h"
+#include "client_protocol_impl.h"
 #include "rewind/proto/message_inputs.h"
 
 namespace rwd::client {
 
-void ClientSession::on_relayed(uint32_t player, Tick first_tick,
-                               std::span<const game::PlayerInput> inputs) {
+void ClientProtocol::Impl::on_relayed(uint32_t player, Tick first_tick,
+                                      std::span<const game::PlayerInput> inputs) {
   if (player >= player_count_ || player == player_) return;
   for (size_t i = 0; i < inputs.size(); ++i) {
     (void)session_->add_input(player, first_tick + static_cast<Tick>(i), inputs[i]);
   }
 }
 
-void ClientSession::on_final_ticks(const v1::FinalTicks& finals, TimePoint now) {
+void ClientProtocol::Impl::on_final_ticks(const v1::FinalTicks& finals, TimePoint now) {
   server_tick_ = std::max(server_tick_, finals.server_tick());
   input_ack_ = std::max(input_ack_, finals.input_ack_tick());
   if (next_input_tick_ > 0) time_sync_.on_lead_report(finals.input_lead_ticks());
@@ -41,7 +41,7 @@ void ClientSession::on_final_ticks(const v1::FinalTicks& finals, TimePoint now) 
   }
 }
 
-bool ClientSession::apply_final_tick(const v1::FinalTick& final_tick, TimePoint now) {
+bool ClientProtocol::Impl::apply_final_tick(const v1::FinalTick& final_tick, TimePoint now) {
   // Packed against the tick before, which is always the one applied last:
   // final ticks are applied in order.
   if (!proto::final_tick_inputs(final_tick, last_final_inputs_, final_inputs_buffer_).ok() ||

@@ -1,21 +1,23 @@
 // SPDX-License-Identifier: MIT
-// The client session's desync path: reporting a checksum mismatch (the
+// The client protocol's desync path: reporting a checksum mismatch (the
 // state dump in chunks), asking for a resync, reassembling the server's
 // snapshot, checking it loads with its checksum before anything is
 // replaced, and naming a snapshot it refused so the server sends another.
 #include <algorithm>
 
-#include "rewind/client/client_session.h"
+#include "client_protocol_impl.h"
 #include "rewind/net/envelope_codec.h"
 
 namespace rwd::client {
 namespace {
 
-constexpr size_t kReportChunkBytes = 1000;
+std::span<const uint8_t> bytes_of(const std::string& chunk) {
+  return {reinterpret_cast<const uint8_t*>(chunk.data()), chunk.size()};
+}
 
 }  // namespace
 
-void ClientSession::request_resync(TimePoint now) {
+void ClientProtocol::Impl::request_resync(TimePoint now) {
   if (awaiting_resync_) return;
   awaiting_resync_ = true;
   desync_tick_ = kNoTick;  // nothing to report, just ask
@@ -24,35 +26,32 @@ void ClientSession::request_resync(TimePoint now) {
   send_desync_report(now);
 }
 
-void ClientSession::send_desync_report(TimePoint now) {
+void ClientProtocol::Impl::send_desync_report(TimePoint now) {
   last_report_sent_ = now;
-  const size_t count = (state_buffer_.size() + kReportChunkBytes - 1) / kReportChunkBytes;
+  const Result<uint32_t> count = net::plan_chunks(state_buffer_.size(), net::kDesyncChunkLimits);
   // The whole report goes out a few times; after that only a short request,
   // so a server that is slow to answer is not buried in chunks.
-  if (desync_tick_ == kNoTick || count == 0 || count > net::kMaxDesyncChunks ||
-      report_sends_++ >= 3) {
+  if (desync_tick_ == kNoTick || !count.ok() || report_sends_++ >= 3) {
     send_resync_request(now);  // nothing to show: just ask for the snapshot
     return;
   }
-  for (size_t i = 0; i < count; ++i) {
+  for (uint32_t i = 0; i < *count; ++i) {
+    const std::span<const uint8_t> part = net::chunk_at(state_buffer_, i, net::kDesyncChunkLimits);
     v1::Envelope envelope;
     v1::DesyncReport* report = envelope.mutable_desync_report();
     report->set_tick(desync_tick_);
     report->set_client_checksum(desync_local_checksum_);
     report->set_server_checksum(desync_server_checksum_);
     report->set_report_id(report_id_);
-    report->set_chunk_index(static_cast<uint32_t>(i));
-    report->set_chunk_count(static_cast<uint32_t>(count));
+    report->set_chunk_index(i);
+    report->set_chunk_count(*count);
     report->set_total_size(static_cast<uint32_t>(state_buffer_.size()));
-    const size_t begin = i * kReportChunkBytes;
-    const size_t end = std::min(state_buffer_.size(), begin + kReportChunkBytes);
-    report->set_chunk(std::string(state_buffer_.begin() + static_cast<std::ptrdiff_t>(begin),
-                                  state_buffer_.begin() + static_cast<std::ptrdiff_t>(end)));
+    report->set_chunk(part.data(), part.size());
     send(envelope, now);
   }
 }
 
-void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now) {
+void ClientProtocol::Impl::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now) {
   // Only a snapshot past everything we already settled can help: older ones
   // are delayed duplicates of an earlier episode.
   if (chunk.tick() <= session_->final_tick()) return;
@@ -63,40 +62,38 @@ void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now)
   // Resends of a snapshot that already failed to load: the server has not
   // heard yet; our requests keep naming it until it sends another.
   if (chunk.snapshot_id() == refused_snapshot_id_) return;
-  if (resync_.snapshot_id != chunk.snapshot_id() || resync_.chunks.size() != chunk.chunk_count()) {
-    resync_ = ResyncAssembly{};
-    resync_.snapshot_id = chunk.snapshot_id();
-    resync_.tick = chunk.tick();
-    resync_.checksum = chunk.checksum();
-    resync_.total_size = chunk.total_size();
-    resync_.chunks.assign(chunk.chunk_count(), {});
+  const net::ChunkHeader header{chunk.snapshot_id(),
+                                chunk.chunk_index(),
+                                chunk.chunk_count(),
+                                chunk.total_size(),
+                                {static_cast<uint64_t>(chunk.tick()), chunk.checksum(), 0}};
+  switch (resync_.add(header, bytes_of(chunk.chunk()))) {
+    case net::ChunkResult::kRejected:
+      ++stats_.packets_rejected;
+      return;
+    case net::ChunkResult::kComplete:
+      load_resync(chunk, now);
+      return;
+    case net::ChunkResult::kAccepted:
+    case net::ChunkResult::kDuplicate:
+      return;
   }
-  std::string& part = resync_.chunks[chunk.chunk_index()];
-  if (part.empty() && !chunk.chunk().empty()) {
-    part = chunk.chunk();
-    ++resync_.received;
-  }
-  if (resync_.received < resync_.chunks.size()) return;
+}
 
-  std::vector<uint8_t> bytes;
-  bytes.reserve(resync_.total_size);
-  for (const std::string& p : resync_.chunks) bytes.insert(bytes.end(), p.begin(), p.end());
-  const ResyncAssembly done = std::move(resync_);
-  resync_ = ResyncAssembly{};
-  if (bytes.size() != done.total_size) {
-    refuse_resync(done.snapshot_id, done.tick,
-                  "chunks add up to " + std::to_string(bytes.size()) + " bytes, not " +
-                      std::to_string(done.total_size),
-                  now);
-    return;
-  }
+void ClientProtocol::Impl::load_resync(const v1::ResyncChunk& last_chunk, TimePoint now) {
+  // Every chunk named the same snapshot (the assembler checks), so the last
+  // one speaks for all.
+  const uint32_t snapshot_id = last_chunk.snapshot_id();
+  const Tick tick = last_chunk.tick();
+  const uint64_t checksum = last_chunk.checksum();
   // Decoded and checked against the server's checksum before it replaces
   // anything; a bad snapshot is dropped and another asked for.
-  if (Status status = session_->reset_from(bytes, done.checksum); !status.ok()) {
-    refuse_resync(done.snapshot_id, done.tick, status.message(), now);
+  const Status status = session_->reset_from(resync_.blob(), checksum);
+  resync_.reset();
+  if (!status.ok()) {
+    refuse_resync(snapshot_id, tick, status.message(), now);
     return;
   }
-  const Tick tick = done.tick;
   last_final_received_ = tick - 1;  // the server resends final ticks from here
   last_final_inputs_.clear();       // ... and sends the first one standalone
   pending_finals_.clear();
@@ -115,17 +112,13 @@ void ClientSession::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now)
   state_buffer_.clear();
   report_sends_ = 0;
   ++stats_.resyncs;
-  emit({ClientEventType::kResynced,
-        tick,
-        player_,
-        session_->simulation().checksum(),
-        done.checksum,
-        {}});
+  emit(
+      {ClientEventType::kResynced, tick, player_, session_->simulation().checksum(), checksum, {}});
   step_due_ticks(now);
 }
 
-void ClientSession::refuse_resync(uint32_t snapshot_id, Tick tick, const std::string& reason,
-                                  TimePoint now) {
+void ClientProtocol::Impl::refuse_resync(uint32_t snapshot_id, Tick tick, const std::string& reason,
+                                         TimePoint now) {
   ++stats_.resyncs_refused;
   emit({ClientEventType::kResyncRefused, tick, player_, 0, 0, reason});
   // The server resends one snapshot until it is acknowledged, so it has to
@@ -138,7 +131,7 @@ void ClientSession::refuse_resync(uint32_t snapshot_id, Tick tick, const std::st
   send_resync_request(now);
 }
 
-void ClientSession::send_resync_request(TimePoint now) {
+void ClientProtocol::Impl::send_resync_request(TimePoint now) {
   v1::Envelope envelope;
   v1::ResyncRequest* request = envelope.mutable_resync_request();
   request->set_desync_tick(std::max<Tick>(desync_tick_, 0));

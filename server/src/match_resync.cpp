@@ -23,10 +23,13 @@ using detail::log_warning;
 using detail::printable;
 using detail::worth_logging;
 
-constexpr size_t kResyncChunkBytes = 1000;
 constexpr auto kResyncMinInterval = std::chrono::milliseconds(250);
 constexpr auto kReportMinInterval = std::chrono::seconds(2);
 constexpr uint32_t kMaxReportsPerPeer = 8;
+
+std::span<const uint8_t> bytes_of(const std::string& chunk) {
+  return {reinterpret_cast<const uint8_t*>(chunk.data()), chunk.size()};
+}
 
 }  // namespace
 
@@ -43,31 +46,24 @@ void MatchHost::handle_desync(Peer& peer, uint32_t player, const v1::DesyncRepor
     }
   }
   DesyncAssembly& assembly = peer.desync;
-  if (assembly.report_id != report.report_id() || assembly.chunks.size() != report.chunk_count() ||
-      assembly.total_size != report.total_size()) {
-    assembly = DesyncAssembly{};
-    assembly.report_id = report.report_id();
-    assembly.tick = report.tick();
-    assembly.client_checksum = report.client_checksum();
-    assembly.server_checksum = report.server_checksum();
-    assembly.total_size = report.total_size();
-    assembly.chunks.assign(report.chunk_count(), {});
-  }
-  std::vector<uint8_t>& chunk = assembly.chunks[report.chunk_index()];
-  if (chunk.empty() && !report.chunk().empty()) {
-    chunk.assign(report.chunk().begin(), report.chunk().end());
-    ++assembly.received;
-  }
-  if (assembly.received < assembly.chunks.size()) return;
-
-  std::vector<uint8_t> dump;
-  dump.reserve(assembly.total_size);
-  for (const auto& part : assembly.chunks) dump.insert(dump.end(), part.begin(), part.end());
-  if (dump.size() != assembly.total_size) {
-    ++stats_.rejected_packets;  // inconsistent chunk set; the client will retry
-    assembly = DesyncAssembly{};
+  const net::ChunkHeader header{
+      report.report_id(),
+      report.chunk_index(),
+      report.chunk_count(),
+      report.total_size(),
+      {static_cast<uint64_t>(report.tick()), report.client_checksum(), report.server_checksum()}};
+  const net::ChunkResult result = assembly.chunks.add(header, bytes_of(report.chunk()));
+  if (result == net::ChunkResult::kRejected) {
+    ++stats_.rejected_packets;  // an inconsistent chunk; the client will retry
     return;
   }
+  if (result != net::ChunkResult::kComplete) return;
+  // Every chunk of the report said the same (the assembler checks).
+  assembly.report_id = report.report_id();
+  assembly.tick = report.tick();
+  assembly.client_checksum = report.client_checksum();
+  assembly.server_checksum = report.server_checksum();
+  const std::span<const uint8_t> dump = assembly.chunks.blob();
   ++stats_.desync_reports;
   peer.handled_reports.push_back(assembly.report_id);
   if (peer.handled_reports.size() > 16) peer.handled_reports.erase(peer.handled_reports.begin());
@@ -80,7 +76,7 @@ void MatchHost::handle_desync(Peer& peer, uint32_t player, const v1::DesyncRepor
     peer.last_report_stored = now;
     store_desync_report(player, assembly, dump);
   }
-  assembly = DesyncAssembly{};
+  assembly.chunks.reset();
   send_resync(peer, now);
 }
 
@@ -92,7 +88,7 @@ std::optional<uint64_t> MatchHost::final_checksum(Tick tick) const {
 }
 
 void MatchHost::store_desync_report(uint32_t player, const DesyncAssembly& assembly,
-                                    const std::vector<uint8_t>& dump) {
+                                    std::span<const uint8_t> dump) {
   // The headline needs nothing but the report and our final-tick history,
   // so it is written whatever fails below.
   const std::optional<uint64_t> ours = final_checksum(assembly.tick);
@@ -201,13 +197,11 @@ bool MatchHost::start_resync_episode(Peer& peer) {
     if (snapshot_hook_) snapshot_hook_(tick, peer.resync_bytes);
     // Never send what we could not load ourselves: the same test the client
     // applies (RollbackSession::reset_from), on a fresh simulation.
-    Status status = Status::Ok();
-    const size_t count = (peer.resync_bytes.size() + kResyncChunkBytes - 1) / kResyncChunkBytes;
-    if (count == 0 || count > net::kMaxResyncChunks) {
-      status = Status::Error(ErrorCode::kCapacity,
-                             std::to_string(peer.resync_bytes.size()) + " bytes is too large");
-    } else if (auto loaded = session_->load_snapshot(peer.resync_bytes, *checksum); !loaded.ok()) {
-      status = loaded.status();
+    Status status = net::plan_chunks(peer.resync_bytes.size(), net::kResyncChunkLimits).status();
+    if (status.ok()) {
+      if (auto loaded = session_->load_snapshot(peer.resync_bytes, *checksum); !loaded.ok()) {
+        status = loaded.status();
+      }
     }
     if (!status.ok()) {
       ++stats_.resync_snapshot_failures;
@@ -252,22 +246,22 @@ void MatchHost::on_resync_refused(Peer& peer, uint32_t player, const v1::ResyncR
 }
 
 void MatchHost::send_resync_chunks(Peer& peer, TimePoint now) {
-  const std::vector<uint8_t>& bytes = peer.resync_bytes;
-  const auto count =
-      static_cast<uint32_t>((bytes.size() + kResyncChunkBytes - 1) / kResyncChunkBytes);
-  for (uint32_t i = 0; i < count; ++i) {
+  // start_resync_episode() only keeps a snapshot that plans.
+  const Result<uint32_t> count =
+      net::plan_chunks(peer.resync_bytes.size(), net::kResyncChunkLimits);
+  if (!count.ok()) return;
+  for (uint32_t i = 0; i < *count; ++i) {
+    const std::span<const uint8_t> part =
+        net::chunk_at(peer.resync_bytes, i, net::kResyncChunkLimits);
     v1::Envelope envelope;
     v1::ResyncChunk* chunk = envelope.mutable_resync_chunk();
     chunk->set_snapshot_id(peer.resync_id);
     chunk->set_tick(peer.resync_tick);
     chunk->set_checksum(peer.resync_checksum);
     chunk->set_chunk_index(i);
-    chunk->set_chunk_count(count);
-    chunk->set_total_size(static_cast<uint32_t>(bytes.size()));
-    const size_t begin = i * kResyncChunkBytes;
-    const size_t end = std::min(bytes.size(), begin + kResyncChunkBytes);
-    chunk->set_chunk(std::string(bytes.begin() + static_cast<std::ptrdiff_t>(begin),
-                                 bytes.begin() + static_cast<std::ptrdiff_t>(end)));
+    chunk->set_chunk_count(*count);
+    chunk->set_total_size(static_cast<uint32_t>(peer.resync_bytes.size()));
+    chunk->set_chunk(part.data(), part.size());
     send(peer, envelope, now);
   }
 }

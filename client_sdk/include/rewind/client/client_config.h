@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "rewind/net/fault_injector.h"
+#include "rewind/net/fault_config.h"
 #include "rewind/sim/tick.h"
 
 namespace rwd::client {

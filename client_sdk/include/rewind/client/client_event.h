@@ -44,6 +44,9 @@ struct ClientStats {
   uint64_t packets_sent = 0;
   uint64_t packets_received = 0;
   uint64_t packets_rejected = 0;  ///< undecodable or not from our server
+  /// Datagrams not queued because the caller had not drained
+  /// ClientProtocol::kMaxQueuedDatagrams of them (never on ClientSession).
+  uint64_t datagrams_dropped = 0;
   Tick last_final_tick = kNoTick;
 };
 

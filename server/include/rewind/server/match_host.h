@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "rewind/net/chunked_transfer.h"
 #include "rewind/net/connection.h"
 #include "rewind/net/connection_id.h"
 #include "rewind/net/rollback_session.h"
@@ -82,13 +83,12 @@ class MatchHost {
 
  private:
   struct DesyncAssembly {
+    // What the report says, every chunk alike (filled in once it is whole).
     uint32_t report_id = 0;
     Tick tick = kNoTick;
     uint64_t client_checksum = 0;
-    uint64_t server_checksum = 0;  // ours, as the client received it
-    uint32_t total_size = 0;
-    uint32_t received = 0;
-    std::vector<std::vector<uint8_t>> chunks;
+    uint64_t server_checksum = 0;                         // ours, as the client received it
+    net::ChunkAssembler chunks{net::kDesyncChunkLimits};  // the client's state dump
   };
   struct Peer {
     bool joined = false;
@@ -126,7 +126,7 @@ class MatchHost {
   void handle_input(Peer& peer, uint32_t player, const v1::InputFrame& frame);
   void handle_desync(Peer& peer, uint32_t player, const v1::DesyncReport& report, TimePoint now);
   void store_desync_report(uint32_t player, const DesyncAssembly& assembly,
-                           const std::vector<uint8_t>& dump);
+                           std::span<const uint8_t> dump);
   void send_resync(Peer& peer, TimePoint now);
   bool start_resync_episode(Peer& peer);
   void on_resync_refused(Peer& peer, uint32_t player, const v1::ResyncRequest& request);

@@ -6,14 +6,10 @@
 #include <cstdint>
 #include <span>
 
+#include "rewind/net/clock.h"
 #include "rewind/v1/envelope.pb.h"
 
 namespace rwd::net {
-
-/// The clock every transport API takes its time from. Callers pass the time
-/// in, so tests can drive the protocol with synthetic times.
-using SteadyClock = std::chrono::steady_clock;
-using TimePoint = SteadyClock::time_point;
 
 /// True when sequence `a` is older than `b`, with 32-bit wrap-around (RFC
 /// 1982 serial arithmetic: `a` is older if b - a, mod 2^32, is in [1, 2^31)).
