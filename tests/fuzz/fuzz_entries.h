@@ -36,3 +36,7 @@ int fuzz_json_value_one(const uint8_t* data, size_t size);
 /// Whole HTTP/1.1 responses: parse_http_response, then re-frame what it
 /// accepts by Content-Length and read it back the same.
 int fuzz_http_response_one(const uint8_t* data, size_t size);
+
+/// Chunk sequences (resync snapshots, desync dumps): ChunkAssembler checked
+/// against a model of its rules, chunk by chunk.
+int fuzz_chunk_assembler_one(const uint8_t* data, size_t size);
