@@ -80,8 +80,9 @@ void ChunkAssembler::reset() {
   active_ = false;
   header_ = ChunkHeader{};
   received_ = 0;
-  bytes_.clear();
-  have_.clear();
+  // Transfers are rare (a desync, a resync): hold no memory between them.
+  std::vector<uint8_t>().swap(bytes_);
+  std::vector<uint8_t>().swap(have_);
 }
 
 std::span<const uint8_t> ChunkAssembler::blob() const {

@@ -69,9 +69,10 @@ enum class ChunkResult : uint8_t {
 };
 
 /// Reassembles one transfer at a time. A valid chunk with a new id drops
-/// whatever was in progress and starts over; memory is bounded by
-/// limits.max_blob_bytes() plus one flag per chunk, and is reused from one
-/// transfer to the next. Not thread-safe.
+/// whatever was in progress and starts over. Memory is bounded by
+/// limits.max_blob_bytes() plus one flag per chunk (a transfer allocates its
+/// stated size when its first chunk arrives) and freed by reset(). Not
+/// thread-safe.
 class ChunkAssembler {
  public:
   /// limits.chunk_bytes and limits.max_chunks must be >= 1.
@@ -79,7 +80,8 @@ class ChunkAssembler {
 
   ChunkResult add(const ChunkHeader& header, std::span<const uint8_t> data);
 
-  /// Forgets the transfer in progress (or the completed one).
+  /// Forgets the transfer in progress (or the completed one) and frees its
+  /// memory.
   void reset();
 
   /// True while a transfer has started (complete or not).
