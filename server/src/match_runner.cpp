@@ -25,7 +25,7 @@ Result<std::shared_ptr<MatchRunner>> MatchRunner::create(asio::io_context& io,
   if (Status status = settings.match.validate(); !status.ok()) return status;
   auto runner = std::make_shared<MatchRunner>(io, settings, std::move(on_ended));
   MatchRunner* self = runner.get();
-  auto socket = net::UdpEndpoint::open(runner->strand_, settings.bind_address, settings.port);
+  auto socket = net::PolledUdpSocket::open(settings.bind_address, settings.port);
   if (!socket.ok()) return socket.status();
   runner->socket_ = std::move(*socket);
   runner->port_ = runner->socket_->local_port();
@@ -36,7 +36,7 @@ Result<std::shared_ptr<MatchRunner>> MatchRunner::create(asio::io_context& io,
         std::make_unique<SecureGateway>(*settings.server_key, settings.match.match_id,
                                         settings.match.players + settings.match.max_spectators,
                                         [self](const Endpoint& to, std::span<const uint8_t> bytes) {
-                                          self->socket_->send_to(bytes, to);
+                                          self->socket_->queue_send(bytes, to);
                                         });
   }
   LogMatchScope scope(runner->log_name());
@@ -46,7 +46,7 @@ Result<std::shared_ptr<MatchRunner>> MatchRunner::create(asio::io_context& io,
         if (self->gateway_) {
           self->gateway_->send(to, bytes);
         } else {
-          self->socket_->send_to(bytes, to);
+          self->socket_->queue_send(bytes, to);
         }
       },
       net::SteadyClock::now());
@@ -67,10 +67,6 @@ void MatchRunner::start() {
   asio::post(strand_, [self = shared_from_this()] {
     if (self->started_ || self->finished_) return;
     self->started_ = true;
-    self->socket_->start_receiving(
-        [raw = self.get()](std::span<const uint8_t> bytes, const Endpoint& from) {
-          raw->on_datagram(bytes, from);
-        });
     self->next_tick_ = net::SteadyClock::now() + self->period_;
     self->schedule_tick();
   });
@@ -86,6 +82,7 @@ void MatchRunner::stop(std::string reason) {
       return;
     }
     self->guarded("ending", [&] { self->host_->end(reason, net::SteadyClock::now()); });
+    if (!self->finished_) self->socket_->flush_sends();
   });
 }
 
@@ -122,9 +119,8 @@ void MatchRunner::fail(const std::string& reason) {
   finish();
 }
 
-void MatchRunner::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from) {
+void MatchRunner::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from, TimePoint now) {
   if (finished_) return;
-  const TimePoint now = net::SteadyClock::now();
   if (!gateway_) {
     guarded("handling a datagram", [&] { host_->on_datagram(bytes, from, now); });
     return;
@@ -144,11 +140,22 @@ void MatchRunner::schedule_tick() {
   });
 }
 
+// The match reads its socket once a tick, right before ticking, instead of
+// waking for every datagram: one wake-up a tick rather than one for each of
+// every player's packets, and the datagrams it sends in answer leave
+// together with the tick's broadcast. Nothing is later for it: the host
+// takes inputs into the tick they arrived before either way, and answers
+// joins and handshakes within a tick.
 void MatchRunner::on_tick_timer() {
   if (finished_) return;
   const TimePoint now = net::SteadyClock::now();
+  socket_->drain([this, now](std::span<const uint8_t> bytes, const Endpoint& from) {
+    on_datagram(bytes, from, now);
+  });
+  if (finished_) return;
   guarded("ticking", [&] { host_->on_tick(now); });
   if (finished_) return;
+  socket_->flush_sends();
   // Wall time, for operators only: nothing in the match reads it.
   tick_time_.observe(net::SteadyClock::now() - now);
   publish();
@@ -171,6 +178,7 @@ void MatchRunner::finish() {
   if (finished_) return;
   finished_ = true;
   timer_.cancel();
+  socket_->flush_sends();  // the match's last words: its end, to every client
   socket_->close();
   publish();
   ended_.store(true, std::memory_order_release);

@@ -11,7 +11,7 @@
 namespace rwd::net {
 
 struct UdpEndpoint::State {
-  explicit State(const asio::any_io_executor& executor) : socket(executor) {}
+  explicit State(asio::io_context& io) : socket(io) {}
 
   asio::ip::udp::socket socket;
   Endpoint local;
@@ -41,18 +41,13 @@ struct UdpEndpoint::State {
 
 Result<UdpEndpoint> UdpEndpoint::open(asio::io_context& io, std::string_view address,
                                       uint16_t port) {
-  return open(io.get_executor(), address, port);
-}
-
-Result<UdpEndpoint> UdpEndpoint::open(const asio::any_io_executor& executor,
-                                      std::string_view address, uint16_t port) {
   std::error_code ec;
   const asio::ip::address ip = asio::ip::make_address(std::string(address), ec);
   if (ec) {
     return Status::Error(ErrorCode::kInvalidArgument,
                          "udp: bad address '" + std::string(address) + "': " + ec.message());
   }
-  auto state = std::make_shared<State>(executor);
+  auto state = std::make_shared<State>(io);
   const Endpoint endpoint(ip, port);
   state->socket.open(endpoint.protocol(), ec);
   if (!ec) state->socket.bind(endpoint, ec);

@@ -17,7 +17,7 @@
 #include <optional>
 #include <string>
 
-#include "rewind/net/udp_endpoint.h"
+#include "rewind/net/polled_udp_socket.h"
 #include "rewind/server/match_host.h"
 #include "rewind/server/metrics_text.h"
 #include "rewind/server/secure_gateway.h"
@@ -67,7 +67,7 @@ class MatchRunner : public std::enable_shared_from_this<MatchRunner> {
  private:
   void schedule_tick();
   void on_tick_timer();
-  void on_datagram(std::span<const uint8_t> bytes, const Endpoint& from);
+  void on_datagram(std::span<const uint8_t> bytes, const Endpoint& from, TimePoint now);
   /// Runs `work` on the match; anything it throws ends the match.
   template <typename Work>
   void guarded(const char* what, Work&& work);
@@ -81,7 +81,7 @@ class MatchRunner : public std::enable_shared_from_this<MatchRunner> {
   Settings settings_;
   asio::strand<asio::io_context::executor_type> strand_;
   asio::steady_timer timer_;
-  std::optional<net::UdpEndpoint> socket_;
+  std::optional<net::PolledUdpSocket> socket_;  ///< read once a tick, see on_tick_timer()
   uint16_t port_ = 0;
   std::unique_ptr<SecureGateway> gateway_;  ///< null in tokenless mode
   std::unique_ptr<MatchHost> host_;

@@ -8,7 +8,6 @@
 #include <string_view>
 #include <system_error>
 
-#include <asio/any_io_executor.hpp>
 #include <asio/io_context.hpp>
 #include <asio/ip/udp.hpp>
 
@@ -25,7 +24,7 @@ inline constexpr size_t kReceiveBufferBytes = 2048;
 /// that hands every datagram to a handler, and non-blocking sends. Errors
 /// (unreachable peers, ECONNREFUSED from ICMP, full send buffers) are counted
 /// and reported to the optional error handler, never fatal. Use from the
-/// io_context's thread only (or its strand: one thread at a time per endpoint). Handlers are never
+/// io_context's thread only (one thread per endpoint). Handlers are never
 /// called after close() or destruction, even if the io_context runs on.
 class UdpEndpoint {
  public:
@@ -41,9 +40,6 @@ class UdpEndpoint {
   /// Errors: kInvalidArgument for an unparsable address, kIo when the OS
   /// refuses the socket or the bind.
   static Result<UdpEndpoint> open(asio::io_context& io, std::string_view address, uint16_t port);
-  /// The same on `executor` (a strand, say): every handler runs there.
-  static Result<UdpEndpoint> open(const asio::any_io_executor& executor, std::string_view address,
-                                  uint16_t port);
 
   UdpEndpoint(UdpEndpoint&&) noexcept = default;
   UdpEndpoint& operator=(UdpEndpoint&&) noexcept;
