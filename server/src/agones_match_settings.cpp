@@ -70,9 +70,8 @@ Result<double> parse_seconds(const std::string& key, const std::string& value, d
 }
 
 Status check_match_id(const std::string& key, const std::string& value) {
-  if (value.empty() || value.size() > 128) return refuse(key, value, "must be 1-128 characters");
-  for (const char c : value) {
-    if (c <= 0x20 || c >= 0x7f) return refuse(key, value, "must be visible ASCII");
+  if (!is_match_id(value)) {
+    return refuse(key, value, "must be 1-64 characters of A-Z a-z 0-9 . _ -");
   }
   return Status::Ok();
 }
@@ -114,6 +113,9 @@ const std::map<std::string, Setter, std::less<>>& setters() {
       {"tick-rate",
        integer(1, 1000,
                [](MatchConfig* m, int64_t n) { m->tick_rate_hz = static_cast<uint32_t>(n); })},
+      {"start-players",
+       integer(0, 32,
+               [](MatchConfig* m, int64_t n) { m->start_players = static_cast<uint32_t>(n); })},
       {"window",
        integer(1, 120,
                [](MatchConfig* m, int64_t n) { m->window_ticks = static_cast<int32_t>(n); })},

@@ -116,6 +116,10 @@ int main(int argc, char** argv) {
                  "serve the control API on --metrics-bind: GET/POST /matches, DELETE "
                  "/matches/<id>; the process then runs until signalled (bind it privately)");
   flags.add_int("players", &players, 1, 32, "player slots; the match starts when all are joined");
+  int64_t start_players = config.match.start_players;
+  flags.add_int("start-players", &start_players, 0, 32,
+                "start once N players joined (0 = every slot); the open slots are taken by late "
+                "joiners mid-match, who catch up from a snapshot");
   int64_t spectators = config.match.max_spectators;
   flags.add_int("spectators", &spectators, 0, 63,
                 "read-only seats (players + spectators <= 64); a secure server's token slots "
@@ -185,6 +189,7 @@ int main(int argc, char** argv) {
   config.port = static_cast<uint16_t>(port);
   config.match.players = static_cast<uint32_t>(players);
   config.match.max_spectators = static_cast<uint32_t>(spectators);
+  config.match.start_players = static_cast<uint32_t>(start_players);
   config.match.tick_rate_hz = static_cast<uint32_t>(tick_rate);
   config.match.window_ticks = static_cast<int32_t>(window);
   config.match.max_ticks = ticks;

@@ -92,8 +92,12 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
       if (!peers_[p].joined) slot = p;
     }
   } else if (phase_ == Phase::kRunning) {
-    // Tokenless: a slot whose player timed out or left is free again for
-    // the next joiner, who catches up from a snapshot.
+    // Tokenless: a slot nobody took yet (when the match allows late join),
+    // or whose player timed out or left, is free for the next joiner, who
+    // catches up from a snapshot. Never-taken slots go first.
+    for (uint32_t p = 0; p < peers_.size() && !slot && config_.late_join(); ++p) {
+      if (!peers_[p].joined) slot = p;
+    }
     for (uint32_t p = 0; p < peers_.size() && !slot; ++p) {
       if (peers_[p].joined && (!peers_[p].connected || peers_[p].left)) slot = p;
     }
@@ -128,9 +132,9 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
            from.address().to_string() + ":" + std::to_string(from.port()) + " (" +
            printable(peer.name) + ")");
   accept(*slot);
-  const bool full =
-      std::all_of(peers_.begin(), peers_.end(), [](const Peer& p) { return p.joined; });
-  if (full && phase_ == Phase::kLobby) start_match(now);
+  const auto joined = static_cast<uint32_t>(
+      std::count_if(peers_.begin(), peers_.end(), [](const Peer& p) { return p.joined; }));
+  if (joined >= config_.players_to_start() && phase_ == Phase::kLobby) start_match(now);
 }
 
 bool MatchHost::seat_spectator(const v1::JoinRequest& request, const Endpoint& from, TimePoint now,
@@ -188,8 +192,13 @@ void MatchHost::start_match(TimePoint now) {
   started_ = now;
   tick_started_ = now;
   countdown_ticks_ = static_cast<int32_t>(std::ceil(config_.start_delay_s * config_.tick_rate_hz));
-  log_line("all " + std::to_string(config_.players) + " players joined; tick 0 in " +
-           std::to_string(countdown_ticks_) + " ticks");
+  const auto joined = static_cast<uint32_t>(
+      std::count_if(peers_.begin(), peers_.end(), [](const Peer& p) { return p.joined; }));
+  log_line((joined == config_.players
+                ? "all " + std::to_string(joined)
+                : std::to_string(joined) + " of " + std::to_string(config_.players)) +
+           " players joined; tick 0 in " + std::to_string(countdown_ticks_) + " ticks" +
+           (joined < config_.players ? " (the other slots are open for late joiners)" : ""));
   for (Peer& peer : peers_) send_match_start(peer, now);
 }
 

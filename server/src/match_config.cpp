@@ -31,6 +31,7 @@ Status MatchConfig::validate() const {
   if (players < 1 || players > game::kMaxPlayers) {
     return bad("players must be in [1, " + std::to_string(game::kMaxPlayers) + "]");
   }
+  if (start_players > players) return bad("start players must be at most players");
   if (players + max_spectators > 64) return bad("players + spectators must be at most 64");
   if (tick_rate_hz < 1 || tick_rate_hz > 1000) return bad("tick rate must be in [1, 1000] Hz");
   if (window_ticks < 1 || window_ticks > 120) return bad("window must be in [1, 120] ticks");

@@ -354,9 +354,13 @@ void MatchHost::finalize_ready_ticks() {
   while (next_final_ < current) {
     if (config_.max_ticks > 0 && next_final_ >= config_.max_ticks) break;
     const Tick t = next_final_;
+    // A slot nobody holds (not taken yet, timed out, left) sends nothing:
+    // waiting the window for it would only delay every tick.
     bool all_known = true;
     for (uint32_t p = 0; p < peers_.size(); ++p) {
-      all_known = all_known && session_->queue(p).is_confirmed(t);
+      const Peer& peer = peers_[p];
+      const bool held = peer.joined && peer.connected && !peer.left;
+      all_known = all_known && (!held || session_->queue(p).is_confirmed(t));
     }
     if (!all_known && current - t < config_.window_ticks) break;
 

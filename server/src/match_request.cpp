@@ -77,6 +77,9 @@ Result<MatchRequest> parse_match_request(std::string_view query, const MatchConf
     } else if (key == "players") {
       if (!read_int(value, 1, 32, &number)) return bad(range);
       m.players = static_cast<uint32_t>(number);
+    } else if (key == "start_players") {
+      if (!read_int(value, 0, 32, &number)) return bad(range);
+      m.start_players = static_cast<uint32_t>(number);
     } else if (key == "spectators") {
       if (!read_int(value, 0, 63, &number)) return bad(range);
       m.max_spectators = static_cast<uint32_t>(number);

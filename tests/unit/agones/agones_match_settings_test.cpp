@@ -101,17 +101,18 @@ TEST(AgonesMatchSettings, BadValuesAreRefused) {
   expect_refused({{"rewind.dev/peer-timeout", "0"}},
                  "rewind.dev/peer-timeout: '0' is outside [0.1, 3600] s");
   expect_refused({{"rewind.dev/match-id", "two words"}},
-                 "rewind.dev/match-id: 'two words' must be visible ASCII");
-  expect_refused({{"rewind.dev/match-id", ""}}, "rewind.dev/match-id: '' must be 1-128 characters");
+                 "rewind.dev/match-id: 'two words' must be 1-64 characters of A-Z a-z 0-9 . _ -");
+  expect_refused({{"rewind.dev/match-id", ""}},
+                 "rewind.dev/match-id: '' must be 1-64 characters of A-Z a-z 0-9 . _ -");
   expect_refused({{"rewind.dev/match-id", "a\nb"}},
-                 "rewind.dev/match-id: 'a?b' must be visible ASCII");
+                 "rewind.dev/match-id: 'a?b' must be 1-64 characters of A-Z a-z 0-9 . _ -");
 }
 
 TEST(AgonesMatchSettings, UnknownSettingsAreRefused) {
   expect_refused({{"rewind.dev/player", "4"}},
                  "unknown setting rewind.dev/player (annotation); known under rewind.dev/: game, "
-                 "join-timeout, match-id, peer-timeout, players, seed, spectators, tick-rate, "
-                 "ticks, window");
+                 "join-timeout, match-id, peer-timeout, players, seed, spectators, start-players, "
+                 "tick-rate, ticks, window");
 }
 
 TEST(AgonesMatchSettings, TheWholeConfigurationIsValidated) {

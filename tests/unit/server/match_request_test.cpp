@@ -25,6 +25,10 @@ TEST(MatchRequest, ReadsEveryKeyOverTheDefaults) {
   EXPECT_DOUBLE_EQ(m.join_timeout_s, 12.5);
   EXPECT_DOUBLE_EQ(m.peer_timeout_s, 2.0);
   EXPECT_EQ(request->port, 7800);
+  auto late = parse_match_request("players=4&start_players=2", defaults);
+  ASSERT_TRUE(late.ok()) << late.status().message();
+  EXPECT_EQ(late->match.start_players, 2u);
+  EXPECT_TRUE(late->match.late_join());
 }
 
 TEST(MatchRequest, AnEmptyQueryIsTheDefaults) {
@@ -43,7 +47,7 @@ TEST(MatchRequest, RefusesWhatAFlagWouldRefuse) {
            "players=0", "players=33", "players=2x", "players=", "players", "tick_rate=0",
            "window=121", "ticks=-1", "port=65536", "join_timeout=0", "peer_timeout=nan",
            "game=chess", "id=has%20space", "id=a/b", "colour=red", "players=2&players=3",
-           "spectators=64&players=1", "id=" + std::string(65, 'x')}) {
+           "spectators=64&players=1", "players=2&start_players=3", "id=" + std::string(65, 'x')}) {
     auto request = parse_match_request(query, defaults);
     EXPECT_FALSE(request.ok()) << query;
     if (!request.ok()) {

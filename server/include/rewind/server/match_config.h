@@ -12,6 +12,11 @@ namespace rwd::server {
 struct MatchConfig {
   std::string game = "crates";  ///< a built-in game name
   uint32_t players = 2;         ///< slots; the match starts when all are joined
+  /// Start once this many players have joined instead of waiting for every
+  /// slot; the slots still free are taken later by late joiners, who catch
+  /// up from a snapshot (their inputs are substituted until then). 0: every
+  /// slot (no late join). [0, players].
+  uint32_t start_players = 0;
   /// Read-only seats: spectators get every final tick and verify its
   /// checksum but send no inputs; they may join at any time. players +
   /// max_spectators <= 64. On a secure server token slots from `players`
@@ -48,6 +53,10 @@ struct MatchConfig {
   /// report (a round trip after its final tick, or half a second later
   /// when a chunk was lost) can still be diffed against the server's state,
   /// and a resync has older final states to fall back to.
+  /// Players joining a running match into a slot nobody held are allowed.
+  bool late_join() const { return start_players != 0 && start_players < players; }
+  /// Joined players the lobby waits for.
+  uint32_t players_to_start() const { return start_players == 0 ? players : start_players; }
   int32_t snapshot_ticks() const { return window_ticks + 8 + static_cast<int32_t>(tick_rate_hz); }
   /// Checks ranges and that the game exists.
   Status validate() const;

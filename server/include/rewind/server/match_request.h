@@ -19,7 +19,7 @@ struct MatchRequest {
 };
 
 /// Reads `query` (the part of the target after '?', possibly empty): keys
-/// id, game, players, spectators, tick_rate, window, ticks, seed,
+/// id, game, players, start_players, spectators, tick_rate, window, ticks, seed,
 /// join_timeout, peer_timeout, port, as `key=value` pairs joined by '&',
 /// values of [A-Za-z0-9._-] only (no percent escapes). Starts from
 /// `defaults`; the result is validated (MatchConfig::validate). At most
