@@ -105,6 +105,7 @@ print_timings() {
 
 # --- cleanup: only what this run started or created ----------------------------
 dockerd_pid=""
+netns_was_mounted=0
 match_created=0
 cleanup() {
   local status=$?
@@ -119,6 +120,10 @@ cleanup() {
     if kill -0 "$dockerd_pid" 2>/dev/null; then
       echo "container_test: dockerd did not stop on SIGTERM; killing its process group" >&2
       kill -KILL -- "-$dockerd_pid" 2>/dev/null || true
+    fi
+    # dockerd bind-mounts the host's network namespace and leaves it behind.
+    if ((!netns_was_mounted)) && mountpoint -q /run/docker/netns/default; then
+      umount /run/docker/netns/default || true
     fi
   fi
   print_timings
@@ -172,6 +177,8 @@ if "$docker" info >/dev/null 2>&1; then
 else
   # vfs: no overlay mounts needed; no bridge, no iptables: the containers of
   # this test use the host's network.
+  netns_was_mounted=0
+  if mountpoint -q /run/docker/netns/default 2>/dev/null; then netns_was_mounted=1; fi
   setsid /usr/sbin/dockerd --storage-driver=vfs --iptables=false --ip6tables=false \
     --bridge=none --ip-masq=false >"$work/dockerd.log" 2>&1 &
   dockerd_pid=$!
