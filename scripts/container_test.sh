@@ -133,6 +133,7 @@ cleanup() {
 
 # --- preconditions -----------------------------------------------------------
 ((EUID == 0)) || fail "run as root: it installs packages and starts dockerd"
+# shellcheck disable=SC1091
 [[ -r /etc/os-release ]] && . /etc/os-release
 [[ ${ID:-} == debian && ${VERSION_ID:-} == 12 ]] \
   || fail "needs Debian 12 (its archive provides docker.io, docker-compose and debootstrap); this is ${PRETTY_NAME:-unknown}"
