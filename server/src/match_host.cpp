@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 
 #include "host_log.h"
@@ -34,7 +33,7 @@ double seconds_between(TimePoint a, TimePoint b) {
 }  // namespace
 
 Result<std::unique_ptr<MatchHost>> MatchHost::create(const MatchConfig& config, SendFn send,
-                                                     TimePoint now) {
+                                                     TimePoint now, MatchEnvironment env) {
   if (Status status = config.validate(); !status.ok()) return status;
   auto sim = game::Simulation::create(config.game, {config.players, config.seed});
   if (!sim.ok()) return sim.status();
@@ -52,9 +51,7 @@ Result<std::unique_ptr<MatchHost>> MatchHost::create(const MatchConfig& config, 
     recording.window_ticks = static_cast<uint32_t>(config.window_ticks);
     recording.keyframe_interval = static_cast<uint32_t>(config.keyframe_interval);
     recording.server_version = "rewind-server 0.1.0";
-    recording.started_unix_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
-                                    std::chrono::system_clock::now().time_since_epoch())
-                                    .count();
+    recording.started_unix_ms = env.unix_ms();
     const v1::ReplayHeader header =
         replay::make_replay_header(session->simulation().game(), recording);
     replay::ReplayWriterOptions options;
@@ -68,20 +65,18 @@ Result<std::unique_ptr<MatchHost>> MatchHost::create(const MatchConfig& config, 
     if (Status status = writer->append_keyframe(kNoTick, state); !status.ok()) return status;
   }
   if (!config.desync_dir.empty()) {
-    std::error_code error;
-    std::filesystem::create_directories(config.desync_dir, error);
-    if (error) {
-      return Status::Error(ErrorCode::kIo, "cannot create desync directory '" + config.desync_dir +
-                                               "': " + error.message());
+    if (Status status = env.create_directories(config.desync_dir); !status.ok()) {
+      return Status::Error(ErrorCode::kIo, "desync directory: " + status.message());
     }
   }
   return std::make_unique<MatchHost>(config, std::move(send), std::move(session), std::move(writer),
-                                     now);
+                                     now, std::move(env));
 }
 
 MatchHost::MatchHost(const MatchConfig& config, SendFn send,
                      std::unique_ptr<net::RollbackSession> session,
-                     std::optional<replay::ReplayWriter> replay, TimePoint now)
+                     std::optional<replay::ReplayWriter> replay, TimePoint now,
+                     MatchEnvironment env)
     : config_(config),
       send_(std::move(send)),
       session_(std::move(session)),
@@ -92,7 +87,8 @@ MatchHost::MatchHost(const MatchConfig& config, SendFn send,
       started_(now),
       tick_started_(now),
       ended_(now),
-      ids_(net::ConnectionIdGenerator::from_os_entropy()) {
+      ids_(net::ConnectionIdGenerator::from_os_entropy()),
+      forensics_(config.desync_dir, std::move(env)) {
   final_inputs_.resize(config.players);
   final_history_.assign(kFinalHistory, FinalRecord{});
 }

@@ -1,23 +1,18 @@
 // SPDX-License-Identifier: MIT
 // The match host's desync path: reassembling a client's desync report,
-// storing it with the bodies and fields that differ (forensics), and the
-// resync episode that follows: a snapshot checked to load here before it
+// handing it to DesyncForensics (the bodies and fields that differ, stored),
+// and the resync episode that follows: a snapshot checked to load here before it
 // goes out, resent in chunks until acknowledged, replaced when a client
 // refuses it.
 #include <algorithm>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 
 #include "host_log.h"
 #include "rewind/net/envelope_codec.h"
 #include "rewind/server/match_host.h"
-#include "rewind/sim/body_record.h"
 
 namespace rwd::server {
 namespace {
 
-using detail::hex64;
 using detail::log_line;
 using detail::log_warning;
 using detail::printable;
@@ -89,75 +84,26 @@ std::optional<uint64_t> MatchHost::final_checksum(Tick tick) const {
 
 void MatchHost::store_desync_report(uint32_t player, const DesyncAssembly& assembly,
                                     std::span<const uint8_t> dump) {
-  // The headline needs nothing but the report and our final-tick history,
-  // so it is written whatever fails below.
-  const std::optional<uint64_t> ours = final_checksum(assembly.tick);
-  const std::string headline = "player " + std::to_string(player) + " desync at tick " +
-                               std::to_string(assembly.tick) + ": client " +
-                               hex64(assembly.client_checksum) + " server " +
-                               hex64(ours.value_or(assembly.server_checksum)) +
-                               (ours ? "" : " (as the client received it; no longer held here)");
-  std::string text = headline + "\n";
-  // Why the report names no fields, when it cannot.
-  std::string problem;
-
-  // Name the bodies that differ: the client's state after the tick against
-  // ours, when the ring still holds it.
-  auto client_sim = session_->load_snapshot(dump);
-  std::vector<uint8_t> server_state;
-  if (!client_sim.ok()) {
-    ++stats_.desync_dumps_unreadable;
-    problem = "client dump unreadable: " + client_sim.status().message();
-  } else {
-    if ((*client_sim)->checksum() != assembly.client_checksum) {
-      text += "the client dump does not reproduce the client's checksum (" +
-              hex64((*client_sim)->checksum()) + ")\n";
-    }
-    if (!session_->serialize_state_at(assembly.tick + 1, server_state)) {
-      problem = "server state for tick " + std::to_string(assembly.tick) + " is no longer held";
-    } else if (auto server_sim = session_->load_snapshot(server_state); !server_sim.ok()) {
-      problem = "server state unreadable: " + server_sim.status().message();
-    } else {
-      std::vector<sim::BodyRecord> expected, actual;
-      (*server_sim)->dump_bodies(expected);
-      (*client_sim)->dump_bodies(actual);
-      const auto differences = sim::diff_body_records(expected, actual);
-      text += std::to_string(differences.size()) +
-              " differing fields (server = expected, client = actual):\n";
-      char line[160];
-      for (const sim::FieldDifference& d : differences) {
-        std::snprintf(line, sizeof(line), "  body %u %s: expected %.9g actual %.9g\n", d.body_index,
-                      d.field.c_str(), d.expected, d.actual);
-        text += line;
-      }
-    }
+  DesyncReportInfo report;
+  report.player = player;
+  report.report_id = assembly.report_id;
+  report.tick = assembly.tick;
+  report.client_checksum = assembly.client_checksum;
+  report.server_checksum_received = assembly.server_checksum;
+  report.server_checksum = final_checksum(assembly.tick);
+  const DesyncFindings found = forensics_.examine(report, dump, *session_);
+  if (found.dump_unreadable) ++stats_.desync_dumps_unreadable;
+  if (found.write_failed) {
+    ++stats_.desync_report_write_failures;
+    log_warning("cannot write desync report " + config_.desync_dir + "/desync_p" +
+                std::to_string(player) + "_t" + std::to_string(assembly.tick) + "_r" +
+                std::to_string(assembly.report_id) + ".{txt,bin}");
   }
-  if (!problem.empty()) text += problem + "\n";
-
-  std::string stored;
-  if (!config_.desync_dir.empty()) {
-    const std::string base = config_.desync_dir + "/desync_p" + std::to_string(player) + "_t" +
-                             std::to_string(assembly.tick) + "_r" +
-                             std::to_string(assembly.report_id);
-    // The raw dump first: it is the evidence when nothing else could be read.
-    std::ofstream raw(base + ".bin", std::ios::binary);
-    raw.write(reinterpret_cast<const char*>(dump.data()),
-              static_cast<std::streamsize>(dump.size()));
-    raw.close();
-    std::ofstream report(base + ".txt");
-    report << text;
-    report.close();
-    if (!raw || !report) {
-      ++stats_.desync_report_write_failures;
-      log_warning("cannot write desync report " + base + ".{txt,bin}");
-    } else {
-      stored = " (" + base + ".txt)";
-    }
-  }
-  if (problem.empty()) {
-    log_line(headline + stored);
+  const std::string stored = found.stored_as.empty() ? "" : " (" + found.stored_as + ")";
+  if (found.problem.empty()) {
+    log_line(found.headline + stored);
   } else {
-    log_warning(headline + "; " + problem + stored);
+    log_warning(found.headline + "; " + found.problem + stored);
   }
 }
 

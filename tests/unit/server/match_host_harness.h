@@ -50,11 +50,11 @@ inline game::PlayerInput scripted(uint32_t player, Tick tick) {
 
 class HostHarness {
  public:
-  explicit HostHarness(MatchConfig config) {
+  explicit HostHarness(MatchConfig config, MatchEnvironment env = MatchEnvironment::os()) {
     now_ = net::SteadyClock::now();
     auto host = MatchHost::create(
         config, [this](const Endpoint& to, std::span<const uint8_t> b) { outbox_.deliver(to, b); },
-        now_);
+        now_, std::move(env));
     EXPECT_TRUE(host.ok()) << host.status().message();
     host_ = std::move(*host);
   }

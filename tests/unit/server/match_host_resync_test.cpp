@@ -297,5 +297,58 @@ TEST(MatchHost, DesyncReportThatCannotBeWrittenIsCounted) {
   EXPECT_EQ(stats.resyncs_sent, 1u);
 }
 
+TEST(MatchHost, DesyncReportsGoToTheFilesOfItsEnvironment) {
+  // A disk that exists only in this test: the host must create and write
+  // nothing but through it.
+  std::map<std::string, std::string> files;
+  std::vector<std::string> directories;
+  MatchEnvironment env;
+  env.unix_ms = [] { return int64_t{1'700'000'000'000}; };
+  env.create_directories = [&](const std::string& path) {
+    directories.push_back(path);
+    return Status::Ok();
+  };
+  env.write_file = [&](const std::string& path, std::span<const uint8_t> bytes) {
+    files[path] = std::string(bytes.begin(), bytes.end());
+    return Status::Ok();
+  };
+  MatchConfig config = test_config();
+  config.desync_dir = "/nonexistent/rewind-test-reports";
+  HostHarness h(config, env);
+  ASSERT_EQ(directories, std::vector<std::string>{config.desync_dir});
+  FakeClient a = h.join(4001);
+  FakeClient b = h.join(4002);
+  h.play_on_time(a, b, 20);
+  v1::Envelope report;
+  v1::DesyncReport* r = report.mutable_desync_report();
+  r->set_tick(3);
+  r->set_report_id(5);
+  r->set_chunk_index(0);
+  r->set_chunk_count(1);
+  r->set_total_size(4);
+  r->set_chunk("dump");
+  h.send(a, report);
+  EXPECT_FALSE(std::filesystem::exists(config.desync_dir));
+  const std::string base = config.desync_dir + "/desync_p" + std::to_string(a.player) + "_t3_r5";
+  ASSERT_EQ(files.count(base + ".bin"), 1u);
+  EXPECT_EQ(files[base + ".bin"], "dump");
+  ASSERT_EQ(files.count(base + ".txt"), 1u);
+  EXPECT_NE(files[base + ".txt"].find("desync at tick 3"), std::string::npos);
+  EXPECT_EQ(h.host().stats().desync_report_write_failures, 0u);
+
+  // The same disk refusing: counted, and the match goes on.
+  env.write_file = [](const std::string&, std::span<const uint8_t>) {
+    return Status::Error(ErrorCode::kIo, "disk full");
+  };
+  HostHarness failing(config, env);
+  FakeClient c = failing.join(4003);
+  FakeClient d = failing.join(4004);
+  failing.play_on_time(c, d, 20);
+  r->set_report_id(6);
+  failing.send(c, report);
+  EXPECT_EQ(failing.host().stats().desync_report_write_failures, 1u);
+  EXPECT_EQ(failing.host().stats().resyncs_sent, 1u);
+}
+
 }  // namespace
 }  // namespace rwd::server

@@ -3,8 +3,10 @@
 // One hosted match: lobby, tick loop body, input intake and relay,
 // finalization with substitution, final-tick broadcast, desync reports,
 // resync snapshots and the replay file. It never touches a socket or a
-// clock: the server shell hands it datagrams and the time, and it sends
-// through a callback. That keeps every rule here testable on its own.
+// clock: the server shell hands it datagrams and the steady time, it sends
+// through a callback, and the wall clock and files it needs (a replay's
+// date, desync reports) come through a MatchEnvironment. That keeps every
+// rule here testable on its own.
 #include <asio/ip/udp.hpp>
 #include <chrono>
 #include <cstdint>
@@ -21,8 +23,10 @@
 #include "rewind/net/connection_id.h"
 #include "rewind/net/rollback_session.h"
 #include "rewind/replay/replay_writer.h"
+#include "rewind/server/desync_forensics.h"
 #include "rewind/server/final_tick_log.h"
 #include "rewind/server/match_config.h"
+#include "rewind/server/match_environment.h"
 #include "rewind/server/match_stats.h"
 #include "rewind/server/secure_gateway.h"
 #include "rewind/v1/envelope.pb.h"
@@ -42,7 +46,8 @@ class MatchHost {
 
   /// Validates the config, builds the simulation and opens the replay file.
   static Result<std::unique_ptr<MatchHost>> create(const MatchConfig& config, SendFn send,
-                                                   TimePoint now);
+                                                   TimePoint now,
+                                                   MatchEnvironment env = MatchEnvironment::os());
 
   /// Handles one received datagram. Anything malformed, spoofed or not
   /// allowed is counted and dropped; nothing a client sends can stop the
@@ -79,7 +84,7 @@ class MatchHost {
   void set_resync_snapshot_hook(SnapshotHook hook) { snapshot_hook_ = std::move(hook); }
 
   MatchHost(const MatchConfig& config, SendFn send, std::unique_ptr<net::RollbackSession> session,
-            std::optional<replay::ReplayWriter> replay, TimePoint now);
+            std::optional<replay::ReplayWriter> replay, TimePoint now, MatchEnvironment env);
 
  private:
   struct DesyncAssembly {
@@ -196,6 +201,7 @@ class MatchHost {
   std::vector<game::PlayerInput> final_inputs_;
   bool replay_failed_ = false;
   SnapshotHook snapshot_hook_;
+  DesyncForensics forensics_;
 };
 
 }  // namespace rwd::server
