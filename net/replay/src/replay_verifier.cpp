@@ -30,11 +30,11 @@ std::vector<game::PlayerInput> inputs_of(const v1::ReplayTick& tick) {
 
 void set_differences(VerifyReport& report, const Simulation& recorded, const Simulation& resim,
                      Tick tick, const VerifyOptions& options) {
-  std::vector<sim::BodyRecord> expected;
-  std::vector<sim::BodyRecord> actual;
+  std::vector<sim::BodyField> expected;
+  std::vector<sim::BodyField> actual;
   recorded.dump_bodies(expected);
   resim.dump_bodies(actual);
-  std::vector<sim::FieldDifference> diff = sim::diff_body_records(expected, actual);
+  std::vector<sim::FieldDifference> diff = sim::diff_body_fields(expected, actual);
   report.differences_tick = tick;
   report.differences_total = diff.size();
   if (diff.size() > options.max_differences) diff.resize(options.max_differences);

@@ -575,4 +575,11 @@ void World3D::dump_bodies(std::vector<BodyRecord>& out) const {
   }
 }
 
+void World3D::dump_fields(std::vector<BodyField>& out) const {
+  std::vector<BodyRecord> records;
+  dump_bodies(records);
+  out.clear();
+  for (const BodyRecord& r : records) append_body_fields(r, out);
+}
+
 }  // namespace rwd::sim

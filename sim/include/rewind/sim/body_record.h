@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <cstdint>
-#include <string>
 #include <vector>
 
 #include "rewind/sim/body.h"
+#include "rewind/sim/body_field.h"
 
 namespace rwd::sim {
 
@@ -22,17 +22,11 @@ struct BodyRecord {
   bool enabled = true;  ///< false once disabled (left the world bounds)
 };
 
-/// One differing field between two dumps, e.g. body 7 "position.y".
-struct FieldDifference {
-  uint32_t body_index = 0;
-  std::string field;
-  double expected = 0.0;
-  double actual = 0.0;
-};
-
-/// Compares two dumps (bit-exact) and lists every field that differs,
-/// including bodies present in one and not the other (field "exists").
-std::vector<FieldDifference> diff_body_records(const std::vector<BodyRecord>& expected,
-                                               const std::vector<BodyRecord>& actual);
+/// Appends `record` to a lane-neutral dump, one BodyField per field in this
+/// order: generation, kind, user_data, position.{x,y,z},
+/// rotation.{x,y,z,w}, linear_velocity.{x,y,z}, angular_velocity.{x,y,z},
+/// awake, enabled. Floats keep their exact bits; kind, awake and enabled
+/// are unsigned integers.
+void append_body_fields(const BodyRecord& record, std::vector<BodyField>& out);
 
 }  // namespace rwd::sim

@@ -238,6 +238,9 @@ class World3D {
   void dump_state(std::string& out) const;
   /// Readable dump of every live body in index order.
   void dump_bodies(std::vector<BodyRecord>& out) const;
+  /// The same dump as lane-neutral fields (see append_body_fields());
+  /// `out` is cleared first.
+  void dump_fields(std::vector<BodyField>& out) const;
 
   /// Portable byte encoding of the full state (little-endian, field by field),
   /// for resync snapshots sent over the network.

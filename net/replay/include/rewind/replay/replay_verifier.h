@@ -15,7 +15,7 @@
 
 #include "rewind/replay/engine_identity.h"
 #include "rewind/replay/replay_reader.h"
-#include "rewind/sim/body_record.h"
+#include "rewind/sim/body_field.h"
 #include "rewind/sim/tick.h"
 #include "rewind/v1/replay.pb.h"
 

@@ -66,8 +66,9 @@ class Simulation {
   uint64_t checksum() const;
   /// checksum() of a saved snapshot of this match, without restoring it.
   uint64_t checksum_of(const SimSnapshot& snapshot) const;
-  /// Readable body dump, for desync reports and replay diffs.
-  void dump_bodies(std::vector<sim::BodyRecord>& out) const { world_.dump_bodies(out); }
+  /// Lane-neutral body dump (every live body's fields in index order), for
+  /// desync reports and replay diffs; `out` is cleared first.
+  void dump_bodies(std::vector<sim::BodyField>& out) const { world_.dump_fields(out); }
 
   /// Portable encoding of the whole simulation (resync snapshots).
   void serialize(std::vector<uint8_t>& out) const;
