@@ -14,6 +14,7 @@
 
 #include "fuzz_entries.h"
 #include "rewind/game/simulation.h"
+#include "rewind/sim/world3d.h"
 
 namespace {
 

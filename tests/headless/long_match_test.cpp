@@ -25,6 +25,7 @@
 #include "headless_match.h"
 #include "rewind/game/crates_game.h"
 #include "rewind/game/simulation.h"
+#include "rewind/game/world_lane.h"
 #include "rewind/proto/input_wire.h"
 #include "rewind/replay/replay_reader.h"
 #include "rewind/replay/replay_verifier.h"
@@ -55,9 +56,9 @@ struct ArenaCheck {
 };
 
 bool outside_arena(const game::Simulation& sim, sim::BodyId pusher) {
-  const sim::Vec3 pos = sim.world().position(pusher);
-  return !sim.world().is_enabled(pusher) || pos.y < -1.0f || std::abs(pos.x) > 11.0f ||
-         std::abs(pos.z) > 11.0f;
+  const sim::Vec3 pos = rwd::game::world_of<rwd::sim::World3D>(sim.lane())->position(pusher);
+  return !rwd::game::world_of<rwd::sim::World3D>(sim.lane())->is_enabled(pusher) || pos.y < -1.0f ||
+         std::abs(pos.x) > 11.0f || std::abs(pos.z) > 11.0f;
 }
 
 game::CratesState crates_state(const game::Simulation& sim) {
@@ -88,7 +89,8 @@ void check_keyframe(const game::Simulation& sim, ArenaCheck& out) {
   out.most_outside = std::max(out.most_outside, outside);
   std::map<int, uint32_t> corners;
   for (uint32_t p = 0; p < state.player_count; ++p) {
-    const sim::Vec3 pos = sim.world().position(state.pushers[p]);
+    const sim::Vec3 pos =
+        rwd::game::world_of<rwd::sim::World3D>(sim.lane())->position(state.pushers[p]);
     if (!outside_arena(sim, state.pushers[p]) && std::abs(pos.x) > 7.0f && std::abs(pos.z) > 7.0f) {
       ++corners[(pos.x > 0 ? 1 : 0) + (pos.z > 0 ? 2 : 0)];
     }
@@ -269,8 +271,8 @@ TEST(LongMatch, SixteenPlayersAggressivePlayLateDesyncResyncsAndReplayVerifies) 
         if (count_outside(**step, &player) > 0) {
           arena.first_escape_tick = t;
           arena.first_escape_player = player;
-          arena.first_escape_position =
-              (*step)->world().position(crates_state(**step).pushers[player]);
+          arena.first_escape_position = rwd::game::world_of<rwd::sim::World3D>((**step).lane())
+                                            ->position(crates_state(**step).pushers[player]);
           break;
         }
       }

@@ -7,6 +7,10 @@
 #include <limits>
 #include <sstream>
 
+#include "rewind/game/game_on.h"
+#include "rewind/game/world_lane.h"
+#include "rewind/sim/world3d.h"
+
 namespace rwd::tune {
 namespace {
 
@@ -52,10 +56,13 @@ std::string script_name(tools::BotScript script) {
 void transplant(const game::SimSnapshot& reference, const sim::WorldConfig& config,
                 game::SimSnapshot& out) {
   out = reference;
+  // The reference is a crates-like game on the 3D lane (create() refused
+  // others), so its snapshots hold a WorldState.
+  sim::WorldState& world = *game::state_of<sim::World3D>(*out.world);
   const float scale =
-      static_cast<float>(reference.world.config.substeps) / static_cast<float>(config.substeps);
-  out.world.config = config;
-  for (sim::ContactRecord& record : out.world.contacts) {
+      static_cast<float>(world.config.substeps) / static_cast<float>(config.substeps);
+  world.config = config;
+  for (sim::ContactRecord& record : world.contacts) {
     for (sim::CachedContactPoint& point : record.points) {
       point.normal_impulse *= scale;
       point.tangent_impulse1 *= scale;
@@ -76,6 +83,8 @@ Result<std::unique_ptr<GameTarget>> GameTarget::create(const GamePlay& play,
       known += (known.empty() ? "" : ", ") + std::string(n);
     return bad("unknown game '" + play.game + "' (games: " + known + ")");
   }
+  const auto* game3d = dynamic_cast<const game::GameOn<sim::World3D>*>(game.get());
+  if (game3d == nullptr) return bad("game '" + play.game + "' does not run the 3D lane");
   if (play.players < 1 || play.players > game::kMaxPlayers) {
     return bad("players must be in [1, " + std::to_string(game::kMaxPlayers) + "]");
   }
@@ -88,7 +97,7 @@ Result<std::unique_ptr<GameTarget>> GameTarget::create(const GamePlay& play,
   if (!(play.diverge_m > 0.0) || !std::isfinite(play.diverge_m)) {
     return bad("the divergence distance must be a positive number of metres");
   }
-  std::unique_ptr<GameTarget> target(new GameTarget(play, game->world_config()));
+  std::unique_ptr<GameTarget> target(new GameTarget(play, game3d->world_config()));
   if (Status status = target->play_reference(progress); !status.ok()) return status;
   return target;
 }
@@ -128,9 +137,10 @@ Status GameTarget::play_reference(std::ostream* progress) {
     progress->flush();
   }
   std::vector<sim::BodyId> ids;
-  (*sim)->world().body_ids(ids);
+  rwd::game::world_of<rwd::sim::World3D>((**sim).lane())->body_ids(ids);
   for (sim::BodyId id : ids) {
-    if ((*sim)->world().kind(id) == sim::BodyKind::kDynamic) bodies_.push_back(id);
+    if (rwd::game::world_of<rwd::sim::World3D>((**sim).lane())->kind(id) == sim::BodyKind::kDynamic)
+      bodies_.push_back(id);
   }
   const size_t n = bodies_.size();
   reference_position_.resize(static_cast<size_t>(play_.ticks) * n);
@@ -142,8 +152,10 @@ Status GameTarget::play_reference(std::ostream* progress) {
     }
     (*sim)->step(inputs_[t]);
     for (size_t b = 0; b < n; ++b) {
-      reference_position_[t * n + b] = (*sim)->world().position(bodies_[b]);
-      reference_velocity_[t * n + b] = (*sim)->world().linear_velocity(bodies_[b]);
+      reference_position_[t * n + b] =
+          rwd::game::world_of<rwd::sim::World3D>((**sim).lane())->position(bodies_[b]);
+      reference_velocity_[t * n + b] =
+          rwd::game::world_of<rwd::sim::World3D>((**sim).lane())->linear_velocity(bodies_[b]);
     }
   }
   return Status::Ok();
@@ -156,9 +168,11 @@ void GameTarget::compare(const game::Simulation& sim, Tick tick, double& positio
   velocity_mps = 0.0;
   for (size_t b = 0; b < n; ++b) {
     const double dp =
-        magnitude(sim.world().position(bodies_[b]) - reference_position_[tick * n + b]);
+        magnitude(rwd::game::world_of<rwd::sim::World3D>(sim.lane())->position(bodies_[b]) -
+                  reference_position_[tick * n + b]);
     const double dv =
-        magnitude(sim.world().linear_velocity(bodies_[b]) - reference_velocity_[tick * n + b]);
+        magnitude(rwd::game::world_of<rwd::sim::World3D>(sim.lane())->linear_velocity(bodies_[b]) -
+                  reference_velocity_[tick * n + b]);
     // NaN never compares greater: count it as infinitely far.
     position_m = std::isnan(dp) ? kInfinity : std::max(position_m, dp);
     velocity_mps = std::isnan(dv) ? kInfinity : std::max(velocity_mps, dv);
@@ -185,7 +199,8 @@ Measurement GameTarget::measure(const SolverSetting& setting) {
   double end_sum_m = 0.0;
   size_t end_samples = 0;
   game::SimSnapshot start;
-  const sim::WorldConfig world_config = (*windowed)->world().config();
+  const sim::WorldConfig world_config =
+      rwd::game::world_of<rwd::sim::World3D>((**windowed).lane())->config();
   for (size_t w = 0; w < window_starts_.size(); ++w) {
     transplant(window_starts_[w], world_config, start);
     (*windowed)->restore(start);

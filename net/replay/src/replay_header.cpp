@@ -5,7 +5,6 @@
 
 #include "rewind/replay/replay_format.h"
 #include "rewind/sim/version.h"
-#include "rewind/sim/world3d.h"
 
 namespace rwd::replay {
 
@@ -25,7 +24,7 @@ v1::ReplayHeader make_replay_header(const game::Game& game, const RecordingSetup
   header.set_sim_revision(sim::kSimRevision);
   header.set_rules_version(game.rules_version());
   std::vector<uint8_t> config;
-  sim::World3D::encode_config(game.world_config(), config);
+  game.encode_world_config(config);
   header.set_world_config(config.data(), config.size());
   return header;
 }

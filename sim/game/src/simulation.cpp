@@ -4,6 +4,10 @@
 #include <cstring>
 #include <string>
 
+#include "rewind/game/game_on.h"
+#include "rewind/game/world_lane.h"
+#include "rewind/sim/world3d.h"
+
 namespace rwd::game {
 namespace {
 
@@ -54,40 +58,56 @@ Result<std::unique_ptr<Simulation>> Simulation::create(std::string_view game_nam
                                                        const sim::WorldConfig& world_config) {
   Result<std::unique_ptr<Game>> game = make_game(game_name, setup);
   if (!game.ok()) return game.status();
+  if (dynamic_cast<const GameOn<sim::World3D>*>(game->get()) == nullptr) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "game '" + std::string(game_name) + "' does not run the 3D lane");
+  }
   if (Status status = sim::World3D::validate_config(world_config); !status.ok()) {
     return Status::Error(ErrorCode::kInvalidArgument, "world config: " + status.message());
   }
-  return std::make_unique<Simulation>(std::move(*game), setup, world_config);
+  return std::make_unique<Simulation>(std::move(*game), setup,
+                                      std::make_unique<WorldLane<sim::World3D>>(world_config));
+}
+
+SimSnapshot::SimSnapshot(const SimSnapshot& other)
+    : world(other.world ? other.world->clone() : nullptr),
+      game_state(other.game_state),
+      tick(other.tick) {}
+
+SimSnapshot& SimSnapshot::operator=(const SimSnapshot& other) {
+  if (this != &other) *this = SimSnapshot(other);
+  return *this;
 }
 
 Simulation::Simulation(std::unique_ptr<Game> game, const MatchSetup& setup)
-    : game_(std::move(game)), setup_(setup), world_(game_->world_config()) {
+    : game_(std::move(game)), setup_(setup), lane_(game_->make_lane()) {
   game_state_.assign(game_->state_size(), std::byte{0});
-  game_->build(setup_, world_, game_state_);
+  game_->build(setup_, *lane_, game_state_);
 }
 
 Simulation::Simulation(std::unique_ptr<Game> game, const MatchSetup& setup,
-                       const sim::WorldConfig& world_config)
-    : game_(std::move(game)), setup_(setup), world_(world_config) {
+                       std::unique_ptr<Lane> lane)
+    : game_(std::move(game)), setup_(setup), lane_(std::move(lane)) {
   game_state_.assign(game_->state_size(), std::byte{0});
-  game_->build(setup_, world_, game_state_);
+  game_->build(setup_, *lane_, game_state_);
 }
 
 void Simulation::step(std::span<const PlayerInput> inputs) {
-  game_->apply_inputs(tick_, inputs, world_, game_state_);
-  world_.step();
-  game_->after_step(tick_, world_, game_state_);
+  game_->apply_inputs(tick_, inputs, *lane_, game_state_);
+  lane_->step();
+  game_->after_step(tick_, *lane_, game_state_);
   ++tick_;
 }
 
 void Simulation::save(SimSnapshot& out) const {
-  world_.save(out.world);
+  if (!out.world) out.world = lane_->make_snapshot();
+  lane_->save(*out.world);
   out.game_state = game_state_;
   out.tick = tick_;
 }
 
 void Simulation::restore(const SimSnapshot& in) {
-  world_.restore(in.world);
+  lane_->restore(*in.world);
   game_state_ = in.game_state;
   tick_ = in.tick;
 }
@@ -95,7 +115,7 @@ void Simulation::restore(const SimSnapshot& in) {
 uint64_t Simulation::checksum() const {
   sim::StateHasher hasher;
   hasher.add_i32(tick_);
-  world_.hash(hasher);
+  lane_->hash(hasher);
   game_->hash_state(game_state_, hasher);
   return hasher.digest();
 }
@@ -103,14 +123,14 @@ uint64_t Simulation::checksum() const {
 uint64_t Simulation::checksum_of(const SimSnapshot& snapshot) const {
   sim::StateHasher hasher;
   hasher.add_i32(snapshot.tick);
-  sim::World3D::hash_state(snapshot.world, hasher);
+  lane_->hash_snapshot(*snapshot.world, hasher);
   game_->hash_state(snapshot.game_state, hasher);
   return hasher.digest();
 }
 
 void Simulation::serialize(std::vector<uint8_t>& out) const {
   std::vector<uint8_t> world_bytes;
-  world_.serialize(world_bytes);
+  lane_->serialize(world_bytes);
   out.clear();
   out.reserve(sizeof(kMagic) + 1 + 12 + game_state_.size() + world_bytes.size());
   for (uint8_t b : kMagic) out.push_back(b);
@@ -159,7 +179,7 @@ Status Simulation::deserialize(std::span<const uint8_t> bytes) {
   }
   // The world validates its own section and stays untouched on error, so
   // nothing here changes until it has accepted the bytes.
-  Status status = world_.deserialize(bytes.subspan(offset, world_size));
+  Status status = lane_->deserialize(bytes.subspan(offset, world_size));
   if (!status.ok()) return status;
   std::memcpy(game_state_.data(), game_bytes.data(), game_size);
   tick_ = tick;

@@ -8,6 +8,7 @@
 
 #include "rewind/game/crates_game.h"
 #include "rewind/game/simulation.h"
+#include "rewind/game/world_lane.h"
 
 namespace rwd::game {
 namespace {
@@ -31,9 +32,11 @@ void expect_all_in_play(const Simulation& sim, Tick tick) {
   const CratesState s = state_of(sim);
   for (uint32_t p = 0; p < s.player_count; ++p) {
     const sim::BodyId id = s.pushers[p];
-    ASSERT_TRUE(sim.world().is_valid(id)) << "player " << p << " tick " << tick;
-    ASSERT_TRUE(sim.world().is_enabled(id)) << "player " << p << " tick " << tick;
-    const sim::Vec3 pos = sim.world().position(id);
+    ASSERT_TRUE(world_of<sim::World3D>(sim.lane())->is_valid(id))
+        << "player " << p << " tick " << tick;
+    ASSERT_TRUE(world_of<sim::World3D>(sim.lane())->is_enabled(id))
+        << "player " << p << " tick " << tick;
+    const sim::Vec3 pos = world_of<sim::World3D>(sim.lane())->position(id);
     ASSERT_GT(pos.y, -10.0f) << "player " << p << " tick " << tick;
   }
 }
@@ -62,16 +65,17 @@ TEST(CratesGame, EscapedPusherRespawnsAtItsSpawnPoint) {
   auto sim = make_match(4);
   const CratesState before = state_of(*sim);
   const sim::BodyId pusher = before.pushers[2];
-  const sim::Vec3 spawn = sim->world().position(pusher);
+  const sim::Vec3 spawn = world_of<sim::World3D>((*sim).lane())->position(pusher);
   // Put it outside the arena, beside the floor: it falls past the kill plane.
-  ASSERT_TRUE(sim->world().set_transform(pusher, {15.0f, 2.0f, 15.0f}, {}).ok());
+  ASSERT_TRUE(
+      world_of<sim::World3D>((*sim).lane())->set_transform(pusher, {15.0f, 2.0f, 15.0f}, {}).ok());
   std::vector<PlayerInput> inputs(4);
   for (int t = 0; t < 240 && state_of(*sim).falls[2] == 0; ++t) sim->step(inputs);
   const CratesState after = state_of(*sim);
   EXPECT_EQ(after.falls[2], 1u);
-  EXPECT_TRUE(sim->world().is_enabled(pusher));
-  EXPECT_NEAR(sim->world().position(pusher).x, spawn.x, 0.2f);
-  EXPECT_NEAR(sim->world().position(pusher).z, spawn.z, 0.2f);
+  EXPECT_TRUE(world_of<sim::World3D>((*sim).lane())->is_enabled(pusher));
+  EXPECT_NEAR(world_of<sim::World3D>((*sim).lane())->position(pusher).x, spawn.x, 0.2f);
+  EXPECT_NEAR(world_of<sim::World3D>((*sim).lane())->position(pusher).z, spawn.z, 0.2f);
 }
 
 TEST(CratesGame, PusherFlungOutOfTheWorldComesBack) {
@@ -80,13 +84,16 @@ TEST(CratesGame, PusherFlungOutOfTheWorldComesBack) {
   // Above the roof, then straight up at the API's speed limit: the engine
   // disables it on the world's upper bound, the game respawns it the same
   // tick.
-  ASSERT_TRUE(sim->world().set_transform(pusher, {0.0f, 20.0f, 0.0f}, {}).ok());
-  ASSERT_TRUE(sim->world().set_linear_velocity(pusher, {0.0f, 9999.0f, 0.0f}).ok());
+  ASSERT_TRUE(
+      world_of<sim::World3D>((*sim).lane())->set_transform(pusher, {0.0f, 20.0f, 0.0f}, {}).ok());
+  ASSERT_TRUE(world_of<sim::World3D>((*sim).lane())
+                  ->set_linear_velocity(pusher, {0.0f, 9999.0f, 0.0f})
+                  .ok());
   std::vector<PlayerInput> inputs(2);
   for (int t = 0; t < 120 && state_of(*sim).falls[0] == 0; ++t) sim->step(inputs);
   EXPECT_EQ(state_of(*sim).falls[0], 1u);
-  EXPECT_TRUE(sim->world().is_enabled(pusher));
-  EXPECT_LT(sim->world().position(pusher).y, 2.0f);
+  EXPECT_TRUE(world_of<sim::World3D>((*sim).lane())->is_enabled(pusher));
+  EXPECT_LT(world_of<sim::World3D>((*sim).lane())->position(pusher).y, 2.0f);
 }
 
 TEST(CratesGame, AggressiveMatchStaysInPlayAndLoadable) {

@@ -7,6 +7,7 @@
 
 #include "rewind/game/crates_game.h"
 #include "rewind/game/simulation.h"
+#include "rewind/game/world_lane.h"
 
 namespace rwd::game {
 namespace {
@@ -20,8 +21,9 @@ std::vector<PlayerInput> forward(uint32_t players) {
 TEST(SimulationConfig, TheGamesOwnConfigByDefault) {
   auto sim = Simulation::create("crates", {2, 1});
   ASSERT_TRUE(sim.ok()) << sim.status().message();
-  EXPECT_EQ((*sim)->world().config().substeps, CratesGame().world_config().substeps);
-  EXPECT_EQ((*sim)->world().config().relax_iterations,
+  EXPECT_EQ(world_of<sim::World3D>((**sim).lane())->config().substeps,
+            CratesGame().world_config().substeps);
+  EXPECT_EQ(world_of<sim::World3D>((**sim).lane())->config().relax_iterations,
             CratesGame().world_config().relax_iterations);
 }
 
@@ -33,10 +35,11 @@ TEST(SimulationConfig, AnOverrideRunsTheSameGameOnThatWorld) {
   auto usual = Simulation::create("crates", {2, 1});
   ASSERT_TRUE(tuned.ok()) << tuned.status().message();
   ASSERT_TRUE(usual.ok());
-  EXPECT_EQ((*tuned)->world().config().substeps, 16);
-  EXPECT_EQ((*tuned)->world().config().relax_iterations, 4);
+  EXPECT_EQ(world_of<sim::World3D>((**tuned).lane())->config().substeps, 16);
+  EXPECT_EQ(world_of<sim::World3D>((**tuned).lane())->config().relax_iterations, 4);
   // The same bodies, built by the same rules.
-  EXPECT_EQ((*tuned)->world().body_count(), (*usual)->world().body_count());
+  EXPECT_EQ(world_of<sim::World3D>((**tuned).lane())->body_count(),
+            world_of<sim::World3D>((**usual).lane())->body_count());
   EXPECT_EQ((*tuned)->game_state().size(), (*usual)->game_state().size());
   // Another world: its checksum (which covers the config) differs from the
   // first tick on.

@@ -2,6 +2,7 @@
 // MatchHost driven without sockets: scripted clients build envelopes by
 // hand, and the clock is whatever the test says.
 #include "match_host_harness.h"
+#include "rewind/game/crates_game.h"
 #include "rewind/proto/message_inputs.h"
 
 namespace rwd::server {
@@ -282,7 +283,7 @@ TEST(MatchHost, ReplayHeaderNamesThisBuildAndAStoppedMatchVerifiesAsIncomplete) 
   EXPECT_EQ(header.sim_revision(), sim::kSimRevision);
   EXPECT_EQ(header.rules_version(), game::make_builtin_game("crates")->rules_version());
   std::vector<uint8_t> config_bytes;
-  sim::World3D::encode_config(game::make_builtin_game("crates")->world_config(), config_bytes);
+  sim::World3D::encode_config(game::CratesGame().world_config(), config_bytes);
   EXPECT_EQ(header.world_config(), std::string(config_bytes.begin(), config_bytes.end()));
   EXPECT_TRUE(replay::check_versions(header).matches());
 

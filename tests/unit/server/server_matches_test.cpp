@@ -29,18 +29,21 @@ class FaultyCrates final : public game::Game {
  public:
   std::string_view name() const override { return "faulty-crates"; }
   uint32_t rules_version() const override { return crates_.rules_version(); }
-  sim::WorldConfig world_config() const override { return crates_.world_config(); }
+  std::unique_ptr<game::Lane> make_lane() const override { return crates_.make_lane(); }
+  void encode_world_config(std::vector<uint8_t>& out) const override {
+    crates_.encode_world_config(out);
+  }
   size_t state_size() const override { return crates_.state_size(); }
-  void build(const game::MatchSetup& setup, sim::World3D& world,
+  void build(const game::MatchSetup& setup, game::Lane& lane,
              std::span<std::byte> state) const override {
-    crates_.build(setup, world, state);
+    crates_.build(setup, lane, state);
   }
-  void apply_inputs(Tick tick, std::span<const game::PlayerInput> inputs, sim::World3D& world,
+  void apply_inputs(Tick tick, std::span<const game::PlayerInput> inputs, game::Lane& lane,
                     std::span<std::byte> state) const override {
-    crates_.apply_inputs(tick, inputs, world, state);
+    crates_.apply_inputs(tick, inputs, lane, state);
   }
-  void after_step(Tick tick, sim::World3D& world, std::span<std::byte> state) const override {
-    crates_.after_step(tick, world, state);
+  void after_step(Tick tick, game::Lane& lane, std::span<std::byte> state) const override {
+    crates_.after_step(tick, lane, state);
     if (!t_client_thread && tick == kFaultTick) {
       throw std::runtime_error("score table out of range");
     }

@@ -9,7 +9,8 @@
 #include <array>
 #include <cstdint>
 
-#include "rewind/game/game.h"
+#include "rewind/game/game_on.h"
+#include "rewind/sim/world3d.h"
 
 namespace rwd::game {
 
@@ -30,7 +31,7 @@ struct CratesState {
   uint32_t crate_respawns = 0;
 };
 
-class CratesGame final : public GameWithState<CratesState> {
+class CratesGame final : public GameWithState<sim::World3D, CratesState> {
  public:
   std::string_view name() const override { return "crates"; }
   /// 2: closed arena corners, kill plane and respawn of escaped bodies.

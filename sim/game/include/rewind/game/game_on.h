@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Bases for games written against one concrete world type. They turn the
+// lane-neutral Game calls into calls with the typed world, once per tick.
+#include <cstring>
+#include <memory>
+#include <span>
+#include <type_traits>
+#include <vector>
+
+#include "rewind/game/game.h"
+#include "rewind/game/world_lane.h"
+
+namespace rwd::game {
+
+/// A game whose world is a `World` (e.g. sim::World3D), run by a
+/// WorldLane<World>.
+template <class World>
+class GameOn : public Game {
+ public:
+  using Config = typename WorldLane<World>::Config;
+
+  /// World tuning this game runs with.
+  virtual Config world_config() const = 0;
+
+  std::unique_ptr<Lane> make_lane() const final {
+    return std::make_unique<WorldLane<World>>(world_config());
+  }
+  void encode_world_config(std::vector<uint8_t>& out) const final {
+    World::encode_config(world_config(), out);
+  }
+  void build(const MatchSetup& setup, Lane& lane, std::span<std::byte> state) const final {
+    build_world(setup, world_in(lane), state);
+  }
+  void apply_inputs(Tick tick, std::span<const PlayerInput> inputs, Lane& lane,
+                    std::span<std::byte> state) const final {
+    apply_world(tick, inputs, world_in(lane), state);
+  }
+  void after_step(Tick tick, Lane& lane, std::span<std::byte> state) const final {
+    after_step_world(tick, world_in(lane), state);
+  }
+
+ protected:
+  virtual void build_world(const MatchSetup& setup, World& world,
+                           std::span<std::byte> state) const = 0;
+  virtual void apply_world(Tick tick, std::span<const PlayerInput> inputs, World& world,
+                           std::span<std::byte> state) const = 0;
+  virtual void after_step_world(Tick tick, World& world, std::span<std::byte> state) const = 0;
+
+ private:
+  // Simulation only hands a game the lane its make_lane() type made, so the
+  // cast needs no check on the per-tick path.
+  static World& world_in(Lane& lane) { return static_cast<WorldLane<World>&>(lane).world(); }
+};
+
+/// Convenience base for games whose state is one trivially copyable struct.
+template <class World, class State>
+class GameWithState : public GameOn<World> {
+  static_assert(std::is_trivially_copyable_v<State>, "game state must be trivially copyable");
+
+ public:
+  size_t state_size() const final { return sizeof(State); }
+  void hash_state(std::span<const std::byte> state, sim::StateHasher& hasher) const final {
+    hash_typed(load(state), hasher);
+  }
+  Status validate_state(const MatchSetup& setup, std::span<const std::byte> state) const final {
+    if (state.size() != sizeof(State)) {
+      return Status::Error(ErrorCode::kCorrupt, "game state block has the wrong size");
+    }
+    return validate_typed(setup, load(state));
+  }
+
+ protected:
+  virtual void build_typed(const MatchSetup& setup, World& world, State& state) const = 0;
+  virtual void apply_typed(Tick tick, std::span<const PlayerInput> inputs, World& world,
+                           State& state) const = 0;
+  virtual void after_step_typed(Tick tick, World& world, State& state) const = 0;
+  virtual void hash_typed(const State& state, sim::StateHasher& hasher) const = 0;
+  virtual Status validate_typed(const MatchSetup& setup, const State& state) const = 0;
+
+ private:
+  void build_world(const MatchSetup& setup, World& world, std::span<std::byte> state) const final {
+    State s{};
+    build_typed(setup, world, s);
+    store(s, state);
+  }
+  void apply_world(Tick tick, std::span<const PlayerInput> inputs, World& world,
+                   std::span<std::byte> state) const final {
+    State s = load(state);
+    apply_typed(tick, inputs, world, s);
+    store(s, state);
+  }
+  void after_step_world(Tick tick, World& world, std::span<std::byte> state) const final {
+    State s = load(state);
+    after_step_typed(tick, world, s);
+    store(s, state);
+  }
+  static State load(std::span<const std::byte> bytes) {
+    State s;
+    std::memcpy(&s, bytes.data(), sizeof(State));
+    return s;
+  }
+  static void store(const State& s, std::span<std::byte> bytes) {
+    std::memcpy(bytes.data(), &s, sizeof(State));
+  }
+};
+
+}  // namespace rwd::game

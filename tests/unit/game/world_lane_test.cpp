@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: MIT
+// The lane seam: a Simulation reaches its world only through Lane, and the
+// 3D lane behind it must keep every checksum and serialized byte of the
+// world it wraps. Counts global operator new calls to show that saving
+// into a reused snapshot does not allocate.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <new>
+#include <vector>
+
+#include "rewind/game/crates_game.h"
+#include "rewind/game/simulation.h"
+#include "rewind/game/world_lane.h"
+#include "rewind/sim/world3d.h"
+
+namespace {
+bool g_counting = false;
+long g_allocations = 0;
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (g_counting) ++g_allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+
+namespace rwd::game {
+namespace {
+
+std::vector<PlayerInput> steer(uint32_t players, Tick tick) {
+  std::vector<PlayerInput> inputs(players);
+  for (uint32_t p = 0; p < players; ++p) {
+    inputs[p].axis_x = static_cast<int16_t>(((tick / 20 + static_cast<Tick>(p)) % 3 - 1) * 1000);
+    inputs[p].axis_y = kAxisMax;
+  }
+  return inputs;
+}
+
+std::unique_ptr<Simulation> played(Tick ticks) {
+  auto sim = Simulation::create("crates", {2, 7});
+  EXPECT_TRUE(sim.ok()) << sim.status().message();
+  for (Tick t = 0; t < ticks; ++t) (*sim)->step(steer(2, t));
+  return std::move(*sim);
+}
+
+TEST(WorldLane, ForwardsToTheWorldItWraps) {
+  std::unique_ptr<Simulation> sim = played(90);
+  const sim::World3D* world = world_of<sim::World3D>(sim->lane());
+  ASSERT_NE(world, nullptr);
+
+  sim::StateHasher via_lane;
+  sim->lane().hash(via_lane);
+  EXPECT_EQ(via_lane.digest(), world->checksum());
+
+  std::vector<uint8_t> lane_bytes;
+  std::vector<uint8_t> world_bytes;
+  sim->lane().serialize(lane_bytes);
+  world->serialize(world_bytes);
+  EXPECT_EQ(lane_bytes, world_bytes);
+
+  std::vector<uint8_t> game_config;
+  std::vector<uint8_t> world_config;
+  sim->game().encode_world_config(game_config);
+  sim::World3D::encode_config(CratesGame().world_config(), world_config);
+  EXPECT_EQ(game_config, world_config);
+
+  std::vector<sim::BodyField> lane_dump;
+  std::vector<sim::BodyField> world_dump;
+  sim->dump_bodies(lane_dump);
+  world->dump_fields(world_dump);
+  EXPECT_FALSE(lane_dump.empty());
+  EXPECT_TRUE(sim::diff_body_fields(lane_dump, world_dump).empty());
+}
+
+TEST(WorldLane, SnapshotsAreOpaqueAndRoundTrip) {
+  std::unique_ptr<Simulation> sim = played(60);
+  SimSnapshot saved;
+  sim->save(saved);
+  ASSERT_NE(saved.world, nullptr);
+  ASSERT_NE(state_of<sim::World3D>(*saved.world), nullptr);
+  const uint64_t at_save = sim->checksum();
+  EXPECT_EQ(sim->checksum_of(saved), at_save);
+
+  std::vector<uint64_t> first;
+  for (Tick t = 60; t < 120; ++t) {
+    sim->step(steer(2, t));
+    first.push_back(sim->checksum());
+  }
+  // A copy is independent of the snapshot it came from.
+  SimSnapshot copy = saved;
+  sim->save(saved);
+  EXPECT_EQ(sim->checksum_of(copy), at_save);
+  EXPECT_NE(sim->checksum_of(saved), at_save);
+
+  sim->restore(copy);
+  EXPECT_EQ(sim->checksum(), at_save);
+  for (Tick t = 60; t < 120; ++t) {
+    sim->step(steer(2, t));
+    ASSERT_EQ(sim->checksum(), first[static_cast<size_t>(t - 60)]) << "tick " << t;
+  }
+}
+
+TEST(WorldLane, SavingIntoAReusedSnapshotDoesNotAllocate) {
+  std::unique_ptr<Simulation> sim = played(60);
+  SimSnapshot snapshot;
+  sim->save(snapshot);
+  sim->restore(snapshot);
+  g_allocations = 0;
+  g_counting = true;
+  sim->save(snapshot);
+  sim->restore(snapshot);
+  g_counting = false;
+  EXPECT_EQ(g_allocations, 0);
+}
+
+TEST(WorldLane, ASolverConfigBuildsThe3DLaneFromIt) {
+  sim::WorldConfig config = CratesGame().world_config();
+  config.substeps = 8;
+  auto sim = Simulation::create("crates", {2, 1}, config);
+  ASSERT_TRUE(sim.ok()) << sim.status().message();
+  EXPECT_EQ(world_of<sim::World3D>((*sim)->lane())->config().substeps, 8);
+}
+
+}  // namespace
+}  // namespace rwd::game
