@@ -42,15 +42,15 @@ class Simulation {
   static Result<std::unique_ptr<Simulation>> create(std::string_view game_name,
                                                     const MatchSetup& setup);
   /// Creates the named 3D-lane game's match on a world built from
-  /// `world_config` instead of the game's own world_config(), for tools that measure how a
-  /// game plays at other solver settings (rewind-tune). Start from the
-  /// game's world_config() and change only solver fields (substeps,
-  /// relax_iterations, contact_hertz...): tick length, gravity and bounds
-  /// are part of the game's design. Such a match agrees (checksums,
+  /// `world_config` instead of the game's own world_config(), for tools
+  /// that measure how a game plays at other solver settings (rewind-tune).
+  /// Start from the game's world_config() and change only solver fields
+  /// (substeps, relax_iterations, contact_hertz...): tick length, gravity
+  /// and bounds are part of the game's design. Such a match agrees (checksums,
   /// replays) only with matches made with the same config; servers and
   /// clients use the overload above. A config World3D::validate_config()
-  /// refuses is kInvalidArgument, as are unknown names, games on another lane
-  /// and invalid setups.
+  /// refuses is kInvalidArgument, as are unknown names, games on another
+  /// lane and invalid setups.
   static Result<std::unique_ptr<Simulation>> create(std::string_view game_name,
                                                     const MatchSetup& setup,
                                                     const sim::WorldConfig& world_config);
