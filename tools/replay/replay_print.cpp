@@ -9,7 +9,6 @@
 #include "rewind/cli/json_text.h"
 #include "rewind/replay/engine_identity.h"
 #include "rewind/replay/replay_format.h"
-#include "rewind/sim/world3d.h"
 
 namespace rwd::replay_tool {
 namespace {
@@ -119,15 +118,16 @@ void print_identity(const v1::ReplayHeader& h, std::ostream& out) {
     return;
   }
   const std::string& bytes = h.world_config();
-  Result<sim::WorldConfig> config = sim::World3D::decode_config(
+  auto fields = replay::describe_world_config(
+      h.game(),
       std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
-  if (!config.ok()) {
+  if (!fields.ok()) {
     out << "world config: " << bytes.size() << " bytes this build cannot decode ("
-        << config.status().message() << ")\n";
+        << fields.status().message() << ")\n";
     return;
   }
   out << "world config:\n";
-  for (const auto& [name, value] : replay::world_config_fields(*config)) {
+  for (const auto& [name, value] : *fields) {
     out << "  " << name << " " << value << "\n";
   }
 }

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/replay/engine_identity.h"
 
-#include <charconv>
 #include <memory>
 #include <span>
 
@@ -9,22 +8,9 @@
 #include "rewind/replay/replay_format.h"
 #include "rewind/replay/replay_header.h"
 #include "rewind/sim/version.h"
-#include "rewind/sim/world3d.h"
 
 namespace rwd::replay {
 namespace {
-
-// Shortest text that reads back to the same float, so two configs print
-// differently exactly when their values differ.
-std::string text(float v) {
-  char buf[32];
-  const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
-
-std::string text(sim::Vec3 v) {
-  return "(" + text(v.x) + ", " + text(v.y) + ", " + text(v.z) + ")";
-}
 
 std::span<const uint8_t> bytes_of(const std::string& s) {
   return {reinterpret_cast<const uint8_t*>(s.data()), s.size()};
@@ -39,18 +25,18 @@ std::string builtin_games() {
   return out;
 }
 
-void add_config_differences(const std::string& recorded, const std::string& current,
-                            std::vector<std::string>& out) {
-  Result<sim::WorldConfig> rec = sim::World3D::decode_config(bytes_of(recorded));
-  Result<sim::WorldConfig> cur = sim::World3D::decode_config(bytes_of(current));
+void add_config_differences(std::string_view game_name, const std::string& recorded,
+                            const std::string& current, std::vector<std::string>& out) {
+  auto rec = describe_world_config(game_name, bytes_of(recorded));
+  auto cur = describe_world_config(game_name, bytes_of(current));
   if (!rec.ok() || !cur.ok()) {
     out.push_back("world config: the recorded " + std::to_string(recorded.size()) +
                   " bytes do not decode in this build (" +
                   (rec.ok() ? cur.status() : rec.status()).message() + ")");
     return;
   }
-  const auto a = world_config_fields(*rec);
-  const auto b = world_config_fields(*cur);
+  const auto& a = *rec;
+  const auto& b = *cur;
   const size_t before = out.size();
   for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
     if (a[i].second != b[i].second) {
@@ -150,33 +136,20 @@ VersionCheck check_versions(const v1::ReplayHeader& header) {
                     std::to_string(*now.rules_version));
     }
     if (rec.world_config != now.world_config) {
-      add_config_differences(rec.world_config, now.world_config, out);
+      add_config_differences(rec.game, rec.world_config, now.world_config, out);
     }
   }
   return check;
 }
 
-std::vector<std::pair<std::string, std::string>> world_config_fields(const sim::WorldConfig& c) {
-  // Every field World3D::encode_config() writes, in its order; a field
-  // missing here still shows up as "bytes differ" in check_versions().
-  return {
-      {"gravity", text(c.gravity) + " m/s^2"},
-      {"tick_seconds", text(c.tick_seconds)},
-      {"substeps", std::to_string(c.substeps)},
-      {"relax_iterations", std::to_string(c.relax_iterations)},
-      {"contact_hertz", text(c.contact_hertz)},
-      {"contact_damping_ratio", text(c.contact_damping_ratio)},
-      {"contact_push_max_mps", text(c.contact_push_max_mps)},
-      {"restitution_threshold_mps", text(c.restitution_threshold_mps)},
-      {"linear_slop_m", text(c.linear_slop_m)},
-      {"speculative_distance_m", text(c.speculative_distance_m)},
-      {"enable_sleep", c.enable_sleep ? "true" : "false"},
-      {"sleep_threshold_mps", text(c.sleep_threshold_mps)},
-      {"time_to_sleep_s", text(c.time_to_sleep_s)},
-      {"max_bodies", std::to_string(c.max_bodies)},
-      {"bounds_lower", text(c.bounds_lower) + " m"},
-      {"bounds_upper", text(c.bounds_upper) + " m"},
-  };
+Result<std::vector<std::pair<std::string, std::string>>> describe_world_config(
+    std::string_view game_name, std::span<const uint8_t> bytes) {
+  std::unique_ptr<game::Game> g = game::make_builtin_game(game_name);
+  if (!g) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "this build has no game \"" + std::string(game_name) + "\"");
+  }
+  return g->describe_world_config(bytes);
 }
 
 }  // namespace rwd::replay

@@ -7,6 +7,8 @@
 
 #include <cstdlib>
 #include <new>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "rewind/game/crates_game.h"
@@ -118,6 +120,23 @@ TEST(WorldLane, SavingIntoAReusedSnapshotDoesNotAllocate) {
   sim->restore(snapshot);
   g_counting = false;
   EXPECT_EQ(g_allocations, 0);
+}
+
+TEST(WorldLane, TheGameDescribesItsLanesConfigBytes) {
+  sim::WorldConfig config = CratesGame().world_config();
+  config.substeps = 6;
+  std::vector<uint8_t> bytes;
+  sim::World3D::encode_config(config, bytes);
+  auto fields = CratesGame().describe_world_config(bytes);
+  ASSERT_TRUE(fields.ok()) << fields.status().message();
+  EXPECT_EQ(*fields, sim::World3D::describe_config(config));
+  ASSERT_GT(fields->size(), 2u);
+  EXPECT_EQ((*fields)[2], (std::pair<std::string, std::string>{"substeps", "6"}));
+
+  bytes.resize(3);
+  auto garbled = CratesGame().describe_world_config(bytes);
+  ASSERT_FALSE(garbled.ok());
+  EXPECT_EQ(garbled.status().code(), ErrorCode::kCorrupt);
 }
 
 TEST(WorldLane, ASolverConfigBuildsThe3DLaneFromIt) {

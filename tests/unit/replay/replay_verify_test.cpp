@@ -10,6 +10,7 @@
 
 #include "replay_test_support.h"
 #include "rewind/game/crates_game.h"
+#include "rewind/replay/engine_identity.h"
 #include "rewind/replay/replay_format.h"
 #include "rewind/replay/replay_reader.h"
 #include "rewind/replay/replay_rewrite.h"
@@ -523,6 +524,19 @@ TEST(ReplayVerify, UnknownGameIsAVersionMismatchAndMissingFileAnError) {
   EXPECT_TRUE(report.error.has_value());
   EXPECT_EQ(report.outcome(), VerifyOutcome::kCorrupt);
   EXPECT_FALSE(report.header.has_value());
+}
+
+TEST(ReplayVerify, WorldConfigIsDescribedByTheRecordedGamesLane) {
+  std::vector<uint8_t> bytes;
+  game::CratesGame().encode_world_config(bytes);
+  auto fields = describe_world_config("crates", bytes);
+  ASSERT_TRUE(fields.ok()) << fields.status().message();
+  EXPECT_EQ(*fields, sim::World3D::describe_config(game::CratesGame().world_config()));
+
+  auto unknown = describe_world_config("chess", bytes);
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_EQ(unknown.status().code(), ErrorCode::kInvalidArgument);
+  EXPECT_EQ(unknown.status().message(), "this build has no game \"chess\"");
 }
 
 }  // namespace

@@ -33,6 +33,10 @@ class FaultyCrates final : public game::Game {
   void encode_world_config(std::vector<uint8_t>& out) const override {
     crates_.encode_world_config(out);
   }
+  Result<std::vector<std::pair<std::string, std::string>>> describe_world_config(
+      std::span<const uint8_t> bytes) const override {
+    return crates_.describe_world_config(bytes);
+  }
   size_t state_size() const override { return crates_.state_size(); }
   void build(const game::MatchSetup& setup, game::Lane& lane,
              std::span<std::byte> state) const override {

@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rewind/sim/body.h"
@@ -69,6 +70,12 @@ class World3D {
   /// Reads encode_config()'s bytes; kCorrupt for malformed bytes or a config
   /// validate_config() refuses.
   static Result<WorldConfig> decode_config(std::span<const uint8_t> bytes);
+  /// `config` as readable (name, value) pairs in encode_config()'s order,
+  /// names as in WorldConfig, values as the shortest text that reads back
+  /// to the same float, with units where they help ("gravity",
+  /// "(0, -9.81, 0) m/s^2"). For replay tools and reports.
+  static std::vector<std::pair<std::string, std::string>> describe_config(
+      const WorldConfig& config);
 
   // --- geometry -----------------------------------------------------------
 

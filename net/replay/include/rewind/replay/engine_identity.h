@@ -7,12 +7,13 @@
 // checksums.
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
-#include "rewind/sim/world_config.h"
+#include "rewind/sim/status.h"
 #include "rewind/v1/replay.pb.h"
 
 namespace rwd::replay {
@@ -26,7 +27,8 @@ struct EngineIdentity {
   std::string game;
   /// Unset when not recorded, or when this build has no such game.
   std::optional<uint32_t> rules_version;
-  /// World3D::encode_config() bytes; empty when not recorded or no such game.
+  /// The game's world config in its lane's encoding (Game::encode_world_config());
+  /// empty when not recorded or no such game.
   std::string world_config;
 
   /// True when the engine and revision are known (format 2 on).
@@ -61,9 +63,12 @@ struct VersionCheck {
 /// world config bytes (differing configs are named field by field).
 VersionCheck check_versions(const v1::ReplayHeader& header);
 
-/// A world config as readable (name, value) pairs in encoding order, names
-/// as in sim::WorldConfig ("gravity", "(0, -9.81, 0) m/s^2").
-std::vector<std::pair<std::string, std::string>> world_config_fields(
-    const sim::WorldConfig& config);
+/// World config bytes that a replay of `game_name` records, as readable
+/// (name, value) pairs in encoding order, as the game's lane describes them
+/// (for the 3D lane: names as in sim::WorldConfig, "gravity",
+/// "(0, -9.81, 0) m/s^2"). kInvalidArgument when this build has no such
+/// game; kCorrupt when its lane cannot decode the bytes.
+Result<std::vector<std::pair<std::string, std::string>>> describe_world_config(
+    std::string_view game_name, std::span<const uint8_t> bytes);
 
 }  // namespace rwd::replay

@@ -10,7 +10,9 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "rewind/game/lane.h"
@@ -44,6 +46,11 @@ class Game {
   /// encoding (World3D::encode_config() for the 3D lane): what replay
   /// headers record and compare. `out` is replaced.
   virtual void encode_world_config(std::vector<uint8_t>& out) const = 0;
+  /// Bytes encode_world_config() wrote (by this or another build) as
+  /// readable (name, value) pairs in encoding order, for replay tools;
+  /// kCorrupt when the lane cannot decode them.
+  virtual Result<std::vector<std::pair<std::string, std::string>>> describe_world_config(
+      std::span<const uint8_t> bytes) const = 0;
   /// Size in bytes of the game's state block (trivially copyable data).
   virtual size_t state_size() const = 0;
   /// Builds the scene into `lane` (made by make_lane(), or a lane of the

@@ -5,7 +5,9 @@
 #include <cstring>
 #include <memory>
 #include <span>
+#include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "rewind/game/game.h"
@@ -28,6 +30,12 @@ class GameOn : public Game {
   }
   void encode_world_config(std::vector<uint8_t>& out) const final {
     World::encode_config(world_config(), out);
+  }
+  Result<std::vector<std::pair<std::string, std::string>>> describe_world_config(
+      std::span<const uint8_t> bytes) const final {
+    Result<Config> config = World::decode_config(bytes);
+    if (!config.ok()) return config.status();
+    return World::describe_config(*config);
   }
   void build(const MatchSetup& setup, Lane& lane, std::span<std::byte> state) const final {
     build_world(setup, world_in(lane), state);
