@@ -33,7 +33,7 @@ void BM_CratesTick(benchmark::State& state) {
   const auto players = static_cast<uint32_t>(state.range(0));
   auto sim = warmed_up(players, 120);
   for (auto _ : state) sim->step(inputs_for(players, sim->tick()));
-  state.counters["bodies"] = rwd::game::world_of<rwd::sim::World3D>((*sim).lane())->body_count();
+  state.counters["bodies"] = rwd::game::world_of<rwd::sim::World3D>(sim->lane())->body_count();
 }
 BENCHMARK(BM_CratesTick)->Arg(2)->Arg(8)->Arg(32);
 

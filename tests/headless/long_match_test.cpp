@@ -34,6 +34,11 @@
 namespace rwd::test {
 namespace {
 
+// crates runs the 3D lane; these checks read its world.
+const sim::World3D& world3d(const game::Simulation& simulation) {
+  return *game::world_of<sim::World3D>(simulation.lane());
+}
+
 using client::ClientEventType;
 
 Tick match_ticks() {
@@ -56,9 +61,9 @@ struct ArenaCheck {
 };
 
 bool outside_arena(const game::Simulation& sim, sim::BodyId pusher) {
-  const sim::Vec3 pos = rwd::game::world_of<rwd::sim::World3D>(sim.lane())->position(pusher);
-  return !rwd::game::world_of<rwd::sim::World3D>(sim.lane())->is_enabled(pusher) || pos.y < -1.0f ||
-         std::abs(pos.x) > 11.0f || std::abs(pos.z) > 11.0f;
+  const sim::Vec3 pos = world3d(sim).position(pusher);
+  return !world3d(sim).is_enabled(pusher) || pos.y < -1.0f || std::abs(pos.x) > 11.0f ||
+         std::abs(pos.z) > 11.0f;
 }
 
 game::CratesState crates_state(const game::Simulation& sim) {
@@ -89,8 +94,7 @@ void check_keyframe(const game::Simulation& sim, ArenaCheck& out) {
   out.most_outside = std::max(out.most_outside, outside);
   std::map<int, uint32_t> corners;
   for (uint32_t p = 0; p < state.player_count; ++p) {
-    const sim::Vec3 pos =
-        rwd::game::world_of<rwd::sim::World3D>(sim.lane())->position(state.pushers[p]);
+    const sim::Vec3 pos = world3d(sim).position(state.pushers[p]);
     if (!outside_arena(sim, state.pushers[p]) && std::abs(pos.x) > 7.0f && std::abs(pos.z) > 7.0f) {
       ++corners[(pos.x > 0 ? 1 : 0) + (pos.z > 0 ? 2 : 0)];
     }
@@ -271,8 +275,8 @@ TEST(LongMatch, SixteenPlayersAggressivePlayLateDesyncResyncsAndReplayVerifies) 
         if (count_outside(**step, &player) > 0) {
           arena.first_escape_tick = t;
           arena.first_escape_player = player;
-          arena.first_escape_position = rwd::game::world_of<rwd::sim::World3D>((**step).lane())
-                                            ->position(crates_state(**step).pushers[player]);
+          arena.first_escape_position =
+              world3d(**step).position(crates_state(**step).pushers[player]);
           break;
         }
       }

@@ -14,6 +14,11 @@
 namespace rwd::tune {
 namespace {
 
+// These games run the 3D lane (the 3D world is what is measured here).
+const sim::World3D& world3d(const game::Simulation& simulation) {
+  return *game::world_of<sim::World3D>(simulation.lane());
+}
+
 // The default budget of a game: in 95% of the windows no body ends up more
 // than 5 cm from where the reference puts it. 5 cm is a sixteenth of a
 // crate and a tenth of a pusher: less than a player notices as a different
@@ -137,10 +142,9 @@ Status GameTarget::play_reference(std::ostream* progress) {
     progress->flush();
   }
   std::vector<sim::BodyId> ids;
-  rwd::game::world_of<rwd::sim::World3D>((**sim).lane())->body_ids(ids);
+  world3d(**sim).body_ids(ids);
   for (sim::BodyId id : ids) {
-    if (rwd::game::world_of<rwd::sim::World3D>((**sim).lane())->kind(id) == sim::BodyKind::kDynamic)
-      bodies_.push_back(id);
+    if (world3d(**sim).kind(id) == sim::BodyKind::kDynamic) bodies_.push_back(id);
   }
   const size_t n = bodies_.size();
   reference_position_.resize(static_cast<size_t>(play_.ticks) * n);
@@ -152,10 +156,8 @@ Status GameTarget::play_reference(std::ostream* progress) {
     }
     (*sim)->step(inputs_[t]);
     for (size_t b = 0; b < n; ++b) {
-      reference_position_[t * n + b] =
-          rwd::game::world_of<rwd::sim::World3D>((**sim).lane())->position(bodies_[b]);
-      reference_velocity_[t * n + b] =
-          rwd::game::world_of<rwd::sim::World3D>((**sim).lane())->linear_velocity(bodies_[b]);
+      reference_position_[t * n + b] = world3d(**sim).position(bodies_[b]);
+      reference_velocity_[t * n + b] = world3d(**sim).linear_velocity(bodies_[b]);
     }
   }
   return Status::Ok();
@@ -168,11 +170,9 @@ void GameTarget::compare(const game::Simulation& sim, Tick tick, double& positio
   velocity_mps = 0.0;
   for (size_t b = 0; b < n; ++b) {
     const double dp =
-        magnitude(rwd::game::world_of<rwd::sim::World3D>(sim.lane())->position(bodies_[b]) -
-                  reference_position_[tick * n + b]);
+        magnitude(world3d(sim).position(bodies_[b]) - reference_position_[tick * n + b]);
     const double dv =
-        magnitude(rwd::game::world_of<rwd::sim::World3D>(sim.lane())->linear_velocity(bodies_[b]) -
-                  reference_velocity_[tick * n + b]);
+        magnitude(world3d(sim).linear_velocity(bodies_[b]) - reference_velocity_[tick * n + b]);
     // NaN never compares greater: count it as infinitely far.
     position_m = std::isnan(dp) ? kInfinity : std::max(position_m, dp);
     velocity_mps = std::isnan(dv) ? kInfinity : std::max(velocity_mps, dv);
@@ -199,8 +199,7 @@ Measurement GameTarget::measure(const SolverSetting& setting) {
   double end_sum_m = 0.0;
   size_t end_samples = 0;
   game::SimSnapshot start;
-  const sim::WorldConfig world_config =
-      rwd::game::world_of<rwd::sim::World3D>((**windowed).lane())->config();
+  const sim::WorldConfig world_config = world3d(**windowed).config();
   for (size_t w = 0; w < window_starts_.size(); ++w) {
     transplant(window_starts_[w], world_config, start);
     (*windowed)->restore(start);
