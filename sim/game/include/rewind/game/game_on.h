@@ -16,7 +16,9 @@
 namespace rwd::game {
 
 /// A game whose world is a `World` (e.g. sim::World3D), run by a
-/// WorldLane<World>.
+/// WorldLane<World>. Besides what WorldLane needs, `World` provides the
+/// config codec: static encode_config(const Config&, out),
+/// decode_config(bytes) -> Result<Config> and describe_config(const Config&).
 template <class World>
 class GameOn : public Game {
  public:

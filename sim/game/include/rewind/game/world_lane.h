@@ -3,8 +3,8 @@
 // Lane adapter for a concrete world type. `World` provides: a constructor
 // from its config, step(), config(), state(), save(State&), restore(const
 // State&), hash(StateHasher&), static hash_state(const State&, StateHasher&),
-// dump_fields(), serialize() and deserialize(). The
-// adapter adds one virtual call per operation and nothing per body.
+// dump_fields(), serialize() and deserialize(). The adapter adds one
+// virtual call per operation and nothing per body.
 #include <memory>
 #include <type_traits>
 #include <utility>
