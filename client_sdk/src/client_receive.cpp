@@ -6,9 +6,7 @@
 #include <chrono>
 
 #include "client_protocol_impl.h"
-#include "rewind/game/world_lane.h"
 #include "rewind/net/envelope_codec.h"
-#include "rewind/sim/world3d.h"
 
 namespace rwd::client {
 namespace {
@@ -167,20 +165,7 @@ void ClientProtocol::Impl::on_join_accept(const v1::JoinAccept& accept, TimePoin
     const Tick corrupt_at = config_.debug_corrupt_at_tick;
     session_->set_step_hook([corrupt_at](game::Simulation& simulation, Tick tick) {
       if (tick != corrupt_at) return;
-      // Nudge the highest-index dynamic body by a millimetre: small enough
-      // to look like a real float divergence, big enough to matter. Only
-      // the 3D lane has this hook; other lanes run unperturbed.
-      sim::World3D* world = game::world_of<sim::World3D>(simulation.lane());
-      if (world == nullptr) return;
-      std::vector<sim::BodyId> ids;
-      world->body_ids(ids);
-      for (auto it = ids.rbegin(); it != ids.rend(); ++it) {
-        if (world->kind(*it) != sim::BodyKind::kDynamic) continue;
-        sim::Vec3 p = world->position(*it);
-        p.x += 0.001f;
-        (void)world->set_transform(*it, p, world->rotation(*it));
-        break;
-      }
+      (void)simulation.lane().perturb_for_drill();
     });
   }
   phase_ = ClientPhase::kLobby;

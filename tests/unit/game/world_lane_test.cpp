@@ -147,5 +147,26 @@ TEST(WorldLane, ASolverConfigBuildsThe3DLaneFromIt) {
   EXPECT_EQ(world_of<sim::World3D>((*sim)->lane())->config().substeps, 8);
 }
 
+TEST(WorldLane, ADrillPerturbsTheLastDynamicBodyTheSameWayEachTime) {
+  std::unique_ptr<Simulation> a = played(30);
+  std::unique_ptr<Simulation> b = played(30);
+  const sim::World3D& world = *world_of<sim::World3D>(a->lane());
+  std::vector<sim::BodyId> ids;
+  world.body_ids(ids);
+  sim::BodyId last{};
+  for (sim::BodyId id : ids) {
+    if (world.kind(id) == sim::BodyKind::kDynamic) last = id;
+  }
+  const sim::Vec3 before = world.position(last);
+  const uint64_t unperturbed = a->checksum();
+
+  ASSERT_TRUE(a->lane().perturb_for_drill());
+  ASSERT_TRUE(b->lane().perturb_for_drill());
+  EXPECT_NE(a->checksum(), unperturbed);
+  EXPECT_EQ(a->checksum(), b->checksum());
+  EXPECT_NEAR(world.position(last).x, before.x + 0.001f, 1e-4f);
+  EXPECT_NEAR(world.position(last).z, before.z, 1e-4f);  // set_transform() quantizes
+}
+
 }  // namespace
 }  // namespace rwd::game

@@ -126,6 +126,12 @@ class World3D {
   /// Teleports a body; the position must lie inside the world bounds. A
   /// disabled body stays disabled (move it, then enable it).
   Status set_transform(BodyId id, Vec3 position, Quat rotation);
+  /// Test hook for desync drills: moves the highest-index dynamic body 1 mm
+  /// along +x (small enough to look like a real float divergence, big
+  /// enough to matter), like set_transform(). The same state is perturbed
+  /// the same way. Returns false, changing nothing, when there is no
+  /// dynamic body or set_transform() refuses the move (the world bounds).
+  bool perturb_for_drill();
   Status set_linear_velocity(BodyId id, Vec3 velocity_mps);
   Status set_angular_velocity(BodyId id, Vec3 velocity_radps);
   /// Applies an impulse (N*s) at a world point to a dynamic body.

@@ -56,6 +56,11 @@ class Lane {
   virtual void serialize(std::vector<uint8_t>& out) const = 0;
   /// Replaces the state from serialize()'s bytes; kCorrupt leaves it intact.
   virtual Status deserialize(std::span<const uint8_t> bytes) = 0;
+
+  /// Test hook for desync drills: changes the state slightly, the way a
+  /// real non-determinism would, and the same way for the same state.
+  /// Returns false, changing nothing, when the world has nothing to change.
+  virtual bool perturb_for_drill() = 0;
 };
 
 }  // namespace rwd::game

@@ -3,8 +3,8 @@
 // Lane adapter for a concrete world type. `World` provides: a constructor
 // from its config, step(), config(), state(), save(State&), restore(const
 // State&), hash(StateHasher&), static hash_state(const State&, StateHasher&),
-// dump_fields(), serialize() and deserialize(). The adapter adds one
-// virtual call per operation and nothing per body.
+// dump_fields(), serialize(), deserialize() and perturb_for_drill(). The
+// adapter adds one virtual call per operation and nothing per body.
 #include <memory>
 #include <type_traits>
 #include <utility>
@@ -50,6 +50,7 @@ class WorldLane final : public Lane {
   void dump_fields(std::vector<sim::BodyField>& out) const override { world_.dump_fields(out); }
   void serialize(std::vector<uint8_t>& out) const override { world_.serialize(out); }
   Status deserialize(std::span<const uint8_t> bytes) override { return world_.deserialize(bytes); }
+  bool perturb_for_drill() override { return world_.perturb_for_drill(); }
 
  private:
   World world_;
