@@ -85,6 +85,20 @@ MatchHost::MatchHost(const MatchConfig& config, SendFn send,
   final_history_.assign(kFinalHistory, FinalRecord{});
 }
 
+const char* phase_name(MatchHost::Phase phase) {
+  switch (phase) {
+    case MatchHost::Phase::kLobby:
+      return "lobby";
+    case MatchHost::Phase::kRunning:
+      return "running";
+    case MatchHost::Phase::kClosing:
+      return "closing";
+    case MatchHost::Phase::kEnded:
+      break;
+  }
+  return "ended";
+}
+
 MatchStats MatchHost::stats() const {
   MatchStats out = stats_;
   out.rollbacks = session_->stats().rollbacks;
