@@ -15,7 +15,7 @@ IdAabb2 item(uint64_t id, int32_t x) {
   return {id, *Aabb2::make(Vec2(Fx(x), Fx(0)), Vec2(Fx(x + 1), Fx(1)))};
 }
 
-TEST(SortByStableId, OrdersByIdWhateverTheInputOrder) {
+TEST(FixedSortByStableId, OrdersByIdWhateverTheInputOrder) {
   std::vector<IdAabb2> sorted;
   for (uint64_t id = 0; id < 200; ++id)
     sorted.push_back(item(id * 7 + 3, static_cast<int32_t>(id)));
@@ -31,7 +31,7 @@ TEST(SortByStableId, OrdersByIdWhateverTheInputOrder) {
   EXPECT_TRUE(sort_by_stable_id(empty).ok());
 }
 
-TEST(SortByStableId, RefusesRepeatedIdsAndLeavesTheInput) {
+TEST(FixedSortByStableId, RefusesRepeatedIdsAndLeavesTheInput) {
   std::vector<IdAabb2> items = {item(9, 0), item(4, 1), item(9, 2), item(1, 3)};
   const std::vector<IdAabb2> before = items;
   const Status status = sort_by_stable_id(items);

@@ -13,7 +13,7 @@
 namespace rwd::fixed {
 namespace {
 
-TEST(IntegerSqrt, IsExactFloorForEveryWidth) {
+TEST(FixedIntegerSqrt, IsExactFloorForEveryWidth) {
   EXPECT_EQ(isqrt64(0), 0u);
   EXPECT_EQ(isqrt64(UINT64_MAX), 4294967295u);
   EXPECT_EQ(isqrt128(~U128{0}), static_cast<U128>(UINT64_MAX));
@@ -30,13 +30,13 @@ TEST(IntegerSqrt, IsExactFloorForEveryWidth) {
   }
 }
 
-TEST(FxSqrt, IsExactForPerfectSquares) {
+TEST(FixedFxSqrt, IsExactForPerfectSquares) {
   for (int32_t k = 0; k <= 181; ++k) EXPECT_EQ(sqrt(Fx(k * k)), Fx(k)) << k;
   EXPECT_EQ(sqrt(0.25_fx), 0.5_fx);
   EXPECT_EQ(sqrt(Fx::ratio(1, 16)), 0.25_fx);
 }
 
-TEST(FxSqrt, IsTheNearestFxToTheTrueRoot) {
+TEST(FixedFxSqrt, IsTheNearestFxToTheTrueRoot) {
   SplitMix64 rng{22};
   for (int i = 0; i < 200000; ++i) {
     const int32_t raw =
@@ -56,7 +56,7 @@ TEST(FxSqrt, IsTheNearestFxToTheTrueRoot) {
   EXPECT_EQ(sqrt(Fx::epsilon()).raw(), 256);
 }
 
-TEST(FxSqrt, NegativeInputIsZeroOrRefused) {
+TEST(FixedFxSqrt, NegativeInputIsZeroOrRefused) {
   EXPECT_EQ(sqrt(Fx(-4)), Fx::zero());
   EXPECT_EQ(sqrt(Fx::min()), Fx::zero());
   const Result<Fx> refused = checked_sqrt(Fx(-4));
@@ -66,14 +66,14 @@ TEST(FxSqrt, NegativeInputIsZeroOrRefused) {
   EXPECT_EQ(*checked_sqrt(Fx(9)), Fx(3));
 }
 
-TEST(FxSqrt, WideArgumentKeepsSmallValues) {
+TEST(FixedFxSqrt, WideArgumentKeepsSmallValues) {
   // sqrt(2^-32) = 2^-16: an Fx argument could not even represent 2^-32.
   EXPECT_EQ(sqrt(FxWide::from_raw(1)), Fx::epsilon());
   EXPECT_EQ(sqrt(FxWide(Fx(4))), Fx(2));
   EXPECT_EQ(sqrt(FxWide::from_raw(INT64_MAX)), Fx::max());  // 2^31.5 > range
 }
 
-TEST(FxRsqrt, IsWithinOneUlpAndRefusesNonPositive) {
+TEST(FixedFxRsqrt, IsWithinOneUlpAndRefusesNonPositive) {
   SplitMix64 rng{23};
   for (int i = 0; i < 50000; ++i) {
     const int32_t raw =
@@ -89,7 +89,7 @@ TEST(FxRsqrt, IsWithinOneUlpAndRefusesNonPositive) {
   EXPECT_FALSE(checked_rsqrt(Fx(-1)).ok());
 }
 
-TEST(FxDiv, CheckedDivisionRefusesZero) {
+TEST(FixedFxDiv, CheckedDivisionRefusesZero) {
   const Result<Fx> refused = checked_div(Fx(1), Fx::zero());
   ASSERT_FALSE(refused.ok());
   EXPECT_EQ(refused.status().code(), ErrorCode::kInvalidArgument);

@@ -27,7 +27,7 @@ int64_t ref_round_div(I128 n, I128 d) {
   return static_cast<int64_t>(q);
 }
 
-TEST(Fx, ConstructsFromIntegersAndRawBits) {
+TEST(FixedFx, ConstructsFromIntegersAndRawBits) {
   EXPECT_EQ(Fx(3).raw(), 3 * 65536);
   EXPECT_EQ(Fx(-1).raw(), -65536);
   EXPECT_EQ(Fx(32767).raw(), 32767 * 65536);
@@ -42,7 +42,7 @@ TEST(Fx, ConstructsFromIntegersAndRawBits) {
   EXPECT_EQ(Fx::ratio(0, 0), Fx::zero());
 }
 
-TEST(Fx, DecimalLiteralsAreRoundedExactlyAtCompileTime) {
+TEST(FixedFx, DecimalLiteralsAreRoundedExactlyAtCompileTime) {
   static_assert((0.1_fx).raw() == 6554);  // 6553.6 rounds up
   static_assert((1.5_fx).raw() == 98304);
   static_assert((0.00000762939453125_fx).raw() == 1);  // exactly half an ulp: away from zero
@@ -52,14 +52,14 @@ TEST(Fx, DecimalLiteralsAreRoundedExactlyAtCompileTime) {
   EXPECT_EQ((-2.5_fx).raw(), -163840);
 }
 
-TEST(Fx, RoundsIntegerParts) {
+TEST(FixedFx, RoundsIntegerParts) {
   EXPECT_EQ((2.5_fx).round_int(), 3);
   EXPECT_EQ((-2.5_fx).round_int(), -3);
   EXPECT_EQ((-2.5_fx).floor_int(), -3);
   EXPECT_EQ((2.49_fx).round_int(), 2);
 }
 
-TEST(Fx, MultiplyRoundsToNearestTiesAwayFromZero) {
+TEST(FixedFx, MultiplyRoundsToNearestTiesAwayFromZero) {
   // Half an ulp exactly: 1 raw * 0.5.
   EXPECT_EQ((Fx::epsilon() * Fx::half()).raw(), 1);
   EXPECT_EQ((-Fx::epsilon() * Fx::half()).raw(), -1);
@@ -75,7 +75,7 @@ TEST(Fx, MultiplyRoundsToNearestTiesAwayFromZero) {
   }
 }
 
-TEST(Fx, DivideRoundsToNearestAndSaturates) {
+TEST(FixedFx, DivideRoundsToNearestAndSaturates) {
   SplitMix64 rng{12};
   for (int i = 0; i < 200000; ++i) {
     const int32_t a = rng.raw_i32() >> rng.below(31);
@@ -91,7 +91,7 @@ TEST(Fx, DivideRoundsToNearestAndSaturates) {
   EXPECT_EQ(Fx::from_raw(-3) / 2, Fx::from_raw(-2));  // -1.5 -> -2
 }
 
-TEST(Fx, SaturatesAtTheRangeEdgesIncludingIntMin) {
+TEST(FixedFx, SaturatesAtTheRangeEdgesIncludingIntMin) {
   const Fx lo = Fx::min();
   EXPECT_EQ(-lo, Fx::max());
   EXPECT_EQ(abs(lo), Fx::max());
@@ -105,7 +105,7 @@ TEST(Fx, SaturatesAtTheRangeEdgesIncludingIntMin) {
   EXPECT_EQ(lo + Fx::max(), Fx::from_raw(-1));
 }
 
-TEST(Fx, ComparesAndClamps) {
+TEST(FixedFx, ComparesAndClamps) {
   EXPECT_LT(Fx(-1), Fx::zero());
   EXPECT_GT(Fx::epsilon(), Fx::zero());
   EXPECT_EQ(min(Fx(2), Fx(-3)), Fx(-3));
@@ -117,7 +117,7 @@ TEST(Fx, ComparesAndClamps) {
   EXPECT_EQ(sign(Fx::zero()), 0);
 }
 
-TEST(FxWide, HoldsProductsExactlyAndNarrowsWithRounding) {
+TEST(FixedFxWide, HoldsProductsExactlyAndNarrowsWithRounding) {
   const FxWide p = FxWide::product(Fx::epsilon(), Fx::epsilon());
   EXPECT_EQ(p.raw(), 1);  // 2^-32: lost by Fx, kept here
   EXPECT_EQ(p.to_fx(), Fx::zero());

@@ -16,7 +16,7 @@
 namespace rwd::fixed {
 namespace {
 
-TEST(Golden, LibraryResultsHashToTheRecordedValue) {
+TEST(FixedGolden, LibraryResultsHashToTheRecordedValue) {
   const uint64_t digest = golden_digest();
   std::printf("fixed golden digest %016" PRIx64 "\n", digest);
   EXPECT_EQ(digest, 0x79a78593baefdf6eull);

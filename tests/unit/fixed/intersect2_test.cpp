@@ -26,7 +26,7 @@ Circle circle(Vec2 c, Fx r) {
   return *Circle::make(c, r);
 }
 
-TEST(Aabb2, ConstructionValidatesAndLeavesNothingBehind) {
+TEST(FixedAabb2, ConstructionValidatesAndLeavesNothingBehind) {
   const Result<Aabb2> bad = Aabb2::make(v(1, 0), v(0, 1));
   ASSERT_FALSE(bad.ok());
   EXPECT_EQ(bad.status().code(), ErrorCode::kInvalidArgument);
@@ -40,7 +40,7 @@ TEST(Aabb2, ConstructionValidatesAndLeavesNothingBehind) {
   EXPECT_TRUE(Circle::make(v(0, 0), Fx::zero()).ok());
 }
 
-TEST(Aabb2, OverlapContainUnionTranslate) {
+TEST(FixedAabb2, OverlapContainUnionTranslate) {
   EXPECT_TRUE(overlaps(box(0, 0, 2, 2), box(2, 2, 3, 3)));  // touching corner
   EXPECT_FALSE(overlaps(box(0, 0, 2, 2), *Aabb2::make(raw_v(2 * 65536 + 1, 0), v(3, 1))));
   EXPECT_TRUE(contains(box(0, 0, 2, 2), v(2, 1)));
@@ -54,7 +54,7 @@ TEST(Aabb2, OverlapContainUnionTranslate) {
   EXPECT_EQ(center(box(0, 0, 4, 2)), v(2, 1));
 }
 
-TEST(Circle, OverlapsExactlyAtTheBoundary) {
+TEST(FixedCircle, OverlapsExactlyAtTheBoundary) {
   // 3-4-5: centers 5 apart, radii summing to exactly 5 touch.
   EXPECT_TRUE(overlaps(circle(v(0, 0), Fx(2)), circle(v(3, 4), Fx(3))));
   EXPECT_FALSE(overlaps(circle(v(0, 0), Fx(2)), circle(v(3, 4), Fx(3) - Fx::epsilon())));
@@ -70,7 +70,7 @@ TEST(Circle, OverlapsExactlyAtTheBoundary) {
   EXPECT_FALSE(overlaps(circle(left, Fx::max()), circle(right, Fx::max() - Fx::epsilon())));
 }
 
-TEST(Circle, OverlapsAabbIncludingCorners) {
+TEST(FixedCircle, OverlapsAabbIncludingCorners) {
   const Aabb2 b = box(0, 0, 4, 4);
   EXPECT_TRUE(overlaps(circle(v(2, 2), Fx::zero()), b));  // center inside
   EXPECT_TRUE(overlaps(circle(v(-1, 2), Fx(1)), b));      // touching a side
@@ -79,7 +79,7 @@ TEST(Circle, OverlapsAabbIncludingCorners) {
   EXPECT_FALSE(overlaps(circle(v(7, 8), Fx(5) - Fx::epsilon()), b));
 }
 
-TEST(Segment2, IntersectsCrossingTouchingAndCollinear) {
+TEST(FixedSegment2, IntersectsCrossingTouchingAndCollinear) {
   EXPECT_TRUE(intersects({v(0, 0), v(4, 4)}, {v(0, 4), v(4, 0)}));
   EXPECT_TRUE(intersects({v(0, 0), v(4, 0)}, {v(4, 0), v(5, 3)}));   // shared end
   EXPECT_TRUE(intersects({v(0, 0), v(4, 0)}, {v(2, 0), v(2, 3)}));   // T junction
@@ -92,7 +92,7 @@ TEST(Segment2, IntersectsCrossingTouchingAndCollinear) {
   EXPECT_TRUE(intersects(huge, {Vec2(Fx::min(), Fx::max()), Vec2(Fx::max(), Fx::min())}));
 }
 
-TEST(Polygon, ContainsWithBoundaryAndConcaveShapes) {
+TEST(FixedPolygon, ContainsWithBoundaryAndConcaveShapes) {
   // An L shape (concave), counter-clockwise.
   const std::array<Vec2, 6> l = {v(0, 0), v(4, 0), v(4, 1), v(1, 1), v(1, 4), v(0, 4)};
   EXPECT_TRUE(*polygon_contains(l, v(2, 0)));  // on an edge

@@ -18,7 +18,7 @@ Aabb2 box(int32_t x0, int32_t y0, int32_t x1, int32_t y1) {
   return *Aabb2::make(v(x0, y0), v(x1, y1));
 }
 
-TEST(RaycastAabb, HitsTheNearFaceWithExactFraction) {
+TEST(FixedRaycastAabb, HitsTheNearFaceWithExactFraction) {
   const auto hit = raycast(Ray2{v(-3, 0), v(4, 0)}, box(-1, -1, 1, 1));
   ASSERT_TRUE(hit.has_value());
   EXPECT_EQ(hit->fraction, 0.5_fx);
@@ -31,7 +31,7 @@ TEST(RaycastAabb, HitsTheNearFaceWithExactFraction) {
   EXPECT_EQ(from_above->normal, v(0, 1));
 }
 
-TEST(RaycastAabb, FollowsTheSharedRules) {
+TEST(FixedRaycastAabb, FollowsTheSharedRules) {
   const Aabb2 b = box(-1, -1, 1, 1);
   EXPECT_FALSE(raycast(Ray2{v(0, 0), v(5, 0)}, b).has_value());    // starts inside
   EXPECT_FALSE(raycast(Ray2{v(-3, 0), v(0, 0)}, b).has_value());   // zero delta
@@ -53,7 +53,7 @@ TEST(RaycastAabb, FollowsTheSharedRules) {
   EXPECT_EQ(graze->fraction, Fx::ratio(2, 6));
 }
 
-TEST(RaycastAabb, WorksAcrossTheWholeRange) {
+TEST(FixedRaycastAabb, WorksAcrossTheWholeRange) {
   const Aabb2 far = box(32000, -10, 32767, 10);
   const auto hit = raycast(Ray2{Vec2(Fx::min(), Fx::zero()), Vec2(Fx::max(), Fx::zero())}, far);
   EXPECT_FALSE(hit.has_value());  // reaches only -2^-16
@@ -63,7 +63,7 @@ TEST(RaycastAabb, WorksAcrossTheWholeRange) {
   EXPECT_EQ(across->fraction, Fx::ratio(int64_t{32500} * 65536, INT32_MAX));
 }
 
-TEST(RaycastCircle, HitsWithFractionPointAndNormal) {
+TEST(FixedRaycastCircle, HitsWithFractionPointAndNormal) {
   const Circle c = *Circle::make(v(0, 0), Fx(1));
   const auto hit = raycast(Ray2{v(-3, 0), v(6, 0)}, c);
   ASSERT_TRUE(hit.has_value());
@@ -80,7 +80,7 @@ TEST(RaycastCircle, HitsWithFractionPointAndNormal) {
   EXPECT_LT(dot(oblique->normal, v(8, 6)), Fx::zero());
 }
 
-TEST(RaycastCircle, FollowsTheSharedRules) {
+TEST(FixedRaycastCircle, FollowsTheSharedRules) {
   const Circle c = *Circle::make(v(0, 0), Fx(1));
   EXPECT_FALSE(raycast(Ray2{v(0, 0), v(5, 0)}, c).has_value());    // inside
   EXPECT_FALSE(raycast(Ray2{v(-3, 0), v(0, 0)}, c).has_value());   // zero delta
@@ -101,7 +101,7 @@ TEST(RaycastCircle, FollowsTheSharedRules) {
   EXPECT_EQ(point->normal, v(-1, 0));
 }
 
-TEST(RaycastCircle, FarApartInputsStayInRange) {
+TEST(FixedRaycastCircle, FarApartInputsStayInRange) {
   // Origin and center 60000 units apart on x: the reduced-resolution path.
   const Circle c = *Circle::make(v(30000, 0), Fx(100));
   const auto hit = raycast(Ray2{v(-30000, 0), Vec2(Fx::max(), Fx::zero())}, c);
@@ -120,7 +120,7 @@ TEST(RaycastCircle, FarApartInputsStayInRange) {
   EXPECT_LE(std::abs(edge_hit->point.x.raw()), 2);  // hits x = 0, one bit of resolution lost
 }
 
-TEST(RaycastSegment, HitsWithNormalFacingTheRay) {
+TEST(FixedRaycastSegment, HitsWithNormalFacingTheRay) {
   const Segment2 wall{v(2, -2), v(2, 2)};
   const auto hit = raycast(Ray2{v(0, 0), v(4, 0)}, wall);
   ASSERT_TRUE(hit.has_value());

@@ -27,21 +27,21 @@ void expect_sin_cos_within_one_ulp(Fx angle) {
   ASSERT_LE(ulps(sc.cos, std::cos(a)), 1.0L) << "cos raw angle " << angle.raw();
 }
 
-TEST(SinCos, WithinOneUlpOverTheFullCircle) {
+TEST(FixedSinCos, WithinOneUlpOverTheFullCircle) {
   // Every 3rd raw angle over two full turns: about 275000 angles.
   for (int32_t raw = -2 * 411775; raw <= 2 * 411775; raw += 3) {
     expect_sin_cos_within_one_ulp(Fx::from_raw(raw));
   }
 }
 
-TEST(SinCos, WithinOneUlpAcrossTheWholeRange) {
+TEST(FixedSinCos, WithinOneUlpAcrossTheWholeRange) {
   expect_sin_cos_within_one_ulp(Fx::max());
   expect_sin_cos_within_one_ulp(Fx::min());
   SplitMix64 rng{31};
   for (int i = 0; i < 100000; ++i) expect_sin_cos_within_one_ulp(Fx::from_raw(rng.raw_i32()));
 }
 
-TEST(SinCos, KnownAngles) {
+TEST(FixedSinCos, KnownAngles) {
   EXPECT_EQ(sin(Fx::zero()), Fx::zero());
   EXPECT_EQ(cos(Fx::zero()), Fx::one());
   EXPECT_EQ(sin(Fx::half_pi()), Fx::one());
@@ -54,7 +54,7 @@ TEST(SinCos, KnownAngles) {
   }
 }
 
-TEST(Atan2, WithinOneUlpAndQuadrantCorrect) {
+TEST(FixedAtan2, WithinOneUlpAndQuadrantCorrect) {
   SplitMix64 rng{32};
   for (int i = 0; i < 200000; ++i) {
     const Fx y = Fx::from_raw(rng.raw_i32() >> rng.below(31));
@@ -80,7 +80,7 @@ TEST(Atan2, WithinOneUlpAndQuadrantCorrect) {
   }
 }
 
-TEST(Atan2, ExactOnTheAxesAndAtTheRangeEdge) {
+TEST(FixedAtan2, ExactOnTheAxesAndAtTheRangeEdge) {
   EXPECT_EQ(atan2(Fx::zero(), Fx::zero()), Fx::zero());
   EXPECT_EQ(atan2(Fx::zero(), Fx(5)), Fx::zero());
   EXPECT_EQ(atan2(Fx::zero(), Fx(-5)), Fx::pi());
@@ -92,7 +92,7 @@ TEST(Atan2, ExactOnTheAxesAndAtTheRangeEdge) {
   EXPECT_EQ(atan2(Fx::from_raw(-1), Fx::min()).raw(), -205887);
 }
 
-TEST(NormalizeAngle, MapsIntoMinusPiToPi) {
+TEST(FixedNormalizeAngle, MapsIntoMinusPiToPi) {
   SplitMix64 rng{33};
   for (int i = 0; i < 100000; ++i) {
     const Fx a = Fx::from_raw(rng.raw_i32());

@@ -26,7 +26,7 @@ long double value(Fx f) {
   return static_cast<long double>(f.raw()) / 65536.0L;
 }
 
-TEST(Vec2, AddsSubtractsScalesAndSaturates) {
+TEST(FixedVec2, AddsSubtractsScalesAndSaturates) {
   EXPECT_EQ(v(1, 2) + v(3, -4), v(4, -2));
   EXPECT_EQ(v(1, 2) - v(3, -4), v(-2, 6));
   EXPECT_EQ(-v(1, -2), v(-1, 2));
@@ -35,7 +35,7 @@ TEST(Vec2, AddsSubtractsScalesAndSaturates) {
   EXPECT_EQ(perp(v(1, 0)), v(0, 1));
 }
 
-TEST(Vec2, DotAndCrossAreSummedExactlyThenRoundedOnce) {
+TEST(FixedVec2, DotAndCrossAreSummedExactlyThenRoundedOnce) {
   SplitMix64 rng{41};
   for (int i = 0; i < 100000; ++i) {
     const Vec2 a = raw_vec(rng);
@@ -57,7 +57,7 @@ TEST(Vec2, DotAndCrossAreSummedExactlyThenRoundedOnce) {
   EXPECT_EQ(length_squared_wide(Vec2(Fx::min(), Fx::min())).raw(), INT64_MAX);  // 2^63 saturates
 }
 
-TEST(Vec2, LengthIsTheRoundedExactRoot) {
+TEST(FixedVec2, LengthIsTheRoundedExactRoot) {
   EXPECT_EQ(length(v(3, 4)), Fx(5));
   EXPECT_EQ(length(v(-300, 400)), Fx(500));
   EXPECT_EQ(length(Vec2::zero()), Fx::zero());
@@ -75,7 +75,7 @@ TEST(Vec2, LengthIsTheRoundedExactRoot) {
   }
 }
 
-TEST(Vec2, NormalizedIsWithinOneUlpAndKeepsZero) {
+TEST(FixedVec2, NormalizedIsWithinOneUlpAndKeepsZero) {
   EXPECT_EQ(normalized(Vec2::zero()), Vec2::zero());
   EXPECT_EQ(normalized(v(0, -7)), v(0, -1));
   EXPECT_EQ(normalized(Vec2(Fx::min(), Fx::zero())), v(-1, 0));
@@ -91,7 +91,7 @@ TEST(Vec2, NormalizedIsWithinOneUlpAndKeepsZero) {
   }
 }
 
-TEST(Rot2, RotatesAndComposes) {
+TEST(FixedRot2, RotatesAndComposes) {
   const Rot2 quarter = Rot2::from_angle(Fx::half_pi());
   EXPECT_EQ(rotate(quarter, v(2, 0)), v(0, 2));
   EXPECT_EQ(inv_rotate(quarter, v(0, 2)), v(2, 0));
@@ -110,7 +110,7 @@ TEST(Rot2, RotatesAndComposes) {
   EXPECT_LE(std::abs(back.y.raw() - p.y.raw()), 2 * 107 + 2);
 }
 
-TEST(Transform2, AppliesAndInverts) {
+TEST(FixedTransform2, AppliesAndInverts) {
   const Transform2 t{v(10, -5), Rot2::from_angle(Fx::half_pi())};
   EXPECT_EQ(apply(t, v(1, 0)), v(10, -4));
   EXPECT_EQ(apply_inverse(t, v(10, -4)), v(1, 0));

@@ -46,6 +46,8 @@ constexpr bool contains(Aabb2 outer, Aabb2 inner) {
 constexpr Aabb2 translated(Aabb2 box, Vec2 delta) {
   return {box.lower + delta, box.upper + delta};
 }
+/// The midpoint, each coordinate rounded toward negative infinity (exact
+/// when the sum of the two raws is even); never saturates.
 constexpr Vec2 center(Aabb2 box) {
   return {Fx::from_raw(static_cast<int32_t>(
               (static_cast<int64_t>(box.lower.x.raw()) + box.upper.x.raw()) >> 1)),

@@ -19,7 +19,8 @@ struct IdAabb2 {
 /// visit pairs in the same order on every machine, whatever order the boxes
 /// were gathered in. Ids must be unique: a repeated id is refused with
 /// kInvalidArgument naming it, and `items` is then left untouched.
-/// Allocates a scratch copy of the ids (O(n) memory), O(n log n) time.
+/// `items` is used only during the call. Allocates a scratch copy of the ids
+/// (O(n) memory); O(n log n) time.
 Status sort_by_stable_id(std::span<IdAabb2> items);
 
 }  // namespace rwd::fixed

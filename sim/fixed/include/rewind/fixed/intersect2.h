@@ -38,7 +38,8 @@ bool intersects(Segment2 s, Segment2 t);
 /// the closed chain of `vertices` (the last joins the first), simple
 /// (non-self-intersecting), convex or not, in either winding; the test uses
 /// the even-odd crossing rule with exact orientation tests.
-/// kInvalidArgument for fewer than 3 vertices.
+/// `vertices` is read only during the call. kInvalidArgument for fewer than
+/// 3 vertices.
 Result<bool> polygon_contains(std::span<const Vec2> vertices, Vec2 p);
 
 }  // namespace rwd::fixed
