@@ -9,8 +9,8 @@ namespace rwd::fixed {
 namespace {
 
 // CORDIC works in Q2.30: atan(2^-i) * 2^30 for i = 0..29, rounded to
-// nearest (derived with 60-digit arithmetic). An entry off by more than
-// about 2^-20 rad breaks the unit tests' 1-ulp bounds on sin, cos and atan2;
+// nearest (derived with 60-digit arithmetic). An entry off by one Fx ulp
+// (2^-16 rad) breaks the unit tests' 1-ulp bounds on sin, cos and atan2;
 // a smaller error that still changes any result bit changes the golden
 // digest (tests/unit/fixed/golden_test.cpp).
 constexpr int kIterations = 30;
