@@ -110,6 +110,17 @@ TEST(FixedRot2, RotatesAndComposes) {
   EXPECT_LE(std::abs(back.y.raw() - p.y.raw()), 2 * 107 + 2);
 }
 
+TEST(FixedRot2, FromAngleIsUnitWithinTwoUlps) {
+  for (int32_t raw = -411775; raw <= 411775; raw += 37) {
+    const Rot2 q = Rot2::from_angle(Fx::from_raw(raw));
+    const I128 norm2 =
+        static_cast<I128>(q.c.raw()) * q.c.raw() + static_cast<I128>(q.s.raw()) * q.s.raw();
+    // |(c, s)| - 1 in ulps is about (norm2 - 2^32) / 2^17.
+    const I128 off = norm2 - (I128{1} << 32);
+    ASSERT_LE(off < 0 ? -off : off, I128{2} << 17) << raw;
+  }
+}
+
 TEST(FixedTransform2, AppliesAndInverts) {
   const Transform2 t{v(10, -5), Rot2::from_angle(Fx::half_pi())};
   EXPECT_EQ(apply(t, v(1, 0)), v(10, -4));
