@@ -41,20 +41,6 @@ void add_label(std::string& out, std::string_view name, const MetricsSample& mat
   out.append("rewind_").append(name).append("{match=\"").append(match.match).append("\"");
 }
 
-const char* phase_name(MatchHost::Phase phase) {
-  switch (phase) {
-    case MatchHost::Phase::kLobby:
-      return "lobby";
-    case MatchHost::Phase::kRunning:
-      return "running";
-    case MatchHost::Phase::kClosing:
-      return "closing";
-    case MatchHost::Phase::kEnded:
-      break;
-  }
-  return "ended";
-}
-
 void add_phase(std::string& out, std::span<const MetricsSample> matches) {
   add_header(out, "match_phase",
              "1 for the phase the match is in (lobby, running, closing, ended), 0 for the others.",

@@ -16,20 +16,6 @@ namespace {
 // backend or a scrape to see how they ended, bounded for a long-lived host.
 constexpr size_t kEndedKept = 64;
 
-const char* phase_name(MatchHost::Phase phase) {
-  switch (phase) {
-    case MatchHost::Phase::kLobby:
-      return "lobby";
-    case MatchHost::Phase::kRunning:
-      return "running";
-    case MatchHost::Phase::kClosing:
-      return "closing";
-    case MatchHost::Phase::kEnded:
-      break;
-  }
-  return "ended";
-}
-
 HttpAnswer json_answer(std::string status, std::string body) {
   HttpAnswer answer;
   answer.status = std::move(status);

@@ -17,7 +17,9 @@
 // the snapshot codec are part of the matrix too; then "heap <tick>
 // <checksum> <points>" lines for a heap with deep and shallow overlaps that
 // sleeps and is kicked awake, so the push-out and the broadphase's trees are
-// part of it.
+// part of it. The very first line, "fixed <digest>", is the golden digest
+// of the fixed-point library (tests/unit/fixed/golden_digest.h), so the
+// integer-only 2D foundation is part of the matrix as well.
 //
 // Links only the engine and the game seam: no I/O beyond stdout, no clock.
 //
@@ -33,6 +35,7 @@
 #include <span>
 #include <vector>
 
+#include "golden_digest.h"
 #include "rewind/game/player_input.h"
 #include "rewind/game/simulation.h"
 #include "rewind/sim/world3d.h"
@@ -358,6 +361,7 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  std::printf("fixed %016" PRIx64 "\n", rwd::fixed::golden_digest());
   if (!run_edge_scene(300)) return 3;
   if (!run_heap_scene(400)) return 3;
 

@@ -2,7 +2,9 @@
 # SPDX-License-Identifier: MIT
 #
 # Determinism matrix: builds det_checksums.cpp together with every source of
-# the engine (sim/src/**/*.cpp) and the game seam (sim/game/src/*.cpp)
+# the engine (sim/src/**/*.cpp), the game seam (sim/game/src/*.cpp) and the
+# fixed-point library with its golden digest (sim/fixed/src/*.cpp,
+# tests/unit/fixed/golden_digest.cpp)
 # directly with each compiler -- no CMake, so no project flag can hide a
 # difference -- runs every build and diffs its per-tick checksums against the
 # g++ -O0 build.
@@ -81,8 +83,11 @@ if ((${#sim_sources[@]} == 0 || ${#game_sources[@]} == 0)); then
        "$source_dir/sim/game/src" >&2
   exit 1
 fi
+mapfile -t fixed_sources < <(find sim/fixed/src -maxdepth 1 -name '*.cpp' -type f 2>/dev/null | LC_ALL=C sort)
+fixed_sources+=(tests/unit/fixed/golden_digest.cpp)
 det_source="$script_dir/det_checksums.cpp"
-sources=("$det_source" "${sim_sources[@]/#/$source_dir/}" "${game_sources[@]/#/$source_dir/}")
+sources=("$det_source" "${sim_sources[@]/#/$source_dir/}" "${game_sources[@]/#/$source_dir/}"
+  "${fixed_sources[@]/#/$source_dir/}")
 
 mkdir -p "$build_dir"
 build_dir=$(cd "$build_dir" && pwd)
@@ -95,6 +100,7 @@ ln -sf /usr/include/xxhash.h "$build_dir/include/xxhash.h"
 
 common_flags="-std=c++20 -ffp-contract=off -fno-fast-math -I$source_dir/sim/include"
 common_flags+=" -I$source_dir/sim/src -I$source_dir/sim/game/include -I$source_dir/sim/game/src"
+common_flags+=" -I$source_dir/sim/fixed/include -I$source_dir/tests/unit/fixed"
 common_flags+=" -isystem $build_dir/include"
 # -fexcess-precision=standard keeps float math in float where x87 exists. GCC
 # accepts it for C++ only from GCC 13 on; GCC 12 (Debian 12) refuses it, and

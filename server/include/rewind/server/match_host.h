@@ -204,4 +204,8 @@ class MatchHost {
   DesyncForensics forensics_;
 };
 
+/// "lobby", "running", "closing" or "ended": the phase as the metrics and
+/// the control API name it.
+const char* phase_name(MatchHost::Phase phase);
+
 }  // namespace rwd::server

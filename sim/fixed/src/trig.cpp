@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: MIT
+#include "rewind/fixed/trig.h"
+
+#include <cstdint>
+
+#include "rewind/fixed/wide_int.h"
+
+namespace rwd::fixed {
+namespace {
+
+// CORDIC works in Q2.30: atan(2^-i) * 2^30 for i = 0..29, rounded to
+// nearest (derived with 60-digit arithmetic). An entry off by one Fx ulp
+// (2^-16 rad) breaks the unit tests' 1-ulp bounds on sin, cos and atan2;
+// a smaller error that still changes any result bit changes the golden
+// digest (tests/unit/fixed/golden_test.cpp).
+constexpr int kIterations = 30;
+constexpr int64_t kAtanTable[kIterations] = {
+    843314857, 497837829, 263043837, 133525159, 67021687, 33543516, 16775851, 8388437,
+    4194283,   2097149,   1048576,   524288,    262144,   131072,   65536,    32768,
+    16384,     8192,      4096,      2048,      1024,     512,      256,      128,
+    64,        32,        16,        8,         4,        2};
+// 1 / prod(sqrt(1 + 2^-2i)) for 30 iterations, Q2.30: starting the rotation
+// at this x makes the result come out unscaled.
+constexpr int64_t kCordicGainInv = 652032874;
+// pi in Q2.30, and pi, pi/2, 2*pi in Q32.32 (all rounded to nearest).
+constexpr int64_t kPiQ30 = 3373259426;
+constexpr int64_t kPiQ32 = 13493037705;
+constexpr int64_t kHalfPiQ32 = 6746518852;
+constexpr int64_t kTwoPiQ32 = 26986075409;
+
+// radians reduced to (-pi, pi] in Q32.32. |raw| * 2^16 < 2^47 and the
+// quotient is at most 5216, so the error of the 2*pi constant (2^-33) adds
+// at most 6e-7 rad, well below an Fx ulp.
+int64_t reduce_q32(Fx radians) {
+  const int64_t a = static_cast<int64_t>(radians.raw()) * 65536;
+  int64_t r = a % kTwoPiQ32;  // C++ truncates: r has the sign of a
+  if (r < 0) r += kTwoPiQ32;  // [0, 2*pi)
+  if (r > kPiQ32) r -= kTwoPiQ32;
+  return r;
+}
+
+// x >> shift with the sign kept (arithmetic shift, defined since C++20).
+constexpr int64_t asr(int64_t v, int shift) {
+  return v >> shift;
+}
+
+}  // namespace
+
+SinCos sin_cos(Fx radians) {
+  int64_t r = reduce_q32(radians);
+  // Fold into [-pi/2, pi/2]: sin(pi - r) = sin r, cos(pi - r) = -cos r.
+  bool negate_cos = false;
+  if (r > kHalfPiQ32) {
+    r = kPiQ32 - r;
+    negate_cos = true;
+  } else if (r < -kHalfPiQ32) {
+    r = -kPiQ32 - r;
+    negate_cos = true;
+  }
+  int64_t z = static_cast<int64_t>(shift_round(r, 2));  // Q2.30
+  int64_t x = kCordicGainInv;
+  int64_t y = 0;
+  for (int i = 0; i < kIterations; ++i) {
+    const int64_t dx = asr(y, i);
+    const int64_t dy = asr(x, i);
+    if (z >= 0) {
+      x -= dx;
+      y += dy;
+      z -= kAtanTable[i];
+    } else {
+      x += dx;
+      y -= dy;
+      z += kAtanTable[i];
+    }
+  }
+  Fx c = Fx::from_raw(saturate_i32(shift_round(x, 14)));
+  const Fx s = Fx::from_raw(saturate_i32(shift_round(y, 14)));
+  if (negate_cos) c = -c;
+  return {s, c};
+}
+
+Fx atan2(Fx y, Fx x) {
+  // The axes are answered exactly: CORDIC would leave a residue of a few
+  // 2^-30 there, which could round differently from the documented values.
+  if (y.raw() == 0) return x.raw() >= 0 ? Fx::zero() : Fx::pi();
+  if (x.raw() == 0) return y.raw() > 0 ? Fx::half_pi() : -Fx::half_pi();
+  int64_t vx = x.raw();
+  int64_t vy = y.raw();
+  // Left half-plane: rotate by pi so x >= 0, and add the pi back at the end.
+  int64_t offset = 0;
+  if (vx < 0) {
+    vx = -vx;
+    vy = -vy;
+    offset = y.raw() >= 0 ? kPiQ30 : -kPiQ30;
+  }
+  // Scale so the larger magnitude is in [2^40, 2^41): both inputs are below
+  // 2^32 in magnitude, so this only ever shifts left (exactly). The CORDIC
+  // gain (< 1.65) and sqrt(2) keep every value below 2^43.
+  const uint64_t big = magnitude(vx) > magnitude(vy) ? magnitude(vx) : magnitude(vy);
+  int shift = 0;
+  while ((big << shift) < (uint64_t{1} << 40)) ++shift;
+  vx *= int64_t{1} << shift;
+  vy *= int64_t{1} << shift;
+  int64_t z = 0;  // Q2.30
+  for (int i = 0; i < kIterations; ++i) {
+    const int64_t dx = asr(vy, i);
+    const int64_t dy = asr(vx, i);
+    if (vy >= 0) {
+      vx += dx;
+      vy -= dy;
+      z += kAtanTable[i];
+    } else {
+      vx -= dx;
+      vy += dy;
+      z -= kAtanTable[i];
+    }
+  }
+  return Fx::from_raw(saturate_i32(shift_round(z + offset, 14)));
+}
+
+Fx normalize_angle(Fx radians) {
+  if (radians > -Fx::pi() && radians < Fx::pi()) return radians;
+  return Fx::from_raw(saturate_i32(shift_round(reduce_q32(radians), 16)));
+}
+
+}  // namespace rwd::fixed
