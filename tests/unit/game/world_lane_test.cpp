@@ -5,33 +5,15 @@
 // into a reused snapshot does not allocate.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <new>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "allocation_counter.h"
 #include "rewind/game/crates_game.h"
 #include "rewind/game/simulation.h"
 #include "rewind/game/world_lane.h"
 #include "rewind/sim/world3d.h"
-
-namespace {
-bool g_counting = false;
-long g_allocations = 0;
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (g_counting) ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
 
 namespace rwd::game {
 namespace {
@@ -114,12 +96,10 @@ TEST(WorldLane, SavingIntoAReusedSnapshotDoesNotAllocate) {
   SimSnapshot snapshot;
   sim->save(snapshot);
   sim->restore(snapshot);
-  g_allocations = 0;
-  g_counting = true;
+  rwd::test::AllocationCounter::start();
   sim->save(snapshot);
   sim->restore(snapshot);
-  g_counting = false;
-  EXPECT_EQ(g_allocations, 0);
+  EXPECT_EQ(rwd::test::AllocationCounter::stop(), 0);
 }
 
 TEST(WorldLane, TheGameDescribesItsLanesConfigBytes) {

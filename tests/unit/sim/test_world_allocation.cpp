@@ -2,30 +2,13 @@
 // A warmed-up world steps, saves and restores without touching the heap
 // (DESIGN.md section 2: snapshots every tick must not allocate). Counts
 // global operator new calls between two markers.
-#include <cstdlib>
-#include <new>
 
 #include <gtest/gtest.h>
 
+#include "allocation_counter.h"
+
 #include "rewind/sim/world3d.h"
 #include "sim_test_scenes.h"
-
-namespace {
-bool g_counting = false;
-long g_allocations = 0;
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (g_counting) ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
 
 namespace rwd::sim {
 namespace {
@@ -54,15 +37,13 @@ TEST(WorldAllocation, WarmStepSaveRestoreDoNotAllocate) {
     world.save(slot);
   }
   world.restore(start);
-  g_allocations = 0;
-  g_counting = true;
+  rwd::test::AllocationCounter::start();
   for (int i = 0; i < 120; ++i) {
     world.step();
     world.save(slot);
   }
   world.restore(start);
-  g_counting = false;
-  EXPECT_EQ(g_allocations, 0);
+  EXPECT_EQ(rwd::test::AllocationCounter::stop(), 0);
 }
 
 }  // namespace
