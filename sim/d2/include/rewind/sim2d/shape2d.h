@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Shapes of the 2D lane. Every coordinate is Q16.16 (metres by convention)
+// in the body's own frame. A shape is a small value (no pointers, trivially
+// copyable), so it lives in the world state with its body and is saved,
+// restored and checksummed with it.
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "rewind/fixed/fx.h"
+#include "rewind/fixed/vec2.h"
+#include "rewind/sim/status.h"
+
+namespace rwd::sim2d {
+
+using fixed::Fx;
+using fixed::Vec2;
+
+enum class ShapeType2D : uint8_t {
+  kCircle = 0,   ///< vertices[0] is the centre; radius > 0
+  kCapsule = 1,  ///< a segment vertices[0]..vertices[1] swept by radius > 0
+  kPolygon = 2,  ///< convex, counter-clockwise, 3..8 vertices, optionally rounded
+  kSegment = 3,  ///< a two-sided edge vertices[0]..vertices[1] (static level geometry)
+};
+inline constexpr int kShapeTypeCount2D = 4;
+
+/// The most vertices a convex polygon may have.
+inline constexpr int kMaxPolygonVertices = 8;
+
+/// One shape. Which fields mean something depends on `type` (see
+/// ShapeType2D); the rest are zero, so equal shapes compare and hash equal.
+/// Build shapes with the factories below: they validate and fill every
+/// derived field (normals, centroid).
+struct Shape2D {
+  ShapeType2D type = ShapeType2D::kCircle;
+  /// Number of meaningful vertices: 1 (circle), 2 (capsule, segment) or
+  /// 3..8 (polygon).
+  uint8_t count = 0;
+  /// Circle and capsule radius; the rounding radius of a polygon (>= 0).
+  Fx radius;
+  std::array<Vec2, kMaxPolygonVertices> vertices{};
+  /// Polygon only: outward unit normal of edge i (vertices[i] to
+  /// vertices[i + 1]).
+  std::array<Vec2, kMaxPolygonVertices> normals{};
+  /// The centre of area (polygon), of the segment, or the circle's centre.
+  Vec2 centroid;
+
+  friend bool operator==(const Shape2D&, const Shape2D&) = default;
+};
+
+/// A circle of `radius` (> 0) centred at `center`.
+Result<Shape2D> make_circle(Fx radius, Vec2 center = {});
+/// A capsule: the segment p1..p2 (distinct points) swept by `radius` (> 0).
+Result<Shape2D> make_capsule(Vec2 p1, Vec2 p2, Fx radius);
+/// An axis-aligned box of half extents hx, hy (each > 0) about the origin:
+/// the spec's "aabb" shape and the common box.
+Result<Shape2D> make_box(Fx half_width, Fx half_height);
+/// A box of half extents hx, hy centred at `center` and turned by `angle`
+/// radians.
+Result<Shape2D> make_box(Fx half_width, Fx half_height, Vec2 center, Fx angle);
+/// A convex polygon through `points` (3..8, either winding; stored
+/// counter-clockwise), rounded by `radius` (>= 0). Refused with
+/// kInvalidArgument and a message naming the fault: too few or too many
+/// points, repeated or collinear consecutive points, a reflex corner (not
+/// convex), a self-crossing outline, or an area too small to carry mass.
+/// The points are kept as given (no hull is taken), so what was authored is
+/// what collides.
+Result<Shape2D> make_polygon(std::span<const Vec2> points, Fx radius = Fx());
+/// A two-sided segment p1..p2 (distinct points): level edges and walls.
+/// It has no area, so only static and kinematic bodies may use it.
+Result<Shape2D> make_segment(Vec2 p1, Vec2 p2);
+
+/// Checks a shape built by hand (or read from bytes) the way the factories
+/// would: kInvalidArgument naming the fault, kOk otherwise.
+Status validate_shape(const Shape2D& shape);
+
+}  // namespace rwd::sim2d

@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Contact manifolds of the 2D lane: one routine per shape pair in an N x N
+// table (reversed pairs swap their roles), every value Q32.32. A manifold
+// holds up to two points; points farther apart than the speculative
+// distance are left out, closer ones (even separated) are kept so the
+// solver can stop bodies before they touch.
+#include <cstdint>
+
+#include "rewind/sim2d/shape2d.h"
+#include "wmath.h"
+
+namespace rwd::sim2d::detail {
+
+struct ManifoldPoint2 {
+  /// The contact point relative to body A's origin and to body B's origin,
+  /// in world axes (m). The point lies midway between the two surfaces.
+  V2 anchor_a;
+  V2 anchor_b;
+  /// Signed distance between the surfaces along the normal (m); negative
+  /// when they overlap.
+  W separation = 0;
+  /// Names the pair of features (vertex/edge indices) that made the point,
+  /// so a point keeps its warm-start impulse while the same features touch.
+  uint16_t id = 0;
+};
+
+struct Manifold2 {
+  /// Unit normal in world axes, pointing from A to B.
+  V2 normal;
+  ManifoldPoint2 points[2];
+  int count = 0;
+};
+
+/// The manifold of shape `a` on a body at `xa` (the body origin's
+/// transform) against shape `b` at `xb`, keeping points whose separation is
+/// below `speculative` (m, > 0). `out` is overwritten; count 0 means apart.
+/// Any pair of ShapeType2D values is accepted; segment against segment
+/// gives no contact (level geometry does not collide with itself).
+void collide(const Shape2D& a, const Xf& xa, const Shape2D& b, const Xf& xb, W speculative,
+             Manifold2& out);
+
+}  // namespace rwd::sim2d::detail
