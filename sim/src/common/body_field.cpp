@@ -58,6 +58,10 @@ BodyField BodyField::fixed16(uint32_t body_index, std::string_view name, int32_t
   return {body_index, name, FieldType::kFixed16, static_cast<uint32_t>(raw)};
 }
 
+BodyField BodyField::fixed32(uint32_t body_index, std::string_view name, int64_t raw) {
+  return {body_index, name, FieldType::kFixed32, static_cast<uint64_t>(raw)};
+}
+
 double BodyField::value() const {
   switch (type) {
     case FieldType::kFloat32:
@@ -68,6 +72,8 @@ double BodyField::value() const {
       return static_cast<double>(static_cast<int64_t>(bits));
     case FieldType::kFixed16:
       return static_cast<double>(static_cast<int32_t>(static_cast<uint32_t>(bits))) / 65536.0;
+    case FieldType::kFixed32:
+      return static_cast<double>(static_cast<int64_t>(bits)) / 4294967296.0;
   }
   return 0.0;
 }

@@ -16,6 +16,7 @@ enum class FieldType : uint8_t {
   kUnsigned = 1,  ///< bits is the value
   kSigned = 2,    ///< bits is the value in two's complement (int64)
   kFixed16 = 3,   ///< the low 32 bits are a Q16.16 raw value (int32): value = raw / 65536
+  kFixed32 = 4,   ///< bits is a Q32.32 raw value (int64): value = raw / 2^32
 };
 
 /// One field of one body. `name` must refer to storage that outlives the
@@ -30,9 +31,11 @@ struct BodyField {
   static BodyField unsigned_int(uint32_t body_index, std::string_view name, uint64_t value);
   static BodyField signed_int(uint32_t body_index, std::string_view name, int64_t value);
   static BodyField fixed16(uint32_t body_index, std::string_view name, int32_t raw);
+  static BodyField fixed32(uint32_t body_index, std::string_view name, int64_t raw);
 
   /// The value as a double, for reports. Exact for every kFloat32 and
-  /// kFixed16 value and for integers up to 2^53 in magnitude.
+  /// kFixed16 value, for kFixed32 values up to 2^21 in magnitude and for
+  /// integers up to 2^53 in magnitude.
   double value() const;
 };
 

@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The 2D lane: a rigid-body world in fixed point. Public values are Q16.16
+// (Fx); the step works in Q32.32 integers and never touches floating
+// point, so the same calls give the same bits on every compiler and
+// machine. The world is a value: all of it lives in World2DState (flat
+// arrays), so save/restore are bulk copies and restore-then-step equals
+// continuing-to-step bit for bit.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rewind/fixed/rot2.h"
+#include "rewind/sim/status.h"
+#include "rewind/sim2d/body2d.h"
+#include "rewind/sim2d/shape2d.h"
+#include "rewind/sim2d/world2d_config.h"
+#include "rewind/sim2d/world2d_state.h"
+
+namespace rwd::sim {
+// Declared only: the step's files never include the hasher or the dump
+// (they name floating-point types for the 3D lane), which keeps the 2D
+// step checkable for floating point (test sim2d_no_float).
+class StateHasher;
+struct BodyField;
+}  // namespace rwd::sim
+
+namespace rwd::sim2d {
+
+/// Diagnostics of the last step: not state, not in the checksum.
+struct StepStats2D {
+  uint32_t broadphase_pairs = 0;   ///< pairs whose bounds overlap
+  uint32_t touching_contacts = 0;  ///< pairs with at least one manifold point
+  uint32_t contact_points = 0;     ///< manifold points the solver worked on
+  uint32_t solver_iterations = 0;  ///< substeps x (1 solve + relax passes)
+};
+
+namespace detail {
+class StepScratch2D;  // per-step working memory; not state
+}
+
+class World2D {
+ public:
+  /// An empty world. An invalid config is replaced by the defaults; check
+  /// it with validate_config() first to report errors.
+  explicit World2D(const World2DConfig& config = {});
+  ~World2D();
+  World2D(World2D&&) noexcept;
+  World2D& operator=(World2D&&) noexcept;
+  World2D(const World2D&) = delete;
+  World2D& operator=(const World2D&) = delete;
+
+  /// Every field of `config` in range, or kInvalidArgument naming the first
+  /// that is not.
+  static Status validate_config(const World2DConfig& config);
+  /// Portable bytes of a config (little-endian, field by field).
+  static void encode_config(const World2DConfig& config, std::vector<uint8_t>& out);
+  /// encode_config()'s bytes back; kCorrupt for malformed or invalid ones.
+  static Result<World2DConfig> decode_config(std::span<const uint8_t> bytes);
+  /// (name, value) pairs in encode_config()'s order, values exact decimals
+  /// with units ("gravity", "(0, -10) m/s^2").
+  static std::vector<std::pair<std::string, std::string>> describe_config(
+      const World2DConfig& config);
+
+  // --- bodies -------------------------------------------------------------
+
+  /// Creates a body; kInvalidArgument (naming the field) or kCapacity leave
+  /// the world unchanged. Segments may only be static or kinematic.
+  Result<BodyId2D> create_body(const BodyDef2D& def);
+  /// Destroys a body and its contacts; kNotFound for unknown or stale ids.
+  Status destroy_body(BodyId2D id);
+  bool is_valid(BodyId2D id) const;
+  uint32_t body_count() const;
+  /// Live body ids in ascending index order; `out` is replaced.
+  void body_ids(std::vector<BodyId2D>& out) const;
+
+  // Accessors give zero values for invalid ids. The position is the body
+  // origin's; the body turns about its centre of mass.
+  BodyKind2D kind(BodyId2D id) const;
+  Vec2 position(BodyId2D id) const;
+  /// rad in [-pi, pi]
+  Fx angle(BodyId2D id) const;
+  fixed::Rot2 rotation(BodyId2D id) const;
+  Vec2 center_of_mass(BodyId2D id) const;
+  Vec2 linear_velocity(BodyId2D id) const;
+  Fx angular_velocity(BodyId2D id) const;
+  /// kg, saturated at Fx::max(); 0 for static and kinematic bodies.
+  Fx mass(BodyId2D id) const;
+  Fx z(BodyId2D id) const;
+  uint64_t user_data(BodyId2D id) const;
+  const Shape2D* shape(BodyId2D id) const;
+  bool is_enabled(BodyId2D id) const;
+
+  // Setters check the id (kNotFound) and the values (kInvalidArgument) and
+  // change nothing on error. Velocity, force and impulse setters act on
+  // dynamic bodies; velocities also on kinematic ones.
+  /// Teleports the body origin; the centre of mass must stay in bounds.
+  Status set_transform(BodyId2D id, Vec2 position, Fx angle);
+  Status set_linear_velocity(BodyId2D id, Vec2 velocity);
+  Status set_angular_velocity(BodyId2D id, Fx velocity);
+  /// N s at a world point (m).
+  Status apply_linear_impulse(BodyId2D id, Vec2 impulse, Vec2 world_point);
+  /// N m s.
+  Status apply_angular_impulse(BodyId2D id, Fx impulse);
+  /// N at the centre of mass, for the next step only.
+  Status apply_force(BodyId2D id, Vec2 force);
+  /// N at a world point, for the next step only (force and its torque).
+  Status apply_force_at(BodyId2D id, Vec2 force, Vec2 world_point);
+  /// N m, for the next step only.
+  Status apply_torque(BodyId2D id, Fx torque);
+  Status set_user_data(BodyId2D id, uint64_t user_data);
+  Status set_z(BodyId2D id, Fx z);
+  /// Takes a body out of the simulation (false) or puts it back (true); a
+  /// disabled body keeps its pose, has no velocity and no contacts.
+  Status set_enabled(BodyId2D id, bool enabled);
+
+  // --- stepping -----------------------------------------------------------
+
+  /// Advances the world by 1 / config().tick_hz seconds.
+  void step();
+  const StepStats2D& stats() const;
+  const World2DConfig& config() const;
+  uint64_t step_count() const;
+
+  // --- the world as a value -----------------------------------------------
+
+  const World2DState& state() const;
+  /// Copies the state into `out` (reusing its buffers: no allocation once
+  /// they have grown to the world's size).
+  void save(World2DState& out) const;
+  /// Copies `in` (a state save() made) back.
+  void restore(const World2DState& in);
+  /// Feeds the canonical fields of the state to `hasher`.
+  void hash(sim::StateHasher& hasher) const;
+  static void hash_state(const World2DState& state, sim::StateHasher& hasher);
+  /// XXH3-64 of hash(): the per-tick checksum.
+  uint64_t checksum() const;
+  /// Every live body's fields (the schema's names) in index order.
+  void dump_fields(std::vector<sim::BodyField>& out) const;
+  /// Portable bytes of the whole state (resync snapshots).
+  void serialize(std::vector<uint8_t>& out) const;
+  /// serialize()'s bytes back; kCorrupt (naming what is wrong) leaves the
+  /// world unchanged.
+  Status deserialize(std::span<const uint8_t> bytes);
+  /// Desync-drill hook: moves the highest-index dynamic body 1/1024 m
+  /// along +x. False, changing nothing, when there is none.
+  bool perturb_for_drill();
+
+ private:
+  World2DState state_;
+  StepStats2D stats_;
+  std::unique_ptr<detail::StepScratch2D> scratch_;
+};
+
+}  // namespace rwd::sim2d

@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Everything a 2D world is: flat arrays of trivially copyable records (no
+// pointers), so save() and restore() are bulk copies and a restored world
+// steps on bit for bit. The layout is the world's own business; games save
+// and restore it whole and never read it.
+#include <cstdint>
+#include <type_traits>
+#include <vector>
+
+#include "rewind/sim2d/body2d.h"
+#include "rewind/sim2d/detail/wmath.h"
+#include "rewind/sim2d/shape2d.h"
+#include "rewind/sim2d/world2d_config.h"
+
+namespace rwd::sim2d {
+
+/// BodyRecord2D::flags bits.
+inline constexpr uint8_t kBodyEnabled = 1;  ///< simulated (not disabled by bounds or the game)
+inline constexpr uint8_t kBodySensor = 2;
+inline constexpr uint8_t kBodyLockRotation = 4;
+inline constexpr uint8_t kBodyLive = 8;  ///< the slot holds a body
+
+/// One body slot. A free slot has no kBodyLive flag, keeps the generation of
+/// its last body and is zero otherwise.
+struct BodyRecord2D {
+  uint32_t generation = 0;
+  BodyKind2D kind = BodyKind2D::kStatic;
+  uint8_t flags = 0;
+  uint32_t layer = 0;
+  uint32_t mask = 0;
+  uint64_t user_data = 0;
+  Shape2D shape;
+  detail::V2 center;               ///< centre of mass, world, m
+  detail::Rot rotation;            ///< body frame to world
+  detail::V2 local_center;         ///< centre of mass in the body frame, m
+  detail::V2 velocity;             ///< m/s of the centre of mass
+  detail::W angular_velocity = 0;  ///< rad/s
+  detail::V2 force;                ///< N, cleared by each step
+  detail::W torque = 0;            ///< N m, cleared by each step
+  detail::W inv_mass = 0;          ///< 1/kg; 0 for static and kinematic bodies
+  detail::W inv_inertia = 0;       ///< 1/(kg m^2) about the centre of mass
+  Fx z;
+  Fx linear_damping;
+  Fx angular_damping;
+  Fx gravity_scale;
+  Material2D material;
+};
+
+/// One touching (or speculatively close) pair's contact point.
+struct ContactPoint2D {
+  detail::V2 anchor_a;            ///< from A's centre of mass, world axes, m
+  detail::V2 anchor_b;            ///< from B's centre of mass
+  detail::W separation = 0;       ///< m, negative when overlapping
+  detail::W normal_impulse = 0;   ///< N s, warm start of the next step
+  detail::W tangent_impulse = 0;  ///< N s
+  uint16_t id = 0;                ///< feature key (manifold2.h)
+};
+
+/// A pair of bodies whose bounds overlap, with the manifold of the last
+/// step. a < b (body indices); the array is sorted by (a, b).
+struct ContactRecord2D {
+  uint32_t a = 0;
+  uint32_t b = 0;
+  detail::V2 normal;  ///< unit, from a to b
+  ContactPoint2D points[2];
+  uint8_t count = 0;
+  detail::W rolling_impulse = 0;  ///< N m s, warm start of rolling resistance
+};
+
+/// The whole state of a World2D.
+struct World2DState {
+  World2DConfig config;
+  uint64_t step_count = 0;
+  uint32_t live_bodies = 0;
+  std::vector<BodyRecord2D> bodies;  ///< by slot index
+  std::vector<ContactRecord2D> contacts;
+};
+
+static_assert(std::is_trivially_copyable_v<BodyRecord2D>);
+static_assert(std::is_trivially_copyable_v<ContactRecord2D>);
+
+}  // namespace rwd::sim2d

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Small conversions between a body record and what the API speaks of.
+#include "rewind/sim2d/world2d_state.h"
+#include "wmath.h"
+
+namespace rwd::sim2d::detail {
+
+/// The rotation by `angle` radians, unit to the last bits.
+Rot rotation_from_angle(Fx angle);
+
+/// The body origin's transform (the shape's frame).
+inline Xf origin_transform(const BodyRecord2D& body) {
+  return {body.center - rotate(body.rotation, body.local_center), body.rotation};
+}
+
+/// Sets local_center, inv_mass and inv_inertia from the shape and density
+/// (kg/m^2). Static and kinematic bodies get zero inverses; a locked
+/// rotation zero inverse inertia.
+void set_mass_from_shape(BodyRecord2D& body, W density);
+
+/// The body's mass in kg (0 when it has no finite mass).
+W body_mass(const BodyRecord2D& body);
+
+}  // namespace rwd::sim2d::detail
+
+namespace rwd::sim2d::detail {
+
+/// v with each component limited to the world's max_linear_speed.
+inline V2 clamp_speed(V2 v, const World2DConfig& config) {
+  const W cap = w_from(config.max_linear_speed);
+  return {wclamp(v.x, -cap, cap), wclamp(v.y, -cap, cap)};
+}
+
+}  // namespace rwd::sim2d::detail

@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: MIT
+// The soft step (DESIGN 6): substeps of integrate velocities, warm start,
+// solve, integrate positions and relax; then restitution and storing the
+// impulses for the next step's warm start.
+#include "body_math2d.h"
+#include "contact_solver2d.h"
+#include "pipeline2d.h"
+
+namespace rwd::sim2d::detail {
+
+namespace {
+
+void load_bodies(const World2DState& state, StepScratch2D& scratch) {
+  scratch.bodies.resize(state.bodies.size());
+  for (size_t i = 0; i < state.bodies.size(); ++i) {
+    const BodyRecord2D& body = state.bodies[i];
+    SolverBody2D& sb = scratch.bodies[i];
+    sb = {};
+    if (!(body.flags & kBodyLive) || !(body.flags & kBodyEnabled)) continue;
+    sb.v = body.velocity;
+    sb.w = body.angular_velocity;
+    sb.inv_mass = body.inv_mass;
+    sb.inv_inertia = body.inv_inertia;
+  }
+}
+
+// Gravity, forces and damping for one substep of dynamic bodies. Damping
+// divides by (1 + h c), which never reverses a velocity however large c.
+void integrate_velocities(const World2DState& state, StepScratch2D& scratch, W h) {
+  const V2 gravity = v_from(state.config.gravity);
+  for (size_t i = 0; i < state.bodies.size(); ++i) {
+    const BodyRecord2D& body = state.bodies[i];
+    if (body.kind != BodyKind2D::kDynamic || !(body.flags & kBodyEnabled)) continue;
+    SolverBody2D& sb = scratch.bodies[i];
+    const W g = w_from(body.gravity_scale);
+    V2 dv = vscale(wmul(h, g), gravity);
+    dv = vmul_add(dv, wmul(h, body.inv_mass), body.force);
+    V2 v = sb.v;
+    W w = sb.w;
+    if (body.linear_damping > Fx()) {
+      v = vscale(winv(kWOne + wmul(h, w_from(body.linear_damping))), v);
+    }
+    if (body.angular_damping > Fx()) {
+      w = wmul(winv(kWOne + wmul(h, w_from(body.angular_damping))), w);
+    }
+    sb.v = clamp_speed(v + dv, state.config);
+    sb.w = w + wmul(wmul(h, body.inv_inertia), body.torque);
+  }
+}
+
+// Kinematic bodies move too: they carry what they touch.
+void integrate_positions(const World2DState& state, StepScratch2D& scratch, W h) {
+  for (size_t i = 0; i < state.bodies.size(); ++i) {
+    const BodyRecord2D& body = state.bodies[i];
+    if (body.kind == BodyKind2D::kStatic || !(body.flags & kBodyLive)) continue;
+    SolverBody2D& sb = scratch.bodies[i];
+    sb.dp += vscale(h, sb.v);
+    if (sb.w != 0) sb.dq = integrate_rotation(sb.dq, wmul(h, sb.w));
+  }
+}
+
+void write_back(World2DState& state, const StepScratch2D& scratch) {
+  for (size_t i = 0; i < state.bodies.size(); ++i) {
+    BodyRecord2D& body = state.bodies[i];
+    if (!(body.flags & kBodyLive)) continue;
+    body.force = {};
+    body.torque = 0;
+    if (body.kind == BodyKind2D::kStatic || !(body.flags & kBodyEnabled)) continue;
+    const SolverBody2D& sb = scratch.bodies[i];
+    body.center += sb.dp;
+    if (!(sb.dq == Rot{})) body.rotation = renormalize(rmul(sb.dq, body.rotation));
+    body.velocity = sb.v;
+    body.angular_velocity = sb.w;
+  }
+}
+
+}  // namespace
+
+void solve_step(World2DState& state, StepScratch2D& scratch, StepStats2D& stats) {
+  const World2DConfig& config = state.config;
+  const int substeps = config.substeps;
+  const W h = w_ratio(1, int64_t{config.tick_hz} * substeps);
+  const W inv_h = w_int(int64_t{config.tick_hz} * substeps);
+  const W push_max = w_from(config.contact_push_max);
+
+  load_bodies(state, scratch);
+  prepare_contacts(state, scratch, h);
+  for (int i = 0; i < substeps; ++i) {
+    integrate_velocities(state, scratch, h);
+    warm_start_contacts(scratch);
+    solve_contacts(scratch, inv_h, push_max, true);
+    integrate_positions(state, scratch, h);
+    for (int r = 0; r < config.relax_iterations; ++r)
+      solve_contacts(scratch, inv_h, push_max, false);
+  }
+  apply_restitution(scratch, w_from(config.restitution_threshold));
+  store_impulses(state, scratch);
+  write_back(state, scratch);
+
+  stats.touching_contacts = static_cast<uint32_t>(scratch.constraints.size());
+  uint32_t points = 0;
+  for (const ContactConstraint2D& c : scratch.constraints) points += static_cast<uint32_t>(c.count);
+  stats.contact_points = points;
+  stats.solver_iterations = static_cast<uint32_t>(substeps * (1 + config.relax_iterations));
+}
+
+}  // namespace rwd::sim2d::detail

@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Working memory of one step: rebuilt from the state every step, so it is
+// never saved, restored or hashed. Kept between steps only so its buffers
+// stop allocating once they have grown.
+#include <cstdint>
+#include <vector>
+
+#include "rewind/sim2d/world2d_state.h"
+#include "shape_bounds2d.h"
+#include "wmath.h"
+
+namespace rwd::sim2d::detail {
+
+/// A body as the solver sees it during one step.
+struct SolverBody2D {
+  V2 v;
+  W w = 0;
+  V2 dp;   ///< translation of the centre of mass since the step began
+  Rot dq;  ///< rotation since the step began
+  W inv_mass = 0;
+  W inv_inertia = 0;
+};
+
+/// A spring-damper softening of a rigid constraint (soft step): the
+/// fraction of the position error fed back per second, and how much of
+/// the rigid impulse and of the accumulated impulse the solve applies.
+struct Softness2D {
+  W bias_rate = 0;
+  W mass_scale = kWOne;
+  W impulse_scale = 0;
+};
+
+struct ContactConstraintPoint2D {
+  V2 ra;  ///< anchors from each centre of mass at the step's start
+  V2 rb;
+  W adjusted_separation = 0;  ///< separation minus (rb - ra) . normal
+  W normal_mass = 0;
+  W tangent_mass = 0;
+  W normal_impulse = 0;
+  W tangent_impulse = 0;
+  W max_normal_impulse = 0;  ///< largest single push this step (restitution)
+  W relative_velocity = 0;   ///< normal approach speed at the step's start
+};
+
+struct ContactConstraint2D {
+  uint32_t a = 0;
+  uint32_t b = 0;
+  uint32_t contact = 0;  ///< index into the state's contacts
+  V2 normal;
+  W friction = 0;
+  W restitution = 0;
+  W rolling_resistance = 0;
+  W rolling_mass = 0;
+  W rolling_impulse = 0;
+  Softness2D softness;
+  int count = 0;
+  ContactConstraintPoint2D points[2];
+};
+
+/// Bounds of one body for the sweep.
+struct SweepEntry2D {
+  Box2W box;
+  uint32_t index = 0;
+  bool moves = false;  ///< dynamic (only pairs with a dynamic body matter)
+};
+
+class StepScratch2D {
+ public:
+  std::vector<SweepEntry2D> sweep;
+  std::vector<uint64_t> pairs;       ///< (a << 32) | b, a < b, sorted
+  std::vector<SolverBody2D> bodies;  ///< by body index
+  std::vector<ContactConstraint2D> constraints;
+  /// The contacts being built; swapped with the state's, so both buffers
+  /// are reused.
+  std::vector<ContactRecord2D> next_contacts;
+};
+
+}  // namespace rwd::sim2d::detail

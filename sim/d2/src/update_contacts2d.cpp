@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: MIT
+#include <utility>
+
+#include "body_math2d.h"
+#include "manifold2.h"
+#include "pipeline2d.h"
+
+namespace rwd::sim2d::detail {
+
+namespace {
+
+// Points of the new manifold take the impulses of last step's point with
+// the same feature id (the features still touching), so stacks start each
+// step from the impulses that held them.
+void carry_impulses(const ContactRecord2D& old_contact, ContactRecord2D& contact) {
+  for (int i = 0; i < contact.count; ++i) {
+    ContactPoint2D& point = contact.points[i];
+    for (int j = 0; j < old_contact.count; ++j) {
+      if (old_contact.points[j].id != point.id) continue;
+      point.normal_impulse = old_contact.points[j].normal_impulse;
+      point.tangent_impulse = old_contact.points[j].tangent_impulse;
+      break;
+    }
+  }
+  contact.rolling_impulse = old_contact.rolling_impulse;
+}
+
+}  // namespace
+
+void update_contacts(World2DState& state, StepScratch2D& scratch) {
+  const W speculative = w_from(state.config.speculative_distance);
+  const auto& old_contacts = state.contacts;
+  auto& contacts = scratch.next_contacts;
+  contacts.clear();
+  size_t old_index = 0;
+  Manifold2 manifold;
+  for (const uint64_t key : scratch.pairs) {
+    const uint32_t a = static_cast<uint32_t>(key >> 32);
+    const uint32_t b = static_cast<uint32_t>(key);
+    const BodyRecord2D& body_a = state.bodies[a];
+    const BodyRecord2D& body_b = state.bodies[b];
+    // Sensors report overlaps (events) and never push; they make no contact.
+    if ((body_a.flags | body_b.flags) & kBodySensor) continue;
+    const Xf xa = origin_transform(body_a);
+    const Xf xb = origin_transform(body_b);
+    collide(body_a.shape, xa, body_b.shape, xb, speculative, manifold);
+    if (manifold.count == 0) continue;
+
+    ContactRecord2D contact;
+    contact.a = a;
+    contact.b = b;
+    contact.normal = manifold.normal;
+    contact.count = static_cast<uint8_t>(manifold.count);
+    // Anchors from the manifold are from each body's origin; the solver
+    // works from the centres of mass.
+    const V2 offset_a = body_a.center - xa.p;
+    const V2 offset_b = body_b.center - xb.p;
+    for (int i = 0; i < manifold.count; ++i) {
+      const ManifoldPoint2& mp = manifold.points[i];
+      contact.points[i].anchor_a = mp.anchor_a - offset_a;
+      contact.points[i].anchor_b = mp.anchor_b - offset_b;
+      contact.points[i].separation = mp.separation;
+      contact.points[i].id = mp.id;
+    }
+    while (old_index < old_contacts.size() &&
+           ((uint64_t{old_contacts[old_index].a} << 32) | old_contacts[old_index].b) < key) {
+      ++old_index;
+    }
+    if (old_index < old_contacts.size() && old_contacts[old_index].a == a &&
+        old_contacts[old_index].b == b) {
+      carry_impulses(old_contacts[old_index], contact);
+    }
+    contacts.push_back(contact);
+  }
+  std::swap(state.contacts, contacts);
+}
+
+}  // namespace rwd::sim2d::detail

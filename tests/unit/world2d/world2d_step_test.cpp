@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+#include "rewind/sim2d/world2d.h"
+#include "world2d_test_scenes.h"
+
+namespace rwd::sim2d {
+namespace {
+
+using testing::add_body;
+
+TEST(World2DStep, FreeFallMatchesTheSemiImplicitEulerSum) {
+  World2D world;  // g = -10, 60 Hz, 4 substeps
+  const BodyId2D ball = add_body(world, BodyKind2D::kDynamic, make_circle(0.5_fx), {Fx(), 100_fx});
+  for (int i = 0; i < 60; ++i) world.step();
+  // After 240 substeps of h = 1/240 s: v = -10 m/s, and y drops by
+  // g h^2 n (n + 1) / 2 = 10 * 241 / 480 = 5.0208333 m.
+  EXPECT_NEAR(world.linear_velocity(ball).y.raw(), (-10_fx).raw(), 2);
+  EXPECT_NEAR(world.position(ball).y.raw(), (100_fx - 5.0208333_fx).raw(), 4);
+  EXPECT_EQ(world.step_count(), 60u);
+}
+
+TEST(World2DStep, BallComesToRestOnTheGround) {
+  World2D world;
+  testing::add_round_ground(world);
+  const BodyId2D ball = add_body(world, BodyKind2D::kDynamic, make_circle(0.5_fx), {Fx(), 3_fx});
+  for (int i = 0; i < 240; ++i) world.step();
+  // Resting within the slop of touching (centre at y = 0.5).
+  EXPECT_NEAR(world.position(ball).y.raw(), (0.5_fx).raw(), (0.006_fx).raw());
+  EXPECT_LE(fixed::abs(world.linear_velocity(ball).y).raw(), (0.01_fx).raw());
+  EXPECT_GT(world.stats().contact_points, 0u);
+}
+
+TEST(World2DStep, KinematicBodyMovesByItsVelocityAndPushes) {
+  World2DConfig config;
+  config.gravity = {};
+  World2D world(config);
+  const BodyId2D pusher = add_body(world, BodyKind2D::kKinematic, make_circle(1_fx), {Fx(), Fx()});
+  const BodyId2D ball = add_body(world, BodyKind2D::kDynamic, make_circle(0.5_fx), {3_fx, Fx()});
+  ASSERT_TRUE(world.set_linear_velocity(pusher, {2_fx, Fx()}).ok());
+  for (int i = 0; i < 120; ++i) world.step();
+  // Two seconds at 2 m/s, untouched by the ball it pushed.
+  EXPECT_NEAR(world.position(pusher).x.raw(), (4_fx).raw(), 16);
+  EXPECT_EQ(world.linear_velocity(pusher), (Vec2{2_fx, Fx()}));
+  EXPECT_GT(world.position(ball).x, 5_fx);
+}
+
+}  // namespace
+}  // namespace rwd::sim2d
