@@ -46,6 +46,7 @@ void prepare_contacts(const World2DState& state, StepScratch2D& scratch, W h) {
   constraints.clear();
   for (uint32_t ci = 0; ci < state.contacts.size(); ++ci) {
     const ContactRecord2D& contact = state.contacts[ci];
+    if (contact.flags & kContactSensor) continue;
     const BodyRecord2D& body_a = state.bodies[contact.a];
     const BodyRecord2D& body_b = state.bodies[contact.b];
     const SolverBody2D& a = scratch.bodies[contact.a];

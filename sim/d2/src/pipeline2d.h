@@ -16,6 +16,22 @@ void find_pairs(const World2DState& state, StepScratch2D& scratch);
 /// step (warm starting). Pairs without points are dropped.
 void update_contacts(World2DState& state, StepScratch2D& scratch);
 
+/// Appends the enter, stay and exit events between the touching contacts
+/// of state.contacts (last step) and `next` (this step) to `events`.
+void collect_events(const World2DState& state, const std::vector<ContactRecord2D>& next,
+                    std::vector<ContactEvent2D>& events);
+
+/// Removes every contact of body `index`; the touching ones become pending
+/// exits, reported by the next step.
+void drop_contacts_of(World2DState& state, uint32_t index);
+
+/// This step's events: the pending exits, then the contacts' enter, stay
+/// and exit events, ordered by (a, b); clears the pending exits.
+void begin_events(World2DState& state, std::vector<ContactEvent2D>& events);
+
+/// Orders events by (a, b), exits first where a pair ended and began again.
+void sort_events(std::vector<ContactEvent2D>& events);
+
 /// The soft-step solve of the contacts: substeps of integrate velocities,
 /// warm start, solve, integrate positions and relax, then restitution;
 /// impulses are stored back into state.contacts for the next step.

@@ -119,7 +119,17 @@ void visit_contact(Contact& c, Visitor& v) {
   v("normal.y", c.normal.y);
   v("rolling_impulse", c.rolling_impulse);
   v("count", c.count);
+  v("flags", c.flags);
   for (int i = 0; i < c.count && i < 2; ++i) visit_contact_point(c.points[i], v);
+}
+
+template <class Exit, class Visitor>
+void visit_pending_exit(Exit& e, Visitor& v) {
+  v("a", e.a);
+  v("generation_a", e.generation_a);
+  v("b", e.b);
+  v("generation_b", e.generation_b);
+  v("sensor", e.sensor);
 }
 
 }  // namespace rwd::sim2d::detail

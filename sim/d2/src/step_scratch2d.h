@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "rewind/sim2d/contact_event2d.h"
 #include "rewind/sim2d/world2d_state.h"
 #include "shape_bounds2d.h"
 #include "wmath.h"
@@ -74,6 +75,8 @@ class StepScratch2D {
   /// The contacts being built; swapped with the state's, so both buffers
   /// are reused.
   std::vector<ContactRecord2D> next_contacts;
+  /// This step's contact events (World2D::events() reads them).
+  std::vector<ContactEvent2D> events;
 };
 
 }  // namespace rwd::sim2d::detail

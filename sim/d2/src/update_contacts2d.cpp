@@ -29,6 +29,7 @@ void carry_impulses(const ContactRecord2D& old_contact, ContactRecord2D& contact
 
 void update_contacts(World2DState& state, StepScratch2D& scratch) {
   const W speculative = w_from(state.config.speculative_distance);
+  const W slop = w_from(state.config.linear_slop);
   const auto& old_contacts = state.contacts;
   auto& contacts = scratch.next_contacts;
   contacts.clear();
@@ -39,8 +40,6 @@ void update_contacts(World2DState& state, StepScratch2D& scratch) {
     const uint32_t b = static_cast<uint32_t>(key);
     const BodyRecord2D& body_a = state.bodies[a];
     const BodyRecord2D& body_b = state.bodies[b];
-    // Sensors report overlaps (events) and never push; they make no contact.
-    if ((body_a.flags | body_b.flags) & kBodySensor) continue;
     const Xf xa = origin_transform(body_a);
     const Xf xb = origin_transform(body_b);
     collide(body_a.shape, xa, body_b.shape, xb, speculative, manifold);
@@ -51,6 +50,12 @@ void update_contacts(World2DState& state, StepScratch2D& scratch) {
     contact.b = b;
     contact.normal = manifold.normal;
     contact.count = static_cast<uint8_t>(manifold.count);
+    // Sensors report overlaps and never push: their contacts are not solved.
+    const bool sensor = ((body_a.flags | body_b.flags) & kBodySensor) != 0;
+    W deepest = manifold.points[0].separation;
+    if (manifold.count > 1) deepest = wmin(deepest, manifold.points[1].separation);
+    if (sensor) contact.flags |= kContactSensor;
+    if (deepest < (sensor ? 0 : slop)) contact.flags |= kContactTouching;
     // Anchors from the manifold are from each body's origin; the solver
     // works from the centres of mass.
     const V2 offset_a = body_a.center - xa.p;
@@ -72,6 +77,7 @@ void update_contacts(World2DState& state, StepScratch2D& scratch) {
     }
     contacts.push_back(contact);
   }
+  collect_events(state, contacts, scratch.events);
   std::swap(state.contacts, contacts);
 }
 

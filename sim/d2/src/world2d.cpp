@@ -10,6 +10,7 @@
 #include "body_mass2d.h"
 #include "body_math2d.h"
 #include "fx_check.h"
+#include "pipeline2d.h"
 #include "rewind/fixed/trig.h"
 #include "step_scratch2d.h"
 
@@ -118,9 +119,7 @@ Result<BodyId2D> World2D::create_body(const BodyDef2D& def) {
 
 Status World2D::destroy_body(BodyId2D id) {
   if (!is_valid(id)) return Status::Error(ErrorCode::kNotFound, "no such body");
-  auto& contacts = state_.contacts;
-  std::erase_if(contacts,
-                [&](const ContactRecord2D& c) { return c.a == id.index || c.b == id.index; });
+  drop_contacts_of(state_, id.index);
   BodyRecord2D freed;
   freed.generation = id.generation;
   state_.bodies[id.index] = freed;
@@ -322,8 +321,7 @@ Status World2D::set_enabled(BodyId2D id, bool enabled) {
   body.angular_velocity = 0;
   body.force = {};
   body.torque = 0;
-  std::erase_if(state_.contacts,
-                [&](const ContactRecord2D& c) { return c.a == id.index || c.b == id.index; });
+  drop_contacts_of(state_, id.index);
   return Status::Ok();
 }
 
@@ -346,6 +344,7 @@ void World2D::save(World2DState& out) const {
   out.live_bodies = state_.live_bodies;
   out.bodies.assign(state_.bodies.begin(), state_.bodies.end());
   out.contacts.assign(state_.contacts.begin(), state_.contacts.end());
+  out.pending_exits.assign(state_.pending_exits.begin(), state_.pending_exits.end());
 }
 
 void World2D::restore(const World2DState& in) {
@@ -354,6 +353,8 @@ void World2D::restore(const World2DState& in) {
   state_.live_bodies = in.live_bodies;
   state_.bodies.assign(in.bodies.begin(), in.bodies.end());
   state_.contacts.assign(in.contacts.begin(), in.contacts.end());
+  state_.pending_exits.assign(in.pending_exits.begin(), in.pending_exits.end());
+  scratch_->events.clear();
   stats_ = {};
 }
 

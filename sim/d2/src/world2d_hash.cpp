@@ -69,6 +69,8 @@ void World2D::hash_state(const World2DState& state, sim::StateHasher& hasher) {
   }
   hasher.add_u32(static_cast<uint32_t>(state.contacts.size()));
   for (const ContactRecord2D& contact : state.contacts) visit_contact(contact, v);
+  hasher.add_u32(static_cast<uint32_t>(state.pending_exits.size()));
+  for (const PendingExit2D& exit : state.pending_exits) visit_pending_exit(exit, v);
 }
 
 void World2D::hash(sim::StateHasher& hasher) const {

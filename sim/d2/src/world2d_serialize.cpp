@@ -72,6 +72,8 @@ void World2D::serialize(std::vector<uint8_t>& out) const {
   }
   writer.put(state_.contacts.size(), 4);
   for (const ContactRecord2D& contact : state_.contacts) visit_contact(contact, writer);
+  writer.put(state_.pending_exits.size(), 4);
+  for (const PendingExit2D& exit : state_.pending_exits) visit_pending_exit(exit, writer);
 }
 
 Status World2D::deserialize(std::span<const uint8_t> bytes) {
@@ -116,6 +118,9 @@ Status World2D::deserialize(std::span<const uint8_t> bytes) {
     if (!reader.ok()) return corrupt("truncated contacts");
     const std::string at = "contact " + std::to_string(i) + ": ";
     if (contact.count < 1 || contact.count > 2) return corrupt(at + "point count not 1 or 2");
+    if ((contact.flags & ~(kContactSensor | kContactTouching)) != 0) {
+      return corrupt(at + "unknown flags");
+    }
     if (contact.a >= contact.b || contact.b >= slots ||
         !(state.bodies[contact.a].flags & kBodyLive) ||
         !(state.bodies[contact.b].flags & kBodyLive)) {
@@ -127,6 +132,15 @@ Status World2D::deserialize(std::span<const uint8_t> bytes) {
     const W n2 = vlength_sq(contact.normal);
     if (wabs(n2 - kWOne) > (kWOne >> 12)) return corrupt(at + "normal is not unit length");
   }
+  const uint64_t exits = reader.get(4);
+  // An exit takes 17 bytes.
+  if (!reader.ok() || exits * 17 > bytes.size()) return corrupt("truncated pending exits");
+  state.pending_exits.resize(static_cast<size_t>(exits));
+  for (PendingExit2D& exit : state.pending_exits) {
+    visit_pending_exit(exit, reader);
+    if (exit.a >= exit.b || exit.sensor > 1) return corrupt("bad pending exit");
+  }
+  if (!reader.ok()) return corrupt("truncated pending exits");
   if (!reader.at_end()) return corrupt("trailing bytes");
   state_ = std::move(state);
   stats_ = {};

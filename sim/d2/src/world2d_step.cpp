@@ -27,7 +27,7 @@ void enforce_bounds(World2DState& state) {
     body.flags &= static_cast<uint8_t>(~kBodyEnabled);
     body.velocity = {};
     body.angular_velocity = 0;
-    std::erase_if(state.contacts, [&](const ContactRecord2D& k) { return k.a == i || k.b == i; });
+    drop_contacts_of(state, i);
   }
 }
 
@@ -35,12 +35,19 @@ void enforce_bounds(World2DState& state) {
 
 void World2D::step() {
   stats_ = {};
+  const bool had_pending = !state_.pending_exits.empty();
+  begin_events(state_, scratch_->events);
   find_pairs(state_, *scratch_);
   stats_.broadphase_pairs = static_cast<uint32_t>(scratch_->pairs.size());
   update_contacts(state_, *scratch_);
+  if (had_pending) sort_events(scratch_->events);
   solve_step(state_, *scratch_, stats_);
   enforce_bounds(state_);
   ++state_.step_count;
+}
+
+std::span<const ContactEvent2D> World2D::events() const {
+  return scratch_->events;
 }
 
 }  // namespace rwd::sim2d

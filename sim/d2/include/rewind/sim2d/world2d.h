@@ -16,6 +16,7 @@
 #include "rewind/fixed/rot2.h"
 #include "rewind/sim/status.h"
 #include "rewind/sim2d/body2d.h"
+#include "rewind/sim2d/contact_event2d.h"
 #include "rewind/sim2d/shape2d.h"
 #include "rewind/sim2d/world2d_config.h"
 #include "rewind/sim2d/world2d_state.h"
@@ -121,6 +122,9 @@ class World2D {
 
   /// Advances the world by 1 / config().tick_hz seconds.
   void step();
+  /// Contact events of the last step, ordered by (a.index, b.index). Not
+  /// state: restore() clears them.
+  std::span<const ContactEvent2D> events() const;
   const StepStats2D& stats() const;
   const World2DConfig& config() const;
   uint64_t step_count() const;

@@ -57,6 +57,10 @@ struct ContactPoint2D {
   uint16_t id = 0;                ///< feature key (manifold2.h)
 };
 
+/// ContactRecord2D::flags bits.
+inline constexpr uint8_t kContactSensor = 1;    ///< a sensor pair: reported, never solved
+inline constexpr uint8_t kContactTouching = 2;  ///< touching (contact_event2d.h) as of the last step
+
 /// A pair of bodies whose bounds overlap, with the manifold of the last
 /// step. a < b (body indices); the array is sorted by (a, b).
 struct ContactRecord2D {
@@ -65,7 +69,19 @@ struct ContactRecord2D {
   detail::V2 normal;  ///< unit, from a to b
   ContactPoint2D points[2];
   uint8_t count = 0;
+  uint8_t flags = 0;
   detail::W rolling_impulse = 0;  ///< N m s, warm start of rolling resistance
+};
+
+/// A touching pair whose contact ended outside a step (a body destroyed,
+/// disabled or stopped at the bounds): its exit event is reported by the
+/// next step.
+struct PendingExit2D {
+  uint32_t a = 0;
+  uint32_t generation_a = 0;
+  uint32_t b = 0;
+  uint32_t generation_b = 0;
+  uint8_t sensor = 0;
 };
 
 /// The whole state of a World2D.
@@ -75,9 +91,11 @@ struct World2DState {
   uint32_t live_bodies = 0;
   std::vector<BodyRecord2D> bodies;  ///< by slot index
   std::vector<ContactRecord2D> contacts;
+  std::vector<PendingExit2D> pending_exits;  ///< in the order they ended
 };
 
 static_assert(std::is_trivially_copyable_v<BodyRecord2D>);
 static_assert(std::is_trivially_copyable_v<ContactRecord2D>);
+static_assert(std::is_trivially_copyable_v<PendingExit2D>);
 
 }  // namespace rwd::sim2d

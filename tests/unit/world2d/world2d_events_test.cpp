@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: MIT
+#include <vector>
+
+#include "rewind/sim2d/world2d.h"
+#include "world2d_test_scenes.h"
+
+namespace rwd::sim2d {
+namespace {
+
+using testing::add_body;
+
+struct Counts {
+  int enter = 0;
+  int stay = 0;
+  int exit = 0;
+};
+
+Counts count(const World2D& world) {
+  Counts c;
+  for (const ContactEvent2D& e : world.events()) {
+    EXPECT_LT(e.a.index, e.b.index);
+    if (e.type == ContactEventType2D::kEnter) ++c.enter;
+    if (e.type == ContactEventType2D::kStay) ++c.stay;
+    if (e.type == ContactEventType2D::kExit) ++c.exit;
+  }
+  return c;
+}
+
+TEST(World2DEvents, EnterOnceThenStayThenExitWhenDestroyed) {
+  World2D world;
+  testing::add_round_ground(world);
+  const BodyId2D ball = add_body(world, BodyKind2D::kDynamic, make_circle(0.5_fx), {Fx(), 1_fx});
+  int enters = 0;
+  int stays = 0;
+  for (int i = 0; i < 120; ++i) {
+    world.step();
+    const Counts c = count(world);
+    enters += c.enter;
+    stays += c.stay;
+    EXPECT_EQ(c.exit, 0) << "tick " << i;
+  }
+  EXPECT_EQ(enters, 1);
+  EXPECT_GT(stays, 90);
+  ASSERT_FALSE(world.events().empty());
+  const ContactEvent2D& touching = world.events()[0];
+  // The ground's normal points up, from the ground (a) to the ball (b).
+  EXPECT_EQ(touching.b, ball);
+  EXPECT_NEAR(touching.normal.y.raw(), Fx::one().raw(), 4);
+  ASSERT_TRUE(world.destroy_body(ball).ok());
+  world.step();
+  const Counts after = count(world);
+  EXPECT_EQ(after.exit, 1);
+  EXPECT_EQ(after.enter + after.stay, 0);
+}
+
+TEST(World2DEvents, SensorsReportOverlapAndNeverPush) {
+  World2DConfig config;
+  config.gravity = {};
+  World2D world(config);
+  BodyDef2D zone;
+  zone.kind = BodyKind2D::kStatic;
+  zone.shape = *make_circle(2_fx);
+  zone.sensor = true;
+  ASSERT_TRUE(world.create_body(zone).ok());
+  const BodyId2D ball = add_body(world, BodyKind2D::kDynamic, make_circle(0.5_fx), {-5_fx, Fx()});
+  ASSERT_TRUE(world.set_linear_velocity(ball, {3_fx, Fx()}).ok());
+  int enters = 0;
+  int exits = 0;
+  for (int i = 0; i < 240; ++i) {
+    world.step();
+    for (const ContactEvent2D& e : world.events()) {
+      EXPECT_TRUE(e.sensor);
+      enters += e.type == ContactEventType2D::kEnter;
+      exits += e.type == ContactEventType2D::kExit;
+    }
+  }
+  EXPECT_EQ(enters, 1);
+  EXPECT_EQ(exits, 1);
+  // Straight through at an unchanged speed.
+  EXPECT_EQ(world.linear_velocity(ball), (Vec2{3_fx, Fx()}));
+}
+
+TEST(World2DEvents, PendingExitSurvivesSaveAndRestore) {
+  World2D world;
+  testing::add_round_ground(world);
+  const BodyId2D ball = add_body(world, BodyKind2D::kDynamic, make_circle(0.5_fx), {Fx(), 0.5_fx});
+  for (int i = 0; i < 10; ++i) world.step();
+  ASSERT_TRUE(world.set_enabled(ball, false).ok());
+  World2DState saved;
+  world.save(saved);
+  world.step();
+  const Counts first = count(world);
+  world.restore(saved);
+  EXPECT_TRUE(world.events().empty());
+  world.step();
+  const Counts again = count(world);
+  EXPECT_EQ(first.exit, 1);
+  EXPECT_EQ(again.exit, 1);
+}
+
+}  // namespace
+}  // namespace rwd::sim2d
