@@ -4,7 +4,7 @@
 # Determinism matrix: builds det_checksums.cpp together with every source of
 # the engine (sim/src/**/*.cpp), the game seam (sim/game/src/*.cpp) and the
 # fixed-point library with its golden digest (sim/fixed/src/*.cpp,
-# tests/unit/fixed/golden_digest.cpp)
+# tests/unit/fixed/golden_digest.cpp) and the 2D lane (sim/d2/src/*.cpp)
 # directly with each compiler -- no CMake, so no project flag can hide a
 # difference -- runs every build and diffs its per-tick checksums against the
 # g++ -O0 build.
@@ -85,9 +85,10 @@ if ((${#sim_sources[@]} == 0 || ${#game_sources[@]} == 0)); then
 fi
 mapfile -t fixed_sources < <(find sim/fixed/src -maxdepth 1 -name '*.cpp' -type f 2>/dev/null | LC_ALL=C sort)
 fixed_sources+=(tests/unit/fixed/golden_digest.cpp)
+mapfile -t sim2d_sources < <(find sim/d2/src -maxdepth 1 -name '*.cpp' -type f 2>/dev/null | LC_ALL=C sort)
 det_source="$script_dir/det_checksums.cpp"
 sources=("$det_source" "${sim_sources[@]/#/$source_dir/}" "${game_sources[@]/#/$source_dir/}"
-  "${fixed_sources[@]/#/$source_dir/}")
+  "${fixed_sources[@]/#/$source_dir/}" "${sim2d_sources[@]/#/$source_dir/}")
 
 mkdir -p "$build_dir"
 build_dir=$(cd "$build_dir" && pwd)
@@ -101,6 +102,7 @@ ln -sf /usr/include/xxhash.h "$build_dir/include/xxhash.h"
 common_flags="-std=c++20 -ffp-contract=off -fno-fast-math -I$source_dir/sim/include"
 common_flags+=" -I$source_dir/sim/src -I$source_dir/sim/game/include -I$source_dir/sim/game/src"
 common_flags+=" -I$source_dir/sim/fixed/include -I$source_dir/tests/unit/fixed"
+common_flags+=" -I$source_dir/sim/d2/include -I$source_dir/sim/d2/src"
 common_flags+=" -isystem $build_dir/include"
 # -fexcess-precision=standard keeps float math in float where x87 exists. GCC
 # accepts it for C++ only from GCC 13 on; GCC 12 (Debian 12) refuses it, and

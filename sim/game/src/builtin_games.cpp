@@ -3,6 +3,7 @@
 #include <mutex>
 #include <string>
 
+#include "rewind/game/arena_game.h"
 #include "rewind/game/crates_game.h"
 #include "rewind/game/game_registry.h"
 #include "rewind/game/simulation.h"
@@ -35,7 +36,7 @@ bool is_game_name(std::string_view name) {
 }  // namespace
 
 std::vector<std::string_view> builtin_game_names() {
-  std::vector<std::string_view> names = {"crates"};
+  std::vector<std::string_view> names = {"arena", "crates"};
   Registry& r = registry();
   std::lock_guard lock(r.mutex);
   for (const auto& [name, factory] : r.games) names.push_back(name);
@@ -44,6 +45,7 @@ std::vector<std::string_view> builtin_game_names() {
 
 std::unique_ptr<Game> make_builtin_game(std::string_view name) {
   if (name == "crates") return std::make_unique<CratesGame>();
+  if (name == "arena") return std::make_unique<ArenaGame>();
   Registry& r = registry();
   GameFactory factory;
   {
@@ -65,8 +67,9 @@ Status register_game(std::string_view name, GameFactory factory) {
     return Status::Error(ErrorCode::kInvalidArgument,
                          "game '" + std::string(name) + "' has no factory");
   }
-  if (name == "crates") {
-    return Status::Error(ErrorCode::kInvalidArgument, "game 'crates' is built in");
+  if (name == "crates" || name == "arena") {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "game '" + std::string(name) + "' is built in");
   }
   Registry& r = registry();
   std::lock_guard lock(r.mutex);
