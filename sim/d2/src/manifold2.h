@@ -21,7 +21,10 @@ struct ManifoldPoint2 {
   /// when they overlap.
   W separation = 0;
   /// Names the pair of features (vertex/edge indices) that made the point,
-  /// so a point keeps its warm-start impulse while the same features touch.
+  /// so a point keeps its warm-start impulse while the same features touch:
+  /// (A's vertex index << 8) | B's vertex index for polygon, capsule and
+  /// segment pairs (the same whichever face is the reference); 0 for the
+  /// single point of a pair with a circle.
   uint16_t id = 0;
 };
 

@@ -51,19 +51,29 @@ struct Shape2D {
 
 /// A circle of `radius` (> 0) centred at `center`.
 Result<Shape2D> make_circle(Fx radius, Vec2 center = {});
-/// A capsule: the segment p1..p2 (distinct points) swept by `radius` (> 0).
+/// A capsule: the segment p1..p2 (distinct points, each coordinate of
+/// p2 - p1 within the Fx range) swept by `radius` (> 0).
 Result<Shape2D> make_capsule(Vec2 p1, Vec2 p2, Fx radius);
 /// An axis-aligned box of half extents hx, hy (each > 0) about the origin:
-/// the spec's "aabb" shape and the common box.
+/// the spec's "aabb" shape and the common box. Vertices run
+/// counter-clockwise from (-hx, -hy). Built through make_polygon, so a box
+/// too small to carry mass is refused with the polygon's message.
 Result<Shape2D> make_box(Fx half_width, Fx half_height);
 /// A box of half extents hx, hy centred at `center` and turned by `angle`
-/// radians.
+/// radians (Rot2::from_angle); the centroid is `center` exactly.
 Result<Shape2D> make_box(Fx half_width, Fx half_height, Vec2 center, Fx angle);
 /// A convex polygon through `points` (3..8, either winding; stored
-/// counter-clockwise), rounded by `radius` (>= 0). Refused with
-/// kInvalidArgument and a message naming the fault: too few or too many
-/// points, repeated or collinear consecutive points, a reflex corner (not
-/// convex), a self-crossing outline, or an area too small to carry mass.
+/// counter-clockwise, a clockwise outline walked backwards from point 0 so
+/// point 0 stays first), rounded by `radius` (>= 0). Refused with
+/// kInvalidArgument and a message naming the fault and the point index (in
+/// the caller's order): too few or too many points, repeated points,
+/// collinear consecutive points, a reflex corner (not convex), a
+/// self-crossing outline (zero signed area, or a point outside an edge of
+/// an outline that turns one way but winds more than once), an edge longer
+/// than the Fx range, or an area below 2^-16 m^2 (too small to carry mass).
+/// Every check is an exact integer predicate. normals[i] is
+/// fixed::normalized() of the edge's clockwise perpendicular; the centroid
+/// is the centre of area rounded once from exact sums.
 /// The points are kept as given (no hull is taken), so what was authored is
 /// what collides.
 Result<Shape2D> make_polygon(std::span<const Vec2> points, Fx radius = Fx());
@@ -72,7 +82,10 @@ Result<Shape2D> make_polygon(std::span<const Vec2> points, Fx radius = Fx());
 Result<Shape2D> make_segment(Vec2 p1, Vec2 p2);
 
 /// Checks a shape built by hand (or read from bytes) the way the factories
-/// would: kInvalidArgument naming the fault, kOk otherwise.
+/// would: kInvalidArgument naming the fault, kOk otherwise. The shape must
+/// equal what its factory builds from its vertices and radius, derived
+/// fields (normals, centroid) and zero padding included; a polygon must
+/// already be counter-clockwise.
 Status validate_shape(const Shape2D& shape);
 
 }  // namespace rwd::sim2d
