@@ -57,6 +57,10 @@ void collide(const Shape2D& a, const Xf& xa, const Shape2D& b, const Xf& xb, W s
   const auto ta = static_cast<unsigned>(a.type);
   const auto tb = static_cast<unsigned>(b.type);
   if (ta >= kShapeTypeCount2D || tb >= kShapeTypeCount2D) return;
+  // A hand-built shape with no vertices (or too many) has no surface; the
+  // routines index vertices by count, so it is refused here.
+  if (a.count == 0 || b.count == 0) return;
+  if (a.count > kMaxPolygonVertices || b.count > kMaxPolygonVertices) return;
   // Bodies farther apart on either axis than both reaches plus the
   // speculative distance cannot touch. Leaving early also keeps the pair
   // routines' squared distances inside the W range for any input.
