@@ -44,6 +44,21 @@ TEST(Manifold2Polygons, BoxRestingOnGroundTouchesAtBothCorners) {
   EXPECT_TRUE(near_w(g.points[1].separation, 0, 2 * kFxUlp));
 }
 
+TEST(Manifold2Polygons, TurnedStackRestsWithinAnUlp) {
+  // Ground and box both turned by 0.3 rad, the box's centre 1 m up the
+  // ground's turned y axis: the faces meet along the whole box bottom.
+  const Stack s;
+  const Fx angle = 0.3_fx;
+  const fixed::SinCos sc = fixed::sin_cos(angle);
+  const Manifold2 m =
+      collide(s.box, body(-sc.sin, sc.cos, angle), s.ground, body(0.0_fx, 0.0_fx, angle));
+  ASSERT_EQ(m.count, 2);
+  // The box centre was rounded to the Fx grid: half an ulp per axis.
+  for (int i = 0; i < 2; ++i) EXPECT_TRUE(near_w(m.points[i].separation, 0, 2 * kFxUlp));
+  const V2 down = {detail::w_from(sc.sin), -detail::w_from(sc.cos)};
+  EXPECT_TRUE(near_v(m.normal, down, 4 * kFxUlp));
+}
+
 TEST(Manifold2Polygons, RoundedBoxSinksByItsRadius) {
   const Stack s;
   const Shape2D rounded = ok(make_polygon(
