@@ -156,8 +156,8 @@ void clip(const WPoly& ref, const WPoly& inc, int ref_edge, int inc_edge, bool f
     pts[0] = {v_lower, sep_lower - radius, make_id(i11, i22)};
     pts[1] = {v_upper, sep_upper - radius, make_id(i12, i21)};
   } else {
-    // The reference belongs to B: ids stay (A's vertex, B's vertex) and the
-    // order stays A's lower vertex first, as in the unflipped case.
+    // The reference belongs to B: ids stay (A's vertex, B's vertex), and the
+    // point at the start of A's edge comes first, as in the unflipped case.
     pts[0] = {v_upper, sep_upper - radius, make_id(i21, i12)};
     pts[1] = {v_lower, sep_lower - radius, make_id(i22, i11)};
   }
