@@ -101,14 +101,18 @@ void ArenaGame::build_typed(const MatchSetup& setup, World2D& world, ArenaState&
     create(world, wall({x, piece_y}, kWallHalf, piece_half));
     create(world, wall({x, -piece_y}, kWallHalf, piece_half));
   }
-  // Goals: sensor boxes behind each mouth, closed at the back.
+  // Goals: a pocket behind each mouth, walled at the back and the sides,
+  // with a sensor filling it.
   for (uint32_t g = 0; g < 2; ++g) {
     const Fx side = g == 0 ? -1_fx : 1_fx;
     BodyDef2D goal = wall({side * (kHalfWidth + 1.5_fx), Fx()}, 1_fx, kGoalHalf);
     goal.sensor = true;
     goal.user_data = kTagGoal + g;
     state.goals[g] = create(world, goal);
-    create(world, wall({side * (kHalfWidth + 3_fx), Fx()}, kWallHalf, kGoalHalf + 1_fx));
+    create(world, wall({side * (kHalfWidth + 3_fx), Fx()}, kWallHalf, kGoalHalf + 2 * kWallHalf));
+    for (const Fx y : {kGoalHalf + kWallHalf, -kGoalHalf - kWallHalf}) {
+      create(world, wall({side * (kHalfWidth + 1.75_fx), y}, 1.75_fx, kWallHalf));
+    }
   }
   // Two posts, and the spinning bar between them (kinematic: it sweeps
   // whatever it meets and nothing slows it).
