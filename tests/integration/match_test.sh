@@ -19,6 +19,11 @@
 #   signal   the server (no tick budget) gets SIGINT mid-match: it ends the
 #            match cleanly, the bots finish, the replay verifies and ends
 #            with its end record.
+#   arena    the 2D lane's game ("arena", fixed point) with 4 bots under
+#            latency, jitter and 2% loss: rollbacks happen, no desync, the
+#            replay verifies.
+#   arena_desync  one arena bot corrupts its state at tick 120: detected
+#            there, the report names the 2D field (center.x), resynced.
 #   kill     the server gets SIGKILL mid-match: the replay it leaves has no
 #            end record; verify checks its whole prefix and exits 4.
 #   long     16 bots, 17,400 ticks at 60 Hz (about 5 minutes), 5 ms latency
@@ -62,10 +67,12 @@ if [ "$mode" = long ]; then
   keyframes=600
   corrupt_at=$(( ticks - 1500 ))
 fi
+game=crates
+case "$mode" in arena|arena_desync) game=arena ;; esac
 budget=$ticks
 [ "$mode" = signal ] || [ "$mode" = kill ] && budget=0
 started=$(date +%s)
-"$bin/rewind-server" --game crates --bind 127.0.0.1 --port 0 --port-file port --players "$players" \
+"$bin/rewind-server" --game "$game" --bind 127.0.0.1 --port 0 --port-file port --players "$players" \
   --tick-rate "$tick_rate" --window "$window" --ticks "$budget" --replay match.rwr \
   --keyframe-interval "$keyframes" --desync-dir desyncs --join-timeout 30 --summary-json \
   >server.json 2>server.log &
@@ -74,7 +81,7 @@ for _ in $(seq 1 100); do [ -s port ] && break; sleep 0.1; done
 [ -s port ] || fail "server did not start: $(cat server.log)"
 port=$(cat port)
 
-bots_args=(--bots "$players" --connect "localhost:$port" --game crates --summary-json)
+bots_args=(--bots "$players" --connect "localhost:$port" --game "$game" --summary-json)
 if [ "$mode" = long ]; then
   bots_args+=(--duration $(( ticks / tick_rate + 120 )))
 else
@@ -82,7 +89,8 @@ else
 fi
 case "$mode" in
   faults)  bots_args+=(--latency-ms 30 --jitter-ms 10 --loss 0.05 --duplicate 0.02 --reorder 0.02) ;;
-  desync)  bots_args+=(--latency-ms 10 --corrupt-bot 2 --corrupt-at-tick 120) ;;
+  desync|arena_desync)  bots_args+=(--latency-ms 10 --corrupt-bot 2 --corrupt-at-tick 120) ;;
+  arena)   bots_args+=(--latency-ms 20 --jitter-ms 5 --loss 0.02) ;;
   garbage) bots_args+=(--latency-ms 10) ;;
   signal|kill) bots_args+=(--latency-ms 10) ;;
   latency) bots_args+=(--latency-ms 150 --jitter-ms 10 --loss 0.02) ;;
@@ -228,6 +236,24 @@ PY
     grep -q "^file breaks at: hash mismatch" flipped.txt || fail "flipped replay: $(cat flipped.txt)"
     replay inspect flipped.inspect.txt flipped.rwr
     [ "$status" = 2 ] || fail "inspect flipped replay: exit $status, expected 2: $(cat flipped.inspect.txt)"
+    ;;
+  arena)
+    [ "$bots_status" = 0 ] || fail "rewind-bots exited $bots_status"
+    [ "$(json bots.json desyncs)" = 0 ] || fail "desyncs in arena"
+    rollbacks=$(( $(json server.json rollbacks) + $(json bots.json rollbacks) ))
+    [ "$rollbacks" -gt 0 ] || fail "no rollbacks happened: the test did not exercise them"
+    [ "$(json bots.json final_ticks_verified)" -ge $(( 4 * (ticks - 20) )) ] || fail "too few verified final ticks"
+    "$bin/rewind-replay" verify match.rwr >verify.txt 2>&1 || fail "replay did not verify: $(cat verify.txt)"
+    grep -q "verified $ticks ticks (game arena" verify.txt || fail "unexpected verify output: $(cat verify.txt)"
+    ;;
+  arena_desync)
+    [ "$bots_status" = 1 ] || fail "rewind-bots exited $bots_status, expected 1 (desync detected)"
+    [ "$(json bots.json desyncs)" = 1 ] || fail "expected exactly one desync, got $(json bots.json desyncs)"
+    [ "$(json bots.json resyncs)" -ge 1 ] || fail "the corrupted bot was not resynced"
+    report=$(ls desyncs/desync_p*_t120_*.txt 2>/dev/null | head -1)
+    [ -n "$report" ] || fail "no desync report file for tick 120: $(ls desyncs)"
+    grep -q "center.x" "$report" || fail "report does not name center.x: $(cat "$report")"
+    "$bin/rewind-replay" verify match.rwr >verify.txt 2>&1 || fail "replay did not verify: $(cat verify.txt)"
     ;;
   desync)
     [ "$bots_status" = 1 ] || fail "rewind-bots exited $bots_status, expected 1 (desync detected)"

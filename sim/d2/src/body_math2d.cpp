@@ -14,11 +14,15 @@ Rot rotation_from_angle(Fx angle) {
 }
 
 void set_mass_from_shape(BodyRecord2D& body, W density) {
-  const MassData2 mass = compute_mass(body.shape, density);
-  body.local_center = mass.center;
+  body.local_center = {};
   body.inv_mass = 0;
   body.inv_inertia = 0;
+  // Static and kinematic bodies turn about their origin, whatever their
+  // shape: a kinematic wall of a tumbler, authored off-centre, turns about
+  // the tumbler's axis.
   if (body.kind != BodyKind2D::kDynamic) return;
+  const MassData2 mass = compute_mass(body.shape, density);
+  body.local_center = mass.center;
   body.inv_mass = mass.mass > 0 ? winv(mass.mass) : 0;
   if (!(body.flags & kBodyLockRotation) && mass.inertia > 0) body.inv_inertia = winv(mass.inertia);
 }

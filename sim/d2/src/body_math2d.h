@@ -15,8 +15,9 @@ inline Xf origin_transform(const BodyRecord2D& body) {
 }
 
 /// Sets local_center, inv_mass and inv_inertia from the shape and density
-/// (kg/m^2). Static and kinematic bodies get zero inverses; a locked
-/// rotation zero inverse inertia.
+/// (kg/m^2). Static and kinematic bodies get zero inverses and turn about
+/// their origin (local_center zero); a locked rotation has zero inverse
+/// inertia.
 void set_mass_from_shape(BodyRecord2D& body, W density);
 
 /// The body's mass in kg (0 when it has no finite mass).

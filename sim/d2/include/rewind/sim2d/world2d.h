@@ -79,7 +79,8 @@ class World2D {
   void body_ids(std::vector<BodyId2D>& out) const;
 
   // Accessors give zero values for invalid ids. The position is the body
-  // origin's; the body turns about its centre of mass.
+  // origin's; a dynamic body turns about its centre of mass, a kinematic
+  // one about its origin.
   BodyKind2D kind(BodyId2D id) const;
   Vec2 position(BodyId2D id) const;
   /// rad in [-pi, pi]
