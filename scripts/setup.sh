@@ -22,8 +22,8 @@ packages=(
   # libraries
   libasio-dev libprotobuf-dev protobuf-compiler libxxhash-dev libsodium-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  # peer engine for the side-by-side benchmarks (bench/ only) and the charts
-  libbullet-dev gnuplot-nox
+  # peer engines for the side-by-side benchmarks (bench/ only) and the charts
+  libbullet-dev libbox2d-dev gnuplot-nox
   # determinism matrix: aarch64 cross compiler, run under qemu-user
   g++-aarch64-linux-gnu qemu-user
   # the metrics integration test scrapes a match with a real Prometheus
