@@ -36,8 +36,10 @@ void collect_events(const World2DState& state, const std::vector<ContactRecord2D
   size_t i = 0;
   size_t j = 0;
   while (i < prev.size() || j < next.size()) {
-    const bool take_prev = j == next.size() || (i < prev.size() && key_of(prev[i]) < key_of(next[j]));
-    const bool take_next = i == prev.size() || (j < next.size() && key_of(next[j]) < key_of(prev[i]));
+    const bool take_prev =
+        j == next.size() || (i < prev.size() && key_of(prev[i]) < key_of(next[j]));
+    const bool take_next =
+        i == prev.size() || (j < next.size() && key_of(next[j]) < key_of(prev[i]));
     if (take_prev) {
       if (prev[i].flags & kContactTouching) {
         events.push_back(make_event(state, prev[i], ContactEventType2D::kExit));
@@ -52,8 +54,8 @@ void collect_events(const World2DState& state, const std::vector<ContactRecord2D
       const bool was = (prev[i].flags & kContactTouching) != 0;
       const bool is = (next[j].flags & kContactTouching) != 0;
       if (is) {
-        events.push_back(make_event(state, next[j], was ? ContactEventType2D::kStay
-                                                        : ContactEventType2D::kEnter));
+        events.push_back(make_event(state, next[j],
+                                    was ? ContactEventType2D::kStay : ContactEventType2D::kEnter));
       } else if (was) {
         events.push_back(make_event(state, prev[i], ContactEventType2D::kExit));
       }

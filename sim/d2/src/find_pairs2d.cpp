@@ -32,6 +32,15 @@ void find_pairs(const World2DState& state, StepScratch2D& scratch) {
     return a.box.lower.x != b.box.lower.x ? a.box.lower.x < b.box.lower.x : a.index < b.index;
   });
 
+  // Joined bodies that must not collide (collide_connected off).
+  auto& joined = scratch.joined_pairs;
+  joined.clear();
+  for (const JointRecord2D& j : state.joints) {
+    if (!(j.flags & kJointLive) || (j.flags & (kJointBroken | kJointCollideConnected))) continue;
+    joined.push_back((uint64_t{std::min(j.a, j.b)} << 32) | std::max(j.a, j.b));
+  }
+  std::sort(joined.begin(), joined.end());
+
   auto& pairs = scratch.pairs;
   pairs.clear();
   for (size_t i = 0; i < sweep.size(); ++i) {
@@ -43,7 +52,9 @@ void find_pairs(const World2DState& state, StepScratch2D& scratch) {
       if (!layers_agree(state.bodies[a.index], state.bodies[b.index])) continue;
       const uint32_t lo = std::min(a.index, b.index);
       const uint32_t hi = std::max(a.index, b.index);
-      pairs.push_back((uint64_t{lo} << 32) | hi);
+      const uint64_t key = (uint64_t{lo} << 32) | hi;
+      if (!joined.empty() && std::binary_search(joined.begin(), joined.end(), key)) continue;
+      pairs.push_back(key);
     }
   }
   std::sort(pairs.begin(), pairs.end());

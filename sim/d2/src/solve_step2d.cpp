@@ -4,6 +4,7 @@
 // impulses for the next step's warm start.
 #include "body_math2d.h"
 #include "contact_solver2d.h"
+#include "joint_solver2d.h"
 #include "pipeline2d.h"
 
 namespace rwd::sim2d::detail {
@@ -84,17 +85,27 @@ void solve_step(World2DState& state, StepScratch2D& scratch, StepStats2D& stats)
   const W push_max = w_from(config.contact_push_max);
 
   load_bodies(state, scratch);
+  prepare_joints(state, scratch, h);
   prepare_contacts(state, scratch, h);
+  const JointPass2D biased{h, inv_h, true};
+  const JointPass2D relax{h, inv_h, false};
+  // Joints before contacts in every stage: contacts, solved last, win
+  // where the two disagree, so joined bodies do not sink into the ground.
   for (int i = 0; i < substeps; ++i) {
     integrate_velocities(state, scratch, h);
+    warm_start_joints(state, scratch);
     warm_start_contacts(scratch);
+    solve_joints(state, scratch, biased);
     solve_contacts(scratch, inv_h, push_max, true);
     integrate_positions(state, scratch, h);
-    for (int r = 0; r < config.relax_iterations; ++r)
+    for (int r = 0; r < config.relax_iterations; ++r) {
+      solve_joints(state, scratch, relax);
       solve_contacts(scratch, inv_h, push_max, false);
+    }
   }
   apply_restitution(scratch, w_from(config.restitution_threshold));
   store_impulses(state, scratch);
+  break_joints(state, substeps);
   write_back(state, scratch);
 
   stats.touching_contacts = static_cast<uint32_t>(scratch.constraints.size());

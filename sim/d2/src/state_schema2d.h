@@ -40,6 +40,7 @@ void visit_config(Config& c, Visitor& v) {
   v("speculative_distance", c.speculative_distance);
   v("max_linear_speed", c.max_linear_speed);
   v("max_bodies", c.max_bodies);
+  v("joint_damping_ratio", c.joint_damping_ratio);
   v("bounds_lower.x", c.bounds_lower.x);
   v("bounds_lower.y", c.bounds_lower.y);
   v("bounds_upper.x", c.bounds_upper.x);
@@ -121,6 +122,50 @@ void visit_contact(Contact& c, Visitor& v) {
   v("count", c.count);
   v("flags", c.flags);
   for (int i = 0; i < c.count && i < 2; ++i) visit_contact_point(c.points[i], v);
+}
+
+/// Every joint slot starts with these; a free slot has nothing more.
+template <class Joint, class Visitor>
+void visit_joint_head(Joint& j, Visitor& v) {
+  v("generation", j.generation);
+  v("flags", j.flags);
+}
+
+template <class Joint, class Visitor>
+void visit_joint_rest(Joint& j, Visitor& v) {
+  v("type", j.type);
+  v("a", j.a);
+  v("b", j.b);
+  v("local_anchor_a.x", j.local_anchor_a.x);
+  v("local_anchor_a.y", j.local_anchor_a.y);
+  v("local_anchor_b.x", j.local_anchor_b.x);
+  v("local_anchor_b.y", j.local_anchor_b.y);
+  v("local_axis_a.x", j.local_axis_a.x);
+  v("local_axis_a.y", j.local_axis_a.y);
+  v("reference_angle", j.reference_angle);
+  v("length", j.length);
+  v("min_length", j.min_length);
+  v("max_length", j.max_length);
+  v("lower", j.lower);
+  v("upper", j.upper);
+  v("motor_speed", j.motor_speed);
+  v("max_motor", j.max_motor);
+  v("hertz", j.hertz);
+  v("damping_ratio", j.damping_ratio);
+  v("linear_hertz", j.linear_hertz);
+  v("angular_hertz", j.angular_hertz);
+  v("max_force", j.max_force);
+  v("break_impulse", j.break_impulse);
+  v("target.x", j.target.x);
+  v("target.y", j.target.y);
+  v("linear_impulse.x", j.linear_impulse.x);
+  v("linear_impulse.y", j.linear_impulse.y);
+  v("angular_impulse", j.angular_impulse);
+  v("axial_impulse", j.axial_impulse);
+  v("spring_impulse", j.spring_impulse);
+  v("motor_impulse", j.motor_impulse);
+  v("lower_impulse", j.lower_impulse);
+  v("upper_impulse", j.upper_impulse);
 }
 
 template <class Exit, class Visitor>

@@ -59,6 +59,23 @@ struct ContactConstraint2D {
   ContactConstraintPoint2D points[2];
 };
 
+/// What every joint type needs during one step, fixed at its start.
+struct JointConstraint2D {
+  uint32_t joint = 0;
+  uint32_t a = 0;
+  uint32_t b = 0;
+  V2 frame_a;  ///< anchors from each centre of mass, world axes
+  V2 frame_b;
+  V2 delta_center;    ///< cB - cA (grab: cB - target)
+  W delta_angle = 0;  ///< B's angle - A's - reference, in [-pi, pi]
+  V2 axis_a;          ///< prismatic, wheel: the axis in world axes
+  W axial_mass = 0;
+  W angular_mass = 0;         ///< 1 / (iA + iB), or 0
+  Softness2D soft;            ///< the push-out of rigid parts
+  Softness2D spring;          ///< springs (distance, prismatic, wheel, grab; weld's linear part)
+  Softness2D angular_spring;  ///< weld's angular part, grab's spin damping
+};
+
 /// Bounds of one body for the sweep.
 struct SweepEntry2D {
   Box2W box;
@@ -72,6 +89,9 @@ class StepScratch2D {
   std::vector<uint64_t> pairs;       ///< (a << 32) | b, a < b, sorted
   std::vector<SolverBody2D> bodies;  ///< by body index
   std::vector<ContactConstraint2D> constraints;
+  std::vector<JointConstraint2D> joints;
+  /// (a << 32) | b of joined pairs that must not collide, sorted.
+  std::vector<uint64_t> joined_pairs;
   /// The contacts being built; swapped with the state's, so both buffers
   /// are reused.
   std::vector<ContactRecord2D> next_contacts;

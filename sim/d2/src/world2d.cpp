@@ -120,6 +120,13 @@ Result<BodyId2D> World2D::create_body(const BodyDef2D& def) {
 Status World2D::destroy_body(BodyId2D id) {
   if (!is_valid(id)) return Status::Error(ErrorCode::kNotFound, "no such body");
   drop_contacts_of(state_, id.index);
+  for (JointRecord2D& j : state_.joints) {
+    if (!(j.flags & kJointLive) || (j.a != id.index && j.b != id.index)) continue;
+    JointRecord2D freed_joint;
+    freed_joint.generation = j.generation;
+    j = freed_joint;
+    --state_.live_joints;
+  }
   BodyRecord2D freed;
   freed.generation = id.generation;
   state_.bodies[id.index] = freed;
@@ -345,6 +352,8 @@ void World2D::save(World2DState& out) const {
   out.bodies.assign(state_.bodies.begin(), state_.bodies.end());
   out.contacts.assign(state_.contacts.begin(), state_.contacts.end());
   out.pending_exits.assign(state_.pending_exits.begin(), state_.pending_exits.end());
+  out.live_joints = state_.live_joints;
+  out.joints.assign(state_.joints.begin(), state_.joints.end());
 }
 
 void World2D::restore(const World2DState& in) {
@@ -354,6 +363,8 @@ void World2D::restore(const World2DState& in) {
   state_.bodies.assign(in.bodies.begin(), in.bodies.end());
   state_.contacts.assign(in.contacts.begin(), in.contacts.end());
   state_.pending_exits.assign(in.pending_exits.begin(), in.pending_exits.end());
+  state_.live_joints = in.live_joints;
+  state_.joints.assign(in.joints.begin(), in.joints.end());
   scratch_->events.clear();
   stats_ = {};
 }

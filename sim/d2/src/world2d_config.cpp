@@ -35,6 +35,9 @@ Status World2D::validate_config(const World2DConfig& c) {
   if (!in_range(c.contact_damping_ratio, Fx(), 100_fx)) {
     return invalid("contact_damping_ratio must be in [0, 100]");
   }
+  if (!in_range(c.joint_damping_ratio, Fx(), 100_fx)) {
+    return invalid("joint_damping_ratio must be in [0, 100]");
+  }
   if (!in_range(c.contact_push_max, Fx::epsilon(), 1000_fx)) {
     return invalid("contact_push_max must be in (0, 1000] m/s");
   }

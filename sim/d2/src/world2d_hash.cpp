@@ -71,6 +71,11 @@ void World2D::hash_state(const World2DState& state, sim::StateHasher& hasher) {
   for (const ContactRecord2D& contact : state.contacts) visit_contact(contact, v);
   hasher.add_u32(static_cast<uint32_t>(state.pending_exits.size()));
   for (const PendingExit2D& exit : state.pending_exits) visit_pending_exit(exit, v);
+  hasher.add_u32(static_cast<uint32_t>(state.joints.size()));
+  for (const JointRecord2D& joint : state.joints) {
+    visit_joint_head(joint, v);
+    if (joint.flags & kJointLive) visit_joint_rest(joint, v);
+  }
 }
 
 void World2D::hash(sim::StateHasher& hasher) const {

@@ -53,6 +53,37 @@ Status check_body(const BodyRecord2D& body, const World2DConfig& config, uint32_
   return Status::Ok();
 }
 
+constexpr uint8_t kKnownJointFlags =
+    kJointLive | kJointBroken | kJointCollideConnected | kJointLimit | kJointMotor | kJointSpring;
+
+Status check_joint(const JointRecord2D& j, const World2DState& state, uint32_t index) {
+  const std::string at = "joint " + std::to_string(index) + ": ";
+  if (j.generation == 0) return corrupt(at + "generation 0");
+  if (!(j.flags & kJointLive) || (j.flags & ~kKnownJointFlags) != 0)
+    return corrupt(at + "bad flags");
+  if (static_cast<uint8_t>(j.type) > static_cast<uint8_t>(JointType2D::kGrab)) {
+    return corrupt(at + "unknown type");
+  }
+  if (j.a == j.b || j.a >= state.bodies.size() || j.b >= state.bodies.size() ||
+      !(state.bodies[j.a].flags & kBodyLive) || !(state.bodies[j.b].flags & kBodyLive)) {
+    return corrupt(at + "bodies are not two live bodies");
+  }
+  if (j.hertz < 0 || j.damping_ratio < 0 || j.linear_hertz < 0 || j.angular_hertz < 0 ||
+      j.max_motor < 0 || j.max_force < 0 || j.break_impulse < 0 || j.min_length < 0 ||
+      j.max_length < j.min_length || j.upper < j.lower) {
+    return corrupt(at + "a parameter out of range");
+  }
+  if ((j.flags & kJointSpring) && (j.hertz <= 0 || j.hertz > w_int(1000))) {
+    return corrupt(at + "spring hertz out of range");
+  }
+  const W axis2 = vlength_sq(j.local_axis_a);
+  if ((j.type == JointType2D::kPrismatic || j.type == JointType2D::kWheel) &&
+      wabs(axis2 - kWOne) > (kWOne >> 12)) {
+    return corrupt(at + "axis is not unit length");
+  }
+  return Status::Ok();
+}
+
 }  // namespace
 
 void World2D::serialize(std::vector<uint8_t>& out) const {
@@ -74,6 +105,11 @@ void World2D::serialize(std::vector<uint8_t>& out) const {
   for (const ContactRecord2D& contact : state_.contacts) visit_contact(contact, writer);
   writer.put(state_.pending_exits.size(), 4);
   for (const PendingExit2D& exit : state_.pending_exits) visit_pending_exit(exit, writer);
+  writer.put(state_.joints.size(), 4);
+  for (const JointRecord2D& joint : state_.joints) {
+    visit_joint_head(joint, writer);
+    if (joint.flags & kJointLive) visit_joint_rest(joint, writer);
+  }
 }
 
 Status World2D::deserialize(std::span<const uint8_t> bytes) {
@@ -141,6 +177,22 @@ Status World2D::deserialize(std::span<const uint8_t> bytes) {
     if (exit.a >= exit.b || exit.sensor > 1) return corrupt("bad pending exit");
   }
   if (!reader.ok()) return corrupt("truncated pending exits");
+  const uint64_t joint_slots = reader.get(4);
+  // A joint slot takes at least 5 bytes.
+  if (!reader.ok() || joint_slots > state.config.max_bodies || joint_slots * 5 > bytes.size()) {
+    return corrupt("bad joint count");
+  }
+  state.joints.resize(static_cast<size_t>(joint_slots));
+  for (uint32_t i = 0; i < joint_slots; ++i) {
+    JointRecord2D& joint = state.joints[i];
+    visit_joint_head(joint, reader);
+    if (!reader.ok()) return corrupt("truncated joints");
+    if (joint.flags == 0) continue;
+    visit_joint_rest(joint, reader);
+    if (!reader.ok()) return corrupt("truncated joints");
+    if (Status s = check_joint(joint, state, i); !s.ok()) return s;
+    ++state.live_joints;
+  }
   if (!reader.at_end()) return corrupt("trailing bytes");
   state_ = std::move(state);
   stats_ = {};

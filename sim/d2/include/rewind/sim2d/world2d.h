@@ -17,6 +17,7 @@
 #include "rewind/sim/status.h"
 #include "rewind/sim2d/body2d.h"
 #include "rewind/sim2d/contact_event2d.h"
+#include "rewind/sim2d/joint2d.h"
 #include "rewind/sim2d/shape2d.h"
 #include "rewind/sim2d/world2d_config.h"
 #include "rewind/sim2d/world2d_state.h"
@@ -118,6 +119,27 @@ class World2D {
   /// Takes a body out of the simulation (false) or puts it back (true); a
   /// disabled body keeps its pose, has no velocity and no contacts.
   Status set_enabled(BodyId2D id, bool enabled);
+
+  // --- joints -------------------------------------------------------------
+
+  /// Creates a joint between two live bodies (at least one dynamic);
+  /// kInvalidArgument naming the field, kNotFound for a stale body or
+  /// kCapacity (max_bodies joints) leave the world unchanged.
+  Result<JointId2D> create_joint(const JointDef2D& def);
+  /// Destroys a joint; destroying a body destroys its joints too.
+  Status destroy_joint(JointId2D id);
+  bool is_valid(JointId2D id) const;
+  uint32_t joint_count() const;
+  /// True once the joint exceeded its break_impulse; it then stays in place,
+  /// acting on nothing, until destroyed.
+  bool is_joint_broken(JointId2D id) const;
+  /// The force (N) the joint's linear part applied to body_b in the last
+  /// substep of the last step; zero for invalid ids.
+  Vec2 joint_force(JointId2D id) const;
+  /// Revolute and wheel: rad/s; prismatic: m/s.
+  Status set_motor_speed(JointId2D id, Fx speed);
+  /// Grab joints: the world point body_b is pulled toward.
+  Status set_grab_target(JointId2D id, Vec2 target);
 
   // --- stepping -----------------------------------------------------------
 

@@ -26,6 +26,9 @@ struct World2DConfig {
   /// moves bodies apart without leaving them velocity.
   Fx contact_hertz = 30_fx;
   Fx contact_damping_ratio = 10_fx;
+  /// Joints push their errors out with a spring of twice the contact
+  /// hertz and this damping ratio ([0, 100]).
+  Fx joint_damping_ratio = 2_fx;
   Fx contact_push_max = 3_fx;         ///< m/s, cap on the push-out speed, (0, 1000]
   Fx restitution_threshold = 1_fx;    ///< m/s, no bounce below this approach speed, [0, 1000]
   Fx linear_slop = 0.005_fx;          ///< m, allowed penetration, [0, 1]

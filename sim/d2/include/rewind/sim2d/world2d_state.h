@@ -10,6 +10,7 @@
 
 #include "rewind/sim2d/body2d.h"
 #include "rewind/sim2d/detail/wmath.h"
+#include "rewind/sim2d/joint2d.h"
 #include "rewind/sim2d/shape2d.h"
 #include "rewind/sim2d/world2d_config.h"
 
@@ -58,8 +59,9 @@ struct ContactPoint2D {
 };
 
 /// ContactRecord2D::flags bits.
-inline constexpr uint8_t kContactSensor = 1;    ///< a sensor pair: reported, never solved
-inline constexpr uint8_t kContactTouching = 2;  ///< touching (contact_event2d.h) as of the last step
+inline constexpr uint8_t kContactSensor = 1;  ///< a sensor pair: reported, never solved
+inline constexpr uint8_t kContactTouching =
+    2;  ///< touching (contact_event2d.h) as of the last step
 
 /// A pair of bodies whose bounds overlap, with the manifold of the last
 /// step. a < b (body indices); the array is sorted by (a, b).
@@ -84,6 +86,51 @@ struct PendingExit2D {
   uint8_t sensor = 0;
 };
 
+/// JointRecord2D::flags bits.
+inline constexpr uint8_t kJointLive = 1;
+inline constexpr uint8_t kJointBroken = 2;
+inline constexpr uint8_t kJointCollideConnected = 4;
+inline constexpr uint8_t kJointLimit = 8;
+inline constexpr uint8_t kJointMotor = 16;
+inline constexpr uint8_t kJointSpring = 32;
+
+/// One joint slot: its definition in the body frames and, after the
+/// parameters, the impulses that warm start the next step. A free slot
+/// has no kJointLive flag, keeps its generation and is zero otherwise.
+struct JointRecord2D {
+  uint32_t generation = 0;
+  JointType2D type = JointType2D::kDistance;
+  uint8_t flags = 0;
+  uint32_t a = 0;  ///< body indices
+  uint32_t b = 0;
+  detail::V2 local_anchor_a;  ///< from each body's origin, body frame
+  detail::V2 local_anchor_b;
+  detail::V2 local_axis_a;        ///< unit, in A's frame (prismatic, wheel)
+  detail::W reference_angle = 0;  ///< B's angle minus A's at creation
+  detail::W length = 0;
+  detail::W min_length = 0;
+  detail::W max_length = 0;
+  detail::W lower = 0;
+  detail::W upper = 0;
+  detail::W motor_speed = 0;
+  detail::W max_motor = 0;
+  detail::W hertz = 0;
+  detail::W damping_ratio = 0;
+  detail::W linear_hertz = 0;
+  detail::W angular_hertz = 0;
+  detail::W max_force = 0;
+  detail::W break_impulse = 0;
+  detail::V2 target;
+  // Accumulated impulses of the last substep (warm starting).
+  detail::V2 linear_impulse;
+  detail::W angular_impulse = 0;
+  detail::W axial_impulse = 0;  ///< distance and prismatic rigid part, wheel perpendicular
+  detail::W spring_impulse = 0;
+  detail::W motor_impulse = 0;
+  detail::W lower_impulse = 0;
+  detail::W upper_impulse = 0;
+};
+
 /// The whole state of a World2D.
 struct World2DState {
   World2DConfig config;
@@ -92,10 +139,13 @@ struct World2DState {
   std::vector<BodyRecord2D> bodies;  ///< by slot index
   std::vector<ContactRecord2D> contacts;
   std::vector<PendingExit2D> pending_exits;  ///< in the order they ended
+  uint32_t live_joints = 0;
+  std::vector<JointRecord2D> joints;  ///< by slot index
 };
 
 static_assert(std::is_trivially_copyable_v<BodyRecord2D>);
 static_assert(std::is_trivially_copyable_v<ContactRecord2D>);
 static_assert(std::is_trivially_copyable_v<PendingExit2D>);
+static_assert(std::is_trivially_copyable_v<JointRecord2D>);
 
 }  // namespace rwd::sim2d

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: MIT
+// Revolute joint: a shared point, with an optional angular spring toward
+// the angle at creation, a motor and angle limits.
+#include "joint_math2d.h"
+
+namespace rwd::sim2d::detail {
+
+void warm_start_revolute(const JointRecord2D& j, const JointConstraint2D& c, SolverBody2D& a,
+                         SolverBody2D& b) {
+  const Anchors2D r = current_anchors(c, a, b);
+  apply_linear(a, b, r, j.linear_impulse);
+  apply_angular(a, b, j.spring_impulse + j.motor_impulse + j.lower_impulse - j.upper_impulse);
+}
+
+void solve_revolute(JointRecord2D& j, const JointConstraint2D& c, SolverBody2D& a, SolverBody2D& b,
+                    const JointPass2D& pass) {
+  const bool turns = c.angular_mass > 0;
+  if ((j.flags & kJointSpring) && turns) {
+    const W angle = joint_angle(c, a, b);
+    const W impulse = -wmul(wmul(c.angular_mass, c.spring.mass_scale),
+                            b.w - a.w + wmul(c.spring.bias_rate, angle)) -
+                      wmul(c.spring.impulse_scale, j.spring_impulse);
+    j.spring_impulse += impulse;
+    apply_angular(a, b, impulse);
+  }
+  if ((j.flags & kJointMotor) && turns) {
+    const W max_impulse = wmul(pass.h, j.max_motor);
+    const W next = wclamp(j.motor_impulse - wmul(c.angular_mass, b.w - a.w - j.motor_speed),
+                          -max_impulse, max_impulse);
+    const W applied = next - j.motor_impulse;
+    j.motor_impulse = next;
+    apply_angular(a, b, applied);
+  }
+  if ((j.flags & kJointLimit) && turns) {
+    const W angle = joint_angle(c, a, b);
+    solve_angle_limit(angle - j.lower, kWOne, j.lower_impulse, c.angular_mass, c.soft, a, b, pass);
+    solve_angle_limit(j.upper - angle, -kWOne, j.upper_impulse, c.angular_mass, c.soft, a, b, pass);
+  }
+  // The point, last: it matters most.
+  const Anchors2D r = current_anchors(c, a, b);
+  const V2 cdot = anchor_velocity(a, b, r);
+  V2 bias;
+  W mass_scale = kWOne;
+  W impulse_scale = 0;
+  if (pass.use_bias) {
+    bias = vscale(c.soft.bias_rate, anchor_separation(c, a, b, r));
+    mass_scale = c.soft.mass_scale;
+    impulse_scale = c.soft.impulse_scale;
+  }
+  const PointMass2D k = point_mass(a, b, r);
+  const V2 x = solve22(k.k11, k.k12, k.k22, cdot + bias);
+  const V2 impulse = -vscale(mass_scale, x) - vscale(impulse_scale, j.linear_impulse);
+  j.linear_impulse += impulse;
+  apply_linear(a, b, r, impulse);
+}
+
+}  // namespace rwd::sim2d::detail

@@ -1,0 +1,181 @@
+// SPDX-License-Identifier: MIT
+#include "joint_solver2d.h"
+
+#include "body_mass2d.h"
+#include "contact_solver2d.h"
+#include "joint_math2d.h"
+#include "rewind/fixed/trig.h"
+
+namespace rwd::sim2d::detail {
+
+W angle_of(Rot q) {
+  return w_from(fixed::atan2(w_to_fx(q.s), w_to_fx(q.c)));
+}
+
+V2 solve22(W k11, W k12, W k22, V2 v) {
+  const W det = wmul(k11, k22) - wmul(k12, k12);
+  if (det == 0) return {};
+  return {wdiv(wmul(k22, v.x) - wmul(k12, v.y), det), wdiv(wmul(k11, v.y) - wmul(k12, v.x), det)};
+}
+
+PointMass2D point_mass(const SolverBody2D& a, const SolverBody2D& b, const Anchors2D& r) {
+  const W m = a.inv_mass + b.inv_mass;
+  return {
+      m + wmul(a.inv_inertia, wmul(r.ra.y, r.ra.y)) + wmul(b.inv_inertia, wmul(r.rb.y, r.rb.y)),
+      -wmul(a.inv_inertia, wmul(r.ra.y, r.ra.x)) - wmul(b.inv_inertia, wmul(r.rb.y, r.rb.x)),
+      m + wmul(a.inv_inertia, wmul(r.ra.x, r.ra.x)) + wmul(b.inv_inertia, wmul(r.rb.x, r.rb.x))};
+}
+
+W solve_angle_limit(W c, W sign, W& accumulated, W axial_mass, const Softness2D& soft,
+                    SolverBody2D& a, SolverBody2D& b, const JointPass2D& pass) {
+  const BiasTerms2D t = one_sided_bias(c, soft, pass);
+  const W cdot = wmul(sign, b.w - a.w);
+  const W impulse =
+      -wmul(wmul(axial_mass, t.mass_scale), cdot + t.bias) - wmul(t.impulse_scale, accumulated);
+  const W next = wmax(accumulated + impulse, 0);
+  const W applied = next - accumulated;
+  accumulated = next;
+  apply_angular(a, b, wmul(sign, applied));
+  return applied;
+}
+
+namespace {
+
+bool active(const JointRecord2D& j) {
+  return (j.flags & kJointLive) && !(j.flags & kJointBroken);
+}
+
+// The relative angle in [-pi, pi] after taking the reference off.
+W unwind(W angle) {
+  const W pi = kWPi;
+  if (angle > pi) return angle - 2 * pi;
+  if (angle < -pi) return angle + 2 * pi;
+  return angle;
+}
+
+}  // namespace
+
+void prepare_joints(World2DState& state, StepScratch2D& scratch, W h) {
+  const World2DConfig& config = state.config;
+  const W substep_hz = winv(h);
+  const W contact_hertz = wmin(w_from(config.contact_hertz), substep_hz / 4);
+  const Softness2D joint_soft =
+      make_softness(2 * contact_hertz, w_from(config.joint_damping_ratio), h);
+  auto& out = scratch.joints;
+  out.clear();
+  for (uint32_t ji = 0; ji < state.joints.size(); ++ji) {
+    const JointRecord2D& j = state.joints[ji];
+    if (!active(j)) continue;
+    const BodyRecord2D& body_a = state.bodies[j.a];
+    const BodyRecord2D& body_b = state.bodies[j.b];
+    if (!(body_a.flags & kBodyEnabled) || !(body_b.flags & kBodyEnabled)) continue;
+    const SolverBody2D& a = scratch.bodies[j.a];
+    const SolverBody2D& b = scratch.bodies[j.b];
+    JointConstraint2D c;
+    c.joint = ji;
+    c.a = j.a;
+    c.b = j.b;
+    c.frame_a = rotate(body_a.rotation, j.local_anchor_a - body_a.local_center);
+    c.frame_b = rotate(body_b.rotation, j.local_anchor_b - body_b.local_center);
+    c.delta_center = body_b.center - body_a.center;
+    c.delta_angle =
+        unwind(angle_of(rinv_mul(body_a.rotation, body_b.rotation)) - j.reference_angle);
+    c.axis_a = rotate(body_a.rotation, j.local_axis_a);
+    const W k = a.inv_inertia + b.inv_inertia;
+    c.angular_mass = k > 0 ? winv(k) : 0;
+    c.soft = joint_soft;
+    c.spring = (j.flags & kJointSpring) ? make_softness(j.hertz, j.damping_ratio, h) : Softness2D{};
+    switch (j.type) {
+      case JointType2D::kDistance:
+        prepare_distance(j, c, a, b);
+        break;
+      case JointType2D::kPrismatic:
+      case JointType2D::kWheel:
+        prepare_slider(j, c, a, b);
+        break;
+      case JointType2D::kWeld:
+        c.spring =
+            j.linear_hertz > 0 ? make_softness(j.linear_hertz, j.damping_ratio, h) : joint_soft;
+        c.angular_spring =
+            j.angular_hertz > 0 ? make_softness(j.angular_hertz, j.damping_ratio, h) : joint_soft;
+        break;
+      case JointType2D::kGrab:
+        // Pulled toward the target; its spin is damped softly so a grabbed
+        // body does not whirl about the grab point.
+        c.delta_center = body_b.center - j.target;
+        c.angular_spring = make_softness(kWOne / 2, kWOne / 10, h);
+        c.angular_mass = b.inv_inertia > 0 ? winv(b.inv_inertia) : 0;
+        break;
+      case JointType2D::kRevolute:
+        break;
+    }
+    out.push_back(c);
+  }
+}
+
+void warm_start_joints(World2DState& state, StepScratch2D& scratch) {
+  for (const JointConstraint2D& c : scratch.joints) {
+    const JointRecord2D& j = state.joints[c.joint];
+    SolverBody2D& a = scratch.bodies[c.a];
+    SolverBody2D& b = scratch.bodies[c.b];
+    switch (j.type) {
+      case JointType2D::kDistance:
+        warm_start_distance(j, c, a, b);
+        break;
+      case JointType2D::kRevolute:
+        warm_start_revolute(j, c, a, b);
+        break;
+      case JointType2D::kPrismatic:
+      case JointType2D::kWheel:
+        warm_start_slider(j, c, a, b);
+        break;
+      case JointType2D::kWeld:
+        warm_start_weld(j, c, a, b);
+        break;
+      case JointType2D::kGrab:
+        warm_start_grab(j, c, b);
+        break;
+    }
+  }
+}
+
+void solve_joints(World2DState& state, StepScratch2D& scratch, const JointPass2D& pass) {
+  for (const JointConstraint2D& c : scratch.joints) {
+    JointRecord2D& j = state.joints[c.joint];
+    SolverBody2D& a = scratch.bodies[c.a];
+    SolverBody2D& b = scratch.bodies[c.b];
+    switch (j.type) {
+      case JointType2D::kDistance:
+        solve_distance(j, c, a, b, pass);
+        break;
+      case JointType2D::kRevolute:
+        solve_revolute(j, c, a, b, pass);
+        break;
+      case JointType2D::kPrismatic:
+        solve_prismatic(j, c, a, b, pass);
+        break;
+      case JointType2D::kWheel:
+        solve_wheel(j, c, a, b, pass);
+        break;
+      case JointType2D::kWeld:
+        solve_weld(j, c, a, b, pass);
+        break;
+      case JointType2D::kGrab:
+        solve_grab(j, c, b, pass);
+        break;
+    }
+  }
+}
+
+void break_joints(World2DState& state, int substeps) {
+  for (JointRecord2D& j : state.joints) {
+    if (!active(j) || j.break_impulse == 0) continue;
+    // The last substep's impulses, times the substeps: the tick's impulse.
+    const W linear = vlength(j.linear_impulse) + wabs(j.axial_impulse) + wabs(j.spring_impulse) +
+                     wabs(j.lower_impulse) + wabs(j.upper_impulse);
+    const W angular = wabs(j.angular_impulse) + wabs(j.motor_impulse);
+    if (wmax(linear, angular) * substeps > j.break_impulse) j.flags |= kJointBroken;
+  }
+}
+
+}  // namespace rwd::sim2d::detail

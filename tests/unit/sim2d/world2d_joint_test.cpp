@@ -1,0 +1,252 @@
+// SPDX-License-Identifier: MIT
+// Joints of the 2D lane against what each one promises, and through
+// save/restore and the snapshot bytes.
+#include <vector>
+
+#include "rewind/fixed/fx_math.h"
+#include "rewind/sim2d/world2d.h"
+#include "world2d_test_scenes.h"
+
+namespace rwd::sim2d {
+namespace {
+
+using testing::add_body;
+
+double to_double(Fx f) {
+  return f.raw() / 65536.0;
+}
+
+JointDef2D joint_at(JointType2D type, BodyId2D a, BodyId2D b, Vec2 anchor) {
+  JointDef2D def;
+  def.type = type;
+  def.body_a = a;
+  def.body_b = b;
+  def.anchor_a = anchor;
+  def.anchor_b = anchor;
+  return def;
+}
+
+TEST(World2DJoints, PendulumPeriodMatchesSmallAngleTheory) {
+  // A 1 m pendulum (a small heavy disc) swinging 0.1 rad: T = 2 pi sqrt(L / g)
+  // = 1.98692 s at g = 10. Counted from the zero crossings of x over three
+  // periods; within 1%.
+  World2D world;
+  const BodyId2D pivot = add_body(world, BodyKind2D::kStatic, make_circle(0.05_fx), {Fx(), 2_fx});
+  // sin(0.1) = 0.0998, cos(0.1) = 0.995: the bob starts 0.1 rad out.
+  const BodyId2D bob =
+      add_body(world, BodyKind2D::kDynamic, make_circle(0.05_fx), {0.0998_fx, 2_fx - 0.995_fx});
+  JointDef2D rod = joint_at(JointType2D::kDistance, pivot, bob, {Fx(), 2_fx});
+  rod.anchor_b = world.position(bob);
+  rod.length = 1_fx;
+  ASSERT_TRUE(world.create_joint(rod).ok());
+  int crossings = 0;
+  int first = -1;
+  int last = -1;
+  Fx previous = world.position(bob).x;
+  for (int t = 1; t <= 60 * 8 && crossings < 7; ++t) {
+    world.step();
+    const Fx x = world.position(bob).x;
+    if ((previous > Fx()) != (x > Fx())) {
+      ++crossings;
+      if (first < 0) first = t;
+      last = t;
+    }
+    previous = x;
+  }
+  ASSERT_EQ(crossings, 7);
+  const double period = (last - first) / 60.0 / 3.0;
+  EXPECT_NEAR(period, 1.98692, 0.0199);
+}
+
+TEST(World2DJoints, RevolutePendulumKeepsItsPivotAndPeriod) {
+  // A uniform rod of length 1 m hinged at one end: T = 2 pi sqrt(2 L / (3 g))
+  // = 1.62231 s for small swings.
+  World2D world;
+  const BodyId2D ground = add_body(world, BodyKind2D::kStatic, make_circle(0.05_fx), {Fx(), 3_fx});
+  // The rod hangs from (0, 3), turned 0.1 rad: its centre 0.5 m along it.
+  BodyDef2D def;
+  def.shape = *make_box(0.5_fx, 0.02_fx);
+  def.angle = -Fx::half_pi() + 0.1_fx;
+  def.position = {0.0499_fx, 3_fx - 0.4975_fx};
+  const BodyId2D rod = *world.create_body(def);
+  const JointId2D hinge =
+      *world.create_joint(joint_at(JointType2D::kRevolute, ground, rod, {Fx(), 3_fx}));
+  EXPECT_TRUE(world.is_valid(hinge));
+  int crossings = 0;
+  int first = -1;
+  int last = -1;
+  Fx previous = world.center_of_mass(rod).x;
+  for (int t = 1; t <= 60 * 8 && crossings < 7; ++t) {
+    world.step();
+    const Fx x = world.center_of_mass(rod).x;
+    if ((previous > Fx()) != (x > Fx())) {
+      ++crossings;
+      if (first < 0) first = t;
+      last = t;
+    }
+    previous = x;
+    // The hinge holds: the rod's end stays at the pivot within 1 mm.
+    const fixed::Rot2 q = world.rotation(rod);
+    const Vec2 end = world.position(rod) + fixed::rotate(q, Vec2{-0.5_fx, Fx()});
+    EXPECT_LT(fixed::length(end - Vec2{Fx(), 3_fx}), 0.001_fx) << "tick " << t;
+  }
+  ASSERT_EQ(crossings, 7);
+  EXPECT_NEAR((last - first) / 60.0 / 3.0, 1.62231, 0.0162);
+}
+
+TEST(World2DJoints, RevoluteLimitAndMotor) {
+  World2DConfig config;
+  config.gravity = {};
+  World2D world(config);
+  const BodyId2D ground = add_body(world, BodyKind2D::kStatic, make_circle(0.1_fx), {});
+  const BodyId2D arm = add_body(world, BodyKind2D::kDynamic, make_box(1_fx, 0.1_fx), {1_fx, Fx()});
+  JointDef2D def = joint_at(JointType2D::kRevolute, ground, arm, {});
+  def.enable_motor = true;
+  def.motor_speed = 2_fx;
+  def.max_motor = 100_fx;
+  def.enable_limit = true;
+  def.lower = -0.5_fx;
+  def.upper = 0.75_fx;
+  const JointId2D hinge = *world.create_joint(def);
+  for (int t = 0; t < 15; ++t) world.step();
+  // Driven at 2 rad/s for 0.25 s: 0.5 rad, below the limit.
+  EXPECT_NEAR(to_double(world.angle(arm)), 0.5, 0.02);
+  for (int t = 0; t < 60; ++t) world.step();
+  // Held at the upper limit.
+  EXPECT_NEAR(to_double(world.angle(arm)), 0.75, 0.01);
+  ASSERT_TRUE(world.set_motor_speed(hinge, -3_fx).ok());
+  for (int t = 0; t < 90; ++t) world.step();
+  EXPECT_NEAR(to_double(world.angle(arm)), -0.5, 0.01);
+}
+
+TEST(World2DJoints, PrismaticSlidesOnlyAlongItsAxisWithinLimits) {
+  World2D world;  // gravity pulls down; the axis is diagonal
+  const BodyId2D ground = add_body(world, BodyKind2D::kStatic, make_circle(0.1_fx), {});
+  const BodyId2D slider = add_body(world, BodyKind2D::kDynamic, make_box(0.2_fx, 0.2_fx), {});
+  JointDef2D def = joint_at(JointType2D::kPrismatic, ground, slider, {});
+  def.axis = {1_fx, 1_fx};
+  def.enable_limit = true;
+  def.lower = -1_fx;
+  def.upper = 1_fx;
+  ASSERT_TRUE(world.create_joint(def).ok());
+  for (int t = 0; t < 120; ++t) {
+    world.step();
+    const Vec2 p = world.position(slider);
+    EXPECT_LT(fixed::abs(p.x - p.y), 0.002_fx) << "off the axis at tick " << t;
+    EXPECT_LT(fixed::abs(world.angle(slider)), 0.002_fx) << "turned at tick " << t;
+  }
+  // It slid down to the lower limit: 1 m along (1, 1) / sqrt(2).
+  EXPECT_NEAR(to_double(world.position(slider).x), -0.70711, 0.005);
+}
+
+TEST(World2DJoints, WheelSuspensionSettlesAtTheStaticSag) {
+  // A 1 kg wheel hung on a vertical 4 Hz suspension sags m g / k, with
+  // k = m (2 pi f)^2: 10 / 631.65 = 15.8 mm.
+  World2D world;
+  const BodyId2D chassis =
+      add_body(world, BodyKind2D::kStatic, make_box(1_fx, 0.1_fx), {Fx(), 2_fx});
+  BodyDef2D wheel_def;
+  wheel_def.shape = *make_circle(0.3_fx);
+  wheel_def.position = {Fx(), 1_fx};
+  wheel_def.density = Fx::ratio(1, 1) / (Fx::pi() * 0.09_fx);  // 1 kg
+  const BodyId2D wheel = *world.create_body(wheel_def);
+  JointDef2D def = joint_at(JointType2D::kWheel, chassis, wheel, {Fx(), 1_fx});
+  def.axis = {Fx(), 1_fx};
+  def.hertz = 4_fx;
+  def.damping_ratio = 0.7_fx;
+  ASSERT_TRUE(world.create_joint(def).ok());
+  for (int t = 0; t < 240; ++t) world.step();
+  EXPECT_NEAR(to_double(world.position(wheel).y), 1.0 - 0.0158, 0.0015);
+  EXPECT_NEAR(to_double(world.position(wheel).x), 0.0, 0.001);
+}
+
+TEST(World2DJoints, WeldHoldsACantileverAndGrabPullsToTheTarget) {
+  World2D world;
+  const BodyId2D wall = add_body(world, BodyKind2D::kStatic, make_box(0.1_fx, 1_fx), {});
+  const BodyId2D beam =
+      add_body(world, BodyKind2D::kDynamic, make_box(1_fx, 0.1_fx), {1.1_fx, Fx()});
+  ASSERT_TRUE(world.create_joint(joint_at(JointType2D::kWeld, wall, beam, {0.1_fx, Fx()})).ok());
+  const BodyId2D ball = add_body(world, BodyKind2D::kDynamic, make_circle(0.2_fx), {-3_fx, Fx()});
+  JointDef2D grab = joint_at(JointType2D::kGrab, wall, ball, {-3_fx, Fx()});
+  grab.target = {-3_fx, 2_fx};
+  grab.hertz = 5_fx;
+  grab.damping_ratio = 1_fx;
+  grab.max_force = 100_fx;
+  ASSERT_TRUE(world.create_joint(grab).ok());
+  for (int t = 0; t < 180; ++t) world.step();
+  // The beam droops by less than 2 cm at its tip and barely turns.
+  EXPECT_GT(world.position(beam).y, -0.02_fx);
+  EXPECT_LT(fixed::abs(world.angle(beam)), 0.02_fx);
+  // The ball hangs just under the target: the spring's sag is g / (2 pi 5)^2.
+  EXPECT_NEAR(to_double(world.position(ball).y), 2.0 - 0.0101, 0.003);
+}
+
+TEST(World2DJoints, BreakImpulseBreaksAndConnectedBodiesDoNotCollide) {
+  World2D world;
+  const BodyId2D ceiling =
+      add_body(world, BodyKind2D::kStatic, make_box(1_fx, 0.1_fx), {Fx(), 2_fx});
+  // A heavy box overlapping its ceiling: joined without collide_connected,
+  // so they do not push apart.
+  BodyDef2D heavy;
+  heavy.shape = *make_box(0.5_fx, 0.5_fx);
+  heavy.position = {Fx(), 1.8_fx};
+  heavy.density = 10_fx;  // 10 kg: 100 N / 60 Hz = 1.67 N s a tick
+  const BodyId2D box = *world.create_body(heavy);
+  JointDef2D def = joint_at(JointType2D::kRevolute, ceiling, box, {Fx(), 1.8_fx});
+  def.break_impulse = 2_fx;
+  const JointId2D hinge = *world.create_joint(def);
+  for (int t = 0; t < 15; ++t) world.step();
+  EXPECT_FALSE(world.is_joint_broken(hinge));
+  EXPECT_NEAR(to_double(world.position(box).y), 1.8, 0.002);
+  // Pulled down with 200 N more for one tick: 5 N s, the hinge breaks and
+  // the box falls.
+  ASSERT_TRUE(world.apply_force(box, {Fx(), -200_fx}).ok());
+  world.step();
+  EXPECT_TRUE(world.is_joint_broken(hinge));
+  for (int t = 0; t < 30; ++t) world.step();
+  EXPECT_LT(world.position(box).y, 1.5_fx);
+}
+
+TEST(World2DJoints, JointsSurviveRestoreAndSnapshotBytes) {
+  World2D world;
+  const BodyId2D ground =
+      add_body(world, BodyKind2D::kStatic, make_box(5_fx, 0.5_fx), {Fx(), -0.5_fx});
+  // A chain of 8 links hanging from a pivot, swinging into the ground.
+  BodyId2D previous = ground;
+  Vec2 anchor{-2_fx, 3_fx};
+  for (int i = 0; i < 8; ++i) {
+    const BodyId2D link = add_body(world, BodyKind2D::kDynamic,
+                                   make_capsule({-0.2_fx, Fx()}, {0.2_fx, Fx()}, 0.05_fx),
+                                   anchor + Vec2{0.2_fx, Fx()});
+    JointDef2D def = joint_at(JointType2D::kRevolute, previous, link, anchor);
+    ASSERT_TRUE(world.create_joint(def).ok());
+    previous = link;
+    anchor = anchor + Vec2{0.4_fx, Fx()};
+  }
+  EXPECT_EQ(world.joint_count(), 8u);
+  for (int t = 0; t < 40; ++t) world.step();
+  World2DState saved;
+  world.save(saved);
+  std::vector<uint8_t> bytes;
+  world.serialize(bytes);
+  std::vector<uint64_t> expected;
+  for (int t = 0; t < 80; ++t) {
+    world.step();
+    expected.push_back(world.checksum());
+  }
+  world.restore(saved);
+  World2D copy;
+  ASSERT_TRUE(copy.deserialize(bytes).ok());
+  for (size_t t = 0; t < expected.size(); ++t) {
+    world.step();
+    copy.step();
+    ASSERT_EQ(world.checksum(), expected[t]) << t;
+    ASSERT_EQ(copy.checksum(), expected[t]) << t;
+  }
+  // Destroying a body destroys its joints.
+  ASSERT_TRUE(world.destroy_body(previous).ok());
+  EXPECT_EQ(world.joint_count(), 7u);
+}
+
+}  // namespace
+}  // namespace rwd::sim2d
