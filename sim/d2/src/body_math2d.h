@@ -27,6 +27,24 @@ W body_mass(const BodyRecord2D& body);
 
 namespace rwd::sim2d::detail {
 
+/// Whether the body moves this step: an awake dynamic body, or a
+/// kinematic one with a velocity. Pairs without a moving body are not
+/// collided (their contacts are kept as they were).
+inline bool is_moving(const BodyRecord2D& body) {
+  if (!(body.flags & kBodyLive) || !(body.flags & kBodyEnabled)) return false;
+  if (body.kind == BodyKind2D::kDynamic) return (body.flags & kBodyAwake) != 0;
+  return body.kind == BodyKind2D::kKinematic &&
+         (body.velocity.x != 0 || body.velocity.y != 0 || body.angular_velocity != 0);
+}
+
+/// Wakes a dynamic body (no-op for others): it is simulated again from
+/// this step and counts its time to sleep from zero.
+inline void wake(BodyRecord2D& body) {
+  if (body.kind != BodyKind2D::kDynamic) return;
+  body.flags |= kBodyAwake;
+  body.sleep_time = 0;
+}
+
 /// v with each component limited to the world's max_linear_speed.
 inline V2 clamp_speed(V2 v, const World2DConfig& config) {
   const W cap = w_from(config.max_linear_speed);

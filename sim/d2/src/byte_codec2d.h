@@ -69,8 +69,10 @@ class ByteReader2D {
   void operator()(std::string_view, T& field) {
     if constexpr (std::is_same_v<T, fixed::Fx>) {
       field = fixed::Fx::from_raw(static_cast<int32_t>(static_cast<uint32_t>(get(4))));
-    } else if constexpr (std::is_enum_v<T>) {
-      field = static_cast<T>(get(sizeof(T)));
+    } else if constexpr (std::is_same_v<T, bool>) {
+      const uint64_t v = get(1);
+      if (v > 1) ok_ = false;  // one canonical byte per flag
+      field = v == 1;
     } else {
       field = static_cast<T>(get(sizeof(T)));
     }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include <algorithm>
 
+#include "body_math2d.h"
 #include "pipeline2d.h"
 
 namespace rwd::sim2d::detail {
@@ -53,7 +54,11 @@ void collect_events(const World2DState& state, const std::vector<ContactRecord2D
     } else {
       const bool was = (prev[i].flags & kContactTouching) != 0;
       const bool is = (next[j].flags & kContactTouching) != 0;
-      if (is) {
+      const bool frozen =
+          !is_moving(state.bodies[next[j].a]) && !is_moving(state.bodies[next[j].b]);
+      if (is && was && frozen) {
+        // A sleeping pair still touches; it is not reported every step.
+      } else if (is) {
         events.push_back(make_event(state, next[j],
                                     was ? ContactEventType2D::kStay : ContactEventType2D::kEnter));
       } else if (was) {
@@ -74,6 +79,8 @@ void drop_contacts_of(World2DState& state, uint32_t index) {
       contacts[kept++] = c;
       continue;
     }
+    // What rested on the body that went away wakes and falls.
+    wake(state.bodies[c.a == index ? c.b : c.a]);
     if (c.flags & kContactTouching) {
       state.pending_exits.push_back({c.a, state.bodies[c.a].generation, c.b,
                                      state.bodies[c.b].generation,

@@ -2,6 +2,7 @@
 #include "contact_solver2d.h"
 
 #include "body_mass2d.h"
+#include "body_math2d.h"
 
 namespace rwd::sim2d::detail {
 
@@ -47,6 +48,7 @@ void prepare_contacts(const World2DState& state, StepScratch2D& scratch, W h) {
   for (uint32_t ci = 0; ci < state.contacts.size(); ++ci) {
     const ContactRecord2D& contact = state.contacts[ci];
     if (contact.flags & kContactSensor) continue;
+    if (!is_moving(state.bodies[contact.a]) && !is_moving(state.bodies[contact.b])) continue;
     const BodyRecord2D& body_a = state.bodies[contact.a];
     const BodyRecord2D& body_b = state.bodies[contact.b];
     const SolverBody2D& a = scratch.bodies[contact.a];

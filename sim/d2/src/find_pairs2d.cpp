@@ -24,7 +24,7 @@ void find_pairs(const World2DState& state, StepScratch2D& scratch) {
     Box2W box = shape_bounds(body.shape, origin_transform(body));
     box.lower -= V2{margin, margin};
     box.upper += V2{margin, margin};
-    sweep.push_back({box, i, body.kind == BodyKind2D::kDynamic});
+    sweep.push_back({box, i, is_moving(body)});
   }
   // (lower x, index) is unique per body, so the order, and with it every
   // later order, depends on the state alone.

@@ -2,6 +2,7 @@
 #include "joint_solver2d.h"
 
 #include "body_mass2d.h"
+#include "body_math2d.h"
 #include "contact_solver2d.h"
 #include "joint_math2d.h"
 #include "rewind/fixed/trig.h"
@@ -69,6 +70,7 @@ void prepare_joints(World2DState& state, StepScratch2D& scratch, W h) {
     const BodyRecord2D& body_a = state.bodies[j.a];
     const BodyRecord2D& body_b = state.bodies[j.b];
     if (!(body_a.flags & kBodyEnabled) || !(body_b.flags & kBodyEnabled)) continue;
+    if (!is_moving(body_a) && !is_moving(body_b)) continue;
     const SolverBody2D& a = scratch.bodies[j.a];
     const SolverBody2D& b = scratch.bodies[j.b];
     JointConstraint2D c;

@@ -32,6 +32,14 @@ void begin_events(World2DState& state, std::vector<ContactEvent2D>& events);
 /// Orders events by (a, b), exits first where a pair ended and began again.
 void sort_events(std::vector<ContactEvent2D>& events);
 
+/// Wakes every sleeping body touched by or joined to a moving one, with
+/// its whole island (sleep2d.cpp).
+void wake_touched(World2DState& state, StepScratch2D& scratch);
+
+/// Counts each awake body's slow time and puts islands that have all been
+/// slow for time_to_sleep to sleep.
+void update_sleep(World2DState& state, StepScratch2D& scratch);
+
 /// The soft-step solve of the contacts: substeps of integrate velocities,
 /// warm start, solve, integrate positions and relax, then restitution;
 /// impulses are stored back into state.contacts for the next step.

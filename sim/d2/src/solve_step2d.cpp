@@ -17,7 +17,8 @@ void load_bodies(const World2DState& state, StepScratch2D& scratch) {
     const BodyRecord2D& body = state.bodies[i];
     SolverBody2D& sb = scratch.bodies[i];
     sb = {};
-    if (!(body.flags & kBodyLive) || !(body.flags & kBodyEnabled)) continue;
+    // A sleeping body is as immovable as a static one this step.
+    if (!is_moving(body)) continue;
     sb.v = body.velocity;
     sb.w = body.angular_velocity;
     sb.inv_mass = body.inv_mass;
@@ -31,7 +32,7 @@ void integrate_velocities(const World2DState& state, StepScratch2D& scratch, W h
   const V2 gravity = v_from(state.config.gravity);
   for (size_t i = 0; i < state.bodies.size(); ++i) {
     const BodyRecord2D& body = state.bodies[i];
-    if (body.kind != BodyKind2D::kDynamic || !(body.flags & kBodyEnabled)) continue;
+    if (body.kind != BodyKind2D::kDynamic || !is_moving(body)) continue;
     SolverBody2D& sb = scratch.bodies[i];
     const W g = w_from(body.gravity_scale);
     V2 dv = vscale(wmul(h, g), gravity);
@@ -53,7 +54,7 @@ void integrate_velocities(const World2DState& state, StepScratch2D& scratch, W h
 void integrate_positions(const World2DState& state, StepScratch2D& scratch, W h) {
   for (size_t i = 0; i < state.bodies.size(); ++i) {
     const BodyRecord2D& body = state.bodies[i];
-    if (body.kind == BodyKind2D::kStatic || !(body.flags & kBodyLive)) continue;
+    if (!is_moving(body)) continue;
     SolverBody2D& sb = scratch.bodies[i];
     sb.dp += vscale(h, sb.v);
     if (sb.w != 0) sb.dq = integrate_rotation(sb.dq, wmul(h, sb.w));
@@ -66,7 +67,7 @@ void write_back(World2DState& state, const StepScratch2D& scratch) {
     if (!(body.flags & kBodyLive)) continue;
     body.force = {};
     body.torque = 0;
-    if (body.kind == BodyKind2D::kStatic || !(body.flags & kBodyEnabled)) continue;
+    if (!is_moving(body)) continue;
     const SolverBody2D& sb = scratch.bodies[i];
     body.center += sb.dp;
     if (!(sb.dq == Rot{})) body.rotation = renormalize(rmul(sb.dq, body.rotation));

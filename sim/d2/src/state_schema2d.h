@@ -41,6 +41,9 @@ void visit_config(Config& c, Visitor& v) {
   v("max_linear_speed", c.max_linear_speed);
   v("max_bodies", c.max_bodies);
   v("joint_damping_ratio", c.joint_damping_ratio);
+  v("enable_sleep", c.enable_sleep);
+  v("sleep_threshold", c.sleep_threshold);
+  v("time_to_sleep", c.time_to_sleep);
   v("bounds_lower.x", c.bounds_lower.x);
   v("bounds_lower.y", c.bounds_lower.y);
   v("bounds_upper.x", c.bounds_upper.x);
@@ -70,6 +73,7 @@ void visit_body_rest(Body& body, Visitor& v) {
   v("force.x", body.force.x);
   v("force.y", body.force.y);
   v("torque", body.torque);
+  v("sleep_time", body.sleep_time);
   v("z", body.z);
   v("user_data", body.user_data);
   v("layer", body.layer);

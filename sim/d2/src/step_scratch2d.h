@@ -95,6 +95,14 @@ class StepScratch2D {
   /// The contacts being built; swapped with the state's, so both buffers
   /// are reused.
   std::vector<ContactRecord2D> next_contacts;
+  // Sleep: the bodies woken this step, the adjacency the wake floods
+  // through, and the islands' union-find.
+  std::vector<uint32_t> wake_list;
+  std::vector<uint32_t> adjacency_offsets;
+  std::vector<uint32_t> adjacency_fill;
+  std::vector<uint32_t> adjacency;
+  std::vector<uint32_t> island_parent;
+  std::vector<W> island_sleep;
   /// This step's contact events (World2D::events() reads them).
   std::vector<ContactEvent2D> events;
 };

@@ -25,6 +25,18 @@ void carry_impulses(const ContactRecord2D& old_contact, ContactRecord2D& contact
   contact.rolling_impulse = old_contact.rolling_impulse;
 }
 
+uint64_t key_of(const ContactRecord2D& c) {
+  return (uint64_t{c.a} << 32) | c.b;
+}
+
+// A contact between bodies that do not move this step (asleep or static)
+// is kept as it was: nothing collides them, and waking picks it up again.
+void carry_if_frozen(const World2DState& state, const ContactRecord2D& old,
+                     std::vector<ContactRecord2D>& contacts) {
+  if (is_moving(state.bodies[old.a]) || is_moving(state.bodies[old.b])) return;
+  contacts.push_back(old);
+}
+
 }  // namespace
 
 void update_contacts(World2DState& state, StepScratch2D& scratch) {
@@ -67,9 +79,8 @@ void update_contacts(World2DState& state, StepScratch2D& scratch) {
       contact.points[i].separation = mp.separation;
       contact.points[i].id = mp.id;
     }
-    while (old_index < old_contacts.size() &&
-           ((uint64_t{old_contacts[old_index].a} << 32) | old_contacts[old_index].b) < key) {
-      ++old_index;
+    while (old_index < old_contacts.size() && key_of(old_contacts[old_index]) < key) {
+      carry_if_frozen(state, old_contacts[old_index++], contacts);
     }
     if (old_index < old_contacts.size() && old_contacts[old_index].a == a &&
         old_contacts[old_index].b == b) {
@@ -77,6 +88,8 @@ void update_contacts(World2DState& state, StepScratch2D& scratch) {
     }
     contacts.push_back(contact);
   }
+  while (old_index < old_contacts.size())
+    carry_if_frozen(state, old_contacts[old_index++], contacts);
   collect_events(state, contacts, scratch.events);
   std::swap(state.contacts, contacts);
 }

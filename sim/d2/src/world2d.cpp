@@ -75,7 +75,7 @@ Result<BodyId2D> World2D::create_body(const BodyDef2D& def) {
   if (Status s = check_def(def, state_.config); !s.ok()) return s;
   BodyRecord2D body;
   body.kind = def.kind;
-  body.flags = kBodyLive | kBodyEnabled;
+  body.flags = kBodyLive | kBodyEnabled | kBodyAwake;
   if (def.sensor) body.flags |= kBodySensor;
   if (def.lock_rotation) body.flags |= kBodyLockRotation;
   body.layer = def.layer;
@@ -202,6 +202,10 @@ const Shape2D* World2D::shape(BodyId2D id) const {
   REWIND_BODY_OR(nullptr);
   return &body.shape;
 }
+bool World2D::is_awake(BodyId2D id) const {
+  REWIND_BODY_OR(false);
+  return body.kind == BodyKind2D::kDynamic && (body.flags & kBodyAwake) != 0;
+}
 bool World2D::is_enabled(BodyId2D id) const {
   REWIND_BODY_OR(false);
   return (body.flags & kBodyEnabled) != 0;
@@ -236,6 +240,7 @@ Status World2D::set_transform(BodyId2D id, Vec2 position, Fx angle) {
   }
   body.rotation = rotation;
   body.center = center;
+  wake(body);
   return Status::Ok();
 }
 
@@ -248,6 +253,7 @@ Status World2D::set_linear_velocity(BodyId2D id, Vec2 velocity) {
     return invalid("velocity must be within the world's max_linear_speed");
   }
   body.velocity = v_from(velocity);
+  wake(body);
   return Status::Ok();
 }
 
@@ -256,6 +262,7 @@ Status World2D::set_angular_velocity(BodyId2D id, Fx velocity) {
   BodyRecord2D& body = state_.bodies[id.index];
   if (Status s = check_movable(body, true); !s.ok()) return s;
   if (!(body.flags & kBodyLockRotation)) body.angular_velocity = w_from(velocity);
+  wake(body);
   return Status::Ok();
 }
 
@@ -267,6 +274,7 @@ Status World2D::apply_linear_impulse(BodyId2D id, Vec2 impulse, Vec2 world_point
   const V2 r = v_from(world_point) - body.center;
   body.velocity = clamp_speed(vmul_add(body.velocity, body.inv_mass, p), state_.config);
   body.angular_velocity += wmul(body.inv_inertia, vcross(r, p));
+  wake(body);
   return Status::Ok();
 }
 
@@ -275,6 +283,7 @@ Status World2D::apply_angular_impulse(BodyId2D id, Fx impulse) {
   BodyRecord2D& body = state_.bodies[id.index];
   if (Status s = check_movable(body, false); !s.ok()) return s;
   body.angular_velocity += wmul(body.inv_inertia, w_from(impulse));
+  wake(body);
   return Status::Ok();
 }
 
@@ -283,6 +292,7 @@ Status World2D::apply_force(BodyId2D id, Vec2 force) {
   BodyRecord2D& body = state_.bodies[id.index];
   if (Status s = check_movable(body, false); !s.ok()) return s;
   body.force += v_from(force);
+  wake(body);
   return Status::Ok();
 }
 
@@ -293,6 +303,7 @@ Status World2D::apply_force_at(BodyId2D id, Vec2 force, Vec2 world_point) {
   const V2 f = v_from(force);
   body.force += f;
   body.torque += vcross(v_from(world_point) - body.center, f);
+  wake(body);
   return Status::Ok();
 }
 
@@ -301,6 +312,13 @@ Status World2D::apply_torque(BodyId2D id, Fx torque) {
   BodyRecord2D& body = state_.bodies[id.index];
   if (Status s = check_movable(body, false); !s.ok()) return s;
   body.torque += w_from(torque);
+  wake(body);
+  return Status::Ok();
+}
+
+Status World2D::wake_body(BodyId2D id) {
+  if (!is_valid(id)) return not_found();
+  wake(state_.bodies[id.index]);
   return Status::Ok();
 }
 
@@ -321,6 +339,7 @@ Status World2D::set_enabled(BodyId2D id, bool enabled) {
   BodyRecord2D& body = state_.bodies[id.index];
   if (enabled) {
     body.flags |= kBodyEnabled;
+    wake(body);
     return Status::Ok();
   }
   body.flags &= static_cast<uint8_t>(~kBodyEnabled);

@@ -35,6 +35,11 @@ Status World2D::validate_config(const World2DConfig& c) {
   if (!in_range(c.contact_damping_ratio, Fx(), 100_fx)) {
     return invalid("contact_damping_ratio must be in [0, 100]");
   }
+  if (!in_range(c.sleep_threshold, Fx(), 100_fx))
+    return invalid("sleep_threshold must be in [0, 100]");
+  if (!in_range(c.time_to_sleep, Fx::epsilon(), 100_fx)) {
+    return invalid("time_to_sleep must be in (0, 100]");
+  }
   if (!in_range(c.joint_damping_ratio, Fx(), 100_fx)) {
     return invalid("joint_damping_ratio must be in [0, 100]");
   }
@@ -89,6 +94,8 @@ class ConfigDescriber {
   void operator()(std::string_view name, const T& field) {
     if constexpr (std::is_same_v<T, Fx>) {
       out_.emplace_back(std::string(name), fx_to_text(field));
+    } else if constexpr (std::is_same_v<T, bool>) {
+      out_.emplace_back(std::string(name), field ? "true" : "false");
     } else {
       out_.emplace_back(std::string(name), std::to_string(field));
     }

@@ -141,6 +141,8 @@ Result<JointId2D> World2D::create_joint(const JointDef2D& def) {
   j.generation = joints[index].generation == UINT32_MAX ? 1 : joints[index].generation + 1;
   joints[index] = j;
   ++state_.live_joints;
+  wake(state_.bodies[j.a]);
+  wake(state_.bodies[j.b]);
   return JointId2D{index, j.generation};
 }
 
@@ -152,9 +154,12 @@ bool World2D::is_valid(JointId2D id) const {
 
 Status World2D::destroy_joint(JointId2D id) {
   if (!is_valid(id)) return Status::Error(ErrorCode::kNotFound, "no such joint");
+  JointRecord2D& joint = state_.joints[id.index];
+  wake(state_.bodies[joint.a]);
+  wake(state_.bodies[joint.b]);
   JointRecord2D freed;
   freed.generation = id.generation;
-  state_.joints[id.index] = freed;
+  joint = freed;
   --state_.live_joints;
   return Status::Ok();
 }
@@ -181,6 +186,8 @@ Status World2D::set_motor_speed(JointId2D id, Fx speed) {
     return invalid("only revolute, prismatic and wheel joints have a motor");
   }
   j.motor_speed = w_from(speed);
+  wake(state_.bodies[j.a]);
+  wake(state_.bodies[j.b]);
   return Status::Ok();
 }
 
@@ -189,6 +196,7 @@ Status World2D::set_grab_target(JointId2D id, Vec2 target) {
   JointRecord2D& j = state_.joints[id.index];
   if (j.type != JointType2D::kGrab) return invalid("only grab joints have a target");
   j.target = v_from(target);
+  wake(state_.bodies[j.b]);
   return Status::Ok();
 }
 

@@ -23,7 +23,8 @@ Status corrupt(const std::string& what) {
   return Status::Error(ErrorCode::kCorrupt, "2D world snapshot: " + what);
 }
 
-constexpr uint8_t kKnownFlags = kBodyEnabled | kBodySensor | kBodyLockRotation | kBodyLive;
+constexpr uint8_t kKnownFlags =
+    kBodyEnabled | kBodySensor | kBodyLockRotation | kBodyLive | kBodyAwake;
 
 Status check_body(const BodyRecord2D& body, const World2DConfig& config, uint32_t index) {
   const std::string at = "body " + std::to_string(index) + ": ";
@@ -47,6 +48,7 @@ Status check_body(const BodyRecord2D& body, const World2DConfig& config, uint32_
     return corrupt(at + "velocity beyond max_linear_speed");
   }
   if (body.inv_mass < 0 || body.inv_inertia < 0) return corrupt(at + "negative inverse mass");
+  if (body.sleep_time < 0) return corrupt(at + "negative sleep time");
   if (body.kind != BodyKind2D::kDynamic && (body.inv_mass != 0 || body.inv_inertia != 0)) {
     return corrupt(at + "a static or kinematic body with finite mass");
   }

@@ -41,8 +41,10 @@ void World2D::step() {
   stats_.broadphase_pairs = static_cast<uint32_t>(scratch_->pairs.size());
   update_contacts(state_, *scratch_);
   if (had_pending) sort_events(scratch_->events);
+  wake_touched(state_, *scratch_);
   solve_step(state_, *scratch_, stats_);
   enforce_bounds(state_);
+  update_sleep(state_, *scratch_);
   ++state_.step_count;
 }
 

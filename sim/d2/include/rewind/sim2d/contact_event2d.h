@@ -10,7 +10,7 @@ namespace rwd::sim2d {
 
 enum class ContactEventType2D : uint8_t {
   kEnter = 0,  ///< the pair started touching this step
-  kStay = 1,   ///< the pair touched last step and still does
+  kStay = 1,   ///< the pair touched last step and still does (while either body is awake)
   kExit = 2,   ///< the pair touched last step and no longer does (or a body went away)
 };
 

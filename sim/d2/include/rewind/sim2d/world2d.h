@@ -96,6 +96,9 @@ class World2D {
   uint64_t user_data(BodyId2D id) const;
   const Shape2D* shape(BodyId2D id) const;
   bool is_enabled(BodyId2D id) const;
+  /// A dynamic body that is simulated this step (false while it sleeps,
+  /// and for static and kinematic bodies).
+  bool is_awake(BodyId2D id) const;
 
   // Setters check the id (kNotFound) and the values (kInvalidArgument) and
   // change nothing on error. Velocity, force and impulse setters act on
@@ -114,6 +117,9 @@ class World2D {
   Status apply_force_at(BodyId2D id, Vec2 force, Vec2 world_point);
   /// N m, for the next step only.
   Status apply_torque(BodyId2D id, Fx torque);
+  /// Wakes a sleeping dynamic body (no-op otherwise). Every setter above
+  /// and every touch by a moving body wakes a body too.
+  Status wake_body(BodyId2D id);
   Status set_user_data(BodyId2D id, uint64_t user_data);
   Status set_z(BodyId2D id, Fx z);
   /// Takes a body out of the simulation (false) or puts it back (true); a
@@ -136,9 +142,9 @@ class World2D {
   /// The force (N) the joint's linear part applied to body_b in the last
   /// substep of the last step; zero for invalid ids.
   Vec2 joint_force(JointId2D id) const;
-  /// Revolute and wheel: rad/s; prismatic: m/s.
+  /// Revolute and wheel: rad/s; prismatic: m/s. Wakes both bodies.
   Status set_motor_speed(JointId2D id, Fx speed);
-  /// Grab joints: the world point body_b is pulled toward.
+  /// Grab joints: the world point body_b is pulled toward; wakes body_b.
   Status set_grab_target(JointId2D id, Vec2 target);
 
   // --- stepping -----------------------------------------------------------

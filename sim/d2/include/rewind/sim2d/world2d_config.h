@@ -34,7 +34,13 @@ struct World2DConfig {
   Fx linear_slop = 0.005_fx;          ///< m, allowed penetration, [0, 1]
   Fx speculative_distance = 0.02_fx;  ///< m, contacts are kept this far apart, (0, 10]
   Fx max_linear_speed = 400_fx;       ///< m/s, every body's speed is capped here, (0, 10000]
-  uint32_t max_bodies = 8192;         ///< create_body refuses beyond this, [1, 1 << 20]
+  /// Islands of touching or joined bodies that all stay slower than
+  /// sleep_threshold (m/s at the centre and at the body's rim, [0, 100])
+  /// for time_to_sleep (s, (0, 100]) sleep until something wakes them.
+  bool enable_sleep = true;
+  Fx sleep_threshold = 0.05_fx;
+  Fx time_to_sleep = 0.5_fx;
+  uint32_t max_bodies = 8192;  ///< create_body refuses beyond this, [1, 1 << 20]
   /// The box body centres may occupy (m, lower < upper). A moving body
   /// whose centre of mass leaves it is disabled where it crossed (clamped
   /// onto the box, velocities zeroed) and reported by a kLeftBounds event.

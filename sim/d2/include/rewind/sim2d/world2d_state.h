@@ -21,6 +21,10 @@ inline constexpr uint8_t kBodyEnabled = 1;  ///< simulated (not disabled by boun
 inline constexpr uint8_t kBodySensor = 2;
 inline constexpr uint8_t kBodyLockRotation = 4;
 inline constexpr uint8_t kBodyLive = 8;  ///< the slot holds a body
+/// Simulated this step; a dynamic body without it sleeps (costs nothing,
+/// keeps its contacts) until something touching it moves or the game
+/// changes it.
+inline constexpr uint8_t kBodyAwake = 16;
 
 /// One body slot. A free slot has no kBodyLive flag, keeps the generation of
 /// its last body and is zero otherwise.
@@ -41,6 +45,7 @@ struct BodyRecord2D {
   detail::W torque = 0;            ///< N m, cleared by each step
   detail::W inv_mass = 0;          ///< 1/kg; 0 for static and kinematic bodies
   detail::W inv_inertia = 0;       ///< 1/(kg m^2) about the centre of mass
+  detail::W sleep_time = 0;        ///< s the body has been slow enough to sleep
   Fx z;
   Fx linear_damping;
   Fx angular_damping;
