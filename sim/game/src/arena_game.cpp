@@ -131,6 +131,52 @@ void ArenaGame::build_typed(const MatchSetup& setup, World2D& world, ArenaState&
   bar.layer = kLayerWorld;
   state.spinner = create(world, bar);
 
+  // Jointed obstacles: a free turnstile hinged at its middle, and a gate
+  // hinged at one end that swings up to a quarter turn either way and
+  // springs back shut.
+  {
+    BodyDef2D turnstile;
+    turnstile.shape = *sim2d::make_box(1.5_fx, 0.15_fx);
+    turnstile.position = {-4_fx, 6_fx};
+    turnstile.density = 2_fx;
+    turnstile.angular_damping = 1_fx;
+    turnstile.layer = kLayerWorld;
+    // Each hinge's pin is a small static post (joined bodies do not collide).
+    auto pin = [&](Vec2 at) {
+      BodyDef2D post;
+      post.kind = BodyKind2D::kStatic;
+      post.shape = *sim2d::make_circle(0.2_fx);
+      post.position = at;
+      post.layer = kLayerWorld;
+      return create(world, post);
+    };
+    sim2d::JointDef2D hinge;
+    hinge.type = sim2d::JointType2D::kRevolute;
+    hinge.body_a = pin(turnstile.position);
+    hinge.body_b = create(world, turnstile);
+    hinge.anchor_a = turnstile.position;
+    hinge.anchor_b = turnstile.position;
+    (void)world.create_joint(hinge);
+
+    BodyDef2D gate;
+    gate.shape = *sim2d::make_box(1.5_fx, 0.15_fx);
+    gate.position = {4_fx, -6_fx};
+    gate.density = 2_fx;
+    gate.layer = kLayerWorld;
+    sim2d::JointDef2D gate_hinge = hinge;
+    gate_hinge.body_b = create(world, gate);
+    gate_hinge.anchor_a = {2.5_fx, -6_fx};
+    gate_hinge.anchor_b = gate_hinge.anchor_a;
+    gate_hinge.body_a = pin(gate_hinge.anchor_a);
+    gate_hinge.enable_limit = true;
+    gate_hinge.lower = -Fx::half_pi();
+    gate_hinge.upper = Fx::half_pi();
+    gate_hinge.enable_spring = true;
+    gate_hinge.hertz = 1_fx;
+    gate_hinge.damping_ratio = 0.5_fx;
+    (void)world.create_joint(gate_hinge);
+  }
+
   state.crate_count = kCrates;
   for (uint32_t c = 0; c < kCrates; ++c) {
     BodyDef2D def;

@@ -116,6 +116,8 @@ TEST(ArenaGame, RollbackAndReloadAreBitForBit) {
     ASSERT_EQ(sim->checksum(), expected[static_cast<size_t>(t - 200)]) << "tick " << t;
     ASSERT_EQ(reloaded->checksum(), expected[static_cast<size_t>(t - 200)]) << "tick " << t;
   }
+  // The turnstile and the gate are on their hinges.
+  EXPECT_EQ(world(*sim).joint_count(), 2u);
   // The crates moved: the match is not a still life.
   const ArenaState s = state_of(*sim);
   int moved = 0;

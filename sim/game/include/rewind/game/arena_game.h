@@ -4,7 +4,8 @@
 // player steers a disc that shoves crates (and other players) around a
 // walled arena; a crate pushed into either goal scores for the player who
 // touched it last and comes back at the centre. A spinning bar sweeps the
-// middle and two posts split the field. The whole step is integer math.
+// middle, two posts split the field, a turnstile and a spring-loaded gate
+// turn on their hinges. The whole step is integer math.
 #include <array>
 #include <cstdint>
 
