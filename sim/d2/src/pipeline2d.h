@@ -40,6 +40,11 @@ void wake_touched(World2DState& state, StepScratch2D& scratch);
 /// slow for time_to_sleep to sleep.
 void update_sleep(World2DState& state, StepScratch2D& scratch);
 
+/// Moves each continuous body that would have crossed a static or
+/// kinematic shape this step back to its first touch (continuous2d.cpp).
+/// Needs the step's translations, scratch.bodies[i].dp.
+void solve_continuous(World2DState& state, const StepScratch2D& scratch);
+
 /// The soft-step solve of the contacts: substeps of integrate velocities,
 /// warm start, solve, integrate positions and relax, then restitution;
 /// impulses are stored back into state.contacts for the next step.

@@ -78,6 +78,7 @@ Result<BodyId2D> World2D::create_body(const BodyDef2D& def) {
   body.flags = kBodyLive | kBodyEnabled | kBodyAwake;
   if (def.sensor) body.flags |= kBodySensor;
   if (def.lock_rotation) body.flags |= kBodyLockRotation;
+  if (def.continuous && def.kind == BodyKind2D::kDynamic) body.flags |= kBodyContinuous;
   body.layer = def.layer;
   body.mask = def.mask;
   body.user_data = def.user_data;
@@ -314,6 +315,22 @@ Status World2D::apply_torque(BodyId2D id, Fx torque) {
   body.torque += w_from(torque);
   wake(body);
   return Status::Ok();
+}
+
+Status World2D::set_continuous(BodyId2D id, bool continuous) {
+  if (!is_valid(id)) return not_found();
+  BodyRecord2D& body = state_.bodies[id.index];
+  if (body.kind != BodyKind2D::kDynamic) return invalid("only dynamic bodies sweep continuously");
+  if (continuous) {
+    body.flags |= kBodyContinuous;
+  } else {
+    body.flags &= static_cast<uint8_t>(~kBodyContinuous);
+  }
+  return Status::Ok();
+}
+
+bool World2D::is_continuous(BodyId2D id) const {
+  return is_valid(id) && (state_.bodies[id.index].flags & kBodyContinuous) != 0;
 }
 
 Status World2D::wake_body(BodyId2D id) {

@@ -24,7 +24,7 @@ Status corrupt(const std::string& what) {
 }
 
 constexpr uint8_t kKnownFlags =
-    kBodyEnabled | kBodySensor | kBodyLockRotation | kBodyLive | kBodyAwake;
+    kBodyEnabled | kBodySensor | kBodyLockRotation | kBodyLive | kBodyAwake | kBodyContinuous;
 
 Status check_body(const BodyRecord2D& body, const World2DConfig& config, uint32_t index) {
   const std::string at = "body " + std::to_string(index) + ": ";

@@ -43,6 +43,7 @@ void World2D::step() {
   if (had_pending) sort_events(scratch_->events);
   wake_touched(state_, *scratch_);
   solve_step(state_, *scratch_, stats_);
+  solve_continuous(state_, *scratch_);
   enforce_bounds(state_);
   update_sleep(state_, *scratch_);
   ++state_.step_count;

@@ -62,6 +62,13 @@ struct BodyDef2D {
   bool sensor = false;
   /// Never turns: infinite rotational inertia (characters, top-down discs).
   bool lock_rotation = false;
+  /// Continuous collision (dynamic bodies): after each step a body that
+  /// moved farther than the speculative distance is swept along the step's
+  /// translation, at its end rotation, against every static and kinematic
+  /// shape in its path, and moved back to the first touch with its velocity
+  /// kept, so the next step's contact stops it (a bullet never crosses a
+  /// thin wall). Costs nothing for bodies without it.
+  bool continuous = false;
   uint64_t user_data = 0;  ///< game tag; part of state and the checksum
 };
 

@@ -117,6 +117,10 @@ class World2D {
   Status apply_force_at(BodyId2D id, Vec2 force, Vec2 world_point);
   /// N m, for the next step only.
   Status apply_torque(BodyId2D id, Fx torque);
+  /// Turns continuous collision on or off (BodyDef2D::continuous); acts on
+  /// dynamic bodies.
+  Status set_continuous(BodyId2D id, bool continuous);
+  bool is_continuous(BodyId2D id) const;
   /// Wakes a sleeping dynamic body (no-op otherwise). Every setter above
   /// and every touch by a moving body wakes a body too.
   Status wake_body(BodyId2D id);

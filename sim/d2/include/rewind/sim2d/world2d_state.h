@@ -25,6 +25,8 @@ inline constexpr uint8_t kBodyLive = 8;  ///< the slot holds a body
 /// keeps its contacts) until something touching it moves or the game
 /// changes it.
 inline constexpr uint8_t kBodyAwake = 16;
+/// Swept against static and kinematic shapes after each step (BodyDef2D::continuous).
+inline constexpr uint8_t kBodyContinuous = 32;
 
 /// One body slot. A free slot has no kBodyLive flag, keeps the generation of
 /// its last body and is zero otherwise.
