@@ -1,0 +1,130 @@
+// SPDX-License-Identifier: MIT
+// 2D lane stability: circles, at default settings. Many fast circles in a
+// closed box must neither escape nor gain energy; circles stacked in a
+// narrow tube must rest without sinking into each other. Each scene also
+// replays a stretch from a mid-scene save bit for bit.
+#include "scene2d.h"
+
+namespace rwd::sim2d {
+namespace {
+
+using namespace scene;  // NOLINT: test brevity
+
+/// A closed box of four static walls 1 m thick around [-4, 4] x [0, 8].
+void add_closed_box(World2D& world) {
+  add(world, def(make_box(5_fx, 0.5_fx), {Fx(), -0.5_fx}, Fx(), BodyKind2D::kStatic));
+  add(world, def(make_box(5_fx, 0.5_fx), {Fx(), 8.5_fx}, Fx(), BodyKind2D::kStatic));
+  add(world, def(make_box(0.5_fx, 5_fx), {-4.5_fx, 4_fx}, Fx(), BodyKind2D::kStatic));
+  add(world, def(make_box(0.5_fx, 5_fx), {4.5_fx, 4_fx}, Fx(), BodyKind2D::kStatic));
+}
+
+/// Kinetic plus potential energy (from y = 0) of circles of radius r, J.
+double energy(const World2D& world, std::span<const BodyId2D> ids, double r) {
+  double e = 0.0;
+  for (BodyId2D id : ids) {
+    const double m = d(world.mass(id));
+    const double v = speed(world, id);
+    const double w = d(world.angular_velocity(id));
+    // A disc's moment of inertia about its centre is m r^2 / 2.
+    e += 0.5 * m * v * v + 0.25 * m * r * r * w * w + m * kG * d(world.center_of_mass(id).y);
+  }
+  return e;
+}
+
+// 100 circles (r = 0.3 m) in a 10 x 10 grid inside the closed box, each
+// thrown at up to 3.5 m/s in its own direction, under gravity, for 8 s. No
+// circle may ever be outside the box (tunnelled through a wall), and the
+// total energy (kinetic + potential) may never exceed its start by more
+// than 1%: with restitution 0 contacts only take energy away, and the
+// push-out is not meant to leave speed. After 8 s the kinetic energy must
+// be below 1% of the starting total (the pile has come to rest).
+TEST(Stability2D, ConfinedCirclesStayInAndLoseEnergy) {
+  World2D world;
+  add_closed_box(world);
+  const Fx radius = 0.3_fx;
+  std::vector<BodyId2D> circles;
+  for (int row = 0; row < 10; ++row) {
+    for (int col = 0; col < 10; ++col) {
+      const int i = row * 10 + col;
+      BodyDef2D c = def(make_circle(radius), {-3.15_fx + 0.7_fx * col, 0.5_fx + 0.7_fx * row});
+      // A spread of directions and speeds from the index, the same on every
+      // machine: components in {-2.5, ..., 2.5} m/s.
+      c.linear_velocity = {Fx::ratio((i * 7) % 11 - 5, 2), Fx::ratio((i * 5) % 11 - 5, 2)};
+      circles.push_back(add(world, c));
+    }
+  }
+  const double r = d(radius);
+  const double e0 = energy(world, circles, r);
+  double e_max = e0;
+  bool inside = true;
+  World2DState mid;
+  for (int t = 1; t <= 480; ++t) {
+    world.step();
+    e_max = std::max(e_max, energy(world, circles, r));
+    for (BodyId2D id : circles) {
+      const Vec2 p = world.center_of_mass(id);
+      if (d(p.x) <= -4.0 || d(p.x) >= 4.0 || d(p.y) <= 0.0 || d(p.y) >= 8.0) inside = false;
+    }
+    if (t == 60) world.save(mid);
+  }
+  double kinetic = 0.0;
+  for (BodyId2D id : circles) {
+    const double v = speed(world, id);
+    kinetic += 0.5 * d(world.mass(id)) * v * v;
+  }
+  report("confined100 energy_gain_pct", 100.0 * (e_max - e0) / e0, "%", "<=", 1.0);
+  report("confined100 end_kinetic_pct", 100.0 * kinetic / e0, "%", "<=", 1.0);
+  EXPECT_TRUE(inside);
+  EXPECT_LE(e_max, 1.01 * e0);
+  EXPECT_LE(kinetic, 0.01 * e0);
+  world.restore(mid);
+  expect_replays_bit_for_bit(world, 30);
+}
+
+// 10 circles (r = 0.25 m) dropped into a tube 0.52 m wide (1 cm of play
+// each side), every other one 5 mm off the axis so they lean on the walls,
+// 1 cm apart. After 5 s they must be in order, within the tube, at rest
+// (< 0.05 m/s), each resting overlap within the slop + 1 mm, and the top
+// circle no lower than 10 such overlaps below 4.75 m (the height of ten
+// touching circles).
+TEST(Stability2D, CircleStackInATubeRests) {
+  World2D world;
+  add_ground(world);
+  add(world, def(make_box(0.5_fx, 4_fx), {-0.76_fx, 4_fx}, Fx(), BodyKind2D::kStatic));
+  add(world, def(make_box(0.5_fx, 4_fx), {0.76_fx, 4_fx}, Fx(), BodyKind2D::kStatic));
+  std::vector<BodyId2D> circles;
+  for (int i = 0; i < 10; ++i) {
+    const Fx x = (i % 2 == 0) ? 0.005_fx : -0.005_fx;
+    circles.push_back(add(world, def(make_circle(0.25_fx), {x, 0.26_fx + 0.51_fx * i})));
+  }
+  World2DState mid;
+  double depth = 0.0;
+  for (int t = 1; t <= 300; ++t) {
+    world.step();
+    if (t > 240) depth = std::max(depth, deepest_overlap(world));
+    if (t == 150) world.save(mid);
+  }
+  bool ordered = true;
+  bool in_tube = true;
+  double end_speed = 0.0;
+  for (size_t i = 0; i < circles.size(); ++i) {
+    const Vec2 p = world.center_of_mass(circles[i]);
+    if (i > 0 && p.y <= world.center_of_mass(circles[i - 1]).y) ordered = false;
+    if (std::fabs(d(p.x)) > 0.01 + kSlopM) in_tube = false;
+    end_speed = std::max(end_speed, point_speed(world, circles[i], 0.25));
+  }
+  const double top_low = 4.75 - d(world.center_of_mass(circles.back()).y);
+  report("circle_stack10 penetration_m", depth, "m", "<=", kDepthLimitM);
+  report("circle_stack10 top_sink_m", top_low, "m", "<=", 10 * kDepthLimitM);
+  report("circle_stack10 end_speed_mps", end_speed, "m/s", "<=", kRestSpeedMps);
+  EXPECT_TRUE(ordered);
+  EXPECT_TRUE(in_tube);
+  EXPECT_LE(depth, kDepthLimitM);
+  EXPECT_LE(top_low, 10 * kDepthLimitM);
+  EXPECT_LE(end_speed, kRestSpeedMps);
+  world.restore(mid);
+  expect_replays_bit_for_bit(world, 30);
+}
+
+}  // namespace
+}  // namespace rwd::sim2d

@@ -1,0 +1,218 @@
+// SPDX-License-Identifier: MIT
+// 2D lane stability: structures that stand by friction (a house of cards,
+// a masonry arch) and a row of dominoes that must fall in order, at
+// default settings. Each scene also replays a stretch from a mid-scene save
+// bit for bit.
+#include "scene2d.h"
+
+namespace rwd::sim2d {
+namespace {
+
+using namespace scene;  // NOLINT: test brevity
+
+/// The card house of the 3D catalogue in 2D: `levels` frames wide at the
+/// base, each frame two 2 cm x 1 m cards leaning 25 degrees off vertical
+/// against each other, a flat 1.2 m card bridging neighbouring frames, the
+/// next level's frames on those. Half a millimetre between touching faces.
+std::vector<BodyId2D> build_card_house(World2D& world, int levels, Fx friction) {
+  const Fx card_hx = 0.01_fx;
+  const Fx card_hy = 0.5_fx;
+  const Fx flat_hx = 0.6_fx;
+  const Fx flat_hy = 0.01_fx;
+  const Fx gap = 0.0005_fx;
+  const Fx pitch = 0.95_fx;  // apex to apex
+  const Fx tilt = fx_deg(25);
+  const fixed::SinCos sc = fixed::sin_cos(tilt);
+  std::vector<BodyId2D> cards;
+  Fx base_y;
+  for (int level = 0; level < levels; ++level) {
+    const int frames = levels - level;
+    const Fx first = -pitch * (frames - 1) / 2;
+    Fx apex_y;
+    for (int f = 0; f < frames; ++f) {
+      const Fx apex_x = first + pitch * f;
+      for (int side : {-1, 1}) {
+        // The card's top outer corner meets the apex; its lowest corner is
+        // just above the floor it stands on.
+        const Vec2 c{apex_x + (card_hy * sc.sin + card_hx * sc.cos + gap) * side,
+                     base_y + card_hy * sc.cos + card_hx * sc.sin + gap};
+        BodyDef2D card = def(make_box(card_hx, card_hy), c, tilt * side);
+        card.material.friction = friction;
+        cards.push_back(add(world, card));
+        apex_y = c.y + card_hy * sc.cos + card_hx * sc.sin;
+      }
+    }
+    if (frames == 1) break;
+    const Fx flat_y = apex_y + flat_hy + gap;
+    for (int f = 0; f + 1 < frames; ++f) {
+      BodyDef2D flat = def(make_box(flat_hx, flat_hy), {first + pitch * f + pitch / 2, flat_y});
+      flat.material.friction = friction;
+      cards.push_back(add(world, flat));
+    }
+    base_y = flat_y + flat_hy;
+  }
+  return cards;
+}
+
+// A 3-level card house (15 cards) with friction 0.6 stands 10 s: every card
+// within 5 cm of its start (the 3D catalogue's bound). A leaning card needs
+// mu >= tan(25 deg) / 2 = 0.23 at its foot, so with friction 0 the same
+// house must fall: some card moves more than 0.2 m. Without the second half
+// the first could pass on a scene that stands for another reason.
+TEST(Stability2D, CardHouseStandsByFriction) {
+  World2D world;
+  add_ground(world, 0.6_fx);
+  const std::vector<BodyId2D> cards = build_card_house(world, 3, 0.6_fx);
+  ASSERT_EQ(cards.size(), 15u);
+  Drift drift;
+  for (BodyId2D id : cards) drift.track(world, id);
+  World2DState mid;
+  for (int t = 1; t <= 600; ++t) {
+    world.step();
+    drift.observe(world);
+    if (t == 300) world.save(mid);
+  }
+  report("card_house3 drift_m", drift.max_move_m(), "m", "<=", 0.05);
+  EXPECT_LE(drift.max_move_m(), 0.05);
+  world.restore(mid);
+  expect_replays_bit_for_bit(world, 30);
+
+  World2D slippery;
+  add_ground(slippery, Fx());
+  Drift fall;
+  for (BodyId2D id : build_card_house(slippery, 3, Fx())) fall.track(slippery, id);
+  for (int t = 1; t <= 600; ++t) {
+    slippery.step();
+    fall.observe(slippery);
+  }
+  report("card_house3_mu0 drift_m", fall.max_move_m(), "m", ">=", 0.2);
+  EXPECT_GE(fall.max_move_m(), 0.2);
+}
+
+/// A semicircular arch of 9 voussoirs (20 degrees each), inner radius 2 m,
+/// outer 2.8 m, its feet on the ground at y = 0. The joints are radial and
+/// the stones touch exactly (shared corners; the right half mirrored to the
+/// left so the keystone is symmetric).
+std::vector<BodyId2D> build_arch(World2D& world, Fx friction) {
+  const Fx inner = 2_fx;
+  const Fx outer = 2.8_fx;
+  // Joint directions at 0, 20, ..., 80 degrees, mirrored for 100..180.
+  std::vector<Vec2> dir;
+  for (int k = 0; k <= 4; ++k) {
+    const fixed::SinCos sc = fixed::sin_cos(fx_deg(20 * k));
+    dir.push_back({k == 0 ? 1_fx : sc.cos, k == 0 ? Fx() : sc.sin});
+  }
+  for (int k = 4; k >= 0; --k)
+    dir.push_back({-dir[static_cast<size_t>(k)].x, dir[static_cast<size_t>(k)].y});
+  std::vector<BodyId2D> stones;
+  for (size_t j = 0; j + 1 < dir.size(); ++j) {
+    const Vec2 a = dir[j];
+    const Vec2 b = dir[j + 1];
+    const std::array<Vec2, 4> world_pts = {a * inner, a * outer, b * outer, b * inner};
+    // The body sits at the mean of its corners (near its centroid), so its
+    // origin and centre of mass nearly coincide.
+    const Vec2 centre{(world_pts[0].x + world_pts[1].x + world_pts[2].x + world_pts[3].x) / 4,
+                      (world_pts[0].y + world_pts[1].y + world_pts[2].y + world_pts[3].y) / 4};
+    std::array<Vec2, 4> local;
+    for (size_t i = 0; i < 4; ++i) local[i] = world_pts[i] - centre;
+    BodyDef2D stone = def(make_polygon(local), centre);
+    stone.material.friction = friction;
+    stones.push_back(add(world, stone));
+  }
+  return stones;
+}
+
+// The arch stands on friction alone: with mu = 0.6 every stone stays within
+// 2 cm of its start for 10 s (its joints may settle by a few slops, never
+// open or slide). With mu = 0 the radial joints and the outward thrust at
+// the feet cannot be held by normal forces alone, so the keystone must
+// drop more than 0.5 m within the 10 s.
+TEST(Stability2D, ArchHoldsWithFrictionAndFallsWithout) {
+  World2D world;
+  add_ground(world, 0.6_fx);
+  const std::vector<BodyId2D> stones = build_arch(world, 0.6_fx);
+  ASSERT_EQ(stones.size(), 9u);
+  Drift drift;
+  for (BodyId2D id : stones) drift.track(world, id);
+  World2DState mid;
+  for (int t = 1; t <= 600; ++t) {
+    world.step();
+    drift.observe(world);
+    if (t == 300) world.save(mid);
+  }
+  report("arch_mu0.6 max_move_m", drift.max_move_m(), "m", "<=", 0.02);
+  EXPECT_LE(drift.max_move_m(), 0.02);
+  world.restore(mid);
+  expect_replays_bit_for_bit(world, 30);
+
+  World2D slippery;
+  add_ground(slippery, Fx());
+  const std::vector<BodyId2D> loose = build_arch(slippery, Fx());
+  const BodyId2D key = loose[4];
+  const double key_start = d(slippery.center_of_mass(key).y);
+  double key_drop = 0.0;
+  for (int t = 1; t <= 600; ++t) {
+    slippery.step();
+    key_drop = std::max(key_drop, key_start - d(slippery.center_of_mass(key).y));
+  }
+  report("arch_mu0 keystone_drop_m", key_drop, "m", ">=", 0.5);
+  EXPECT_GE(key_drop, 0.5);
+}
+
+// 20 dominoes (0.2 m x 1 m, 0.7 m apart) on the ground; the first is
+// pushed at its top. They must fall in order (each tips past 15 degrees
+// strictly after the one before it), none passes through its neighbour
+// (centres stay in order along x, and none turns past lying flat, 90 deg
+// + 3 deg), all fall (the last lies within 3 degrees of flat), and after
+// 8 s every point moves slower than 0.05 m/s.
+TEST(Stability2D, DominoesFallInOrderAndRest) {
+  constexpr int kCount = 20;
+  World2D world;
+  add_ground(world);
+  std::vector<BodyId2D> dominoes;
+  for (int i = 0; i < kCount; ++i) {
+    dominoes.push_back(add(world, def(make_box(0.1_fx, 0.5_fx), {0.7_fx * i, 0.5_fx})));
+  }
+  ASSERT_TRUE(world.apply_linear_impulse(dominoes[0], {0.1_fx, Fx()}, {Fx(), 1_fx}).ok());
+  std::vector<int> tipped(kCount, -1);
+  bool ordered = true;
+  double most_turned = 0.0;
+  World2DState mid;
+  for (int t = 1; t <= 480; ++t) {
+    world.step();
+    for (int i = 0; i < kCount; ++i) {
+      const double a = d(world.angle(dominoes[static_cast<size_t>(i)]));
+      most_turned = std::max(most_turned, std::fabs(a));
+      if (tipped[static_cast<size_t>(i)] < 0 && std::fabs(a) > deg(15)) {
+        tipped[static_cast<size_t>(i)] = t;
+      }
+      if (i + 1 < kCount && world.center_of_mass(dominoes[static_cast<size_t>(i)]).x >=
+                                world.center_of_mass(dominoes[static_cast<size_t>(i) + 1]).x) {
+        ordered = false;
+      }
+    }
+    if (t == 120) world.save(mid);
+  }
+  bool in_order = tipped[0] > 0;
+  for (int i = 1; i < kCount; ++i) {
+    in_order = in_order && tipped[static_cast<size_t>(i)] > tipped[static_cast<size_t>(i) - 1];
+  }
+  double end_speed = 0.0;
+  for (BodyId2D id : dominoes) end_speed = std::max(end_speed, point_speed(world, id, 0.51));
+  const double last_angle = std::fabs(d(world.angle(dominoes.back())));
+  report("domino20 last_tip_s", tipped.back() * kTickS, "s", ">", 0);
+  report("domino20 most_turned_deg", most_turned * 180.0 / 3.14159265358979, "deg", "<=", 93);
+  report("domino20 last_flat_error_deg", std::fabs(last_angle - deg(90)) * 180.0 / 3.14159265358979,
+         "deg", "<=", 3);
+  report("domino20 end_speed_mps", end_speed, "m/s", "<=", kRestSpeedMps);
+  EXPECT_TRUE(in_order) << "tip ticks: first " << tipped[0] << ", last " << tipped.back();
+  EXPECT_TRUE(ordered);
+  EXPECT_LE(most_turned, deg(93));
+  EXPECT_LE(std::fabs(last_angle - deg(90)), deg(3));
+  EXPECT_LE(end_speed, kRestSpeedMps);
+  world.restore(mid);
+  expect_replays_bit_for_bit(world, 30);
+}
+
+}  // namespace
+}  // namespace rwd::sim2d
