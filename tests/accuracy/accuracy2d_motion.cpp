@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // 2D lane accuracy: scenes with an analytic answer, at default settings
 // (g = 10 m/s^2, 60 Hz, 4 substeps). Tolerances follow the 3D catalogue
-// (tests/accuracy) unless the integrator gives a sharper one.
+// (tests/accuracy) unless the integrator gives a sharper one. The pendulum
+// scene waits for joints, which the lane does not have yet.
 #include "scene2d.h"
 
 namespace rwd::sim2d {

@@ -2,7 +2,9 @@
 // 2D lane stability: structures that stand by friction (a house of cards,
 // a masonry arch) and a row of dominoes that must fall in order, at
 // default settings. Each scene also replays a stretch from a mid-scene save
-// bit for bit.
+// bit for bit. The bridge, the ragdoll pile and the chain holding a ball
+// 100 times heavier than a link wait for joints, which the lane does not
+// have yet.
 #include "scene2d.h"
 
 namespace rwd::sim2d {
@@ -56,9 +58,10 @@ std::vector<BodyId2D> build_card_house(World2D& world, int levels, Fx friction) 
 
 // A 3-level card house (15 cards) with friction 0.6 stands 10 s: every card
 // within 5 cm of its start (the 3D catalogue's bound). A leaning card needs
-// mu >= tan(25 deg) / 2 = 0.23 at its foot, so with friction 0 the same
-// house must fall: some card moves more than 0.2 m. Without the second half
-// the first could pass on a scene that stands for another reason.
+// mu of at least tan(25 deg) / 2 = 0.23 at its foot (more under the cards
+// above), so with friction 0 the same house must fall: some card moves
+// more than 0.2 m. Without that half the first could pass on a scene that
+// stands for some other reason.
 TEST(Stability2D, CardHouseStandsByFriction) {
   World2D world;
   add_ground(world, 0.6_fx);
