@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <iostream>
@@ -125,7 +126,12 @@ inline void report(const std::string& what, double value, const char* unit, cons
                    double limit) {
   std::cout << "[ measured ] " << what << " = " << value << " " << unit << " (" << bound << " "
             << limit << ")\n";
-  ::testing::Test::RecordProperty(what, std::to_string(value));
+  // Property names become XML attribute names in --gtest_output=xml.
+  std::string key = what;
+  for (char& c : key) {
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  }
+  ::testing::Test::RecordProperty(key, std::to_string(value));
 }
 
 /// Restore-and-re-step: saves the world, steps `ticks` recording every

@@ -7,16 +7,17 @@
 namespace rwd::sim2d::scene {
 
 /// A pyramid `base` boxes wide of 1 m boxes with 5 cm gaps, centred at
-/// x = centre, on a ground whose top is y = 0.
-inline std::vector<BodyId2D> build_pyramid(World2D& world, int base, Fx centre) {
+/// x = origin.x, on a ground whose top is y = origin.y.
+inline std::vector<BodyId2D> build_pyramid(World2D& world, int base, Vec2 origin) {
   std::vector<BodyId2D> boxes;
   const Fx pitch = 1.05_fx;
   for (int level = 0; level < base; ++level) {
     const int count = base - level;
     for (int i = 0; i < count; ++i) {
       // x = centre + (i - (count - 1) / 2) pitch, exact in halves of a pitch.
-      const Fx x = centre + pitch * (2 * i - (count - 1)) / 2;
-      boxes.push_back(add(world, def(make_box(0.5_fx, 0.5_fx), {x, 0.5_fx + Fx(level)})));
+      const Fx x = origin.x + pitch * (2 * i - (count - 1)) / 2;
+      boxes.push_back(
+          add(world, def(make_box(0.5_fx, 0.5_fx), {x, origin.y + 0.5_fx + Fx(level)})));
     }
   }
   return boxes;
