@@ -120,12 +120,13 @@ class Drift {
   double max_move_m_ = 0.0;
 };
 
-/// Prints a measured value with its limit, so a passing run still shows how
-/// close it came.
-inline void report(const std::string& what, double value, const char* unit, const char* bound,
-                   double limit) {
-  std::cout << "[ measured ] " << what << " = " << value << " " << unit << " (" << bound << " "
-            << limit << ")\n";
+/// Prints a measured value with its limit (none when `bound` is empty), so a
+/// passing run still shows how close it came.
+inline void report(const std::string& what, double value, const char* unit, const char* bound = "",
+                   double limit = 0.0) {
+  std::cout << "[ measured ] " << what << " = " << value << " " << unit;
+  if (*bound != '\0') std::cout << " (" << bound << " " << limit << ")";
+  std::cout << "\n";
   // Property names become XML attribute names in --gtest_output=xml.
   std::string key = what;
   for (char& c : key) {

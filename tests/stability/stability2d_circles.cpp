@@ -82,6 +82,62 @@ TEST(Stability2D, ConfinedCirclesStayInAndLoseEnergy) {
   expect_replays_bit_for_bit(world, 30);
 }
 
+// Box2D's "confined" stress scene: 625 circles (r = 0.5 m) in a 25 x 25
+// grid 0.72 m apart, so every circle starts 0.28 m into its neighbours, in
+// a closed 20 m x 20 m box, no gravity. They cannot all fit (625 discs
+// cover 491 m^2 of a 400 m^2 box), so the overlaps never go away and the
+// push-out works against the walls for good. Criteria: no circle ever
+// leaves the box (tunnels through a wall); none ever moves faster than the
+// push-out cap (3 m/s) times the 13 overlapping contacts between the
+// middle circle and a wall (39 m/s), since push-outs can only compound
+// along such a chain (pushes that feed on each other, an explosion, break
+// that bound); and after 2 s every circle is slower than 0.05 m/s (the
+// pack comes to rest instead of jittering).
+TEST(Stability2D, OverfullBoxOfCirclesComesToRest) {
+  World2DConfig config;
+  config.gravity = {};
+  World2D world(config);
+  add(world, def(make_box(11_fx, 0.5_fx), {Fx(), Fx()}, Fx(), BodyKind2D::kStatic));
+  add(world, def(make_box(11_fx, 0.5_fx), {Fx(), 21_fx}, Fx(), BodyKind2D::kStatic));
+  add(world, def(make_box(0.5_fx, 11_fx), {-10.5_fx, 10.5_fx}, Fx(), BodyKind2D::kStatic));
+  add(world, def(make_box(0.5_fx, 11_fx), {10.5_fx, 10.5_fx}, Fx(), BodyKind2D::kStatic));
+  std::vector<BodyId2D> circles;
+  for (int col = 0; col < 25; ++col) {
+    for (int row = 0; row < 25; ++row) {
+      circles.push_back(add(world, def(make_circle(0.5_fx), {-8.75_fx + Fx::ratio(18 * col, 25),
+                                                             1.5_fx + Fx::ratio(18 * row, 25)})));
+    }
+  }
+  const double bound = 13 * d(world.config().contact_push_max);
+  double fastest = 0.0;
+  double peak_mean = 0.0;
+  double late_speed = 0.0;
+  bool inside = true;
+  World2DState mid;
+  for (int t = 1; t <= 180; ++t) {
+    world.step();
+    double sum = 0.0;
+    for (BodyId2D id : circles) {
+      const double v = speed(world, id);
+      sum += v;
+      fastest = std::max(fastest, v);
+      if (t > 120) late_speed = std::max(late_speed, point_speed(world, id, 0.5));
+      const Vec2 p = world.center_of_mass(id);
+      if (d(p.x) <= -10.0 || d(p.x) >= 10.0 || d(p.y) <= 0.5 || d(p.y) >= 20.5) inside = false;
+    }
+    peak_mean = std::max(peak_mean, sum / static_cast<double>(circles.size()));
+    if (t == 60) world.save(mid);
+  }
+  report("confined625 max_speed_mps", fastest, "m/s", "<=", bound);
+  report("confined625 peak_mean_speed_mps", peak_mean, "m/s");
+  report("confined625 late_speed_mps", late_speed, "m/s", "<=", kRestSpeedMps);
+  EXPECT_TRUE(inside);
+  EXPECT_LE(fastest, bound);
+  EXPECT_LE(late_speed, kRestSpeedMps);
+  world.restore(mid);
+  expect_replays_bit_for_bit(world, 30);
+}
+
 // 10 circles (r = 0.25 m) dropped into a tube 0.52 m wide (1 cm of play
 // each side), every other one 5 mm off the axis so they lean on the walls,
 // 1 cm apart. After 5 s they must be in order, within the tube, at rest
