@@ -32,9 +32,9 @@
 //   of the first through the rotation they share: the push-out speed
 //   (1.62 m/s each with no relax pass) is left at 10% after one pass, 0.4%
 //   after two, none after four. The same leftover compounds in a dense
-//   pack: in the built over-full confined box (OverfullBoxOfCirclesComesTo-
-//   Rest) circles reach 22.9 m/s, RMS 13.8 m/s, in the first 4 ticks, 4.6
-//   times the 3 m/s cap, before the pack settles; with 2, 4 and 8 relax
+//   pack: in the built over-full confined box (stability2d_circles.cpp)
+//   circles reach 22.9 m/s, RMS 13.8 m/s, in the first 4 ticks, 4.6 times
+//   the 3 m/s cap, before the pack settles; with 2, 4 and 8 relax
 //   passes the RMS peak is 9.7, 6.4 and 4.1 m/s, with none 23 m/s (and one
 //   circle 107 m/s, beyond that scene's 39 m/s bound).
 #include "stacks2d.h"
