@@ -23,8 +23,9 @@
 //   (limit 6 mm), exactly the spring's answer 50 m g / (0.396 m (2 pi
 //   30)^2) = 35.5 mm: the softness is sized to the pair's effective mass,
 //   dominated by the light box, while the load is the heavy one's weight.
-//   It does not sink through (the overlap is steady), and the 1:10 pair
-//   passes (3.9 mm).
+//   It does not sink through (the overlap is steady: the built test
+//   HundredTimesHeavierBoxDoesNotSinkThrough), and the 1:10 pair passes
+//   (3.9 mm).
 // - Two boxes overlapping by half a box in zero gravity separate, but keep
 //   0.163 m/s each (0.33 m/s apart) for ever, against the config's "moves
 //   bodies apart without leaving them velocity". One relax pass solves the

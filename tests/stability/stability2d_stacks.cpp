@@ -126,8 +126,7 @@ TEST(Stability2D, FarPyramidMovesLikeTheOneAtTheOrigin) {
 // A box 10 times heavier (density 10) on a 1 m box of density 1, for 10 s:
 // the heavy box neither slides off (0.1 m sideways) nor sinks into the
 // light one (deepest overlap in the last second within the slop + 1 mm, and
-// its centre at most two such overlaps below its start). The 1:100 pair is
-// in stability2d_known_failures.cpp.
+// its centre at most two such overlaps below its start).
 TEST(Stability2D, TenTimesHeavierBoxOnLightBoxStaysStacked) {
   const StackResult r = run_mass_ratio(10);
   report("mass_ratio10 drift_m", r.drift_m, "m", "<=", kDriftLimitM);
@@ -136,6 +135,22 @@ TEST(Stability2D, TenTimesHeavierBoxOnLightBoxStaysStacked) {
   EXPECT_LE(r.drift_m, kDriftLimitM);
   EXPECT_LE(r.depth_m, kDepthLimitM);
   EXPECT_LE(r.top_sink_m, 2 * kDepthLimitM);
+}
+
+// A box 100 times heavier on a 1 m box of density 1, for 10 s: it stays
+// stacked (0.1 m sideways) and does not sink through: over the last 5 s
+// its height changes by less than 1 mm (a box sinking through, or still
+// sinking, moves on), and it rests less than a quarter of a box deep.
+// It does rest 35.5 mm deep, far beyond the 6 mm the 1:10 pair keeps to:
+// that criterion fails at 1:100 (stability2d_known_failures.cpp).
+TEST(Stability2D, HundredTimesHeavierBoxDoesNotSinkThrough) {
+  const StackResult r = run_mass_ratio(100);
+  report("mass_ratio100 drift_m", r.drift_m, "m", "<=", kDriftLimitM);
+  report("mass_ratio100 late_sink_m", r.late_sink_m, "m", "<=", 0.001);
+  report("mass_ratio100 penetration_m", r.depth_m, "m", "<=", 0.25);
+  EXPECT_LE(r.drift_m, kDriftLimitM);
+  EXPECT_LE(r.late_sink_m, 0.001);
+  EXPECT_LE(r.depth_m, 0.25);
 }
 
 // A pyramid 5 boxes wide whose boxes overlap their neighbours by a quarter

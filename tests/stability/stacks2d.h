@@ -28,6 +28,9 @@ struct StackResult {
   double drift_m = 0.0;     ///< worst sideways drift of any box over the run
   double top_sink_m = 0.0;  ///< how far the top box ends below its start
   double depth_m = 0.0;     ///< deepest overlap in the last second
+  /// How far the top box's height moved in the last 5 s: a stack that
+  /// sinks through, or keeps sinking, moves; a settled one does not.
+  double late_sink_m = 0.0;
 };
 
 /// A column of `count` 1 m boxes on the ground for 10 s; replays a stretch
@@ -43,11 +46,17 @@ inline StackResult run_stack(const World2DConfig& config, int count) {
   }
   World2DState mid;
   StackResult r;
+  double top_at_5s = 0.0;
   for (int t = 1; t <= 600; ++t) {
     world.step();
     drift.observe(world);
+    const double top = d(world.center_of_mass(boxes.back()).y);
     if (t > 540) r.depth_m = std::max(r.depth_m, deepest_overlap(world));
-    if (t == 300) world.save(mid);
+    if (t == 300) {
+      world.save(mid);
+      top_at_5s = top;
+    }
+    if (t > 300) r.late_sink_m = std::max(r.late_sink_m, std::fabs(top - top_at_5s));
   }
   r.drift_m = drift.max_sideways_m();
   r.top_sink_m = (count - 0.5) - d(world.center_of_mass(boxes.back()).y);
@@ -71,11 +80,17 @@ inline StackResult run_mass_ratio(int ratio) {
   drift.track(world, heavy);
   World2DState mid;
   StackResult r;
+  double top_at_5s = 0.0;
   for (int t = 1; t <= 600; ++t) {
     world.step();
     drift.observe(world);
+    const double top = d(world.center_of_mass(heavy).y);
     if (t > 540) r.depth_m = std::max(r.depth_m, deepest_overlap(world));
-    if (t == 300) world.save(mid);
+    if (t == 300) {
+      world.save(mid);
+      top_at_5s = top;
+    }
+    if (t > 300) r.late_sink_m = std::max(r.late_sink_m, std::fabs(top - top_at_5s));
   }
   r.drift_m = drift.max_sideways_m();
   r.top_sink_m = 1.5 - d(world.center_of_mass(heavy).y);
