@@ -19,21 +19,6 @@
 //   2.2 cm deep, 1.85 cm short; h = 2 m: 1.9 cm deep, 2.0 cm short).
 //   There is no continuous collision yet; a speculative margin that grows
 //   with the approach speed (|v| / tick_hz) would catch the landing step.
-// - Rolling resistance stop distance. A disc (r = 0.25 m) rolling at 2 m/s
-//   on the flat ground with rolling resistance c should stop after
-//   v^2 / (2 a), a = c g / (1 + I / (m r^2)) = c g / 1.5 (the resisting
-//   torque c N r does c m g of work per metre against 3/4 m v^2): 3.0 m for
-//   c = 0.1, 1.0 m for c = 0.3. It stops after 0.70 m and 0.25 m (-77%,
-//   -75%) starting at x = 0, and after 0.25 m for both when it starts at
-//   x = -20 m: the stop depends on where on the ground it rolls.
-//   prepare_contacts() (contact_solver2d.cpp) scales the coefficient by
-//   max(|ra|, |rb|), the longer of the two anchors, and for a disc on a
-//   static ground box ra runs from the ground's centre (0, -1) to the
-//   contact, at least 1 m and 20 m at x = -20, instead of the disc's 0.25 m.
-//   With a 20 m lever the torque exceeds what friction (mu = 0.8) can carry,
-//   the disc skids to a stop in v^2 / (2 mu g) = 0.25 m. A lever from the
-//   rolling bodies only (inverse inertia > 0), or the shapes' radii as in
-//   Box2D, would give the disc's 0.25 m.
 #include <string>
 
 #include "scene2d.h"
@@ -70,34 +55,6 @@ TEST(Accuracy2DKnownFailure, BounceApexFromAnyHeight) {
       report("bounce" + std::to_string(percent) + "_h" + std::to_string(cm) + "cm apex_error_pct",
              err, "%", "<=", 5.0);
       EXPECT_LE(err, 5.0) << "e = " << percent << "%, h = " << cm << " cm: apex " << apex;
-    }
-  }
-}
-
-// A disc rolling at 2 m/s (r = 0.25 m, mu = 0.8) with rolling resistance c
-// (0.1, 0.3) stops within 5% of 0.75 v^2 / (c g), starting at x = 0 and at
-// x = -20 m (the 3D catalogue's roll_stop scene and bound, for a disc).
-TEST(Accuracy2DKnownFailure, RollingResistanceStopDistance) {
-  for (int tenths : {1, 3}) {
-    for (int start : {0, -20}) {
-      World2D world;
-      add_ground(world, 0.8_fx);
-      BodyDef2D disc_def = def(make_circle(0.25_fx), {Fx(start), 0.25_fx});
-      disc_def.material.friction = 0.8_fx;
-      disc_def.material.rolling_resistance = Fx::ratio(tenths, 10);
-      disc_def.linear_velocity = {2_fx, Fx()};
-      disc_def.angular_velocity = -8_fx;  // rolling from the start: w = -v / r
-      const BodyId2D disc = add(world, disc_def);
-      for (int t = 0; t < 360; ++t) world.step();
-      const double travelled = d(world.position(disc).x) - start;
-      const double expected = 0.75 * 2.0 * 2.0 / (0.1 * tenths * kG);
-      const double err = 100.0 * std::fabs(travelled - expected) / expected;
-      report("roll_stop_c0." + std::to_string(tenths) + "_x" + std::to_string(start) +
-                 " stop_error_pct",
-             err, "%", "<=", 5.0);
-      EXPECT_LE(speed(world, disc), kRestSpeedMps);
-      EXPECT_LE(err, 5.0) << "c = 0." << tenths << ", from x = " << start << ": " << travelled
-                          << " m, expected " << expected << " m";
     }
   }
 }

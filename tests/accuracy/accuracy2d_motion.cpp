@@ -3,6 +3,8 @@
 // (g = 10 m/s^2, 60 Hz, 4 substeps). Tolerances follow the 3D catalogue
 // (tests/accuracy) unless the integrator gives a sharper one. The pendulum
 // scene waits for joints, which the lane does not have yet.
+#include <string>
+
 #include "scene2d.h"
 
 namespace rwd::sim2d {
@@ -183,6 +185,34 @@ TEST(Accuracy2D, DiscRollsDownAnInclineAtTwoThirdsGSin) {
   report("roll30 slip_pct", 100.0 * slip / v, "%", "<=", 1.0);
   EXPECT_LE(error_pct(travel, expected), 3.0) << travel << " m, expected " << expected;
   EXPECT_LE(slip, 0.01 * v);
+}
+
+// A disc rolling at 2 m/s (r = 0.25 m, mu = 0.8) with rolling resistance c
+// (0.1, 0.3) stops within 5% of 0.75 v^2 / (c g), starting at x = 0 and at
+// x = -20 m (the 3D catalogue's roll_stop scene and bound, for a disc).
+TEST(Accuracy2D, RollingResistanceStopDistance) {
+  for (int tenths : {1, 3}) {
+    for (int start : {0, -20}) {
+      World2D world;
+      add_ground(world, 0.8_fx);
+      BodyDef2D disc_def = def(make_circle(0.25_fx), {Fx(start), 0.25_fx});
+      disc_def.material.friction = 0.8_fx;
+      disc_def.material.rolling_resistance = Fx::ratio(tenths, 10);
+      disc_def.linear_velocity = {2_fx, Fx()};
+      disc_def.angular_velocity = -8_fx;  // rolling from the start: w = -v / r
+      const BodyId2D disc = add(world, disc_def);
+      for (int t = 0; t < 360; ++t) world.step();
+      const double travelled = d(world.position(disc).x) - start;
+      const double expected = 0.75 * 2.0 * 2.0 / (0.1 * tenths * kG);
+      const double err = 100.0 * std::fabs(travelled - expected) / expected;
+      report("roll_stop_c0." + std::to_string(tenths) + "_x" + std::to_string(start) +
+                 " stop_error_pct",
+             err, "%", "<=", 5.0);
+      EXPECT_LE(speed(world, disc), kRestSpeedMps);
+      EXPECT_LE(err, 5.0) << "c = 0." << tenths << ", from x = " << start << ": " << travelled
+                          << " m, expected " << expected << " m";
+    }
+  }
 }
 
 }  // namespace

@@ -197,5 +197,17 @@ TEST(Stability2D, DeepOverlapsSeparateGently) {
   expect_replays_bit_for_bit(world, 30);
 }
 
+// The stack criteria at default settings: each manifold's two points are
+// solved as a block, so the column starts without a sideways twitch.
+TEST(Stability2D, StackOf20Stands) {
+  const StackResult r = run_stack(World2DConfig{}, 20);
+  report("stack20 drift_m", r.drift_m, "m", "<=", kDriftLimitM);
+  report("stack20 top_sink_m", r.top_sink_m, "m", "<=", 20 * kDepthLimitM);
+  report("stack20 penetration_m", r.depth_m, "m", "<=", kDepthLimitM);
+  EXPECT_LE(r.drift_m, kDriftLimitM);
+  EXPECT_LE(r.top_sink_m, 20 * kDepthLimitM);
+  EXPECT_LE(r.depth_m, kDepthLimitM);
+}
+
 }  // namespace
 }  // namespace rwd::sim2d

@@ -218,5 +218,20 @@ TEST(Stability2D, DoubleDominoFallsInOrderAndLiesFlat) {
   expect_replays_bit_for_bit(world, 30);
 }
 
+// Two 1 m boxes half inside each other, no gravity: once apart (no contact
+// for a second) they must be at rest, relative speed under 0.05 m/s.
+TEST(Stability2D, PushOutLeavesNoVelocity) {
+  World2DConfig config;
+  config.gravity = {};
+  World2D world(config);
+  const BodyId2D a = add(world, def(make_box(0.5_fx, 0.5_fx), {Fx(), Fx()}));
+  const BodyId2D b = add(world, def(make_box(0.5_fx, 0.5_fx), {0.5_fx, Fx()}));
+  for (int t = 1; t <= 120; ++t) world.step();
+  EXPECT_TRUE(world.events().empty());
+  const double apart = d(world.linear_velocity(b).x) - d(world.linear_velocity(a).x);
+  report("push_out relative_speed_mps", apart, "m/s", "<=", kRestSpeedMps);
+  EXPECT_LE(std::fabs(apart), kRestSpeedMps);
+}
+
 }  // namespace
 }  // namespace rwd::sim2d

@@ -88,10 +88,30 @@ void prepare_contacts(const World2DState& state, StepScratch2D& scratch, W h) {
                           wmul(b.inv_inertia, wmul(rtb, rtb)));
       cp.relative_velocity = vdot(n, relative_velocity(a, cp.ra, b, cp.rb));
     }
+    if (c.count == 2) {
+      const ContactConstraintPoint2D& p1 = c.points[0];
+      const ContactConstraintPoint2D& p2 = c.points[1];
+      const W rn1a = vcross(p1.ra, n);
+      const W rn1b = vcross(p1.rb, n);
+      const W rn2a = vcross(p2.ra, n);
+      const W rn2b = vcross(p2.rb, n);
+      const W m = a.inv_mass + b.inv_mass;
+      c.k11 = m + wmul(a.inv_inertia, wmul(rn1a, rn1a)) + wmul(b.inv_inertia, wmul(rn1b, rn1b));
+      c.k22 = m + wmul(a.inv_inertia, wmul(rn2a, rn2a)) + wmul(b.inv_inertia, wmul(rn2b, rn2b));
+      c.k12 = m + wmul(a.inv_inertia, wmul(rn1a, rn2a)) + wmul(b.inv_inertia, wmul(rn1b, rn2b));
+      // Two points nearly on top of each other make K nearly singular: the
+      // block is used only while k11^2 < 1000 det (one after the other
+      // otherwise), as the sequential rows are then just as good.
+      const W det = wmul(c.k11, c.k22) - wmul(c.k12, c.k12);
+      c.block = det > 0 && wmul(c.k11, c.k11) < 1000 * det;
+    }
     if (c.rolling_resistance > 0 && c.count > 0) {
       // The resisting torque is the coefficient times the normal force times
       // the lever from the centre of mass to the contact.
-      const W lever = wmax(vlength(c.points[0].ra), vlength(c.points[0].rb));
+      // The lever of the bodies that turn: a static ground's "arm" from its
+      // own origin means nothing.
+      const W lever = wmax(a.inv_inertia > 0 ? vlength(c.points[0].ra) : 0,
+                           b.inv_inertia > 0 ? vlength(c.points[0].rb) : 0);
       c.rolling_resistance = wmul(c.rolling_resistance, lever);
     }
     constraints.push_back(c);
@@ -113,38 +133,118 @@ void warm_start_contacts(StepScratch2D& scratch) {
   }
 }
 
+namespace {
+
+// The soft or speculative terms of one point's normal row this pass.
+struct NormalTerms2D {
+  W bias = 0;
+  W mass_scale = kWOne;
+  W impulse_scale = 0;
+  bool soft = false;  ///< the soft push-out applies (overlapping, biased pass)
+};
+
+NormalTerms2D normal_terms(const ContactConstraint2D& c, const ContactConstraintPoint2D& cp,
+                           const SolverBody2D& a, const SolverBody2D& b, W inv_h, W push_max,
+                           bool use_bias) {
+  // The separation now, from how far each body moved and turned since the
+  // step began (the manifold is not recomputed between substeps).
+  const V2 d = (b.dp - a.dp) + (rotate(b.dq, cp.rb) - rotate(a.dq, cp.ra));
+  const W s = vdot(d, c.normal) + cp.adjusted_separation;
+  if (s > 0) return {wmul(s, inv_h), kWOne, 0, false};  // speculative: arrive touching
+  if (use_bias) {
+    return {wmax(wmul(c.softness.bias_rate, s), -push_max), c.softness.mass_scale,
+            c.softness.impulse_scale, true};
+  }
+  return {};
+}
+
+// Both points of a manifold at once (the 2x2 linear complementarity
+// problem, by enumerating which points push), so neither undoes the other
+// through the rotation they share: a box lands flat without a first
+// sideways twitch, and a push-out leaves no velocity behind. The soft
+// terms enter as K / mass_scale and a relaxed accumulated impulse, exactly
+// as the one-point rows use them. Returns false, changing nothing, when no
+// case fits (then the points are solved one after the other).
+bool solve_normal_block(ContactConstraint2D& c, SolverBody2D& a, SolverBody2D& b,
+                        const NormalTerms2D& t1, const NormalTerms2D& t2) {
+  ContactConstraintPoint2D& p1 = c.points[0];
+  ContactConstraintPoint2D& p2 = c.points[1];
+  const W ms = t1.mass_scale;
+  const W k11 = wdiv(c.k11, ms);
+  const W k12 = wdiv(c.k12, ms);
+  const W k22 = wdiv(c.k22, ms);
+  const W a1 = p1.normal_impulse - wmul(t1.impulse_scale, p1.normal_impulse);
+  const W a2 = p2.normal_impulse - wmul(t2.impulse_scale, p2.normal_impulse);
+  const W c1 = vdot(relative_velocity(a, p1.ra, b, p1.rb), c.normal) + t1.bias -
+               (wmul(k11, a1) + wmul(k12, a2));
+  const W c2 = vdot(relative_velocity(a, p2.ra, b, p2.rb), c.normal) + t2.bias -
+               (wmul(k12, a1) + wmul(k22, a2));
+  W x1 = 0;
+  W x2 = 0;
+  const W det = wmul(k11, k22) - wmul(k12, k12);
+  bool found = false;
+  if (det > 0) {  // both push
+    x1 = wdiv(wmul(k12, c2) - wmul(k22, c1), det);
+    x2 = wdiv(wmul(k12, c1) - wmul(k11, c2), det);
+    found = x1 >= 0 && x2 >= 0;
+  }
+  if (!found && k11 > 0) {  // only the first
+    x1 = wdiv(-c1, k11);
+    x2 = 0;
+    found = x1 >= 0 && wmul(k12, x1) + c2 >= 0;
+  }
+  if (!found && k22 > 0) {  // only the second
+    x1 = 0;
+    x2 = wdiv(-c2, k22);
+    found = x2 >= 0 && wmul(k12, x2) + c1 >= 0;
+  }
+  if (!found) {  // neither
+    x1 = 0;
+    x2 = 0;
+    found = c1 >= 0 && c2 >= 0;
+  }
+  if (!found) return false;
+  const W d1 = x1 - p1.normal_impulse;
+  const W d2 = x2 - p2.normal_impulse;
+  p1.normal_impulse = x1;
+  p2.normal_impulse = x2;
+  p1.max_normal_impulse = wmax(p1.max_normal_impulse, d1);
+  p2.max_normal_impulse = wmax(p2.max_normal_impulse, d2);
+  apply(a, p1.ra, b, p1.rb, vscale(d1, c.normal));
+  apply(a, p2.ra, b, p2.rb, vscale(d2, c.normal));
+  return true;
+}
+
+}  // namespace
+
 void solve_contacts(StepScratch2D& scratch, W inv_h, W push_max, bool use_bias) {
   for (ContactConstraint2D& c : scratch.constraints) {
     SolverBody2D& a = scratch.bodies[c.a];
     SolverBody2D& b = scratch.bodies[c.b];
     const V2 n = c.normal;
-    W total_normal_impulse = 0;
+    NormalTerms2D terms[2];
     for (int i = 0; i < c.count; ++i) {
-      ContactConstraintPoint2D& cp = c.points[i];
-      // The separation now, from how far each body moved and turned since
-      // the step began (the manifold is not recomputed between substeps).
-      const V2 d = (b.dp - a.dp) + (rotate(b.dq, cp.rb) - rotate(a.dq, cp.ra));
-      const W s = vdot(d, n) + cp.adjusted_separation;
-      W bias = 0;
-      W mass_scale = kWOne;
-      W impulse_scale = 0;
-      if (s > 0) {
-        bias = wmul(s, inv_h);  // speculative: arrive exactly touching
-      } else if (use_bias) {
-        bias = wmax(wmul(c.softness.bias_rate, s), -push_max);
-        mass_scale = c.softness.mass_scale;
-        impulse_scale = c.softness.impulse_scale;
-      }
-      const W vn = vdot(relative_velocity(a, cp.ra, b, cp.rb), n);
-      const W impulse = -wmul(wmul(cp.normal_mass, mass_scale), vn + bias) -
-                        wmul(impulse_scale, cp.normal_impulse);
-      const W accumulated = wmax(cp.normal_impulse + impulse, 0);
-      const W applied = accumulated - cp.normal_impulse;
-      cp.normal_impulse = accumulated;
-      cp.max_normal_impulse = wmax(cp.max_normal_impulse, applied);
-      total_normal_impulse += accumulated;
-      apply(a, cp.ra, b, cp.rb, vscale(applied, n));
+      terms[i] = normal_terms(c, c.points[i], a, b, inv_h, push_max, use_bias);
     }
+    // The block needs one mass scale for both rows: both soft or both not.
+    const bool block = c.count == 2 && c.block && terms[0].soft == terms[1].soft &&
+                       solve_normal_block(c, a, b, terms[0], terms[1]);
+    if (!block) {
+      for (int i = 0; i < c.count; ++i) {
+        ContactConstraintPoint2D& cp = c.points[i];
+        const NormalTerms2D& t = terms[i];
+        const W vn = vdot(relative_velocity(a, cp.ra, b, cp.rb), n);
+        const W impulse = -wmul(wmul(cp.normal_mass, t.mass_scale), vn + t.bias) -
+                          wmul(t.impulse_scale, cp.normal_impulse);
+        const W accumulated = wmax(cp.normal_impulse + impulse, 0);
+        const W applied = accumulated - cp.normal_impulse;
+        cp.normal_impulse = accumulated;
+        cp.max_normal_impulse = wmax(cp.max_normal_impulse, applied);
+        apply(a, cp.ra, b, cp.rb, vscale(applied, n));
+      }
+    }
+    W total_normal_impulse = 0;
+    for (int i = 0; i < c.count; ++i) total_normal_impulse += c.points[i].normal_impulse;
 
     const V2 t = vperp_cw(n);
     for (int i = 0; i < c.count; ++i) {

@@ -57,6 +57,12 @@ struct ContactConstraint2D {
   Softness2D softness;
   int count = 0;
   ContactConstraintPoint2D points[2];
+  /// Two-point manifolds: the normal rows' effective-mass matrix, and
+  /// whether it is well enough conditioned to solve both points together.
+  W k11 = 0;
+  W k12 = 0;
+  W k22 = 0;
+  bool block = false;
 };
 
 /// What every joint type needs during one step, fixed at its start.

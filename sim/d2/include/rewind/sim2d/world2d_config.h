@@ -43,7 +43,8 @@ struct World2DConfig {
   uint32_t max_bodies = 8192;  ///< create_body refuses beyond this, [1, 1 << 20]
   /// The box body centres may occupy (m, lower < upper). A moving body
   /// whose centre of mass leaves it is disabled where it crossed (clamped
-  /// onto the box, velocities zeroed) and reported by a kLeftBounds event.
+  /// onto the box, velocities zeroed; is_enabled() turns false and its
+  /// contacts end with exit events).
   Vec2 bounds_lower{-32000_fx, -32000_fx};
   Vec2 bounds_upper{32000_fx, 32000_fx};
 };
