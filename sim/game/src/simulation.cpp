@@ -2,6 +2,7 @@
 #include "rewind/game/simulation.h"
 
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 #include "rewind/game/game_on.h"
@@ -88,6 +89,11 @@ Simulation::Simulation(std::unique_ptr<Game> game, const MatchSetup& setup)
 Simulation::Simulation(std::unique_ptr<Game> game, const MatchSetup& setup,
                        std::unique_ptr<Lane> lane)
     : game_(std::move(game)), setup_(setup), lane_(std::move(lane)) {
+  // The game's calls cast the lane to its own world type without a check
+  // (once per tick); a lane of another type is a programming error.
+  if (lane_ == nullptr || !game_->accepts_lane(*lane_)) {
+    throw std::invalid_argument("Simulation: the lane is not of the game's lane type");
+  }
   game_state_.assign(game_->state_size(), std::byte{0});
   game_->build(setup_, *lane_, game_state_);
 }

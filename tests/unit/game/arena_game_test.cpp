@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <stdexcept>
 #include <vector>
 
 #include "rewind/game/arena_game.h"
@@ -126,6 +127,18 @@ TEST(ArenaGame, RollbackAndReloadAreBitForBit) {
     moved += p.y != Fx() ? 1 : 0;
   }
   EXPECT_GT(moved, 0);
+}
+
+TEST(ArenaGame, ASimulationRefusesALaneOfAnotherType) {
+  // The 3D game handed a 2D world: refused before any of its calls run.
+  auto crates = make_builtin_game("crates");
+  auto arena = make_builtin_game("arena");
+  ASSERT_NE(crates, nullptr);
+  ASSERT_NE(arena, nullptr);
+  EXPECT_TRUE(arena->accepts_lane(*arena->make_lane()));
+  EXPECT_FALSE(crates->accepts_lane(*arena->make_lane()));
+  EXPECT_THROW(Simulation(std::move(crates), MatchSetup{}, arena->make_lane()),
+               std::invalid_argument);
 }
 
 }  // namespace

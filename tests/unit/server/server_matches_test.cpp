@@ -30,6 +30,7 @@ class FaultyCrates final : public game::Game {
   std::string_view name() const override { return "faulty-crates"; }
   uint32_t rules_version() const override { return crates_.rules_version(); }
   std::unique_ptr<game::Lane> make_lane() const override { return crates_.make_lane(); }
+  bool accepts_lane(const game::Lane& lane) const override { return crates_.accepts_lane(lane); }
   void encode_world_config(std::vector<uint8_t>& out) const override {
     crates_.encode_world_config(out);
   }

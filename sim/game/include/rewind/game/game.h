@@ -42,6 +42,9 @@ class Game {
   virtual uint32_t rules_version() const = 0;
   /// A new, empty world of this game's lane with the game's own tuning.
   virtual std::unique_ptr<Lane> make_lane() const = 0;
+  /// Whether `lane` is of the type make_lane() makes (the only lanes the
+  /// game's calls may be handed).
+  virtual bool accepts_lane(const Lane& lane) const = 0;
   /// The game's world tuning as the game states it, in its lane's portable
   /// encoding (World3D::encode_config() for the 3D lane): what replay
   /// headers record and compare. `out` is replaced.

@@ -30,6 +30,7 @@ class GameOn : public Game {
   std::unique_ptr<Lane> make_lane() const final {
     return std::make_unique<WorldLane<World>>(world_config());
   }
+  bool accepts_lane(const Lane& lane) const final { return world_of<World>(lane) != nullptr; }
   void encode_world_config(std::vector<uint8_t>& out) const final {
     World::encode_config(world_config(), out);
   }

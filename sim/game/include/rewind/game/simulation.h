@@ -57,7 +57,8 @@ class Simulation {
   /// The game on a world of its own lane with its own tuning.
   Simulation(std::unique_ptr<Game> game, const MatchSetup& setup);
   /// The game on `lane`, a lane of the type game->make_lane() makes (e.g.
-  /// one built from another config, see create()).
+  /// one built from another config, see create()); throws
+  /// std::invalid_argument for a null lane or one of another type.
   Simulation(std::unique_ptr<Game> game, const MatchSetup& setup, std::unique_ptr<Lane> lane);
 
   /// The next tick step() will simulate.
