@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: MIT
+#include "box2d_engine.h"
+
+#include <box2d/box2d.h>
+
+#include <map>
+#include <string>
+
+namespace rwd::bench {
+
+namespace {
+
+float milli(int32_t v) {
+  return static_cast<float>(v) / 1000.0f;
+}
+
+}  // namespace
+
+Box2DEngine::Box2DEngine(int velocity_iterations, int position_iterations)
+    : velocity_(velocity_iterations), position_(position_iterations) {}
+
+Box2DEngine::~Box2DEngine() = default;
+
+std::string Box2DEngine::settings() const {
+  return "velocity=" + std::to_string(velocity_) + " position=" + std::to_string(position_);
+}
+
+bool Box2DEngine::build(const Scene2D& scene, std::string& /*error*/) {
+  bodies_.clear();
+  world_ = std::make_unique<b2World>(b2Vec2(0.0f, -10.0f));
+  // Rewind's 2D lane does not sleep yet: both engines keep every body awake.
+  world_->SetAllowSleeping(false);
+  std::map<int32_t, b2Body*> groups;
+  for (const BoxBody2D& b : scene.bodies) {
+    b2Body* body = nullptr;
+    if (b.group >= 0) {
+      auto it = groups.find(b.group);
+      if (it != groups.end()) body = it->second;
+    }
+    if (body == nullptr) {
+      b2BodyDef def;
+      def.type = b.kind == Kind2D::kStatic      ? b2_staticBody
+                 : b.kind == Kind2D::kKinematic ? b2_kinematicBody
+                                                : b2_dynamicBody;
+      def.position.Set(milli(b.x), milli(b.y));
+      def.angularVelocity = milli(b.angular_velocity);
+      def.allowSleep = false;
+      body = world_->CreateBody(&def);
+      if (b.group >= 0) groups[b.group] = body;
+    }
+    b2PolygonShape box;
+    box.SetAsBox(milli(b.hx), milli(b.hy), b2Vec2(milli(b.cx), milli(b.cy)), 0.0f);
+    b2FixtureDef fixture;
+    fixture.shape = &box;
+    fixture.density = b.kind == Kind2D::kDynamic ? milli(scene.density) : 0.0f;
+    fixture.friction = milli(scene.friction);
+    fixture.restitution = 0.0f;
+    body->CreateFixture(&fixture);
+    bodies_.push_back(body);
+  }
+  return true;
+}
+
+void Box2DEngine::step() {
+  world_->Step(1.0f / 60.0f, velocity_, position_);
+}
+
+Pose2D Box2DEngine::pose(uint32_t index) const {
+  const b2Body* body = bodies_[index];
+  const b2Vec2 p = body->GetPosition();
+  return {p.x, p.y, body->GetAngle()};
+}
+
+}  // namespace rwd::bench

@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Box2D 2.4 (Debian's libbox2d-dev) behind the Engine2D interface, for
+// side-by-side measurements. Lives in bench/ only.
+#include <memory>
+#include <vector>
+
+#include "engine2d.h"
+
+class b2World;
+class b2Body;
+
+namespace rwd::bench {
+
+class Box2DEngine final : public Engine2D {
+ public:
+  /// b2World::Step's iteration counts (Box2D's defaults: 8 and 3).
+  Box2DEngine(int velocity_iterations, int position_iterations);
+  ~Box2DEngine() override;
+  Box2DEngine(const Box2DEngine&) = delete;
+  Box2DEngine& operator=(const Box2DEngine&) = delete;
+
+  std::string name() const override { return "box2d"; }
+  std::string settings() const override;
+  bool is_default() const override { return velocity_ == 8 && position_ == 3; }
+  bool build(const Scene2D& scene, std::string& error) override;
+  void step() override;
+  Pose2D pose(uint32_t index) const override;
+
+ private:
+  int velocity_;
+  int position_;
+  std::unique_ptr<b2World> world_;
+  std::vector<b2Body*> bodies_;  // per scene body; grouped bodies share one
+};
+
+}  // namespace rwd::bench

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// What the 2D benchmarks need of an engine: build a Scene2D, step it, read
+// poses back. Rewind's 2D lane and Box2D 2.4 each implement it, so every
+// scene is built from one description on both.
+#include <cstdint>
+#include <string>
+
+#include "scene2d.h"
+
+namespace rwd::bench {
+
+/// A body pose in metres and radians (floating point: measurement only).
+struct Pose2D {
+  double x = 0;
+  double y = 0;
+  double angle = 0;
+};
+
+class Engine2D {
+ public:
+  virtual ~Engine2D() = default;
+  virtual std::string name() const = 0;
+  /// The solver settings, e.g. "substeps=4 relax=1".
+  virtual std::string settings() const = 0;
+  virtual bool is_default() const = 0;
+  /// Replaces the world by the scene's bodies; false with `error` set when
+  /// the engine refuses one.
+  virtual bool build(const Scene2D& scene, std::string& error) = 0;
+  /// One 60 Hz tick.
+  virtual void step() = 0;
+  /// The pose of the scene's body `index` (its origin, as described).
+  virtual Pose2D pose(uint32_t index) const = 0;
+};
+
+}  // namespace rwd::bench

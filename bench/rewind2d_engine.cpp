@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: MIT
+#include "rewind2d_engine.h"
+
+#include <cstdint>
+#include <string>
+
+namespace rwd::bench {
+
+namespace {
+
+using fixed::Fx;
+using fixed::Vec2;
+
+Fx milli(int32_t v) {
+  return Fx::ratio(v, 1000);
+}
+
+// Measurement only: the lane itself has no floating point.
+double to_double(Fx v) {
+  return static_cast<double>(v.raw()) / 65536.0;
+}
+
+}  // namespace
+
+Rewind2DEngine::Rewind2DEngine(int substeps, int relax_iterations) {
+  config_.substeps = substeps;
+  config_.relax_iterations = relax_iterations;
+}
+
+std::string Rewind2DEngine::settings() const {
+  return "substeps=" + std::to_string(config_.substeps) +
+         " relax=" + std::to_string(config_.relax_iterations);
+}
+
+bool Rewind2DEngine::is_default() const {
+  const sim2d::World2DConfig d;
+  return config_.substeps == d.substeps && config_.relax_iterations == d.relax_iterations;
+}
+
+bool Rewind2DEngine::build(const Scene2D& scene, std::string& error) {
+  sim2d::World2DConfig config = config_;
+  config.tick_hz = 60;
+  config.max_bodies = static_cast<uint32_t>(scene.bodies.size()) + 16;
+  world_ = std::make_unique<sim2d::World2D>(config);
+  ids_.clear();
+  for (const BoxBody2D& b : scene.bodies) {
+    auto shape = sim2d::make_box(milli(b.hx), milli(b.hy), Vec2{milli(b.cx), milli(b.cy)}, Fx());
+    if (!shape.ok()) {
+      error = "rewind: box refused";
+      return false;
+    }
+    sim2d::BodyDef2D def;
+    def.kind = b.kind == Kind2D::kStatic      ? sim2d::BodyKind2D::kStatic
+               : b.kind == Kind2D::kKinematic ? sim2d::BodyKind2D::kKinematic
+                                              : sim2d::BodyKind2D::kDynamic;
+    def.shape = *shape;
+    def.position = Vec2{milli(b.x), milli(b.y)};
+    def.angular_velocity = milli(b.angular_velocity);
+    def.density = milli(scene.density);
+    def.material.friction = milli(scene.friction);
+    def.material.restitution = Fx();
+    auto id = world_->create_body(def);
+    if (!id.ok()) {
+      error = "rewind: body " + std::to_string(ids_.size()) + " refused";
+      return false;
+    }
+    ids_.push_back(*id);
+  }
+  return true;
+}
+
+Pose2D Rewind2DEngine::pose(uint32_t index) const {
+  const sim2d::BodyId2D id = ids_[index];
+  const Vec2 p = world_->position(id);
+  return {to_double(p.x), to_double(p.y), to_double(world_->angle(id))};
+}
+
+}  // namespace rwd::bench

@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Rewind's 2D lane (fixed point) behind the Engine2D interface.
+#include <memory>
+#include <vector>
+
+#include "engine2d.h"
+#include "rewind/sim2d/world2d.h"
+
+namespace rwd::bench {
+
+class Rewind2DEngine final : public Engine2D {
+ public:
+  /// Substeps and relax iterations of World2DConfig; the rest stays default.
+  Rewind2DEngine(int substeps, int relax_iterations);
+
+  std::string name() const override { return "rewind"; }
+  std::string settings() const override;
+  bool is_default() const override;
+  bool build(const Scene2D& scene, std::string& error) override;
+  void step() override { world_->step(); }
+  Pose2D pose(uint32_t index) const override;
+
+ private:
+  sim2d::World2DConfig config_;
+  std::unique_ptr<sim2d::World2D> world_;
+  std::vector<sim2d::BodyId2D> ids_;
+};
+
+}  // namespace rwd::bench

@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: MIT
+#include "scene2d.h"
+
+#include <algorithm>
+
+namespace rwd::bench {
+
+namespace {
+
+constexpr int32_t kHalf = 500;  // mm: the pyramid boxes' half size
+
+// Adds a pyramid of `base` boxes whose bottom row is centred on x0 (mm),
+// resting on y = 0, and returns the index of its top box.
+uint32_t add_pyramid(Scene2D& s, int base, int32_t x0) {
+  for (int row = 0; row < base; ++row) {
+    const int n = base - row;
+    for (int i = 0; i < n; ++i) {
+      BoxBody2D b;
+      // Boxes touch side by side; each row is centred on the row below.
+      b.x = x0 + (2 * i - (n - 1)) * kHalf;
+      b.y = (2 * row + 1) * kHalf;
+      s.bodies.push_back(b);
+    }
+  }
+  return static_cast<uint32_t>(s.bodies.size() - 1);
+}
+
+void add_ground(Scene2D& s, int32_t half_width) {
+  BoxBody2D g;
+  g.kind = Kind2D::kStatic;
+  g.hx = half_width;
+  g.hy = 1000;
+  g.y = -1000;  // top face at y = 0
+  s.bodies.push_back(g);
+}
+
+}  // namespace
+
+Scene2D make_pyramid2d(int base) {
+  Scene2D s;
+  s.name = "large_pyramid";
+  s.size = base;
+  s.warmup_ticks = 60;
+  s.timed_ticks = 300;
+  add_ground(s, std::max(40, base) * 1000);
+  s.tops.push_back(add_pyramid(s, base, 0));
+  return s;
+}
+
+Scene2D make_pyramids2d(int count, int base) {
+  Scene2D s;
+  s.name = "pyramids";
+  s.size = count;
+  s.warmup_ticks = 60;
+  s.timed_ticks = 300;
+  // Two metres between neighbouring bases.
+  const int32_t pitch = (base + 2) * 2 * kHalf;
+  add_ground(s, (count * pitch) / 2 + 10000);
+  for (int p = 0; p < count; ++p) {
+    s.tops.push_back(add_pyramid(s, base, (2 * p - (count - 1)) * pitch / 2));
+  }
+  return s;
+}
+
+Scene2D make_tumbler2d(int count) {
+  Scene2D s;
+  s.name = "tumbler";
+  s.size = count;
+  s.warmup_ticks = 60;
+  s.timed_ticks = 600;
+  const int32_t cy = 10000;  // the container's centre and pivot
+  const int32_t w = 157;     // 0.05 pi rad/s, the classic tumbler's speed
+  // Four walls 1 m thick around a 19 m square inside; the corners overlap.
+  const int32_t walls[4][4] = {{500, 10000, 10000, 0},
+                               {500, 10000, -10000, 0},
+                               {10000, 500, 0, 10000},
+                               {10000, 500, 0, -10000}};
+  s.container_wall = static_cast<int32_t>(s.bodies.size());
+  s.container_half = 9500;
+  for (const auto& wall : walls) {
+    BoxBody2D b;
+    b.kind = Kind2D::kKinematic;
+    b.hx = wall[0];
+    b.hy = wall[1];
+    b.cx = wall[2];
+    b.cy = wall[3];
+    b.y = cy;
+    b.angular_velocity = w;
+    b.group = 0;
+    s.bodies.push_back(b);
+  }
+  // A square grid, 0.5 m pitch, centred in the container: 0.25 m gaps
+  // between the 0.25 m boxes, so nothing starts overlapping.
+  int side = 1;
+  while (side * side < count) ++side;
+  for (int i = 0; i < count; ++i) {
+    BoxBody2D b;
+    b.hx = 125;
+    b.hy = 125;
+    b.x = (2 * (i % side) - (side - 1)) * 250;
+    b.y = cy + (2 * (i / side) - (side - 1)) * 250;
+    s.bodies.push_back(b);
+  }
+  return s;
+}
+
+const std::vector<std::string>& scene2d_names() {
+  static const std::vector<std::string> names = {"large_pyramid", "pyramids", "tumbler"};
+  return names;
+}
+
+bool make_scene2d(const std::string& name, int size, Scene2D& out) {
+  if (name == "large_pyramid") {
+    out = make_pyramid2d(size > 0 ? size : 100);
+  } else if (name == "pyramids") {
+    out = make_pyramids2d(size > 0 ? size : 20, 10);
+  } else if (name == "tumbler") {
+    out = make_tumbler2d(size > 0 ? size : 800);
+  } else {
+    return false;
+  }
+  return true;
+}
+
+}  // namespace rwd::bench

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// One description of a 2D benchmark scene, built the same way on Rewind's
+// 2D lane and on Box2D 2.4. Every length, angle and velocity is an integer
+// count of thousandths (mm, mrad, mrad/s), so Rewind gets exact Q16.16
+// ratios and Box2D gets the nearest float: neither engine sees a value the
+// other was not given.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rwd::bench {
+
+enum class Kind2D : uint8_t { kStatic, kKinematic, kDynamic };
+
+/// A box body. Rewind turns static and kinematic bodies about their origin,
+/// so an offset box (cx, cy) is how a wall hangs off a shared pivot.
+struct BoxBody2D {
+  Kind2D kind = Kind2D::kDynamic;
+  int32_t hx = 500, hy = 500;    ///< half extents, mm
+  int32_t cx = 0, cy = 0;        ///< box centre in the body frame, mm
+  int32_t x = 0, y = 0;          ///< body origin, mm
+  int32_t angular_velocity = 0;  ///< mrad/s
+  /// Bodies with the same group >= 0 (same origin and velocity) become one
+  /// Box2D body with one fixture each; Rewind has one shape per body.
+  int32_t group = -1;
+};
+
+struct Scene2D {
+  std::string name;
+  int size = 0;            ///< the scene's own size knob (pyramid base, box count)
+  int warmup_ticks = 0;    ///< stepped before the timing starts
+  int timed_ticks = 0;     ///< stepped and timed
+  int32_t density = 1000;  ///< kg/m^2 x 1000, every dynamic box
+  int32_t friction = 600;  ///< x 1000, every box
+  std::vector<BoxBody2D> bodies;
+  /// Pyramids: the index of each pyramid's top box (its drift is the
+  /// accuracy figure). Empty for other scenes.
+  std::vector<uint32_t> tops;
+  /// Tumbler: the inner half extent of the container (mm) and the index of
+  /// one of its walls, whose angle turns body positions into its frame.
+  int32_t container_half = 0;
+  int32_t container_wall = -1;
+};
+
+/// Base `base` (base (base + 1) / 2 boxes of half size 0.5 m) on a static
+/// ground box; each row shifted half a box, boxes touching side by side.
+Scene2D make_pyramid2d(int base);
+/// `count` pyramids of base `base` side by side on one ground box.
+Scene2D make_pyramids2d(int count, int base);
+/// A hollow 20 m box (four 1 m thick walls) turning at 0.05 pi rad/s about
+/// its centre, filled at once with `count` boxes of half size 0.125 m.
+Scene2D make_tumbler2d(int count);
+/// The scenes by name ("large_pyramid", "pyramids", "tumbler") at their
+/// benchmark sizes; size 0 picks the default size.
+bool make_scene2d(const std::string& name, int size, Scene2D& out);
+/// The scene names make_scene2d() knows, in report order.
+const std::vector<std::string>& scene2d_names();
+
+}  // namespace rwd::bench

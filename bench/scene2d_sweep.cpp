@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: MIT
+// rewind-scene2d-sweep: runs the 2D scenes on Rewind's 2D lane and Box2D
+// 2.4 in one process (taking turns in blocks of ticks) and prints one CSV
+// row per (scene, engine setting) on stdout, progress on stderr.
+// scripts/charts2d.py turns the rows into charts and the 2D section of
+// docs/BENCHMARKS.md.
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "box2d_engine.h"
+#include "rewind2d_engine.h"
+#include "run2d.h"
+#include "scene2d.h"
+
+namespace {
+
+using rwd::bench::Box2DEngine;
+using rwd::bench::Engine2D;
+using rwd::bench::Rewind2DEngine;
+using rwd::bench::Scene2D;
+
+constexpr const char* kUsage =
+    "usage: rewind-scene2d-sweep [--scene NAME]... [--size N] [--ticks N] [--sweep] [--list]\n"
+    "  Runs each 2D scene (default: all) on Rewind (4 substeps, relax 1) and Box2D 2.4\n"
+    "  (8/3 and 4/2 velocity/position iterations), sleeping off in both. --sweep adds\n"
+    "  Rewind substeps 1, 2, 8 and Box2D velocity iterations 2, 16 (position 3) for\n"
+    "  the error-against-cost charts. --size replaces the scene's size, --ticks its\n"
+    "  timed ticks. Prints CSV on stdout, progress on stderr. Exit 0 on success, 1 if\n"
+    "  an engine refused a scene, 2 on bad usage.\n";
+
+std::vector<std::unique_ptr<Engine2D>> engines(bool sweep) {
+  std::vector<std::unique_ptr<Engine2D>> e;
+  for (int substeps : {1, 2, 4, 8}) {
+    if (sweep || substeps == 4) e.push_back(std::make_unique<Rewind2DEngine>(substeps, 1));
+  }
+  for (int velocity : {2, 4, 8, 16}) {
+    if (sweep || velocity == 8) e.push_back(std::make_unique<Box2DEngine>(velocity, 3));
+  }
+  e.push_back(std::make_unique<Box2DEngine>(4, 2));
+  return e;
+}
+
+const char* describe(const std::string& name) {
+  if (name == "large_pyramid") {
+    return "a pyramid of base N (N(N+1)/2 boxes of half size 0.5 m) on a static ground box";
+  }
+  if (name == "pyramids") return "N pyramids of base 10 (55 boxes each) side by side, 2 m apart";
+  return "a hollow 20 m box (4 walls, 1 m thick) turning at 0.05 pi rad/s about its centre, "
+         "filled at once with N boxes of half size 0.125 m";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> names;
+  int size = 0;
+  int ticks = 0;
+  bool sweep = false;
+  for (int i = 1; i < argc; ++i) {
+    const char* a = argv[i];
+    if (std::strcmp(a, "--scene") == 0 && i + 1 < argc) {
+      names.emplace_back(argv[++i]);
+    } else if (std::strcmp(a, "--size") == 0 && i + 1 < argc) {
+      size = std::atoi(argv[++i]);
+    } else if (std::strcmp(a, "--ticks") == 0 && i + 1 < argc) {
+      ticks = std::atoi(argv[++i]);
+    } else if (std::strcmp(a, "--sweep") == 0) {
+      sweep = true;
+    } else if (std::strcmp(a, "--list") == 0) {
+      for (const auto& n : rwd::bench::scene2d_names())
+        std::printf("%s: %s\n", n.c_str(), describe(n));
+      return 0;
+    } else if (std::strcmp(a, "--help") == 0 || std::strcmp(a, "-h") == 0) {
+      std::fputs(kUsage, stdout);
+      return 0;
+    } else {
+      std::fputs(kUsage, stderr);
+      return 2;
+    }
+  }
+  if (names.empty()) names = rwd::bench::scene2d_names();
+
+  std::printf(
+      "scene,size,bodies,engine,settings,default,warmup_ticks,timed_ticks,ms_per_step,"
+      "top_drift_m,top_creep_m,max_displacement_m,escaped\n");
+  int status = 0;
+  for (const std::string& name : names) {
+    Scene2D scene;
+    if (!rwd::bench::make_scene2d(name, size, scene)) {
+      std::fprintf(stderr, "rewind-scene2d-sweep: unknown scene '%s'\n", name.c_str());
+      return 2;
+    }
+    if (ticks > 0) scene.timed_ticks = ticks;
+    std::fprintf(stderr, "scene2d: %s %d (%zu bodies, %d + %d ticks)\n", name.c_str(), scene.size,
+                 scene.bodies.size(), scene.warmup_ticks, scene.timed_ticks);
+    const auto e = engines(sweep);
+    const auto results = rwd::bench::run_lockstep(scene, e);
+    for (size_t k = 0; k < e.size(); ++k) {
+      const auto& r = results[k];
+      if (!r.error.empty()) {
+        std::fprintf(stderr, "scene2d: %s\n", r.error.c_str());
+        status = 1;
+        continue;
+      }
+      std::printf("%s,%d,%zu,%s,%s,%d,%d,%d,%.6f,%.6f,%.6f,%.6f,%d\n", name.c_str(), scene.size,
+                  scene.bodies.size(), e[k]->name().c_str(), e[k]->settings().c_str(),
+                  e[k]->is_default() ? 1 : 0, scene.warmup_ticks, scene.timed_ticks, r.ms_per_step,
+                  r.top_drift_m, r.top_creep_m, r.max_displacement_m, r.escaped);
+      std::fprintf(stderr, "scene2d:   %-6s %-22s %8.3f ms/step\n", e[k]->name().c_str(),
+                   e[k]->settings().c_str(), r.ms_per_step);
+    }
+    std::fflush(stdout);
+  }
+  return status;
+}
