@@ -18,10 +18,10 @@ struct Run2DResult {
   /// Pyramids: the largest distance (m) of a top box from where it started,
   /// after warm-up and timed ticks.
   double top_drift_m = 0;
-  /// Pyramids: the largest distance (m) a top box moved during the timed
-  /// ticks (from the end of the warm-up): creep, free of the settling a
-  /// shape skin or a soft contact causes at the start.
-  double top_creep_m = 0;
+  /// Pyramids: the largest distance (m) of a top box from its start at any
+  /// timed tick. A tall pyramid sways and breathes; this catches the
+  /// extremes, which the end pose alone may miss.
+  double top_peak_m = 0;
   /// Pyramids: the largest distance (m) of any dynamic box from its start.
   double max_displacement_m = 0;
   /// Tumbler: dynamic boxes whose centre left the container.

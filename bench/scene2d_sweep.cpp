@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
 
   std::printf(
       "scene,size,bodies,engine,settings,default,warmup_ticks,timed_ticks,ms_per_step,"
-      "top_drift_m,top_creep_m,max_displacement_m,escaped\n");
+      "top_drift_m,top_peak_m,max_displacement_m,escaped\n");
   int status = 0;
   for (const std::string& name : names) {
     Scene2D scene;
@@ -109,7 +109,7 @@ int main(int argc, char** argv) {
       std::printf("%s,%d,%zu,%s,%s,%d,%d,%d,%.6f,%.6f,%.6f,%.6f,%d\n", name.c_str(), scene.size,
                   scene.bodies.size(), e[k]->name().c_str(), e[k]->settings().c_str(),
                   e[k]->is_default() ? 1 : 0, scene.warmup_ticks, scene.timed_ticks, r.ms_per_step,
-                  r.top_drift_m, r.top_creep_m, r.max_displacement_m, r.escaped);
+                  r.top_drift_m, r.top_peak_m, r.max_displacement_m, r.escaped);
       std::fprintf(stderr, "scene2d:   %-6s %-22s %8.3f ms/step\n", e[k]->name().c_str(),
                    e[k]->settings().c_str(), r.ms_per_step);
     }

@@ -276,6 +276,8 @@ def main():
       "`scenes/`, Bullet's only in `bench/`. ms/step is the wall time of the "
       "engine's step alone, averaged over the whole scene (sleeping bodies "
       "included, as in a game), unless a table says every body is awake.\n")
+    w("Rewind's 2D lane against Box2D 2.4 has [its own section](#2d-lane-rewind-and-box2d-24-on-"
+      "the-same-scenes) at the end of this page.\n")
     w("![pile cost](%s/%s)\n" % (rel_out, main_chart))
     pr, pl = ratios(pyramid), ratios(pile_awake)
     if pr and pl:

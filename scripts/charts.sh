@@ -1,21 +1,30 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 #
-# Measures Rewind against Bullet on the scene catalogue and writes the
-# charts and docs/BENCHMARKS.md from that one run.
+# Measures Rewind against Bullet on the scene catalogue, and Rewind's 2D
+# lane against Box2D 2.4 on the 2D scenes, and writes the charts and
+# docs/BENCHMARKS.md from that one run.
 #
-# Usage: scripts/charts.sh [--quick] [--no-build]
+# Usage: scripts/charts.sh [--quick] [--no-build] [--only 3d|2d]
 #   (default)   full sweep: every scene size at default settings on both
 #               engines, piles up to 8000 boxes, and at each scene's chart
 #               size Rewind's substeps 1-16, relax 0-4, contact_hertz 15-60
 #               and Bullet's iterations 5-40, steps per tick 1-4
+#               (2D: every scene, and the substeps/iterations sweep of the
+#               large pyramid and the small pyramids)
 #   --quick     piles up to 2000 boxes, substeps 2/4/8 and iterations 5/10/20
+#               (2D: 60 timed ticks a scene instead of 300-600)
 #   --no-build  use the binaries already in build/bench
+#   --only 3d   the 3D part alone (the 2D section is rebuilt from the stored
+#               docs/charts/2d_sweep.csv)
+#   --only 2d   the 2D part alone: rewind-scene2d-sweep, then
+#               scripts/charts2d.py replaces the 2D section of the document
 #
 # Steps: scripts/setup.sh (only installs what is missing), cmake --preset bench,
-# build rewind-scene-sweep, run it (progress on stderr), then
-# scripts/charts.py writes docs/charts/*.csv, *.dat, *.svg and
-# docs/BENCHMARKS.md. Exit codes: 0 done; 2 bad usage; otherwise the status
+# build rewind-scene-sweep and rewind-scene2d-sweep, run them (progress on
+# stderr), then scripts/charts.py writes docs/charts/*.csv, *.svg and
+# docs/BENCHMARKS.md, and scripts/charts2d.py docs/charts/2d_* and the 2D
+# section of docs/BENCHMARKS.md. Exit codes: 0 done; 2 bad usage; otherwise the status
 # of the failing step.
 set -euo pipefail
 
@@ -23,57 +32,96 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 mode=full
 build=1
+only=all
 usage() { sed -n '4,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"; }
 while (($#)); do
   case "$1" in
     --quick) mode=quick; shift ;;
     --no-build) build=0; shift ;;
+    --only)
+      [[ ${2:-} == 3d || ${2:-} == 2d ]] || { echo "charts: --only takes 3d or 2d" >&2; usage >&2; exit 2; }
+      only=$2; shift 2 ;;
     -h|--help) usage; exit 0 ;;
     *) echo "charts: unknown option '$1'" >&2; usage >&2; exit 2 ;;
   esac
 done
+run3d=1 run2d=1
+[[ $only == 2d ]] && run3d=0
+[[ $only == 3d ]] && run2d=0
 
 step() { echo "==> $*" >&2; }
 
+targets=()
+((run3d)) && targets+=(rewind-scene-sweep)
+((run2d)) && targets+=(rewind-scene2d-sweep)
 if ((build)); then
   step "system packages"
   bash scripts/setup.sh >&2
-  step "configure + build (preset bench, rewind-scene-sweep)"
+  step "configure + build (preset bench, ${targets[*]})"
   cmake --preset bench >/dev/null
-  cmake --build --preset bench -j2 --target rewind-scene-sweep >&2
+  cmake --build --preset bench -j2 --target "${targets[@]}" >&2
 fi
 
-sweep=build/bench/bin/rewind-scene-sweep
 out=docs/charts
+doc=docs/BENCHMARKS.md
 mkdir -p "$out"
-rm -f "$out"/*.csv "$out"/*.dat "$out"/*.svg
-start=$(date +%s)
 
-step "sweep ($mode): every scene, both engines"
-"$sweep" --mode "$mode" >"$out/sweep.csv"
+if ((run3d)); then
+  sweep=build/bench/bin/rewind-scene-sweep
+  # The 3D files only: the 2D ones (2d_*) belong to the 2D part below.
+  find "$out" -maxdepth 1 -type f \( -name '*.csv' -o -name '*.dat' -o -name '*.svg' \) \
+    ! -name '2d_*' -delete
+  start=$(date +%s)
 
-pyramid_sizes=(--size 10 --size 20 --size 30)
-[[ $mode == full ]] && pyramid_sizes+=(--size 40)
-pile_sizes=(--size 250 --size 500 --size 1000 --size 2000)
-[[ $mode == full ]] && pile_sizes+=(--size 4000 --size 8000)
-step "stacks, pyramids, card houses, log cabins, hull stacks and piles with every body awake (the solver without sleeping)"
-"$sweep" --mode defaults --no-sleep --scene pyramid "${pyramid_sizes[@]}" >"$out/awake.csv"
-"$sweep" --mode defaults --no-sleep --scene stack | tail -n +2 >>"$out/awake.csv"
-"$sweep" --mode defaults --no-sleep --scene card_house | tail -n +2 >>"$out/awake.csv"
-"$sweep" --mode defaults --no-sleep --scene log_cabin | tail -n +2 >>"$out/awake.csv"
-"$sweep" --mode defaults --no-sleep --scene hull_stack | tail -n +2 >>"$out/awake.csv"
-"$sweep" --mode defaults --no-sleep --scene mixed_pile | tail -n +2 >>"$out/awake.csv"
-"$sweep" --mode defaults --no-sleep --scene convex_pile | tail -n +2 >>"$out/awake.csv"
-"$sweep" --mode defaults --no-sleep --scene mesh_pile | tail -n +2 >>"$out/awake.csv"
-"$sweep" --mode defaults --no-sleep --scene field_boxes | tail -n +2 >>"$out/awake.csv"
-"$sweep" --mode defaults --no-sleep --scene pile "${pile_sizes[@]}" | tail -n +2 >>"$out/awake.csv"
+  step "sweep ($mode): every scene, both engines"
+  "$sweep" --mode "$mode" >"$out/sweep.csv"
 
-"$sweep" --list >"$out/catalog.txt"
-seconds=$(( $(date +%s) - start ))
+  pyramid_sizes=(--size 10 --size 20 --size 30)
+  [[ $mode == full ]] && pyramid_sizes+=(--size 40)
+  pile_sizes=(--size 250 --size 500 --size 1000 --size 2000)
+  [[ $mode == full ]] && pile_sizes+=(--size 4000 --size 8000)
+  step "stacks, pyramids, card houses, log cabins, hull stacks and piles with every body awake (the solver without sleeping)"
+  "$sweep" --mode defaults --no-sleep --scene pyramid "${pyramid_sizes[@]}" >"$out/awake.csv"
+  "$sweep" --mode defaults --no-sleep --scene stack | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults --no-sleep --scene card_house | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults --no-sleep --scene log_cabin | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults --no-sleep --scene hull_stack | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults --no-sleep --scene mixed_pile | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults --no-sleep --scene convex_pile | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults --no-sleep --scene mesh_pile | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults --no-sleep --scene field_boxes | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults --no-sleep --scene pile "${pile_sizes[@]}" | tail -n +2 >>"$out/awake.csv"
 
-step "charts and docs/BENCHMARKS.md"
-python3 scripts/charts.py --sweep "$out/sweep.csv" --awake "$out/awake.csv" \
-  --catalog "$out/catalog.txt" --out "$out" --doc docs/BENCHMARKS.md --mode "$mode" \
-  --seconds "$seconds"
-rm -f "$out/catalog.txt" "$out"/*.dat  # gnuplot input, rebuilt from the CSVs
-step "done in $(( $(date +%s) - start )) s: docs/BENCHMARKS.md, $out/"
+  "$sweep" --list >"$out/catalog.txt"
+  seconds=$(( $(date +%s) - start ))
+
+  step "charts and $doc"
+  python3 scripts/charts.py --sweep "$out/sweep.csv" --awake "$out/awake.csv" \
+    --catalog "$out/catalog.txt" --out "$out" --doc "$doc" --mode "$mode" \
+    --seconds "$seconds"
+  rm -f "$out/catalog.txt" "$out"/*.dat  # gnuplot input, rebuilt from the CSVs
+  step "3D done in $(( $(date +%s) - start )) s"
+fi
+
+if ((run2d)); then
+  sweep2d=build/bench/bin/rewind-scene2d-sweep
+  rm -f "$out"/2d_*
+  start=$(date +%s)
+  ticks=()
+  [[ $mode == quick ]] && ticks=(--ticks 60)
+  step "2D sweep ($mode): large pyramid, pyramids, tumbler on Rewind and Box2D 2.4"
+  "$sweep2d" --sweep --scene large_pyramid "${ticks[@]}" >"$out/2d_sweep.csv"
+  "$sweep2d" --sweep --scene pyramids "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
+  "$sweep2d" --scene tumbler "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
+  printf 'mode=%s\ndate=%s\nseconds=%s\n' "$mode" "$(date -u +%F)" \
+    "$(( $(date +%s) - start ))" >"$out/2d_run.txt"
+fi
+
+# The 2D section: from this run's CSV, or from the stored one after a 3D-only
+# run rewrote the document.
+if [[ -f $out/2d_sweep.csv && -f $out/2d_run.txt ]]; then
+  step "2D charts and the 2D section of $doc"
+  python3 scripts/charts2d.py --csv "$out/2d_sweep.csv" --run "$out/2d_run.txt" --out "$out" \
+    --doc "$doc"
+fi
+step "done: $doc, $out/"

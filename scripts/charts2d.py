@@ -1,0 +1,304 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Turns rewind-scene2d-sweep CSV into the 2D charts (gnuplot, SVG) and the
+2D section of docs/BENCHMARKS.md.
+
+Usage: scripts/charts2d.py --csv 2d_sweep.csv --run 2d_run.txt --out docs/charts
+                           --doc docs/BENCHMARKS.md
+
+Called by scripts/charts.sh. Every figure of the section comes from the CSV
+of one run; --run holds that run's mode, date and duration, so the section
+can be rebuilt from the stored CSV after scripts/charts.py has rewritten the
+rest of the document. The section sits between two marker comments and
+replaces the previous one. Needs python3 (standard library) and gnuplot.
+"""
+import argparse
+import csv
+import os
+import sys
+from collections import OrderedDict
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from charts import gnuplot, machine, quote  # noqa: E402  (shared with the 3D charts)
+
+BEGIN = "<!-- 2d:begin (scripts/charts2d.py) -->"
+END = "<!-- 2d:end -->"
+
+ENGINES = ("rewind", "box2d")
+COLOURS = {"rewind": "#1f77b4", "box2d": "#2ca02c"}
+
+
+def read_rows(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        for k in ("size", "bodies", "default", "warmup_ticks", "timed_ticks", "escaped"):
+            r[k] = int(r[k])
+        for k in ("ms_per_step", "top_drift_m", "top_peak_m", "max_displacement_m"):
+            r[k] = float(r[k])
+    return rows
+
+
+def read_run(path):
+    run = {}
+    with open(path) as f:
+        for line in f:
+            if "=" in line:
+                k, v = line.rstrip("\n").split("=", 1)
+                run[k] = v
+    return run
+
+
+def short(r):
+    """Chart label of a setting: s4 (Rewind substeps), v8p3 (Box2D iterations)."""
+    kv = dict(p.split("=") for p in r["settings"].split())
+    if r["engine"] == "rewind":
+        label = "s%s" % kv["substeps"] + ("" if kv["relax"] == "1" else ",r%s" % kv["relax"])
+    else:
+        label = "v%sp%s" % (kv["velocity"], kv["position"])
+    return label + (" (default)" if r["default"] else "")
+
+
+def error_chart(out_dir, scene, size, metric, label, rows):
+    """One point per setting, error against ms/step, both engines."""
+    name = "2d_%s_%d_%s" % (scene, size, metric)
+    data_path = os.path.join(out_dir, name + ".dat")
+    index = OrderedDict()
+    with open(data_path, "w") as f:
+        for engine in ENGINES:
+            pts = sorted((r for r in rows if r["engine"] == engine), key=lambda r: r["ms_per_step"])
+            if not pts:
+                continue
+            index[engine] = len(index)
+            f.write("# %s\n" % engine)
+            for r in pts:
+                # A log axis cannot show 0: an exact zero sits at 1 µm.
+                f.write("%g %g %s\n" % (r["ms_per_step"], max(r[metric], 1e-6), quote(short(r))))
+            f.write("\n\n")
+    values = [max(r[metric], 1e-6) for r in rows]
+    logy = max(values) / min(values) > 100
+    plots = []
+    for engine, i in index.items():
+        plots.append("%s index %d using 1:2 with points pt 7 ps 0.9 lc rgb %s title %s"
+                     % (quote(data_path), i, quote(COLOURS[engine]), quote(engine)))
+        plots.append("%s index %d using 1:2:3 with labels offset 0.6,0.5 left font ',8' "
+                     "tc rgb %s notitle" % (quote(data_path), i, quote(COLOURS[engine])))
+    svg = os.path.join(out_dir, name + ".svg")
+    gnuplot("\n".join([
+        "set terminal svg size 720,440 dynamic noenhanced font 'sans,11' background rgb 'white'",
+        "set output %s" % quote(svg),
+        "set title %s" % quote("2D %s %d: %s against cost (60 Hz, 1 thread, no sleeping)"
+                               % (scene, size, label)),
+        "set xlabel 'ms per step'",
+        "set ylabel %s" % quote(label),
+        "set logscale x",
+        "set logscale y" if logy else "unset logscale y",
+        "set grid",
+        "set key top right",
+        "plot " + ", \\\n  ".join(plots),
+    ]) + "\n")
+    os.remove(data_path)  # gnuplot input, rebuilt from the CSV
+    return os.path.basename(svg)
+
+
+def pick(rows, engine, settings=None):
+    for r in rows:
+        if r["engine"] != engine:
+            continue
+        if settings is None and r["default"]:
+            return r
+        if settings is not None and r["settings"] == settings:
+            return r
+    return None
+
+
+B2_FAST = "velocity=4 position=2"
+STOOD_M = 2.0  # m: two box widths of the pyramids' boxes
+
+
+def stood(r):
+    return "yes" if r["max_displacement_m"] < STOOD_M else "no"
+
+SCENE_TEXT = OrderedDict([
+    ("large_pyramid", "a pyramid of base N (N (N + 1) / 2 boxes of half size 0.5 m, each row "
+                      "shifted half a box, boxes touching side by side) on a static ground box"),
+    ("pyramids", "N pyramids of base 10 (55 boxes each) side by side, 2 m apart, on one ground box"),
+    ("tumbler", "a hollow 20 m box (four 1 m thick walls) turning at 0.05π rad/s about its centre, "
+                "filled at once with N boxes of half size 0.125 m (a 0.5 m grid). Rewind: four "
+                "kinematic bodies with offset boxes, their origins at the centre; Box2D: one "
+                "kinematic body with four fixtures"),
+])
+
+MAPPING = """\
+| Scene value | Rewind 2D lane (Q16.16 fixed point) | Box2D 2.4.1 (float, Debian's libbox2d-dev, 1 thread) |
+|---|---|---|
+| description | `bench/scene2d.h`: lengths, angles and speeds in thousandths; Rewind gets `Fx::ratio(v, 1000)` | the same integers ÷ 1000 as float |
+| density, friction, restitution | 1 kg/m², 0.6, 0 | the same (fixture values; Box2D's default friction is 0.2) |
+| friction combine | geometric mean √(μa μb) | Box2D's default b2MixFriction: √(μa μb) |
+| gravity, tick | (0, −10) m/s², 60 Hz | the same |
+| step | `World2DConfig{}`: 4 soft-step substeps, 1 relax pass | `b2World::Step(1/60, 8, 3)` (Box2D's defaults); 4/2 also reported |
+| sleeping | not implemented yet | off (`b2World::SetAllowSleeping(false)`), so both engines do the same work |
+| skin, slop | exact boxes; speculative contacts from 2 cm; slop 5 mm | polygons carry a 1 cm skin (b2_polygonRadius), so touching boxes start 2 cm inside each other's skin and push apart; slop 5 mm |
+| penetration recovery | soft contacts (contact_hertz 30, damping ratio 10), push-out capped at 3 m/s | Baumgarte position iterations (0.2, at most 0.2 m per step) |
+| fast bodies | speculative contacts | Box2D's default continuous collision of dynamic against static/kinematic bodies |
+| kinematic pivot | each body turns about its origin | the same |
+"""
+
+
+def section(rows, run, rel_out, out_dir):
+    d = []
+    w = d.append
+    w(BEGIN)
+    w("## 2D lane: Rewind and Box2D 2.4 on the same scenes\n")
+    w("Generated by `bash scripts/charts.sh%s` (the 2D part alone: `--only 2d`) on %s in %s s "
+      "(sweep and charts; building not counted). Machine: %s. Both engines step each scene in "
+      "one process, taking turns in blocks of 10 ticks, so that the load of a shared machine "
+      "falls on both alike: compare the ratios, not the absolute figures, and only within one run."
+      "\n" % (" --quick" if run.get("mode") == "quick" else "", run.get("date", "?"),
+              run.get("seconds", "?"), machine()))
+    w("Every scene is built from one description (`bench/scene2d.h`) on both engines: the same "
+      "sizes, densities (1 kg/m²), friction 0.6, restitution 0, gravity and 60 Hz ticks. Rewind "
+      "runs `World2DConfig{}` (4 substeps, relax 1); Box2D 2.4.1 its defaults (8 velocity, 3 "
+      "position iterations) and, as the cheaper setting, 4/2. **Sleeping is off in both**: "
+      "Rewind's 2D lane does not sleep yet, so Box2D's is switched off to do the same work. "
+      "ms/step is the mean wall time of the engine's step over the timed ticks, after a warm-up.\n")
+
+    lp = [r for r in rows if r["scene"] == "large_pyramid"]
+    rw, bx = pick(lp, "rewind"), pick(lp, "box2d")
+    if rw and bx:
+        ratio = rw["ms_per_step"] / bx["ms_per_step"]
+        w("**Large pyramid (base %d, %s boxes), Rewind ms/step ÷ Box2D 2.4 ms/step in this run: "
+          "%.2f** (target: within 1.5; %s).\n"
+          % (rw["size"], format(rw["bodies"] - 1, ","), ratio,
+             "met" if ratio <= 1.5 else "not met"))
+
+    w("### Cost, default settings\n")
+    w("| scene | size | bodies | ticks (warm-up + timed) | Rewind ms/step | Box2D 8/3 ms/step "
+      "| Rewind / Box2D 8/3 | Box2D 4/2 ms/step | Rewind / Box2D 4/2 |")
+    w("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for scene in SCENE_TEXT:
+        srows = [r for r in rows if r["scene"] == scene]
+        rw, bx, fast = pick(srows, "rewind"), pick(srows, "box2d"), pick(srows, "box2d", B2_FAST)
+        if not (rw and bx):
+            continue
+        cells = [scene, str(rw["size"]), str(rw["bodies"]),
+                 "%d + %d" % (rw["warmup_ticks"], rw["timed_ticks"]),
+                 "%.2f" % rw["ms_per_step"], "%.2f" % bx["ms_per_step"],
+                 "%.2f" % (rw["ms_per_step"] / bx["ms_per_step"])]
+        if fast:
+            cells += ["%.2f" % fast["ms_per_step"], "%.2f" % (rw["ms_per_step"] / fast["ms_per_step"])]
+        else:
+            cells += ["–", "–"]
+        w("| " + " | ".join(cells) + " |")
+    w("")
+
+    w("### Accuracy and stability, default settings\n")
+    w("Pyramids: *top drift* is how far the top box (the farthest of the tops, for many "
+      "pyramids) ended from where it started; *top peak* the largest such distance at any "
+      "timed tick (a tall pyramid sways and sinks under its load and Box2D's 1 cm skin pushes "
+      "touching boxes apart, so the end pose alone can miss the extremes); *max displacement* "
+      "the farthest any box ended from its start. A pyramid *stood* when no box ended %g m "
+      "(two box widths) or more from its start; one that fell shows metres. Tumbler: boxes "
+      "whose centre ended outside the container.\n" % STOOD_M)
+    w("| scene | size | engine | settings | top drift (m) | top peak (m) | max displacement (m) "
+      "| stood | escaped |")
+    w("|---|---:|---|---|---:|---:|---:|---|---:|")
+    for scene in SCENE_TEXT:
+        srows = [r for r in rows if r["scene"] == scene]
+        for r in (pick(srows, "rewind"), pick(srows, "box2d"), pick(srows, "box2d", B2_FAST)):
+            if r is None:
+                continue
+            pyr = scene != "tumbler"
+            w("| %s | %d | %s | %s | %s | %s | %s | %s | %s |" % (
+                scene, r["size"], r["engine"], r["settings"],
+                "%.4f" % r["top_drift_m"] if pyr else "–",
+                "%.4f" % r["top_peak_m"] if pyr else "–",
+                "%.4f" % r["max_displacement_m"] if pyr else "–",
+                stood(r) if pyr else "–",
+                "–" if pyr else str(r["escaped"])))
+    w("")
+
+    w("### Error against cost\n")
+    w("Each point is one setting: Rewind's substeps (s1, s2, s4, s8; relax 1) and Box2D's "
+      "velocity iterations (v2, v4, v8, v16; position iterations 3), plus Box2D 4/2 (v4p2). "
+      "All settings of a scene ran in the same process, in turns.\n")
+    for scene in ("large_pyramid", "pyramids"):
+        srows = [r for r in rows if r["scene"] == scene]
+        if len(srows) <= 3:
+            continue  # no sweep for this scene in this run
+        size = srows[0]["size"]
+        for metric, label in (("top_peak_m", "top box's largest drift (m)"),
+                              ("max_displacement_m", "max displacement of any box (m)")):
+            svg = error_chart(out_dir, scene, size, metric, label, srows)
+            print("charts2d: %s" % svg, file=sys.stderr)
+            w("#### %s %d: %s\n" % (scene, size, label))
+            w("![2D %s %d %s](%s/%s)\n" % (scene, size, metric, rel_out, svg))
+        w("| engine | settings | ms/step | top drift (m) | top peak (m) | max displacement (m) "
+          "| stood |")
+        w("|---|---|---:|---:|---:|---:|---|")
+        for r in srows:
+            w("| %s | %s%s | %.2f | %.4f | %.4f | %.4f | %s |" % (
+                r["engine"], r["settings"], " (default)" if r["default"] else "",
+                r["ms_per_step"], r["top_drift_m"], r["top_peak_m"], r["max_displacement_m"],
+                stood(r)))
+        w("")
+
+    w("### Not measured yet\n")
+    w("Two measurements of the 2D comparison are not in this run, and nothing here stands in "
+      "for them: the **joint grid** (it comes with a joint-grid scene on both engines, now that "
+      "the lane has joints) and **raycasts per second** (they come with the lane's queries: "
+      "`World2D` has no raycast yet).\n")
+
+    w("### 2D scenes\n")
+    w("| scene | what |")
+    w("|---|---|")
+    for k, v in SCENE_TEXT.items():
+        w("| %s | %s |" % (k, v))
+    w("")
+    w("### 2D parameter mapping\n")
+    w(MAPPING)
+    w("### Reproducing the 2D section\n")
+    w("```")
+    w("bash scripts/charts.sh --only 2d           # this section and its charts alone")
+    w("build/bench/bin/rewind-scene2d-sweep --help")
+    w("build/bench/bin/rewind_scene2d_bench       # Google Benchmark: the same scenes, one engine at a time")
+    w("```")
+    w("The CSV behind every 2D table and chart is `%s/2d_sweep.csv`." % rel_out)
+    w(END)
+    return "\n".join(d) + "\n"
+
+
+def splice(doc_path, text):
+    """Replaces the section between the markers, or appends it."""
+    old = ""
+    if os.path.exists(doc_path):
+        with open(doc_path) as f:
+            old = f.read()
+    if BEGIN in old and END in old:
+        head, rest = old.split(BEGIN, 1)
+        tail = rest.split(END, 1)[1].lstrip("\n")
+        new = head + text + ("\n" + tail if tail else "")
+    else:
+        new = old.rstrip("\n") + ("\n\n" if old else "") + text
+    with open(doc_path, "w") as f:
+        f.write(new)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--csv", required=True, help="rewind-scene2d-sweep output")
+    ap.add_argument("--run", required=True, help="key=value lines: mode, date, seconds")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--doc", required=True)
+    args = ap.parse_args()
+    rows = read_rows(args.csv)
+    run = read_run(args.run)
+    os.makedirs(args.out, exist_ok=True)
+    doc_dir = os.path.dirname(os.path.abspath(args.doc))
+    rel_out = os.path.relpath(os.path.abspath(args.out), doc_dir)
+    splice(args.doc, section(rows, run, rel_out, args.out))
+    print("charts2d: wrote the 2D section of %s" % args.doc, file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
