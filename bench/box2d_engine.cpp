@@ -16,13 +16,14 @@ float milli(int32_t v) {
 
 }  // namespace
 
-Box2DEngine::Box2DEngine(int velocity_iterations, int position_iterations)
-    : velocity_(velocity_iterations), position_(position_iterations) {}
+Box2DEngine::Box2DEngine(int velocity_iterations, int position_iterations, bool continuous)
+    : velocity_(velocity_iterations), position_(position_iterations), continuous_(continuous) {}
 
 Box2DEngine::~Box2DEngine() = default;
 
 std::string Box2DEngine::settings() const {
-  return "velocity=" + std::to_string(velocity_) + " position=" + std::to_string(position_);
+  return "velocity=" + std::to_string(velocity_) + " position=" + std::to_string(position_) +
+         (continuous_ ? "" : " continuous=0");
 }
 
 bool Box2DEngine::build(const Scene2D& scene, std::string& /*error*/) {
@@ -30,6 +31,7 @@ bool Box2DEngine::build(const Scene2D& scene, std::string& /*error*/) {
   world_ = std::make_unique<b2World>(b2Vec2(0.0f, -10.0f));
   // Rewind's 2D lane does not sleep yet: both engines keep every body awake.
   world_->SetAllowSleeping(false);
+  world_->SetContinuousPhysics(continuous_);
   std::map<int32_t, b2Body*> groups;
   for (const BoxBody2D& b : scene.bodies) {
     b2Body* body = nullptr;

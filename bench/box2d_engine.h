@@ -15,14 +15,15 @@ namespace rwd::bench {
 class Box2DEngine final : public Engine2D {
  public:
   /// b2World::Step's iteration counts (Box2D's defaults: 8 and 3).
-  Box2DEngine(int velocity_iterations, int position_iterations);
+  /// `continuous`: b2World::SetContinuousPhysics (Box2D's default, on).
+  Box2DEngine(int velocity_iterations, int position_iterations, bool continuous = true);
   ~Box2DEngine() override;
   Box2DEngine(const Box2DEngine&) = delete;
   Box2DEngine& operator=(const Box2DEngine&) = delete;
 
   std::string name() const override { return "box2d"; }
   std::string settings() const override;
-  bool is_default() const override { return velocity_ == 8 && position_ == 3; }
+  bool is_default() const override { return velocity_ == 8 && position_ == 3 && continuous_; }
   bool build(const Scene2D& scene, std::string& error) override;
   void step() override;
   Pose2D pose(uint32_t index) const override;
@@ -30,6 +31,7 @@ class Box2DEngine final : public Engine2D {
  private:
   int velocity_;
   int position_;
+  bool continuous_;
   std::unique_ptr<b2World> world_;
   std::vector<b2Body*> bodies_;  // per scene body; grouped bodies share one
 };

@@ -24,23 +24,33 @@ using rwd::bench::Rewind2DEngine;
 using rwd::bench::Scene2D;
 
 constexpr const char* kUsage =
-    "usage: rewind-scene2d-sweep [--scene NAME]... [--size N] [--ticks N] [--sweep] [--list]\n"
+    "usage: rewind-scene2d-sweep [--scene NAME]... [--size N] [--ticks N] [--sweep]\n"
+    "                            [--engine rewind|box2d|both] [--list]\n"
     "  Runs each 2D scene (default: all) on Rewind (4 substeps, relax 1) and Box2D 2.4\n"
-    "  (8/3 and 4/2 velocity/position iterations), sleeping off in both. --sweep adds\n"
+    "  (8/3 and 4/2 velocity/position iterations; 8/3 also without continuous\n"
+    "  collision), sleeping off in both. --sweep adds\n"
     "  Rewind substeps 1, 2, 8 and Box2D velocity iterations 2, 16 (position 3) for\n"
     "  the error-against-cost charts. --size replaces the scene's size, --ticks its\n"
-    "  timed ticks. Prints CSV on stdout, progress on stderr. Exit 0 on success, 1 if\n"
+    "  timed ticks. --engine runs one engine alone (for profiling). Prints CSV on stdout, progress "
+    "on stderr. Exit 0 on success, 1 if\n"
     "  an engine refused a scene, 2 on bad usage.\n";
 
-std::vector<std::unique_ptr<Engine2D>> engines(bool sweep) {
+std::vector<std::unique_ptr<Engine2D>> engines(bool sweep, const std::string& which) {
   std::vector<std::unique_ptr<Engine2D>> e;
+  const bool rewind = which != "box2d", box2d = which != "rewind";
   for (int substeps : {1, 2, 4, 8}) {
-    if (sweep || substeps == 4) e.push_back(std::make_unique<Rewind2DEngine>(substeps, 1));
+    if (rewind && (sweep || substeps == 4)) {
+      e.push_back(std::make_unique<Rewind2DEngine>(substeps, 1));
+    }
   }
   for (int velocity : {2, 4, 8, 16}) {
-    if (sweep || velocity == 8) e.push_back(std::make_unique<Box2DEngine>(velocity, 3));
+    if (box2d && (sweep || velocity == 8)) e.push_back(std::make_unique<Box2DEngine>(velocity, 3));
   }
-  e.push_back(std::make_unique<Box2DEngine>(4, 2));
+  if (box2d) {
+    e.push_back(std::make_unique<Box2DEngine>(4, 2));
+    // Without Box2D's continuous collision: how much of its step that is.
+    e.push_back(std::make_unique<Box2DEngine>(8, 3, false));
+  }
   return e;
 }
 
@@ -60,6 +70,7 @@ int main(int argc, char** argv) {
   int size = 0;
   int ticks = 0;
   bool sweep = false;
+  std::string which = "both";
   for (int i = 1; i < argc; ++i) {
     const char* a = argv[i];
     if (std::strcmp(a, "--scene") == 0 && i + 1 < argc) {
@@ -68,6 +79,12 @@ int main(int argc, char** argv) {
       size = std::atoi(argv[++i]);
     } else if (std::strcmp(a, "--ticks") == 0 && i + 1 < argc) {
       ticks = std::atoi(argv[++i]);
+    } else if (std::strcmp(a, "--engine") == 0 && i + 1 < argc) {
+      which = argv[++i];
+      if (which != "rewind" && which != "box2d" && which != "both") {
+        std::fputs(kUsage, stderr);
+        return 2;
+      }
     } else if (std::strcmp(a, "--sweep") == 0) {
       sweep = true;
     } else if (std::strcmp(a, "--list") == 0) {
@@ -97,7 +114,7 @@ int main(int argc, char** argv) {
     if (ticks > 0) scene.timed_ticks = ticks;
     std::fprintf(stderr, "scene2d: %s %d (%zu bodies, %d + %d ticks)\n", name.c_str(), scene.size,
                  scene.bodies.size(), scene.warmup_ticks, scene.timed_ticks);
-    const auto e = engines(sweep);
+    const auto e = engines(sweep, which);
     const auto results = rwd::bench::run_lockstep(scene, e);
     for (size_t k = 0; k < e.size(); ++k) {
       const auto& r = results[k];

@@ -56,6 +56,8 @@ def short(r):
         label = "s%s" % kv["substeps"] + ("" if kv["relax"] == "1" else ",r%s" % kv["relax"])
     else:
         label = "v%sp%s" % (kv["velocity"], kv["position"])
+        if kv.get("continuous") == "0":
+            label += ",no-ccd"
     return label + (" (default)" if r["default"] else "")
 
 
@@ -113,6 +115,7 @@ def pick(rows, engine, settings=None):
 
 
 B2_FAST = "velocity=4 position=2"
+B2_NO_CCD = "velocity=8 position=3 continuous=0"
 STOOD_M = 2.0  # m: two box widths of the pyramids' boxes
 
 
@@ -159,7 +162,9 @@ def section(rows, run, rel_out, out_dir):
     w("Every scene is built from one description (`bench/scene2d.h`) on both engines: the same "
       "sizes, densities (1 kg/m²), friction 0.6, restitution 0, gravity and 60 Hz ticks. Rewind "
       "runs `World2DConfig{}` (4 substeps, relax 1); Box2D 2.4.1 its defaults (8 velocity, 3 "
-      "position iterations) and, as the cheaper setting, 4/2. **Sleeping is off in both**: "
+      "position iterations) and, as the cheaper setting, 4/2; 8/3 also runs with Box2D's "
+      "continuous collision off (*no CCD*; Box2D's default is on, Rewind's speculative contacts "
+      "are always on) to show that part of Box2D's step. **Sleeping is off in both**: "
       "Rewind's 2D lane does not sleep yet, so Box2D's is switched off to do the same work. "
       "ms/step is the mean wall time of the engine's step over the timed ticks, after a warm-up.\n")
 
@@ -174,21 +179,25 @@ def section(rows, run, rel_out, out_dir):
 
     w("### Cost, default settings\n")
     w("| scene | size | bodies | ticks (warm-up + timed) | Rewind ms/step | Box2D 8/3 ms/step "
-      "| Rewind / Box2D 8/3 | Box2D 4/2 ms/step | Rewind / Box2D 4/2 |")
-    w("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+      "| Rewind / Box2D 8/3 | Box2D 4/2 ms/step | Rewind / Box2D 4/2 | Box2D 8/3 no CCD ms/step "
+      "| Rewind / Box2D 8/3 no CCD |")
+    w("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for scene in SCENE_TEXT:
         srows = [r for r in rows if r["scene"] == scene]
         rw, bx, fast = pick(srows, "rewind"), pick(srows, "box2d"), pick(srows, "box2d", B2_FAST)
+        no_ccd = pick(srows, "box2d", B2_NO_CCD)
         if not (rw and bx):
             continue
         cells = [scene, str(rw["size"]), str(rw["bodies"]),
                  "%d + %d" % (rw["warmup_ticks"], rw["timed_ticks"]),
                  "%.2f" % rw["ms_per_step"], "%.2f" % bx["ms_per_step"],
                  "%.2f" % (rw["ms_per_step"] / bx["ms_per_step"])]
-        if fast:
-            cells += ["%.2f" % fast["ms_per_step"], "%.2f" % (rw["ms_per_step"] / fast["ms_per_step"])]
-        else:
-            cells += ["–", "–"]
+        for other in (fast, no_ccd):
+            if other:
+                cells += ["%.2f" % other["ms_per_step"],
+                          "%.2f" % (rw["ms_per_step"] / other["ms_per_step"])]
+            else:
+                cells += ["–", "–"]
         w("| " + " | ".join(cells) + " |")
     w("")
 
@@ -205,7 +214,8 @@ def section(rows, run, rel_out, out_dir):
     w("|---|---:|---|---|---:|---:|---:|---|---:|")
     for scene in SCENE_TEXT:
         srows = [r for r in rows if r["scene"] == scene]
-        for r in (pick(srows, "rewind"), pick(srows, "box2d"), pick(srows, "box2d", B2_FAST)):
+        for r in (pick(srows, "rewind"), pick(srows, "box2d"), pick(srows, "box2d", B2_FAST),
+                  pick(srows, "box2d", B2_NO_CCD)):
             if r is None:
                 continue
             pyr = scene != "tumbler"
@@ -220,7 +230,8 @@ def section(rows, run, rel_out, out_dir):
 
     w("### Error against cost\n")
     w("Each point is one setting: Rewind's substeps (s1, s2, s4, s8; relax 1) and Box2D's "
-      "velocity iterations (v2, v4, v8, v16; position iterations 3), plus Box2D 4/2 (v4p2). "
+      "velocity iterations (v2, v4, v8, v16; position iterations 3), plus Box2D 4/2 (v4p2) and "
+      "8/3 without continuous collision (no-ccd). "
       "All settings of a scene ran in the same process, in turns.\n")
     for scene in ("large_pyramid", "pyramids"):
         srows = [r for r in rows if r["scene"] == scene]
