@@ -33,7 +33,7 @@ bool Box2DEngine::build(const Scene2D& scene, std::string& /*error*/) {
   world_->SetAllowSleeping(false);
   world_->SetContinuousPhysics(continuous_);
   std::map<int32_t, b2Body*> groups;
-  for (const BoxBody2D& b : scene.bodies) {
+  for (const BodyDesc2D& b : scene.bodies) {
     b2Body* body = nullptr;
     if (b.group >= 0) {
       auto it = groups.find(b.group);
@@ -52,13 +52,21 @@ bool Box2DEngine::build(const Scene2D& scene, std::string& /*error*/) {
     }
     b2PolygonShape box;
     box.SetAsBox(milli(b.hx), milli(b.hy), b2Vec2(milli(b.cx), milli(b.cy)), 0.0f);
+    b2CircleShape circle;
+    circle.m_radius = milli(b.radius);
+    circle.m_p.Set(milli(b.cx), milli(b.cy));
     b2FixtureDef fixture;
-    fixture.shape = &box;
+    fixture.shape = b.radius > 0 ? static_cast<const b2Shape*>(&circle) : &box;
     fixture.density = b.kind == Kind2D::kDynamic ? milli(scene.density) : 0.0f;
     fixture.friction = milli(scene.friction);
     fixture.restitution = 0.0f;
     body->CreateFixture(&fixture);
     bodies_.push_back(body);
+  }
+  for (const RevoluteDesc2D& j : scene.joints) {
+    b2RevoluteJointDef def;
+    def.Initialize(bodies_[j.a], bodies_[j.b], b2Vec2(milli(j.x), milli(j.y)));
+    world_->CreateJoint(&def);
   }
   return true;
 }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "rewind2d_engine.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 
@@ -40,10 +41,12 @@ bool Rewind2DEngine::is_default() const {
 bool Rewind2DEngine::build(const Scene2D& scene, std::string& error) {
   sim2d::World2DConfig config = config_;
   config.tick_hz = 60;
-  config.max_bodies = static_cast<uint32_t>(scene.bodies.size()) + 16;
+  // Joints share the body capacity (create_joint refuses beyond it).
+  config.max_bodies =
+      static_cast<uint32_t>(std::max(scene.bodies.size(), scene.joints.size())) + 16;
   world_ = std::make_unique<sim2d::World2D>(config);
   ids_.clear();
-  for (const BoxBody2D& b : scene.bodies) {
+  for (const BodyDesc2D& b : scene.bodies) {
     auto shape = sim2d::make_box(milli(b.hx), milli(b.hy), Vec2{milli(b.cx), milli(b.cy)}, Fx());
     if (!shape.ok()) {
       error = "rewind: box refused";
@@ -61,10 +64,21 @@ bool Rewind2DEngine::build(const Scene2D& scene, std::string& error) {
     def.material.restitution = Fx();
     auto id = world_->create_body(def);
     if (!id.ok()) {
-      error = "rewind: body " + std::to_string(ids_.size()) + " refused";
+      error = "rewind: body " + std::to_string(ids_.size()) + " refused: " + id.status().message();
       return false;
     }
     ids_.push_back(*id);
+  }
+  for (const RevoluteDesc2D& j : scene.joints) {
+    sim2d::JointDef2D def;
+    def.type = sim2d::JointType2D::kRevolute;
+    def.body_a = ids_[j.a];
+    def.body_b = ids_[j.b];
+    def.anchor_a = def.anchor_b = Vec2{milli(j.x), milli(j.y)};
+    if (auto id = world_->create_joint(def); !id.ok()) {
+      error = "rewind: joint refused: " + id.status().message();
+      return false;
+    }
   }
   return true;
 }

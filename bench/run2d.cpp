@@ -24,6 +24,11 @@ void measure(const Scene2D& scene, const Engine2D& engine, const std::vector<Pos
       r.max_displacement_m = std::max(r.max_displacement_m, distance(engine.pose(i), start[i]));
     }
   }
+  for (const RevoluteDesc2D& j : scene.joints) {
+    const double rest = distance(start[j.a], start[j.b]);
+    r.max_stretch_m =
+        std::max(r.max_stretch_m, distance(engine.pose(j.a), engine.pose(j.b)) - rest);
+  }
   if (scene.container_wall >= 0) {
     // Into the container's frame: about its pivot, by the wall's angle.
     const Pose2D pivot = engine.pose(static_cast<uint32_t>(scene.container_wall));

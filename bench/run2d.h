@@ -24,6 +24,10 @@ struct Run2DResult {
   double top_peak_m = 0;
   /// Pyramids: the largest distance (m) of any dynamic box from its start.
   double max_displacement_m = 0;
+  /// Joint grid: the largest stretch (m) of a joint at the end: how much
+  /// farther apart two joined bodies are than they started (a revolute
+  /// joint at their midpoint holds them at most that far apart).
+  double max_stretch_m = 0;
   /// Tumbler: dynamic boxes whose centre left the container.
   int escaped = 0;
   std::string error;  ///< non-empty: the engine refused the scene

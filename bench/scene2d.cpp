@@ -15,7 +15,7 @@ uint32_t add_pyramid(Scene2D& s, int base, int32_t x0) {
   for (int row = 0; row < base; ++row) {
     const int n = base - row;
     for (int i = 0; i < n; ++i) {
-      BoxBody2D b;
+      BodyDesc2D b;
       // Boxes touch side by side; each row is centred on the row below.
       b.x = x0 + (2 * i - (n - 1)) * kHalf;
       b.y = (2 * row + 1) * kHalf;
@@ -26,7 +26,7 @@ uint32_t add_pyramid(Scene2D& s, int base, int32_t x0) {
 }
 
 void add_ground(Scene2D& s, int32_t half_width) {
-  BoxBody2D g;
+  BodyDesc2D g;
   g.kind = Kind2D::kStatic;
   g.hx = half_width;
   g.hy = 1000;
@@ -78,7 +78,7 @@ Scene2D make_tumbler2d(int count) {
   s.container_wall = static_cast<int32_t>(s.bodies.size());
   s.container_half = 9500;
   for (const auto& wall : walls) {
-    BoxBody2D b;
+    BodyDesc2D b;
     b.kind = Kind2D::kKinematic;
     b.hx = wall[0];
     b.hy = wall[1];
@@ -94,7 +94,7 @@ Scene2D make_tumbler2d(int count) {
   int side = 1;
   while (side * side < count) ++side;
   for (int i = 0; i < count; ++i) {
-    BoxBody2D b;
+    BodyDesc2D b;
     b.hx = 125;
     b.hy = 125;
     b.x = (2 * (i % side) - (side - 1)) * 250;
@@ -104,8 +104,38 @@ Scene2D make_tumbler2d(int count) {
   return s;
 }
 
+Scene2D make_joint_grid2d(int n) {
+  Scene2D s;
+  s.name = "joint_grid";
+  s.size = n;
+  s.warmup_ticks = 60;
+  s.timed_ticks = 180;  // 10,000 bodies and 19,800 joints: the slowest scene
+  const int32_t pitch = 1000;
+  auto index = [n](int column, int row) { return static_cast<uint32_t>(column * n + row); };
+  for (int k = 0; k < n; ++k) {
+    for (int i = 0; i < n; ++i) {
+      BodyDesc2D b;
+      const bool anchor = i == 0 && k >= n / 2 - 3 && k <= n / 2 + 3;
+      b.kind = anchor ? Kind2D::kStatic : Kind2D::kDynamic;
+      b.radius = 400;
+      b.x = k * pitch;
+      b.y = -i * pitch;
+      s.bodies.push_back(b);
+      if (i > 0) {
+        s.joints.push_back({index(k, i - 1), index(k, i), k * pitch, -i * pitch + pitch / 2});
+      }
+      // Two static anchors side by side need no joint (Rewind refuses one).
+      if (k > 0 && !(anchor && s.bodies[index(k - 1, i)].kind == Kind2D::kStatic)) {
+        s.joints.push_back({index(k - 1, i), index(k, i), k * pitch - pitch / 2, -i * pitch});
+      }
+    }
+  }
+  return s;
+}
+
 const std::vector<std::string>& scene2d_names() {
-  static const std::vector<std::string> names = {"large_pyramid", "pyramids", "tumbler"};
+  static const std::vector<std::string> names = {"large_pyramid", "pyramids", "tumbler",
+                                                 "joint_grid"};
   return names;
 }
 
@@ -116,6 +146,8 @@ bool make_scene2d(const std::string& name, int size, Scene2D& out) {
     out = make_pyramids2d(size > 0 ? size : 20, 10);
   } else if (name == "tumbler") {
     out = make_tumbler2d(size > 0 ? size : 800);
+  } else if (name == "joint_grid") {
+    out = make_joint_grid2d(size > 0 ? size : 100);
   } else {
     return false;
   }

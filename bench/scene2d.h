@@ -13,17 +13,26 @@ namespace rwd::bench {
 
 enum class Kind2D : uint8_t { kStatic, kKinematic, kDynamic };
 
-/// A box body. Rewind turns static and kinematic bodies about their origin,
-/// so an offset box (cx, cy) is how a wall hangs off a shared pivot.
-struct BoxBody2D {
+/// A body with one box or circle. Rewind turns static and kinematic bodies
+/// about their origin, so an offset box (cx, cy) is how a wall hangs off a
+/// shared pivot.
+struct BodyDesc2D {
   Kind2D kind = Kind2D::kDynamic;
+  int32_t radius = 0;            ///< mm; > 0: a circle centred at (cx, cy) instead of the box
   int32_t hx = 500, hy = 500;    ///< half extents, mm
-  int32_t cx = 0, cy = 0;        ///< box centre in the body frame, mm
+  int32_t cx = 0, cy = 0;        ///< shape centre in the body frame, mm
   int32_t x = 0, y = 0;          ///< body origin, mm
   int32_t angular_velocity = 0;  ///< mrad/s
   /// Bodies with the same group >= 0 (same origin and velocity) become one
   /// Box2D body with one fixture each; Rewind has one shape per body.
   int32_t group = -1;
+};
+
+/// A revolute joint between bodies a and b about a world point (mm).
+struct RevoluteDesc2D {
+  uint32_t a = 0;
+  uint32_t b = 0;
+  int32_t x = 0, y = 0;
 };
 
 struct Scene2D {
@@ -33,7 +42,8 @@ struct Scene2D {
   int timed_ticks = 0;     ///< stepped and timed
   int32_t density = 1000;  ///< kg/m^2 x 1000, every dynamic box
   int32_t friction = 600;  ///< x 1000, every box
-  std::vector<BoxBody2D> bodies;
+  std::vector<BodyDesc2D> bodies;
+  std::vector<RevoluteDesc2D> joints;
   /// Pyramids: the index of each pyramid's top box (its drift is the
   /// accuracy figure). Empty for other scenes.
   std::vector<uint32_t> tops;
@@ -51,7 +61,12 @@ Scene2D make_pyramids2d(int count, int base);
 /// A hollow 20 m box (four 1 m thick walls) turning at 0.05 pi rad/s about
 /// its centre, filled at once with `count` boxes of half size 0.125 m.
 Scene2D make_tumbler2d(int count);
-/// The scenes by name ("large_pyramid", "pyramids", "tumbler") at their
+/// An n x n grid of circles (radius 0.4 m, 1 m apart), each joined to its
+/// upper and left neighbours by revolute joints at the midpoint, hanging
+/// from the 7 middle circles of the top row (static).
+Scene2D make_joint_grid2d(int n);
+/// The scenes by name ("large_pyramid", "pyramids", "tumbler",
+/// "joint_grid") at their
 /// benchmark sizes; size 0 picks the default size.
 bool make_scene2d(const std::string& name, int size, Scene2D& out);
 /// The scene names make_scene2d() knows, in report order.

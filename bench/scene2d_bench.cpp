@@ -51,7 +51,7 @@ void BM_Box2D(benchmark::State& state, const char* name) {
 }
 
 // Sizes: the large pyramid's base, the number of base-10 pyramids, the
-// tumbler's boxes. Rewind: substeps (relax 1); Box2D: velocity and position
+// tumbler's boxes, the joint grid's side. Rewind: substeps (relax 1); Box2D: velocity and position
 // iterations. 300 timed ticks per scene.
 BENCHMARK_CAPTURE(BM_Rewind, large_pyramid, "large_pyramid")
     ->Args({100, 4})
@@ -78,6 +78,15 @@ BENCHMARK_CAPTURE(BM_Rewind, tumbler, "tumbler")
 BENCHMARK_CAPTURE(BM_Box2D, tumbler, "tumbler")
     ->Args({800, 8, 3})
     ->Args({800, 4, 2})
+    ->Iterations(300)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Rewind, joint_grid, "joint_grid")
+    ->Args({100, 4})
+    ->Iterations(300)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Box2D, joint_grid, "joint_grid")
+    ->Args({100, 8, 3})
+    ->Args({100, 4, 2})
     ->Iterations(300)
     ->Unit(benchmark::kMillisecond);
 

@@ -13,7 +13,7 @@
 #               (2D: every scene, and the substeps/iterations sweep of the
 #               large pyramid and the small pyramids)
 #   --quick     piles up to 2000 boxes, substeps 2/4/8 and iterations 5/10/20
-#               (2D: 60 timed ticks a scene instead of 300-600)
+#               (2D: 60 timed ticks a scene instead of 180-600)
 #   --no-build  use the binaries already in build/bench
 #   --only 3d   the 3D part alone (the 2D section is rebuilt from the stored
 #               docs/charts/2d_sweep.csv)
@@ -109,10 +109,11 @@ if ((run2d)); then
   start=$(date +%s)
   ticks=()
   [[ $mode == quick ]] && ticks=(--ticks 60)
-  step "2D sweep ($mode): large pyramid, pyramids, tumbler on Rewind and Box2D 2.4"
+  step "2D sweep ($mode): large pyramid, pyramids, tumbler, joint grid on Rewind and Box2D 2.4"
   "$sweep2d" --sweep --scene large_pyramid "${ticks[@]}" >"$out/2d_sweep.csv"
   "$sweep2d" --sweep --scene pyramids "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
   "$sweep2d" --scene tumbler "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
+  "$sweep2d" --scene joint_grid "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
   printf 'mode=%s\ndate=%s\nseconds=%s\n' "$mode" "$(date -u +%F)" \
     "$(( $(date +%s) - start ))" >"$out/2d_run.txt"
 fi
