@@ -37,11 +37,11 @@ struct RevoluteDesc2D {
 
 struct Scene2D {
   std::string name;
-  int size = 0;            ///< the scene's own size knob (pyramid base, box count)
+  int size = 0;            ///< the scene's size knob (base, pyramids, boxes, grid side)
   int warmup_ticks = 0;    ///< stepped before the timing starts
   int timed_ticks = 0;     ///< stepped and timed
-  int32_t density = 1000;  ///< kg/m^2 x 1000, every dynamic box
-  int32_t friction = 600;  ///< x 1000, every box
+  int32_t density = 1000;  ///< kg/m^2 x 1000, every dynamic body
+  int32_t friction = 600;  ///< x 1000, every body
   std::vector<BodyDesc2D> bodies;
   std::vector<RevoluteDesc2D> joints;
   /// Pyramids: the index of each pyramid's top box (its drift is the
@@ -66,8 +66,7 @@ Scene2D make_tumbler2d(int count);
 /// from the 7 middle circles of the top row (static).
 Scene2D make_joint_grid2d(int n);
 /// The scenes by name ("large_pyramid", "pyramids", "tumbler",
-/// "joint_grid") at their
-/// benchmark sizes; size 0 picks the default size.
+/// "joint_grid") at their benchmark sizes; size 0 picks the default size.
 bool make_scene2d(const std::string& name, int size, Scene2D& out);
 /// The scene names make_scene2d() knows, in report order.
 const std::vector<std::string>& scene2d_names();
