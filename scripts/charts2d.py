@@ -18,6 +18,7 @@ import os
 import sys
 from collections import OrderedDict
 
+sys.dont_write_bytecode = True  # no scripts/__pycache__ from the import below
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from charts import gnuplot, machine, quote  # noqa: E402  (shared with the 3D charts)
 
@@ -79,7 +80,7 @@ def error_chart(out_dir, scene, size, metric, label, rows):
                 f.write("%g %g %s\n" % (r["ms_per_step"], max(r[metric], 1e-6), quote(short(r))))
             f.write("\n\n")
     values = [max(r[metric], 1e-6) for r in rows]
-    logy = max(values) / min(values) > 100
+    logy = max(values) / min(values) > 10
     plots = []
     for engine, i in index.items():
         plots.append("%s index %d using 1:2 with points pt 7 ps 0.9 lc rgb %s title %s"
