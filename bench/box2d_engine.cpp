@@ -29,7 +29,8 @@ std::string Box2DEngine::settings() const {
 bool Box2DEngine::build(const Scene2D& scene, std::string& /*error*/) {
   bodies_.clear();
   world_ = std::make_unique<b2World>(b2Vec2(0.0f, -10.0f));
-  // Rewind's 2D lane does not sleep yet: both engines keep every body awake.
+  // Both engines keep every body awake (the Rewind adapter turns its
+  // sleeping off too), so they do the same work.
   world_->SetAllowSleeping(false);
   world_->SetContinuousPhysics(continuous_);
   std::map<int32_t, b2Body*> groups;

@@ -41,6 +41,8 @@ bool Rewind2DEngine::is_default() const {
 bool Rewind2DEngine::build(const Scene2D& scene, std::string& error) {
   sim2d::World2DConfig config = config_;
   config.tick_hz = 60;
+  // Every body kept awake in both engines, so they do the same work.
+  config.enable_sleep = false;
   // Joints share the body capacity (create_joint refuses beyond it).
   config.max_bodies =
       static_cast<uint32_t>(std::max(scene.bodies.size(), scene.joints.size())) + 16;

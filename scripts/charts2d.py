@@ -146,10 +146,10 @@ MAPPING = """\
 | friction combine | geometric mean √(μa μb) | Box2D's default b2MixFriction: √(μa μb) |
 | gravity, tick | (0, −10) m/s², 60 Hz | the same |
 | step | `World2DConfig{}`: 4 soft-step substeps, 1 relax pass | `b2World::Step(1/60, 8, 3)` (Box2D's defaults); 4/2 also reported |
-| sleeping | not implemented yet | off (`b2World::SetAllowSleeping(false)`), so both engines do the same work |
+| sleeping | off (`World2DConfig::enable_sleep = false`) | off (`b2World::SetAllowSleeping(false)`), so both engines do the same work |
 | skin, slop | exact boxes; speculative contacts from 2 cm; slop 5 mm | polygons carry a 1 cm skin (b2_polygonRadius), so touching boxes start 2 cm inside each other's skin and push apart; slop 5 mm |
 | penetration recovery | soft contacts (contact_hertz 30, damping ratio 10), push-out capped at 3 m/s | Baumgarte position iterations (0.2, at most 0.2 m per step) |
-| fast bodies | speculative contacts | Box2D's default continuous collision of dynamic against static/kinematic bodies |
+| fast bodies | speculative contacts; continuous collision only for bodies that opt in (`BodyDef2D::continuous`, none here) | Box2D's default continuous collision of dynamic against static/kinematic bodies |
 | kinematic pivot | each body turns about its origin | the same |
 | joints | revolute `JointDef2D` (anchor given twice), solved in the substeps beside the contacts | `b2RevoluteJointDef::Initialize`, velocity and position iterations as above |
 """
@@ -172,8 +172,8 @@ def section(rows, run, rel_out, out_dir):
       "runs `World2DConfig{}` (4 substeps, relax 1); Box2D 2.4.1 its defaults (8 velocity, 3 "
       "position iterations) and, as the cheaper setting, 4/2; 8/3 also runs with Box2D's "
       "continuous collision off (*no CCD*; Box2D's default is on, Rewind's speculative contacts "
-      "are always on) to show that part of Box2D's step. **Sleeping is off in both**: "
-      "Rewind's 2D lane does not sleep yet, so Box2D's is switched off to do the same work. "
+      "are always on) to show that part of Box2D's step. **Sleeping is off in both**, so "
+      "every body is simulated in both engines and they do the same work. "
       "ms/step is the mean wall time of the engine's step over the timed ticks, after a warm-up.\n")
 
     lp = [r for r in rows if r["scene"] == "large_pyramid"]
