@@ -58,7 +58,11 @@ void prepare_contacts(const World2DState& state, StepScratch2D& scratch, W h) {
     c.b = contact.b;
     c.contact = ci;
     c.normal = contact.normal;
-    c.friction = wsqrt(wmul(w_from(body_a.material.friction), w_from(body_b.material.friction)));
+    // sqrt(f f) is f: most pairs share a material, and the root is the
+    // costliest operation of the preparation.
+    const Fx fa = body_a.material.friction;
+    const Fx fb = body_b.material.friction;
+    c.friction = fa == fb ? w_from(fa) : wsqrt(wmul(w_from(fa), w_from(fb)));
     c.restitution = wmax(w_from(body_a.material.restitution), w_from(body_b.material.restitution));
     c.rolling_resistance = wmax(w_from(body_a.material.rolling_resistance),
                                 w_from(body_b.material.rolling_resistance));
