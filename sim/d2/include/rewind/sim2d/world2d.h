@@ -8,6 +8,7 @@
 // continuing-to-step bit for bit.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -18,6 +19,7 @@
 #include "rewind/sim2d/body2d.h"
 #include "rewind/sim2d/contact_event2d.h"
 #include "rewind/sim2d/joint2d.h"
+#include "rewind/sim2d/query2d.h"
 #include "rewind/sim2d/shape2d.h"
 #include "rewind/sim2d/world2d_config.h"
 #include "rewind/sim2d/world2d_state.h"
@@ -185,6 +187,50 @@ class World2D {
   /// Desync-drill hook: moves the highest-index dynamic body 1/1024 m
   /// along +x. False, changing nothing, when there is none.
   bool perturb_for_drill();
+
+  // --- queries (query2d.h) ------------------------------------------------
+  // Read-only: no query changes the state, the checksum or the step's
+  // working memory, and every result depends on the state alone (ties go
+  // to the lower body index). Cost: each query tests every body slot's
+  // world bounds (O(bodies), a few multiplies per vertex) and runs the
+  // exact test only on bodies whose bounds the query's bounds overlap; a
+  // query allocates nothing once `out` has grown to the result's size.
+
+  /// The first body the ray origin..origin + translation enters. A ray
+  /// starting inside a shape does not hit it; a zero translation hits
+  /// nothing. Segments are hit from either side.
+  std::optional<RayHit2D> raycast(Vec2 origin, Vec2 translation,
+                                  const QueryFilter2D& filter = {}) const;
+  /// Every body the ray enters, near to far (equal fractions by index);
+  /// `out` is cleared first.
+  void raycast_all(Vec2 origin, Vec2 translation, const QueryFilter2D& filter,
+                   std::vector<RayHit2D>& out) const;
+  /// Bodies whose shape bounds overlap the box lower..upper (touching
+  /// counts), in index order; `out` is cleared first.
+  void query_aabb(Vec2 lower, Vec2 upper, const QueryFilter2D& filter,
+                  std::vector<BodyId2D>& out) const;
+  /// Bodies whose shape overlaps `shape` placed with its origin at
+  /// `position`, turned by `angle` rad (exact test; touching does not
+  /// count), in index order; `out` is cleared first.
+  void overlap(const Shape2D& shape, Vec2 position, Fx angle, const QueryFilter2D& filter,
+               std::vector<BodyId2D>& out) const;
+  /// The first body `shape` (placed as in overlap()) touches when moved by
+  /// `translation` without turning. Found by conservative advancement on
+  /// the exact distance, so the shape stops at most 2^-20 m short of
+  /// contact, never inside; a body it already overlaps is reported at
+  /// fraction 0 only when the move goes further in.
+  std::optional<ShapeHit2D> shape_cast(const Shape2D& shape, Vec2 position, Fx angle,
+                                       Vec2 translation, const QueryFilter2D& filter = {}) const;
+  /// The body whose surface is nearest `point`, if one is within
+  /// `max_distance` m (inclusive; 0 when the point is inside it).
+  std::optional<NearestBody2D> nearest_body(Vec2 point, Fx max_distance,
+                                            const QueryFilter2D& filter = {}) const;
+  /// Signed distance (m) from `point` to the body's surface, negative
+  /// inside; Fx::max() for an invalid id.
+  Fx signed_distance(BodyId2D body, Vec2 point) const;
+  /// The smallest signed distance from `point` to any body the filter
+  /// passes (negative inside the deepest one); Fx::max() when none.
+  Fx signed_distance(Vec2 point, const QueryFilter2D& filter = {}) const;
 
  private:
   World2DState state_;
