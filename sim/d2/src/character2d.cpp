@@ -22,6 +22,7 @@ namespace {
 constexpr W kMinMove = W{1} << 8;  // 2^-24 m
 
 struct Ctx {
+  const World2D& world;
   const World2DState& state;
   QueryFilter2D filter;
   W radius = 0;
@@ -70,7 +71,7 @@ V2 slide(const Ctx& c, V2 pos, V2 move, bool vertical, Log& log) {
   const V2 wanted = move;
   for (int i = 0; i < c.slides && !tiny(move); ++i) {
     CastResult2 hit;
-    if (!cast_core(c.state, c.filter, capsule_at(c, pos), move, c.skin, hit)) {
+    if (!cast_core(c.world, c.filter, capsule_at(c, pos), move, c.skin, hit)) {
       return pos + move;
     }
     const V2 done = scaled(hit.fraction, move);
@@ -108,7 +109,7 @@ struct Probe {
 Probe cast(const Ctx& c, V2 pos, V2 move) {
   Probe p;
   CastResult2 r;
-  if (tiny(move) || !cast_core(c.state, c.filter, capsule_at(c, pos), move, c.skin, r)) return p;
+  if (tiny(move) || !cast_core(c.world, c.filter, capsule_at(c, pos), move, c.skin, r)) return p;
   return {true, r.fraction, r.normal, r.index};
 }
 
@@ -152,7 +153,8 @@ W clamp_fx(Fx v, Fx lo, Fx hi) {
 
 CharacterMove2D move_character(const World2D& world, CharacterState2D& state, Vec2 desired,
                                const CharacterConfig2D& config, const QueryFilter2D& filter) {
-  const Ctx c{world.state(),
+  const Ctx c{world,
+              world.state(),
               filter,
               clamp_fx(config.radius, Fx::from_raw(256), 10_fx),
               clamp_fx(config.half_height, Fx(), 10_fx),

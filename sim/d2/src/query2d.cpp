@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
-// World2D's read-only queries. Each walks the body slots in index order,
-// skips what the filter refuses, culls by world bounds and runs the exact
-// test on the rest, so results come out in index order with no sort and
-// "ties to the lower index" is a strict comparison.
+// World2D's read-only queries. Each asks the bounds tree for the bodies
+// whose bounds its own bounds overlap, skips what the filter refuses and
+// runs the exact test on the rest. The tree visits bodies in an order of
+// its own, so every comparison breaks ties by body index and every list is
+// sorted before it is handed back: results depend on the state alone.
 #include <algorithm>
 
 #include "body_math2d.h"
 #include "distance2d.h"
+#include "query_cache2d.h"
 #include "query_filter2d.h"
 #include "ray_shape2d.h"
 #include "rewind/sim2d/world2d.h"
@@ -19,11 +21,12 @@ using namespace detail;
 
 namespace {
 
+using Item = World2D::QueryCache::Item;
+
 struct Ray {
   V2 origin;
   V2 unit;
   W length = 0;
-  Box2W box;
 };
 
 Ray make_ray(Vec2 origin, Vec2 translation) {
@@ -32,9 +35,13 @@ Ray make_ray(Vec2 origin, Vec2 translation) {
   const UnitLength u = vnormalize(v_from(translation));
   r.unit = u.unit;
   r.length = u.length;
-  const V2 end = r.origin + v_from(translation);
-  r.box = {vmin(r.origin, end), vmax(r.origin, end)};
   return r;
+}
+
+// The bounds of the ray's first `length` metres.
+Box2W ray_box(const Ray& ray, W length) {
+  const V2 end = vmul_add(ray.origin, length, ray.unit);
+  return {vmin(ray.origin, end), vmax(ray.origin, end)};
 }
 
 RayHit2D to_hit(uint32_t index, const BodyRecord2D& body, const RayResult2& r, W length) {
@@ -47,6 +54,11 @@ RayHit2D to_hit(uint32_t index, const BodyRecord2D& body, const RayResult2& r, W
   return h;
 }
 
+void sort_by_index(std::vector<BodyId2D>& out) {
+  std::sort(out.begin(), out.end(),
+            [](const BodyId2D& a, const BodyId2D& b) { return a.index < b.index; });
+}
+
 }  // namespace
 
 std::optional<RayHit2D> World2D::raycast(Vec2 origin, Vec2 translation,
@@ -57,19 +69,20 @@ std::optional<RayHit2D> World2D::raycast(Vec2 origin, Vec2 translation,
   W best = ray.length;
   RayResult2 best_hit;
   uint32_t best_index = 0;
-  for (uint32_t i = 0; i < state_.bodies.size(); ++i) {
-    const BodyRecord2D& b = state_.bodies[i];
-    if (!passes_filter(b, i, filter)) continue;
-    const Xf xf = origin_transform(b);
-    if (!overlaps(ray.box, shape_bounds(b.shape, xf))) continue;
+  query_cache().query(ray_box(ray, ray.length), [&](const Item& item, const Box2W& cull) {
+    const BodyRecord2D& b = state_.bodies[item.index];
+    if (!passes_filter(b, item.index, filter)) return cull;
     RayResult2 hit;
-    if (!ray_shape(b.shape, xf, ray.origin, ray.unit, best, hit)) continue;
-    if (found && hit.distance >= best) continue;  // ties: the lower index
+    if (!ray_shape(b.shape, origin_transform(b), ray.origin, ray.unit, best, hit)) return cull;
+    if (found && (hit.distance > best || (hit.distance == best && item.index > best_index))) {
+      return cull;
+    }
     found = true;
     best = hit.distance;
     best_hit = hit;
-    best_index = i;
-  }
+    best_index = item.index;
+    return ray_box(ray, best);  // nothing beyond the best hit can beat it
+  });
   if (!found) return std::nullopt;
   return to_hit(best_index, state_.bodies[best_index], best_hit, ray.length);
 }
@@ -79,38 +92,30 @@ void World2D::raycast_all(Vec2 origin, Vec2 translation, const QueryFilter2D& fi
   out.clear();
   const Ray ray = make_ray(origin, translation);
   if (ray.length == 0) return;
-  for (uint32_t i = 0; i < state_.bodies.size(); ++i) {
-    const BodyRecord2D& b = state_.bodies[i];
-    if (!passes_filter(b, i, filter)) continue;
-    const Xf xf = origin_transform(b);
-    if (!overlaps(ray.box, shape_bounds(b.shape, xf))) continue;
+  query_cache().query(ray_box(ray, ray.length), [&](const Item& item, const Box2W& cull) {
+    const BodyRecord2D& b = state_.bodies[item.index];
     RayResult2 hit;
-    if (ray_shape(b.shape, xf, ray.origin, ray.unit, ray.length, hit)) {
-      out.push_back(to_hit(i, b, hit, ray.length));
+    if (passes_filter(b, item.index, filter) &&
+        ray_shape(b.shape, origin_transform(b), ray.origin, ray.unit, ray.length, hit)) {
+      out.push_back(to_hit(item.index, b, hit, ray.length));
     }
-  }
-  // Found in index order, so a stable sort by distance leaves equal
-  // distances in index order. Distances are compared in Fx, what the
-  // caller sees; std::stable_sort may allocate, insertion sort does not.
-  for (size_t i = 1; i < out.size(); ++i) {
-    const RayHit2D h = out[i];
-    size_t j = i;
-    for (; j > 0 && h.distance < out[j - 1].distance; --j) out[j] = out[j - 1];
-    out[j] = h;
-  }
+    return cull;
+  });
+  // Near to far as the caller sees the distances (Fx), then by index.
+  std::sort(out.begin(), out.end(), [](const RayHit2D& a, const RayHit2D& b) {
+    return a.distance != b.distance ? a.distance < b.distance : a.body.index < b.body.index;
+  });
 }
 
 void World2D::query_aabb(Vec2 lower, Vec2 upper, const QueryFilter2D& filter,
                          std::vector<BodyId2D>& out) const {
   out.clear();
-  const Box2W box{v_from(lower), v_from(upper)};
-  for (uint32_t i = 0; i < state_.bodies.size(); ++i) {
-    const BodyRecord2D& b = state_.bodies[i];
-    if (!passes_filter(b, i, filter)) continue;
-    if (overlaps(box, shape_bounds(b.shape, origin_transform(b)))) {
-      out.push_back({i, b.generation});
-    }
-  }
+  query_cache().query({v_from(lower), v_from(upper)}, [&](const Item& item, const Box2W& cull) {
+    const BodyRecord2D& b = state_.bodies[item.index];
+    if (passes_filter(b, item.index, filter)) out.push_back({item.index, b.generation});
+    return cull;
+  });
+  sort_by_index(out);
 }
 
 void World2D::overlap(const Shape2D& shape, Vec2 position, Fx angle, const QueryFilter2D& filter,
@@ -118,17 +123,16 @@ void World2D::overlap(const Shape2D& shape, Vec2 position, Fx angle, const Query
   out.clear();
   if (shape.count == 0 || shape.count > kMaxPolygonVertices) return;
   const Xf xf{v_from(position), rotation_from_angle(angle)};
-  const Box2W box = shape_bounds(shape, xf);
   const WPoly core = shape_core(shape, xf);
-  for (uint32_t i = 0; i < state_.bodies.size(); ++i) {
-    const BodyRecord2D& b = state_.bodies[i];
-    if (!passes_filter(b, i, filter)) continue;
-    const Xf bxf = origin_transform(b);
-    if (!overlaps(box, shape_bounds(b.shape, bxf))) continue;
-    if (shape_distance(core, shape_core(b.shape, bxf)).distance < 0) {
-      out.push_back({i, b.generation});
+  query_cache().query(shape_bounds(shape, xf), [&](const Item& item, const Box2W& cull) {
+    const BodyRecord2D& b = state_.bodies[item.index];
+    if (passes_filter(b, item.index, filter) &&
+        shape_distance(core, shape_core(b.shape, origin_transform(b))).distance < 0) {
+      out.push_back({item.index, b.generation});
     }
-  }
+    return cull;
+  });
+  sort_by_index(out);
 }
 
 std::optional<ShapeHit2D> World2D::shape_cast(const Shape2D& shape, Vec2 position, Fx angle,
@@ -136,7 +140,7 @@ std::optional<ShapeHit2D> World2D::shape_cast(const Shape2D& shape, Vec2 positio
   if (shape.count == 0 || shape.count > kMaxPolygonVertices) return std::nullopt;
   const Xf xf{v_from(position), rotation_from_angle(angle)};
   CastResult2 hit;
-  if (!cast_core(state_, filter, shape_core(shape, xf), v_from(translation), 0, hit)) {
+  if (!cast_core(*this, filter, shape_core(shape, xf), v_from(translation), 0, hit)) {
     return std::nullopt;
   }
   ShapeHit2D out;
@@ -151,25 +155,24 @@ std::optional<NearestBody2D> World2D::nearest_body(Vec2 point, Fx max_distance,
                                                    const QueryFilter2D& filter) const {
   const V2 p = v_from(point);
   const W reach = wmax(w_from(max_distance), 0);
-  const Box2W box{p - V2{reach, reach}, p + V2{reach, reach}};
   const WPoly core = point_core(p);
   bool found = false;
   W best = reach;
   Distance2 best_d;
   uint32_t best_index = 0;
-  for (uint32_t i = 0; i < state_.bodies.size(); ++i) {
-    const BodyRecord2D& b = state_.bodies[i];
-    if (!passes_filter(b, i, filter)) continue;
-    const Xf xf = origin_transform(b);
-    if (!overlaps(box, shape_bounds(b.shape, xf))) continue;
-    const Distance2 d = shape_distance(core, shape_core(b.shape, xf));
+  const Box2W box{p - V2{reach, reach}, p + V2{reach, reach}};
+  query_cache().query(box, [&](const Item& item, const Box2W& cull) {
+    const BodyRecord2D& b = state_.bodies[item.index];
+    if (!passes_filter(b, item.index, filter)) return cull;
+    const Distance2 d = shape_distance(core, shape_core(b.shape, origin_transform(b)));
     const W dist = wmax(d.distance, 0);
-    if (dist > best || (found && dist >= best)) continue;
+    if (dist > best || (found && dist == best && item.index > best_index)) return cull;
     found = true;
     best = dist;
     best_d = d;
-    best_index = i;
-  }
+    best_index = item.index;
+    return Box2W{p - V2{best, best}, p + V2{best, best}};
+  });
   if (!found) return std::nullopt;
   NearestBody2D out;
   out.body = {best_index, state_.bodies[best_index].generation};
@@ -186,22 +189,23 @@ Fx World2D::signed_distance(BodyId2D body, Vec2 point) const {
 }
 
 Fx World2D::signed_distance(Vec2 point, const QueryFilter2D& filter) const {
-  const WPoly core = point_core(v_from(point));
+  const V2 p = v_from(point);
+  const WPoly core = point_core(p);
   bool found = false;
   W best = 0;
-  for (uint32_t i = 0; i < state_.bodies.size(); ++i) {
-    const BodyRecord2D& b = state_.bodies[i];
-    if (!passes_filter(b, i, filter)) continue;
-    // A body whose bounds are farther than the best so far cannot beat it.
-    const Xf xf = origin_transform(b);
-    const Box2W box = shape_bounds(b.shape, xf);
-    const W gap = wmax(wmax(box.lower.x - core.vertices[0].x, core.vertices[0].x - box.upper.x),
-                       wmax(box.lower.y - core.vertices[0].y, core.vertices[0].y - box.upper.y));
-    if (found && gap > best) continue;
-    const W d = shape_distance(core, shape_core(b.shape, xf)).distance;
-    if (!found || d < best) best = d;
+  // Everything, until a first body bounds the search (positions stay far
+  // inside +-2^46 m, so the box cannot wrap).
+  constexpr W kFar = W{1} << 62;
+  query_cache().query({{-kFar, -kFar}, {kFar, kFar}}, [&](const Item& item, const Box2W& cull) {
+    const BodyRecord2D& b = state_.bodies[item.index];
+    if (!passes_filter(b, item.index, filter)) return cull;
+    const W d = shape_distance(core, shape_core(b.shape, origin_transform(b))).distance;
+    if (found && d >= best) return cull;
     found = true;
-  }
+    best = d;
+    const W r = wmax(best, 0);
+    return Box2W{p - V2{r, r}, p + V2{r, r}};
+  });
   return found ? w_to_fx(best) : Fx::max();
 }
 

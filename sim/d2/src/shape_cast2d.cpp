@@ -9,7 +9,9 @@
 #include "shape_cast2d.h"
 
 #include "body_math2d.h"
+#include "query_cache2d.h"
 #include "query_filter2d.h"
+#include "rewind/sim2d/world2d.h"
 #include "shape_bounds2d.h"
 
 namespace rwd::sim2d::detail {
@@ -58,8 +60,9 @@ bool cast_one(const WPoly& core, const WPoly& body, V2 translation, W min_approa
 
 }  // namespace
 
-bool cast_core(const World2DState& state, const QueryFilter2D& filter, const WPoly& core,
-               V2 translation, W target, CastResult2& out) {
+bool cast_core(const World2D& world, const QueryFilter2D& filter, const WPoly& core, V2 translation,
+               W target, CastResult2& out) {
+  const World2DState& state = world.state();
   const Box2W start = core_bounds(core);
   const V2 grow{target, target};
   const Box2W swept{vmin(start.lower, start.lower + translation) - grow,
@@ -69,21 +72,24 @@ bool cast_core(const World2DState& state, const QueryFilter2D& filter, const WPo
   const W min_approach = vlength(translation) >> 8;
   bool found = false;
   W best = kWOne;
-  for (uint32_t i = 0; i < state.bodies.size(); ++i) {
-    const BodyRecord2D& b = state.bodies[i];
-    if (!passes_filter(b, i, filter)) continue;
-    const Xf xf = origin_transform(b);
-    if (!overlaps(swept, shape_bounds(b.shape, xf))) continue;
+  world.query_cache().query(swept, [&](const World2D::QueryCache::Item& item, const Box2W& cull) {
+    const BodyRecord2D& b = state.bodies[item.index];
+    if (!passes_filter(b, item.index, filter)) return cull;
     CastResult2 hit;
-    // Ties keep the lower index: a later body must be strictly earlier.
-    if (!cast_one(core, shape_core(b.shape, xf), translation, min_approach, target, best, hit))
-      continue;
-    if (found && hit.fraction >= best) continue;
+    if (!cast_one(core, shape_core(b.shape, origin_transform(b)), translation, min_approach, target,
+                  best, hit)) {
+      return cull;
+    }
+    // Equal fractions go to the lower index, whatever order the tree uses.
+    if (found && (hit.fraction > best || (hit.fraction == best && item.index > out.index))) {
+      return cull;
+    }
     found = true;
     best = hit.fraction;
-    hit.index = i;
+    hit.index = item.index;
     out = hit;
-  }
+    return cull;
+  });
   return found;
 }
 

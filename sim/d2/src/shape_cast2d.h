@@ -7,7 +7,7 @@
 
 #include "distance2d.h"
 #include "rewind/sim2d/query2d.h"
-#include "rewind/sim2d/world2d_state.h"
+#include "rewind/sim2d/world2d.h"
 #include "wmath.h"
 
 namespace rwd::sim2d::detail {
@@ -26,7 +26,7 @@ struct CastResult2 {
 /// `core` (world frame, at fraction 0) comes within `target` m (>= 0) of
 /// while moving by `translation`. A body already within target counts only
 /// when the move heads into it (by more than about 0.2 degrees).
-bool cast_core(const World2DState& state, const QueryFilter2D& filter, const WPoly& core,
-               V2 translation, W target, CastResult2& out);
+bool cast_core(const World2D& world, const QueryFilter2D& filter, const WPoly& core, V2 translation,
+               W target, CastResult2& out);
 
 }  // namespace rwd::sim2d::detail

@@ -115,6 +115,7 @@ Result<BodyId2D> World2D::create_body(const BodyDef2D& def) {
   body.generation = generation;
   bodies[index] = body;
   ++state_.live_bodies;
+  ++body_edits_;
   return BodyId2D{index, generation};
 }
 
@@ -132,6 +133,7 @@ Status World2D::destroy_body(BodyId2D id) {
   freed.generation = id.generation;
   state_.bodies[id.index] = freed;
   --state_.live_bodies;
+  ++body_edits_;
   return Status::Ok();
 }
 
@@ -242,6 +244,7 @@ Status World2D::set_transform(BodyId2D id, Vec2 position, Fx angle) {
   body.rotation = rotation;
   body.center = center;
   wake(body);
+  ++body_edits_;
   return Status::Ok();
 }
 
@@ -354,6 +357,7 @@ Status World2D::set_z(BodyId2D id, Fx z) {
 Status World2D::set_enabled(BodyId2D id, bool enabled) {
   if (!is_valid(id)) return not_found();
   BodyRecord2D& body = state_.bodies[id.index];
+  ++body_edits_;
   if (enabled) {
     body.flags |= kBodyEnabled;
     wake(body);
@@ -403,6 +407,7 @@ void World2D::restore(const World2DState& in) {
   state_.joints.assign(in.joints.begin(), in.joints.end());
   scratch_->events.clear();
   stats_ = {};
+  ++body_edits_;
 }
 
 bool World2D::perturb_for_drill() {
@@ -410,6 +415,7 @@ bool World2D::perturb_for_drill() {
     BodyRecord2D& body = state_.bodies[i];
     if ((body.flags & kBodyLive) && body.kind == BodyKind2D::kDynamic) {
       body.center.x += kWOne / 1024;
+      ++body_edits_;
       return true;
     }
   }

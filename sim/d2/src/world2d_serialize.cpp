@@ -197,6 +197,7 @@ Status World2D::deserialize(std::span<const uint8_t> bytes) {
   }
   if (!reader.at_end()) return corrupt("trailing bytes");
   state_ = std::move(state);
+  ++body_edits_;
   stats_ = {};
   return Status::Ok();
 }

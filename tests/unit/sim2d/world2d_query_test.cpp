@@ -315,6 +315,86 @@ TEST(World2DQuery, WarmQueriesDoNotAllocateOrChangeTheState) {
   run();
   EXPECT_EQ(test::AllocationCounter::stop(), 0);
   EXPECT_EQ(world.checksum(), before);
+  // After a step the tree is rebuilt into the buffers it already has.
+  world.step();
+  test::AllocationCounter::start();
+  run();
+  EXPECT_EQ(test::AllocationCounter::stop(), 0);
+}
+
+TEST(World2DQuery, SeesEveryEditStepAndRestore) {
+  World2D world;
+  const BodyId2D a = add_body(world, BodyKind2D::kDynamic, make_circle(0.5_fx), {5_fx, Fx()});
+  EXPECT_EQ(world.raycast({}, {10_fx, Fx()})->body, a);
+  World2DState saved;
+  world.save(saved);
+  ASSERT_TRUE(world.set_transform(a, {5_fx, 3_fx}, Fx()).ok());
+  EXPECT_FALSE(world.raycast({}, {10_fx, Fx()}));
+  world.restore(saved);
+  EXPECT_EQ(world.raycast({}, {10_fx, Fx()})->body, a);
+  ASSERT_TRUE(world.set_enabled(a, false).ok());
+  EXPECT_FALSE(world.raycast({}, {10_fx, Fx()}));
+  ASSERT_TRUE(world.set_enabled(a, true).ok());
+  EXPECT_TRUE(world.raycast({}, {10_fx, Fx()}));
+  ASSERT_TRUE(world.destroy_body(a).ok());
+  EXPECT_FALSE(world.raycast({}, {10_fx, Fx()}));
+  const BodyId2D b = add_body(world, BodyKind2D::kDynamic, make_circle(0.5_fx), {3_fx, 2_fx});
+  EXPECT_FALSE(world.raycast({}, {10_fx, Fx()}));
+  // Falling through the ray's line under gravity.
+  for (int i = 0; i < 90 && !world.raycast({}, {10_fx, Fx()}); ++i) world.step();
+  ASSERT_TRUE(world.raycast({}, {10_fx, Fx()}));
+  EXPECT_EQ(world.raycast({}, {10_fx, Fx()})->body, b);
+  std::vector<uint8_t> bytes;
+  World2D other;
+  other.serialize(bytes);
+  ASSERT_TRUE(world.deserialize(bytes).ok());
+  EXPECT_FALSE(world.raycast({}, {10_fx, Fx()}));
+}
+
+TEST(World2DQuery, TreeAgreesWithEveryBodyTestedAlone) {
+  // Hundreds of bodies in a pseudo-random field: the tree-culled overlap and
+  // nearest queries must agree with signed_distance() asked of each body.
+  World2D world;
+  uint32_t seed = 12345;
+  auto next = [&](int32_t range) {
+    seed = seed * 1664525u + 1013904223u;
+    return Fx::from_raw(static_cast<int32_t>((seed >> 8) % static_cast<uint32_t>(range)));
+  };
+  std::vector<BodyId2D> bodies;
+  for (int i = 0; i < 300; ++i) {
+    const Vec2 at{next(40 << 16) - 20_fx, next(40 << 16) - 20_fx};
+    const Fx size = next(1 << 16) / 2 + 0.1_fx;
+    const Result<Shape2D> shape = i % 3 == 0 ? make_circle(size)
+                                  : i % 3 == 1
+                                      ? make_box(size, size / 2)
+                                      : make_capsule({-size, Fx()}, {size, Fx()}, size / 3);
+    bodies.push_back(add_body(world, BodyKind2D::kStatic, shape, at, next(6 << 16)));
+  }
+  std::vector<BodyId2D> got;
+  for (int q = 0; q < 40; ++q) {
+    const Vec2 p{next(44 << 16) - 22_fx, next(44 << 16) - 22_fx};
+    const Fx r = next(3 << 16) + 0.05_fx;
+    world.overlap(*make_circle(r), p, Fx(), {}, got);
+    std::vector<BodyId2D> want;
+    Fx nearest = Fx::max();
+    for (const BodyId2D id : bodies) {
+      const Fx d = world.signed_distance(id, p);
+      if (d < r) want.push_back(id);
+      nearest = fixed::min(nearest, d);
+    }
+    // Overlap is decided in Q32.32, signed_distance() rounds to Fx: drop
+    // bodies within an ulp of touching from the comparison.
+    auto near_touch = [&](BodyId2D id) {
+      return fixed::abs(world.signed_distance(id, p) - r).raw() <= 1;
+    };
+    std::erase_if(got, near_touch);
+    std::erase_if(want, near_touch);
+    EXPECT_EQ(got, want) << q;
+    EXPECT_EQ(world.signed_distance(p), nearest) << q;
+    const auto n = world.nearest_body(p, 100_fx);
+    ASSERT_TRUE(n);
+    EXPECT_EQ(n->distance, fixed::max(nearest, Fx())) << q;
+  }
 }
 
 }  // namespace

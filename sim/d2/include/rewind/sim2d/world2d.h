@@ -189,12 +189,14 @@ class World2D {
   bool perturb_for_drill();
 
   // --- queries (query2d.h) ------------------------------------------------
-  // Read-only: no query changes the state, the checksum or the step's
-  // working memory, and every result depends on the state alone (ties go
-  // to the lower body index). Cost: each query tests every body slot's
-  // world bounds (O(bodies), a few multiplies per vertex) and runs the
-  // exact test only on bodies whose bounds the query's bounds overlap; a
-  // query allocates nothing once `out` has grown to the result's size.
+  // Read-only: no query changes the state or the checksum, and every result
+  // depends on the state alone (ties go to the lower body index). Cost: the
+  // first query after a step or an edit builds a bounding-box tree over the
+  // enabled bodies (O(n log n), into reused buffers); each query then visits
+  // the tree nodes its bounds overlap (about O(log n + candidates)) and runs
+  // the exact test on the candidates. A query allocates nothing once `out`
+  // and the tree have grown to size. The tree is shared by the queries, so
+  // one world must not be queried from two threads at once.
 
   /// The first body the ray origin..origin + translation enters. A ray
   /// starting inside a shape does not hit it; a zero translation hits
@@ -231,8 +233,19 @@ class World2D {
   /// The smallest signed distance from `point` to any body the filter
   /// passes (negative inside the deepest one); Fx::max() when none.
   Fx signed_distance(Vec2 point, const QueryFilter2D& filter = {}) const;
+  /// The lane's own query code reaches the tree through this; the class is
+  /// defined only inside the lane's sources (query_cache2d.h).
+  class QueryCache;
+  const QueryCache& query_cache() const;
 
  private:
+  // The queries' bounds tree: not state, never saved or hashed. Every call
+  // that adds, removes, moves, enables or disables a body, or replaces the
+  // state, bumps body_edits_; the tree remembers the edit count and step
+  // count it was built at and is rebuilt when either moved on.
+  uint64_t body_edits_ = 0;
+  mutable std::shared_ptr<QueryCache> query_cache_;
+
   World2DState state_;
   StepStats2D stats_;
   std::unique_ptr<detail::StepScratch2D> scratch_;
