@@ -88,7 +88,8 @@ MassData2 compute_mass(const Shape2D& shape, W density) {
       return capsule_mass(shape, density);
     case ShapeType2D::kPolygon:
       return polygon_mass(shape, density);
-    case ShapeType2D::kSegment: {
+    case ShapeType2D::kSegment:
+    case ShapeType2D::kChainSegment: {
       MassData2 out;  // no area: only static and kinematic bodies use segments
       out.center = {(w_from(shape.vertices[0].x) + w_from(shape.vertices[1].x)) / 2,
                     (w_from(shape.vertices[0].y) + w_from(shape.vertices[1].y)) / 2};

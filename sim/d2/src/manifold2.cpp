@@ -19,23 +19,32 @@ struct PairEntry {
 };
 
 // Rows: shape A's type; columns: shape B's type (ShapeType2D order:
-// circle, capsule, polygon, segment).
+// circle, capsule, polygon, segment, chain segment).
 constexpr PairEntry kPairs[kShapeTypeCount2D][kShapeTypeCount2D] = {
     {{collide_circles, false},
      {collide_capsule_circle, true},
      {collide_polygon_circle, true},
-     {collide_capsule_circle, true}},
+     {collide_capsule_circle, true},
+     {collide_chain_circle, true}},
     {{collide_capsule_circle, false},
      {collide_capsules, false},
      {collide_polygons, false},
-     {collide_segment_polygon, true}},
+     {collide_segment_polygon, true},
+     {collide_chain_polygon, true}},
     {{collide_polygon_circle, false},
      {collide_polygons, false},
      {collide_polygons, false},
-     {collide_segment_polygon, true}},
+     {collide_segment_polygon, true},
+     {collide_chain_polygon, true}},
     {{collide_capsule_circle, false},
      {collide_segment_polygon, false},
      {collide_segment_polygon, false},
+     {collide_none, false},
+     {collide_none, false}},
+    {{collide_chain_circle, false},
+     {collide_chain_polygon, false},
+     {collide_chain_polygon, false},
+     {collide_none, false},
      {collide_none, false}},
 };
 

@@ -38,8 +38,9 @@ struct Manifold2 {
 /// The manifold of shape `a` on a body at `xa` (the body origin's
 /// transform) against shape `b` at `xb`, keeping points whose separation is
 /// below `speculative` (m, > 0). `out` is overwritten; count 0 means apart.
-/// Any pair of ShapeType2D values is accepted; segment against segment
-/// gives no contact (level geometry does not collide with itself).
+/// Any pair of ShapeType2D values is accepted; segments and chain segments
+/// against each other give no contact (level geometry does not collide
+/// with itself).
 void collide(const Shape2D& a, const Xf& xa, const Shape2D& b, const Xf& xb, W speculative,
              Manifold2& out);
 

@@ -68,6 +68,12 @@ void finish(Manifold2& out, const Xf& xa, V2 local_normal, int count);
 void collide_round_pair(V2 pa, W ra, V2 pb, W rb, V2 fallback, const Xf& xa, const Xf& xb,
                         W speculative, Manifold2& out);
 
+/// Clips the incident face `inc_edge` of `inc` to the side planes of the
+/// reference face `ref_edge` of `ref` and writes the points that lie within
+/// `speculative` (points in A's frame; `flip`: B holds the reference).
+void clip(const WPoly& ref, const WPoly& inc, int ref_edge, int inc_edge, bool flip, const Xf& xa,
+          const Xf& xb, W speculative, Manifold2& out);
+
 // The pair routines. Each overwrites `out`; A is the first shape.
 void collide_circles(const Shape2D& a, const Xf& xa, const Shape2D& b, const Xf& xb, W speculative,
                      Manifold2& out);
@@ -86,7 +92,14 @@ void collide_polygons(const Shape2D& a, const Xf& xa, const Shape2D& b, const Xf
 /// Segment A against a polygon or capsule B.
 void collide_segment_polygon(const Shape2D& a, const Xf& xa, const Shape2D& b, const Xf& xb,
                              W speculative, Manifold2& out);
-/// No contact (segment against segment).
+/// Chain segment A against circle B (one-sided, ghost vertices honoured).
+void collide_chain_circle(const Shape2D& a, const Xf& xa, const Shape2D& b, const Xf& xb,
+                          W speculative, Manifold2& out);
+/// Chain segment A against a polygon or capsule B (one-sided, ghost
+/// vertices honoured).
+void collide_chain_polygon(const Shape2D& a, const Xf& xa, const Shape2D& b, const Xf& xb,
+                           W speculative, Manifold2& out);
+/// No contact (segment or chain segment against segment or chain segment).
 void collide_none(const Shape2D& a, const Xf& xa, const Shape2D& b, const Xf& xb, W speculative,
                   Manifold2& out);
 

@@ -110,6 +110,8 @@ bool nearest_vertex_pair(V2 p1, V2 q1, V2 p2, V2 q2, int& vertex1, int& vertex2)
   return found;
 }
 
+}  // namespace
+
 // Clips the incident face of `inc` to the side planes of the reference face
 // `ref_edge` of `ref`; points in A's frame. `flip`: B holds the reference.
 void clip(const WPoly& ref, const WPoly& inc, int ref_edge, int inc_edge, bool flip, const Xf& xa,
@@ -170,8 +172,6 @@ void clip(const WPoly& ref, const WPoly& inc, int ref_edge, int inc_edge, bool f
   finish(out, xa, flip ? -normal : normal, count);
   if (count == 0) out.normal = {};
 }
-
-}  // namespace
 
 void collide_wpolys(const WPoly& a, const Xf& xa, const WPoly& b_body, const Xf& xb, W speculative,
                     Manifold2& out) {

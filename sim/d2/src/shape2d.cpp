@@ -234,6 +234,12 @@ Status validate_shape(const Shape2D& shape) {
       if (shape.radius != Fx()) return invalid("segment radius must be 0");
       rebuilt = make_segment(shape.vertices[0], shape.vertices[1]);
       break;
+    case ShapeType2D::kChainSegment:
+      if (shape.count != 2) return invalid("chain segment count must be 2");
+      if (shape.radius != Fx()) return invalid("chain segment radius must be 0");
+      rebuilt = make_chain_segment(shape.vertices[2], shape.vertices[0], shape.vertices[1],
+                                   shape.vertices[3]);
+      break;
     case ShapeType2D::kPolygon: {
       if (shape.count < 3 || shape.count > kMaxPolygonVertices) {
         return invalid("polygon count must be 3.." + idx(kMaxPolygonVertices));

@@ -4,7 +4,8 @@
 namespace rwd::sim2d::detail {
 
 Box2W shape_bounds(const Shape2D& shape, const Xf& xf) {
-  // Circle: one vertex; capsule and segment: two; polygon: count. Each is
+  // Circle: one vertex; capsule, segment and chain segment: two (a chain
+  // segment's ghosts are not part of its surface); polygon: count. Each is
   // then grown by the radius (zero for segments and sharp polygons).
   const int n = shape.count < 1 ? 1 : shape.count;
   V2 lower = transform_point(xf, v_from(shape.vertices[0]));

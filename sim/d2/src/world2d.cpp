@@ -38,6 +38,9 @@ Status check_def(const BodyDef2D& def, const World2DConfig& config) {
   if (def.shape.type == ShapeType2D::kSegment && def.kind == BodyKind2D::kDynamic) {
     return invalid("a segment has no area: only static and kinematic bodies may use it");
   }
+  if (def.shape.type == ShapeType2D::kChainSegment && def.kind == BodyKind2D::kDynamic) {
+    return invalid("a chain segment has no area: only static and kinematic bodies may use it");
+  }
   if (!in_range(def.density, Fx::epsilon(), 30000_fx))
     return invalid("density must be in (0, 30000] kg/m^2");
   if (!in_range(def.linear_damping, Fx(), 1000_fx))

@@ -22,8 +22,12 @@ enum class ShapeType2D : uint8_t {
   kCapsule = 1,  ///< a segment vertices[0]..vertices[1] swept by radius > 0
   kPolygon = 2,  ///< convex, counter-clockwise, 3..8 vertices, optionally rounded
   kSegment = 3,  ///< a two-sided edge vertices[0]..vertices[1] (static level geometry)
+  /// A one-sided edge of a chain: vertices[0]..vertices[1] with the ghost
+  /// vertices[2] (the previous point) and vertices[3] (the next point);
+  /// count 2. See make_chain_segment.
+  kChainSegment = 4,
 };
-inline constexpr int kShapeTypeCount2D = 4;
+inline constexpr int kShapeTypeCount2D = 5;
 
 /// The most vertices a convex polygon may have.
 inline constexpr int kMaxPolygonVertices = 8;
@@ -34,8 +38,9 @@ inline constexpr int kMaxPolygonVertices = 8;
 /// derived field (normals, centroid).
 struct Shape2D {
   ShapeType2D type = ShapeType2D::kCircle;
-  /// Number of meaningful vertices: 1 (circle), 2 (capsule, segment) or
-  /// 3..8 (polygon).
+  /// Number of meaningful vertices: 1 (circle), 2 (capsule, segment, chain
+  /// segment, whose ghosts in vertices[2..3] are not counted) or 3..8
+  /// (polygon).
   uint8_t count = 0;
   /// Circle and capsule radius; the rounding radius of a polygon (>= 0).
   Fx radius;
@@ -80,6 +85,29 @@ Result<Shape2D> make_polygon(std::span<const Vec2> points, Fx radius = Fx());
 /// A two-sided segment p1..p2 (distinct points): level edges and walls.
 /// It has no area, so only static and kinematic bodies may use it.
 Result<Shape2D> make_segment(Vec2 p1, Vec2 p2);
+
+/// One edge of a chain (see chain2d.h for whole chains): the one-sided
+/// segment p1..p2 between its neighbours' far points, the ghosts ghost1
+/// (the point before p1) and ghost2 (the point after p2). Stored as
+/// vertices {p1, p2, ghost1, ghost2}, count 2: bounds and the broad phase
+/// see p1..p2 only.
+///
+/// Convention (Box2D's chain convention): the normal is the right
+/// perpendicular of the direction p1 -> p2, and bodies collide only from
+/// that side; the left side is solid (no contact from behind). A
+/// counter-clockwise loop is therefore solid inside and collides on its
+/// outside like a polygon; a clockwise loop is a container that keeps
+/// bodies inside. A floor whose open side is up runs right to left.
+///
+/// The ghosts remove ghost collisions at the joints: a contact normal that
+/// would come from p1 or p2 and point into a direction the neighbouring
+/// edge already covers is dropped (at a convex joint) or snapped to the
+/// edge's face normal (at a flat or concave joint), so a body sliding
+/// across joints of collinear edges meets one flat surface.
+/// Refused (kInvalidArgument, naming the fault): p1 == p2, ghost1 == p1,
+/// ghost2 == p2, or an edge (ghost edges included) longer than the Fx
+/// range. Like a segment it has no area: static and kinematic bodies only.
+Result<Shape2D> make_chain_segment(Vec2 ghost1, Vec2 p1, Vec2 p2, Vec2 ghost2);
 
 /// Checks a shape built by hand (or read from bytes) the way the factories
 /// would: kInvalidArgument naming the fault, kOk otherwise. The shape must
