@@ -23,6 +23,9 @@
 //
 // Links only the engine and the game seam: no I/O beyond stdout, no clock.
 //
+// Then "lane2d <tick> <checksum> <query digest>" lines for the 2D lane's
+// engine scene (tests/determinism/lane2d_scene.h): every shape, joint and
+// query, a character, sleeping, continuous bullets, restores and reloads.
 // Before the "crates" match it plays a scripted 2D "arena" match the same
 // way, its lines prefixed "arena ", so the fixed-point lane and its
 // rollback are part of the matrix too.
@@ -40,6 +43,7 @@
 #include <vector>
 
 #include "golden_digest.h"
+#include "lane2d_scene.h"
 #include "rewind/game/player_input.h"
 #include "rewind/game/simulation.h"
 #include "rewind/sim/world3d.h"
@@ -435,6 +439,8 @@ int main(int argc, char** argv) {
   if (!run_edge_scene(300)) return 3;
   if (!run_heap_scene(400)) return 3;
 
+  // The 2D lane's engine scene: every shape, joint and query.
+  if (!rwd::determinism::run_lane2d_scene(300)) return 3;
   // The 2D lane's sample game: the fixed-point world through the same
   // seam, with the same rollback check.
   if (const int rc = run_match("arena", "arena ", ticks); rc != 0) return rc;

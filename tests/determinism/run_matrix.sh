@@ -4,7 +4,8 @@
 # Determinism matrix: builds det_checksums.cpp together with every source of
 # the engine (sim/src/**/*.cpp), the game seam (sim/game/src/*.cpp) and the
 # fixed-point library with its golden digest (sim/fixed/src/*.cpp,
-# tests/unit/fixed/golden_digest.cpp) and the 2D lane (sim/d2/src/*.cpp)
+# tests/unit/fixed/golden_digest.cpp) and the 2D lane (sim/d2/src/*.cpp,
+# with its engine scene tests/determinism/lane2d_scene.cpp)
 # directly with each compiler -- no CMake, so no project flag can hide a
 # difference -- runs every build and diffs its per-tick checksums against the
 # g++ -O0 build.
@@ -87,7 +88,8 @@ mapfile -t fixed_sources < <(find sim/fixed/src -maxdepth 1 -name '*.cpp' -type 
 fixed_sources+=(tests/unit/fixed/golden_digest.cpp)
 mapfile -t sim2d_sources < <(find sim/d2/src -maxdepth 1 -name '*.cpp' -type f 2>/dev/null | LC_ALL=C sort)
 det_source="$script_dir/det_checksums.cpp"
-sources=("$det_source" "${sim_sources[@]/#/$source_dir/}" "${game_sources[@]/#/$source_dir/}"
+lane2d_source="$script_dir/lane2d_scene.cpp"
+sources=("$det_source" "$lane2d_source" "${sim_sources[@]/#/$source_dir/}" "${game_sources[@]/#/$source_dir/}"
   "${fixed_sources[@]/#/$source_dir/}" "${sim2d_sources[@]/#/$source_dir/}")
 
 mkdir -p "$build_dir"
@@ -152,6 +154,7 @@ ninja_file="$build_dir/build.ninja"
     for src in "${sources[@]}"; do
       rel=${src#"$source_dir"/}
       [[ $src == "$det_source" ]] && rel=det_checksums.cpp
+      [[ $src == "$lane2d_source" ]] && rel=lane2d_scene.cpp
       obj="$name/obj/${rel//\//__}.o"
       objects+=("$obj")
       echo "build $obj: cxx_$name $src"

@@ -10,7 +10,7 @@ Rot rotation_from_angle(Fx angle) {
   const fixed::SinCos sc = fixed::sin_cos(angle);
   // CORDIC gives each component to an ulp of Q16.16; two Newton steps bring
   // the pair to unit length in Q32.32.
-  return renormalize(renormalize({w_from(sc.cos), w_from(sc.sin)}));
+  return renormalize({w_from(sc.cos), w_from(sc.sin)});
 }
 
 void set_mass_from_shape(BodyRecord2D& body, W density) {

@@ -53,6 +53,17 @@ W time_of_impact(const BodyRecord2D& mover, const Xf& start, V2 translation,
   return t;
 }
 
+// A chain segment collides on one side only (its normal's): a body that
+// starts behind it passes through, in the sweep as in the contacts.
+bool behind_chain_segment(const BodyRecord2D& obstacle, V2 point) {
+  if (obstacle.shape.type != ShapeType2D::kChainSegment) return false;
+  const Xf xf = origin_transform(obstacle);
+  const V2 p1 = transform_point(xf, v_from(obstacle.shape.vertices[0]));
+  const V2 p2 = transform_point(xf, v_from(obstacle.shape.vertices[1]));
+  const V2 normal = vperp_cw(p2 - p1);
+  return vdot(point - p1, normal) < 0;
+}
+
 }  // namespace
 
 void solve_continuous(World2DState& state, const StepScratch2D& scratch) {
@@ -78,6 +89,7 @@ void solve_continuous(World2DState& state, const StepScratch2D& scratch) {
       }
       if ((body.layer & other.mask) == 0 || (other.layer & body.mask) == 0) continue;
       if (!overlaps(swept, shape_bounds(other.shape, origin_transform(other)))) continue;
+      if (behind_chain_segment(other, start.p + rotate(start.q, body.local_center))) continue;
       first = wmin(first, time_of_impact(body, start, translation, other, target));
     }
     if (first < kWOne) body.center = body.center - translation + vscale(first, translation);

@@ -2,6 +2,7 @@
 // The soft step (DESIGN 6): substeps of integrate velocities, warm start,
 // solve, integrate positions and relax; then restitution and storing the
 // impulses for the next step's warm start.
+#include "body_mass2d.h"
 #include "body_math2d.h"
 #include "contact_solver2d.h"
 #include "joint_solver2d.h"
@@ -46,16 +47,24 @@ void integrate_velocities(const World2DState& state, StepScratch2D& scratch, W h
       w = wmul(winv(kWOne + wmul(h, w_from(body.angular_damping))), w);
     }
     sb.v = clamp_speed(v + dv, state.config);
-    sb.w = w + wmul(wmul(h, body.inv_inertia), body.torque);
+    // At most a quarter turn per substep: beyond that the rotation update
+    // (first order, renormalized) loses its meaning.
+    const W max_w = wmul(kWPi / 4, winv(h));
+    sb.w = wclamp(w + wmul(wmul(h, body.inv_inertia), body.torque), -max_w, max_w);
   }
 }
 
-// Kinematic bodies move too: they carry what they touch.
+// Kinematic bodies move too: they carry what they touch. Velocities are
+// capped again first: a solve can exceed what integration allowed, and the
+// cap is what keeps every sum inside the integer range.
 void integrate_positions(const World2DState& state, StepScratch2D& scratch, W h) {
+  const W max_w = wmul(kWPi / 4, winv(h));
   for (size_t i = 0; i < state.bodies.size(); ++i) {
     const BodyRecord2D& body = state.bodies[i];
     if (!is_moving(body)) continue;
     SolverBody2D& sb = scratch.bodies[i];
+    sb.v = clamp_speed(sb.v, state.config);
+    sb.w = wclamp(sb.w, -max_w, max_w);
     sb.dp += vscale(h, sb.v);
     if (sb.w != 0) sb.dq = integrate_rotation(sb.dq, wmul(h, sb.w));
   }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Continuous collision: a bullet never crosses a thin wall when it asks to
 // be swept, and does without it (so the test can fail).
+#include "rewind/sim2d/chain2d.h"
 #include "rewind/sim2d/world2d.h"
 #include "world2d_test_scenes.h"
 
@@ -51,6 +52,34 @@ TEST(World2DContinuous, ASweptBoxStopsAtTheWallsFace) {
     world.step();
     // Never past the wall's face (4.99) by more than the slop.
     EXPECT_LT(world.position(box).x + 0.1_fx, 4.99_fx + 0.006_fx) << "tick " << t;
+  }
+}
+
+// A chain floor collides on its upper side only: a continuous bullet from
+// above stops on it, one from below passes through, in the sweep as in the
+// contacts (a sweep that disagreed would hold the bullet under the floor
+// for ever, moving it back every step).
+TEST(World2DContinuous, AChainFloorStopsBulletsFromItsSolidSideOnly) {
+  for (const bool from_above : {true, false}) {
+    World2DConfig config;
+    config.gravity = {};
+    World2D world(config);
+    const Vec2 points[] = {{10_fx, Fx()}, {-10_fx, Fx()}};  // right to left: solid side up
+    const Result<std::vector<Shape2D>> floor = make_chain(points, false);
+    ASSERT_TRUE(floor.ok());
+    for (const Shape2D& s : *floor) add_body(world, BodyKind2D::kStatic, s, {});
+    BodyDef2D def;
+    def.shape = *make_circle(0.05_fx);
+    def.position = {Fx(), from_above ? 3_fx : -3_fx};
+    def.linear_velocity = {Fx(), from_above ? -300_fx : 300_fx};
+    def.continuous = true;
+    const BodyId2D bullet = *world.create_body(def);
+    for (int t = 0; t < 30; ++t) world.step();
+    if (from_above) {
+      EXPECT_GT(world.position(bullet).y, Fx()) << "crossed the floor from above";
+    } else {
+      EXPECT_GT(world.position(bullet).y, 3_fx) << "held under the floor";
+    }
   }
 }
 

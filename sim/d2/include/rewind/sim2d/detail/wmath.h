@@ -175,14 +175,19 @@ constexpr Rot rmul(Rot a, Rot b) {
 constexpr Rot rinv_mul(Rot a, Rot b) {
   return {wmul_add(a.c, b.c, a.s, b.s), wmul_sub(a.c, b.s, a.s, b.c)};
 }
-/// Brings a nearly unit (c, s) back to unit length with one Newton step of
-/// 1/sqrt about 1, scale = (3 - |q|^2) / 2: the error after it is the square
-/// of the error before, so rotations integrated by small angles stay unit to
-/// the last bits without a square root or a division.
+/// Brings a nearly unit (c, s) back to unit length with Newton steps of
+/// 1/sqrt about 1, scale = (3 - |q|^2) / 2: the error after a step is about
+/// the square of the error before, so a rotation turned by a small angle
+/// needs one step and a large turn (up to a quarter turn) a few, with no
+/// square root or division. Stops once |q|^2 is within 2^-28 of 1.
 constexpr Rot renormalize(Rot q) {
-  const W m2 = wmul_add(q.c, q.c, q.s, q.s);
-  const W scale = (3 * kWOne - m2) / 2;
-  return {wmul(q.c, scale), wmul(q.s, scale)};
+  for (int i = 0; i < 6; ++i) {
+    const W m2 = wmul_add(q.c, q.c, q.s, q.s);
+    const W scale = (3 * kWOne - m2) / 2;
+    q = {wmul(q.c, scale), wmul(q.s, scale)};
+    if (wabs(m2 - kWOne) <= (kWOne >> 28)) break;
+  }
+  return q;
 }
 /// q turned by the small angle `angle` (radians, Q32.32): the first-order
 /// update q + angle * perp(q), renormalized.
