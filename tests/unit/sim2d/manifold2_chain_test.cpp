@@ -93,6 +93,34 @@ TEST(ManifoldChain, CircleRollingOverTheJointMeetsAFlatFloor) {
   EXPECT_TRUE(plain_tilted);
 }
 
+TEST(ManifoldChain, CapsuleAcrossTheJointGetsOnlyFaceNormals) {
+  // A capsule lying across the joint, sunk 0.002 m.
+  const Shape2D capsule = ok(make_capsule({-0.5_fx, Fx()}, {0.5_fx, Fx()}, 0.25_fx));
+  int points = 0;
+  for (const Shape2D& edge : flat_chain()) {
+    const Manifold2 m = collide(edge, Xf{}, capsule, body(0.25_fx, 0.248_fx));
+    if (m.count == 0) continue;
+    EXPECT_EQ(m.normal, kUp);
+    points += m.count;
+  }
+  EXPECT_GE(points, 2);
+}
+
+TEST(ManifoldChain, ApartCornersMeetAlongTheLineBetweenThem) {
+  // A ledge: flat to the left of (0, 0), a wall straight down below it
+  // (the square end make_chain gives). A box whose corner is 0.01 m from
+  // the ledge's corner along (1, 1) / sqrt(2), up and to the right: the
+  // two corners are the nearest features and the joint admits that normal.
+  const std::array<Vec2, 2> points{{{Fx(), Fx()}, {-4_fx, Fx()}}};
+  const Shape2D edge = (*make_chain(points, false))[0];
+  const Shape2D box = ok(make_box(0.5_fx, 0.5_fx));
+  const Xf xb = body(0.5_fx + 0.00707_fx, 0.5_fx + 0.00707_fx);
+  const Manifold2 m = collide(edge, Xf{}, box, xb);
+  ASSERT_EQ(m.count, 1);
+  EXPECT_TRUE(near_v(m.normal, V2{kWOne * 7071 / 10000, kWOne * 7071 / 10000}, kWOne >> 10));
+  EXPECT_TRUE(near_w(m.points[0].separation, detail::w_ratio(1, 100), kWOne >> 12));
+}
+
 TEST(ManifoldChain, NothingCollidesFromBehind) {
   const Shape2D box = ok(make_box(0.5_fx, 0.5_fx));
   const Shape2D ball = ok(make_circle(0.5_fx));

@@ -107,6 +107,9 @@ Result<Shape2D> make_segment(Vec2 p1, Vec2 p2);
 /// Refused (kInvalidArgument, naming the fault): p1 == p2, ghost1 == p1,
 /// ghost2 == p2, or an edge (ghost edges included) longer than the Fx
 /// range. Like a segment it has no area: static and kinematic bodies only.
+/// It has no thickness either: a body whose centre crosses the edge within
+/// one step (faster than the speculative distance per step) is behind it
+/// and passes; such bodies need BodyDef2D::continuous.
 Result<Shape2D> make_chain_segment(Vec2 ghost1, Vec2 p1, Vec2 p2, Vec2 ghost2);
 
 /// Checks a shape built by hand (or read from bytes) the way the factories
