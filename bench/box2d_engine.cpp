@@ -82,4 +82,31 @@ Pose2D Box2DEngine::pose(uint32_t index) const {
   return {p.x, p.y, body->GetAngle()};
 }
 
+namespace {
+
+// Box2D's closest-hit callback: clipping the ray at each hit leaves the
+// closest one.
+class ClosestHit final : public b2RayCastCallback {
+ public:
+  float ReportFixture(b2Fixture* /*fixture*/, const b2Vec2& /*point*/, const b2Vec2& /*normal*/,
+                      float at) override {
+    hit = true;
+    closest = at;
+    return at;
+  }
+  bool hit = false;
+  float closest = 1.0f;
+};
+
+}  // namespace
+
+bool Box2DEngine::raycast(double x0, double y0, double x1, double y1, double& fraction) const {
+  ClosestHit callback;
+  world_->RayCast(&callback, b2Vec2(static_cast<float>(x0), static_cast<float>(y0)),
+                  b2Vec2(static_cast<float>(x1), static_cast<float>(y1)));
+  if (!callback.hit) return false;
+  fraction = callback.closest;
+  return true;
+}
+
 }  // namespace rwd::bench

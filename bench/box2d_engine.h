@@ -27,6 +27,7 @@ class Box2DEngine final : public Engine2D {
   bool build(const Scene2D& scene, std::string& error) override;
   void step() override;
   Pose2D pose(uint32_t index) const override;
+  bool raycast(double x0, double y0, double x1, double y1, double& fraction) const override;
 
  private:
   int velocity_;

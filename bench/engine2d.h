@@ -31,6 +31,9 @@ class Engine2D {
   virtual void step() = 0;
   /// The pose of the scene's body `index` (its origin, as described).
   virtual Pose2D pose(uint32_t index) const = 0;
+  /// The closest hit of the ray from (x0, y0) to (x1, y1): true with the
+  /// fraction of the way along it, false when it hits nothing.
+  virtual bool raycast(double x0, double y0, double x1, double y1, double& fraction) const = 0;
 };
 
 }  // namespace rwd::bench

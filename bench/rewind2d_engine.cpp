@@ -91,4 +91,14 @@ Pose2D Rewind2DEngine::pose(uint32_t index) const {
   return {to_double(p.x), to_double(p.y), to_double(world_->angle(id))};
 }
 
+bool Rewind2DEngine::raycast(double x0, double y0, double x1, double y1, double& fraction) const {
+  // Measurement code: the ray comes in as floating point and is rounded to
+  // the lane's Q16.16 grid (its values are within the Fx range).
+  auto fx = [](double v) { return Fx::from_raw(static_cast<int32_t>(v * 65536.0)); };
+  const auto hit = world_->raycast({fx(x0), fx(y0)}, {fx(x1 - x0), fx(y1 - y0)});
+  if (!hit) return false;
+  fraction = to_double(hit->fraction);
+  return true;
+}
+
 }  // namespace rwd::bench

@@ -20,6 +20,7 @@ class Rewind2DEngine final : public Engine2D {
   bool build(const Scene2D& scene, std::string& error) override;
   void step() override { world_->step(); }
   Pose2D pose(uint32_t index) const override;
+  bool raycast(double x0, double y0, double x1, double y1, double& fraction) const override;
 
  private:
   sim2d::World2DConfig config_;

@@ -53,7 +53,7 @@ step() { echo "==> $*" >&2; }
 
 targets=()
 ((run3d)) && targets+=(rewind-scene-sweep)
-((run2d)) && targets+=(rewind-scene2d-sweep)
+((run2d)) && targets+=(rewind-scene2d-sweep rewind-rays2d)
 if ((build)); then
   step "system packages"
   bash scripts/setup.sh >&2
@@ -114,6 +114,9 @@ if ((run2d)); then
   "$sweep2d" --sweep --scene pyramids "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
   "$sweep2d" --scene tumbler "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
   "$sweep2d" --scene joint_grid "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
+  rays=100000
+  [[ $mode == quick ]] && rays=20000
+  build/bench/bin/rewind-rays2d "$rays" >"$out/2d_rays.csv"
   printf 'mode=%s\ndate=%s\nseconds=%s\n' "$mode" "$(date -u +%F)" \
     "$(( $(date +%s) - start ))" >"$out/2d_run.txt"
 fi
@@ -123,6 +126,6 @@ fi
 if [[ -f $out/2d_sweep.csv && -f $out/2d_run.txt ]]; then
   step "2D charts and the 2D section of $doc"
   python3 scripts/charts2d.py --csv "$out/2d_sweep.csv" --run "$out/2d_run.txt" --out "$out" \
-    --doc "$doc"
+    --doc "$doc" --rays "$out/2d_rays.csv"
 fi
 step "done: $doc, $out/"

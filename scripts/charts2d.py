@@ -155,7 +155,7 @@ MAPPING = """\
 """
 
 
-def section(rows, run, rel_out, out_dir):
+def section(rows, run, rel_out, out_dir, rays=None):
     d = []
     w = d.append
     w(BEGIN)
@@ -265,9 +265,25 @@ def section(rows, run, rel_out, out_dir):
                 stood(r)))
         w("")
 
-    w("### Not measured yet\n")
-    w("**Raycasts per second** are not in this run, and nothing here stands in for them: they "
-      "come with the lane's queries (`World2D` has no raycast yet).\n")
+    if rays:
+        w("### Raycasts\n")
+        w("Closest-hit rays per second in the large pyramid (5,050 boxes, as built: both engines "
+          "answer for the same poses), %s rays from above and across, the engines taking turns in "
+          "blocks of 1,000 (`build/bench/bin/rewind-rays2d`). *Agree* is the share of rays both "
+          "engines answer alike: both miss, or both hit within 1 cm along the ray (Box2D's boxes "
+          "carry a 1 cm skin).\n" % rays[0]["rays"])
+        w("| engine | rays/s | hits | agree |")
+        w("|---|---:|---:|---:|")
+        for r in rays:
+            w("| %s | %s | %s | %s%% |" % (r["engine"], "{:,}".format(int(r["rays_per_s"])),
+                                          r["hits"], r["agree_pct"]))
+        rw = [r for r in rays if r["engine"] == "rewind"]
+        bx = [r for r in rays if r["engine"] == "box2d"]
+        if rw and bx:
+            w("\n**Rewind rays/s ÷ Box2D rays/s in this run: %.2f.**\n"
+              % (float(rw[0]["rays_per_s"]) / float(bx[0]["rays_per_s"])))
+        else:
+            w("")
 
     w("### 2D scenes\n")
     w("| scene | what |")
@@ -282,6 +298,7 @@ def section(rows, run, rel_out, out_dir):
     w("bash scripts/charts.sh --only 2d           # this section and its charts alone")
     w("build/bench/bin/rewind-scene2d-sweep --help")
     w("build/bench/bin/rewind_scene2d_bench       # Google Benchmark: the same scenes, one engine at a time")
+    w("build/bench/bin/rewind-rays2d [RAYS]       # raycasts per second, both engines")
     w("```")
     w("The CSV behind every 2D table and chart is `%s/2d_sweep.csv`." % rel_out)
     w(END)
@@ -310,13 +327,18 @@ def main():
     ap.add_argument("--run", required=True, help="key=value lines: mode, date, seconds")
     ap.add_argument("--out", required=True)
     ap.add_argument("--doc", required=True)
+    ap.add_argument("--rays", help="rewind-rays2d output (optional)")
     args = ap.parse_args()
     rows = read_rows(args.csv)
     run = read_run(args.run)
     os.makedirs(args.out, exist_ok=True)
     doc_dir = os.path.dirname(os.path.abspath(args.doc))
     rel_out = os.path.relpath(os.path.abspath(args.out), doc_dir)
-    splice(args.doc, section(rows, run, rel_out, args.out))
+    rays = None
+    if args.rays and os.path.exists(args.rays):
+        with open(args.rays) as f:
+            rays = list(csv.DictReader(f))
+    splice(args.doc, section(rows, run, rel_out, args.out, rays))
     print("charts2d: wrote the 2D section of %s" % args.doc, file=sys.stderr)
 
 

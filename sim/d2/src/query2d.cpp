@@ -38,12 +38,6 @@ Ray make_ray(Vec2 origin, Vec2 translation) {
   return r;
 }
 
-// The bounds of the ray's first `length` metres.
-Box2W ray_box(const Ray& ray, W length) {
-  const V2 end = vmul_add(ray.origin, length, ray.unit);
-  return {vmin(ray.origin, end), vmax(ray.origin, end)};
-}
-
 RayHit2D to_hit(uint32_t index, const BodyRecord2D& body, const RayResult2& r, W length) {
   RayHit2D h;
   h.body = {index, body.generation};
@@ -69,19 +63,21 @@ std::optional<RayHit2D> World2D::raycast(Vec2 origin, Vec2 translation,
   W best = ray.length;
   RayResult2 best_hit;
   uint32_t best_index = 0;
-  query_cache().query(ray_box(ray, ray.length), [&](const Item& item, const Box2W& cull) {
+  const V2 far_end = vmul_add(ray.origin, ray.length, ray.unit);
+  query_cache().query_segment(ray.origin, far_end, [&](const Item& item, V2 end) {
     const BodyRecord2D& b = state_.bodies[item.index];
-    if (!passes_filter(b, item.index, filter)) return cull;
+    if (!passes_filter(b, item.index, filter)) return end;
     RayResult2 hit;
-    if (!ray_shape(b.shape, origin_transform(b), ray.origin, ray.unit, best, hit)) return cull;
+    if (!ray_shape(b.shape, origin_transform(b), ray.origin, ray.unit, best, hit)) return end;
     if (found && (hit.distance > best || (hit.distance == best && item.index > best_index))) {
-      return cull;
+      return end;
     }
     found = true;
     best = hit.distance;
     best_hit = hit;
     best_index = item.index;
-    return ray_box(ray, best);  // nothing beyond the best hit can beat it
+    // Nothing beyond the best hit can beat it (a tie at it can, by index).
+    return vmul_add(ray.origin, best, ray.unit);
   });
   if (!found) return std::nullopt;
   return to_hit(best_index, state_.bodies[best_index], best_hit, ray.length);
@@ -92,14 +88,15 @@ void World2D::raycast_all(Vec2 origin, Vec2 translation, const QueryFilter2D& fi
   out.clear();
   const Ray ray = make_ray(origin, translation);
   if (ray.length == 0) return;
-  query_cache().query(ray_box(ray, ray.length), [&](const Item& item, const Box2W& cull) {
+  const V2 far_end = vmul_add(ray.origin, ray.length, ray.unit);
+  query_cache().query_segment(ray.origin, far_end, [&](const Item& item, V2 end) {
     const BodyRecord2D& b = state_.bodies[item.index];
     RayResult2 hit;
     if (passes_filter(b, item.index, filter) &&
         ray_shape(b.shape, origin_transform(b), ray.origin, ray.unit, ray.length, hit)) {
       out.push_back(to_hit(item.index, b, hit, ray.length));
     }
-    return cull;
+    return end;
   });
   // Near to far as the caller sees the distances (Fx), then by index.
   std::sort(out.begin(), out.end(), [](const RayHit2D& a, const RayHit2D& b) {

@@ -60,6 +60,46 @@ class World2D::QueryCache {
     }
   }
 
+  /// Calls visit(item, end) for every item whose box the segment
+  /// origin..end crosses (a slab-free separating-axis test: multiplies
+  /// only). `visit` returns the end to keep culling with, so a closest-hit
+  /// search shortens the segment as it finds hits.
+  template <class Visit>
+  void query_segment(detail::V2 origin, detail::V2 end, Visit&& visit) const {
+    if (nodes_.empty()) return;
+    int32_t stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[static_cast<size_t>(stack[--top])];
+      if (!segment_crosses(node.box, origin, end)) continue;
+      if (node.count > 0) {
+        for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+          if (segment_crosses(items_[i].box, origin, end)) end = visit(items_[i], end);
+        }
+        continue;
+      }
+      stack[top++] = node.right;
+      stack[top++] = node.left;
+    }
+  }
+
+  /// Whether the segment a..b touches the box: their bounds overlap and
+  /// the box's corners are not all on one side of the segment's line.
+  static bool segment_crosses(const detail::Box2W& box, detail::V2 a, detail::V2 b) {
+    using namespace detail;
+    const Box2W bounds{vmin(a, b), vmax(a, b)};
+    if (!overlaps(box, bounds)) return false;
+    const V2 d = b - a;
+    // |d x (c - a)| <= |d.x| hy + |d.y| hx, with c the centre and h the
+    // half extents, everything doubled to stay in whole units.
+    const V2 c2 = (box.lower + box.upper) - a - a;
+    const V2 h2 = box.upper - box.lower;
+    const I128 cross = static_cast<I128>(d.x) * c2.y - static_cast<I128>(d.y) * c2.x;
+    const I128 reach = static_cast<I128>(wabs(d.x)) * h2.y + static_cast<I128>(wabs(d.y)) * h2.x;
+    return (cross < 0 ? -cross : cross) <= reach;
+  }
+
  private:
   int32_t build_range(uint32_t first, uint32_t count);
 

@@ -50,11 +50,15 @@ bool ray_edge(V2 origin, V2 unit, W max_length, V2 p0, V2 p1, V2 n, W& s) {
   if (ahead < 0) return false;  // behind the edge line
   const W hit = wdiv(ahead, -den);
   if (hit > max_length) return false;
-  // Within the edge: the hit point's position along p0..p1.
+  // Within the edge: the hit point's position along p0..p1, measured along
+  // the edge's direction, which is the unit normal turned a quarter
+  // counter-clockwise (every edge runs that way round its core), so no
+  // square root is needed.
   const V2 h = vmul_add(origin, hit, unit);
-  const UnitLength e = vnormalize(p1 - p0);
-  const W along = vdot(h - p0, e.unit);
-  if (along < -kEdgeEndSlack || along > e.length + kEdgeEndSlack) return false;
+  const V2 along_edge = vperp(n);
+  const W along = vdot(h - p0, along_edge);
+  const W length = vdot(p1 - p0, along_edge);
+  if (along < -kEdgeEndSlack || along > length + kEdgeEndSlack) return false;
   s = hit;
   return true;
 }

@@ -104,7 +104,9 @@ Result<BodyId2D> World2D::create_body(const BodyDef2D& def) {
 
   // Lowest free slot first, so ids depend only on the calls made.
   auto& bodies = state_.bodies;
-  uint32_t index = 0;
+  // Lowest free slot; with none free (the usual case while a scene is
+  // built) the scan is skipped.
+  uint32_t index = state_.live_bodies == bodies.size() ? static_cast<uint32_t>(bodies.size()) : 0;
   while (index < bodies.size() && (bodies[index].flags & kBodyLive)) ++index;
   if (index == bodies.size()) {
     if (state_.live_bodies >= state_.config.max_bodies) {

@@ -129,7 +129,7 @@ Result<JointId2D> World2D::create_joint(const JointDef2D& def) {
   j.target = v_from(def.target);
 
   auto& joints = state_.joints;
-  uint32_t index = 0;
+  uint32_t index = state_.live_joints == joints.size() ? static_cast<uint32_t>(joints.size()) : 0;
   while (index < joints.size() && (joints[index].flags & kJointLive)) ++index;
   if (index == joints.size()) {
     if (state_.live_joints >= state_.config.max_bodies) {
