@@ -19,6 +19,7 @@ ContactEvent2D make_event(const World2DState& state, const ContactRecord2D& c,
   e.a = {c.a, state.bodies[c.a].generation};
   e.b = {c.b, state.bodies[c.b].generation};
   e.sensor = (c.flags & kContactSensor) != 0;
+  e.trigger = (c.flags & kContactTrigger) != 0;
   if (type == ContactEventType2D::kExit) return e;
   int deepest = 0;
   if (c.count > 1 && c.points[1].separation < c.points[0].separation) deepest = 1;
@@ -84,7 +85,8 @@ void drop_contacts_of(World2DState& state, uint32_t index) {
     if (c.flags & kContactTouching) {
       state.pending_exits.push_back({c.a, state.bodies[c.a].generation, c.b,
                                      state.bodies[c.b].generation,
-                                     static_cast<uint8_t>((c.flags & kContactSensor) ? 1 : 0)});
+                                     static_cast<uint8_t>(((c.flags & kContactSensor) ? 1 : 0) |
+                                                          ((c.flags & kContactTrigger) ? 2 : 0))});
     }
   }
   contacts.resize(kept);
@@ -97,7 +99,8 @@ void begin_events(World2DState& state, std::vector<ContactEvent2D>& events) {
     e.type = ContactEventType2D::kExit;
     e.a = {p.a, p.generation_a};
     e.b = {p.b, p.generation_b};
-    e.sensor = p.sensor != 0;
+    e.sensor = (p.sensor & 1) != 0;
+    e.trigger = (p.sensor & 2) != 0;
     events.push_back(e);
   }
   state.pending_exits.clear();

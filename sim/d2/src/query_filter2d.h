@@ -13,6 +13,7 @@ inline bool passes_filter(const BodyRecord2D& body, uint32_t index, const QueryF
   if (!(body.flags & kBodyLive) || !(body.flags & kBodyEnabled)) return false;
   if ((body.layer & filter.layer_mask) == 0) return false;
   if ((body.flags & kBodySensor) && !filter.include_sensors) return false;
+  if ((body.flags & kBodyTrigger) && !filter.include_triggers) return false;
   switch (body.kind) {
     case BodyKind2D::kStatic:
       if (!filter.include_static) return false;

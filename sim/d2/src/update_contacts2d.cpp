@@ -67,6 +67,7 @@ void update_contacts(World2DState& state, StepScratch2D& scratch) {
     W deepest = manifold.points[0].separation;
     if (manifold.count > 1) deepest = wmin(deepest, manifold.points[1].separation);
     if (sensor) contact.flags |= kContactSensor;
+    if ((body_a.flags | body_b.flags) & kBodyTrigger) contact.flags |= kContactTrigger;
     if (deepest < (sensor ? 0 : slop)) contact.flags |= kContactTouching;
     // Anchors from the manifold are from each body's origin; the solver
     // works from the centres of mass.

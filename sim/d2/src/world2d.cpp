@@ -80,6 +80,7 @@ Result<BodyId2D> World2D::create_body(const BodyDef2D& def) {
   body.kind = def.kind;
   body.flags = kBodyLive | kBodyEnabled | kBodyAwake;
   if (def.sensor) body.flags |= kBodySensor;
+  if (def.trigger) body.flags |= kBodyTrigger;
   if (def.lock_rotation) body.flags |= kBodyLockRotation;
   if (def.continuous && def.kind == BodyKind2D::kDynamic) body.flags |= kBodyContinuous;
   body.layer = def.layer;

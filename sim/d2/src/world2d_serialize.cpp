@@ -23,8 +23,8 @@ Status corrupt(const std::string& what) {
   return Status::Error(ErrorCode::kCorrupt, "2D world snapshot: " + what);
 }
 
-constexpr uint8_t kKnownFlags =
-    kBodyEnabled | kBodySensor | kBodyLockRotation | kBodyLive | kBodyAwake | kBodyContinuous;
+constexpr uint8_t kKnownFlags = kBodyEnabled | kBodySensor | kBodyLockRotation | kBodyLive |
+                                kBodyAwake | kBodyContinuous | kBodyTrigger;
 
 Status check_body(const BodyRecord2D& body, const World2DConfig& config, uint32_t index) {
   const std::string at = "body " + std::to_string(index) + ": ";
@@ -156,7 +156,7 @@ Status World2D::deserialize(std::span<const uint8_t> bytes) {
     if (!reader.ok()) return corrupt("truncated contacts");
     const std::string at = "contact " + std::to_string(i) + ": ";
     if (contact.count < 1 || contact.count > 2) return corrupt(at + "point count not 1 or 2");
-    if ((contact.flags & ~(kContactSensor | kContactTouching)) != 0) {
+    if ((contact.flags & ~(kContactSensor | kContactTouching | kContactTrigger)) != 0) {
       return corrupt(at + "unknown flags");
     }
     if (contact.a >= contact.b || contact.b >= slots ||
@@ -176,7 +176,7 @@ Status World2D::deserialize(std::span<const uint8_t> bytes) {
   state.pending_exits.resize(static_cast<size_t>(exits));
   for (PendingExit2D& exit : state.pending_exits) {
     visit_pending_exit(exit, reader);
-    if (exit.a >= exit.b || exit.sensor > 1) return corrupt("bad pending exit");
+    if (exit.a >= exit.b || exit.sensor > 3) return corrupt("bad pending exit");
   }
   if (!reader.ok()) return corrupt("truncated pending exits");
   const uint64_t joint_slots = reader.get(4);

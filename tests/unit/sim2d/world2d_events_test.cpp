@@ -103,5 +103,35 @@ TEST(World2DEvents, PendingExitSurvivesSaveAndRestore) {
   EXPECT_EQ(again.exit, 1);
 }
 
+TEST(World2DEvents, TriggersAreSolidReportedAsTriggersAndSkippedByQueries) {
+  World2D world;
+  BodyDef2D plate;
+  plate.kind = BodyKind2D::kStatic;
+  plate.shape = *make_box(2_fx, 0.5_fx);
+  plate.position = {Fx(), -0.5_fx};
+  plate.trigger = true;
+  const BodyId2D pad = *world.create_body(plate);
+  const BodyId2D ball = add_body(world, BodyKind2D::kDynamic, make_circle(0.5_fx), {Fx(), 1_fx});
+  bool reported = false;
+  for (int i = 0; i < 60; ++i) {
+    world.step();
+    for (const ContactEvent2D& e : world.events()) {
+      EXPECT_TRUE(e.trigger);
+      EXPECT_FALSE(e.sensor);
+      reported = reported || e.type == ContactEventType2D::kEnter;
+    }
+  }
+  EXPECT_TRUE(reported);
+  // Solid: the ball rests on the plate (centre 0.5 m above its top).
+  EXPECT_NEAR(world.position(ball).y.raw(), (0.5_fx).raw(), (0.006_fx).raw());
+  // Queries see it only when asked.
+  EXPECT_FALSE(world.raycast({3_fx, -0.5_fx}, {-6_fx, Fx()}).has_value());
+  QueryFilter2D with_triggers;
+  with_triggers.include_triggers = true;
+  const auto hit = world.raycast({3_fx, -0.5_fx}, {-6_fx, Fx()}, with_triggers);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->body, pad);
+}
+
 }  // namespace
 }  // namespace rwd::sim2d

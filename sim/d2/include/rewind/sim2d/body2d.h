@@ -60,6 +60,11 @@ struct BodyDef2D {
   uint32_t mask = 0xFFFFFFFFu;  ///< layers it collides with (both sides must agree)
   /// Reports overlaps as events, never pushes or is pushed.
   bool sensor = false;
+  /// A trigger is solid (it pushes and is pushed like any body) and its
+  /// contacts' events carry the trigger flag, so a game tells a pressure
+  /// plate or a goal line from the rest; queries skip triggers unless asked
+  /// (QueryFilter2D::include_triggers).
+  bool trigger = false;
   /// Never turns: infinite rotational inertia (characters, top-down discs).
   bool lock_rotation = false;
   /// Continuous collision (dynamic bodies): after each step a body that

@@ -25,7 +25,8 @@ struct ContactEvent2D {
   ContactEventType2D type = ContactEventType2D::kEnter;
   BodyId2D a;
   BodyId2D b;
-  bool sensor = false;  ///< at least one of the two is a sensor
+  bool sensor = false;   ///< at least one of the two is a sensor
+  bool trigger = false;  ///< at least one of the two is a trigger
   fixed::Vec2 point;
   fixed::Vec2 normal;
   fixed::Fx depth;

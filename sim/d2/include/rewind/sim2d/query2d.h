@@ -19,6 +19,8 @@ struct QueryFilter2D {
   uint32_t layer_mask = 0xFFFFFFFFu;
   /// Sensors (triggers) are skipped unless asked for.
   bool include_sensors = false;
+  /// Triggers (BodyDef2D::trigger) are skipped unless asked for.
+  bool include_triggers = false;
   /// Skipped bodies by kind: the character controller, for one, ignores
   /// dynamic bodies when it is told to.
   bool include_static = true;

@@ -27,6 +27,8 @@ inline constexpr uint8_t kBodyLive = 8;  ///< the slot holds a body
 inline constexpr uint8_t kBodyAwake = 16;
 /// Swept against static and kinematic shapes after each step (BodyDef2D::continuous).
 inline constexpr uint8_t kBodyContinuous = 32;
+/// A solid body whose contacts are reported as trigger contacts (BodyDef2D::trigger).
+inline constexpr uint8_t kBodyTrigger = 64;
 
 /// One body slot. A free slot has no kBodyLive flag, keeps the generation of
 /// its last body and is zero otherwise.
@@ -67,8 +69,10 @@ struct ContactPoint2D {
 
 /// ContactRecord2D::flags bits.
 inline constexpr uint8_t kContactSensor = 1;  ///< a sensor pair: reported, never solved
-inline constexpr uint8_t kContactTouching =
-    2;  ///< touching (contact_event2d.h) as of the last step
+/// Touching (contact_event2d.h) as of the last step.
+inline constexpr uint8_t kContactTouching = 2;
+/// A pair with a trigger: solved like any, reported with the trigger flag.
+inline constexpr uint8_t kContactTrigger = 4;
 
 /// A pair of bodies whose bounds overlap, with the manifold of the last
 /// step. a < b (body indices); the array is sorted by (a, b).
@@ -90,7 +94,7 @@ struct PendingExit2D {
   uint32_t generation_a = 0;
   uint32_t b = 0;
   uint32_t generation_b = 0;
-  uint8_t sensor = 0;
+  uint8_t sensor = 0;  ///< bit 0: a sensor pair; bit 1: a trigger pair
 };
 
 /// JointRecord2D::flags bits.
