@@ -79,7 +79,7 @@ V2 slide(const Ctx& c, V2 pos, V2 move, bool vertical, Log& log) {
     V2 rest = move - done;
     const V2 n = hit.normal;
     if (log.count < 16) log.normals[log.count++] = n;
-    const bool walkable = n.y >= c.slope_cos;
+    const bool walkable = n.y > 0 && n.y >= c.slope_cos;
     if (walkable) {
       log.ground = true;
     } else if (-n.y >= c.slope_cos) {

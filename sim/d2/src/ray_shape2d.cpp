@@ -48,6 +48,8 @@ bool ray_edge(V2 origin, V2 unit, W max_length, V2 p0, V2 p1, V2 n, W& s) {
   if (den >= 0) return false;  // parallel or leaving through it
   const W ahead = vdot(n, origin - p0);
   if (ahead < 0) return false;  // behind the edge line
+  // Beyond max_length, tested as a product so the quotient cannot overflow.
+  if (ahead > wmul(-den, max_length)) return false;
   const W hit = wdiv(ahead, -den);
   if (hit > max_length) return false;
   // Within the edge: the hit point's position along p0..p1, measured along

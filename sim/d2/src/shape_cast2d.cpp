@@ -43,9 +43,12 @@ bool cast_one(const WPoly& core, const WPoly& body, V2 translation, W min_approa
     for (; i < kMaxIterations; ++i) {
       const W approach = vdot(translation, d.normal);
       if (approach <= 0) return false;
+      // Past max_fraction even at this slope: no hit. Checked as a product
+      // first, so the quotient below is at most 1 and cannot overflow.
+      const W gap = d.distance - target;
+      if (gap > wmul(approach, max_fraction - t)) return false;
       // Truncated toward zero: the step errs short, never past the contact.
-      t += wdiv(d.distance - target, approach);
-      if (t > max_fraction) return false;
+      t += wdiv(gap, approach);
       const V2 shift{wmul(t, translation.x), wmul(t, translation.y)};
       d = shape_distance(translate_core(core, shift), body);
       if (d.distance <= target + kCastTolerance) break;
