@@ -13,10 +13,57 @@ namespace {
 
 // Leaves hold a few bodies: an exact bounds test is cheaper than a node.
 constexpr uint32_t kLeafSize = 4;
+// Refits before a full rebuild: the splits were chosen for where the bodies
+// were then, and a few seconds of motion make the boxes overlap more.
+constexpr uint32_t kMaxRefits = 30;
 
 }  // namespace
 
+bool World2D::QueryCache::refit(const World2DState& state) {
+  // The same bodies: as many live, enabled ones as items, each item's still
+  // live and enabled (item indices are distinct, so the sets are equal).
+  size_t live = 0;
+  for (const BodyRecord2D& b : state.bodies) {
+    if ((b.flags & kBodyLive) && (b.flags & kBodyEnabled)) ++live;
+  }
+  if (live != items_.size()) return false;
+  for (const Item& item : items_) {
+    if (item.index >= state.bodies.size()) return false;
+    const BodyRecord2D& b = state.bodies[item.index];
+    if (!(b.flags & kBodyLive) || !(b.flags & kBodyEnabled)) return false;
+  }
+  for (Item& item : items_) {
+    const BodyRecord2D& b = state.bodies[item.index];
+    item.box = shape_bounds(b.shape, origin_transform(b));
+  }
+  // Nodes were made parent first, so children come after their parent:
+  // walking backwards unites children before their parent needs them.
+  for (size_t n = nodes_.size(); n-- > 0;) {
+    Node& node = nodes_[n];
+    if (node.count > 0) {
+      Box2W box = items_[node.first].box;
+      for (uint32_t i = node.first + 1; i < node.first + node.count; ++i) {
+        box.lower = vmin(box.lower, items_[i].box.lower);
+        box.upper = vmax(box.upper, items_[i].box.upper);
+      }
+      node.box = box;
+    } else {
+      const Box2W& l = nodes_[static_cast<size_t>(node.left)].box;
+      const Box2W& r = nodes_[static_cast<size_t>(node.right)].box;
+      node.box = {vmin(l.lower, r.lower), vmax(l.upper, r.upper)};
+    }
+  }
+  return true;
+}
+
 void World2D::QueryCache::build(const World2DState& state, uint64_t edits) {
+  step_count_ = state.step_count;
+  edits_ = edits;
+  if (built_ && refits_ < kMaxRefits && refit(state)) {
+    ++refits_;
+    return;
+  }
+  refits_ = 0;
   items_.clear();
   nodes_.clear();
   for (uint32_t i = 0; i < state.bodies.size(); ++i) {
@@ -29,8 +76,6 @@ void World2D::QueryCache::build(const World2DState& state, uint64_t edits) {
     build_range(0, static_cast<uint32_t>(items_.size()));
   }
   built_ = true;
-  step_count_ = state.step_count;
-  edits_ = edits;
 }
 
 int32_t World2D::QueryCache::build_range(uint32_t first, uint32_t count) {

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The queries' acceleration: a bounding-box tree over every live, enabled
-// body, built top-down by median splits. It is rebuilt whole (O(n log n),
-// into reused buffers) by the first query after the world changed, and
-// only ever narrows which bodies get the exact test: every query compares
-// its results by (value, body index), so they do not depend on the tree's
+// body, built top-down by median splits. The first query after the world
+// changed brings it up to date: when the same bodies are in it (a step, a
+// teleport) the boxes are refitted in place (O(n)); otherwise, and every
+// kMaxRefits refits so moved bodies do not leave it loose, it is rebuilt
+// (O(n log n)), both into reused buffers. It only ever narrows which bodies get the exact test:
+// every query compares its results by (value, body index), so they do not depend on the tree's
 // shape or the order it visits bodies in.
 #include <cstdint>
 #include <vector>
@@ -102,8 +104,10 @@ class World2D::QueryCache {
 
  private:
   int32_t build_range(uint32_t first, uint32_t count);
+  bool refit(const World2DState& state);
 
   bool built_ = false;
+  uint32_t refits_ = 0;
   uint64_t step_count_ = 0;
   uint64_t edits_ = 0;
   std::vector<Item> items_;

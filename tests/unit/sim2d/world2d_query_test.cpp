@@ -371,29 +371,46 @@ TEST(World2DQuery, TreeAgreesWithEveryBodyTestedAlone) {
     bodies.push_back(add_body(world, BodyKind2D::kStatic, shape, at, next(6 << 16)));
   }
   std::vector<BodyId2D> got;
-  for (int q = 0; q < 40; ++q) {
-    const Vec2 p{next(44 << 16) - 22_fx, next(44 << 16) - 22_fx};
-    const Fx r = next(3 << 16) + 0.05_fx;
-    world.overlap(*make_circle(r), p, Fx(), {}, got);
-    std::vector<BodyId2D> want;
-    Fx nearest = Fx::max();
-    for (const BodyId2D id : bodies) {
-      const Fx d = world.signed_distance(id, p);
-      if (d < r) want.push_back(id);
-      nearest = fixed::min(nearest, d);
+  auto check = [&](int queries) {
+    for (int q = 0; q < queries; ++q) {
+      const Vec2 p{next(44 << 16) - 22_fx, next(44 << 16) - 22_fx};
+      const Fx r = next(3 << 16) + 0.05_fx;
+      world.overlap(*make_circle(r), p, Fx(), {}, got);
+      std::vector<BodyId2D> want;
+      Fx nearest = Fx::max();
+      for (const BodyId2D id : bodies) {
+        const Fx d = world.signed_distance(id, p);
+        if (d < r) want.push_back(id);
+        nearest = fixed::min(nearest, d);
+      }
+      // Overlap is decided in Q32.32, signed_distance() rounds to Fx: drop
+      // bodies within an ulp of touching from the comparison.
+      auto near_touch = [&](BodyId2D id) {
+        return fixed::abs(world.signed_distance(id, p) - r).raw() <= 1;
+      };
+      std::erase_if(got, near_touch);
+      std::erase_if(want, near_touch);
+      EXPECT_EQ(got, want) << q;
+      EXPECT_EQ(world.signed_distance(p), nearest) << q;
+      const auto n = world.nearest_body(p, 100_fx);
+      ASSERT_TRUE(n);
+      EXPECT_EQ(n->distance, fixed::max(nearest, Fx())) << q;
     }
-    // Overlap is decided in Q32.32, signed_distance() rounds to Fx: drop
-    // bodies within an ulp of touching from the comparison.
-    auto near_touch = [&](BodyId2D id) {
-      return fixed::abs(world.signed_distance(id, p) - r).raw() <= 1;
-    };
-    std::erase_if(got, near_touch);
-    std::erase_if(want, near_touch);
-    EXPECT_EQ(got, want) << q;
-    EXPECT_EQ(world.signed_distance(p), nearest) << q;
-    const auto n = world.nearest_body(p, 100_fx);
-    ASSERT_TRUE(n);
-    EXPECT_EQ(n->distance, fixed::max(nearest, Fx())) << q;
+  };
+  check(40);
+  // Every body teleported: the tree is refitted, not rebuilt, and must
+  // still agree; then one body at a time, past the refit limit.
+  for (const BodyId2D id : bodies) {
+    ASSERT_TRUE(
+        world.set_transform(id, {next(40 << 16) - 20_fx, next(40 << 16) - 20_fx}, Fx()).ok());
+  }
+  check(20);
+  for (int i = 0; i < 40; ++i) {
+    ASSERT_TRUE(
+        world
+            .set_transform(bodies[static_cast<size_t>(i) * 7], {next(40 << 16) - 20_fx, Fx()}, Fx())
+            .ok());
+    check(2);
   }
 }
 
