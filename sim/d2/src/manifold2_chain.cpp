@@ -174,6 +174,8 @@ void collide_chain_circle(const Shape2D& a, const Xf& xa, const Shape2D& b, cons
   if (offset < 0) return;  // behind: one-sided
   const W v = vdot(center - c.p1, c.e1);
   const W u = vdot(c.p2 - center, c.e1);
+  // At a convex joint the wedge past both ends is answered by both edges
+  // with the same vertex point (as in Box2D); the solver shares the load.
   if (v < 0) {
     // Before p1: if the centre is not also past the previous edge's end,
     // it is in the previous edge's region and that edge answers.
