@@ -81,8 +81,17 @@ inline double point_speed(const World2D& world, BodyId2D id, double reach) {
   return speed(world, id) + std::fabs(d(world.angular_velocity(id))) * reach;
 }
 
+/// `config` with sleeping off. Scenes that measure resting overlap use it:
+/// the overlap is read from the contact events, and a sleeping pair reports
+/// none, so a scene that fell asleep would measure nothing.
+inline World2DConfig awake(World2DConfig config = {}) {
+  config.enable_sleep = false;
+  return config;
+}
+
 /// The deepest overlap of two solid bodies in the last step's contact
-/// events (the engine's own manifold depth), m.
+/// events (the engine's own manifold depth), m. Awake pairs only: see
+/// awake().
 inline double deepest_overlap(const World2D& world) {
   double deepest = 0.0;
   for (const ContactEvent2D& e : world.events()) {

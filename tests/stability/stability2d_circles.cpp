@@ -145,7 +145,7 @@ TEST(Stability2D, OverfullBoxOfCirclesComesToRest) {
 // circle no lower than 10 such overlaps below 4.75 m (the height of ten
 // touching circles).
 TEST(Stability2D, CircleStackInATubeRests) {
-  World2D world;
+  World2D world(awake());
   add_ground(world);
   add(world, def(make_box(0.5_fx, 4_fx), {-0.76_fx, 4_fx}, Fx(), BodyKind2D::kStatic));
   add(world, def(make_box(0.5_fx, 4_fx), {0.76_fx, 4_fx}, Fx(), BodyKind2D::kStatic));
@@ -191,7 +191,7 @@ TEST(Stability2D, CircleStackInATubeRests) {
 // than 1 mm sideways; the deepest overlap in the last second within the
 // slop + 1 mm.
 TEST(Stability2D, CircleColumnOnEachOtherStaysAligned) {
-  World2D world;
+  World2D world(awake());
   add_ground(world);
   Drift drift;
   for (int i = 0; i < 10; ++i) {

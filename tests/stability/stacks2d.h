@@ -36,7 +36,7 @@ struct StackResult {
 /// A column of `count` 1 m boxes on the ground for 10 s; replays a stretch
 /// from a save at 5 s bit for bit.
 inline StackResult run_stack(const World2DConfig& config, int count) {
-  World2D world(config);
+  World2D world(awake(config));
   add_ground(world);
   Drift drift;
   std::vector<BodyId2D> boxes;
@@ -68,7 +68,7 @@ inline StackResult run_stack(const World2DConfig& config, int count) {
 /// A 1 m box of density `ratio` on a 1 m box of density 1 on the ground for
 /// 10 s; replays a stretch from a save at 5 s bit for bit.
 inline StackResult run_mass_ratio(int ratio) {
-  World2D world;
+  World2D world(awake());
   add_ground(world);
   const BodyId2D light = add(world, def(make_box(0.5_fx, 0.5_fx), {Fx(), 0.5_fx}));
   BodyDef2D heavy_def = def(make_box(0.5_fx, 0.5_fx), {Fx(), 1.5_fx});
