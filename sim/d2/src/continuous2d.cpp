@@ -43,10 +43,12 @@ W time_of_impact(const BodyRecord2D& mover, const Xf& start, V2 translation,
     const Xf at{start.p + vscale(t, translation), start.q};
     const Gap2D g = gap(mover, at, obstacle, obstacle_xf);
     if (!g.found) return kWOne;
-    if (g.separation <= target) return t;
-    // Closing speed along the normal, per unit of the fraction.
+    // Closing speed along the normal, per unit of the fraction. A mover
+    // leaving the surface (a bounce, a jump off the ground) never comes
+    // closer, however near it starts.
     const W closing = -vdot(translation, g.normal);
     if (closing <= 0) return kWOne;
+    if (g.separation <= target) return t;
     t += wdiv(g.separation - target / 2, closing);
     if (t >= kWOne) return kWOne;
   }

@@ -83,5 +83,28 @@ TEST(World2DContinuous, AChainFloorStopsBulletsFromItsSolidSideOnly) {
   }
 }
 
+// A swept body that bounces off the ground leaves it: the sweep only
+// stops motion toward a surface, never away from one it starts against.
+TEST(World2DContinuous, ASweptBallBouncesOffTheGround) {
+  World2D world;
+  add_body(world, BodyKind2D::kStatic, make_box(100_fx, 1_fx), {Fx(), -1_fx});
+  BodyDef2D def;
+  def.shape = *make_circle(0.5_fx);
+  def.position = {Fx(), 1.5_fx};
+  def.material.restitution = 0.5_fx;
+  def.continuous = true;
+  const BodyId2D ball = *world.create_body(def);
+  Fx highest_after_bounce;
+  bool bounced = false;
+  for (int t = 0; t < 60; ++t) {
+    world.step();
+    if (world.linear_velocity(ball).y > Fx()) bounced = true;
+    if (bounced) highest_after_bounce = fixed::max(highest_after_bounce, world.position(ball).y);
+  }
+  ASSERT_TRUE(bounced);
+  // Dropped 1 m with e = 0.5: up to about 0.25 m above resting (y = 0.5).
+  EXPECT_GT(highest_after_bounce, 0.7_fx);
+}
+
 }  // namespace
 }  // namespace rwd::sim2d
