@@ -80,7 +80,9 @@ void write_back(World2DState& state, const StepScratch2D& scratch) {
     const SolverBody2D& sb = scratch.bodies[i];
     body.center += sb.dp;
     if (!(sb.dq == Rot{})) body.rotation = renormalize(rmul(sb.dq, body.rotation));
-    body.velocity = sb.v;
+    // The relax pass and restitution run after the last cap: cap again, so
+    // every state a step leaves is one deserialize() accepts.
+    body.velocity = clamp_speed(sb.v, state.config);
     body.angular_velocity = sb.w;
   }
 }

@@ -98,5 +98,36 @@ TEST(World2DState, ChecksumSeesEveryStepAndNoPadding) {
   EXPECT_NE(a.checksum(), b.checksum());
 }
 
+// A heavy ball at the speed cap knocks a light one away (restitution 1,
+// which after the solve would throw it faster than the cap): the step caps
+// it, so every state it leaves loads.
+TEST(World2DState, EveryStepLeavesAStateThatLoads) {
+  World2DConfig config;
+  config.gravity = {};
+  config.max_linear_speed = 5_fx;
+  World2D world(config);
+  BodyDef2D heavy;
+  heavy.shape = *make_circle(0.5_fx);
+  heavy.density = 100_fx;
+  heavy.linear_velocity = {5_fx, Fx()};
+  heavy.material.restitution = 1_fx;
+  ASSERT_TRUE(world.create_body(heavy).ok());
+  BodyDef2D light = heavy;
+  light.density = 1_fx;
+  light.linear_velocity = {};
+  light.position = {1.2_fx, Fx()};
+  const BodyId2D struck = *world.create_body(light);
+  std::vector<uint8_t> bytes;
+  for (int t = 0; t < 30; ++t) {
+    world.step();
+    world.serialize(bytes);
+    World2D copy;
+    const Status loaded = copy.deserialize(bytes);
+    ASSERT_TRUE(loaded.ok()) << "tick " << t << ": " << loaded.message();
+  }
+  EXPECT_GT(world.linear_velocity(struck).x, 4_fx);
+  EXPECT_LE(world.linear_velocity(struck).x, 5_fx);
+}
+
 }  // namespace
 }  // namespace rwd::sim2d
