@@ -40,8 +40,8 @@ inline void apply_angular(SolverBody2D& a, SolverBody2D& b, W impulse) {
   b.w += wmul(b.inv_inertia, impulse);
 }
 
-/// The angle of a rotation, radians in [-pi, pi] (to the fixed-point
-/// library's atan2 ulp, 2^-16).
+/// The angle of a rotation, radians in [-pi, pi], to 2^-29 (the fixed
+/// library's CORDIC at its working precision).
 W angle_of(Rot q);
 
 /// B's angle minus A's now, minus the reference: the step's start value

@@ -10,7 +10,7 @@
 namespace rwd::sim2d::detail {
 
 W angle_of(Rot q) {
-  return w_from(fixed::atan2(w_to_fx(q.s), w_to_fx(q.c)));
+  return fixed::vector_angle(q.s, q.c).raw();
 }
 
 V2 solve22(W k11, W k12, W k22, V2 v) {

@@ -79,24 +79,27 @@ SinCos sin_cos(Fx radians) {
   return {s, c};
 }
 
-Fx atan2(Fx y, Fx x) {
-  // The axes are answered exactly: CORDIC would leave a residue of a few
-  // 2^-30 there, which could round differently from the documented values.
-  if (y.raw() == 0) return x.raw() >= 0 ? Fx::zero() : Fx::pi();
-  if (x.raw() == 0) return y.raw() > 0 ? Fx::half_pi() : -Fx::half_pi();
-  int64_t vx = x.raw();
-  int64_t vy = y.raw();
+namespace {
+
+// The angle of (vx, vy), neither zero, as Q2.30 radians in (-pi, pi]: the
+// CORDIC vectoring both atan2 and vector_angle use. The larger magnitude
+// is scaled into [2^40, 2^41) (left shifts are exact; inputs at or beyond
+// 2^41 lose their lowest bits to right shifts); the CORDIC gain (< 1.65)
+// and sqrt(2) then keep every value below 2^43.
+int64_t cordic_angle_q30(int64_t vy, int64_t vx) {
   // Left half-plane: rotate by pi so x >= 0, and add the pi back at the end.
   int64_t offset = 0;
   if (vx < 0) {
+    offset = vy >= 0 ? kPiQ30 : -kPiQ30;
     vx = -vx;
     vy = -vy;
-    offset = y.raw() >= 0 ? kPiQ30 : -kPiQ30;
   }
-  // Scale so the larger magnitude is in [2^40, 2^41): both inputs are below
-  // 2^32 in magnitude, so this only ever shifts left (exactly). The CORDIC
-  // gain (< 1.65) and sqrt(2) keep every value below 2^43.
-  const uint64_t big = magnitude(vx) > magnitude(vy) ? magnitude(vx) : magnitude(vy);
+  uint64_t big = magnitude(vx) > magnitude(vy) ? magnitude(vx) : magnitude(vy);
+  while (big >= (uint64_t{1} << 41)) {
+    vx = asr(vx, 1);
+    vy = asr(vy, 1);
+    big >>= 1;
+  }
   int shift = 0;
   while ((big << shift) < (uint64_t{1} << 40)) ++shift;
   vx *= int64_t{1} << shift;
@@ -115,7 +118,24 @@ Fx atan2(Fx y, Fx x) {
       z -= kAtanTable[i];
     }
   }
-  return Fx::from_raw(saturate_i32(shift_round(z + offset, 14)));
+  return z + offset;
+}
+
+}  // namespace
+
+Fx atan2(Fx y, Fx x) {
+  // The axes are answered exactly: CORDIC would leave a residue of a few
+  // 2^-30 there, which could round differently from the documented values.
+  if (y.raw() == 0) return x.raw() >= 0 ? Fx::zero() : Fx::pi();
+  if (x.raw() == 0) return y.raw() > 0 ? Fx::half_pi() : -Fx::half_pi();
+  return Fx::from_raw(saturate_i32(shift_round(cordic_angle_q30(y.raw(), x.raw()), 14)));
+}
+
+FxWide vector_angle(int64_t y, int64_t x) {
+  if (y == 0) return FxWide::from_raw(x >= 0 ? 0 : kPiQ32);
+  if (x == 0) return FxWide::from_raw(y > 0 ? kHalfPiQ32 : -kHalfPiQ32);
+  if (y == INT64_MIN || x == INT64_MIN) return vector_angle(y / 2, x / 2);
+  return FxWide::from_raw(cordic_angle_q30(y, x) * 4);
 }
 
 Fx normalize_angle(Fx radians) {

@@ -114,3 +114,30 @@ TEST(FixedNormalizeAngle, MapsIntoMinusPiToPi) {
 
 }  // namespace
 }  // namespace rwd::fixed
+
+namespace rwd::fixed {
+namespace {
+
+// vector_angle is atan2's CORDIC kept to 2^-30: rounded to an Fx it gives
+// atan2's bits, and it resolves angles atan2 cannot (below 2^-16).
+TEST(VectorAngle, AgreesWithAtan2AndKeepsItsPrecision) {
+  for (int32_t y = -70000; y <= 70000; y += 7001) {
+    for (int32_t x = -70000; x <= 70000; x += 6007) {
+      const FxWide wide = vector_angle(y, x);
+      EXPECT_EQ(wide.to_fx(), atan2(Fx::from_raw(y), Fx::from_raw(x))) << y << ", " << x;
+    }
+  }
+  // pi / 4 in Q32.32 is 3373259426.3; within 2^-29 (8 units of 2^-32).
+  EXPECT_NEAR(static_cast<double>(vector_angle(1, 1).raw()), 3373259426.3, 8.0);
+  // An angle of 2^-20 rad, far below an Fx ulp: (2^52, 2^32) is 2^-20 to 1e-13.
+  const int64_t one = int64_t{1} << 52;
+  EXPECT_NEAR(static_cast<double>(vector_angle(one >> 20, one).raw()), 4096.0, 8.0);
+  EXPECT_EQ(atan2(Fx::from_raw(1), Fx::from_raw(1 << 20)), Fx());
+  // Axes exact, and the extreme inputs are taken.
+  EXPECT_EQ(vector_angle(0, -5).raw(), 13493037705);  // pi, Q32.32
+  EXPECT_EQ(vector_angle(7, 0).raw(), 6746518852);    // pi / 2
+  EXPECT_EQ(vector_angle(INT64_MIN, INT64_MIN).to_fx(), atan2(-1_fx, -1_fx));
+}
+
+}  // namespace
+}  // namespace rwd::fixed

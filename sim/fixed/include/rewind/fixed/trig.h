@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <cstdint>
+
 #include "rewind/fixed/fx.h"
+#include "rewind/fixed/fx_wide.h"
 
 namespace rwd::fixed {
 
@@ -30,6 +33,14 @@ inline Fx cos(Fx radians) {
 /// -half_pi(). Integer CORDIC vectoring; the inputs are scaled to 41 bits
 /// first, so small vectors are as accurate as large ones.
 Fx atan2(Fx y, Fx x);
+
+/// The angle of the vector (x, y) as Q32.32 radians in [-pi, pi], for
+/// components of any one integer scale (raw Q16.16, Q32.32 or whole
+/// numbers): the same CORDIC as atan2, kept to its 2^-30 working precision
+/// instead of rounded to an Fx ulp, for callers that need angles finer
+/// than 2^-16 (the 2D lane's joint angles). Exact on the axes; (0, 0)
+/// gives 0. Components of 2^41 or more lose their lowest bits first.
+FxWide vector_angle(int64_t y, int64_t x);
 
 /// `radians` reduced to [-pi(), pi()], within 1 ulp of the exact reduction
 /// (2*pi is held to 2^-32 during it). Angles already in (-pi(), pi()) are
