@@ -199,6 +199,35 @@ TEST(Queries, OverlapFindsWhatItTouchesAndRefusesBadShapes) {
   EXPECT_FALSE(world.overlap(unknown, {}, {}, {}, got).ok());
 }
 
+TEST(Queries, FilterSkipsTheIgnoredBodyAndKindsItExcludes) {
+  World3D world;
+  const BodyId ground = test::add_ground(world);
+  const BodyId box = test::add_box(world, {0.0f, 0.5f, 0.0f});
+  const Ray down{{0.0f, 5.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, 10.0f};
+  ASSERT_TRUE(world.raycast(down).has_value());
+  EXPECT_EQ(world.raycast(down)->body, box);
+  QueryFilter skip_box;
+  skip_box.ignore = box;
+  ASSERT_TRUE(world.raycast(down, skip_box).has_value());
+  EXPECT_EQ(world.raycast(down, skip_box)->body, ground);
+  QueryFilter static_only;
+  static_only.include_dynamic = false;
+  static_only.include_kinematic = false;
+  EXPECT_EQ(world.raycast(down, static_only)->body, ground);
+  QueryFilter no_static;
+  no_static.include_static = false;
+  no_static.ignore = box;
+  EXPECT_FALSE(world.raycast(down, no_static).has_value());
+  // A stale id of the ignored slot skips nothing.
+  QueryFilter stale;
+  stale.ignore = {box.index, box.generation + 1};
+  EXPECT_EQ(world.raycast(down, stale)->body, box);
+  std::vector<BodyId> got;
+  ASSERT_TRUE(
+      world.overlap(Shape::make_sphere(0.25f), {0.0f, 1.25f, 0.0f}, {}, skip_box, got).ok());
+  EXPECT_TRUE(got.empty());
+}
+
 TEST(Queries, SignedDistanceToEachShape) {
   World3D world;
   BodyDef def;

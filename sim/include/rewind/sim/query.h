@@ -10,6 +10,14 @@ namespace rwd::sim {
 struct QueryFilter {
   uint32_t layer_mask = 0xFFFFFFFFu;  ///< body.layer & layer_mask must be non-zero
   bool include_sensors = false;
+  /// Bodies by kind: a character or a vehicle may look for the level
+  /// alone (static only), or skip what it could push (dynamic).
+  bool include_static = true;
+  bool include_kinematic = true;
+  bool include_dynamic = true;
+  /// One body to skip (the caller's own body: a chassis, a character's
+  /// capsule); the null id skips none.
+  BodyId ignore;
 };
 
 /// A ray from `origin` along `direction` (normalized by the query; a zero
