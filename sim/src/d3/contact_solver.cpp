@@ -429,7 +429,10 @@ void finalize(WorldState& state, WorldScratch& scratch, float tick) {
       // solver used: no gyroscopic carry, which would lean it onto a
       // locked axis.
       sim.angular_velocity = without_locked_axes(locks, sim.angular_velocity);
-    } else if (state.infos[index].kind == BodyKind::kDynamic) {
+    } else if (state.infos[index].kind == BodyKind::kDynamic && !b.jointed) {
+      // (A jointed body keeps the velocity its joints left it: the carry
+      // models a free body, and applied after the joints it would undo
+      // their motors and, for a body at rest, turn it by noise.)
       const Spin spin = carry_angular_momentum(state.masses[index], before.rotation, sim.rotation,
                                                b.angular_velocity);
       sim.angular_velocity = spin.angular_velocity;
@@ -467,13 +470,17 @@ void solve(WorldState& state, WorldScratch& scratch) {
   const float h = tick / static_cast<float>(config.substeps);
   const float inv_h = 1.0f / h;
   prepare(state, scratch, h);
+  prepare_joints(state, scratch, h);
   build_batches(scratch);
+  const bool joints = !scratch.joint_constraints.empty();
   const float slop = config.linear_slop_m;
   scratch.pushing = false;
   bool ordered = false;
   for (int32_t s = 0; s < config.substeps; ++s) {
     integrate_velocities(scratch, h);
+    if (joints) warm_start_joints(state, scratch);
     warm_start_batches(scratch);
+    if (joints) solve_joints(state, scratch, true);
     solve_batches(scratch, inv_h);
     // Until some point overlaps past the slop, every push velocity and
     // impulse is zero and a push-out pass would leave them so: resting
@@ -491,16 +498,24 @@ void solve(WorldState& state, WorldScratch& scratch) {
       push_batches(scratch, config, inv_h);
     }
     integrate_positions(scratch, h);
+    // Joints relax at least once: their soft bias must not stay behind as
+    // velocity, whatever the contacts do.
+    if (joints) solve_joints(state, scratch, false);
     if (config.relax_iterations > 0) {
       update_separations_and_relax(scratch, slop, inv_h);
     } else {
       update_separations(scratch, slop);
     }
-    for (int32_t r = 1; r < config.relax_iterations; ++r) solve_batches(scratch, inv_h);
+    for (int32_t r = 1; r < config.relax_iterations; ++r) {
+      if (joints) solve_joints(state, scratch, false);
+      solve_batches(scratch, inv_h);
+    }
+    if (joints) sum_joint_impulses(scratch);
   }
   unpack_batches(scratch);
   apply_restitution(scratch, config);
   store_impulses(state, scratch);
+  if (joints) store_joint_impulses(state, scratch);
   finalize(state, scratch, tick);
 }
 

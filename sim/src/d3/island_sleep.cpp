@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Islands and sleep. An island is a set of dynamic bodies connected by
-// touching solid contacts (static and kinematic bodies do not connect
-// islands, or a whole level would be one island). Islands are found with a
+// touching solid contacts and acting joints (static and kinematic bodies do
+// not connect islands, or a whole level would be one island). Islands are found with a
 // union-find over the contact cache in index order; roots are always the
 // lowest index, so the result is a pure function of the state. Persistent
 // islands (Box2D v3 style) were rejected for the first cut: recomputing is
@@ -44,6 +44,13 @@ bool links_island(const WorldState& state, const ContactRecord& r) {
          state.infos[r.index_b].kind == BodyKind::kDynamic;
 }
 
+// A joint ties its bodies' islands while it acts and both are dynamic.
+bool joint_links_island(const WorldState& state, const JointRecord& j) {
+  return j.index_a != kJointWorld && joint_acts(state, j) &&
+         state.infos[j.index_a].kind == BodyKind::kDynamic &&
+         state.infos[j.index_b].kind == BodyKind::kDynamic;
+}
+
 void build_islands(const WorldState& state, WorldScratch& scratch) {
   const uint32_t n = static_cast<uint32_t>(state.infos.size());
   scratch.island_parent.resize(n);
@@ -51,6 +58,33 @@ void build_islands(const WorldState& state, WorldScratch& scratch) {
   for (const ContactRecord& r : state.contacts) {
     if (links_island(state, r)) unite(scratch.island_parent, r.index_a, r.index_b);
   }
+  if (state.live_joints == 0) return;
+  for (const JointRecord& j : state.joints) {
+    if (joint_links_island(state, j)) unite(scratch.island_parent, j.index_a, j.index_b);
+  }
+}
+
+// Whether an acting joint drives its bodies on its own: a motor with a
+// non-zero target speed, or a grab whose anchor is off its target.
+bool joint_drives(const WorldState& state, const JointRecord& j) {
+  if (!joint_acts(state, j)) return false;
+  if ((j.flags & kJointMotor) != 0 && (j.motor_speed != 0.0f || !(j.motor_velocity == Vec3{}))) {
+    return true;
+  }
+  if (j.type != JointType::kGrab) return false;
+  const BodySim& b = state.sims[j.index_b];
+  const Vec3 anchor = b.position + rotate(b.rotation, j.local_anchor_b);
+  const float slop = state.config.linear_slop_m;
+  return length_squared(anchor - j.target) > slop * slop;
+}
+
+// The pair of bodies a joint acts between, as contact-like (a, b), or
+// false for joints that act on one body alone or not at all.
+bool joint_pair(const WorldState& state, const JointRecord& j, uint32_t& a, uint32_t& b) {
+  if (j.index_a == kJointWorld || !joint_acts(state, j)) return false;
+  a = j.index_a;
+  b = j.index_b;
+  return true;
 }
 
 // A moving kinematic body keeps what it touches awake.
@@ -77,24 +111,50 @@ void wake_touching(WorldState& state, BodyId id) {
       wake_body(state, r.index_a);
     }
   }
+  // What hangs on it by a joint must move too.
+  for (size_t k = 0; state.live_joints != 0 && k < state.joints.size(); ++k) {
+    const JointRecord& j = state.joints[k];
+    if (j.alive == 0) continue;
+    if (j.index_b == id.index && j.generation_b == id.generation && j.index_a != kJointWorld) {
+      wake_body(state, j.index_a);
+    } else if (j.index_a == id.index && j.generation_a == id.generation) {
+      wake_body(state, j.index_b);
+    }
+  }
 }
+
+namespace {
+
+// Whether one of a and b is an awake mover and the other a sleeping
+// dynamic body.
+bool wakes_other(const BodyInfo& a, const BodyInfo& b) {
+  const bool a_sleeps = a.kind == BodyKind::kDynamic && a.awake == 0;
+  const bool b_sleeps = b.kind == BodyKind::kDynamic && b.awake == 0;
+  return (a_sleeps && is_active(b)) || (b_sleeps && is_active(a));
+}
+
+}  // namespace
 
 void wake_touched_islands(WorldState& state, WorldScratch& scratch) {
   // Nothing awake (the broadphase's list of awake movers is empty) wakes
   // nothing.
   if (scratch.active.empty()) return;
-  // Cheap test first: does any touching contact join an awake mover and a
-  // sleeping dynamic body? Usually not, and then no island work is done.
+  // Cheap test first: does any touching contact or joint join an awake
+  // mover and a sleeping dynamic body? Usually not, and then no island
+  // work is done.
   bool needed = false;
   for (const ContactRecord& r : state.contacts) {
     if (r.touching == 0 || r.sensor != 0 || !live_record(state, r)) continue;
-    const BodyInfo& a = state.infos[r.index_a];
-    const BodyInfo& b = state.infos[r.index_b];
-    bool a_sleeps = a.kind == BodyKind::kDynamic && a.awake == 0;
-    bool b_sleeps = b.kind == BodyKind::kDynamic && b.awake == 0;
-    if ((a_sleeps && is_active(b)) || (b_sleeps && is_active(a))) {
+    if (wakes_other(state.infos[r.index_a], state.infos[r.index_b])) {
       needed = true;
       break;
+    }
+  }
+  for (size_t k = 0; !needed && state.live_joints != 0 && k < state.joints.size(); ++k) {
+    uint32_t a = 0;
+    uint32_t b = 0;
+    if (joint_pair(state, state.joints[k], a, b)) {
+      needed = wakes_other(state.infos[a], state.infos[b]);
     }
   }
   if (!needed) return;
@@ -107,16 +167,22 @@ void wake_touched_islands(WorldState& state, WorldScratch& scratch) {
       scratch.island_flag[find_root(scratch.island_parent, i)] = 1;
     }
   }
+  auto flag_driven = [&](uint32_t a, uint32_t b) {
+    if (is_moving_kinematic(state, a) && state.infos[b].kind == BodyKind::kDynamic) {
+      scratch.island_flag[find_root(scratch.island_parent, b)] = 1;
+    }
+    if (is_moving_kinematic(state, b) && state.infos[a].kind == BodyKind::kDynamic) {
+      scratch.island_flag[find_root(scratch.island_parent, a)] = 1;
+    }
+  };
   for (const ContactRecord& r : state.contacts) {
     if (r.touching == 0 || r.sensor != 0 || !live_record(state, r)) continue;
-    if (is_moving_kinematic(state, r.index_a) &&
-        state.infos[r.index_b].kind == BodyKind::kDynamic) {
-      scratch.island_flag[find_root(scratch.island_parent, r.index_b)] = 1;
-    }
-    if (is_moving_kinematic(state, r.index_b) &&
-        state.infos[r.index_a].kind == BodyKind::kDynamic) {
-      scratch.island_flag[find_root(scratch.island_parent, r.index_a)] = 1;
-    }
+    flag_driven(r.index_a, r.index_b);
+  }
+  for (size_t k = 0; state.live_joints != 0 && k < state.joints.size(); ++k) {
+    uint32_t a = 0;
+    uint32_t b = 0;
+    if (joint_pair(state, state.joints[k], a, b)) flag_driven(a, b);
   }
   bool woke = false;
   for (uint32_t i = 0; i < n; ++i) {
@@ -164,15 +230,31 @@ void update_sleep(WorldState& state, WorldScratch& scratch) {
     uint32_t root = info.kind == BodyKind::kDynamic ? find_root(parent, i) : i;
     if (t < min_time[root]) min_time[root] = t;
   }
+  auto hold_driven = [&](uint32_t a, uint32_t b) {
+    if (is_moving_kinematic(state, a) && state.infos[b].kind == BodyKind::kDynamic) {
+      min_time[find_root(parent, b)] = 0.0f;
+    }
+    if (is_moving_kinematic(state, b) && state.infos[a].kind == BodyKind::kDynamic) {
+      min_time[find_root(parent, a)] = 0.0f;
+    }
+  };
   for (const ContactRecord& r : state.contacts) {
     if (r.touching == 0 || r.sensor != 0 || !live_record(state, r)) continue;
-    if (is_moving_kinematic(state, r.index_a) &&
-        state.infos[r.index_b].kind == BodyKind::kDynamic) {
-      min_time[find_root(parent, r.index_b)] = 0.0f;
-    }
-    if (is_moving_kinematic(state, r.index_b) &&
-        state.infos[r.index_a].kind == BodyKind::kDynamic) {
-      min_time[find_root(parent, r.index_a)] = 0.0f;
+    hold_driven(r.index_a, r.index_b);
+  }
+  for (size_t k = 0; state.live_joints != 0 && k < state.joints.size(); ++k) {
+    const JointRecord& j = state.joints[k];
+    uint32_t a = 0;
+    uint32_t b = 0;
+    if (joint_pair(state, j, a, b)) hold_driven(a, b);
+    // A motor with somewhere to go, or a grab short of its target, keeps
+    // its bodies awake however slowly they move.
+    if (joint_drives(state, j)) {
+      if (state.infos[j.index_b].kind == BodyKind::kDynamic)
+        min_time[find_root(parent, j.index_b)] = 0.0f;
+      if (j.index_a != kJointWorld && state.infos[j.index_a].kind == BodyKind::kDynamic) {
+        min_time[find_root(parent, j.index_a)] = 0.0f;
+      }
     }
   }
   for (size_t s = 1; s < solved.size(); ++s) {

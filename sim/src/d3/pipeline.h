@@ -16,14 +16,21 @@
 
 namespace rwd::sim::d3 {
 
-/// Fills scratch.pairs with candidate pairs sorted by (a, b). The first
-/// stage of a step: it starts the step's body frames (body_axes).
+/// Fills scratch.pairs with candidate pairs sorted by (a, b), without the
+/// pairs an intact joint keeps from colliding. The first stage of a step:
+/// it starts the step's body frames (body_axes).
 void find_pairs(const WorldState& state, WorldScratch& scratch);
 /// The world was edited (create, destroy, teleport, enable, restore): the
 /// broadphase rebuilds its trees before their next use.
 inline void mark_world_edited(WorldScratch& scratch) {
   scratch.broadphase.mark_edited();
   ++scratch.edit_serial;
+  ++scratch.joint_serial;
+}
+/// Joints were created, destroyed or broken: the pairs they keep from
+/// colliding are found again before the next step's pairs are kept.
+inline void mark_joints_edited(WorldScratch& scratch) {
+  ++scratch.joint_serial;
 }
 
 /// Readies the broadphase's query side for the poses in `state`.

@@ -72,6 +72,15 @@ void World3D::dump_state(std::string& out) const {
     TextIo io(out, "contact[" + std::to_string(k) + "].");
     d3::visit_contact(io, state_.contacts[k]);
   }
+  for (size_t k = 0; k < state_.joints.size(); ++k) {
+    const JointRecord& j = state_.joints[k];
+    const std::string prefix = "joint[" + std::to_string(k) + "].";
+    out += prefix + "generation = " + std::to_string(j.generation) + "\n";
+    out += prefix + "alive = " + std::to_string(j.alive) + "\n";
+    if (j.alive == 0) continue;
+    TextIo io(out, prefix);
+    d3::visit_joint(io, j);
+  }
 }
 
 }  // namespace rwd::sim

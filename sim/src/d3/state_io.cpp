@@ -26,7 +26,8 @@ constexpr uint8_t kMagic[4] = {'R', 'W', 'D', '3'};
 // 4: capsules (each shape's half height), rotation locks and torques.
 // 5: hulls (a geometry id in place of sizes), the digest of the geometry
 // the state refers to, and each body's continuous and contact-events flags.
-constexpr uint32_t kVersion = 5;
+// 6: joint slots after the contacts.
+constexpr uint32_t kVersion = 6;
 // Bounds the allocation a hostile header can request.
 constexpr uint32_t kMaxSlots = 1u << 24;
 
@@ -105,6 +106,16 @@ class SinkIo {
 void write_config(Sink& s, const WorldConfig& c) {
   SinkIo io(s);
   d3::visit_config(io, c);
+}
+
+void write_joints(Sink& s, const WorldState& st) {
+  SinkIo io(s);
+  s.u32(static_cast<uint32_t>(st.joints.size()));
+  for (const JointRecord& j : st.joints) {
+    s.u32(j.generation);
+    s.u8(j.alive);
+    if (j.alive != 0) d3::visit_joint(io, j);
+  }
 }
 
 void write_state(Sink& s, const WorldState& st) {
@@ -260,6 +271,8 @@ Status corrupt_body(uint32_t index, const std::string& why) {
 void World3D::hash_state(const WorldState& state, StateHasher& hasher) {
   Sink sink(&hasher);
   write_state(sink, state);
+  // A world that never had a joint hashes as it did before joints existed.
+  if (!state.joints.empty()) write_joints(sink, state);
 }
 
 void World3D::serialize(std::vector<uint8_t>& out) const {
@@ -273,6 +286,7 @@ void World3D::serialize(std::vector<uint8_t>& out) const {
   sink.u32(used);
   sink.u64(geometry_->digest(used));
   write_state(sink, state_);
+  write_joints(sink, state_);
 }
 
 void World3D::encode_config(const WorldConfig& config, std::vector<uint8_t>& out) {
@@ -368,11 +382,36 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
                            "invalid contact record " + std::to_string(k) + ": " + s.message());
     }
   }
+  const uint32_t joints = r.u32();
+  // Every slot takes at least 5 bytes.
+  if (!r.ok() || joints > kMaxSlots || joints > r.remaining() / 5) {
+    return corrupt("bad joint slot count");
+  }
+  st.joints.resize(joints);
+  for (uint32_t k = 0; k < joints; ++k) {
+    JointRecord& j = st.joints[k];
+    j.generation = r.u32();
+    j.alive = r.flag();
+    if (!r.ok()) return corrupt("truncated joint");
+    if (j.alive == 0) continue;
+    ReaderIo io(r);
+    d3::visit_joint(io, j);
+    if (!r.ok()) {
+      return Status::Error(ErrorCode::kCorrupt, "invalid joint " + std::to_string(k) +
+                                                    ": truncated or malformed fields");
+    }
+    if (Status s = d3::check_joint(c, st.infos, j); !s.ok()) {
+      return Status::Error(ErrorCode::kCorrupt,
+                           "invalid joint " + std::to_string(k) + ": " + s.message());
+    }
+    ++st.live_joints;
+  }
   if (!r.at_end()) return corrupt("trailing bytes after snapshot");
   state_ = std::move(st);
   d3::mark_world_edited(*scratch_);
   scratch_->events.clear();
   scratch_->body_events.clear();
+  scratch_->broken_joints.clear();
   return Status::Ok();
 }
 

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "rewind/sim/det_math.h"
+
 namespace rwd::sim::d3 {
 namespace {
 
@@ -245,6 +247,86 @@ Status check_contact(const std::vector<BodyInfo>& infos, const ContactRecord& r,
   if (previous != nullptr && (previous->index_a > r.index_a ||
                               (previous->index_a == r.index_a && previous->index_b >= r.index_b))) {
     return invalid("records out of order");
+  }
+  return Status::Ok();
+}
+
+namespace {
+
+bool live_slot(const std::vector<BodyInfo>& infos, uint32_t index, uint32_t generation) {
+  return index < infos.size() && infos[index].alive != 0 && generation != 0 &&
+         infos[index].generation == generation;
+}
+
+bool unit_quat(Quat q) {
+  return is_finite(q) && finite_in(length_squared(q), 1.0f - kUnitTolerance, 1.0f + kUnitTolerance);
+}
+
+bool joint_impulse_ok(Vec3 v) {
+  return in_box_range(v, kMaxForce);
+}
+
+}  // namespace
+
+Status check_joint(const WorldConfig& config, const std::vector<BodyInfo>& infos,
+                   const JointRecord& j) {
+  if (static_cast<uint8_t>(j.type) >= kJointTypeCount) return invalid("unknown joint type");
+  if (j.flags > 0x1Fu) return invalid("joint flags out of range");
+  if (!live_slot(infos, j.index_b, j.generation_b)) return invalid("body_b is not a live body");
+  if (j.index_a == kJointWorld) {
+    if (j.generation_a != 0) return invalid("a world anchor has no generation");
+  } else if (!live_slot(infos, j.index_a, j.generation_a)) {
+    return invalid("body_a is not a live body");
+  } else if (j.index_a == j.index_b) {
+    return invalid("body_a and body_b are the same body");
+  }
+  if (j.type == JointType::kGrab && j.index_a != kJointWorld) {
+    return invalid("a grab joint has no body_a");
+  }
+  const float reach = j.index_a == kJointWorld ? kMaxCoordinate : kMaxJointReach;
+  if (!in_box_range(j.local_anchor_a, reach) || !in_box_range(j.local_anchor_b, kMaxJointReach)) {
+    return invalid("anchor out of range");
+  }
+  if (!unit_quat(j.frame_a) || !unit_quat(j.frame_b) || !unit_quat(j.spring_rotation)) {
+    return invalid("joint frame or spring rotation not unit");
+  }
+  if (!finite_in(j.lower, -kMaxJointReach, kMaxJointReach) ||
+      !finite_in(j.upper, j.lower, kMaxJointReach)) {
+    return invalid("limits out of range or lower above upper");
+  }
+  if (!finite_in(j.cone_angle, 0.0f, kPi) || !finite_in(j.twist_lower, -kPi, kPi) ||
+      !finite_in(j.twist_upper, j.twist_lower, kPi)) {
+    return invalid("cone or twist limits out of range");
+  }
+  if (!finite_in(j.min_length, 0.0f, kMaxJointReach) ||
+      !finite_in(j.max_length, j.min_length, kMaxJointReach) ||
+      !finite_in(j.length, 0.0f, kMaxJointReach)) {
+    return invalid("lengths out of range");
+  }
+  if (!finite_in(j.motor_speed, -kMaxSpeed, kMaxSpeed) ||
+      !in_box_range(j.motor_velocity, kMaxSpeed) || !finite_in(j.max_motor, 0.0f, kMaxForce)) {
+    return invalid("motor out of range");
+  }
+  if (!finite_in(j.hertz, 0.0f, 1000.0f) || !finite_in(j.damping_ratio, 0.0f, 100.0f) ||
+      !finite_in(j.linear_hertz, 0.0f, 1000.0f) || !finite_in(j.angular_hertz, 0.0f, 1000.0f)) {
+    return invalid("spring out of range");
+  }
+  if (!finite_in(j.spring_target, -kMaxJointReach, kMaxJointReach)) {
+    return invalid("spring target out of range");
+  }
+  if (!in_coordinate_range(j.target) ||
+      (j.type == JointType::kGrab && !inside_bounds(config, j.target))) {
+    return invalid("grab target outside the world bounds");
+  }
+  if (!finite_in(j.max_force, 0.0f, kMaxForce) || !finite_in(j.break_impulse, 0.0f, kMaxForce)) {
+    return invalid("max force or break impulse out of range");
+  }
+  if (!joint_impulse_ok(j.linear_impulse) || !joint_impulse_ok(j.angular_impulse) ||
+      !joint_impulse_ok(j.motor_impulse) || !joint_impulse_ok(j.spring_impulse) ||
+      !finite_in(j.axial_impulse, -kMaxForce, kMaxForce) ||
+      !finite_in(j.lower_impulse, 0.0f, kMaxForce) ||
+      !finite_in(j.upper_impulse, 0.0f, kMaxForce) || !finite_in(j.cone_impulse, 0.0f, kMaxForce)) {
+    return invalid("joint impulse out of range");
   }
   return Status::Ok();
 }

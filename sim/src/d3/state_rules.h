@@ -57,6 +57,16 @@ Status check_body(const WorldConfig& config, const GeometryStore& store, const B
 Status check_contact(const std::vector<BodyInfo>& infos, const ContactRecord& record,
                      const ContactRecord* previous);
 
+/// A stored joint against the body slots: a known type and flags, live
+/// bodies of the generations it names (a destroyed body's joints go with
+/// it), two different bodies (or the world and a body), unit frames, and
+/// every setting within the range create_joint() accepts.
+Status check_joint(const WorldConfig& config, const std::vector<BodyInfo>& infos,
+                   const JointRecord& joint);
+
+/// Largest |anchor| or joint length, metres.
+inline constexpr float kMaxJointReach = 1e4f;
+
 /// True when `p` lies inside the config's bounds (faces included).
 bool inside_bounds(const WorldConfig& config, Vec3 p);
 /// `v` scaled down to length `max` when it is longer; zero when not finite.

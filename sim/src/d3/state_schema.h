@@ -108,4 +108,48 @@ void visit_contact(Io& io, Record& r) {
   io.vec3("frame_normal", r.frame_normal);
 }
 
+/// The fields of a live joint slot (its generation and alive flag, which
+/// every slot has, are the caller's).
+template <class Io, class Joint>
+void visit_joint(Io& io, Joint& j) {
+  io.enumeration("type", j.type, static_cast<JointType>(kJointTypeCount - 1));
+  io.u8("flags", j.flags);
+  io.u32("index_a", j.index_a);
+  io.u32("generation_a", j.generation_a);
+  io.u32("index_b", j.index_b);
+  io.u32("generation_b", j.generation_b);
+  io.vec3("local_anchor_a", j.local_anchor_a);
+  io.vec3("local_anchor_b", j.local_anchor_b);
+  io.quat("frame_a", j.frame_a);
+  io.quat("frame_b", j.frame_b);
+  io.f32("lower", j.lower);
+  io.f32("upper", j.upper);
+  io.f32("cone_angle", j.cone_angle);
+  io.f32("twist_lower", j.twist_lower);
+  io.f32("twist_upper", j.twist_upper);
+  io.f32("min_length", j.min_length);
+  io.f32("max_length", j.max_length);
+  io.f32("length", j.length);
+  io.f32("motor_speed", j.motor_speed);
+  io.vec3("motor_velocity", j.motor_velocity);
+  io.f32("max_motor", j.max_motor);
+  io.f32("hertz", j.hertz);
+  io.f32("damping_ratio", j.damping_ratio);
+  io.f32("spring_target", j.spring_target);
+  io.quat("spring_rotation", j.spring_rotation);
+  io.f32("linear_hertz", j.linear_hertz);
+  io.f32("angular_hertz", j.angular_hertz);
+  io.vec3("target", j.target);
+  io.f32("max_force", j.max_force);
+  io.f32("break_impulse", j.break_impulse);
+  io.vec3("linear_impulse", j.linear_impulse);
+  io.vec3("angular_impulse", j.angular_impulse);
+  io.vec3("motor_impulse", j.motor_impulse);
+  io.vec3("spring_impulse", j.spring_impulse);
+  io.f32("axial_impulse", j.axial_impulse);
+  io.f32("lower_impulse", j.lower_impulse);
+  io.f32("upper_impulse", j.upper_impulse);
+  io.f32("cone_impulse", j.cone_impulse);
+}
+
 }  // namespace rwd::sim::d3

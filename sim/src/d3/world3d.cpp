@@ -188,6 +188,7 @@ Result<BodyId> World3D::create_body(const BodyDef& def) {
 
 Status World3D::destroy_body(BodyId id) {
   if (!is_live(state_, id)) return not_found();
+  destroy_body_joints(id, nullptr);
   // Bodies resting on this one must not float: wake everything it touches.
   // Its cache records stay, so the next step reports their exit events.
   d3::wake_touching(state_, id);
@@ -202,6 +203,13 @@ Status World3D::destroy_body(BodyId id) {
   --state_.live_count;
   d3::mark_world_edited(*scratch_);
   return Status::Ok();
+}
+
+Status World3D::destroy_body(BodyId id, std::vector<JointId>& removed_joints) {
+  removed_joints.clear();
+  if (!is_live(state_, id)) return not_found();
+  destroy_body_joints(id, &removed_joints);
+  return destroy_body(id);
 }
 
 bool World3D::is_valid(BodyId id) const {
@@ -464,6 +472,7 @@ void World3D::step() {
   WorldScratch& s = *scratch_;
   s.stats = StepStats{};
   s.body_events.clear();
+  s.broken_joints.clear();
   if (!s.stage_timing) {
     d3::find_pairs(state_, s);
     d3::update_contacts(state_, s);
@@ -538,6 +547,7 @@ void World3D::restore(const WorldState& in) {
   d3::mark_world_edited(*scratch_);
   scratch_->events.clear();
   scratch_->body_events.clear();
+  scratch_->broken_joints.clear();
 }
 
 const WorldState& World3D::state() const {

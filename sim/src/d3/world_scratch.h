@@ -12,6 +12,7 @@
 #include "d3/aabb_tree.h"
 #include "d3/broadphase.h"
 #include "d3/contact_batches.h"
+#include "d3/joint_solver.h"
 #include "d3/manifold.h"
 #include "d3/swept_shape.h"
 #include "rewind/sim/body_event.h"
@@ -64,6 +65,9 @@ struct alignas(32) SolverBody {
   /// the term did not exist.
   Vec3 angular_acceleration;
   bool torqued;
+  /// An acting joint holds the body this tick: its velocity is the
+  /// joint's answer, so the free body's gyroscopic carry is not applied.
+  bool jointed;
 };
 static_assert(offsetof(SolverBody, angular_velocity) == 3 * sizeof(float) &&
                   offsetof(SolverBody, inv_mass) == 6 * sizeof(float) &&
@@ -193,6 +197,14 @@ class WorldScratch {
   std::vector<uint32_t> solver_body_ids;
   std::vector<SolverBody> solver_bodies;
   std::vector<ContactConstraint> constraints;
+  // joints (joint_solver.cpp)
+  std::vector<d3::JointConstraint> joint_constraints;
+  std::vector<JointId> broken_joints;  ///< this step's, in slot order
+  /// Pairs (a << 32 | b, a < b) an intact joint keeps from colliding,
+  /// sorted; rebuilt when joint_serial moves past joint_pairs_serial.
+  std::vector<uint64_t> joint_pairs;
+  uint64_t joint_serial = 1;
+  uint64_t joint_pairs_serial = 0;
   // coloured batches (contact_batches.cpp)
   std::vector<uint64_t> color_bits;  ///< per colour, one bit per solver body
   std::vector<uint32_t> color_of;    ///< by constraint

@@ -17,6 +17,7 @@
 #include "rewind/sim/body_record.h"
 #include "rewind/sim/contact_event.h"
 #include "rewind/sim/geometry.h"
+#include "rewind/sim/joint.h"
 #include "rewind/sim/query.h"
 #include "rewind/sim/state_hasher.h"
 #include "rewind/sim/status.h"
@@ -90,9 +91,12 @@ class World3D {
   /// Creates a body. Rejects non-finite or out-of-range values and full
   /// worlds with a Status; the world is unchanged on error.
   Result<BodyId> create_body(const BodyDef& def);
-  /// Destroys a body and its contacts (exit events are emitted on the next
-  /// step). Unknown or stale ids are kNotFound.
+  /// Destroys a body, its contacts (exit events are emitted on the next
+  /// step) and its joints. Unknown or stale ids are kNotFound.
   Status destroy_body(BodyId id);
+  /// The same, reporting the ids of the joints that went with the body
+  /// into `removed_joints` (cleared first), in slot order.
+  Status destroy_body(BodyId id, std::vector<JointId>& removed_joints);
   bool is_valid(BodyId id) const;
   /// Number of live bodies.
   uint32_t body_count() const;
@@ -162,6 +166,58 @@ class World3D {
   /// never woken. The step disables bodies that leave the world bounds
   /// (BodyEventType::kLeftBounds); enabling wakes the body where it stands.
   Status set_enabled(BodyId id, bool enabled);
+
+  // --- joints -------------------------------------------------------------
+
+  /// Creates a joint (joint.h). A definition that names a missing body,
+  /// the same body twice, non-finite or zero-length axes, anchors out of
+  /// range, a minimum above a maximum or limits out of range is refused
+  /// with a message naming the field (kInvalidArgument; kNotFound for
+  /// unknown bodies), and so is a full world (kCapacity: max_bodies
+  /// joints); the world is unchanged then. Wakes both bodies.
+  Result<JointId> create_joint(const JointDef& def);
+  /// Destroys a joint and wakes its bodies. Unknown ids are kNotFound.
+  Status destroy_joint(JointId id);
+  bool is_valid(JointId id) const;
+  /// Number of live joints (broken ones included).
+  uint32_t joint_count() const;
+  /// Live joint ids in ascending slot order.
+  void joint_ids(std::vector<JointId>& out) const;
+  /// The joint's type, or kBall for an invalid id.
+  JointType joint_type(JointId id) const;
+  /// The joint's bodies (body_a null for a joint held to the world).
+  BodyId joint_body_a(JointId id) const;
+  BodyId joint_body_b(JointId id) const;
+  /// True once the joint exceeded its break_impulse (sticky).
+  bool is_joint_broken(JointId id) const;
+  /// What the joint did in the last substep, as force and torque on body_b
+  /// (zero for invalid or broken joints).
+  JointReaction joint_reaction(JointId id) const;
+  /// The joint's coordinate as its limits read it: a hinge's angle and a
+  /// ball's twist (rad, relative to creation), a prismatic's translation
+  /// (m), a distance or spring joint's length (m), a grab's distance to
+  /// its target (m); 0 for a weld or an invalid id.
+  float joint_position(JointId id) const;
+  /// A ball joint's swing of axis_b away from axis_a, rad in [0, pi].
+  float joint_swing(JointId id) const;
+  /// Hinge and prismatic motors: on or off, target speed (rad/s or m/s,
+  /// |speed| <= 1e4) and largest torque or force (N m or N, >= 0).
+  Status set_joint_motor(JointId id, bool enabled, float speed, float max_torque_or_force);
+  /// Ball motors: target angular velocity of B relative to A (rad/s,
+  /// world axes) and the largest torque (N m, >= 0).
+  Status set_joint_motor_velocity(JointId id, bool enabled, Vec3 velocity_radps,
+                                  float max_torque_nm);
+  /// Hinge and prismatic springs: the target angle (rad) or translation (m).
+  Status set_joint_spring_target(JointId id, float target);
+  /// Ball orientation springs: the target orientation of B's authored
+  /// frame in A's (q_A^-1 q_B; normalized).
+  Status set_joint_spring_rotation(JointId id, Quat target);
+  /// Grab joints: the world point body_b's anchor is pulled toward (inside
+  /// the world bounds). Wakes body_b.
+  Status set_grab_target(JointId id, Vec3 target);
+  /// Joints that broke in the last step, in slot order. Not state:
+  /// restore() clears them.
+  std::span<const JointId> broken_joints() const;
 
   // --- stepping -----------------------------------------------------------
 
@@ -246,7 +302,8 @@ class World3D {
   /// Every persisted field of the state as text, one "name = value" line
   /// each in the canonical order (the same description the snapshot, the
   /// reader and the checksum use): config.*, step_count, body[i].* for every
-  /// slot, contact[k].* for every cache record. For forensics; `out` is
+  /// slot, contact[k].* for every cache record, joint[k].* for every joint
+  /// slot. For forensics; `out` is
   /// cleared first.
   void dump_state(std::string& out) const;
   /// Readable dump of every live body in index order.
@@ -266,6 +323,9 @@ class World3D {
   Status deserialize(std::span<const uint8_t> bytes);
 
  private:
+  /// Frees every joint on body `id`, adding their ids to `removed`.
+  void destroy_body_joints(BodyId id, std::vector<JointId>* removed);
+
   WorldState state_;
   std::shared_ptr<GeometryStore> geometry_;
   std::unique_ptr<WorldScratch> scratch_;

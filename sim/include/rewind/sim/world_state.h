@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rewind/sim/body.h"
+#include "rewind/sim/joint.h"
 #include "rewind/sim/math.h"
 #include "rewind/sim/shape.h"
 #include "rewind/sim/world_config.h"
@@ -99,6 +100,70 @@ struct ContactRecord {
   Vec3 frame_normal;    ///< unit, from A to B
 };
 
+/// JointRecord::flags bits.
+enum : uint8_t {
+  kJointLimit = 1u << 0,
+  kJointMotor = 1u << 1,
+  kJointSpring = 1u << 2,
+  kJointDisableCollision = 1u << 3,
+  kJointBroken = 1u << 4,  ///< exceeded break_impulse; inert from then on
+};
+/// JointRecord::index_a of a joint held to the world.
+inline constexpr uint32_t kJointWorld = 0xFFFFFFFFu;
+
+/// One joint slot: its bodies, its frames on each, its settings and the
+/// impulses it ended the last tick with (applied again each substep: the
+/// warm start). Anchors and frames are kept in the bodies' mass frames
+/// (relative to the centre of mass, along the principal axes), the frames
+/// the solver works in; the API converts from the authored frames.
+struct JointRecord {
+  uint32_t generation = 0;  ///< of the live joint, or of the last one in a dead slot
+  uint8_t alive = 0;        ///< 1 when the slot holds a live joint
+  JointType type = JointType::kBall;
+  uint8_t flags = 0;  ///< kJoint* bits
+  uint32_t index_a = kJointWorld;
+  uint32_t generation_a = 0;
+  uint32_t index_b = 0;
+  uint32_t generation_b = 0;
+  Vec3 local_anchor_a;  ///< m, in A's mass frame (world frame for the world)
+  Vec3 local_anchor_b;  ///< m, in B's mass frame
+  /// The joint's frame on each body (its x axis is the hinge, slide or
+  /// twist axis). At creation both are the same world frame, or B's is
+  /// swung onto B's axis by the shortest arc, so angles count from there.
+  Quat frame_a;
+  Quat frame_b;
+  // Settings (JointDef, in the same units).
+  float lower = 0.0f;
+  float upper = 0.0f;
+  float cone_angle = 0.0f;
+  float twist_lower = 0.0f;
+  float twist_upper = 0.0f;
+  float min_length = 0.0f;
+  float max_length = 0.0f;
+  float length = 0.0f;
+  float motor_speed = 0.0f;
+  Vec3 motor_velocity;
+  float max_motor = 0.0f;  ///< N m or N by type
+  float hertz = 0.0f;
+  float damping_ratio = 0.0f;
+  float spring_target = 0.0f;
+  Quat spring_rotation;  ///< ball: B's mass frame in A's mass frame
+  float linear_hertz = 0.0f;
+  float angular_hertz = 0.0f;
+  Vec3 target;  ///< m, world
+  float max_force = 0.0f;
+  float break_impulse = 0.0f;
+  // Impulses of the last substep (N s, N m s), world frame.
+  Vec3 linear_impulse;         ///< point or perpendicular rows
+  Vec3 angular_impulse;        ///< orientation rows (hinge, weld, prismatic)
+  Vec3 motor_impulse;          ///< ball motor (3 rows), else x: the motor row
+  Vec3 spring_impulse;         ///< ball orientation spring (3 rows), else x: the spring row
+  float axial_impulse = 0.0f;  ///< distance: the rigid row
+  float lower_impulse = 0.0f;  ///< lower limit (hinge, prismatic, twist, min length)
+  float upper_impulse = 0.0f;  ///< upper limit (same, max length)
+  float cone_impulse = 0.0f;   ///< ball: the swing cone
+};
+
 /// All persistent state of a World3D.
 struct WorldState {
   WorldConfig config;
@@ -112,12 +177,16 @@ struct WorldState {
   /// Contact cache sorted by (index_a, index_b); source of warm starting,
   /// contact events (previous touching pairs) and sleeping contacts.
   std::vector<ContactRecord> contacts;
+  /// Joint slots, live or dead, by JointId::index; solved in this order.
+  std::vector<JointRecord> joints;
+  uint32_t live_joints = 0;
 };
 
 static_assert(std::is_trivially_copyable_v<BodyInfo>);
 static_assert(std::is_trivially_copyable_v<BodySim>);
 static_assert(std::is_trivially_copyable_v<BodyMass>);
 static_assert(std::is_trivially_copyable_v<ContactRecord>);
+static_assert(std::is_trivially_copyable_v<JointRecord>);
 static_assert(std::is_copy_assignable_v<WorldState>);
 
 }  // namespace rwd::sim

@@ -1,0 +1,150 @@
+// SPDX-License-Identifier: MIT
+// The ball joint: the anchors coincide (the block: three point rows).
+// Optionally a cone-twist joint (the swing of B's twist axis from A's
+// within a cone, the twist about them within a range), an angular motor
+// and an orientation spring, each solved against the point block held
+// rigid, softest first (spring, motor, limits), so the rows that must hold
+// end the pass.
+#include <cmath>
+
+#include "d3/joint_solver.h"
+#include "d3/joint_types.h"
+#include "d3/world_scratch.h"
+
+namespace rwd::sim::d3 {
+namespace {
+
+constexpr Vec3 kAxisX{1.0f, 0.0f, 0.0f};
+
+// Where the cone and twist limits stand: the swing angle and the axis it
+// grows about, the twist angle and the axis it grows about.
+struct ConeTwist {
+  bool has_swing = false;
+  Vec3 swing_axis;  ///< unit; the swing grows about it
+  float swing = 0.0f;
+  Vec3 twist_axis;  ///< unit, or zero when the axes are opposed
+  float twist = 0.0f;
+};
+
+ConeTwist cone_twist(const JointFrames& f) {
+  ConeTwist ct;
+  const Vec3 xa = rotate(f.fa, kAxisX);
+  const Vec3 xb = rotate(f.fb, kAxisX);
+  const Vec3 n = cross(xa, xb);
+  const float s = length(n);
+  if (s > 1e-6f) {
+    ct.has_swing = true;
+    ct.swing_axis = n * (1.0f / s);
+    ct.swing = det_atan2(s, dot(xa, xb));
+  }
+  ct.twist_axis = normalize_or_zero(xa + xb);
+  ct.twist = twist_angle(conjugate(f.fa) * f.fb);
+  return ct;
+}
+
+bool limited(const JointRecord& j) {
+  return (j.flags & kJointLimit) != 0;
+}
+
+// The angular impulse of the limit rows as they stand.
+Vec3 limit_impulse(const JointConstraint& c, const ConeTwist& ct) {
+  Vec3 l{};
+  if (ct.has_swing) l -= ct.swing_axis * c.cone_impulse;
+  l += ct.twist_axis * (c.lower_impulse - c.upper_impulse);
+  return l;
+}
+
+void prepare_ball(const JointRecord&, JointConstraint&, const SolverBody&, const SolverBody&) {}
+
+void warm_start_ball(const JointRecord& j, const JointConstraint& c, SolverBody& a, SolverBody& b) {
+  const JointFrames f = joint_frames(c, a, b);
+  apply_linear(a, b, f.ra, f.rb, c.linear_impulse);
+  Vec3 l = c.motor_impulse + c.spring_impulse;
+  if (limited(j)) l += limit_impulse(c, cone_twist(f));
+  apply_angular(a, b, l);
+}
+
+float get(Vec3 v, int i) {
+  return component(v, i);
+}
+
+void solve_ball(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
+                bool use_bias) {
+  const JointFrames f = joint_frames(c, a, b);
+  RowBlock block;
+  add_point_rows(block, f);
+  block.factor(a, b);
+  float acc[3] = {c.linear_impulse.x, c.linear_impulse.y, c.linear_impulse.z};
+  const bool spring = (j.flags & kJointSpring) != 0;
+  const bool motor = (j.flags & kJointMotor) != 0;
+  if (spring || motor) {
+    // Both drive the three relative angular velocities.
+    const JointRow rows[3] = {angular_jacobian({1.0f, 0.0f, 0.0f}),
+                              angular_jacobian({0.0f, 1.0f, 0.0f}),
+                              angular_jacobian({0.0f, 0.0f, 1.0f})};
+    RowGroup group;
+    group.prepare(block, rows, 3, a, b);
+    if (spring) {
+      // The rotation from where B should be (A's rotation times the
+      // target) to where it is, in the world.
+      const Vec3 error = rotation_vector(f.qb * conjugate(f.qa * j.spring_rotation));
+      const JointSoftness& s = c.spring_soft;
+      float cdot[3];
+      group.velocity(a, b, cdot);
+      float rhs[3];
+      for (int k = 0; k < 3; ++k) rhs[k] = cdot[k] + get(error, k) * s.bias_rate;
+      float x[3];
+      group.solve(rhs, x);
+      float delta[3];
+      for (int k = 0; k < 3; ++k)
+        delta[k] = -x[k] * s.mass_scale - get(c.spring_impulse, k) * s.impulse_scale;
+      c.spring_impulse += Vec3{delta[0], delta[1], delta[2]};
+      group.apply(block, a, b, delta, acc);
+    }
+    if (motor) {
+      float cdot[3];
+      group.velocity(a, b, cdot);
+      float rhs[3];
+      for (int k = 0; k < 3; ++k) rhs[k] = cdot[k] - get(j.motor_velocity, k);
+      float x[3];
+      group.solve(rhs, x);
+      const Vec3 old = c.motor_impulse;
+      Vec3 next = old - Vec3{x[0], x[1], x[2]};
+      const float max = j.max_motor * c.h;
+      const float len_sq = length_squared(next);
+      if (len_sq > max * max) next = next * (max / std::sqrt(len_sq));
+      c.motor_impulse = next;
+      const Vec3 d = next - old;
+      const float delta[3] = {d.x, d.y, d.z};
+      group.apply(block, a, b, delta, acc);
+    }
+  }
+  if (limited(j)) {
+    const ConeTwist ct = cone_twist(f);
+    if (ct.has_swing && j.cone_angle < kPi) {
+      solve_extra_row(block, a, b, angular_jacobian(-ct.swing_axis),
+                      limit_terms(c.soft, j.cone_angle - ct.swing, c.h, use_bias), 0.0f, 0.0f,
+                      kUnbounded, c.cone_impulse, acc);
+    } else {
+      c.cone_impulse = 0.0f;
+    }
+    if (!(ct.twist_axis == Vec3{})) {
+      solve_extra_row(block, a, b, angular_jacobian(ct.twist_axis),
+                      limit_terms(c.soft, ct.twist - j.twist_lower, c.h, use_bias), 0.0f, 0.0f,
+                      kUnbounded, c.lower_impulse, acc);
+      solve_extra_row(block, a, b, angular_jacobian(-ct.twist_axis),
+                      limit_terms(c.soft, j.twist_upper - ct.twist, c.h, use_bias), 0.0f, 0.0f,
+                      kUnbounded, c.upper_impulse, acc);
+    }
+  }
+  const float bias[3] = {f.d.x * c.soft.bias_rate, f.d.y * c.soft.bias_rate,
+                         f.d.z * c.soft.bias_rate};
+  solve_block(block, a, b, bias, c.soft, use_bias, acc);
+  c.linear_impulse = {acc[0], acc[1], acc[2]};
+}
+
+}  // namespace
+
+const JointOps kBallOps = {prepare_ball, warm_start_ball, solve_ball};
+
+}  // namespace rwd::sim::d3

@@ -1,0 +1,206 @@
+// SPDX-License-Identifier: MIT
+// The joint row block and the groups solved against it (joint_block.h):
+// an L D L^T factorization of at most six rows, and Schur complements of
+// at most three. Every loop runs in row order, so the arithmetic is the
+// same on every build.
+#include "d3/joint_block.h"
+
+#include "d3/world_scratch.h"
+
+namespace rwd::sim::d3 {
+namespace {
+
+// A pivot below this share of its diagonal means the row depends on the
+// ones before it (or neither body can move along it): it is left out.
+constexpr float kPivotShare = 1e-6f;
+
+float clamp_impulse(float v, float lo, float hi) {
+  return v < lo ? lo : (v > hi ? hi : v);
+}
+
+}  // namespace
+
+float row_velocity(const JointRow& r, const SolverBody& a, const SolverBody& b) {
+  return dot(r.linear, b.linear_velocity - a.linear_velocity) +
+         dot(r.angular_b, b.angular_velocity) - dot(r.angular_a, a.angular_velocity);
+}
+
+void apply_row(const JointRow& r, SolverBody& a, SolverBody& b, float lambda) {
+  a.linear_velocity -= r.linear * (lambda * a.inv_mass);
+  a.angular_velocity -= a.inv_inertia * (r.angular_a * lambda);
+  b.linear_velocity += r.linear * (lambda * b.inv_mass);
+  b.angular_velocity += b.inv_inertia * (r.angular_b * lambda);
+}
+
+void RowBlock::factor(const SolverBody& a, const SolverBody& b) {
+  mass_sum_ = a.inv_mass + b.inv_mass;
+  for (int i = 0; i < n_; ++i) {
+    ia_[i] = a.inv_inertia * rows_[i].angular_a;
+    ib_[i] = b.inv_inertia * rows_[i].angular_b;
+  }
+  for (int i = 0; i < n_; ++i) {
+    const float kii = mass_sum_ * dot(rows_[i].linear, rows_[i].linear) +
+                      dot(rows_[i].angular_a, ia_[i]) + dot(rows_[i].angular_b, ib_[i]);
+    float di = kii;
+    for (int k = 0; k < i; ++k) di -= l_[i][k] * l_[i][k] * d_[k];
+    kept_[i] = kii > 0.0f && di > kPivotShare * kii;
+    d_[i] = kept_[i] ? di : 0.0f;
+    for (int j = i + 1; j < n_; ++j) {
+      if (!kept_[i]) {
+        l_[j][i] = 0.0f;
+        continue;
+      }
+      float kji = mass_sum_ * dot(rows_[j].linear, rows_[i].linear) +
+                  dot(rows_[j].angular_a, ia_[i]) + dot(rows_[j].angular_b, ib_[i]);
+      for (int k = 0; k < i; ++k) kji -= l_[j][k] * l_[i][k] * d_[k];
+      l_[j][i] = kji / d_[i];
+    }
+  }
+}
+
+void RowBlock::solve(const float* rhs, float* x) const {
+  float z[kMaxBlockRows] = {};
+  for (int i = 0; i < n_; ++i) {
+    float v = rhs[i];
+    for (int k = 0; k < i; ++k) v -= l_[i][k] * z[k];
+    z[i] = kept_[i] ? v : 0.0f;
+  }
+  for (int i = n_ - 1; i >= 0; --i) {
+    if (!kept_[i]) {
+      x[i] = 0.0f;
+      continue;
+    }
+    float v = z[i] / d_[i];
+    for (int k = i + 1; k < n_; ++k) v -= l_[k][i] * x[k];
+    x[i] = v;
+  }
+}
+
+float RowBlock::velocity(int i, const SolverBody& a, const SolverBody& b) const {
+  return row_velocity(rows_[i], a, b);
+}
+
+void RowBlock::coupling(const JointRow& other, float* out) const {
+  for (int i = 0; i < n_; ++i) {
+    out[i] = mass_sum_ * dot(rows_[i].linear, other.linear) + dot(ia_[i], other.angular_a) +
+             dot(ib_[i], other.angular_b);
+  }
+}
+
+void RowBlock::apply(SolverBody& a, SolverBody& b, const float* lambda) const {
+  Vec3 linear{};
+  Vec3 angular_a{};
+  Vec3 angular_b{};
+  for (int i = 0; i < n_; ++i) {
+    linear += rows_[i].linear * lambda[i];
+    angular_a += rows_[i].angular_a * lambda[i];
+    angular_b += rows_[i].angular_b * lambda[i];
+  }
+  a.linear_velocity -= linear * a.inv_mass;
+  a.angular_velocity -= a.inv_inertia * angular_a;
+  b.linear_velocity += linear * b.inv_mass;
+  b.angular_velocity += b.inv_inertia * angular_b;
+}
+
+void RowGroup::prepare(const RowBlock& block, const JointRow* rows, int m, const SolverBody& a,
+                       const SolverBody& b) {
+  m_ = m;
+  const int n = block.size();
+  const float mass_sum = a.inv_mass + b.inv_mass;
+  float c[kMaxGroupRows][kMaxBlockRows];
+  for (int k = 0; k < m; ++k) {
+    rows_[k] = rows[k];
+    block.coupling(rows[k], c[k]);
+    block.solve(c[k], y_[k]);
+  }
+  // S = K_ee - K_eb K_bb^-1 K_be.
+  float sm[3][3] = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};
+  for (int k = 0; k < m; ++k) {
+    const Vec3 ia = a.inv_inertia * rows[k].angular_a;
+    const Vec3 ib = b.inv_inertia * rows[k].angular_b;
+    for (int l = 0; l < m; ++l) {
+      float v = mass_sum * dot(rows[l].linear, rows[k].linear) + dot(rows[l].angular_a, ia) +
+                dot(rows[l].angular_b, ib);
+      for (int i = 0; i < n; ++i) v -= c[l][i] * y_[k][i];
+      sm[k][l] = v;
+    }
+  }
+  // A row the block already holds (or nothing can move along) has no
+  // complement left: it is left out rather than given a huge mass.
+  for (int k = 0; k < m; ++k) {
+    if (!(sm[k][k] > 1e-12f)) {
+      for (int l = 0; l < 3; ++l) sm[k][l] = sm[l][k] = 0.0f;
+    }
+  }
+  // Padded to 3x3 with ones on the unused diagonal; inverse_symmetric
+  // leaves the zeroed rows zero.
+  const Mat3 inv = inverse_symmetric(Mat3{{sm[0][0], sm[0][1], sm[0][2]},
+                                          {sm[1][0], sm[1][1], sm[1][2]},
+                                          {sm[2][0], sm[2][1], sm[2][2]}});
+  const Vec3 cols[3] = {inv.c0, inv.c1, inv.c2};
+  for (int k = 0; k < m; ++k) {
+    for (int l = 0; l < m; ++l) s_[k][l] = component(cols[k], l);
+  }
+}
+
+void RowGroup::velocity(const SolverBody& a, const SolverBody& b, float* out) const {
+  for (int k = 0; k < m_; ++k) out[k] = row_velocity(rows_[k], a, b);
+}
+
+void RowGroup::solve(const float* rhs, float* x) const {
+  for (int k = 0; k < m_; ++k) {
+    float v = 0.0f;
+    for (int l = 0; l < m_; ++l) v += s_[l][k] * rhs[l];
+    x[k] = v;
+  }
+}
+
+void RowGroup::apply(const RowBlock& block, SolverBody& a, SolverBody& b, const float* delta,
+                     float* block_impulse) const {
+  const int n = block.size();
+  float compensation[kMaxBlockRows] = {};
+  for (int k = 0; k < m_; ++k) {
+    apply_row(rows_[k], a, b, delta[k]);
+    for (int i = 0; i < n; ++i) compensation[i] -= y_[k][i] * delta[k];
+  }
+  block.apply(a, b, compensation);
+  for (int i = 0; i < n; ++i) block_impulse[i] += compensation[i];
+}
+
+void solve_block(const RowBlock& block, SolverBody& a, SolverBody& b, const float* bias,
+                 const JointSoftness& soft, bool use_bias, float* impulse) {
+  const int n = block.size();
+  float rhs[kMaxBlockRows] = {};
+  for (int i = 0; i < n; ++i) {
+    rhs[i] = block.velocity(i, a, b) + (use_bias ? bias[i] : 0.0f);
+  }
+  float x[kMaxBlockRows] = {};
+  block.solve(rhs, x);
+  const float mass_scale = use_bias ? soft.mass_scale : 1.0f;
+  const float impulse_scale = use_bias ? soft.impulse_scale : 0.0f;
+  float lambda[kMaxBlockRows] = {};
+  for (int i = 0; i < n; ++i) {
+    lambda[i] = -x[i] * mass_scale - impulse[i] * impulse_scale;
+    impulse[i] += lambda[i];
+  }
+  block.apply(a, b, lambda);
+}
+
+void solve_extra_row(const RowBlock& block, SolverBody& a, SolverBody& b, const JointRow& row,
+                     const RowTerms& t, float speed, float lo, float hi, float& impulse,
+                     float* block_impulse) {
+  RowGroup group;
+  group.prepare(block, &row, 1, a, b);
+  float cdot = 0.0f;
+  group.velocity(a, b, &cdot);
+  const float rhs = cdot - speed + t.bias;
+  float x = 0.0f;
+  group.solve(&rhs, &x);
+  const float lambda = -x * t.mass_scale - impulse * t.impulse_scale;
+  const float next = clamp_impulse(impulse + lambda, lo, hi);
+  const float delta = next - impulse;
+  impulse = next;
+  if (delta != 0.0f) group.apply(block, a, b, &delta, block_impulse);
+}
+
+}  // namespace rwd::sim::d3

@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// A joint's rows solved together. The rows that make a joint what it is
+// (a hinge's point and axis, a weld's six) form a block solved as one
+// small dense system each pass, so a body hung far from its centre of mass
+// obeys its joint in one pass instead of the many a row-by-row sweep
+// needs when a lever arm makes the rows fight (a pendulum's pivot inertia
+// is m r^2 larger than the inertia about its centre; row by row, each pass
+// undoes a little of the last).
+//
+// The joint's other rows (limits, motors, springs) are solved before the
+// block, each against the block held rigid: its effective mass is the
+// Schur complement of the block, and the impulse it applies comes with
+// the block impulse that leaves the block's rows unmoved. So a limit stops
+// a pendulum about its pivot, not about its centre of mass.
+//
+// A row's impulse lambda applies -linear lambda and -angular_a lambda to A,
+// +linear lambda and +angular_b lambda to B; its velocity is
+// linear . (v_B - v_A) + angular_b . w_B - angular_a . w_A.
+#include <cstdint>
+
+#include "d3/joint_math.h"
+
+namespace rwd::sim::d3 {
+
+struct SolverBody;
+
+struct JointRow {
+  Vec3 linear;
+  Vec3 angular_a;
+  Vec3 angular_b;
+};
+
+/// A linear row along unit `axis` between anchors with lever arms arm_a
+/// (on A) and rb (on B).
+inline JointRow linear_jacobian(Vec3 axis, Vec3 arm_a, Vec3 rb) {
+  return {axis, cross(arm_a, axis), cross(rb, axis)};
+}
+/// An angular row about unit `axis`.
+inline JointRow angular_jacobian(Vec3 axis) {
+  return {Vec3{}, axis, axis};
+}
+
+/// How one row is driven: a velocity bias toward zero error and the soft
+/// step's mass and impulse scales (rigid: no bias, 1, 0).
+struct RowTerms {
+  float bias = 0.0f;
+  float mass_scale = 1.0f;
+  float impulse_scale = 0.0f;
+};
+
+inline constexpr int kMaxBlockRows = 6;
+inline constexpr int kMaxGroupRows = 3;
+
+/// The structural rows of one joint for one pass, factored.
+class RowBlock {
+ public:
+  /// Adds a row; at most kMaxBlockRows.
+  void add(const JointRow& row) { rows_[n_++] = row; }
+  int size() const { return n_; }
+  const JointRow& row(int i) const { return rows_[i]; }
+  /// Builds K = J M^-1 J^T for the bodies and factors it (L D L^T). A
+  /// pivot too small to trust (rows neither body can move along) leaves
+  /// its row out: it takes no impulse.
+  void factor(const SolverBody& a, const SolverBody& b);
+  /// x = K^-1 rhs over the rows kept (the rest get 0).
+  void solve(const float* rhs, float* x) const;
+  /// The velocity of row i.
+  float velocity(int i, const SolverBody& a, const SolverBody& b) const;
+  /// K column of an outside row: what a unit impulse along `other` does
+  /// to each block row's velocity.
+  void coupling(const JointRow& other, float* out) const;
+  /// Applies impulse lambda[i] along each row.
+  void apply(SolverBody& a, SolverBody& b, const float* lambda) const;
+
+ private:
+  int n_ = 0;
+  JointRow rows_[kMaxBlockRows];
+  Vec3 ia_[kMaxBlockRows];  ///< A's inverse inertia times angular_a
+  Vec3 ib_[kMaxBlockRows];
+  float mass_sum_ = 0.0f;  ///< A's plus B's inverse mass
+  float l_[kMaxBlockRows][kMaxBlockRows] = {};
+  float d_[kMaxBlockRows] = {};
+  bool kept_[kMaxBlockRows] = {};
+};
+
+/// One to three extra rows solved against a rigid block (see above).
+class RowGroup {
+ public:
+  /// `block` must be factored; `block_impulse` (its rows' accumulated
+  /// impulses) takes the compensating impulses apply() adds.
+  void prepare(const RowBlock& block, const JointRow* rows, int m, const SolverBody& a,
+               const SolverBody& b);
+  int size() const { return m_; }
+  /// The group's row velocities.
+  void velocity(const SolverBody& a, const SolverBody& b, float* out) const;
+  /// x = S^-1 rhs, S the block's Schur complement for these rows.
+  void solve(const float* rhs, float* x) const;
+  /// Applies impulses delta[k] along the group's rows, with the block
+  /// impulse that holds the block's rows where they were.
+  void apply(const RowBlock& block, SolverBody& a, SolverBody& b, const float* delta,
+             float* block_impulse) const;
+
+ private:
+  int m_ = 0;
+  JointRow rows_[kMaxGroupRows];
+  float y_[kMaxGroupRows][kMaxBlockRows] = {};  ///< K_bb^-1 K_be, per group row
+  float s_[kMaxGroupRows][kMaxGroupRows] = {};  ///< the Schur complement, inverted
+};
+
+/// Row velocity of a lone row.
+float row_velocity(const JointRow& r, const SolverBody& a, const SolverBody& b);
+/// Applies impulse lambda along a lone row.
+void apply_row(const JointRow& r, SolverBody& a, SolverBody& b, float lambda);
+
+/// Solves a block's rows toward zero velocity plus bias[i], soft per
+/// `soft` when use_bias (rigid otherwise), accumulating into impulse[].
+void solve_block(const RowBlock& block, SolverBody& a, SolverBody& b, const float* bias,
+                 const JointSoftness& soft, bool use_bias, float* impulse);
+
+/// One extra row against the block: drives its velocity to `speed` plus
+/// the terms' bias, its accumulated `impulse` kept in [lo, hi].
+void solve_extra_row(const RowBlock& block, SolverBody& a, SolverBody& b, const JointRow& row,
+                     const RowTerms& t, float speed, float lo, float hi, float& impulse,
+                     float* block_impulse);
+
+}  // namespace rwd::sim::d3

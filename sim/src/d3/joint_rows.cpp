@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: MIT
+// What every joint type shares: where its frames are within a substep,
+// impulses applied at its anchors, the rows it is built from (the point,
+// three linear rows; the orientation, three angular rows), and how a row
+// is driven. Each row solves for the impulse that brings its velocity
+// error, plus a bias toward zero position error, to zero: with the bias
+// softened by the joint's spring-damper while solving, without it while
+// relaxing (so the correction never stays behind as velocity), and always
+// softened for a spring. Limits are one-sided and speculative: a gap still
+// open may close within the substep, no more.
+#include "d3/joint_solver.h"
+#include "d3/world_scratch.h"
+
+namespace rwd::sim::d3 {
+
+JointFrames joint_frames(const JointConstraint& c, const SolverBody& a, const SolverBody& b) {
+  JointFrames f;
+  f.qa = a.delta_rotation * c.rotation_a;
+  f.qb = b.delta_rotation * c.rotation_b;
+  f.ra = rotate(a.delta_rotation, c.anchor_a);
+  f.rb = rotate(b.delta_rotation, c.anchor_b);
+  f.d = (b.delta_position - a.delta_position) + c.delta_center + (f.rb - f.ra);
+  f.fa = a.delta_rotation * c.frame_a;
+  f.fb = b.delta_rotation * c.frame_b;
+  return f;
+}
+
+Vec3 anchor_velocity(const SolverBody& a, const SolverBody& b, Vec3 ra, Vec3 rb) {
+  const Vec3 va = a.linear_velocity + cross(a.angular_velocity, ra);
+  const Vec3 vb = b.linear_velocity + cross(b.angular_velocity, rb);
+  return vb - va;
+}
+
+Vec3 relative_angular_velocity(const SolverBody& a, const SolverBody& b) {
+  return b.angular_velocity - a.angular_velocity;
+}
+
+void apply_linear(SolverBody& a, SolverBody& b, Vec3 ra, Vec3 rb, Vec3 p) {
+  a.linear_velocity -= p * a.inv_mass;
+  a.angular_velocity -= a.inv_inertia * cross(ra, p);
+  b.linear_velocity += p * b.inv_mass;
+  b.angular_velocity += b.inv_inertia * cross(rb, p);
+}
+
+void apply_angular(SolverBody& a, SolverBody& b, Vec3 l) {
+  a.angular_velocity -= a.inv_inertia * l;
+  b.angular_velocity += b.inv_inertia * l;
+}
+
+RowTerms structural_terms(const JointSoftness& soft, float error, bool use_bias) {
+  if (!use_bias) return {};
+  return {soft.bias_rate * error, soft.mass_scale, soft.impulse_scale};
+}
+
+RowTerms limit_terms(const JointSoftness& soft, float gap, float h, bool use_bias) {
+  if (gap > 0.0f) return {gap / h, 1.0f, 0.0f};  // speculative: may close within the substep
+  return structural_terms(soft, gap, use_bias);
+}
+
+RowTerms spring_terms(const JointSoftness& spring, float error) {
+  return {spring.bias_rate * error, spring.mass_scale, spring.impulse_scale};
+}
+
+void add_point_rows(RowBlock& block, const JointFrames& f) {
+  block.add(linear_jacobian({1.0f, 0.0f, 0.0f}, f.ra, f.rb));
+  block.add(linear_jacobian({0.0f, 1.0f, 0.0f}, f.ra, f.rb));
+  block.add(linear_jacobian({0.0f, 0.0f, 1.0f}, f.ra, f.rb));
+}
+
+void add_orientation_rows(RowBlock& block) {
+  block.add(angular_jacobian({1.0f, 0.0f, 0.0f}));
+  block.add(angular_jacobian({0.0f, 1.0f, 0.0f}));
+  block.add(angular_jacobian({0.0f, 0.0f, 1.0f}));
+}
+
+Vec3 orientation_error(const JointFrames& f) {
+  return rotation_vector(f.fb * conjugate(f.fa));
+}
+
+}  // namespace rwd::sim::d3

@@ -1,0 +1,172 @@
+// SPDX-License-Identifier: MIT
+// The joint stages (joint_solver.h): which joints take part in a tick, the
+// table of joint types, the passes over them in a fixed order, storing
+// their impulses and breaking them.
+#include "d3/joint_solver.h"
+
+#include <cmath>
+
+#include "d3/body_storage.h"
+#include "d3/joint_types.h"
+#include "d3/state_rules.h"
+#include "d3/world_scratch.h"
+
+namespace rwd::sim::d3 {
+namespace {
+
+// The structural rows are as soft as Box2D v3's joints: twice the contact
+// stiffness, held to a quarter of the substep rate (stiffer stops being
+// stable), and heavily damped so an error closes without ringing.
+constexpr float kJointDampingRatio = 2.0f;
+
+const JointOps* const kOps[kJointTypeCount] = {
+    &kBallOps,       // kBall
+    &kHingeOps,      // kHinge
+    &kWeldOps,       // kWeld
+    &kDistanceOps,   // kDistance
+    &kPrismaticOps,  // kPrismatic
+    &kDistanceOps,   // kSpring
+    &kGrabOps,       // kGrab
+};
+
+}  // namespace
+
+const JointOps& joint_ops(JointType type) {
+  return *kOps[static_cast<uint8_t>(type)];
+}
+
+bool joint_acts(const WorldState& state, const JointRecord& j) {
+  if (j.alive == 0 || (j.flags & kJointBroken) != 0) return false;
+  if (!is_simulated(state.infos[j.index_b])) return false;
+  return j.index_a == kJointWorld || is_simulated(state.infos[j.index_a]);
+}
+
+void prepare_joints(const WorldState& state, WorldScratch& scratch, float h) {
+  std::vector<JointConstraint>& out = scratch.joint_constraints;
+  out.clear();
+  if (state.live_joints == 0) return;
+  const WorldConfig& config = state.config;
+  float hertz = 2.0f * config.contact_hertz;
+  if (hertz > 0.25f / h) hertz = 0.25f / h;
+  const JointSoftness soft = joint_softness(hertz, kJointDampingRatio, h);
+  for (uint32_t k = 0; k < state.joints.size(); ++k) {
+    const JointRecord& j = state.joints[k];
+    if (!joint_acts(state, j)) continue;
+    const bool world = j.index_a == kJointWorld || j.type == JointType::kGrab;
+    const uint32_t ia = world ? 0 : scratch.solver_index[j.index_a];
+    const uint32_t ib = scratch.solver_index[j.index_b];
+    // Neither side moves this tick (asleep, static or kinematic at rest
+    // with a sleeping partner): nothing to solve.
+    if (ia == 0 && ib == 0) continue;
+    JointConstraint& c = out.emplace_back();
+    c.record = k;
+    c.body_a = ia;
+    c.body_b = ib;
+    c.h = h;
+    Vec3 center_a{};
+    if (j.type == JointType::kGrab) {
+      c.rotation_a = Quat{};
+      c.anchor_a = j.target;
+    } else if (j.index_a == kJointWorld) {
+      c.rotation_a = Quat{};
+      c.anchor_a = j.local_anchor_a;
+    } else {
+      const BodySim& sa = state.sims[j.index_a];
+      center_a = sa.position;
+      c.rotation_a = sa.rotation;
+      c.anchor_a = rotate(sa.rotation, j.local_anchor_a);
+    }
+    const BodySim& sb = state.sims[j.index_b];
+    c.rotation_b = sb.rotation;
+    c.anchor_b = rotate(sb.rotation, j.local_anchor_b);
+    c.delta_center = sb.position - center_a;
+    c.frame_a = c.rotation_a * j.frame_a;
+    c.frame_b = c.rotation_b * j.frame_b;
+    c.soft = soft;
+    c.spring_soft =
+        joint_softness(j.type == JointType::kWeld ? j.linear_hertz : j.hertz, j.damping_ratio, h);
+    c.angular_soft = joint_softness(j.angular_hertz, j.damping_ratio, h);
+    c.linear_impulse = j.linear_impulse;
+    c.angular_impulse = j.angular_impulse;
+    c.motor_impulse = j.motor_impulse;
+    c.spring_impulse = j.spring_impulse;
+    c.axial_impulse = j.axial_impulse;
+    c.lower_impulse = j.lower_impulse;
+    c.upper_impulse = j.upper_impulse;
+    c.cone_impulse = j.cone_impulse;
+    SolverBody& a = scratch.solver_bodies[ia];
+    SolverBody& b = scratch.solver_bodies[ib];
+    a.jointed = ia != 0;
+    b.jointed = true;
+    joint_ops(j.type).prepare(j, c, a, b);
+  }
+}
+
+void warm_start_joints(const WorldState& state, WorldScratch& scratch) {
+  for (const JointConstraint& c : scratch.joint_constraints) {
+    const JointRecord& j = state.joints[c.record];
+    joint_ops(j.type).warm_start(j, c, scratch.solver_bodies[c.body_a],
+                                 scratch.solver_bodies[c.body_b]);
+  }
+  // The shared immovable body takes no velocity from any of it.
+  scratch.solver_bodies[0].linear_velocity = {};
+  scratch.solver_bodies[0].angular_velocity = {};
+}
+
+void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias) {
+  for (JointConstraint& c : scratch.joint_constraints) {
+    const JointRecord& j = state.joints[c.record];
+    joint_ops(j.type).solve(j, c, scratch.solver_bodies[c.body_a], scratch.solver_bodies[c.body_b],
+                            use_bias);
+  }
+  scratch.solver_bodies[0].linear_velocity = {};
+  scratch.solver_bodies[0].angular_velocity = {};
+}
+
+void sum_joint_impulses(WorldScratch& scratch) {
+  for (JointConstraint& c : scratch.joint_constraints) {
+    c.tick_linear += c.linear_impulse;
+    c.tick_angular += c.angular_impulse;
+  }
+}
+
+namespace {
+
+// An impulse as the state rule keeps it (check_joint): finite, each
+// component within kMaxForce.
+float settle(float v) {
+  const float f = settle_impulse(v);
+  return f > kMaxForce ? kMaxForce : (f < -kMaxForce ? -kMaxForce : f);
+}
+Vec3 settle(Vec3 v) {
+  return {settle(v.x), settle(v.y), settle(v.z)};
+}
+
+}  // namespace
+
+void store_joint_impulses(WorldState& state, WorldScratch& scratch) {
+  for (const JointConstraint& c : scratch.joint_constraints) {
+    JointRecord& j = state.joints[c.record];
+    j.linear_impulse = settle(c.linear_impulse);
+    j.angular_impulse = settle(c.angular_impulse);
+    j.motor_impulse = settle(c.motor_impulse);
+    j.spring_impulse = settle(c.spring_impulse);
+    j.axial_impulse = settle(c.axial_impulse);
+    j.lower_impulse = settle(c.lower_impulse);
+    j.upper_impulse = settle(c.upper_impulse);
+    j.cone_impulse = settle(c.cone_impulse);
+    if (j.break_impulse <= 0.0f) continue;
+    const float limit_sq = j.break_impulse * j.break_impulse;
+    if (length_squared(c.tick_linear) > limit_sq || length_squared(c.tick_angular) > limit_sq) {
+      j.flags |= kJointBroken;
+      // A broken joint holds nothing: its impulses go, so nothing warm
+      // starts from them should it ever be read.
+      j.linear_impulse = j.angular_impulse = j.motor_impulse = j.spring_impulse = Vec3{};
+      j.axial_impulse = j.lower_impulse = j.upper_impulse = j.cone_impulse = 0.0f;
+      scratch.broken_joints.push_back({c.record, j.generation});
+      ++scratch.joint_serial;  // its pair collides again from the next step
+    }
+  }
+}
+
+}  // namespace rwd::sim::d3

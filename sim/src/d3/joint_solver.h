@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The joint stages of the solver, run beside the contact stages in the same
+// substeps (contact_solver.cpp): prepare once a tick, then per substep warm
+// start, solve with the soft bias, and relax without it after the move;
+// after the substeps, store the impulses and break what exceeded its
+// threshold. Joints are solved one after another in the order of their
+// colours (joint_solver.cpp), then by slot.
+//
+// Each joint type is a row of the table in joint_solver.cpp, written in
+// its own file (joint_<type>.cpp) against the same three functions.
+#include <cstdint>
+#include <vector>
+
+#include "d3/joint_block.h"
+#include "d3/joint_math.h"
+#include "rewind/sim/world_state.h"
+
+namespace rwd::sim {
+class WorldScratch;
+}
+
+namespace rwd::sim::d3 {
+
+struct SolverBody;
+
+/// One joint as the solver sees it for a tick. Anchors and frames are
+/// world-oriented at the start of the tick; each pass turns them by how far
+/// the bodies have turned since (their delta rotations), so the joint
+/// measures its error from the bodies' motion within the tick.
+struct JointConstraint {
+  uint32_t record = 0;  ///< index into WorldState::joints
+  uint32_t body_a = 0;  ///< solver body (0: the immovable body)
+  uint32_t body_b = 0;
+  Vec3 anchor_a;      ///< from A's centre, world frame, tick start
+  Vec3 anchor_b;      ///< from B's centre
+  Vec3 delta_center;  ///< B's centre minus A's, tick start
+  Quat rotation_a;    ///< A's mass-frame rotation, tick start
+  Quat rotation_b;
+  Quat frame_a;  ///< the joint's frame on A in the world, tick start
+  Quat frame_b;
+  JointSoftness soft;          ///< the structural rows
+  JointSoftness spring_soft;   ///< springs (hertz, damping_ratio), weld linear part
+  JointSoftness angular_soft;  ///< weld angular part
+  float h = 0.0f;              ///< substep, s
+  // Impulses of this tick (copied from the record, stored back after).
+  Vec3 linear_impulse;
+  Vec3 angular_impulse;
+  Vec3 motor_impulse;
+  Vec3 spring_impulse;
+  float axial_impulse = 0.0f;
+  float lower_impulse = 0.0f;
+  float upper_impulse = 0.0f;
+  float cone_impulse = 0.0f;
+  /// The structural impulses summed over the tick's substeps (breaking).
+  Vec3 tick_linear;
+  Vec3 tick_angular;
+};
+
+/// The bodies' current frames within a substep: where the anchors and the
+/// joint frames are after the bodies' motion since the tick began.
+struct JointFrames {
+  Vec3 ra;  ///< anchor on A from A's centre
+  Vec3 rb;
+  Vec3 d;   ///< anchor B minus anchor A (the point error)
+  Quat qa;  ///< A's rotation now
+  Quat qb;
+  Quat fa;  ///< the joint frame on A now
+  Quat fb;
+};
+
+/// The functions of one joint type.
+struct JointOps {
+  /// Readies what the passes need (effective masses fixed for the tick).
+  void (*prepare)(const JointRecord& j, JointConstraint& c, const SolverBody& a,
+                  const SolverBody& b);
+  /// Applies the last substep's impulses again.
+  void (*warm_start)(const JointRecord& j, const JointConstraint& c, SolverBody& a, SolverBody& b);
+  /// One pass over the joint's rows; use_bias false in the relax pass.
+  void (*solve)(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
+                bool use_bias);
+};
+const JointOps& joint_ops(JointType type);
+
+/// Whether a joint constrains its bodies: live, unbroken, both bodies
+/// enabled (a joint to a disabled body waits until it is enabled again).
+bool joint_acts(const WorldState& state, const JointRecord& j);
+
+// The stages (joint_solver.cpp), over scratch.joint_constraints.
+void prepare_joints(const WorldState& state, WorldScratch& scratch, float h);
+void warm_start_joints(const WorldState& state, WorldScratch& scratch);
+void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias);
+/// Adds each joint's structural impulses of the substep to its tick sums.
+void sum_joint_impulses(WorldScratch& scratch);
+/// Stores the impulses in the records and breaks the joints whose tick
+/// sums exceeded their break_impulse (into scratch.broken_joints).
+void store_joint_impulses(WorldState& state, WorldScratch& scratch);
+
+// Shared by the joint types (joint_rows.cpp).
+JointFrames joint_frames(const JointConstraint& c, const SolverBody& a, const SolverBody& b);
+/// Velocity of anchor B relative to anchor A.
+Vec3 anchor_velocity(const SolverBody& a, const SolverBody& b, Vec3 ra, Vec3 rb);
+/// Angular velocity of B relative to A.
+Vec3 relative_angular_velocity(const SolverBody& a, const SolverBody& b);
+/// Applies a linear impulse p at the anchors: -p to A at ra, +p to B at rb.
+void apply_linear(SolverBody& a, SolverBody& b, Vec3 ra, Vec3 rb, Vec3 p);
+/// Applies an angular impulse L: -L to A, +L to B.
+void apply_angular(SolverBody& a, SolverBody& b, Vec3 l);
+/// A structural row with position error `error`: soft with the bias,
+/// rigid (no bias) in the relax pass.
+RowTerms structural_terms(const JointSoftness& soft, float error, bool use_bias);
+/// A one-sided limit whose `gap` must stay >= 0: speculative while open
+/// (it may close within the substep, no more), structural once crossed.
+RowTerms limit_terms(const JointSoftness& soft, float gap, float h, bool use_bias);
+/// A spring toward zero `error`, soft in every pass.
+RowTerms spring_terms(const JointSoftness& spring, float error);
+
+/// The point rows of a block: the anchors coincide (three world axes).
+void add_point_rows(RowBlock& block, const JointFrames& f);
+/// The orientation rows of a block: B keeps its frame relative to A's
+/// (three world axes).
+void add_orientation_rows(RowBlock& block);
+/// The rotation from frame A to frame B, in the world (the orientation
+/// rows' error).
+Vec3 orientation_error(const JointFrames& f);
+
+inline constexpr float kUnbounded = 3.0e38f;
+
+}  // namespace rwd::sim::d3
