@@ -500,7 +500,10 @@ void solve(WorldState& state, WorldScratch& scratch) {
     integrate_positions(scratch, h);
     // Joints relax at least once: their soft bias must not stay behind as
     // velocity, whatever the contacts do.
-    if (joints) solve_joints(state, scratch, false);
+    if (joints) {
+      refresh_joint_rows(state, scratch);
+      solve_joints(state, scratch, false);
+    }
     if (config.relax_iterations > 0) {
       update_separations_and_relax(scratch, slop, inv_h);
     } else {

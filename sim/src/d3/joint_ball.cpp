@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-// The ball joint: the anchors coincide (the block: three point rows).
+// The ball joint: the anchors coincide (its structure: three point rows).
 // Optionally a cone-twist joint (the swing of B's twist axis from A's
 // within a cone, the twist about them within a range), an angular motor
-// and an orientation spring, each solved against the point block held
-// rigid, softest first (spring, motor, limits), so the rows that must hold
-// end the pass.
+// and an orientation spring, each solved against the point rows held
+// rigid, softest first (spring, motor, limits); the structure ends the
+// pass.
 #include <cmath>
 
 #include "d3/joint_solver.h"
@@ -54,11 +54,16 @@ Vec3 limit_impulse(const JointConstraint& c, const ConeTwist& ct) {
   return l;
 }
 
-void prepare_ball(const JointRecord&, JointConstraint&, const SolverBody&, const SolverBody&) {}
+int ball_rows(const JointRecord&, const JointFrames& f, JointRow* out) {
+  return point_rows(f, out);
+}
+
+Vec3 no_angular_error(const JointRecord&, const JointFrames&) {
+  return {};
+}
 
 void warm_start_ball(const JointRecord& j, const JointConstraint& c, SolverBody& a, SolverBody& b) {
   const JointFrames f = joint_frames(c, a, b);
-  apply_linear(a, b, f.ra, f.rb, c.linear_impulse);
   Vec3 l = c.motor_impulse + c.spring_impulse;
   if (limited(j)) l += limit_impulse(c, cone_twist(f));
   apply_angular(a, b, l);
@@ -68,20 +73,15 @@ float get(Vec3 v, int i) {
   return component(v, i);
 }
 
-void solve_ball(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                bool use_bias) {
-  const JointFrames f = joint_frames(c, a, b);
-  RowBlock block;
-  add_point_rows(block, f);
-  block.factor(a, b);
-  float acc[3] = {c.linear_impulse.x, c.linear_impulse.y, c.linear_impulse.z};
+void ball_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
+                 const JointFrames& f, bool use_bias, float* acc) {
+  const RowBlock& block = c.block;
   const bool spring = (j.flags & kJointSpring) != 0;
   const bool motor = (j.flags & kJointMotor) != 0;
   if (spring || motor) {
     // Both drive the three relative angular velocities.
-    const JointRow rows[3] = {angular_jacobian({1.0f, 0.0f, 0.0f}),
-                              angular_jacobian({0.0f, 1.0f, 0.0f}),
-                              angular_jacobian({0.0f, 0.0f, 1.0f})};
+    JointRow rows[3];
+    orientation_rows(rows);
     RowGroup group;
     group.prepare(block, rows, 3, a, b);
     if (spring) {
@@ -96,8 +96,9 @@ void solve_ball(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverB
       float x[3];
       group.solve(rhs, x);
       float delta[3];
-      for (int k = 0; k < 3; ++k)
+      for (int k = 0; k < 3; ++k) {
         delta[k] = -x[k] * s.mass_scale - get(c.spring_impulse, k) * s.impulse_scale;
+      }
       c.spring_impulse += Vec3{delta[0], delta[1], delta[2]};
       group.apply(block, a, b, delta, acc);
     }
@@ -137,14 +138,11 @@ void solve_ball(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverB
                       kUnbounded, c.upper_impulse, acc);
     }
   }
-  const float bias[3] = {f.d.x * c.soft.bias_rate, f.d.y * c.soft.bias_rate,
-                         f.d.z * c.soft.bias_rate};
-  solve_block(block, a, b, bias, c.soft, use_bias, acc);
-  c.linear_impulse = {acc[0], acc[1], acc[2]};
 }
 
 }  // namespace
 
-const JointOps kBallOps = {prepare_ball, warm_start_ball, solve_ball};
+const JointOps kBallOps = {nullptr,     ball_rows,       no_angular_error,
+                           ball_extras, warm_start_ball, nullptr};
 
 }  // namespace rwd::sim::d3

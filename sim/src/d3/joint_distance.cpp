@@ -24,8 +24,6 @@ float line_impulse(const JointConstraint& c) {
   return c.axial_impulse + c.spring_impulse.x + c.lower_impulse - c.upper_impulse;
 }
 
-void prepare_distance(const JointRecord&, JointConstraint&, const SolverBody&, const SolverBody&) {}
-
 void warm_start_distance(const JointRecord&, const JointConstraint& c, SolverBody& a,
                          SolverBody& b) {
   const JointFrames f = joint_frames(c, a, b);
@@ -64,6 +62,7 @@ void solve_distance(const JointRecord& j, JointConstraint& c, SolverBody& a, Sol
 
 }  // namespace
 
-const JointOps kDistanceOps = {prepare_distance, warm_start_distance, solve_distance};
+const JointOps kDistanceOps = {nullptr,       nullptr, nullptr, nullptr, warm_start_distance,
+                               solve_distance};
 
 }  // namespace rwd::sim::d3

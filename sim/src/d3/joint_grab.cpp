@@ -13,8 +13,6 @@
 namespace rwd::sim::d3 {
 namespace {
 
-void prepare_grab(const JointRecord&, JointConstraint&, const SolverBody&, const SolverBody&) {}
-
 void warm_start_grab(const JointRecord&, const JointConstraint& c, SolverBody& a, SolverBody& b) {
   const JointFrames f = joint_frames(c, a, b);
   apply_linear(a, b, f.ra, f.rb, c.linear_impulse);
@@ -23,7 +21,9 @@ void warm_start_grab(const JointRecord&, const JointConstraint& c, SolverBody& a
 void solve_grab(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b, bool) {
   const JointFrames f = joint_frames(c, a, b);
   RowBlock block;
-  add_point_rows(block, f);
+  JointRow rows[3];
+  point_rows(f, rows);
+  for (const JointRow& r : rows) block.add(r);
   block.factor(a, b);
   const JointSoftness& s = c.spring_soft;
   float rhs[3];
@@ -43,6 +43,6 @@ void solve_grab(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverB
 
 }  // namespace
 
-const JointOps kGrabOps = {prepare_grab, warm_start_grab, solve_grab};
+const JointOps kGrabOps = {nullptr, nullptr, nullptr, nullptr, warm_start_grab, solve_grab};
 
 }  // namespace rwd::sim::d3

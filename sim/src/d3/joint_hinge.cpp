@@ -27,31 +27,27 @@ float axial_impulse(const JointConstraint& c) {
   return c.motor_impulse.x + c.spring_impulse.x + c.lower_impulse - c.upper_impulse;
 }
 
-void prepare_hinge(const JointRecord&, JointConstraint& c, const SolverBody&, const SolverBody&) {
-  // The stored perpendicular impulse, onto the plane the axis now spans.
-  const Vec3 axis = rotate(c.frame_a, kAxisX);
-  c.angular_impulse -= axis * dot(c.angular_impulse, axis);
+int hinge_rows(const JointRecord&, const JointFrames& f, JointRow* out) {
+  point_rows(f, out);
+  out[3] = angular_jacobian(rotate(f.fa, kAxisY));
+  out[4] = angular_jacobian(rotate(f.fa, kAxisZ));
+  return 5;
+}
+
+// The axes' misalignment: the rotation taking A's axis to B's.
+Vec3 hinge_tilt(const JointRecord&, const JointFrames& f) {
+  return cross(rotate(f.fa, kAxisX), rotate(f.fb, kAxisX));
 }
 
 void warm_start_hinge(const JointRecord&, const JointConstraint& c, SolverBody& a, SolverBody& b) {
   const JointFrames f = joint_frames(c, a, b);
-  apply_linear(a, b, f.ra, f.rb, c.linear_impulse);
-  apply_angular(a, b, c.angular_impulse + rotate(f.fa, kAxisX) * axial_impulse(c));
+  apply_angular(a, b, rotate(f.fa, kAxisX) * axial_impulse(c));
 }
 
-void solve_hinge(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                 bool use_bias) {
-  const JointFrames f = joint_frames(c, a, b);
+void hinge_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
+                  const JointFrames& f, bool use_bias, float* acc) {
+  const RowBlock& block = c.block;
   const Vec3 xa = rotate(f.fa, kAxisX);
-  const Vec3 ya = rotate(f.fa, kAxisY);
-  const Vec3 za = rotate(f.fa, kAxisZ);
-  RowBlock block;
-  add_point_rows(block, f);
-  block.add(angular_jacobian(ya));
-  block.add(angular_jacobian(za));
-  block.factor(a, b);
-  float acc[5] = {c.linear_impulse.x, c.linear_impulse.y, c.linear_impulse.z,
-                  dot(c.angular_impulse, ya), dot(c.angular_impulse, za)};
   const float angle = twist_angle(conjugate(f.fa) * f.fb);
   const JointRow turn = angular_jacobian(xa);
   if ((j.flags & kJointSpring) != 0) {
@@ -71,18 +67,11 @@ void solve_hinge(const JointRecord& j, JointConstraint& c, SolverBody& a, Solver
                     limit_terms(c.soft, j.upper - angle, c.h, use_bias), 0.0f, 0.0f, kUnbounded,
                     c.upper_impulse, acc);
   }
-  // The axes' misalignment: the rotation taking A's axis to B's.
-  const Vec3 tilt = cross(xa, rotate(f.fb, kAxisX));
-  const float rate = c.soft.bias_rate;
-  const float bias[5] = {f.d.x * rate, f.d.y * rate, f.d.z * rate, dot(tilt, ya) * rate,
-                         dot(tilt, za) * rate};
-  solve_block(block, a, b, bias, c.soft, use_bias, acc);
-  c.linear_impulse = {acc[0], acc[1], acc[2]};
-  c.angular_impulse = ya * acc[3] + za * acc[4];
 }
 
 }  // namespace
 
-const JointOps kHingeOps = {prepare_hinge, warm_start_hinge, solve_hinge};
+const JointOps kHingeOps = {nullptr,      hinge_rows,       hinge_tilt,
+                            hinge_extras, warm_start_hinge, nullptr};
 
 }  // namespace rwd::sim::d3

@@ -20,34 +20,30 @@ float axial_impulse(const JointConstraint& c) {
   return c.motor_impulse.x + c.spring_impulse.x + c.lower_impulse - c.upper_impulse;
 }
 
-void prepare_prismatic(const JointRecord&, JointConstraint& c, const SolverBody&,
-                       const SolverBody&) {
-  const Vec3 axis = rotate(c.frame_a, kAxisX);
-  c.linear_impulse -= axis * dot(c.linear_impulse, axis);
+int prismatic_rows(const JointRecord&, const JointFrames& f, JointRow* out) {
+  const Vec3 arm_a = f.ra + f.d;
+  out[0] = linear_jacobian(rotate(f.fa, kAxisY), arm_a, f.rb);
+  out[1] = linear_jacobian(rotate(f.fa, kAxisZ), arm_a, f.rb);
+  orientation_rows(out + 2);
+  return 5;
+}
+
+Vec3 prismatic_turn(const JointRecord&, const JointFrames& f) {
+  return orientation_error(f);
 }
 
 void warm_start_prismatic(const JointRecord&, const JointConstraint& c, SolverBody& a,
                           SolverBody& b) {
   const JointFrames f = joint_frames(c, a, b);
   const Vec3 xa = rotate(f.fa, kAxisX);
-  apply_linear(a, b, f.ra + f.d, f.rb, c.linear_impulse + xa * axial_impulse(c));
-  apply_angular(a, b, c.angular_impulse);
+  apply_linear(a, b, f.ra + f.d, f.rb, xa * axial_impulse(c));
 }
 
-void solve_prismatic(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                     bool use_bias) {
-  const JointFrames f = joint_frames(c, a, b);
+void prismatic_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
+                      const JointFrames& f, bool use_bias, float* acc) {
+  const RowBlock& block = c.block;
   const Vec3 xa = rotate(f.fa, kAxisX);
-  const Vec3 ya = rotate(f.fa, kAxisY);
-  const Vec3 za = rotate(f.fa, kAxisZ);
   const Vec3 arm_a = f.ra + f.d;
-  RowBlock block;
-  block.add(linear_jacobian(ya, arm_a, f.rb));
-  block.add(linear_jacobian(za, arm_a, f.rb));
-  add_orientation_rows(block);
-  block.factor(a, b);
-  float acc[5] = {dot(c.linear_impulse, ya), dot(c.linear_impulse, za), c.angular_impulse.x,
-                  c.angular_impulse.y, c.angular_impulse.z};
   const float translation = dot(f.d, xa);
   const JointRow slide = linear_jacobian(xa, arm_a, f.rb);
   if ((j.flags & kJointSpring) != 0) {
@@ -66,17 +62,11 @@ void solve_prismatic(const JointRecord& j, JointConstraint& c, SolverBody& a, So
                     limit_terms(c.soft, j.upper - translation, c.h, use_bias), 0.0f, 0.0f,
                     kUnbounded, c.upper_impulse, acc);
   }
-  const Vec3 turn = orientation_error(f);
-  const float rate = c.soft.bias_rate;
-  const float bias[5] = {dot(f.d, ya) * rate, dot(f.d, za) * rate, turn.x * rate, turn.y * rate,
-                         turn.z * rate};
-  solve_block(block, a, b, bias, c.soft, use_bias, acc);
-  c.linear_impulse = ya * acc[0] + za * acc[1];
-  c.angular_impulse = {acc[2], acc[3], acc[4]};
 }
 
 }  // namespace
 
-const JointOps kPrismaticOps = {prepare_prismatic, warm_start_prismatic, solve_prismatic};
+const JointOps kPrismaticOps = {nullptr,          prismatic_rows,       prismatic_turn,
+                                prismatic_extras, warm_start_prismatic, nullptr};
 
 }  // namespace rwd::sim::d3

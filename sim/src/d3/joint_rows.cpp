@@ -61,16 +61,68 @@ RowTerms spring_terms(const JointSoftness& spring, float error) {
   return {spring.bias_rate * error, spring.mass_scale, spring.impulse_scale};
 }
 
-void add_point_rows(RowBlock& block, const JointFrames& f) {
-  block.add(linear_jacobian({1.0f, 0.0f, 0.0f}, f.ra, f.rb));
-  block.add(linear_jacobian({0.0f, 1.0f, 0.0f}, f.ra, f.rb));
-  block.add(linear_jacobian({0.0f, 0.0f, 1.0f}, f.ra, f.rb));
+int point_rows(const JointFrames& f, JointRow* out) {
+  out[0] = linear_jacobian({1.0f, 0.0f, 0.0f}, f.ra, f.rb);
+  out[1] = linear_jacobian({0.0f, 1.0f, 0.0f}, f.ra, f.rb);
+  out[2] = linear_jacobian({0.0f, 0.0f, 1.0f}, f.ra, f.rb);
+  return 3;
 }
 
-void add_orientation_rows(RowBlock& block) {
-  block.add(angular_jacobian({1.0f, 0.0f, 0.0f}));
-  block.add(angular_jacobian({0.0f, 1.0f, 0.0f}));
-  block.add(angular_jacobian({0.0f, 0.0f, 1.0f}));
+int orientation_rows(JointRow* out) {
+  out[0] = angular_jacobian({1.0f, 0.0f, 0.0f});
+  out[1] = angular_jacobian({0.0f, 1.0f, 0.0f});
+  out[2] = angular_jacobian({0.0f, 0.0f, 1.0f});
+  return 3;
+}
+
+JointFrames start_frames(const JointConstraint& c) {
+  JointFrames f;
+  f.qa = c.rotation_a;
+  f.qb = c.rotation_b;
+  f.ra = c.anchor_a;
+  f.rb = c.anchor_b;
+  f.d = c.delta_center + (c.anchor_b - c.anchor_a);
+  f.fa = c.frame_a;
+  f.fb = c.frame_b;
+  return f;
+}
+
+namespace {
+
+bool is_linear(const JointRow& r) {
+  return !(r.linear == Vec3{});
+}
+
+}  // namespace
+
+void gather_impulses(const JointConstraint& c, float* acc) {
+  for (int i = 0; i < c.block.size(); ++i) {
+    const JointRow& r = c.block.row(i);
+    acc[i] = is_linear(r) ? dot(c.linear_impulse, r.linear) : dot(c.angular_impulse, r.angular_b);
+  }
+}
+
+void scatter_impulses(JointConstraint& c, const float* acc) {
+  Vec3 linear{};
+  Vec3 angular{};
+  for (int i = 0; i < c.block.size(); ++i) {
+    const JointRow& r = c.block.row(i);
+    if (is_linear(r)) {
+      linear += r.linear * acc[i];
+    } else {
+      angular += r.angular_b * acc[i];
+    }
+  }
+  c.linear_impulse = linear;
+  c.angular_impulse = angular;
+}
+
+void structural_bias(const JointConstraint& c, const JointFrames& f, Vec3 angular_error, float rate,
+                     float* bias) {
+  for (int i = 0; i < c.block.size(); ++i) {
+    const JointRow& r = c.block.row(i);
+    bias[i] = (is_linear(r) ? dot(f.d, r.linear) : dot(angular_error, r.angular_b)) * rate;
+  }
 }
 
 Vec3 orientation_error(const JointFrames& f) {

@@ -98,26 +98,83 @@ void prepare_joints(const WorldState& state, WorldScratch& scratch, float h) {
     SolverBody& b = scratch.solver_bodies[ib];
     a.jointed = ia != 0;
     b.jointed = true;
-    joint_ops(j.type).prepare(j, c, a, b);
+    const JointOps& ops = joint_ops(j.type);
+    if (ops.prepare != nullptr) ops.prepare(j, c);
+    // The structure's rows as they stand at the tick's start (which
+    // joints form trees depends only on their count).
+    JointRow rows[kMaxBlockRows];
+    const int m = ops.rows != nullptr ? ops.rows(j, start_frames(c), rows) : 0;
+    for (int i = 0; i < m; ++i) c.block.add(rows[i]);
   }
+  build_joint_trees(scratch);
+}
+
+void refresh_joint_rows(const WorldState& state, WorldScratch& scratch) {
+  JointRow rows[kMaxBlockRows];
+  for (JointConstraint& c : scratch.joint_constraints) {
+    if (c.block.size() == 0) continue;
+    const JointRecord& j = state.joints[c.record];
+    const SolverBody& a = scratch.solver_bodies[c.body_a];
+    const SolverBody& b = scratch.solver_bodies[c.body_b];
+    const int m = joint_ops(j.type).rows(j, joint_frames(c, a, b), rows);
+    c.block = RowBlock{};
+    for (int i = 0; i < m; ++i) c.block.add(rows[i]);
+    c.block.factor(a, b);
+  }
+  factor_joint_trees(scratch);
 }
 
 void warm_start_joints(const WorldState& state, WorldScratch& scratch) {
+  refresh_joint_rows(state, scratch);
+  float acc[kMaxBlockRows];
   for (const JointConstraint& c : scratch.joint_constraints) {
     const JointRecord& j = state.joints[c.record];
-    joint_ops(j.type).warm_start(j, c, scratch.solver_bodies[c.body_a],
-                                 scratch.solver_bodies[c.body_b]);
+    SolverBody& a = scratch.solver_bodies[c.body_a];
+    SolverBody& b = scratch.solver_bodies[c.body_b];
+    // The structure along the same rows its passes read and apply.
+    if (c.block.size() > 0) {
+      gather_impulses(c, acc);
+      c.block.apply(a, b, acc);
+    }
+    joint_ops(j.type).warm_start(j, c, a, b);
   }
   // The shared immovable body takes no velocity from any of it.
   scratch.solver_bodies[0].linear_velocity = {};
   scratch.solver_bodies[0].angular_velocity = {};
 }
 
+namespace {
+
+// One pass over a joint solved on its own: its extra rows, then its
+// structure as one block.
+void solve_alone(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
+                 bool use_bias) {
+  const JointOps& ops = joint_ops(j.type);
+  const int m = c.block.size();
+  if (m == 0) {
+    ops.solve(j, c, a, b, use_bias);
+    return;
+  }
+  const JointFrames f = joint_frames(c, a, b);
+  float acc[kMaxBlockRows];
+  gather_impulses(c, acc);
+  if (ops.extras != nullptr) ops.extras(j, c, a, b, f, use_bias, acc);
+  float bias[kMaxBlockRows] = {};
+  if (use_bias) structural_bias(c, f, ops.angular_error(j, f), c.soft.bias_rate, bias);
+  solve_block(c.block, a, b, bias, c.soft, use_bias, acc);
+  scatter_impulses(c, acc);
+}
+
+}  // namespace
+
 void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias) {
+  for (uint32_t t = 0; t < scratch.trees.size(); ++t) {
+    solve_joint_tree(state.joints, scratch, t, use_bias);
+  }
   for (JointConstraint& c : scratch.joint_constraints) {
-    const JointRecord& j = state.joints[c.record];
-    joint_ops(j.type).solve(j, c, scratch.solver_bodies[c.body_a], scratch.solver_bodies[c.body_b],
-                            use_bias);
+    if (c.tree != kNoTree) continue;
+    solve_alone(state.joints[c.record], c, scratch.solver_bodies[c.body_a],
+                scratch.solver_bodies[c.body_b], use_bias);
   }
   scratch.solver_bodies[0].linear_velocity = {};
   scratch.solver_bodies[0].angular_velocity = {};

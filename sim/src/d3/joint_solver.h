@@ -4,11 +4,22 @@
 // substeps (contact_solver.cpp): prepare once a tick, then per substep warm
 // start, solve with the soft bias, and relax without it after the move;
 // after the substeps, store the impulses and break what exceeded its
-// threshold. Joints are solved one after another in the order of their
-// colours (joint_solver.cpp), then by slot.
+// threshold.
 //
-// Each joint type is a row of the table in joint_solver.cpp, written in
-// its own file (joint_<type>.cpp) against the same three functions.
+// A joint's structural rows (what makes it a hinge or a weld) are built
+// where the bodies stand and factored as one block (joint_block.h) at the
+// start of each substep, for its warm start and solve, and again after
+// its move, for the relax: every pass reads and applies along the rows
+// its factors were built for. (Rows factored once a tick disagree with
+// the bodies as they turn; rows held for the tick apply a light link's
+// heavy load at a lever that has moved on and spin it. Either way a heavy
+// load on light links flies apart.) Joints that join bodies into a tree (chains, ropes of links,
+// bridges, ragdolls) have all their structural rows solved together, as
+// one exact sparse system over the tree (joint_tree.cpp), so a light link
+// holding a heavy load neither stretches nor waits on many passes for the
+// load to travel the chain; the other joints are solved one after
+// another, in slot order. Each joint type is a row of the table in
+// joint_solver.cpp, written in its own file (joint_<type>.cpp).
 #include <cstdint>
 #include <vector>
 
@@ -55,7 +66,18 @@ struct JointConstraint {
   /// The structural impulses summed over the tick's substeps (breaking).
   Vec3 tick_linear;
   Vec3 tick_angular;
+  /// The structural rows at the tick's start, factored for the bodies.
+  RowBlock block;
+  /// The tree the joint is solved in (kNoTree: on its own), and where its
+  /// rows start in the tree's row vectors.
+  uint32_t tree = 0xFFFFFFFFu;
+  uint32_t tree_row = 0;
+  /// Where the tree's factorization keeps what the subtree below the
+  /// joint adds to its rows (rows x rows, in scratch.tree_arena).
+  uint32_t tree_update = 0;
 };
+
+inline constexpr uint32_t kNoTree = 0xFFFFFFFFu;
 
 /// The bodies' current frames within a substep: where the anchors and the
 /// joint frames are after the bodies' motion since the tick began.
@@ -71,12 +93,25 @@ struct JointFrames {
 
 /// The functions of one joint type.
 struct JointOps {
-  /// Readies what the passes need (effective masses fixed for the tick).
-  void (*prepare)(const JointRecord& j, JointConstraint& c, const SolverBody& a,
-                  const SolverBody& b);
-  /// Applies the last substep's impulses again.
+  /// Readies the stored impulses for the tick (optional).
+  void (*prepare)(const JointRecord& j, JointConstraint& c);
+  /// The structural rows at frames `f`, into `out`; their count, 0 when
+  /// the type solves itself (`solve`).
+  int (*rows)(const JointRecord& j, const JointFrames& f, JointRow* out);
+  /// The angular error the structural angular rows drive to zero, at `f`
+  /// (a world rotation vector, rad; projected on each row's axis).
+  Vec3 (*angular_error)(const JointRecord& j, const JointFrames& f);
+  /// The rows beside the structure (springs, motors, limits), each against
+  /// c.block held rigid, adding its compensation to `block_impulse`
+  /// (optional).
+  void (*extras)(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
+                 const JointFrames& f, bool use_bias, float* block_impulse);
+  /// Applies the last substep's impulses again: all of them for a type
+  /// without structural rows, else those of its other rows (the stage
+  /// applies the structure's along its rows).
   void (*warm_start)(const JointRecord& j, const JointConstraint& c, SolverBody& a, SolverBody& b);
-  /// One pass over the joint's rows; use_bias false in the relax pass.
+  /// One pass over a joint without structural rows; use_bias false in the
+  /// relax pass (optional: types with rows).
   void (*solve)(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
                 bool use_bias);
 };
@@ -88,6 +123,10 @@ bool joint_acts(const WorldState& state, const JointRecord& j);
 
 // The stages (joint_solver.cpp), over scratch.joint_constraints.
 void prepare_joints(const WorldState& state, WorldScratch& scratch, float h);
+/// Rebuilds and refactors every joint's structural rows (and the trees)
+/// where the bodies stand; the warm start does it first, the relax pass
+/// needs it after the move.
+void refresh_joint_rows(const WorldState& state, WorldScratch& scratch);
 void warm_start_joints(const WorldState& state, WorldScratch& scratch);
 void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias);
 /// Adds each joint's structural impulses of the substep to its tick sums.
@@ -115,11 +154,22 @@ RowTerms limit_terms(const JointSoftness& soft, float gap, float h, bool use_bia
 /// A spring toward zero `error`, soft in every pass.
 RowTerms spring_terms(const JointSoftness& spring, float error);
 
-/// The point rows of a block: the anchors coincide (three world axes).
-void add_point_rows(RowBlock& block, const JointFrames& f);
-/// The orientation rows of a block: B keeps its frame relative to A's
-/// (three world axes).
-void add_orientation_rows(RowBlock& block);
+/// The point rows: the anchors coincide (three world axes); returns 3.
+int point_rows(const JointFrames& f, JointRow* out);
+/// The orientation rows: B keeps its frame relative to A's (three world
+/// axes); returns 3.
+int orientation_rows(JointRow* out);
+/// The frames at the tick's start (no motion yet).
+JointFrames start_frames(const JointConstraint& c);
+/// The structural rows' accumulated impulses from the joint's stored
+/// vectors (linear rows from linear_impulse, angular rows from
+/// angular_impulse), and back.
+void gather_impulses(const JointConstraint& c, float* acc);
+void scatter_impulses(JointConstraint& c, const float* acc);
+/// The bias of each structural row: its error (the point error along a
+/// linear row, the type's angular error about an angular row) times rate.
+void structural_bias(const JointConstraint& c, const JointFrames& f, Vec3 angular_error, float rate,
+                     float* bias);
 /// The rotation from frame A to frame B, in the world (the orientation
 /// rows' error).
 Vec3 orientation_error(const JointFrames& f);

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The weld: B keeps the pose relative to A it had at creation. Rigid, its
-// six rows are one block; a soft half (linear_hertz or angular_hertz set)
-// is a spring in every pass, solved as its own three-row block, the
-// orientation first so the point rows, which carry the load, end the pass.
+// six rows are its structure; a soft half (linear_hertz or angular_hertz
+// set) is a spring in every pass, and a soft weld solves its two halves as
+// three-row blocks of their own.
 #include "d3/joint_solver.h"
 #include "d3/joint_types.h"
 #include "d3/world_scratch.h"
@@ -10,9 +10,24 @@
 namespace rwd::sim::d3 {
 namespace {
 
-void prepare_weld(const JointRecord&, JointConstraint&, const SolverBody&, const SolverBody&) {}
+bool rigid(const JointRecord& j) {
+  return j.angular_hertz == 0.0f && j.linear_hertz == 0.0f;
+}
 
-void warm_start_weld(const JointRecord&, const JointConstraint& c, SolverBody& a, SolverBody& b) {
+// A rigid weld's structure is all six rows; a soft one solves itself.
+int weld_rows(const JointRecord& j, const JointFrames& f, JointRow* out) {
+  if (!rigid(j)) return 0;
+  point_rows(f, out);
+  orientation_rows(out + 3);
+  return 6;
+}
+
+Vec3 weld_turn(const JointRecord&, const JointFrames& f) {
+  return orientation_error(f);
+}
+
+void warm_start_weld(const JointRecord& j, const JointConstraint& c, SolverBody& a, SolverBody& b) {
+  if (rigid(j)) return;  // all structure, warm started by the stage
   const JointFrames f = joint_frames(c, a, b);
   apply_linear(a, b, f.ra, f.rb, c.linear_impulse);
   apply_angular(a, b, c.angular_impulse);
@@ -28,34 +43,22 @@ void solve_half(RowBlock& block, SolverBody& a, SolverBody& b, Vec3 error,
   impulse = {acc[0], acc[1], acc[2]};
 }
 
-void solve_weld(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                bool use_bias) {
+// A soft weld: a soft half is a spring in every pass; a rigid one has the
+// joint's softness while solving and none while relaxing. Orientation
+// first, so the point rows, which carry the load, end the pass.
+void solve_soft_weld(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
+                     bool use_bias) {
   const JointFrames f = joint_frames(c, a, b);
-  const Vec3 turn = orientation_error(f);
-  if (j.angular_hertz == 0.0f && j.linear_hertz == 0.0f) {
-    RowBlock block;
-    add_point_rows(block, f);
-    add_orientation_rows(block);
-    block.factor(a, b);
-    float acc[6] = {c.linear_impulse.x,  c.linear_impulse.y,  c.linear_impulse.z,
-                    c.angular_impulse.x, c.angular_impulse.y, c.angular_impulse.z};
-    const float rate = c.soft.bias_rate;
-    const float bias[6] = {f.d.x * rate,  f.d.y * rate,  f.d.z * rate,
-                           turn.x * rate, turn.y * rate, turn.z * rate};
-    solve_block(block, a, b, bias, c.soft, use_bias, acc);
-    c.linear_impulse = {acc[0], acc[1], acc[2]};
-    c.angular_impulse = {acc[3], acc[4], acc[5]};
-    return;
-  }
-  // A soft half is a spring in every pass; a rigid one has the joint's
-  // softness while solving and none while relaxing.
+  JointRow rows[3];
   RowBlock orientation;
-  add_orientation_rows(orientation);
+  orientation_rows(rows);
+  for (const JointRow& r : rows) orientation.add(r);
   const bool soft_turn = j.angular_hertz > 0.0f;
-  solve_half(orientation, a, b, turn, soft_turn ? c.angular_soft : c.soft, soft_turn || use_bias,
-             c.angular_impulse);
+  solve_half(orientation, a, b, orientation_error(f), soft_turn ? c.angular_soft : c.soft,
+             soft_turn || use_bias, c.angular_impulse);
   RowBlock point;
-  add_point_rows(point, f);
+  point_rows(f, rows);
+  for (const JointRow& r : rows) point.add(r);
   const bool soft_point = j.linear_hertz > 0.0f;
   solve_half(point, a, b, f.d, soft_point ? c.spring_soft : c.soft, soft_point || use_bias,
              c.linear_impulse);
@@ -63,6 +66,7 @@ void solve_weld(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverB
 
 }  // namespace
 
-const JointOps kWeldOps = {prepare_weld, warm_start_weld, solve_weld};
+const JointOps kWeldOps = {nullptr, weld_rows,       weld_turn,
+                           nullptr, warm_start_weld, solve_soft_weld};
 
 }  // namespace rwd::sim::d3

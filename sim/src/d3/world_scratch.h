@@ -13,6 +13,7 @@
 #include "d3/broadphase.h"
 #include "d3/contact_batches.h"
 #include "d3/joint_solver.h"
+#include "d3/joint_tree.h"
 #include "d3/manifold.h"
 #include "d3/swept_shape.h"
 #include "rewind/sim/body_event.h"
@@ -200,6 +201,24 @@ class WorldScratch {
   // joints (joint_solver.cpp)
   std::vector<d3::JointConstraint> joint_constraints;
   std::vector<JointId> broken_joints;  ///< this step's, in slot order
+  // joint trees (joint_tree.cpp), rebuilt each tick
+  std::vector<d3::JointTree> trees;
+  std::vector<d3::JointTreeBody> tree_bodies;
+  std::vector<uint32_t> tree_children;  ///< child joints of each tree body
+  std::vector<uint32_t> tree_joints;    ///< joints of each tree
+  std::vector<float> tree_arena;        ///< updates, then factors and couplings
+  uint32_t tree_factor_base = 0;        ///< where the factors start in tree_arena
+  std::vector<float> tree_rhs;          ///< by tree row
+  std::vector<float> tree_w;
+  std::vector<float> tree_lambda;
+  std::vector<float> tree_acc;
+  std::vector<uint32_t> tree_parent;  ///< union-find over solver bodies
+  std::vector<uint8_t> tree_loop;
+  std::vector<uint32_t> tree_count;
+  std::vector<uint8_t> tree_seen;
+  std::vector<uint32_t> tree_incidence_start;
+  std::vector<uint32_t> tree_incidence;
+  std::vector<uint32_t> tree_fill;
   /// Pairs (a << 32 | b, a < b) an intact joint keeps from colliding,
   /// sorted; rebuilt when joint_serial moves past joint_pairs_serial.
   std::vector<uint64_t> joint_pairs;

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Tree-shaped joint islands solved exactly (joint_tree.cpp).
+//
+// The structural rows of all joints that join moving bodies into a tree
+// (no loop through moving bodies; joints to static bodies or the world
+// are leaves) form one sparse system K lambda = r, K = J M^-1 J^T. Rooted
+// at a body, the tree is eliminated from its leaves: at each body, the
+// rows of the joints below it are eliminated into the joint above it, the
+// only one left that shares the body, so nothing fills in beyond what the
+// bodies already couple (a multifrontal factorization with one front per
+// body). The factors are built for the rows where the bodies stand, at
+// the start of each substep (for its warm start and solve) and after its
+// move (for the relax): a factor of other rows than those applied is
+// amplified by a heavy load on light links until the chain flies apart.
+// Each pass is one forward and one backward sweep, linear in the joints.
+//
+// Why: row by row, a light link holding a heavy load needs many passes for
+// the load to travel the chain, and the soft step's spring (the joint
+// stiffness is proportional to the effective mass a row sees) lets it
+// sag: a 20-link chain holding 100 times a link's mass stretched by 6%.
+// Solved as one system, every row sees the whole tree's mass.
+#include <cstdint>
+#include <vector>
+
+#include "rewind/sim/world_state.h"
+
+namespace rwd::sim {
+class WorldScratch;
+}
+
+namespace rwd::sim::d3 {
+
+/// Rows of the joints below one body that one front may hold; a body
+/// with more leaves its component to the row-by-row solve.
+inline constexpr uint32_t kMaxFrontRows = 36;
+
+/// One body of a joint tree.
+struct JointTreeBody {
+  uint32_t body = 0;          ///< solver body
+  uint32_t parent_joint = 0;  ///< joint constraint above it, or kNoParent (the root)
+  uint32_t child_begin = 0;   ///< its child joints: scratch.tree_children[begin, end)
+  uint32_t child_end = 0;
+  uint32_t front = 0;        ///< rows of its child joints
+  uint32_t factor_at = 0;    ///< arena: the front's L (front x front) and D (front)
+  uint32_t coupling_at = 0;  ///< arena: Y = F^-1 F_cp (front x parent rows)
+};
+
+/// One tree: its bodies root first (breadth first), its joints, its rows.
+struct JointTree {
+  uint32_t body_begin = 0;  ///< scratch.tree_bodies
+  uint32_t body_end = 0;
+  uint32_t joint_begin = 0;  ///< scratch.tree_joints (constraint indices, slot order)
+  uint32_t joint_end = 0;
+};
+
+inline constexpr uint32_t kNoParent = 0xFFFFFFFFu;
+
+/// Finds this tick's trees among scratch.joint_constraints (their rows
+/// counted) and marks their joints (JointConstraint::tree, tree_row).
+void build_joint_trees(WorldScratch& scratch);
+/// Factors every tree for its joints' rows as they stand (their blocks
+/// refreshed): at the start of each substep and again after its move.
+void factor_joint_trees(WorldScratch& scratch);
+/// One pass over tree t: the extra rows of its joints, then its structure
+/// solved exactly; soft with the bias, rigid without.
+void solve_joint_tree(const std::vector<JointRecord>& joints, WorldScratch& scratch, uint32_t t,
+                      bool use_bias);
+
+}  // namespace rwd::sim::d3
