@@ -1,30 +1,37 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 #
-# Measures Rewind against Bullet on the scene catalogue, and Rewind's 2D
-# lane against Box2D 2.4 on the 2D scenes, and writes the charts and
-# docs/BENCHMARKS.md from that one run.
+# Measures Rewind against Bullet on the scene catalogue and on the jointed
+# scenes, and Rewind's 2D lane against Box2D 2.4 on the 2D scenes, and
+# writes the charts and docs/BENCHMARKS.md from that one run.
 #
-# Usage: scripts/charts.sh [--quick] [--no-build] [--only 3d|2d]
+# Usage: scripts/charts.sh [--quick] [--no-build] [--only 3d|2d|joints]
 #   (default)   full sweep: every scene size at default settings on both
 #               engines, piles up to 8000 boxes, and at each scene's chart
 #               size Rewind's substeps 1-16, relax 0-4, contact_hertz 15-60
 #               and Bullet's iterations 5-40, steps per tick 1-4
 #               (2D: every scene, and the substeps/iterations sweep of the
 #               large pyramid and the small pyramids)
+#               (joints: the pendulum, chain, bridge and grid at Rewind's
+#               substeps 2/4/8 and Bullet's iterations 10/20/40)
 #   --quick     piles up to 2000 boxes, substeps 2/4/8 and iterations 5/10/20
-#               (2D: 60 timed ticks a scene instead of 180-600)
+#               (2D: 60 timed ticks a scene instead of 180-600; joints: the
+#               default settings only)
 #   --no-build  use the binaries already in build/bench
-#   --only 3d   the 3D part alone (the 2D section is rebuilt from the stored
-#               docs/charts/2d_sweep.csv)
+#   --only 3d   the 3D part alone (the 2D and joints sections are rebuilt
+#               from the stored docs/charts/2d_sweep.csv and joints3d.csv)
 #   --only 2d   the 2D part alone: rewind-scene2d-sweep, then
 #               scripts/charts2d.py replaces the 2D section of the document
+#   --only joints  the 3D joints part alone: rewind-joint-bench, then
+#               scripts/charts_joints.py replaces the "3D joints" section
 #
 # Steps: scripts/setup.sh (only installs what is missing), cmake --preset bench,
 # build rewind-scene-sweep and rewind-scene2d-sweep, run them (progress on
 # stderr), then scripts/charts.py writes docs/charts/*.csv, *.svg and
 # docs/BENCHMARKS.md, and scripts/charts2d.py docs/charts/2d_* and the 2D
-# section of docs/BENCHMARKS.md. Exit codes: 0 done; 2 bad usage; otherwise the status
+# section of docs/BENCHMARKS.md, and rewind-joint-bench with
+# scripts/charts_joints.py docs/charts/joints3d_* and the "3D joints"
+# section. Exit codes: 0 done; 2 bad usage; otherwise the status
 # of the failing step.
 set -euo pipefail
 
@@ -39,21 +46,24 @@ while (($#)); do
     --quick) mode=quick; shift ;;
     --no-build) build=0; shift ;;
     --only)
-      [[ ${2:-} == 3d || ${2:-} == 2d ]] || { echo "charts: --only takes 3d or 2d" >&2; usage >&2; exit 2; }
+      [[ ${2:-} == 3d || ${2:-} == 2d || ${2:-} == joints ]] ||
+        { echo "charts: --only takes 3d, 2d or joints" >&2; usage >&2; exit 2; }
       only=$2; shift 2 ;;
     -h|--help) usage; exit 0 ;;
     *) echo "charts: unknown option '$1'" >&2; usage >&2; exit 2 ;;
   esac
 done
-run3d=1 run2d=1
-[[ $only == 2d ]] && run3d=0
-[[ $only == 3d ]] && run2d=0
+run3d=1 run2d=1 runjoints=1
+[[ $only == 2d ]] && run3d=0 && runjoints=0
+[[ $only == 3d ]] && run2d=0 && runjoints=0
+[[ $only == joints ]] && run3d=0 && run2d=0
 
 step() { echo "==> $*" >&2; }
 
 targets=()
 ((run3d)) && targets+=(rewind-scene-sweep)
 ((run2d)) && targets+=(rewind-scene2d-sweep rewind-rays2d)
+((runjoints)) && targets+=(rewind-joint-bench)
 if ((build)); then
   step "system packages"
   bash scripts/setup.sh >&2
@@ -68,9 +78,10 @@ mkdir -p "$out"
 
 if ((run3d)); then
   sweep=build/bench/bin/rewind-scene-sweep
-  # The 3D files only: the 2D ones (2d_*) belong to the 2D part below.
+  # The 3D files only: the 2D ones (2d_*) and the joints ones (joints3d*)
+  # belong to the parts below.
   find "$out" -maxdepth 1 -type f \( -name '*.csv' -o -name '*.dat' -o -name '*.svg' \) \
-    ! -name '2d_*' -delete
+    ! -name '2d_*' ! -name 'joints3d*' -delete
   start=$(date +%s)
 
   step "sweep ($mode): every scene, both engines"
@@ -121,11 +132,29 @@ if ((run2d)); then
     "$(( $(date +%s) - start ))" >"$out/2d_run.txt"
 fi
 
+if ((runjoints)); then
+  rm -f "$out"/joints3d*
+  start=$(date +%s)
+  quick=()
+  [[ $mode == quick ]] && quick=(--quick)
+  step "3D joints ($mode): pendulum, chain, bridge, grid on Rewind and Bullet"
+  build/bench/bin/rewind-joint-bench "${quick[@]}" >"$out/joints3d.csv"
+  printf 'mode=%s\ndate=%s\nseconds=%s\n' "$mode" "$(date -u +%F)" \
+    "$(( $(date +%s) - start ))" >"$out/joints3d_run.txt"
+fi
+
 # The 2D section: from this run's CSV, or from the stored one after a 3D-only
 # run rewrote the document.
 if [[ -f $out/2d_sweep.csv && -f $out/2d_run.txt ]]; then
   step "2D charts and the 2D section of $doc"
   python3 scripts/charts2d.py --csv "$out/2d_sweep.csv" --run "$out/2d_run.txt" --out "$out" \
     --doc "$doc" --rays "$out/2d_rays.csv"
+fi
+# The 3D joints section: from this run's CSV, or from the stored one after
+# another part rewrote the document.
+if [[ -f $out/joints3d.csv && -f $out/joints3d_run.txt ]]; then
+  step "3D joints charts and the 3D joints section of $doc"
+  python3 scripts/charts_joints.py --csv "$out/joints3d.csv" --run "$out/joints3d_run.txt" \
+    --out "$out" --doc "$doc"
 fi
 step "done: $doc, $out/"

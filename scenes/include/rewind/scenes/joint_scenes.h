@@ -1,0 +1,527 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Jointed scenes, described once: bodies (spheres and boxes), ball and
+// hinge joints between them with their anchors in each body's frame, and
+// the figures measured on them (how far a joint's two anchors are apart,
+// how much a chain stretched, a pendulum's period, the energy of the
+// whole). Shared by the stability and accuracy suites (on Rewind) and the
+// side-by-side benchmark (Rewind and Bullet build the same description).
+// Header only; depends on the engine's public API.
+//
+// The scenes:
+// - hanging_chain: 20 box links on ball joints hanging from a fixed point,
+//   holding a sphere of 100 times a link's mass (a mass ratio solvers
+//   stretch under);
+// - rope_bridge: planks hinged end to end, hung with slack between two
+//   static posts, with boxes dropped on them;
+// - joint_grid: an N x N sheet of spheres, each held to its neighbours by
+//   ball joints at their midpoints, held along one edge (a static row) and
+//   falling from horizontal;
+// - hinge_pendulum: a box rod on a hinge at its end, let go at a small
+//   angle (the physical pendulum).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rewind/sim/world3d.h"
+
+namespace rwd::scenes {
+
+enum class JointSceneShape : uint8_t { kSphere, kBox };
+
+struct JointSceneBody {
+  bool fixed = false;  ///< static: never moves
+  JointSceneShape shape = JointSceneShape::kBox;
+  sim::Vec3 half{0.5f, 0.5f, 0.5f};  ///< box half extents; a sphere's radius is half.x
+  sim::Vec3 position;
+  sim::Quat rotation;
+  float density = 1000.0f;  ///< kg/m^3
+  float angular_damping = 0.0f;
+  float friction = 0.6f;
+
+  float volume() const {
+    if (shape == JointSceneShape::kSphere) {
+      return 4.0f / 3.0f * 3.14159265f * half.x * half.x * half.x;
+    }
+    return 8.0f * half.x * half.y * half.z;
+  }
+  float mass_kg() const { return fixed ? 0.0f : density * volume(); }
+  /// Principal moments about the centre, body frame, kg m^2.
+  sim::Vec3 inertia() const {
+    const float m = mass_kg();
+    if (shape == JointSceneShape::kSphere) {
+      const float i = 0.4f * m * half.x * half.x;
+      return {i, i, i};
+    }
+    const sim::Vec3 s{half.x * half.x, half.y * half.y, half.z * half.z};
+    return {m * (s.y + s.z) / 3.0f, m * (s.x + s.z) / 3.0f, m * (s.x + s.y) / 3.0f};
+  }
+};
+
+enum class JointSceneType : uint8_t { kBall, kHinge };
+
+struct JointSceneJoint {
+  JointSceneType type = JointSceneType::kBall;
+  int a = -1;  ///< body index, -1: the world
+  int b = 0;
+  /// The joint's point in each body's frame (world coordinates when a is -1).
+  sim::Vec3 local_a;
+  sim::Vec3 local_b;
+  /// Hinge axis in each body's frame (world when a is -1).
+  sim::Vec3 axis_a{0.0f, 0.0f, 1.0f};
+  sim::Vec3 axis_b{0.0f, 0.0f, 1.0f};
+  /// Hinge: a friction torque, N m (0: none): the joint resists turning
+  /// with up to this much, as a motor held at zero speed.
+  float friction_torque_nm = 0.0f;
+};
+
+struct JointScene {
+  std::string name;
+  int size = 0;
+  std::vector<JointSceneBody> bodies;
+  std::vector<JointSceneJoint> joints;
+  sim::Vec3 gravity{0.0f, -9.81f, 0.0f};
+  int ticks = 600;  ///< 60 Hz ticks the scene runs
+  /// hanging_chain: the heavy body, the chain's first joint (to the world)
+  /// and its last (to the heavy body), and the pivot-to-anchor length.
+  int heavy = -1;
+  int first_joint = -1;
+  int last_joint = -1;
+  float chain_length_m = 0.0f;
+  /// rope_bridge: the planks and the dropped boxes.
+  std::vector<int> planks;
+  std::vector<int> loads;
+  /// hinge_pendulum: the rod, its starting angle (rad) and the analytic
+  /// period (s) at that amplitude.
+  int rod = -1;
+  float amplitude_rad = 0.0f;
+  double analytic_period_s = 0.0;
+  /// joint_grid: the energy its fall can release (the dynamic mass
+  /// lowered by half the sheet's side), J: the scale of energy errors.
+  double energy_scale_j = 0.0;
+
+  int dynamic_count() const {
+    int n = 0;
+    for (const JointSceneBody& b : bodies) n += b.fixed ? 0 : 1;
+    return n;
+  }
+
+  /// Adds a joint through the world point `at` (and world axis), its
+  /// anchors and axes taken in each body's frame at the starting poses.
+  void join(JointSceneType type, int a, int b, sim::Vec3 at, sim::Vec3 axis = {0, 0, 1}) {
+    JointSceneJoint j;
+    j.type = type;
+    j.a = a;
+    j.b = b;
+    j.local_a = a < 0 ? at : to_local(a, at);
+    j.axis_a = a < 0 ? axis : sim::inv_rotate(bodies[static_cast<size_t>(a)].rotation, axis);
+    j.local_b = to_local(b, at);
+    j.axis_b = sim::inv_rotate(bodies[static_cast<size_t>(b)].rotation, axis);
+    joints.push_back(j);
+  }
+  sim::Vec3 to_local(int i, sim::Vec3 world) const {
+    const JointSceneBody& body = bodies[static_cast<size_t>(i)];
+    return sim::inv_rotate(body.rotation, world - body.position);
+  }
+};
+
+/// A body's state as an engine reports it (centre = authored frame: the
+/// scenes only use spheres and boxes).
+struct JointBodyState {
+  sim::Vec3 position;
+  sim::Quat rotation;
+  sim::Vec3 linear_velocity;
+  sim::Vec3 angular_velocity;
+};
+
+// --- the scenes ----------------------------------------------------------
+
+/// `links` box links (0.1 x 0.5 x 0.1 m, 5 kg) on ball joints hanging
+/// straight down from a fixed point 15 m up, holding a sphere (radius
+/// 0.3 m) of `mass_ratio` times a link's mass on the last link.
+inline JointScene hanging_chain(int links = 20, float mass_ratio = 100.0f) {
+  JointScene s;
+  s.name = "chain";
+  s.size = links;
+  s.ticks = 600;
+  const float top = 15.0f;
+  const sim::Vec3 half{0.05f, 0.25f, 0.05f};
+  for (int i = 0; i < links; ++i) {
+    JointSceneBody link;
+    link.half = half;
+    link.position = {0.0f, top - half.y - 2.0f * half.y * static_cast<float>(i), 0.0f};
+    s.bodies.push_back(link);
+    const sim::Vec3 at{0.0f, top - 2.0f * half.y * static_cast<float>(i), 0.0f};
+    s.join(JointSceneType::kBall, i - 1, i, at);
+  }
+  s.first_joint = 0;
+  const float end = top - 2.0f * half.y * static_cast<float>(links);
+  JointSceneBody heavy;
+  heavy.shape = JointSceneShape::kSphere;
+  heavy.half = {0.3f, 0.3f, 0.3f};
+  heavy.position = {0.0f, end - 0.3f, 0.0f};
+  heavy.density = mass_ratio * s.bodies[0].mass_kg() / heavy.volume();
+  s.bodies.push_back(heavy);
+  s.heavy = links;
+  s.join(JointSceneType::kBall, links - 1, links, {0.0f, end, 0.0f});
+  s.last_joint = static_cast<int>(s.joints.size()) - 1;
+  s.chain_length_m = top - end;
+  return s;
+}
+
+/// `planks` planks (1 x 0.1 x 0.8 m, pine, 48 kg, a little angular
+/// damping as rope and wood have) hinged end to end about z, hung between
+/// two static posts 2 planks cos(0.2) apart (so they start in a shallow V,
+/// 0.2 rad each side), and `loads` boxes of 0.5 m (125 kg) dropped on them
+/// from 1 to 3 m above.
+inline JointScene rope_bridge(int planks = 20, int loads = 8, float friction_torque_nm = 100.0f) {
+  JointScene s;
+  s.name = "bridge";
+  s.size = planks;
+  s.ticks = 600;
+  const float tilt = 0.2f;
+  const float c = std::cos(tilt), sn = std::sin(tilt);
+  const float half_span = 0.5f * static_cast<float>(planks) * c;
+  sim::Vec3 at{-half_span, 10.0f, 0.0f};
+  JointSceneBody post;
+  post.fixed = true;
+  post.half = {0.2f, 0.2f, 0.5f};
+  post.position = at - sim::Vec3{0.2f, 0.0f, 0.0f};
+  s.bodies.push_back(post);
+  int previous = 0;
+  for (int i = 0; i < planks; ++i) {
+    const bool down = i < planks / 2;
+    const sim::Vec3 dir{c, down ? -sn : sn, 0.0f};
+    const float angle = down ? -tilt : tilt;  // about z
+    JointSceneBody plank;
+    plank.half = {0.5f, 0.05f, 0.4f};
+    plank.density = 600.0f;
+    plank.angular_damping = 0.5f;
+    plank.position = at + dir * 0.5f;
+    plank.rotation = {0.0f, 0.0f, std::sin(0.5f * angle), std::cos(0.5f * angle)};
+    s.bodies.push_back(plank);
+    const int id = static_cast<int>(s.bodies.size()) - 1;
+    s.planks.push_back(id);
+    s.join(JointSceneType::kHinge, previous, id, at);
+    previous = id;
+    at = at + dir;
+  }
+  post.position = at + sim::Vec3{0.2f, 0.0f, 0.0f};
+  s.bodies.push_back(post);
+  s.join(JointSceneType::kHinge, previous, static_cast<int>(s.bodies.size()) - 1, at);
+  for (JointSceneJoint& j : s.joints) j.friction_torque_nm = friction_torque_nm;
+  for (int i = 0; i < loads; ++i) {
+    JointSceneBody box;
+    box.half = {0.25f, 0.25f, 0.25f};
+    const float x = -half_span + 1.5f +
+                    (2.0f * half_span - 3.0f) * static_cast<float>(i) /
+                        static_cast<float>(loads > 1 ? loads - 1 : 1);
+    box.position = {x, 11.0f + static_cast<float>(i % 3), 0.0f};
+    s.bodies.push_back(box);
+    s.loads.push_back(static_cast<int>(s.bodies.size()) - 1);
+  }
+  return s;
+}
+
+/// An n x n sheet of spheres (radius 0.15 m, 0.5 m apart, 14 kg) in the
+/// horizontal plane 20 m up; each joined to its +x and +z neighbours by a
+/// ball joint at their midpoint (2 n (n - 1) joints, the 29 between two
+/// static spheres left out). The row at z = 0 is static: the sheet falls
+/// from horizontal, swinging about that edge.
+inline JointScene joint_grid(int n = 30) {
+  JointScene s;
+  s.name = "grid";
+  s.size = n;
+  s.ticks = 600;
+  const float spacing = 0.5f;
+  auto index = [n](int i, int k) { return k * n + i; };
+  for (int k = 0; k < n; ++k) {
+    for (int i = 0; i < n; ++i) {
+      JointSceneBody ball;
+      ball.fixed = k == 0;
+      ball.shape = JointSceneShape::kSphere;
+      ball.half = {0.15f, 0.15f, 0.15f};
+      ball.position = {spacing * static_cast<float>(i), 20.0f, spacing * static_cast<float>(k)};
+      s.bodies.push_back(ball);
+    }
+  }
+  for (int k = 0; k < n; ++k) {
+    for (int i = 0; i < n; ++i) {
+      const sim::Vec3 p = s.bodies[static_cast<size_t>(index(i, k))].position;
+      if (i + 1 < n && k > 0) {
+        s.join(JointSceneType::kBall, index(i, k), index(i + 1, k),
+               p + sim::Vec3{0.5f * spacing, 0.0f, 0.0f});
+      }
+      if (k + 1 < n) {
+        s.join(JointSceneType::kBall, index(i, k), index(i, k + 1),
+               p + sim::Vec3{0.0f, 0.0f, 0.5f * spacing});
+      }
+    }
+  }
+  double mass = 0.0;
+  for (const JointSceneBody& b : s.bodies) mass += b.mass_kg();
+  s.energy_scale_j = mass * 9.81 * 0.5 * spacing * (n - 1);
+  return s;
+}
+
+/// A box rod (0.1 x 1 x 0.1 m, 10 kg, no damping) on a hinge about z at its
+/// top end, 10.5 m up, let go `amplitude_rad` from hanging straight down.
+/// Its period is that of the physical pendulum, 2 pi sqrt(I_pivot /
+/// (m g d)) with d the pivot-to-centre distance, lengthened by the
+/// amplitude's first-order term (1 + amplitude^2 / 16).
+inline JointScene hinge_pendulum(float amplitude_rad = 0.05f) {
+  JointScene s;
+  s.name = "pendulum";
+  s.size = 1;
+  s.ticks = 600;
+  const sim::Vec3 pivot{0.0f, 10.5f, 0.0f};
+  JointSceneBody rod;
+  rod.half = {0.05f, 0.5f, 0.05f};
+  const float d = rod.half.y;
+  rod.position = pivot + sim::Vec3{d * std::sin(amplitude_rad), -d * std::cos(amplitude_rad), 0.0f};
+  rod.rotation = {0.0f, 0.0f, std::sin(0.5f * amplitude_rad), std::cos(0.5f * amplitude_rad)};
+  s.bodies.push_back(rod);
+  s.rod = 0;
+  s.amplitude_rad = amplitude_rad;
+  s.join(JointSceneType::kHinge, -1, 0, pivot);
+  const double m = rod.mass_kg();
+  const double i_pivot = static_cast<double>(rod.inertia().z) + m * d * d;
+  const double t0 = 2.0 * 3.14159265358979 * std::sqrt(i_pivot / (m * 9.81 * d));
+  s.analytic_period_s = t0 * (1.0 + static_cast<double>(amplitude_rad) * amplitude_rad / 16.0);
+  return s;
+}
+
+/// The scenes by name ("chain", "bridge", "grid", "pendulum"); size 0
+/// takes the scene's own. An empty name field means an unknown one.
+inline JointScene make_joint_scene(const std::string& name, int size = 0) {
+  if (name == "chain") return hanging_chain(size > 0 ? size : 20);
+  if (name == "bridge") return rope_bridge(size > 0 ? size : 20);
+  if (name == "grid") return joint_grid(size > 0 ? size : 30);
+  if (name == "pendulum") return hinge_pendulum();
+  return {};
+}
+
+inline std::vector<std::string> joint_scene_names() {
+  return {"pendulum", "chain", "bridge", "grid"};
+}
+
+// --- measuring ------------------------------------------------------------
+
+/// The world point of a joint's anchor on side a (the fixed point when a
+/// is the world) and on side b.
+inline sim::Vec3 anchor_world(const std::vector<JointBodyState>& states, int body,
+                              sim::Vec3 local) {
+  if (body < 0) return local;
+  const JointBodyState& s = states[static_cast<size_t>(body)];
+  return s.position + sim::rotate(s.rotation, local);
+}
+
+/// How far apart a joint's two anchors are, m (0 for a joint that holds).
+inline double joint_opening(const JointScene& scene, const std::vector<JointBodyState>& states,
+                            int joint) {
+  const JointSceneJoint& j = scene.joints[static_cast<size_t>(joint)];
+  return sim::length(anchor_world(states, j.b, j.local_b) - anchor_world(states, j.a, j.local_a));
+}
+
+/// Kinetic plus potential energy of the dynamic bodies, J (potential from
+/// y = 0).
+inline double joint_scene_energy(const JointScene& scene,
+                                 const std::vector<JointBodyState>& states) {
+  double e = 0.0;
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    const JointSceneBody& b = scene.bodies[i];
+    if (b.fixed) continue;
+    const JointBodyState& s = states[i];
+    const double m = b.mass_kg();
+    const sim::Vec3 v = s.linear_velocity;
+    const sim::Vec3 w = sim::inv_rotate(s.rotation, s.angular_velocity);
+    const sim::Vec3 in = b.inertia();
+    e += 0.5 * m * (double{v.x} * v.x + double{v.y} * v.y + double{v.z} * v.z);
+    e += 0.5 * (double{in.x} * w.x * w.x + double{in.y} * w.y * w.y + double{in.z} * w.z * w.z);
+    e -= m * (double{scene.gravity.x} * s.position.x + double{scene.gravity.y} * s.position.y +
+              double{scene.gravity.z} * s.position.z);
+  }
+  return e;
+}
+
+/// The figures of one run, from the states after every tick (and the
+/// starting ones, tick 0).
+class JointSceneMeter {
+ public:
+  explicit JointSceneMeter(const JointScene& scene) : scene_(scene) {}
+
+  /// Call with the starting states, then after every tick.
+  void observe(const std::vector<JointBodyState>& states, double time_s) {
+    double opening = 0.0;
+    for (size_t j = 0; j < scene_.joints.size(); ++j) {
+      opening = std::max(opening, joint_opening(scene_, states, static_cast<int>(j)));
+    }
+    final_opening_m = opening;
+    max_opening_m = std::max(max_opening_m, opening);
+    if (scene_.heavy >= 0) {
+      const JointSceneJoint& first = scene_.joints[static_cast<size_t>(scene_.first_joint)];
+      const JointSceneJoint& last = scene_.joints[static_cast<size_t>(scene_.last_joint)];
+      const double reach = sim::length(anchor_world(states, last.b, last.local_b) -
+                                       anchor_world(states, first.a, first.local_a));
+      final_stretch_pct = 100.0 * (reach - scene_.chain_length_m) / scene_.chain_length_m;
+      max_stretch_pct = std::max(max_stretch_pct, final_stretch_pct);
+    }
+    if (scene_.rod >= 0) {
+      const JointBodyState& r = states[static_cast<size_t>(scene_.rod)];
+      const sim::Vec3 down = sim::rotate(r.rotation, {0.0f, -1.0f, 0.0f});
+      const double angle = std::atan2(static_cast<double>(down.x), -static_cast<double>(down.y));
+      if (seen_ && (angle > 0.0) != (last_angle_ > 0.0)) {
+        crossings_.push_back(last_time_ +
+                             (time_s - last_time_) * last_angle_ / (last_angle_ - angle));
+      }
+      last_angle_ = angle;
+      last_time_ = time_s;
+    }
+    const double e = joint_scene_energy(scene_, states);
+    if (!seen_) {
+      start_energy_j = e;
+      lowest_energy_j_ = e;
+      max_energy_j = e;
+    }
+    lowest_energy_j_ = std::min(lowest_energy_j_, e);
+    energy_rebound_j = std::max(energy_rebound_j, e - lowest_energy_j_);
+    max_energy_j = std::max(max_energy_j, e);
+    final_energy_j = e;
+    if (!scene_.loads.empty()) {
+      double lowest_plank = 1e30, half_span = 0.0;
+      for (int p : scene_.planks) {
+        lowest_plank = std::min(lowest_plank, double{states[static_cast<size_t>(p)].position.y});
+        half_span =
+            std::max(half_span, std::fabs(double{states[static_cast<size_t>(p)].position.x}) + 0.5);
+      }
+      loads_carried = 0;
+      for (int l : scene_.loads) {
+        const sim::Vec3 p = states[static_cast<size_t>(l)].position;
+        if (p.y >= lowest_plank - 0.1 && std::fabs(p.z) <= 0.4f && std::fabs(p.x) <= half_span) {
+          ++loads_carried;
+        }
+      }
+    }
+    final_speed_mps = 0.0;
+    for (size_t i = 0; i < scene_.bodies.size(); ++i) {
+      if (scene_.bodies[i].fixed) continue;
+      final_speed_mps =
+          std::max(final_speed_mps, static_cast<double>(sim::length(states[i].linear_velocity)));
+    }
+    seen_ = true;
+  }
+
+  /// The pendulum's period from its zero crossings (first to last; two
+  /// crossings a period), s; 0 before three crossings.
+  double period_s() const {
+    if (crossings_.size() < 3) return 0.0;
+    return 2.0 * (crossings_.back() - crossings_.front()) /
+           static_cast<double>(crossings_.size() - 1);
+  }
+  int crossings() const { return static_cast<int>(crossings_.size()); }
+  double period_error_pct() const {
+    if (scene_.analytic_period_s <= 0.0 || period_s() <= 0.0) return 0.0;
+    return 100.0 * std::fabs(period_s() - scene_.analytic_period_s) / scene_.analytic_period_s;
+  }
+  /// How far the energy ever rose above its start, % of the scene's
+  /// energy scale (0 when it never did).
+  double energy_growth_pct() const {
+    if (scene_.energy_scale_j <= 0.0) return 0.0;
+    return 100.0 * (max_energy_j - start_energy_j) / scene_.energy_scale_j;
+  }
+  /// The largest rise of the energy above the lowest it had been before,
+  /// % of the scale: energy the soft joints took into their stretch (a
+  /// sheet snapping taut) and gave back shows here, as would energy a
+  /// solver adds while the fall still releases more.
+  double energy_rebound_pct() const {
+    if (scene_.energy_scale_j <= 0.0) return 0.0;
+    return 100.0 * energy_rebound_j / scene_.energy_scale_j;
+  }
+
+  double max_opening_m = 0.0;    ///< the widest joint opening at any tick
+  double final_opening_m = 0.0;  ///< the widest at the last tick observed
+  double max_stretch_pct = 0.0;  ///< chain: the longest it was, % over its length
+  double final_stretch_pct = 0.0;
+  double start_energy_j = 0.0;
+  double max_energy_j = 0.0;      ///< see energy_growth_pct()
+  double energy_rebound_j = 0.0;  ///< see energy_rebound_pct()
+  double final_energy_j = 0.0;
+  /// rope_bridge: the boxes on the deck at the last tick observed (above
+  /// the lowest plank's centre less 0.1 m, within its width and span).
+  int loads_carried = 0;
+  double final_speed_mps = 0.0;  ///< fastest dynamic body at the last tick
+
+ private:
+  const JointScene& scene_;
+  bool seen_ = false;
+  double last_angle_ = 0.0;
+  double last_time_ = 0.0;
+  double lowest_energy_j_ = 0.0;
+  std::vector<double> crossings_;
+};
+
+// --- on Rewind ---------------------------------------------------------------
+
+/// A scene built on a Rewind world: its bodies and joints, index for index.
+struct RewindJointScene {
+  std::vector<sim::BodyId> bodies;
+  std::vector<sim::JointId> joints;
+  std::string error;  ///< non-empty: the world refused part of the scene
+
+  void states(const sim::World3D& world, std::vector<JointBodyState>& out) const {
+    out.resize(bodies.size());
+    for (size_t i = 0; i < bodies.size(); ++i) {
+      out[i] = {world.position(bodies[i]), world.rotation(bodies[i]),
+                world.linear_velocity(bodies[i]), world.angular_velocity(bodies[i])};
+    }
+  }
+};
+
+/// Builds `scene` in `world` (whose gravity should be scene.gravity).
+/// Joined bodies do not collide with each other.
+inline RewindJointScene build_rewind(sim::World3D& world, const JointScene& scene) {
+  RewindJointScene r;
+  for (const JointSceneBody& b : scene.bodies) {
+    sim::BodyDef def;
+    def.kind = b.fixed ? sim::BodyKind::kStatic : sim::BodyKind::kDynamic;
+    def.shape = b.shape == JointSceneShape::kSphere ? sim::Shape::make_sphere(b.half.x)
+                                                    : sim::Shape::make_box(b.half);
+    def.position = b.position;
+    def.rotation = b.rotation;
+    def.density = b.density;
+    def.angular_damping = b.angular_damping;
+    def.material.friction = b.friction;
+    auto id = world.create_body(def);
+    if (!id.ok()) {
+      r.error = "body: " + id.status().message();
+      return r;
+    }
+    r.bodies.push_back(*id);
+  }
+  for (const JointSceneJoint& j : scene.joints) {
+    sim::JointDef def;
+    def.type = j.type == JointSceneType::kBall ? sim::JointType::kBall : sim::JointType::kHinge;
+    if (j.a >= 0) def.body_a = r.bodies[static_cast<size_t>(j.a)];
+    def.body_b = r.bodies[static_cast<size_t>(j.b)];
+    def.anchor_a = j.local_a;
+    def.anchor_b = j.local_b;
+    def.axis_a = j.axis_a;
+    def.axis_b = j.axis_b;
+    if (j.friction_torque_nm > 0.0f) {
+      def.enable_motor = true;
+      def.motor_speed = 0.0f;
+      def.max_motor_torque = j.friction_torque_nm;
+    }
+    auto id = world.create_joint(def);
+    if (!id.ok()) {
+      r.error = "joint: " + id.status().message();
+      return r;
+    }
+    r.joints.push_back(*id);
+  }
+  return r;
+}
+
+}  // namespace rwd::scenes
