@@ -12,7 +12,7 @@ namespace {
 
 // A pivot below this share of its diagonal: the row depends on others (or
 // nothing can move along it) and is left out, taking no impulse.
-constexpr float kPivotShare = 1e-6f;
+constexpr float kPivotShare = 1e-3f;
 
 uint32_t find(std::vector<uint32_t>& parent, uint32_t i) {
   while (parent[i] != i) {
