@@ -25,7 +25,10 @@
 //
 // Then "lane2d <tick> <checksum> <query digest>" lines for the 2D lane's
 // engine scene (tests/determinism/lane2d_scene.h): every shape, joint and
-// query, a character, sleeping, continuous bullets, restores and reloads.
+// query, a character, sleeping, continuous bullets, restores and reloads;
+// and "joints3d <tick> <checksum> <broken>" lines for the 3D lane's joint
+// scene (tests/determinism/joints3d_scene.h): every joint type, joint
+// trees and a loop, a break, a raycast car and a character.
 // Before the "crates" match it plays a scripted 2D "arena" match the same
 // way, its lines prefixed "arena ", so the fixed-point lane and its
 // rollback are part of the matrix too.
@@ -43,6 +46,7 @@
 #include <vector>
 
 #include "golden_digest.h"
+#include "joints3d_scene.h"
 #include "lane2d_scene.h"
 #include "rewind/game/player_input.h"
 #include "rewind/game/simulation.h"
@@ -441,6 +445,8 @@ int main(int argc, char** argv) {
 
   // The 2D lane's engine scene: every shape, joint and query.
   if (!rwd::determinism::run_lane2d_scene(300)) return 3;
+  // The 3D lane's joints, a raycast car and a character.
+  if (!rwd::determinism::run_joints3d_scene(300)) return 3;
   // The 2D lane's sample game: the fixed-point world through the same
   // seam, with the same rollback check.
   if (const int rc = run_match("arena", "arena ", ticks); rc != 0) return rc;

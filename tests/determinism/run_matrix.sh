@@ -89,7 +89,8 @@ fixed_sources+=(tests/unit/fixed/golden_digest.cpp)
 mapfile -t sim2d_sources < <(find sim/d2/src -maxdepth 1 -name '*.cpp' -type f 2>/dev/null | LC_ALL=C sort)
 det_source="$script_dir/det_checksums.cpp"
 lane2d_source="$script_dir/lane2d_scene.cpp"
-sources=("$det_source" "$lane2d_source" "${sim_sources[@]/#/$source_dir/}" "${game_sources[@]/#/$source_dir/}"
+joints3d_source="$script_dir/joints3d_scene.cpp"
+sources=("$det_source" "$lane2d_source" "$joints3d_source" "${sim_sources[@]/#/$source_dir/}" "${game_sources[@]/#/$source_dir/}"
   "${fixed_sources[@]/#/$source_dir/}" "${sim2d_sources[@]/#/$source_dir/}")
 
 mkdir -p "$build_dir"
@@ -155,6 +156,7 @@ ninja_file="$build_dir/build.ninja"
       rel=${src#"$source_dir"/}
       [[ $src == "$det_source" ]] && rel=det_checksums.cpp
       [[ $src == "$lane2d_source" ]] && rel=lane2d_scene.cpp
+      [[ $src == "$joints3d_source" ]] && rel=joints3d_scene.cpp
       obj="$name/obj/${rel//\//__}.o"
       objects+=("$obj")
       echo "build $obj: cxx_$name $src"
