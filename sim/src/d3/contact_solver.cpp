@@ -501,6 +501,9 @@ void solve(WorldState& state, WorldScratch& scratch) {
     // Joints relax at least once: their soft bias must not stay behind as
     // velocity, whatever the contacts do.
     if (joints) {
+      // The joints' structure closed by moving the bodies (before the
+      // contacts measure their separations, so an overlap the move made
+      // is pushed out like any other), then relaxed.
       refresh_joint_rows(state, scratch);
       solve_joints(state, scratch, false);
     }
@@ -513,7 +516,10 @@ void solve(WorldState& state, WorldScratch& scratch) {
       if (joints) solve_joints(state, scratch, false);
       solve_batches(scratch, inv_h);
     }
-    if (joints) sum_joint_impulses(scratch);
+    if (joints) {
+      project_joints(state, scratch);
+      sum_joint_impulses(scratch);
+    }
   }
   unpack_batches(scratch);
   apply_restitution(scratch, config);

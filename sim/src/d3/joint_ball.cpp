@@ -46,14 +46,6 @@ bool limited(const JointRecord& j) {
   return (j.flags & kJointLimit) != 0;
 }
 
-// The angular impulse of the limit rows as they stand.
-Vec3 limit_impulse(const JointConstraint& c, const ConeTwist& ct) {
-  Vec3 l{};
-  if (ct.has_swing) l -= ct.swing_axis * c.cone_impulse;
-  l += ct.twist_axis * (c.lower_impulse - c.upper_impulse);
-  return l;
-}
-
 int ball_rows(const JointRecord&, const JointFrames& f, JointRow* out) {
   return point_rows(f, out);
 }
@@ -62,11 +54,23 @@ Vec3 no_angular_error(const JointRecord&, const JointFrames&) {
   return {};
 }
 
-void warm_start_ball(const JointRecord& j, const JointConstraint& c, SolverBody& a, SolverBody& b) {
-  const JointFrames f = joint_frames(c, a, b);
-  Vec3 l = c.motor_impulse + c.spring_impulse;
-  if (limited(j)) l += limit_impulse(c, cone_twist(f));
-  apply_angular(a, b, l);
+void warm_start_ball(const JointRecord&, const JointConstraint& c, SolverBody& a, SolverBody& b) {
+  apply_angular(a, b, c.motor_impulse + c.spring_impulse);
+}
+
+// The cone (the swing of B's axis from A's) and the twist range.
+int ball_limits(const JointRecord& j, const JointFrames& f, LimitRow* out) {
+  if (!limited(j)) return 0;
+  const ConeTwist ct = cone_twist(f);
+  int n = 0;
+  if (ct.has_swing && j.cone_angle < kPi) {
+    out[n++] = {angular_jacobian(-ct.swing_axis), j.cone_angle - ct.swing, kRowCone};
+  }
+  if (!(ct.twist_axis == Vec3{})) {
+    out[n++] = {angular_jacobian(ct.twist_axis), ct.twist - j.twist_lower, kRowLower};
+    out[n++] = {angular_jacobian(-ct.twist_axis), j.twist_upper - ct.twist, kRowUpper};
+  }
+  return n;
 }
 
 float get(Vec3 v, int i) {
@@ -74,7 +78,7 @@ float get(Vec3 v, int i) {
 }
 
 void ball_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                 const JointFrames& f, bool use_bias, float* acc) {
+                 const JointFrames& f, bool, float* acc) {
   const RowBlock& block = c.block;
   const bool spring = (j.flags & kJointSpring) != 0;
   const bool motor = (j.flags & kJointMotor) != 0;
@@ -120,29 +124,11 @@ void ball_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, Solver
       group.apply(block, a, b, delta, acc);
     }
   }
-  if (limited(j)) {
-    const ConeTwist ct = cone_twist(f);
-    if (ct.has_swing && j.cone_angle < kPi) {
-      solve_extra_row(block, a, b, angular_jacobian(-ct.swing_axis),
-                      limit_terms(c.soft, j.cone_angle - ct.swing, c.h, use_bias), 0.0f, 0.0f,
-                      kUnbounded, c.cone_impulse, acc);
-    } else {
-      c.cone_impulse = 0.0f;
-    }
-    if (!(ct.twist_axis == Vec3{})) {
-      solve_extra_row(block, a, b, angular_jacobian(ct.twist_axis),
-                      limit_terms(c.soft, ct.twist - j.twist_lower, c.h, use_bias), 0.0f, 0.0f,
-                      kUnbounded, c.lower_impulse, acc);
-      solve_extra_row(block, a, b, angular_jacobian(-ct.twist_axis),
-                      limit_terms(c.soft, j.twist_upper - ct.twist, c.h, use_bias), 0.0f, 0.0f,
-                      kUnbounded, c.upper_impulse, acc);
-    }
-  }
 }
 
 }  // namespace
 
-const JointOps kBallOps = {nullptr,     ball_rows,       no_angular_error,
+const JointOps kBallOps = {nullptr,     ball_rows,       no_angular_error, ball_limits,
                            ball_extras, warm_start_ball, nullptr};
 
 }  // namespace rwd::sim::d3

@@ -62,7 +62,7 @@ void solve_distance(const JointRecord& j, JointConstraint& c, SolverBody& a, Sol
 
 }  // namespace
 
-const JointOps kDistanceOps = {nullptr,       nullptr, nullptr, nullptr, warm_start_distance,
-                               solve_distance};
+const JointOps kDistanceOps = {
+    nullptr, nullptr, nullptr, nullptr, nullptr, warm_start_distance, solve_distance};
 
 }  // namespace rwd::sim::d3

@@ -43,6 +43,7 @@ void solve_grab(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverB
 
 }  // namespace
 
-const JointOps kGrabOps = {nullptr, nullptr, nullptr, nullptr, warm_start_grab, solve_grab};
+const JointOps kGrabOps = {nullptr, nullptr,         nullptr,   nullptr,
+                           nullptr, warm_start_grab, solve_grab};
 
 }  // namespace rwd::sim::d3

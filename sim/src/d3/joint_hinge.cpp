@@ -22,9 +22,9 @@ float wrap_angle(float angle) {
   return angle;
 }
 
-// The impulse about the hinge axis: spring, motor and limits.
+// The impulse about the hinge axis of its spring and motor.
 float axial_impulse(const JointConstraint& c) {
-  return c.motor_impulse.x + c.spring_impulse.x + c.lower_impulse - c.upper_impulse;
+  return c.motor_impulse.x + c.spring_impulse.x;
 }
 
 int hinge_rows(const JointRecord&, const JointFrames& f, JointRow* out) {
@@ -44,8 +44,18 @@ void warm_start_hinge(const JointRecord&, const JointConstraint& c, SolverBody& 
   apply_angular(a, b, rotate(f.fa, kAxisX) * axial_impulse(c));
 }
 
+// The angle range.
+int hinge_limits(const JointRecord& j, const JointFrames& f, LimitRow* out) {
+  if ((j.flags & kJointLimit) == 0) return 0;
+  const Vec3 xa = rotate(f.fa, kAxisX);
+  const float angle = twist_angle(conjugate(f.fa) * f.fb);
+  out[0] = {angular_jacobian(xa), angle - j.lower, kRowLower};
+  out[1] = {angular_jacobian(-xa), j.upper - angle, kRowUpper};
+  return 2;
+}
+
 void hinge_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                  const JointFrames& f, bool use_bias, float* acc) {
+                  const JointFrames& f, bool, float* acc) {
   const RowBlock& block = c.block;
   const Vec3 xa = rotate(f.fa, kAxisX);
   const float angle = twist_angle(conjugate(f.fa) * f.fb);
@@ -60,18 +70,11 @@ void hinge_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, Solve
     solve_extra_row(block, a, b, turn, RowTerms{}, j.motor_speed, -max, max, c.motor_impulse.x,
                     acc);
   }
-  if ((j.flags & kJointLimit) != 0) {
-    solve_extra_row(block, a, b, turn, limit_terms(c.soft, angle - j.lower, c.h, use_bias), 0.0f,
-                    0.0f, kUnbounded, c.lower_impulse, acc);
-    solve_extra_row(block, a, b, angular_jacobian(-xa),
-                    limit_terms(c.soft, j.upper - angle, c.h, use_bias), 0.0f, 0.0f, kUnbounded,
-                    c.upper_impulse, acc);
-  }
 }
 
 }  // namespace
 
-const JointOps kHingeOps = {nullptr,      hinge_rows,       hinge_tilt,
+const JointOps kHingeOps = {nullptr,      hinge_rows,       hinge_tilt, hinge_limits,
                             hinge_extras, warm_start_hinge, nullptr};
 
 }  // namespace rwd::sim::d3

@@ -17,7 +17,7 @@ constexpr Vec3 kAxisY{0.0f, 1.0f, 0.0f};
 constexpr Vec3 kAxisZ{0.0f, 0.0f, 1.0f};
 
 float axial_impulse(const JointConstraint& c) {
-  return c.motor_impulse.x + c.spring_impulse.x + c.lower_impulse - c.upper_impulse;
+  return c.motor_impulse.x + c.spring_impulse.x;
 }
 
 int prismatic_rows(const JointRecord&, const JointFrames& f, JointRow* out) {
@@ -39,8 +39,19 @@ void warm_start_prismatic(const JointRecord&, const JointConstraint& c, SolverBo
   apply_linear(a, b, f.ra + f.d, f.rb, xa * axial_impulse(c));
 }
 
+// The translation range.
+int prismatic_limits(const JointRecord& j, const JointFrames& f, LimitRow* out) {
+  if ((j.flags & kJointLimit) == 0) return 0;
+  const Vec3 xa = rotate(f.fa, kAxisX);
+  const Vec3 arm_a = f.ra + f.d;
+  const float translation = dot(f.d, xa);
+  out[0] = {linear_jacobian(xa, arm_a, f.rb), translation - j.lower, kRowLower};
+  out[1] = {linear_jacobian(-xa, arm_a, f.rb), j.upper - translation, kRowUpper};
+  return 2;
+}
+
 void prismatic_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                      const JointFrames& f, bool use_bias, float* acc) {
+                      const JointFrames& f, bool, float* acc) {
   const RowBlock& block = c.block;
   const Vec3 xa = rotate(f.fa, kAxisX);
   const Vec3 arm_a = f.ra + f.d;
@@ -55,18 +66,12 @@ void prismatic_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, S
     solve_extra_row(block, a, b, slide, RowTerms{}, j.motor_speed, -max, max, c.motor_impulse.x,
                     acc);
   }
-  if ((j.flags & kJointLimit) != 0) {
-    solve_extra_row(block, a, b, slide, limit_terms(c.soft, translation - j.lower, c.h, use_bias),
-                    0.0f, 0.0f, kUnbounded, c.lower_impulse, acc);
-    solve_extra_row(block, a, b, linear_jacobian(-xa, arm_a, f.rb),
-                    limit_terms(c.soft, j.upper - translation, c.h, use_bias), 0.0f, 0.0f,
-                    kUnbounded, c.upper_impulse, acc);
-  }
 }
 
 }  // namespace
 
-const JointOps kPrismaticOps = {nullptr,          prismatic_rows,       prismatic_turn,
-                                prismatic_extras, warm_start_prismatic, nullptr};
+const JointOps kPrismaticOps = {nullptr,          prismatic_rows,   prismatic_turn,
+                                prismatic_limits, prismatic_extras, warm_start_prismatic,
+                                nullptr};
 
 }  // namespace rwd::sim::d3

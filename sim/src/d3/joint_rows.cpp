@@ -95,10 +95,30 @@ bool is_linear(const JointRow& r) {
 
 }  // namespace
 
+float& limit_impulse(JointConstraint& c, uint8_t kind) {
+  return kind == kRowLower ? c.lower_impulse
+                           : (kind == kRowUpper ? c.upper_impulse : c.cone_impulse);
+}
+
+float limit_impulse(const JointConstraint& c, uint8_t kind) {
+  return kind == kRowLower ? c.lower_impulse
+                           : (kind == kRowUpper ? c.upper_impulse : c.cone_impulse);
+}
+
+uint8_t held_limits(const JointConstraint& c) {
+  uint8_t held = 0;
+  for (int i = 0; i < c.block.size(); ++i) held |= static_cast<uint8_t>(1u << c.row_kind[i]);
+  return static_cast<uint8_t>(held & ~1u);
+}
+
 void gather_impulses(const JointConstraint& c, float* acc) {
   for (int i = 0; i < c.block.size(); ++i) {
     const JointRow& r = c.block.row(i);
-    acc[i] = is_linear(r) ? dot(c.linear_impulse, r.linear) : dot(c.angular_impulse, r.angular_b);
+    if (c.row_kind[i] != kRowStructure) {
+      acc[i] = limit_impulse(c, c.row_kind[i]);
+    } else {
+      acc[i] = is_linear(r) ? dot(c.linear_impulse, r.linear) : dot(c.angular_impulse, r.angular_b);
+    }
   }
 }
 
@@ -107,7 +127,9 @@ void scatter_impulses(JointConstraint& c, const float* acc) {
   Vec3 angular{};
   for (int i = 0; i < c.block.size(); ++i) {
     const JointRow& r = c.block.row(i);
-    if (is_linear(r)) {
+    if (c.row_kind[i] != kRowStructure) {
+      limit_impulse(c, c.row_kind[i]) = acc[i];
+    } else if (is_linear(r)) {
       linear += r.linear * acc[i];
     } else {
       angular += r.angular_b * acc[i];
@@ -117,11 +139,53 @@ void scatter_impulses(JointConstraint& c, const float* acc) {
   c.angular_impulse = angular;
 }
 
+void settle_held_limits(JointConstraint& c, SolverBody& a, SolverBody& b, float* acc) {
+  for (int i = 0; i < c.block.size(); ++i) {
+    if (c.row_kind[i] == kRowStructure || acc[i] >= 0.0f) continue;
+    apply_row(c.block.row(i), a, b, -acc[i]);
+    acc[i] = 0.0f;
+  }
+}
+
+void solve_free_limits(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
+                       const JointFrames& f, bool use_bias, float* acc) {
+  const JointOps& ops = joint_ops(j.type);
+  if (ops.limits == nullptr) return;
+  LimitRow limits[kMaxLimitRows];
+  const int n = ops.limits(j, f, limits);
+  const uint8_t held = held_limits(c);
+  for (int k = 0; k < n; ++k) {
+    const LimitRow& l = limits[k];
+    if ((held & (1u << l.kind)) != 0) continue;
+    solve_extra_row(c.block, a, b, l.row, limit_terms(c.soft, l.gap, c.h, use_bias), 0.0f, 0.0f,
+                    kUnbounded, limit_impulse(c, l.kind), acc);
+  }
+}
+
+void warm_start_free_limits(const JointRecord& j, const JointConstraint& c, SolverBody& a,
+                            SolverBody& b, const JointFrames& f) {
+  const JointOps& ops = joint_ops(j.type);
+  if (ops.limits == nullptr) return;
+  LimitRow limits[kMaxLimitRows];
+  const int n = ops.limits(j, f, limits);
+  const uint8_t held = held_limits(c);
+  for (int k = 0; k < n; ++k) {
+    if ((held & (1u << limits[k].kind)) != 0) continue;
+    apply_row(limits[k].row, a, b, limit_impulse(c, limits[k].kind));
+  }
+}
+
 void structural_bias(const JointConstraint& c, const JointFrames& f, Vec3 angular_error, float rate,
                      float* bias) {
   for (int i = 0; i < c.block.size(); ++i) {
     const JointRow& r = c.block.row(i);
-    bias[i] = (is_linear(r) ? dot(f.d, r.linear) : dot(angular_error, r.angular_b)) * rate;
+    float error = 0.0f;
+    if (c.row_kind[i] != kRowStructure) {
+      error = c.row_gap[i];
+    } else {
+      error = is_linear(r) ? dot(f.d, r.linear) : dot(angular_error, r.angular_b);
+    }
+    bias[i] = error * rate;
   }
 }
 

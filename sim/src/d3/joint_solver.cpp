@@ -103,8 +103,12 @@ void prepare_joints(const WorldState& state, WorldScratch& scratch, float h) {
     // The structure's rows as they stand at the tick's start (which
     // joints form trees depends only on their count).
     JointRow rows[kMaxBlockRows];
-    const int m = ops.rows != nullptr ? ops.rows(j, start_frames(c), rows) : 0;
+    const JointFrames f = start_frames(c);
+    const int m = ops.rows != nullptr ? ops.rows(j, f, rows) : 0;
     for (int i = 0; i < m; ++i) c.block.add(rows[i]);
+    LimitRow limits[kMaxLimitRows];
+    const int l = m > 0 && ops.limits != nullptr ? ops.limits(j, f, limits) : 0;
+    c.capacity = static_cast<uint8_t>(m + l < kMaxBlockRows ? m + l : kMaxBlockRows);
   }
   build_joint_trees(scratch);
 }
@@ -116,9 +120,28 @@ void refresh_joint_rows(const WorldState& state, WorldScratch& scratch) {
     const JointRecord& j = state.joints[c.record];
     const SolverBody& a = scratch.solver_bodies[c.body_a];
     const SolverBody& b = scratch.solver_bodies[c.body_b];
-    const int m = joint_ops(j.type).rows(j, joint_frames(c, a, b), rows);
+    const JointOps& ops = joint_ops(j.type);
+    const JointFrames f = joint_frames(c, a, b);
+    const int m = ops.rows(j, f, rows);
     c.block = RowBlock{};
-    for (int i = 0; i < m; ++i) c.block.add(rows[i]);
+    for (int i = 0; i < m; ++i) {
+      c.block.add(rows[i]);
+      c.row_kind[i] = kRowStructure;
+    }
+    // A limit already reached joins the structure (within the rows the
+    // joint reserved): solved with it, and in a tree with the whole tree,
+    // it holds the way the structure does, where a row against one
+    // joint's block alone would be undone by the rest of the tree.
+    if (ops.limits != nullptr) {
+      LimitRow limits[kMaxLimitRows];
+      const int n = ops.limits(j, f, limits);
+      for (int k = 0; k < n && c.block.size() < c.capacity; ++k) {
+        if (limits[k].gap > 0.0f) continue;
+        c.row_kind[c.block.size()] = limits[k].kind;
+        c.row_gap[c.block.size()] = limits[k].gap;
+        c.block.add(limits[k].row);
+      }
+    }
     c.block.factor(a, b);
   }
   factor_joint_trees(scratch);
@@ -135,6 +158,7 @@ void warm_start_joints(const WorldState& state, WorldScratch& scratch) {
     if (c.block.size() > 0) {
       gather_impulses(c, acc);
       c.block.apply(a, b, acc);
+      warm_start_free_limits(j, c, a, b, joint_frames(c, a, b));
     }
     joint_ops(j.type).warm_start(j, c, a, b);
   }
@@ -158,10 +182,15 @@ void solve_alone(const JointRecord& j, JointConstraint& c, SolverBody& a, Solver
   const JointFrames f = joint_frames(c, a, b);
   float acc[kMaxBlockRows];
   gather_impulses(c, acc);
-  if (ops.extras != nullptr) ops.extras(j, c, a, b, f, use_bias, acc);
   float bias[kMaxBlockRows] = {};
   if (use_bias) structural_bias(c, f, ops.angular_error(j, f), c.soft.bias_rate, bias);
   solve_block(c.block, a, b, bias, c.soft, use_bias, acc);
+  settle_held_limits(c, a, b, acc);
+  // Springs, motors and the limits not yet reached after the structure,
+  // each with the impulse that leaves the structure where it is: both
+  // end the pass satisfied.
+  if (ops.extras != nullptr) ops.extras(j, c, a, b, f, use_bias, acc);
+  solve_free_limits(j, c, a, b, f, use_bias, acc);
   scatter_impulses(c, acc);
 }
 
@@ -178,6 +207,50 @@ void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias)
   }
   scratch.solver_bodies[0].linear_velocity = {};
   scratch.solver_bodies[0].angular_velocity = {};
+}
+
+void displace(const RowBlock& block, const float* lambda, SolverBody& a, SolverBody& b) {
+  Vec3 linear{};
+  Vec3 angular_a{};
+  Vec3 angular_b{};
+  for (int i = 0; i < block.size(); ++i) {
+    const JointRow& r = block.row(i);
+    linear += r.linear * lambda[i];
+    angular_a += r.angular_a * lambda[i];
+    angular_b += r.angular_b * lambda[i];
+  }
+  if (a.inv_mass > 0.0f) {
+    a.delta_position -= linear * a.inv_mass;
+    a.delta_rotation = integrate_rotation(a.delta_rotation, -(a.inv_inertia * angular_a), 1.0f);
+  }
+  if (b.inv_mass > 0.0f) {
+    b.delta_position += linear * b.inv_mass;
+    b.delta_rotation = integrate_rotation(b.delta_rotation, b.inv_inertia * angular_b, 1.0f);
+  }
+}
+
+void release_pulling_limits(const JointConstraint& c, float* x) {
+  for (int i = 0; i < c.block.size(); ++i) {
+    if (c.row_kind[i] != kRowStructure && x[i] < 0.0f) x[i] = 0.0f;
+  }
+}
+
+void project_joints(const WorldState& state, WorldScratch& scratch) {
+  for (uint32_t t = 0; t < scratch.trees.size(); ++t) project_joint_tree(state.joints, scratch, t);
+  float error[kMaxBlockRows];
+  float x[kMaxBlockRows];
+  for (const JointConstraint& c : scratch.joint_constraints) {
+    if (c.tree != kNoTree || c.block.size() == 0) continue;
+    const JointRecord& j = state.joints[c.record];
+    SolverBody& a = scratch.solver_bodies[c.body_a];
+    SolverBody& b = scratch.solver_bodies[c.body_b];
+    const JointFrames f = joint_frames(c, a, b);
+    structural_bias(c, f, joint_ops(j.type).angular_error(j, f), 1.0f, error);
+    for (int i = 0; i < c.block.size(); ++i) error[i] = -clamp_projection(error[i]);
+    c.block.solve(error, x);
+    release_pulling_limits(c, x);
+    displace(c.block, x, a, b);
+  }
 }
 
 void sum_joint_impulses(WorldScratch& scratch) {

@@ -68,6 +68,14 @@ struct JointConstraint {
   Vec3 tick_angular;
   /// The structural rows at the tick's start, factored for the bodies.
   RowBlock block;
+  /// What each block row is (kRow*) and, for a limit, its gap as of the
+  /// rows' refresh (a limit already reached joins the structure: see
+  /// refresh_joint_rows).
+  uint8_t row_kind[kMaxBlockRows] = {};
+  float row_gap[kMaxBlockRows] = {};
+  /// Rows the joint's block may grow to (its structure and limits; the
+  /// tree reserves that many).
+  uint8_t capacity = 0;
   /// The tree the joint is solved in (kNoTree: on its own), and where its
   /// rows start in the tree's row vectors.
   uint32_t tree = 0xFFFFFFFFu;
@@ -91,6 +99,20 @@ struct JointFrames {
   Quat fb;
 };
 
+/// What a block row is: part of the joint's structure, or one of its
+/// limits (whose impulse is kept in lower_impulse, upper_impulse or
+/// cone_impulse, and may only push).
+enum : uint8_t { kRowStructure = 0, kRowLower = 1, kRowUpper = 2, kRowCone = 3 };
+
+/// One limit of a joint where the bodies stand: its row (oriented so a
+/// positive impulse opens the gap) and the gap (rad or m; < 0 crossed).
+struct LimitRow {
+  JointRow row;
+  float gap = 0.0f;
+  uint8_t kind = kRowLower;
+};
+inline constexpr int kMaxLimitRows = 3;
+
 /// The functions of one joint type.
 struct JointOps {
   /// Readies the stored impulses for the tick (optional).
@@ -101,14 +123,17 @@ struct JointOps {
   /// The angular error the structural angular rows drive to zero, at `f`
   /// (a world rotation vector, rad; projected on each row's axis).
   Vec3 (*angular_error)(const JointRecord& j, const JointFrames& f);
-  /// The rows beside the structure (springs, motors, limits), each against
-  /// c.block held rigid, adding its compensation to `block_impulse`
-  /// (optional).
+  /// The joint's limits where the bodies stand, into `out`; their count
+  /// (optional: types without limits).
+  int (*limits)(const JointRecord& j, const JointFrames& f, LimitRow* out);
+  /// The rows beside the structure and limits (springs, motors), each
+  /// against c.block held rigid, adding its compensation to
+  /// `block_impulse` (optional).
   void (*extras)(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
                  const JointFrames& f, bool use_bias, float* block_impulse);
   /// Applies the last substep's impulses again: all of them for a type
-  /// without structural rows, else those of its other rows (the stage
-  /// applies the structure's along its rows).
+  /// without structural rows, else those of its springs and motors (the
+  /// stage applies the structure's and the limits' along their rows).
   void (*warm_start)(const JointRecord& j, const JointConstraint& c, SolverBody& a, SolverBody& b);
   /// One pass over a joint without structural rows; use_bias false in the
   /// relax pass (optional: types with rows).
@@ -129,6 +154,28 @@ void prepare_joints(const WorldState& state, WorldScratch& scratch, float h);
 void refresh_joint_rows(const WorldState& state, WorldScratch& scratch);
 void warm_start_joints(const WorldState& state, WorldScratch& scratch);
 void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias);
+/// Closes what the substep left open of the joints' structure: each tree,
+/// and each joint on its own, solved once more for its position errors
+/// and its bodies moved by the answer (velocities untouched). A contact
+/// that stops a light limb dead while the heavy body it hangs from still
+/// moves leaves the joint between them open by that speed times the
+/// substep; the soft bias would close it over several substeps, the
+/// projection closes it before the next.
+void project_joints(const WorldState& state, WorldScratch& scratch);
+/// A position error as the projection takes it, clamped to
+/// kMaxProjection (m or rad) so a joint torn far apart is pulled back
+/// over several substeps instead of teleporting its bodies.
+inline constexpr float kMaxProjection = 0.1f;
+inline float clamp_projection(float error) {
+  return error > kMaxProjection ? kMaxProjection
+                                : (error < -kMaxProjection ? -kMaxProjection : error);
+}
+/// A limit only pushes: a projection that would pull a held limit shut
+/// leaves it where it is (its displacement zeroed).
+void release_pulling_limits(const JointConstraint& c, float* x);
+/// Moves bodies a and b by displacements lambda[i] along the block's rows
+/// (as impulses would move velocities: -M^-1 J^T to A, + to B).
+void displace(const RowBlock& block, const float* lambda, SolverBody& a, SolverBody& b);
 /// Adds each joint's structural impulses of the substep to its tick sums.
 void sum_joint_impulses(WorldScratch& scratch);
 /// Stores the impulses in the records and breaks the joints whose tick
@@ -166,8 +213,22 @@ JointFrames start_frames(const JointConstraint& c);
 /// angular_impulse), and back.
 void gather_impulses(const JointConstraint& c, float* acc);
 void scatter_impulses(JointConstraint& c, const float* acc);
-/// The bias of each structural row: its error (the point error along a
-/// linear row, the type's angular error about an angular row) times rate.
+/// A limit's accumulated impulse by kind (kRowLower, kRowUpper, kRowCone).
+float& limit_impulse(JointConstraint& c, uint8_t kind);
+float limit_impulse(const JointConstraint& c, uint8_t kind);
+/// Bits (1 << kind) of the limits the block holds.
+uint8_t held_limits(const JointConstraint& c);
+/// A limit may only push: a held limit row whose accumulated impulse went
+/// below zero is released (its impulse taken back along its row).
+void settle_held_limits(JointConstraint& c, SolverBody& a, SolverBody& b, float* acc);
+/// The limits not in the block, each as a speculative row against it.
+void solve_free_limits(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
+                       const JointFrames& f, bool use_bias, float* acc);
+void warm_start_free_limits(const JointRecord& j, const JointConstraint& c, SolverBody& a,
+                            SolverBody& b, const JointFrames& f);
+/// The bias of each block row: its error (the point error along a linear
+/// row, the type's angular error about an angular row, a held limit's
+/// gap) times rate.
 void structural_bias(const JointConstraint& c, const JointFrames& f, Vec3 angular_error, float rate,
                      float* bias);
 /// The rotation from frame A to frame B, in the world (the orientation

@@ -104,7 +104,7 @@ bool lay_out(WorldScratch& s, uint32_t root, JointTree& tree) {
       const uint32_t joint = s.tree_incidence[e];
       if (joint == parent) continue;
       s.tree_children.push_back(joint);
-      front += rows_of(s, joint);
+      front += s.joint_constraints[joint].capacity;
       const uint32_t other = other_body(s.joint_constraints[joint], body);
       if (movable(s, other) && s.tree_seen[other] == 0) {
         s.tree_seen[other] = 1;
@@ -133,6 +133,11 @@ void factor_tree(WorldScratch& s, const JointTree& tree) {
   for (uint32_t q = tree.body_end; q-- > tree.body_begin;) {
     JointTreeBody& node = s.tree_bodies[q];
     const SolverBody& body = s.solver_bodies[node.body];
+    // The rows the child joints hold now (a limit reached joins them).
+    node.front = 0;
+    for (uint32_t ci = node.child_begin; ci < node.child_end; ++ci) {
+      node.front += rows_of(s, s.tree_children[ci]);
+    }
     const uint32_t n = node.front;
     const uint32_t parent_rows = node.parent_joint == kNoParent ? 0 : rows_of(s, node.parent_joint);
     node.factor_at = static_cast<uint32_t>(arena.size());
@@ -216,6 +221,62 @@ void factor_tree(WorldScratch& s, const JointTree& tree) {
         float v = 0.0f;
         for (uint32_t r = 0; r < n; ++r) v += fcp[r * parent_rows + p] * y[r * parent_rows + c];
         update[p * parent_rows + c] -= v;
+      }
+    }
+  }
+}
+
+// lambda = K^-1 rhs over one tree (s.tree_rhs in, s.tree_lambda out;
+// s.tree_rhs is consumed): forward from the leaves, backward from the
+// root.
+void solve_tree_rows(WorldScratch& s, const JointTree& tree) {
+  std::vector<JointConstraint>& joints = s.joint_constraints;
+  const float* arena = s.tree_arena.data();
+  // Forward, leaves first: each front solved for its own right-hand side,
+  // and its rows eliminated into the joint above.
+  float front[kMaxFrontRows];
+  float solved[kMaxFrontRows];
+  for (uint32_t q = tree.body_end; q-- > tree.body_begin;) {
+    const JointTreeBody& node = s.tree_bodies[q];
+    uint32_t at = 0;
+    for (uint32_t ci = node.child_begin; ci < node.child_end; ++ci) {
+      const JointConstraint& c = joints[s.tree_children[ci]];
+      for (int i = 0; i < c.block.size(); ++i) front[at++] = s.tree_rhs[c.tree_row + i];
+    }
+    const uint32_t n = node.front;
+    for (uint32_t r = 0; r < n; ++r) solved[r] = front[r];
+    solve_dense(arena + node.factor_at, arena + node.factor_at + n * n, n, solved);
+    at = 0;
+    for (uint32_t ci = node.child_begin; ci < node.child_end; ++ci) {
+      const JointConstraint& c = joints[s.tree_children[ci]];
+      for (int i = 0; i < c.block.size(); ++i) s.tree_w[c.tree_row + i] = solved[at++];
+    }
+    if (node.parent_joint == kNoParent) continue;
+    const JointConstraint& p = joints[node.parent_joint];
+    const uint32_t mp = static_cast<uint32_t>(p.block.size());
+    const float* y = arena + node.coupling_at;
+    for (uint32_t c = 0; c < mp; ++c) {
+      float v = 0.0f;
+      for (uint32_t r = 0; r < n; ++r) v += y[r * mp + c] * front[r];
+      s.tree_rhs[p.tree_row + c] -= v;
+    }
+  }
+  // Backward, root first: each front's rows from the joint above.
+  for (uint32_t q = tree.body_begin; q < tree.body_end; ++q) {
+    const JointTreeBody& node = s.tree_bodies[q];
+    const bool has_parent = node.parent_joint != kNoParent;
+    const uint32_t mp =
+        has_parent ? static_cast<uint32_t>(joints[node.parent_joint].block.size()) : 0;
+    const float* above =
+        has_parent ? s.tree_lambda.data() + joints[node.parent_joint].tree_row : nullptr;
+    const float* y = arena + node.coupling_at;
+    uint32_t at = 0;
+    for (uint32_t ci = node.child_begin; ci < node.child_end; ++ci) {
+      const JointConstraint& c = joints[s.tree_children[ci]];
+      for (int i = 0; i < c.block.size(); ++i, ++at) {
+        float v = s.tree_w[c.tree_row + i];
+        for (uint32_t col = 0; col < mp; ++col) v -= y[at * mp + col] * above[col];
+        s.tree_lambda[c.tree_row + i] = v;
       }
     }
   }
@@ -314,7 +375,7 @@ void build_joint_trees(WorldScratch& s) {
     tree.joint_end = static_cast<uint32_t>(s.tree_joints.size());
     for (uint32_t k = tree.joint_begin; k < tree.joint_end; ++k) {
       JointConstraint& c = joints[s.tree_joints[k]];
-      const uint32_t m = static_cast<uint32_t>(c.block.size());
+      const uint32_t m = c.capacity;  // room for its limits too
       c.tree = t;
       c.tree_row = rows;
       rows += m;
@@ -336,7 +397,7 @@ void factor_joint_trees(WorldScratch& s) {
   for (const JointTree& tree : s.trees) {
     for (uint32_t k = tree.joint_begin; k < tree.joint_end; ++k) {
       const JointConstraint& c = s.joint_constraints[s.tree_joints[k]];
-      const uint32_t m = static_cast<uint32_t>(c.block.size());
+      const uint32_t m = c.capacity;
       for (uint32_t i = 0; i < m * m; ++i) s.tree_arena[c.tree_update + i] = 0.0f;
     }
   }
@@ -348,20 +409,25 @@ void solve_joint_tree(const std::vector<JointRecord>& records, WorldScratch& s, 
                       bool use_bias) {
   const JointTree& tree = s.trees[t];
   std::vector<JointConstraint>& joints = s.joint_constraints;
-  // The rows beside the structure first, each against its own joint's
-  // structure held rigid.
+  // Springs, motors and the limits not yet reached first, each against its
+  // own joint's structure held rigid, so the exact solve of the whole
+  // structure that follows ends the pass. (After it, their compensation
+  // would hold only their own joint's structure and disturb the rest of
+  // the tree.)
   for (uint32_t k = tree.joint_begin; k < tree.joint_end; ++k) {
     JointConstraint& c = joints[s.tree_joints[k]];
     const JointRecord& j = records[c.record];
     const JointOps& ops = joint_ops(j.type);
     SolverBody& a = s.solver_bodies[c.body_a];
     SolverBody& b = s.solver_bodies[c.body_b];
-    const JointFrames f = joint_frames(c, a, b);
     float* acc = s.tree_acc.data() + c.tree_row;
     gather_impulses(c, acc);
+    const JointFrames f = joint_frames(c, a, b);
     if (ops.extras != nullptr) ops.extras(j, c, a, b, f, use_bias, acc);
+    solve_free_limits(j, c, a, b, f, use_bias, acc);
   }
-  // The right-hand side: every structural row's velocity, and its bias.
+  // Then the structure, the whole tree at once: the right-hand side is
+  // every structural row's velocity and its bias.
   float bias[kMaxBlockRows];
   for (uint32_t k = tree.joint_begin; k < tree.joint_end; ++k) {
     JointConstraint& c = joints[s.tree_joints[k]];
@@ -377,55 +443,7 @@ void solve_joint_tree(const std::vector<JointRecord>& records, WorldScratch& s, 
       s.tree_rhs[c.tree_row + i] = -(c.block.velocity(i, a, b) + (use_bias ? bias[i] : 0.0f));
     }
   }
-  const float* arena = s.tree_arena.data();
-  // Forward, leaves first: each front solved for its own right-hand side,
-  // and its rows eliminated into the joint above.
-  float front[kMaxFrontRows];
-  float solved[kMaxFrontRows];
-  for (uint32_t q = tree.body_end; q-- > tree.body_begin;) {
-    const JointTreeBody& node = s.tree_bodies[q];
-    uint32_t at = 0;
-    for (uint32_t ci = node.child_begin; ci < node.child_end; ++ci) {
-      const JointConstraint& c = joints[s.tree_children[ci]];
-      for (int i = 0; i < c.block.size(); ++i) front[at++] = s.tree_rhs[c.tree_row + i];
-    }
-    const uint32_t n = node.front;
-    for (uint32_t r = 0; r < n; ++r) solved[r] = front[r];
-    solve_dense(arena + node.factor_at, arena + node.factor_at + n * n, n, solved);
-    at = 0;
-    for (uint32_t ci = node.child_begin; ci < node.child_end; ++ci) {
-      const JointConstraint& c = joints[s.tree_children[ci]];
-      for (int i = 0; i < c.block.size(); ++i) s.tree_w[c.tree_row + i] = solved[at++];
-    }
-    if (node.parent_joint == kNoParent) continue;
-    const JointConstraint& p = joints[node.parent_joint];
-    const uint32_t mp = static_cast<uint32_t>(p.block.size());
-    const float* y = arena + node.coupling_at;
-    for (uint32_t c = 0; c < mp; ++c) {
-      float v = 0.0f;
-      for (uint32_t r = 0; r < n; ++r) v += y[r * mp + c] * front[r];
-      s.tree_rhs[p.tree_row + c] -= v;
-    }
-  }
-  // Backward, root first: each front's rows from the joint above.
-  for (uint32_t q = tree.body_begin; q < tree.body_end; ++q) {
-    const JointTreeBody& node = s.tree_bodies[q];
-    const bool has_parent = node.parent_joint != kNoParent;
-    const uint32_t mp =
-        has_parent ? static_cast<uint32_t>(joints[node.parent_joint].block.size()) : 0;
-    const float* above =
-        has_parent ? s.tree_lambda.data() + joints[node.parent_joint].tree_row : nullptr;
-    const float* y = arena + node.coupling_at;
-    uint32_t at = 0;
-    for (uint32_t ci = node.child_begin; ci < node.child_end; ++ci) {
-      const JointConstraint& c = joints[s.tree_children[ci]];
-      for (int i = 0; i < c.block.size(); ++i, ++at) {
-        float v = s.tree_w[c.tree_row + i];
-        for (uint32_t col = 0; col < mp; ++col) v -= y[at * mp + col] * above[col];
-        s.tree_lambda[c.tree_row + i] = v;
-      }
-    }
-  }
+  solve_tree_rows(s, tree);
   // The impulses, soft while solving, rigid while relaxing.
   const float mass_scale =
       use_bias ? joints[s.tree_joints[tree.joint_begin]].soft.mass_scale : 1.0f;
@@ -439,8 +457,33 @@ void solve_joint_tree(const std::vector<JointRecord>& records, WorldScratch& s, 
       delta[i] = s.tree_lambda[c.tree_row + i] * mass_scale - acc[i] * impulse_scale;
       acc[i] += delta[i];
     }
-    c.block.apply(s.solver_bodies[c.body_a], s.solver_bodies[c.body_b], delta);
+    SolverBody& a = s.solver_bodies[c.body_a];
+    SolverBody& b = s.solver_bodies[c.body_b];
+    c.block.apply(a, b, delta);
+    settle_held_limits(c, a, b, acc);
     scatter_impulses(c, acc);
+  }
+}
+
+void project_joint_tree(const std::vector<JointRecord>& records, WorldScratch& s, uint32_t t) {
+  const JointTree& tree = s.trees[t];
+  std::vector<JointConstraint>& joints = s.joint_constraints;
+  float error[kMaxBlockRows];
+  for (uint32_t k = tree.joint_begin; k < tree.joint_end; ++k) {
+    const JointConstraint& c = joints[s.tree_joints[k]];
+    const JointRecord& j = records[c.record];
+    const JointFrames f = joint_frames(c, s.solver_bodies[c.body_a], s.solver_bodies[c.body_b]);
+    structural_bias(c, f, joint_ops(j.type).angular_error(j, f), 1.0f, error);
+    for (int i = 0; i < c.block.size(); ++i) {
+      s.tree_rhs[c.tree_row + i] = -clamp_projection(error[i]);
+    }
+  }
+  solve_tree_rows(s, tree);
+  for (uint32_t k = tree.joint_begin; k < tree.joint_end; ++k) {
+    const JointConstraint& c = joints[s.tree_joints[k]];
+    float* x = s.tree_lambda.data() + c.tree_row;
+    release_pulling_limits(c, x);
+    displace(c.block, x, s.solver_bodies[c.body_a], s.solver_bodies[c.body_b]);
   }
 }
 

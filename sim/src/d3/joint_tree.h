@@ -67,4 +67,9 @@ void factor_joint_trees(WorldScratch& scratch);
 void solve_joint_tree(const std::vector<JointRecord>& joints, WorldScratch& scratch, uint32_t t,
                       bool use_bias);
 
+/// Moves the bodies of tree t so its structural rows' position errors
+/// vanish (to first order), without touching velocities: one exact solve
+/// of K x = -C applied as displacements (post-stabilization).
+void project_joint_tree(const std::vector<JointRecord>& joints, WorldScratch& scratch, uint32_t t);
+
 }  // namespace rwd::sim::d3

@@ -66,7 +66,7 @@ void solve_soft_weld(const JointRecord& j, JointConstraint& c, SolverBody& a, So
 
 }  // namespace
 
-const JointOps kWeldOps = {nullptr, weld_rows,       weld_turn,
+const JointOps kWeldOps = {nullptr, weld_rows,       weld_turn,      nullptr,
                            nullptr, warm_start_weld, solve_soft_weld};
 
 }  // namespace rwd::sim::d3

@@ -242,9 +242,12 @@ struct Drop {
   }
 };
 
-// The joints hold through the impact (they open for a few ticks while the
-// floor stops the parts; the 2 cm criterion of the ragdoll pile is held by
-// the stability suite) and are closed again at rest.
+// The joints hold through the impact (within the ragdoll criterion's 2 cm)
+// and are closed at rest. The impact trades the other way: the floor stops
+// a light limb dead while the heavy body it hangs from still falls, and
+// closing the joint in the same substep moves the limb on with the body,
+// a few centimetres into the floor for a few ticks until the push-out
+// lifts it; at rest it lies on the floor.
 TEST(Ragdoll3D, ADroppedRagdollSettlesAndSleepsWithItsJointsClosedAndItsLimitsKept) {
   for (const int kind : {0, 1}) {
     Drop drop(kind);
@@ -282,14 +285,19 @@ TEST(Ragdoll3D, ADroppedRagdollSettlesAndSleepsWithItsJointsClosedAndItsLimitsKe
         ragdoll_joint_name(worst_joint), 1000.0 * at_rest, limits.backwards / kDeg,
         limits.past_fold / kDeg, limits.past_cone / kDeg, -1000.0 * lowest);
     EXPECT_GT(slept_at, 0) << "still awake after 8 s";
-    EXPECT_LT(worst, 0.1f);
+    EXPECT_LT(worst, 0.02f);
     EXPECT_LT(at_rest, 0.005f);
     EXPECT_LT(limits.backwards, 2.0f * kDeg);
     EXPECT_LT(limits.past_fold, 2.0f * kDeg);
     EXPECT_LT(limits.past_cone, 2.0f * kDeg);
-    EXPECT_GT(lowest, -0.02f);
-    // At rest on the floor: every part near it.
-    for (const BodyId id : r.parts) EXPECT_LT(world.position(id).y, 0.5f);
+    EXPECT_GT(lowest, -0.05f);
+    // At rest on the floor: every part near it, none in it past the slop.
+    for (const BodyId id : r.parts) {
+      EXPECT_LT(world.position(id).y, 0.5f);
+      const Shape* s = world.shape(id);
+      const Vec3 axis = rotate(world.rotation(id), {0.0f, 1.0f, 0.0f});
+      EXPECT_GT(world.position(id).y - std::fabs(axis.y) * s->half_height - s->radius, -0.01f);
+    }
   }
 }
 
