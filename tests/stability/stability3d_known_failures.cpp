@@ -11,8 +11,9 @@
 //   and forearms of ragdolls lying on others turning against their joint
 //   limits and their neighbours), and not all asleep after 30 s. A single
 //   ragdoll dropped alone sleeps in 3 to 4 s (test_ragdoll3d.cpp); the
-//   pile's joints hold (worst opening 1.8 cm, criterion 2 cm: the built
-//   test).
+//   pile's joints hold while it settles (worst opening 1.8 cm in its first
+//   8 s, criterion 2 cm: the built test), but the jitter that keeps it
+//   awake later opens an elbow squeezed in the heap by 7.4 cm (at 14.7 s).
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -132,12 +133,15 @@ TEST(Stability3DKnownFailure, RagdollPileSleepsWithinEightSeconds) {
     if (t + 1 == 8 * kTicksPerSecond) awake_at_8s = awake;
     if (awake == 0) asleep_at = t + 1;
   }
-  const double asleep_s = asleep_at < 0 ? 30.0 : static_cast<double>(asleep_at) / kTicksPerSecond;
+  const double run_s = static_cast<double>(kRunTicks) / kTicksPerSecond;
+  // -1: not all asleep within the run.
+  const double asleep_s = asleep_at < 0 ? -1.0 : static_cast<double>(asleep_at) / kTicksPerSecond;
   std::printf(
       "[ measured ] ragdoll pile: worst opening at tick %d (%.2f s), joint %s; %u of 550 parts "
-      "awake at 8 s (fastest %.3f m/s, %.3f rad/s)%s\n",
+      "awake at 8 s (fastest %.3f m/s, %.3f rad/s)%s %.0f s\n",
       worst_tick, static_cast<double>(worst_tick) / kTicksPerSecond, worst_joint.c_str(),
-      awake_at_8s, speed_at_8s, spin_at_8s, asleep_at < 0 ? "; not all asleep after 30 s" : "");
+      awake_at_8s, speed_at_8s, spin_at_8s,
+      asleep_at < 0 ? "; not all asleep after" : "; all asleep within", run_s);
   report("ragdolls3d worst_gap_m", worst_gap, "m", "<=", 0.02);
   report("ragdolls3d all_asleep_s", asleep_s, "s", "<=", 8.0);
   report("ragdolls3d fastest_mps", fastest, "m/s");
