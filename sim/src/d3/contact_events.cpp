@@ -2,8 +2,8 @@
 // Contact events: a merge of last step's cache and this step's, both sorted
 // by (index_a, index_b). A pair that keeps its indices but changed
 // generation (a body destroyed and its slot reused) is two different pairs:
-// the old one exits and the new one enters. Only pairs where either body
-// reports contacts (BodyInfo::contact_events) make events; the details of
+// the old one exits and the new one enters. An event is made when either
+// body's mask (BodyInfo::event_mask) has its type's bit; the details of
 // enter and stay events (point, normal, depth, impulse) are filled after
 // the solve, from the contact cache (fill_event_details).
 #include "d3/pipeline.h"
@@ -28,16 +28,18 @@ bool same_bodies(const ContactRecord& x, const ContactRecord& y) {
   return x.generation_a == y.generation_a && x.generation_b == y.generation_b;
 }
 
-// Whether body (index, generation) reports its contacts; a body destroyed
-// since (its slot dead or reused) is taken to, so its exits are not lost.
-bool reports(const WorldState& state, uint32_t index, uint32_t generation) {
+// The mask of body (index, generation); a body destroyed since (its slot
+// dead or reused) asks for everything, so its exits are not lost.
+EventMask mask_of(const WorldState& state, uint32_t index, uint32_t generation) {
   const BodyInfo& info = state.infos[index];
-  if (info.alive == 0 || info.generation != generation) return true;
-  return info.contact_events != 0;
+  if (info.alive == 0 || info.generation != generation) return kEventAll;
+  return info.event_mask;
 }
 
-bool reported(const WorldState& state, const ContactRecord& r) {
-  return reports(state, r.index_a, r.generation_a) || reports(state, r.index_b, r.generation_b);
+bool reported(const WorldState& state, const ContactRecord& r, ContactEventType type) {
+  const EventMask bit = event_mask_bit(type, r.sensor != 0);
+  return ((mask_of(state, r.index_a, r.generation_a) | mask_of(state, r.index_b, r.generation_b)) &
+          bit) != 0;
 }
 
 }  // namespace
@@ -50,7 +52,7 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
   // An event of this step's record `index`, or of last step's (no record
   // now: an exit), if either body reports.
   const auto add = [&](ContactEventType type, const ContactRecord& r, uint32_t index) {
-    if (!reported(state, r)) return;
+    if (!reported(state, r, type)) return;
     events.push_back(make_event(type, r));
     records.push_back(index);
   };

@@ -11,6 +11,8 @@
 //                      (support_order.cpp orders its push-out,
 //                      angular_momentum.cpp the gyroscopic term)
 //   island_sleep.cpp   update_sleep: islands at rest fall asleep
+// Scheduled queries (scheduled_queries.cpp) run before the first stage and
+// after the last; they read the state and never write it.
 #include "d3/world_scratch.h"
 #include "rewind/sim/world_state.h"
 

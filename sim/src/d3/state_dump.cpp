@@ -24,6 +24,7 @@ class TextIo {
     line(name, std::to_string(static_cast<uint32_t>(v)));
   }
   void count(const char* name, uint8_t v, uint8_t) { line(name, std::to_string(v)); }
+  void event_mask(const char* name, EventMask v) { line(name, std::to_string(v)); }
   void u32(const char* name, uint32_t v) { line(name, std::to_string(v)); }
   void i32(const char* name, int32_t v) { line(name, std::to_string(v)); }
   void u64(const char* name, uint64_t v) { line(name, std::to_string(v)); }
@@ -80,6 +81,11 @@ void World3D::dump_state(std::string& out) const {
     if (j.alive == 0) continue;
     TextIo io(out, prefix);
     d3::visit_joint(io, j);
+  }
+  out += "last_query_ticket = " + std::to_string(state_.last_query_ticket) + "\n";
+  for (size_t k = 0; k < state_.queries.size(); ++k) {
+    TextIo io(out, "query[" + std::to_string(k) + "].");
+    d3::visit_query(io, state_.queries[k]);
   }
 }
 

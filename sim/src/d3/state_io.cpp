@@ -26,8 +26,11 @@ constexpr uint8_t kMagic[4] = {'R', 'W', 'D', '3'};
 // 4: capsules (each shape's half height), rotation locks and torques.
 // 5: hulls (a geometry id in place of sizes), the digest of the geometry
 // the state refers to, and each body's continuous and contact-events flags.
-// 6: joint slots after the contacts.
-constexpr uint32_t kVersion = 6;
+// 6: joint slots after the contacts. 7: scheduled queries after the
+// joints; each body's event mask in its contact-events byte.
+constexpr uint32_t kVersion = 7;
+// Starts the scheduled queries in the checksum's stream.
+constexpr uint32_t kQueriesTag = 0x53514451u;  // "QDQS"
 // Bounds the allocation a hostile header can request.
 constexpr uint32_t kMaxSlots = 1u << 24;
 
@@ -92,6 +95,7 @@ class SinkIo {
     s_.u8(static_cast<uint8_t>(v));
   }
   void count(const char*, uint8_t v, uint8_t) { s_.u8(v); }
+  void event_mask(const char*, EventMask v) { s_.u8(d3::encode_event_mask(v)); }
   void u32(const char*, uint32_t v) { s_.u32(v); }
   void i32(const char*, int32_t v) { s_.u32(static_cast<uint32_t>(v)); }
   void u64(const char*, uint64_t v) { s_.u64(v); }
@@ -116,6 +120,13 @@ void write_joints(Sink& s, const WorldState& st) {
     s.u8(j.alive);
     if (j.alive != 0) d3::visit_joint(io, j);
   }
+}
+
+void write_queries(Sink& s, const WorldState& st) {
+  SinkIo io(s);
+  s.u64(st.last_query_ticket);
+  s.u32(static_cast<uint32_t>(st.queries.size()));
+  for (const ScheduledQueryRecord& q : st.queries) d3::visit_query(io, q);
 }
 
 void write_state(Sink& s, const WorldState& st) {
@@ -225,6 +236,10 @@ class ReaderIo {
       v = 0;  // nothing follows a refused count
     }
   }
+  void event_mask(const char*, EventMask& v) {
+    const uint8_t raw = r_.u8();
+    r_.require(d3::decode_event_mask(raw, v));
+  }
   void u32(const char*, uint32_t& v) { v = r_.u32(); }
   void i32(const char*, int32_t& v) { v = static_cast<int32_t>(r_.u32()); }
   void u64(const char*, uint64_t& v) { v = r_.u64(); }
@@ -251,13 +266,18 @@ WorldConfig read_config(Reader& r) {
 }
 
 // How many geometry entries the state refers to: one past the highest id a
-// live body's shape names (0 when no body uses geometry).
+// live body's or a scheduled overlap's shape names (0 when none uses
+// geometry).
 uint32_t geometry_used(const WorldState& st) {
   uint32_t used = 0;
+  const auto use = [&used](const Shape& shape) {
+    if (shape.uses_geometry() && shape.geometry + 1 > used) used = shape.geometry + 1;
+  };
   for (const BodyInfo& b : st.infos) {
-    if (b.alive != 0 && b.shape.uses_geometry() && b.shape.geometry + 1 > used) {
-      used = b.shape.geometry + 1;
-    }
+    if (b.alive != 0) use(b.shape);
+  }
+  for (const ScheduledQueryRecord& q : st.queries) {
+    if (q.kind == ScheduledQueryKind::kOverlap) use(q.shape);
   }
   return used;
 }
@@ -271,8 +291,15 @@ Status corrupt_body(uint32_t index, const std::string& why) {
 void World3D::hash_state(const WorldState& state, StateHasher& hasher) {
   Sink sink(&hasher);
   write_state(sink, state);
-  // A world that never had a joint hashes as it did before joints existed.
+  // A world that never had a joint hashes as it did before joints existed,
+  // and one that never scheduled a query as it did before queries could be.
   if (!state.joints.empty()) write_joints(sink, state);
+  if (state.last_query_ticket != 0) {
+    // Joints may have been absent: the queries' tag keeps the two sections
+    // from reading as each other.
+    sink.u32(kQueriesTag);
+    write_queries(sink, state);
+  }
 }
 
 void World3D::serialize(std::vector<uint8_t>& out) const {
@@ -287,6 +314,7 @@ void World3D::serialize(std::vector<uint8_t>& out) const {
   sink.u64(geometry_->digest(used));
   write_state(sink, state_);
   write_joints(sink, state_);
+  write_queries(sink, state_);
 }
 
 void World3D::encode_config(const WorldConfig& config, std::vector<uint8_t>& out) {
@@ -406,12 +434,41 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
     }
     ++st.live_joints;
   }
+  st.last_query_ticket = r.u64();
+  const uint32_t queries = r.u32();
+  // Every query takes at least 63 bytes (a ray's).
+  if (!r.ok() || queries > World3D::kMaxScheduledQueries || queries > r.remaining() / 63) {
+    return corrupt("bad scheduled query count");
+  }
+  st.queries.resize(queries);
+  for (uint32_t k = 0; k < queries; ++k) {
+    ScheduledQueryRecord& q = st.queries[k];
+    ReaderIo io(r);
+    d3::visit_query(io, q);
+    const auto bad_query = [k](const std::string& why) {
+      return Status::Error(ErrorCode::kCorrupt,
+                           "invalid scheduled query " + std::to_string(k) + ": " + why);
+    };
+    if (!r.ok()) return bad_query("truncated or malformed fields");
+    if (Status s =
+            d3::check_query(store, q, st.last_query_ticket, k > 0 ? &st.queries[k - 1] : nullptr);
+        !s.ok()) {
+      return bad_query(s.message());
+    }
+    if (q.kind == ScheduledQueryKind::kOverlap && q.shape.uses_geometry()) {
+      if (q.shape.geometry >= geometry_count) {
+        return bad_query("geometry id past the snapshot's geometry count");
+      }
+      d3::shape_ops(q.shape.type).canonical(q.shape, store);
+    }
+  }
   if (!r.at_end()) return corrupt("trailing bytes after snapshot");
   state_ = std::move(st);
   d3::mark_world_edited(*scratch_);
   scratch_->events.clear();
   scratch_->body_events.clear();
   scratch_->broken_joints.clear();
+  clear_step_queries();
   return Status::Ok();
 }
 

@@ -131,6 +131,9 @@ Status check_body_def(const WorldConfig& config, const GeometryStore& store, con
   if (def.lock_rotation > kLockRotationAll) {
     return invalid("lock_rotation must be kLockRotation* bits (0 to 7)");
   }
+  if ((def.event_mask & ~kEventAll) != 0) {
+    return invalid("event_mask must be kEvent* bits (0 to 63)");
+  }
   if (Status s = check_common(store, def.kind, def.shape, def.density, def.linear_damping,
                               def.angular_damping, def.gravity_scale, def.material);
       !s.ok()) {
@@ -164,10 +167,10 @@ Status check_mass(BodyKind kind, const BodyMass& m) {
 Status check_body(const WorldConfig& config, const GeometryStore& store, const BodyInfo& info,
                   const BodySim& sim) {
   if (info.alive != 1 || info.generation == 0) return invalid("not a live body");
-  if (info.sensor > 1 || info.awake > 1 || info.enabled > 1 || info.continuous > 1 ||
-      info.contact_events > 1) {
+  if (info.sensor > 1 || info.awake > 1 || info.enabled > 1 || info.continuous > 1) {
     return invalid("flag out of range");
   }
+  if ((info.event_mask & ~kEventAll) != 0) return invalid("event mask out of range");
   if (Status s = check_common(store, info.kind, info.shape, info.density, info.linear_damping,
                               info.angular_damping, info.gravity_scale, info.material);
       !s.ok()) {
@@ -328,6 +331,44 @@ Status check_joint(const WorldConfig& config, const std::vector<BodyInfo>& infos
       !finite_in(j.upper_impulse, 0.0f, kMaxForce) || !finite_in(j.cone_impulse, 0.0f, kMaxForce)) {
     return invalid("joint impulse out of range");
   }
+  return Status::Ok();
+}
+
+Status check_query_ray(const Ray& ray) {
+  if (!is_finite(ray.origin) || !is_finite(ray.direction)) {
+    return invalid("ray origin and direction must be finite");
+  }
+  // The queries normalize it the same way and refuse what this refuses.
+  if (normalize_or_zero(ray.direction) == Vec3{}) return invalid("ray direction must not be zero");
+  if (!finite_in(ray.max_distance, 0.0f, kMaxQueryDistance)) {
+    return invalid("ray max_distance must be in [0, 1e6] m");
+  }
+  return Status::Ok();
+}
+
+Status check_query_pose(Vec3 position, Quat rotation) {
+  if (!in_box_range(position, kMaxQueryDistance) || !is_finite(rotation)) {
+    return invalid(
+        "query position must be finite, each component in [-1e6, 1e6] m, and its "
+        "rotation finite");
+  }
+  if (length_squared(rotation) < 1e-6f) return invalid("query rotation must not be zero");
+  return Status::Ok();
+}
+
+Status check_query(const GeometryStore& store, const ScheduledQueryRecord& q, uint64_t last_ticket,
+                   const ScheduledQueryRecord* previous) {
+  if (q.ticket == 0 || q.ticket > last_ticket) return invalid("ticket never handed out");
+  if (previous != nullptr && previous->ticket >= q.ticket) return invalid("tickets out of order");
+  if (static_cast<uint8_t>(q.kind) > static_cast<uint8_t>(ScheduledQueryKind::kOverlap) ||
+      static_cast<uint8_t>(q.phase) > static_cast<uint8_t>(QueryPhase::kPostPhysics) ||
+      q.repeat > 1) {
+    return invalid("kind, phase or repeat out of range");
+  }
+  if (q.kind != ScheduledQueryKind::kOverlap) return check_query_ray(q.ray);
+  if (Status s = check_shape(q.shape, store); !s.ok()) return s;
+  if (Status s = check_query_pose(q.position, q.rotation); !s.ok()) return s;
+  if (!unit_quat(q.rotation)) return invalid("query rotation not unit");
   return Status::Ok();
 }
 

@@ -15,6 +15,7 @@
 
 #include "rewind/sim/body.h"
 #include "rewind/sim/geometry.h"
+#include "rewind/sim/query.h"
 #include "rewind/sim/status.h"
 #include "rewind/sim/world_config.h"
 #include "rewind/sim/world_state.h"
@@ -63,6 +64,21 @@ Status check_contact(const std::vector<BodyInfo>& infos, const ContactRecord& re
 /// every setting within the range create_joint() accepts.
 Status check_joint(const WorldConfig& config, const std::vector<BodyInfo>& infos,
                    const JointRecord& joint);
+
+/// Largest ray length and |component| of a scheduled query's position,
+/// metres (far past any world's bounds).
+inline constexpr float kMaxQueryDistance = 1e6f;
+/// A ray as a scheduled query takes it: finite, a direction that
+/// normalizes to a unit vector, max_distance in [0, kMaxQueryDistance].
+Status check_query_ray(const Ray& ray);
+/// A scheduled overlap's pose: position within kMaxQueryDistance, rotation
+/// finite and not zero.
+Status check_query_pose(Vec3 position, Quat rotation);
+/// A stored scheduled query against the store and the tickets handed out:
+/// a ticket in (previous's, last_ticket], known kind and phase, a valid ray
+/// or a valid shape at a valid pose with a unit rotation.
+Status check_query(const GeometryStore& store, const ScheduledQueryRecord& query,
+                   uint64_t last_ticket, const ScheduledQueryRecord* previous);
 
 /// Largest |anchor| or joint length, metres.
 inline constexpr float kMaxJointReach = 1e4f;

@@ -13,6 +13,9 @@
 //   boolean                         a bool as a flag
 //   enumeration(name, v, last)      an enum stored in a byte, 0 .. last
 //   count(name, v, max)             a byte count of what follows, <= max
+//   event_mask(name, v)             a body's EventMask, in one byte coded
+//                                   by encode_event_mask (a reader refuses
+//                                   other bytes)
 // The visited structs may be const (writers, the dump) or not (the reader,
 // which fills them as it goes: a field decided by an earlier one, such as
 // the shape's sizes by its type, is read after it).
@@ -22,6 +25,31 @@
 #include "rewind/sim/world_state.h"
 
 namespace rwd::sim::d3 {
+
+// A body's event mask takes the byte the boolean contact_events flag had:
+// 0 for no event, 1 for every event, and 0x80 | the bits for any other
+// mask. Worlds whose bodies report all or nothing (every world before masks
+// existed) so keep their snapshot bytes and their checksum.
+inline constexpr uint8_t kEventMaskSelection = 0x80;
+
+/// The stored byte of an event mask (bits within kEventAll).
+inline uint8_t encode_event_mask(EventMask mask) {
+  if (mask == kEventAll) return 1;
+  if (mask == kEventNone) return 0;
+  return static_cast<uint8_t>(kEventMaskSelection | mask);
+}
+/// The mask of a stored byte; false for a byte encode_event_mask never
+/// writes.
+inline bool decode_event_mask(uint8_t byte, EventMask& mask) {
+  if (byte <= 1) {
+    mask = byte == 1 ? kEventAll : kEventNone;
+    return true;
+  }
+  const auto bits = static_cast<EventMask>(byte & ~kEventMaskSelection);
+  mask = bits;
+  return (byte & kEventMaskSelection) != 0 && (bits & ~kEventAll) == 0 && bits != kEventAll &&
+         bits != kEventNone;
+}
 
 template <class Io, class Config>
 void visit_config(Io& io, Config& c) {
@@ -43,6 +71,20 @@ void visit_config(Io& io, Config& c) {
   io.vec3("bounds_upper", c.bounds_upper);
 }
 
+/// The fields of a shape, as "shape.*".
+template <class Io, class S>
+void visit_shape(Io& io, S& shape) {
+  io.enumeration("shape.type", shape.type, static_cast<ShapeType>(kShapeTypeCount - 1));
+  if (shape.uses_geometry()) {
+    // The shape's sizes are its geometry's; the id names it.
+    io.u32("shape.geometry", shape.geometry);
+  } else {
+    io.f32("shape.radius", shape.radius);
+    io.vec3("shape.half_extents", shape.half_extents);
+    io.f32("shape.half_height", shape.half_height);
+  }
+}
+
 /// The fields of a live body slot (its generation and alive flag, which
 /// every slot has, are the caller's).
 template <class Io, class Info, class Sim>
@@ -51,15 +93,7 @@ void visit_body(Io& io, Info& b, Sim& m) {
   io.flag("sensor", b.sensor);
   io.flag("awake", b.awake);
   io.flag("enabled", b.enabled);
-  io.enumeration("shape.type", b.shape.type, static_cast<ShapeType>(kShapeTypeCount - 1));
-  if (b.shape.uses_geometry()) {
-    // The shape's sizes are its geometry's; the id names it.
-    io.u32("shape.geometry", b.shape.geometry);
-  } else {
-    io.f32("shape.radius", b.shape.radius);
-    io.vec3("shape.half_extents", b.shape.half_extents);
-    io.f32("shape.half_height", b.shape.half_height);
-  }
+  visit_shape(io, b.shape);
   io.f32("material.friction", b.material.friction);
   io.f32("material.restitution", b.material.restitution);
   io.f32("material.rolling_resistance", b.material.rolling_resistance);
@@ -78,7 +112,7 @@ void visit_body(Io& io, Info& b, Sim& m) {
   io.vec3("torque", m.torque);
   io.u8("lock_rotation", b.lock_rotation);
   io.flag("continuous", b.continuous);
-  io.flag("contact_events", b.contact_events);
+  io.event_mask("event_mask", b.event_mask);
   io.f32("sleep_time", m.sleep_time);
 }
 
@@ -150,6 +184,33 @@ void visit_joint(Io& io, Joint& j) {
   io.f32("lower_impulse", j.lower_impulse);
   io.f32("upper_impulse", j.upper_impulse);
   io.f32("cone_impulse", j.cone_impulse);
+}
+
+/// The fields of one scheduled query (ScheduledQueryRecord): a ray's or
+/// an overlap's, by its kind.
+template <class Io, class Query>
+void visit_query(Io& io, Query& q) {
+  io.u64("ticket", q.ticket);
+  io.u64("user_tag", q.user_tag);
+  io.enumeration("kind", q.kind, ScheduledQueryKind::kOverlap);
+  io.enumeration("phase", q.phase, QueryPhase::kPostPhysics);
+  io.flag("repeat", q.repeat);
+  io.u32("filter.layer_mask", q.filter.layer_mask);
+  io.boolean("filter.include_sensors", q.filter.include_sensors);
+  io.boolean("filter.include_static", q.filter.include_static);
+  io.boolean("filter.include_kinematic", q.filter.include_kinematic);
+  io.boolean("filter.include_dynamic", q.filter.include_dynamic);
+  io.u32("filter.ignore.index", q.filter.ignore.index);
+  io.u32("filter.ignore.generation", q.filter.ignore.generation);
+  if (q.kind != ScheduledQueryKind::kOverlap) {
+    io.vec3("ray.origin", q.ray.origin);
+    io.vec3("ray.direction", q.ray.direction);
+    io.f32("ray.max_distance", q.ray.max_distance);
+    return;
+  }
+  visit_shape(io, q.shape);
+  io.vec3("position", q.position);
+  io.quat("rotation", q.rotation);
 }
 
 }  // namespace rwd::sim::d3

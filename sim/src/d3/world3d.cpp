@@ -147,7 +147,7 @@ Result<BodyId> World3D::create_body(const BodyDef& def) {
   info.gravity_scale = quantize(def.gravity_scale);
   info.lock_rotation = def.lock_rotation;
   info.continuous = def.continuous ? 1 : 0;
-  info.contact_events = def.contact_events ? 1 : 0;
+  info.event_mask = def.contact_events ? def.event_mask : kEventNone;
   BodySim sim;
   d3::authored_to_mass(d3::mass_frame(info.shape, store), quantize(def.position),
                        quantize(normalize(def.rotation)), sim.position, sim.rotation);
@@ -450,10 +450,19 @@ Status World3D::set_continuous(BodyId id, bool continuous) {
   return Status::Ok();
 }
 
-Status World3D::set_contact_events(BodyId id, bool report) {
+Status World3D::set_event_mask(BodyId id, EventMask mask) {
   if (!is_live(state_, id)) return not_found();
-  state_.infos[id.index].contact_events = report ? 1 : 0;
+  if ((mask & ~kEventAll) != 0) return invalid("event mask must be kEvent* bits (0 to 63)");
+  state_.infos[id.index].event_mask = mask;
   return Status::Ok();
+}
+
+EventMask World3D::event_mask(BodyId id) const {
+  return is_live(state_, id) ? state_.infos[id.index].event_mask : kEventNone;
+}
+
+Status World3D::set_contact_events(BodyId id, bool report) {
+  return set_event_mask(id, report ? kEventAll : kEventNone);
 }
 
 bool World3D::is_continuous(BodyId id) const {
@@ -473,6 +482,11 @@ void World3D::step() {
   s.stats = StepStats{};
   s.body_events.clear();
   s.broken_joints.clear();
+  // Scheduled queries bracket the stages: they read the state, never write
+  // it, so a world with them steps exactly as one without.
+  clear_step_queries();
+  const bool queries = !state_.queries.empty();
+  if (queries) run_scheduled_queries(QueryPhase::kPrePhysics);
   if (!s.stage_timing) {
     d3::find_pairs(state_, s);
     d3::update_contacts(state_, s);
@@ -484,8 +498,17 @@ void World3D::step() {
     d3::fill_event_details(state_, s);
     d3::update_sleep(state_, s);
     ++state_.step_count;
-    return;
+  } else {
+    timed_stages();
   }
+  if (queries) {
+    run_scheduled_queries(QueryPhase::kPostPhysics);
+    finish_scheduled_queries();
+  }
+}
+
+void World3D::timed_stages() {
+  WorldScratch& s = *scratch_;
   // The same stages, each timed (the times are diagnostics, never state).
   using Clock = std::chrono::steady_clock;
   StepStats::StageTimes& t = s.stats.times;
@@ -548,6 +571,7 @@ void World3D::restore(const WorldState& in) {
   scratch_->events.clear();
   scratch_->body_events.clear();
   scratch_->broken_joints.clear();
+  clear_step_queries();
 }
 
 const WorldState& World3D::state() const {

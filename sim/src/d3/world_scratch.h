@@ -260,6 +260,16 @@ class WorldScratch {
   std::vector<uint32_t> event_records;  ///< per event: its record, or kNoRecord (exits)
   std::vector<float> record_impulse;    ///< per record: the tick's normal impulse, or -1
   std::vector<BodyEvent> body_events;
+  // scheduled queries (scheduled_queries.cpp): by pending query, this
+  // step's answer; the hits of all of them in the order they ran, each
+  // result's share given by its first and count until the spans are set.
+  std::vector<ScheduledQueryResult> query_results;
+  std::vector<uint32_t> query_first;
+  std::vector<uint32_t> query_count;
+  std::vector<RayHit> query_ray_hits;
+  std::vector<BodyId> query_bodies;
+  std::vector<RayHit> query_ray_scratch;   ///< one raycast_all's hits
+  std::vector<BodyId> query_body_scratch;  ///< one overlap's bodies
   StepStats stats;
 };
 

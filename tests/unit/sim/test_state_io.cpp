@@ -220,7 +220,7 @@ TEST(StateIo, TheDumpNamesEveryFieldTheSnapshotHolds) {
   world.dump_state(text);
   for (const char* field :
        {"config.gravity = ", "step_count = 30", "body[0].generation = ", "body[1].position = ",
-        "body[1].continuous = ", "body[1].contact_events = ", "contact[0].frame_normal = "}) {
+        "body[1].continuous = ", "body[1].event_mask = ", "contact[0].frame_normal = "}) {
     EXPECT_NE(text.find(field), std::string::npos) << field;
   }
   // One bit of one field changes the text.

@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 
+#include "rewind/sim/event_mask.h"
 #include "rewind/sim/math.h"
 #include "rewind/sim/shape.h"
 
@@ -83,9 +84,14 @@ struct BodyDef {
   /// crossed one, moved back to the first touch (a bullet through a thin
   /// wall). Dynamic bodies only; costs nothing for bodies that leave it off.
   bool continuous = false;
-  /// Report this body's contacts in World3D::events() (a pair is reported
-  /// when either body reports). Off for bodies whose contacts no game rule
-  /// reads (debris), so a big pile does not fill the event list.
+  /// Which of this body's contact and sensor events World3D::events()
+  /// reports (kEvent* bits, event_mask.h; a pair's event is reported when
+  /// either body's mask asks for it). Every event by default.
+  EventMask event_mask = kEventAll;
+  /// Report this body's contacts at all: false reports none, whatever
+  /// event_mask says (the body's mask becomes kEventNone). Off for bodies
+  /// whose contacts no game rule reads (debris), so a big pile does not
+  /// fill the event list.
   bool contact_events = true;
 };
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 
 #include "rewind/sim/body.h"
+#include "rewind/sim/event_mask.h"
 
 namespace rwd::sim {
 
@@ -33,5 +34,12 @@ struct ContactEvent {
   /// tick (its substeps' impulses summed).
   float impulse = 0.0f;
 };
+
+/// The EventMask bit of an event of `type`, between solid bodies or with a
+/// sensor.
+constexpr EventMask event_mask_bit(ContactEventType type, bool sensor) {
+  const auto bit = static_cast<EventMask>(1u << static_cast<uint8_t>(type));
+  return sensor ? static_cast<EventMask>(bit << 3) : bit;
+}
 
 }  // namespace rwd::sim

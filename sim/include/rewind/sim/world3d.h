@@ -19,6 +19,7 @@
 #include "rewind/sim/geometry.h"
 #include "rewind/sim/joint.h"
 #include "rewind/sim/query.h"
+#include "rewind/sim/scheduled_query.h"
 #include "rewind/sim/state_hasher.h"
 #include "rewind/sim/status.h"
 #include "rewind/sim/world_config.h"
@@ -157,8 +158,14 @@ class World3D {
   /// it acts on dynamic bodies.
   Status set_continuous(BodyId id, bool continuous);
   bool is_continuous(BodyId id) const;
-  /// Whether the body's contacts are reported in events()
-  /// (BodyDef::contact_events); takes effect on the next step.
+  /// Which of the body's events are reported in events() (kEvent* bits,
+  /// event_mask.h; BodyDef::event_mask); takes effect on the next step. Bits
+  /// outside kEventAll are kInvalidArgument.
+  Status set_event_mask(BodyId id, EventMask mask);
+  /// The body's event mask (kEventNone for an invalid id).
+  EventMask event_mask(BodyId id) const;
+  /// The boolean form of set_event_mask(): true asks for every event
+  /// (kEventAll), false for none (kEventNone).
   Status set_contact_events(BodyId id, bool report);
   /// Takes a body out of the simulation (false) or puts it back (true). A
   /// disabled body keeps its pose, has no velocity, no contacts (they end
@@ -223,9 +230,15 @@ class World3D {
 
   /// Advances the world by config().tick_seconds.
   void step();
-  /// Contact events of the last step, ordered by (a.index, b.index), for
-  /// the pairs where either body reports them (BodyDef::contact_events).
+  /// Contact events of the last step, ordered by (a.index, b.index), each
+  /// reported when either body's event mask asks for its type (solid or
+  /// sensor; enter, stay or exit; BodyDef::event_mask). The exit of a pair
+  /// whose body was destroyed is reported whatever the other's mask.
   std::span<const ContactEvent> events() const;
+  /// The answers of the scheduled queries that ran in the last step, in
+  /// scheduling order (ascending tickets, whatever their phase). Not state:
+  /// restore() clears them.
+  std::span<const ScheduledQueryResult> step_queries() const;
   /// Body events of the last step (bodies that left the world bounds),
   /// ordered by body index. Not state: restore() clears them.
   std::span<const BodyEvent> body_events() const;
@@ -286,6 +299,43 @@ class World3D {
   std::optional<ContactManifold> contact_manifold(BodyId a, BodyId b,
                                                   float max_separation = 0.0f) const;
 
+  // --- scheduled queries --------------------------------------------------
+  //
+  // A scheduled query runs inside step(): kPrePhysics ones before the
+  // step's stages (on the world as the step finds it), kPostPhysics ones
+  // after them (as it leaves it), and their answers are in step_queries().
+  // Schedules are state (snapshot, checksum, restore, serialize): a
+  // kEveryStep query keeps running after a rollback, and a kOnce query
+  // made before a save() runs after the matching restore(). The arguments
+  // are validated (the world is unchanged on error) and put on the
+  // canonical grid, as every outside value is. At most
+  // kMaxScheduledQueries are pending at a time (kCapacity).
+
+  static constexpr uint32_t kMaxScheduledQueries = 1u << 16;
+
+  /// Schedules the closest-hit raycast(). kInvalidArgument for a
+  /// non-finite origin or direction, a zero direction, or a negative or
+  /// non-finite max_distance.
+  Result<QueryTicket> schedule_raycast(const Ray& ray, const QueryFilter& filter, QueryPhase phase,
+                                       uint64_t user_tag, QueryRepeat repeat = QueryRepeat::kOnce);
+  /// Schedules raycast_all(): every hit, near to far.
+  Result<QueryTicket> schedule_raycast_all(const Ray& ray, const QueryFilter& filter,
+                                           QueryPhase phase, uint64_t user_tag,
+                                           QueryRepeat repeat = QueryRepeat::kOnce);
+  /// Schedules overlap() of `shape` at `position`, `rotation` (its
+  /// authored frame). kInvalidArgument for a shape the body rule refuses
+  /// or a non-finite or zero pose.
+  Result<QueryTicket> schedule_overlap(const Shape& shape, Vec3 position, Quat rotation,
+                                       const QueryFilter& filter, QueryPhase phase,
+                                       uint64_t user_tag, QueryRepeat repeat = QueryRepeat::kOnce);
+  /// Removes a pending query; kNotFound for a null, unknown or already
+  /// finished ticket.
+  Status cancel_query(QueryTicket ticket);
+  /// Whether `ticket` names a pending query.
+  bool is_scheduled(QueryTicket ticket) const;
+  /// Number of pending queries.
+  uint32_t scheduled_query_count() const;
+
   // --- state --------------------------------------------------------------
 
   /// Bulk copy of all persistent state. No allocation once `out` has grown.
@@ -303,8 +353,8 @@ class World3D {
   /// each in the canonical order (the same description the snapshot, the
   /// reader and the checksum use): config.*, step_count, body[i].* for every
   /// slot, contact[k].* for every cache record, joint[k].* for every joint
-  /// slot. For forensics; `out` is
-  /// cleared first.
+  /// slot, then last_query_ticket and query[k].* for every scheduled query.
+  /// For forensics; `out` is cleared first.
   void dump_state(std::string& out) const;
   /// Readable dump of every live body in index order.
   void dump_bodies(std::vector<BodyRecord>& out) const;
@@ -325,6 +375,17 @@ class World3D {
  private:
   /// Frees every joint on body `id`, adding their ids to `removed`.
   void destroy_body_joints(BodyId id, std::vector<JointId>* removed);
+  /// The step's stages, each timed into stats().times.
+  void timed_stages();
+  /// Adds a validated query to the schedule.
+  Result<QueryTicket> add_scheduled_query(const ScheduledQueryRecord& record);
+  /// Runs the scheduled queries of `phase` into the step's results.
+  void run_scheduled_queries(QueryPhase phase);
+  /// Points the step's results at their hits and drops the one-shot
+  /// queries, once both phases ran.
+  void finish_scheduled_queries();
+  /// Forgets the last step's query results (restore, deserialize).
+  void clear_step_queries();
 
   WorldState state_;
   std::shared_ptr<GeometryStore> geometry_;

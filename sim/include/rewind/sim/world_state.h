@@ -13,6 +13,8 @@
 #include "rewind/sim/body.h"
 #include "rewind/sim/joint.h"
 #include "rewind/sim/math.h"
+#include "rewind/sim/query.h"
+#include "rewind/sim/scheduled_query.h"
 #include "rewind/sim/shape.h"
 #include "rewind/sim/world_config.h"
 
@@ -38,9 +40,10 @@ struct BodyInfo {
   float linear_damping = 0.0f;   ///< 1/s
   float angular_damping = 0.0f;  ///< 1/s
   float gravity_scale = 1.0f;
-  uint8_t lock_rotation = 0;   ///< kLockRotation* bits (body.h)
-  uint8_t continuous = 0;      ///< 1: swept for time of impact after each step (BodyDef)
-  uint8_t contact_events = 1;  ///< 1: its contacts are reported in events() (BodyDef)
+  uint8_t lock_rotation = 0;  ///< kLockRotation* bits (body.h)
+  uint8_t continuous = 0;     ///< 1: swept for time of impact after each step (BodyDef)
+  /// kEvent* bits: the contact and sensor events it asks for (BodyDef).
+  EventMask event_mask = kEventAll;
 };
 
 /// Hot simulation state of one body slot, written every step while awake.
@@ -164,6 +167,23 @@ struct JointRecord {
   float cone_impulse = 0.0f;   ///< ball: the swing cone
 };
 
+/// A query scheduled to run inside the step (World3D::schedule_raycast,
+/// schedule_overlap), as given, on the canonical grid. Rays use `ray`;
+/// overlaps use `shape`, `position` and `rotation` (the shape's authored
+/// frame, rotation unit).
+struct ScheduledQueryRecord {
+  uint64_t ticket = 0;  ///< QueryTicket::id
+  uint64_t user_tag = 0;
+  ScheduledQueryKind kind = ScheduledQueryKind::kRaycast;
+  QueryPhase phase = QueryPhase::kPrePhysics;
+  uint8_t repeat = 0;  ///< 1: every step until cancelled (QueryRepeat::kEveryStep)
+  QueryFilter filter;
+  Ray ray;
+  Shape shape;
+  Vec3 position;
+  Quat rotation;
+};
+
 /// All persistent state of a World3D.
 struct WorldState {
   WorldConfig config;
@@ -180,6 +200,12 @@ struct WorldState {
   /// Joint slots, live or dead, by JointId::index; solved in this order.
   std::vector<JointRecord> joints;
   uint32_t live_joints = 0;
+  /// Scheduled queries in scheduling order (ascending tickets). They are
+  /// state, one-shot ones included: a snapshot taken between scheduling
+  /// and stepping steps the same after a restore.
+  std::vector<ScheduledQueryRecord> queries;
+  /// The last QueryTicket::id handed out (0: none ever).
+  uint64_t last_query_ticket = 0;
 };
 
 static_assert(std::is_trivially_copyable_v<BodyInfo>);
@@ -187,6 +213,7 @@ static_assert(std::is_trivially_copyable_v<BodySim>);
 static_assert(std::is_trivially_copyable_v<BodyMass>);
 static_assert(std::is_trivially_copyable_v<ContactRecord>);
 static_assert(std::is_trivially_copyable_v<JointRecord>);
+static_assert(std::is_trivially_copyable_v<ScheduledQueryRecord>);
 static_assert(std::is_copy_assignable_v<WorldState>);
 
 }  // namespace rwd::sim
