@@ -19,6 +19,10 @@ int fuzz_replay_reader_one(const uint8_t* data, size_t size);
 /// Simulation::deserialize, then round trip and step what it accepts.
 int fuzz_sim_snapshot_one(const uint8_t* data, size_t size);
 
+/// 3D world snapshots with joints: World3D::deserialize, then re-encode,
+/// step and reload what it accepts.
+int fuzz_world3d_snapshot_one(const uint8_t* data, size_t size);
+
 /// Secure-connection packets and tokens: read_connect_token, from_hex, the
 /// server's request and response handlers, the client's challenge handler
 /// and a session's payload opener; none may accept what lacks the keys.

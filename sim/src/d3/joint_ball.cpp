@@ -78,16 +78,15 @@ float get(Vec3 v, int i) {
 }
 
 void ball_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                 const JointFrames& f, bool, float* acc) {
-  const RowBlock& block = c.block;
+                 const JointFrames& f, bool, const ExtraBase& base) {
   const bool spring = (j.flags & kJointSpring) != 0;
   const bool motor = (j.flags & kJointMotor) != 0;
   if (spring || motor) {
     // Both drive the three relative angular velocities.
     JointRow rows[3];
     orientation_rows(rows);
-    RowGroup group;
-    group.prepare(block, rows, 3, a, b);
+    ExtraGroup group;
+    group.prepare(base, rows, 3, a, b);
     if (spring) {
       // The rotation from where B should be (A's rotation times the
       // target) to where it is, in the world.
@@ -104,7 +103,7 @@ void ball_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, Solver
         delta[k] = -x[k] * s.mass_scale - get(c.spring_impulse, k) * s.impulse_scale;
       }
       c.spring_impulse += Vec3{delta[0], delta[1], delta[2]};
-      group.apply(block, a, b, delta, acc);
+      group.apply(base, a, b, delta);
     }
     if (motor) {
       float cdot[3];
@@ -121,7 +120,7 @@ void ball_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, Solver
       c.motor_impulse = next;
       const Vec3 d = next - old;
       const float delta[3] = {d.x, d.y, d.z};
-      group.apply(block, a, b, delta, acc);
+      group.apply(base, a, b, delta);
     }
   }
 }

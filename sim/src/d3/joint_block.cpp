@@ -5,6 +5,7 @@
 // same on every build.
 #include "d3/joint_block.h"
 
+#include "d3/joint_tree.h"
 #include "d3/world_scratch.h"
 
 namespace rwd::sim::d3 {
@@ -186,21 +187,60 @@ void solve_block(const RowBlock& block, SolverBody& a, SolverBody& b, const floa
   block.apply(a, b, lambda);
 }
 
-void solve_extra_row(const RowBlock& block, SolverBody& a, SolverBody& b, const JointRow& row,
-                     const RowTerms& t, float speed, float lo, float hi, float& impulse,
-                     float* block_impulse) {
-  RowGroup group;
-  group.prepare(block, &row, 1, a, b);
-  float cdot = 0.0f;
-  group.velocity(a, b, &cdot);
+void ExtraGroup::prepare(const ExtraBase& base, const JointRow* rows, int m, const SolverBody& a,
+                         const SolverBody& b) {
+  m_ = m;
+  tree_ = base.scratch != nullptr;
+  for (int k = 0; k < m; ++k) rows_[k] = rows[k];
+  if (!tree_) {
+    local_.prepare(*base.block, rows, m, a, b);
+    return;
+  }
+  prepare_tree_group(*base.scratch, base.tree, base.body_a, base.body_b, rows, m, s_);
+}
+
+void ExtraGroup::velocity(const SolverBody& a, const SolverBody& b, float* out) const {
+  for (int k = 0; k < m_; ++k) out[k] = row_velocity(rows_[k], a, b);
+}
+
+void ExtraGroup::solve(const float* rhs, float* x) const {
+  if (!tree_) {
+    local_.solve(rhs, x);
+    return;
+  }
+  for (int k = 0; k < m_; ++k) {
+    float v = 0.0f;
+    for (int l = 0; l < m_; ++l) v += s_[l][k] * rhs[l];
+    x[k] = v;
+  }
+}
+
+void ExtraGroup::apply(const ExtraBase& base, SolverBody& a, SolverBody& b,
+                       const float* delta) const {
+  if (base.scratch == nullptr) {
+    local_.apply(*base.block, a, b, delta, base.block_impulse);
+    return;
+  }
+  for (int k = 0; k < m_; ++k) apply_row(rows_[k], a, b, delta[k]);
+  apply_tree_compensation(*base.scratch, base.tree, m_, delta);
+}
+
+void solve_extra_row(const ExtraBase& base, SolverBody& a, SolverBody& b, const JointRow& row,
+                     const RowTerms& t, float speed, float lo, float hi, float& impulse) {
+  const float cdot = row_velocity(row, a, b);
   const float rhs = cdot - speed + t.bias;
+  // An open limit holding nothing and not closing within the substep: the
+  // solve would clamp its impulse to zero anyway.
+  if (lo == 0.0f && impulse == 0.0f && rhs >= 0.0f) return;
+  ExtraGroup group;
+  group.prepare(base, &row, 1, a, b);
   float x = 0.0f;
   group.solve(&rhs, &x);
   const float lambda = -x * t.mass_scale - impulse * t.impulse_scale;
   const float next = clamp_impulse(impulse + lambda, lo, hi);
   const float delta = next - impulse;
   impulse = next;
-  if (delta != 0.0f) group.apply(block, a, b, &delta, block_impulse);
+  if (delta != 0.0f) group.apply(base, a, b, &delta);
 }
 
 }  // namespace rwd::sim::d3

@@ -21,6 +21,10 @@
 
 #include "d3/joint_math.h"
 
+namespace rwd::sim {
+class WorldScratch;
+}
+
 namespace rwd::sim::d3 {
 
 struct SolverBody;
@@ -118,10 +122,43 @@ void apply_row(const JointRow& r, SolverBody& a, SolverBody& b, float lambda);
 void solve_block(const RowBlock& block, SolverBody& a, SolverBody& b, const float* bias,
                  const JointSoftness& soft, bool use_bias, float* impulse);
 
-/// One extra row against the block: drives its velocity to `speed` plus
-/// the terms' bias, its accumulated `impulse` kept in [lo, hi].
-void solve_extra_row(const RowBlock& block, SolverBody& a, SolverBody& b, const JointRow& row,
-                     const RowTerms& t, float speed, float lo, float hi, float& impulse,
-                     float* block_impulse);
+/// What a joint's extra rows (springs, motors, limits not in its
+/// structure) are solved against, held rigid: its own block, or (`tree`
+/// set) every structural row of the joint tree it is in, so a spring on a
+/// knuckle also moves the wheel hung from it.
+struct ExtraBase {
+  const RowBlock* block = nullptr;  ///< the joint's own structure
+  float* block_impulse = nullptr;   ///< its rows' accumulated impulses
+  WorldScratch* scratch = nullptr;  ///< set for a joint in a tree
+  uint32_t tree = 0;
+  uint32_t body_a = 0;  ///< the joint's solver bodies
+  uint32_t body_b = 0;
+};
+
+/// One to three extra rows solved together against a rigid base.
+class ExtraGroup {
+ public:
+  void prepare(const ExtraBase& base, const JointRow* rows, int m, const SolverBody& a,
+               const SolverBody& b);
+  void velocity(const SolverBody& a, const SolverBody& b, float* out) const;
+  /// x = S^-1 rhs, S the base's Schur complement for these rows.
+  void solve(const float* rhs, float* x) const;
+  /// Applies delta[k] along the rows, with the base's compensation.
+  void apply(const ExtraBase& base, SolverBody& a, SolverBody& b, const float* delta) const;
+
+ private:
+  RowGroup local_;  // against a block
+  bool tree_ = false;
+  int m_ = 0;
+  JointRow rows_[kMaxGroupRows];
+  float s_[kMaxGroupRows][kMaxGroupRows] = {};  // against a tree: S^-1
+};
+
+/// One extra row against its base: drives its velocity to `speed` plus
+/// the terms' bias, its accumulated `impulse` kept in [lo, hi]. A one-sided
+/// row (lo 0) that holds no impulse and is not being driven shut costs
+/// one velocity read.
+void solve_extra_row(const ExtraBase& base, SolverBody& a, SolverBody& b, const JointRow& row,
+                     const RowTerms& t, float speed, float lo, float hi, float& impulse);
 
 }  // namespace rwd::sim::d3

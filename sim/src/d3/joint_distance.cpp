@@ -38,24 +38,26 @@ void solve_distance(const JointRecord& j, JointConstraint& c, SolverBody& a, Sol
   // Anchors on top of each other have no line to act along.
   if (!(len > 1e-6f)) return;
   const Vec3 n = f.d * (1.0f / len);
-  const RowBlock none;  // nothing held rigid: each row on its own mass
-  float* no_block = nullptr;
+  // Nothing held rigid: each row on its own effective mass.
+  const RowBlock none;
+  ExtraBase base;
+  base.block = &none;
   const JointRow line = linear_jacobian(n, f.ra, f.rb);
   if (j.type == JointType::kSpring) {
-    solve_extra_row(none, a, b, line, spring_terms(c.spring_soft, len - j.length), 0.0f,
-                    -kUnbounded, kUnbounded, c.spring_impulse.x, no_block);
+    solve_extra_row(base, a, b, line, spring_terms(c.spring_soft, len - j.length), 0.0f,
+                    -kUnbounded, kUnbounded, c.spring_impulse.x);
   }
   if (rigid(j)) {
-    solve_extra_row(none, a, b, line, structural_terms(c.soft, len - j.min_length, use_bias), 0.0f,
-                    -kUnbounded, kUnbounded, c.axial_impulse, no_block);
+    solve_extra_row(base, a, b, line, structural_terms(c.soft, len - j.min_length, use_bias), 0.0f,
+                    -kUnbounded, kUnbounded, c.axial_impulse);
   } else if (ranged(j)) {
     if (j.min_length > 0.0f) {
-      solve_extra_row(none, a, b, line, limit_terms(c.soft, len - j.min_length, c.h, use_bias),
-                      0.0f, 0.0f, kUnbounded, c.lower_impulse, no_block);
+      solve_extra_row(base, a, b, line, limit_terms(c.soft, len - j.min_length, c.h, use_bias),
+                      0.0f, 0.0f, kUnbounded, c.lower_impulse);
     }
-    solve_extra_row(none, a, b, linear_jacobian(-n, f.ra, f.rb),
+    solve_extra_row(base, a, b, linear_jacobian(-n, f.ra, f.rb),
                     limit_terms(c.soft, j.max_length - len, c.h, use_bias), 0.0f, 0.0f, kUnbounded,
-                    c.upper_impulse, no_block);
+                    c.upper_impulse);
   }
   c.linear_impulse = n * line_impulse(c);
 }

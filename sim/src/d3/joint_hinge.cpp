@@ -55,20 +55,18 @@ int hinge_limits(const JointRecord& j, const JointFrames& f, LimitRow* out) {
 }
 
 void hinge_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                  const JointFrames& f, bool, float* acc) {
-  const RowBlock& block = c.block;
+                  const JointFrames& f, bool, const ExtraBase& base) {
   const Vec3 xa = rotate(f.fa, kAxisX);
   const float angle = twist_angle(conjugate(f.fa) * f.fb);
   const JointRow turn = angular_jacobian(xa);
   if ((j.flags & kJointSpring) != 0) {
-    solve_extra_row(block, a, b, turn,
+    solve_extra_row(base, a, b, turn,
                     spring_terms(c.spring_soft, wrap_angle(angle - j.spring_target)), 0.0f,
-                    -kUnbounded, kUnbounded, c.spring_impulse.x, acc);
+                    -kUnbounded, kUnbounded, c.spring_impulse.x);
   }
   if ((j.flags & kJointMotor) != 0) {
     const float max = j.max_motor * c.h;
-    solve_extra_row(block, a, b, turn, RowTerms{}, j.motor_speed, -max, max, c.motor_impulse.x,
-                    acc);
+    solve_extra_row(base, a, b, turn, RowTerms{}, j.motor_speed, -max, max, c.motor_impulse.x);
   }
 }
 

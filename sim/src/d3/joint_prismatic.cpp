@@ -51,20 +51,18 @@ int prismatic_limits(const JointRecord& j, const JointFrames& f, LimitRow* out) 
 }
 
 void prismatic_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                      const JointFrames& f, bool, float* acc) {
-  const RowBlock& block = c.block;
+                      const JointFrames& f, bool, const ExtraBase& base) {
   const Vec3 xa = rotate(f.fa, kAxisX);
   const Vec3 arm_a = f.ra + f.d;
   const float translation = dot(f.d, xa);
   const JointRow slide = linear_jacobian(xa, arm_a, f.rb);
   if ((j.flags & kJointSpring) != 0) {
-    solve_extra_row(block, a, b, slide, spring_terms(c.spring_soft, translation - j.spring_target),
-                    0.0f, -kUnbounded, kUnbounded, c.spring_impulse.x, acc);
+    solve_extra_row(base, a, b, slide, spring_terms(c.spring_soft, translation - j.spring_target),
+                    0.0f, -kUnbounded, kUnbounded, c.spring_impulse.x);
   }
   if ((j.flags & kJointMotor) != 0) {
     const float max = j.max_motor * c.h;
-    solve_extra_row(block, a, b, slide, RowTerms{}, j.motor_speed, -max, max, c.motor_impulse.x,
-                    acc);
+    solve_extra_row(base, a, b, slide, RowTerms{}, j.motor_speed, -max, max, c.motor_impulse.x);
   }
 }
 

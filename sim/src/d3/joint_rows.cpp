@@ -148,7 +148,7 @@ void settle_held_limits(JointConstraint& c, SolverBody& a, SolverBody& b, float*
 }
 
 void solve_free_limits(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                       const JointFrames& f, bool use_bias, float* acc) {
+                       const JointFrames& f, bool use_bias, const ExtraBase& base) {
   const JointOps& ops = joint_ops(j.type);
   if (ops.limits == nullptr) return;
   LimitRow limits[kMaxLimitRows];
@@ -157,8 +157,8 @@ void solve_free_limits(const JointRecord& j, JointConstraint& c, SolverBody& a, 
   for (int k = 0; k < n; ++k) {
     const LimitRow& l = limits[k];
     if ((held & (1u << l.kind)) != 0) continue;
-    solve_extra_row(c.block, a, b, l.row, limit_terms(c.soft, l.gap, c.h, use_bias), 0.0f, 0.0f,
-                    kUnbounded, limit_impulse(c, l.kind), acc);
+    solve_extra_row(base, a, b, l.row, limit_terms(c.soft, l.gap, c.h, use_bias), 0.0f, 0.0f,
+                    kUnbounded, limit_impulse(c, l.kind));
   }
 }
 

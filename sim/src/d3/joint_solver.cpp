@@ -189,8 +189,11 @@ void solve_alone(const JointRecord& j, JointConstraint& c, SolverBody& a, Solver
   // Springs, motors and the limits not yet reached after the structure,
   // each with the impulse that leaves the structure where it is: both
   // end the pass satisfied.
-  if (ops.extras != nullptr) ops.extras(j, c, a, b, f, use_bias, acc);
-  solve_free_limits(j, c, a, b, f, use_bias, acc);
+  ExtraBase base;
+  base.block = &c.block;
+  base.block_impulse = acc;
+  if (ops.extras != nullptr) ops.extras(j, c, a, b, f, use_bias, base);
+  solve_free_limits(j, c, a, b, f, use_bias, base);
   scatter_impulses(c, acc);
 }
 

@@ -127,10 +127,9 @@ struct JointOps {
   /// (optional: types without limits).
   int (*limits)(const JointRecord& j, const JointFrames& f, LimitRow* out);
   /// The rows beside the structure and limits (springs, motors), each
-  /// against c.block held rigid, adding its compensation to
-  /// `block_impulse` (optional).
+  /// against `base` held rigid (optional).
   void (*extras)(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                 const JointFrames& f, bool use_bias, float* block_impulse);
+                 const JointFrames& f, bool use_bias, const ExtraBase& base);
   /// Applies the last substep's impulses again: all of them for a type
   /// without structural rows, else those of its springs and motors (the
   /// stage applies the structure's and the limits' along their rows).
@@ -223,7 +222,7 @@ uint8_t held_limits(const JointConstraint& c);
 void settle_held_limits(JointConstraint& c, SolverBody& a, SolverBody& b, float* acc);
 /// The limits not in the block, each as a speculative row against it.
 void solve_free_limits(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                       const JointFrames& f, bool use_bias, float* acc);
+                       const JointFrames& f, bool use_bias, const ExtraBase& base);
 void warm_start_free_limits(const JointRecord& j, const JointConstraint& c, SolverBody& a,
                             SolverBody& b, const JointFrames& f);
 /// The bias of each block row: its error (the point error along a linear

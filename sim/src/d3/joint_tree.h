@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "d3/joint_block.h"
 #include "rewind/sim/world_state.h"
 
 namespace rwd::sim {
@@ -66,6 +67,18 @@ void factor_joint_trees(WorldScratch& scratch);
 /// solved exactly; soft with the bias, rigid without.
 void solve_joint_tree(const std::vector<JointRecord>& joints, WorldScratch& scratch, uint32_t t,
                       bool use_bias);
+
+/// Readies one to three extra rows of a joint on solver bodies (a, b) of
+/// tree t to be solved against the whole tree held rigid: each row's
+/// coupling to the tree's rows, solved through the tree's factors (kept in
+/// scratch for apply_tree_compensation), and the inverse of their Schur
+/// complement into s_inv (m x m of a 3 x 3).
+void prepare_tree_group(WorldScratch& scratch, uint32_t t, uint32_t body_a, uint32_t body_b,
+                        const JointRow* rows, int m, float (*s_inv)[3]);
+/// Applies to tree t's rows the impulses that hold them where they were
+/// while the prepared rows take delta[k] (and adds them to the tree's
+/// accumulated impulses).
+void apply_tree_compensation(WorldScratch& scratch, uint32_t t, int m, const float* delta);
 
 /// Moves the bodies of tree t so its structural rows' position errors
 /// vanish (to first order), without touching velocities: one exact solve
