@@ -2,11 +2,13 @@
 #include "rewind/game/joust_game.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "rewind/sim/det_math.h"
+#include "rewind/sim/ragdoll3d.h"
 #include "rewind/sim/vehicle3d.h"
 
 namespace rwd::game {
@@ -61,26 +63,16 @@ constexpr int32_t kUpsetTicks = 120;
 // The lance: a 4 m pole on the car's left at a rider's chest height,
 // welded at its back end, its tip 2.8 m ahead of the bumper.
 constexpr sim::Vec3 kLanceHalf{0.06f, 0.06f, 2.0f};
-constexpr sim::Vec3 kLanceCentre{0.55f, 0.95f, 2.6f};
+constexpr sim::Vec3 kLanceCentre{0.55f, 0.85f, 2.6f};
 constexpr float kLanceDensity = 500.0f;
 
-// The rider: torso, head and arms above the seat, in the chassis frame.
-constexpr sim::Vec3 kSeatAnchor{0.0f, 0.31f, -0.2f};
-constexpr sim::Vec3 kNeckAnchor{0.0f, 1.23f, -0.2f};
-constexpr float kShoulderX = 0.27f;
-constexpr float kShoulderY = 0.95f;
-struct RiderPart {
-  float radius;
-  float half_height;  // 0: a sphere
-  sim::Vec3 centre;   // chassis frame
-  float density;
-};
-constexpr std::array<RiderPart, kJoustRiderParts> kRiderParts = {{
-    {0.20f, 0.25f, {0.0f, 0.77f, -0.2f}, 600.0f},          // torso, 58 kg
-    {0.13f, 0.0f, {0.0f, 1.37f, -0.2f}, 1000.0f},          // head, 9 kg
-    {0.06f, 0.18f, {kShoulderX, 0.77f, -0.2f}, 1000.0f},   // left arm, 5 kg
-    {0.06f, 0.18f, {-kShoulderX, 0.77f, -0.2f}, 1000.0f},  // right arm
-}};
+// The rider: the engine's ragdoll (ragdoll3d.h), 1.8 m and 70 kg, sitting
+// on the roof behind the lance's foot with its legs out along the car and
+// its forearms forward. kSeat is the pelvis centre in the chassis frame:
+// the legs, level with the hips, just clear the roof.
+constexpr float kRiderHeight = 1.8f;
+constexpr float kRiderMass = 70.0f;
+constexpr sim::Vec3 kSeat{0.0f, 0.44f, -0.4f};
 // The seat weld lets go when one tick's reaction exceeds this (N s, or
 // N m s for its turning part): a crash, a roll, a lance or the ball. Riding
 // over the bumps and cornering hard load it well below.
@@ -116,11 +108,16 @@ constexpr float kPumpZone = 0.6f;  // m either side of the gantry
 
 constexpr uint32_t kLayerGround = 1u << 0;
 constexpr uint32_t kLayerCar = 1u << 1;
-constexpr uint32_t kLayerRider = 1u << 2;
 constexpr uint32_t kLayerChain = 1u << 3;
+// Each rider's parts are on one of the top 24 bits (player p on bit
+// 8 + p % 24) and skip only their own bit: a figure's parts never collide
+// with each other, and riders collide with each other's.
+constexpr uint32_t kRiderLayerFirst = 8;
+constexpr uint32_t kRiderLayerCount = 24;
+constexpr uint32_t kLayerRiders = 0xFFFFFF00u;
 constexpr uint64_t kTagChassis = 0x100;
 constexpr uint64_t kTagLance = 0x200;
-constexpr uint64_t kTagRider = 0x400;  // + player * 8 + part
+constexpr uint64_t kTagRider = 0x1000;  // + player * 16 + part
 constexpr uint64_t kTagChain = 0x800;
 constexpr uint64_t kTagBall = 0x900;
 
@@ -219,6 +216,78 @@ bool fell(const sim::World3D& world, sim::BodyId id) {
   return !world.is_enabled(id) || world.position(id).y < kKillPlaneY;
 }
 
+// Player p's rider as the ragdoll builder sees it (the ids; the anchors
+// are the builder's business).
+sim::RagdollSpec3D rider_spec(uint32_t p, sim::Vec3 position, sim::Quat rotation) {
+  sim::RagdollSpec3D spec;
+  spec.height_m = kRiderHeight;
+  spec.mass_kg = kRiderMass;
+  spec.position = position;
+  spec.rotation = rotation;
+  spec.self_layer = 1u << (kRiderLayerFirst + p % kRiderLayerCount);
+  spec.user_data_base = kTagRider + 16u * p;
+  return spec;
+}
+
+sim::Ragdoll3D rider_of(const JoustState& state, uint32_t p) {
+  sim::Ragdoll3D rider;
+  rider.parts = state.riders[p];
+  rider.joints = state.rider_joints[p];
+  return rider;
+}
+
+// While seated the rider holds its posture: each joint's motor at zero
+// speed acts as a muscle that resists turning up to these torques (N m,
+// by sim::RagdollJoint3D: waist, neck, shoulders, elbows, hips, knees),
+// enough to sit up through driving, far too little to hold against a
+// lance. Thrown, it goes limp.
+constexpr std::array<float, sim::kRagdollJointCount3D> kRiderTone = {
+    200.0f, 30.0f, 30.0f, 30.0f, 15.0f, 15.0f, 100.0f, 100.0f, 60.0f, 60.0f};
+
+void set_rider_tone(sim::World3D& world, const JoustState& state, uint32_t p, bool on) {
+  for (uint32_t j = 0; j < sim::kRagdollJointCount3D; ++j) {
+    const sim::JointId id = state.rider_joints[p][j];
+    if (world.joint_type(id) == sim::JointType::kHinge) {
+      (void)world.set_joint_motor(id, on, 0.0f, kRiderTone[j]);
+    } else {
+      (void)world.set_joint_motor_velocity(id, on, {}, kRiderTone[j]);
+    }
+  }
+}
+
+// The seated pose in the chassis frame: the rest pose with the thighs and
+// shins turned a quarter turn forward about the hips and the forearms
+// about the elbows (within the hip cone and the elbow hinge), the pelvis
+// at kSeat.
+std::array<sim::RagdollPartPose3D, sim::kRagdollPartCount3D> seated_pose() {
+  using Part = sim::RagdollPart3D;
+  const sim::RagdollSpec3D spec = rider_spec(0, kSeat, {});
+  std::array<sim::RagdollPartPose3D, sim::kRagdollPartCount3D> pose{};
+  (void)sim::ragdoll_rest_pose(spec, pose);
+  const float h = std::sqrt(0.5f);
+  const sim::Quat forward{-h, 0.0f, 0.0f, h};  // -y onto +z, about x
+  auto fold = [&](Part part, sim::Vec3 pivot) {
+    sim::RagdollPartPose3D& q = pose[static_cast<uint32_t>(part)];
+    q.position = pivot + sim::rotate(forward, q.position - pivot);
+    q.rotation = forward * q.rotation;
+  };
+  auto top_of = [&](Part part) {  // the upper tip of a hanging bone
+    return pose[static_cast<uint32_t>(part)].position +
+           sim::Vec3{0.0f, 0.5f * sim::ragdoll_bone(spec, part).length_m, 0.0f};
+  };
+  const sim::Vec3 hip_l = top_of(Part::kThighL);
+  const sim::Vec3 hip_r = top_of(Part::kThighR);
+  const sim::Vec3 elbow_l = top_of(Part::kForearmL);
+  const sim::Vec3 elbow_r = top_of(Part::kForearmR);
+  fold(Part::kThighL, hip_l);
+  fold(Part::kShinL, hip_l);
+  fold(Part::kThighR, hip_r);
+  fold(Part::kShinR, hip_r);
+  fold(Part::kForearmL, elbow_l);
+  fold(Part::kForearmR, elbow_r);
+  return pose;
+}
+
 // Player p's car back at its spawn point, at rest.
 void reset_car(sim::World3D& world, JoustState& state, uint32_t p) {
   sim::Vec3 position;
@@ -236,6 +305,7 @@ void fling(sim::World3D& world, const JoustState& state, uint32_t p, uint32_t hi
   const sim::Vec3 kick = sim::normalize_or_zero(sim::Vec3{ahead.x, 0.0f, ahead.z}) * kThrowSpeed +
                          sim::Vec3{0.0f, kThrowLift, 0.0f};
   for (const sim::BodyId part : state.riders[p]) {
+    if (!world.is_enabled(part)) continue;
     (void)world.apply_linear_impulse(part, kick * world.mass(part), world.center_of_mass(part));
   }
 }
@@ -245,8 +315,8 @@ int32_t lance_owner(uint64_t tag, uint32_t players) {
   return tag >= kTagLance && tag < kTagLance + players ? static_cast<int32_t>(tag - kTagLance) : -1;
 }
 int32_t rider_owner(uint64_t tag, uint32_t players) {
-  return tag >= kTagRider && tag < kTagRider + 8u * players
-             ? static_cast<int32_t>((tag - kTagRider) / 8)
+  return tag >= kTagRider && tag < kTagRider + 16u * players
+             ? static_cast<int32_t>((tag - kTagRider) / 16)
              : -1;
 }
 
@@ -274,14 +344,26 @@ bool JoustGame::seat_rider(sim::World3D& world, JoustState& state, uint32_t p) {
   const sim::Vec3 v = world.linear_velocity(chassis);
   const sim::Vec3 w = world.angular_velocity(chassis);
   const sim::Vec3 com = world.center_of_mass(chassis);
-  for (uint32_t i = 0; i < kJoustRiderParts; ++i) {
-    if (!world.is_valid(state.riders[p][i])) return false;
-    pose_on(world, state.riders[p][i], kRiderParts[i].centre, pos, rot, v, w, com);
+  // Parts flung out of the world were disabled where they left it: back
+  // into play first (pose_ragdoll moves only live, enabled parts).
+  for (const sim::BodyId part : state.riders[p]) {
+    if (!world.is_valid(part)) return false;
+    (void)world.set_enabled(part, true);
   }
-  sim::JointDef seat = sim::joint_at(world, sim::JointType::kWeld, chassis, state.riders[p][0],
-                                     pos + sim::rotate(rot, kSeatAnchor));
+  std::array<sim::RagdollPartPose3D, sim::kRagdollPartCount3D> pose = seated_pose();
+  for (sim::RagdollPartPose3D& part : pose) {
+    part.position = pos + sim::rotate(rot, part.position);
+    part.rotation = rot * part.rotation;
+    part.linear_velocity = v + sim::cross(w, part.position - com);
+    part.angular_velocity = w;
+  }
+  if (!sim::pose_ragdoll(world, rider_of(state, p), pose).ok()) return false;
+  const sim::BodyId pelvis = state.riders[p][static_cast<uint32_t>(sim::RagdollPart3D::kPelvis)];
+  sim::JointDef seat =
+      sim::joint_at(world, sim::JointType::kWeld, chassis, pelvis, pos + sim::rotate(rot, kSeat));
   seat.break_impulse = kSeatBreakImpulse;
   state.seats[p] = create(world, seat);
+  set_rider_tone(world, state, p, true);
   return !state.seats[p].is_null();
 }
 
@@ -429,39 +511,12 @@ void JoustGame::build_typed(const MatchSetup& setup, sim::World3D& world, JoustS
         create(world, sim::joint_at(world, sim::JointType::kWeld, state.chassis[p], state.lances[p],
                                     position + sim::rotate(rotation, lance_base)));
 
-    std::array<sim::BodyId, kJoustRiderParts>& rider = state.riders[p];
-    for (uint32_t i = 0; i < kJoustRiderParts; ++i) {
-      const RiderPart& part = kRiderParts[i];
-      sim::BodyDef def;
-      def.shape = part.half_height > 0.0f ? sim::Shape::make_capsule(part.radius, part.half_height)
-                                          : sim::Shape::make_sphere(part.radius);
-      def.position = position + sim::rotate(rotation, part.centre);
-      def.rotation = rotation;
-      def.density = part.density;
-      def.angular_damping = 0.5f;
-      def.material.friction = 0.7f;
-      def.layer = kLayerRider;
-      def.user_data = kTagRider + 8u * p + i;
-      rider[i] = create(world, def);
-    }
-    // Neck and shoulders: ball joints with cone limits about the rest pose.
-    const sim::Vec3 up = sim::rotate(rotation, {0.0f, 1.0f, 0.0f});
-    sim::JointDef neck = sim::joint_at(world, sim::JointType::kBall, rider[0], rider[1],
-                                       position + sim::rotate(rotation, kNeckAnchor), up);
-    neck.enable_limit = true;
-    neck.cone_angle = 0.6f;
-    neck.twist_lower = -0.8f;
-    neck.twist_upper = 0.8f;
-    (void)create(world, neck);
-    for (uint32_t side = 0; side < 2; ++side) {
-      const sim::Vec3 shoulder{side == 0 ? kShoulderX : -kShoulderX, kShoulderY, -0.2f};
-      sim::JointDef arm = sim::joint_at(world, sim::JointType::kBall, rider[0], rider[2 + side],
-                                        position + sim::rotate(rotation, shoulder), -up);
-      arm.enable_limit = true;
-      arm.cone_angle = 1.4f;
-      arm.twist_lower = -1.0f;
-      arm.twist_upper = 1.0f;
-      (void)create(world, arm);
+    // The rider, made standing on the seat and seated at once.
+    Result<sim::Ragdoll3D> rider = sim::create_ragdoll(
+        world, rider_spec(p, position + sim::rotate(rotation, kSeat), rotation));
+    if (rider.ok()) {
+      state.riders[p] = rider->parts;
+      state.rider_joints[p] = rider->joints;
     }
     (void)seat_rider(world, state, p);
   }
@@ -496,7 +551,7 @@ void JoustGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs, 
     def.wheels = wheel_defs;
     def.max_drive_force_n = charging ? kDriveForce * kChargeFactor : kDriveForce;
     def.max_brake_force_n = kBrakeForce;
-    def.filter.layer_mask = kLayerGround | kLayerCar | kLayerRider;
+    def.filter.layer_mask = kLayerGround | kLayerCar | kLayerRiders;
     sim::VehicleControls3D controls;
     // Toward the stick's speed: a released stick rolls the car to a stop.
     controls.throttle = std::clamp((ay * top - speed) / kSpeedBandMps, -1.0f, 1.0f);
@@ -559,6 +614,7 @@ void JoustGame::after_step_typed(Tick /*tick*/, sim::World3D& world, JoustState&
     if (!state.seats[p].is_null() && (knocked[p] || world.is_joint_broken(state.seats[p]))) {
       (void)world.destroy_joint(state.seats[p]);
       state.seats[p] = {};
+      set_rider_tone(world, state, p, false);
       state.respawn_ticks[p] = kRespawnTicks;
       ++state.unseated[p];
       if (state.hit_ticks[p] > 0 && state.last_hitter[p] != 0) {
@@ -607,6 +663,7 @@ void JoustGame::hash_typed(const JoustState& state, sim::StateHasher& hasher) co
     add_body(state.lances[p]);
     add_joint(state.lance_welds[p]);
     for (const sim::BodyId part : state.riders[p]) add_body(part);
+    for (const sim::JointId joint : state.rider_joints[p]) add_joint(joint);
     add_joint(state.seats[p]);
     hasher.add_u32(state.score[p]);
     hasher.add_u32(state.unseated[p]);

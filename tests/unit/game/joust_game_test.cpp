@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The 3D vehicle game: cars on raycast wheels over a height field, lances
-// welded on, riders held by breakable welds, a wrecking ball on a chain of
-// ball joints. A match rolls back and reloads bit for bit, a lance strike
+// welded on, ragdoll riders held by breakable welds, a wrecking ball on a
+// chain of ball joints. A match rolls back and reloads bit for bit, a lance strike
 // throws a rider and scores, the ball keeps swinging on a chain that holds.
 #include <gtest/gtest.h>
 
@@ -75,11 +75,12 @@ TEST(JoustGame, BuildsCarsRidersAndTheWreckingBall) {
     EXPECT_TRUE(w.is_valid(s.lances[p]));
     EXPECT_FALSE(s.seats[p].is_null());
     for (const sim::BodyId part : s.riders[p]) EXPECT_TRUE(w.is_valid(part));
+    for (const sim::JointId joint : s.rider_joints[p]) EXPECT_TRUE(w.is_valid(joint));
   }
   EXPECT_TRUE(w.is_valid(s.ball));
-  // Per car: the lance weld, the seat weld, neck and two shoulders; the
+  // Per car: the lance weld, the seat weld and the ragdoll's ten; the
   // chain: one per link and the ball's.
-  EXPECT_EQ(w.joint_count(), 4u * 5u + kJoustChainLinks + 1u);
+  EXPECT_EQ(w.joint_count(), 4u * (2u + sim::kRagdollJointCount3D) + kJoustChainLinks + 1u);
   EXPECT_TRUE(sim->game().validate_state(sim->setup(), sim->game_state()).ok());
 }
 
@@ -94,6 +95,15 @@ TEST(JoustGame, CarsDriveAndRidersStaySeatedOnTheBumps) {
   }
   const JoustState start = state_of(*sim);
   const sim::Vec3 from = world(*sim).position(start.chassis[0]);
+  // Where each rider's head sits in its car's frame.
+  auto head_in_car = [&](uint32_t p) {
+    const sim::World3D& w = world(*sim);
+    const JoustState s = state_of(*sim);
+    const sim::BodyId head = s.riders[p][static_cast<uint32_t>(sim::RagdollPart3D::kHead)];
+    return sim::inv_rotate(w.rotation(s.chassis[p]), w.position(head) - w.position(s.chassis[p]));
+  };
+  std::vector<sim::Vec3> seated_head;
+  for (uint32_t p = 0; p < 4; ++p) seated_head.push_back(head_in_car(p));
   float travelled = 0.0f;
   for (Tick t = 0; t < 600; ++t) {
     sim->step(inputs);
@@ -103,6 +113,8 @@ TEST(JoustGame, CarsDriveAndRidersStaySeatedOnTheBumps) {
   std::printf("[ measured ] car 0 went up to %.1f m from its spawn point\n", travelled);
   EXPECT_GT(travelled, 3.0f);
   for (uint32_t p = 0; p < 4; ++p) {
+    // The ragdoll sits up: its head is where it was seated, within a few cm.
+    EXPECT_LT(sim::length(head_in_car(p) - seated_head[p]), 0.05f) << "player " << p;
     EXPECT_EQ(s.unseated[p], 0u) << "player " << p;
     EXPECT_EQ(s.car_resets[p], 0u) << "player " << p;
     EXPECT_FALSE(s.seats[p].is_null()) << "player " << p;
@@ -203,12 +215,12 @@ TEST(JoustGame, ALanceStrikeThrowsTheRiderAndScores) {
   EXPECT_EQ(s.unseated[0], 0u);  // the attacker kept its seat
   EXPECT_FALSE(s.seats[0].is_null());
 
-  // The figure leaves the car: half a second later its torso is well clear.
+  // The figure leaves the car: half a second later its pelvis is well clear.
   for (Tick t = 0; t < 30; ++t) sim->step(inputs);
   s = state_of(*sim);
   const sim::Vec3 seat = w.position(s.chassis[1]);
   const float away = sim::length(w.position(s.riders[1][0]) - seat);
-  std::printf("[ measured ] thrown torso %.2f m from its car after 0.5 s\n",
+  std::printf("[ measured ] thrown rider's pelvis %.2f m from its car after 0.5 s\n",
               static_cast<double>(away));
   EXPECT_GT(away, 1.5f);
   EXPECT_EQ(state_of(*sim).score[0], 1u);  // one throw, one point

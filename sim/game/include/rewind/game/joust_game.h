@@ -2,21 +2,23 @@
 // "joust": each player drives a car (a raycast-wheel vehicle, vehicle3d.h)
 // across a bumpy height-field arena whose edges rise into a bowl. A lance
 // is welded to the left of every car, pointing ahead at riding height, and
-// a rider figure sits on the car, held by a weld that breaks under a hard
-// knock. A lance that strikes another player's rider hard enough throws it
+// a rider (a ragdoll) sits on the car, held by a weld that breaks under a
+// hard knock. A lance that strikes another player's rider hard enough throws it
 // off (the seat weld goes, the figure flies): a point for the lance's
 // owner. Crashes and the wrecking ball swinging from the gantry in the
 // middle throw riders too, for no point. A thrown rider is seated again on
 // its car a few seconds later; a car on its roof (or out of the arena) is
 // put back at its spawn point.
 //
-// Controls (PlayerInput): axis_y is the throttle (+ forward, - reverse),
+// Controls (PlayerInput): axis_y sets the speed the car drives toward
+// (full deflection 12 m/s ahead or behind; released, it rolls to a stop),
 // axis_x steers (+ right), kJoustBrake brakes, kJoustCharge starts a
-// charge (more drive force for a second, then a cooldown).
+// charge (more drive force and top speed for a second, then a cooldown).
 #include <array>
 #include <cstdint>
 
 #include "rewind/game/game_on.h"
+#include "rewind/sim/ragdoll3d.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::game {
@@ -25,8 +27,6 @@ namespace rwd::game {
 inline constexpr uint32_t kJoustBrake = 1u << 0;
 inline constexpr uint32_t kJoustCharge = 1u << 1;
 
-/// Bodies of one rider figure: torso, head, left arm, right arm.
-inline constexpr uint32_t kJoustRiderParts = 4;
 /// Links of the wrecking ball's chain (the ball hangs from the last).
 inline constexpr uint32_t kJoustChainLinks = 7;
 
@@ -37,8 +37,10 @@ struct JoustState {
   std::array<sim::BodyId, kMaxPlayers> chassis{};
   std::array<sim::BodyId, kMaxPlayers> lances{};
   std::array<sim::JointId, kMaxPlayers> lance_welds{};
-  /// riders[p][part], parts in kJoustRiderParts order.
-  std::array<std::array<sim::BodyId, kJoustRiderParts>, kMaxPlayers> riders{};
+  /// Each rider, a ragdoll (ragdoll3d.h): its parts, indexed by
+  /// sim::RagdollPart3D, and its joints, by sim::RagdollJoint3D.
+  std::array<std::array<sim::BodyId, sim::kRagdollPartCount3D>, kMaxPlayers> riders{};
+  std::array<std::array<sim::JointId, sim::kRagdollJointCount3D>, kMaxPlayers> rider_joints{};
   /// The weld holding the rider on its car; null while the rider is off.
   std::array<sim::JointId, kMaxPlayers> seats{};
   std::array<uint32_t, kMaxPlayers> score{};     ///< opponents unseated
@@ -71,8 +73,9 @@ class JoustGame final : public GameWithState<sim::World3D, JoustState> {
   uint32_t rules_version() const override { return 1; }
   sim::WorldConfig world_config() const override;
 
-  /// Seats player p's rider on its car now (posed on the seat, moving with
-  /// the car, a fresh seat weld), whether or not it was seated. For the
+  /// Seats player p's rider on its car now (the ragdoll posed sitting on
+  /// the roof, moving with the car, a fresh seat weld), whether or not it
+  /// was seated. For the
   /// rules' respawn and for tests; false when the car or rider is missing.
   static bool seat_rider(sim::World3D& world, JoustState& state, uint32_t player);
   /// Puts player p's car (chassis, lance, and the rider while seated) at
