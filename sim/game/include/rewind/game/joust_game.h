@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: MIT
 // "joust": each player drives a car (a raycast-wheel vehicle, vehicle3d.h)
-// across a bumpy height-field arena whose edges rise into a bowl. A lance
-// is welded to the left of every car, pointing ahead at riding height, and
-// a rider (a ragdoll) sits on the car, held by a weld that breaks under a
-// hard knock. A lance that strikes another player's rider hard enough throws it
-// off (the seat weld goes, the figure flies): a point for the lance's
-// owner. Crashes and the wrecking ball swinging from the gantry in the
-// middle throw riders too, for no point. A thrown rider is seated again on
-// its car a few seconds later; a car on its roof (or out of the arena) is
-// put back at its spawn point.
+// across a bumpy height-field arena whose edges rise into a bowl. A lance is
+// welded to the left of every car, pointing ahead at riding height, and a
+// rider (a ragdoll) sits on the car, held by a weld that breaks under a hard
+// knock. A lance that strikes another player's rider hard enough throws it
+// off (the seat weld goes, the figure flies): a point for the lance's owner.
+// Crashes and the wrecking ball swinging from the gantry in the middle throw
+// riders too, for no point. A thrown rider is seated again on its car a few
+// seconds later; a car on its roof (or out of the arena) is put back at its
+// spawn point.
 //
 // Controls (PlayerInput): axis_y sets the speed the car drives toward
 // (full deflection 12 m/s ahead or behind; released, it rolls to a stop),
