@@ -111,7 +111,8 @@ constexpr uint32_t kLayerCar = 1u << 1;
 constexpr uint32_t kLayerChain = 1u << 3;
 // Each rider's parts are on one of the top 24 bits (player p on bit
 // 8 + p % 24) and skip only their own bit: a figure's parts never collide
-// with each other, and riders collide with each other's.
+// with each other, and riders collide with each other's (but for players
+// 24 slots apart, whose riders share a bit and pass through each other).
 constexpr uint32_t kRiderLayerFirst = 8;
 constexpr uint32_t kRiderLayerCount = 24;
 constexpr uint32_t kLayerRiders = 0xFFFFFF00u;
