@@ -31,7 +31,9 @@
 // trees and a loop, a break, a raycast car and a character.
 // Before the "crates" match it plays a scripted 2D "arena" match the same
 // way, its lines prefixed "arena ", so the fixed-point lane and its
-// rollback are part of the matrix too.
+// rollback are part of the matrix too; then a scripted 3D "joust" match,
+// its lines prefixed "joust ", so the height field, the raycast vehicles,
+// welds that break, jointed riders and the wrecking ball's chain are.
 //
 // Usage: det_checksums [TICKS]   (default 600)
 // Exit codes: 0 ok, 2 bad usage or the game could not be created, 3 rollback
@@ -98,6 +100,19 @@ std::vector<PlayerInput> make_script(Tick ticks) {
       --hold[p];
       inputs[static_cast<size_t>(t) * kPlayers + p] = current[p];
     }
+  }
+  return inputs;
+}
+
+// The joust drivers: the same stream, with the throttle mostly forward
+// (cars that only dither never meet), charging on bit 1 as it comes and
+// braking on one tick in eight.
+std::vector<PlayerInput> make_joust_script(Tick ticks) {
+  std::vector<PlayerInput> inputs = make_script(ticks);
+  for (PlayerInput& in : inputs) {
+    const int32_t y = in.axis_y < 0 ? -in.axis_y : in.axis_y;
+    in.axis_y = static_cast<int16_t>(300 + y * 7 / 10);
+    in.buttons = (in.buttons & 2u) | ((in.buttons >> 8) % 8 == 0 ? 1u : 0u);
   }
   return inputs;
 }
@@ -367,7 +382,8 @@ bool parse_ticks(const char* text, Tick& out) {
 // A scripted match of `game`, one line per tick prefixed by `prefix`,
 // with the save / mispredict / restore / re-step check every
 // kRollbackEvery ticks. Returns 0, 2 (the game cannot be created) or 3.
-int run_match(const char* game, const char* prefix, Tick ticks) {
+int run_match(const char* game, const char* prefix, Tick ticks,
+              std::vector<PlayerInput> (*script_for)(Tick) = make_script) {
   MatchSetup setup;
   setup.player_count = kPlayers;
   setup.seed = kSeed;
@@ -379,7 +395,7 @@ int run_match(const char* game, const char* prefix, Tick ticks) {
   }
   Simulation& sim = **created;
 
-  const std::vector<PlayerInput> script = make_script(ticks);
+  const std::vector<PlayerInput> script = script_for(ticks);
   SimSnapshot snapshot;
   uint64_t first_pass[kRollbackDepth] = {};
 
@@ -450,6 +466,9 @@ int main(int argc, char** argv) {
   // The 2D lane's sample game: the fixed-point world through the same
   // seam, with the same rollback check.
   if (const int rc = run_match("arena", "arena ", ticks); rc != 0) return rc;
+  // The 3D vehicle game: cars on raycast wheels over a height field,
+  // breakable seat welds, jointed riders thrown and re-seated, a chain.
+  if (const int rc = run_match("joust", "joust ", ticks, make_joust_script); rc != 0) return rc;
   if (const int rc = run_match("crates", "", ticks); rc != 0) return rc;
   return std::fflush(stdout) == 0 ? 0 : 2;
 }

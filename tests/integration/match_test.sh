@@ -24,6 +24,12 @@
 #            replay verifies.
 #   arena_desync  one arena bot corrupts its state at tick 120: detected
 #            there, the report names the 2D field (center.x), resynced.
+#   joust    the 3D vehicle game ("joust": raycast cars, jointed riders, a
+#            wrecking ball on a chain) with 4 bots under latency, jitter
+#            and 2% loss: rollbacks happen, no desync, the replay verifies.
+#   joust_desync  one joust bot corrupts its state at tick 120: detected
+#            there, the report names position.x, resynced; the replay
+#            verifies.
 #   kill     the server gets SIGKILL mid-match: the replay it leaves has no
 #            end record; verify checks its whole prefix and exits 4.
 #   long     16 bots, 17,400 ticks at 60 Hz (about 5 minutes), 5 ms latency
@@ -68,7 +74,10 @@ if [ "$mode" = long ]; then
   corrupt_at=$(( ticks - 1500 ))
 fi
 game=crates
-case "$mode" in arena|arena_desync) game=arena ;; esac
+case "$mode" in
+  arena|arena_desync) game=arena ;;
+  joust|joust_desync) game=joust ;;
+esac
 budget=$ticks
 [ "$mode" = signal ] || [ "$mode" = kill ] && budget=0
 started=$(date +%s)
@@ -89,8 +98,8 @@ else
 fi
 case "$mode" in
   faults)  bots_args+=(--latency-ms 30 --jitter-ms 10 --loss 0.05 --duplicate 0.02 --reorder 0.02) ;;
-  desync|arena_desync)  bots_args+=(--latency-ms 10 --corrupt-bot 2 --corrupt-at-tick 120) ;;
-  arena)   bots_args+=(--latency-ms 20 --jitter-ms 5 --loss 0.02) ;;
+  desync|arena_desync|joust_desync)  bots_args+=(--latency-ms 10 --corrupt-bot 2 --corrupt-at-tick 120) ;;
+  arena|joust)   bots_args+=(--latency-ms 20 --jitter-ms 5 --loss 0.02) ;;
   garbage) bots_args+=(--latency-ms 10) ;;
   signal|kill) bots_args+=(--latency-ms 10) ;;
   latency) bots_args+=(--latency-ms 150 --jitter-ms 10 --loss 0.02) ;;
@@ -245,6 +254,27 @@ PY
     [ "$(json bots.json final_ticks_verified)" -ge $(( 4 * (ticks - 20) )) ] || fail "too few verified final ticks"
     "$bin/rewind-replay" verify match.rwr >verify.txt 2>&1 || fail "replay did not verify: $(cat verify.txt)"
     grep -q "verified $ticks ticks (game arena" verify.txt || fail "unexpected verify output: $(cat verify.txt)"
+    ;;
+  joust)
+    [ "$bots_status" = 0 ] || fail "rewind-bots exited $bots_status"
+    [ "$(json bots.json desyncs)" = 0 ] || fail "desyncs in joust"
+    rollbacks=$(( $(json server.json rollbacks) + $(json bots.json rollbacks) ))
+    [ "$rollbacks" -gt 0 ] || fail "no rollbacks happened: the test did not exercise them"
+    [ "$(json bots.json final_ticks_verified)" -ge $(( 4 * (ticks - 20) )) ] || fail "too few verified final ticks"
+    "$bin/rewind-replay" verify match.rwr >verify.txt 2>&1 || fail "replay did not verify: $(cat verify.txt)"
+    grep -q "verified $ticks ticks (game joust" verify.txt || fail "unexpected verify output: $(cat verify.txt)"
+    echo "joust: $(head -1 verify.txt); rollbacks: server $(json server.json rollbacks), bots $(json bots.json rollbacks)"
+    ;;
+  joust_desync)
+    [ "$bots_status" = 1 ] || fail "rewind-bots exited $bots_status, expected 1 (desync detected)"
+    [ "$(json bots.json desyncs)" = 1 ] || fail "expected exactly one desync, got $(json bots.json desyncs)"
+    [ "$(json bots.json resyncs)" -ge 1 ] || fail "the corrupted bot was not resynced"
+    grep -q "bot 2: DESYNC at tick 120 " bots.log || fail "desync not detected at tick 120: $(grep DESYNC bots.log)"
+    report=$(ls desyncs/desync_p*_t120_*.txt 2>/dev/null | head -1)
+    [ -n "$report" ] || fail "no desync report file for tick 120: $(ls desyncs)"
+    grep -q "position.x" "$report" || fail "report does not name position.x: $(cat "$report")"
+    "$bin/rewind-replay" verify match.rwr >verify.txt 2>&1 || fail "replay did not verify: $(cat verify.txt)"
+    grep -q "verified $ticks ticks (game joust" verify.txt || fail "unexpected verify output: $(cat verify.txt)"
     ;;
   arena_desync)
     [ "$bots_status" = 1 ] || fail "rewind-bots exited $bots_status, expected 1 (desync detected)"

@@ -6,6 +6,7 @@
 #include "rewind/game/arena_game.h"
 #include "rewind/game/crates_game.h"
 #include "rewind/game/game_registry.h"
+#include "rewind/game/joust_game.h"
 #include "rewind/game/simulation.h"
 
 namespace rwd::game {
@@ -36,7 +37,7 @@ bool is_game_name(std::string_view name) {
 }  // namespace
 
 std::vector<std::string_view> builtin_game_names() {
-  std::vector<std::string_view> names = {"arena", "crates"};
+  std::vector<std::string_view> names = {"arena", "crates", "joust"};
   Registry& r = registry();
   std::lock_guard lock(r.mutex);
   for (const auto& [name, factory] : r.games) names.push_back(name);
@@ -46,6 +47,7 @@ std::vector<std::string_view> builtin_game_names() {
 std::unique_ptr<Game> make_builtin_game(std::string_view name) {
   if (name == "crates") return std::make_unique<CratesGame>();
   if (name == "arena") return std::make_unique<ArenaGame>();
+  if (name == "joust") return std::make_unique<JoustGame>();
   Registry& r = registry();
   GameFactory factory;
   {
@@ -67,7 +69,7 @@ Status register_game(std::string_view name, GameFactory factory) {
     return Status::Error(ErrorCode::kInvalidArgument,
                          "game '" + std::string(name) + "' has no factory");
   }
-  if (name == "crates" || name == "arena") {
+  if (name == "crates" || name == "arena" || name == "joust") {
     return Status::Error(ErrorCode::kInvalidArgument,
                          "game '" + std::string(name) + "' is built in");
   }

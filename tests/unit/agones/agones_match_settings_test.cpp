@@ -116,8 +116,9 @@ TEST(AgonesMatchSettings, UnknownSettingsAreRefused) {
 }
 
 TEST(AgonesMatchSettings, TheWholeConfigurationIsValidated) {
-  expect_refused({{"rewind.dev/game", "chess"}, {"rewind.dev/players", "4"}},
-                 "the allocation's match settings: unknown game 'chess' (known: arena crates)");
+  expect_refused(
+      {{"rewind.dev/game", "chess"}, {"rewind.dev/players", "4"}},
+      "the allocation's match settings: unknown game 'chess' (known: arena crates joust)");
   expect_refused({{"rewind.dev/players", "32"}, {"rewind.dev/spectators", "63"}},
                  "the allocation's match settings: players + spectators must be at most 64");
 }

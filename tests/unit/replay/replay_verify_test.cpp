@@ -508,7 +508,7 @@ TEST(ReplayVerify, UnknownGameIsAVersionMismatchAndMissingFileAnError) {
   ASSERT_TRUE(report.versions.has_value());
   EXPECT_EQ(report.versions->differences,
             (std::vector<std::string>{"game: this build has no game \"no-such-game\" (it has: "
-                                      "arena, crates)"}));
+                                      "arena, crates, joust)"}));
   EXPECT_EQ(report.versions->this_build.label(), std::string(sim::kEngineName) + " r" +
                                                      std::to_string(sim::kSimRevision) +
                                                      " (no game \"no-such-game\")");
