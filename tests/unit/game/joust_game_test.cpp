@@ -246,8 +246,10 @@ TEST(JoustGame, AnUpsetCarGoesBackToItsSpawnPoint) {
   for (Tick t = 0; t < 200; ++t) sim->step(inputs);
   s = state_of(*sim);
   EXPECT_EQ(s.car_resets[1], 1u);
-  EXPECT_NEAR(w.position(s.chassis[1]).x, spawn.x, 0.3f);
-  EXPECT_NEAR(w.position(s.chassis[1]).z, spawn.z, 0.3f);
+  // Put back and left with no brake on the bowl's floor, it may roll a
+  // little before it stops.
+  EXPECT_NEAR(w.position(s.chassis[1]).x, spawn.x, 0.5f);
+  EXPECT_NEAR(w.position(s.chassis[1]).z, spawn.z, 0.5f);
   EXPECT_GT(sim::rotate(w.rotation(s.chassis[1]), {0.0f, 1.0f, 0.0f}).y, 0.9f);
 }
 
