@@ -504,7 +504,7 @@ void solve(WorldState& state, WorldScratch& scratch) {
       // The joints' structure closed by moving the bodies (before the
       // contacts measure their separations, so an overlap the move made
       // is pushed out like any other), then relaxed.
-      refresh_joint_rows(state, scratch);
+      refresh_joint_rows(state, scratch, true);
       solve_joints(state, scratch, false);
     }
     if (config.relax_iterations > 0) {

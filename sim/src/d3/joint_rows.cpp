@@ -15,11 +15,12 @@ namespace rwd::sim::d3 {
 
 JointFrames joint_frames(const JointConstraint& c, const SolverBody& a, const SolverBody& b) {
   JointFrames f;
-  f.qa = a.delta_rotation * c.rotation_a;
-  f.qb = b.delta_rotation * c.rotation_b;
   f.ra = rotate(a.delta_rotation, c.anchor_a);
   f.rb = rotate(b.delta_rotation, c.anchor_b);
   f.d = (b.delta_position - a.delta_position) + c.delta_center + (f.rb - f.ra);
+  if (!c.orients) return f;
+  f.qa = a.delta_rotation * c.rotation_a;
+  f.qb = b.delta_rotation * c.rotation_b;
   f.fa = a.delta_rotation * c.frame_a;
   f.fb = b.delta_rotation * c.frame_b;
   return f;

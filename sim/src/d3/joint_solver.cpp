@@ -83,6 +83,10 @@ void prepare_joints(const WorldState& state, WorldScratch& scratch, float h) {
     c.frame_a = c.rotation_a * j.frame_a;
     c.frame_b = c.rotation_b * j.frame_b;
     c.soft = soft;
+    c.orients =
+        j.type == JointType::kHinge || j.type == JointType::kWeld ||
+        j.type == JointType::kPrismatic ||
+        (j.type == JointType::kBall && (j.flags & (kJointLimit | kJointSpring | kJointMotor)) != 0);
     c.spring_soft =
         joint_softness(j.type == JointType::kWeld ? j.linear_hertz : j.hertz, j.damping_ratio, h);
     c.angular_soft = joint_softness(j.angular_hertz, j.damping_ratio, h);
@@ -113,10 +117,10 @@ void prepare_joints(const WorldState& state, WorldScratch& scratch, float h) {
   build_joint_trees(scratch);
 }
 
-void refresh_joint_rows(const WorldState& state, WorldScratch& scratch) {
+void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool trees_only) {
   JointRow rows[kMaxBlockRows];
   for (JointConstraint& c : scratch.joint_constraints) {
-    if (c.block.size() == 0) continue;
+    if (c.block.size() == 0 || (trees_only && c.tree == kNoTree)) continue;
     const JointRecord& j = state.joints[c.record];
     const SolverBody& a = scratch.solver_bodies[c.body_a];
     const SolverBody& b = scratch.solver_bodies[c.body_b];

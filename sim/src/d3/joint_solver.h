@@ -76,6 +76,9 @@ struct JointConstraint {
   /// Rows the joint's block may grow to (its structure and limits; the
   /// tree reserves that many).
   uint8_t capacity = 0;
+  /// The joint reads the bodies' orientations (its frames), not only its
+  /// anchors: joint_frames() computes them only then.
+  bool orients = true;
   /// The tree the joint is solved in (kNoTree: on its own), and where its
   /// rows start in the tree's row vectors.
   uint32_t tree = 0xFFFFFFFFu;
@@ -147,10 +150,13 @@ bool joint_acts(const WorldState& state, const JointRecord& j);
 
 // The stages (joint_solver.cpp), over scratch.joint_constraints.
 void prepare_joints(const WorldState& state, WorldScratch& scratch, float h);
-/// Rebuilds and refactors every joint's structural rows (and the trees)
-/// where the bodies stand; the warm start does it first, the relax pass
-/// needs it after the move.
-void refresh_joint_rows(const WorldState& state, WorldScratch& scratch);
+/// Rebuilds and refactors the joints' structural rows (and the trees)
+/// where the bodies stand: all of them at the start of a substep (the
+/// warm start does it first), only the trees' after its move (`trees_only`:
+/// a joint solved on its own keeps its rows for the relax, one substep's
+/// turn behind, which its well-conditioned block does not notice; a tree's
+/// factors must match the rows it applies).
+void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool trees_only = false);
 void warm_start_joints(const WorldState& state, WorldScratch& scratch);
 void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias);
 /// Closes what the substep left open of the joints' structure: each tree,
