@@ -278,6 +278,10 @@ float settle(float v) {
 Vec3 settle(Vec3 v) {
   return {settle(v.x), settle(v.y), settle(v.z)};
 }
+float settle_push(float v) {
+  const float f = settle(v);
+  return f > 0.0f ? f : 0.0f;
+}
 
 }  // namespace
 
@@ -289,9 +293,11 @@ void store_joint_impulses(WorldState& state, WorldScratch& scratch) {
     j.motor_impulse = settle(c.motor_impulse);
     j.spring_impulse = settle(c.spring_impulse);
     j.axial_impulse = settle(c.axial_impulse);
-    j.lower_impulse = settle(c.lower_impulse);
-    j.upper_impulse = settle(c.upper_impulse);
-    j.cone_impulse = settle(c.cone_impulse);
+    // A limit only pushes: its impulse is kept at zero or above, as the
+    // state rule holds it, whatever rounding or a release left.
+    j.lower_impulse = settle_push(c.lower_impulse);
+    j.upper_impulse = settle_push(c.upper_impulse);
+    j.cone_impulse = settle_push(c.cone_impulse);
     if (j.break_impulse <= 0.0f) continue;
     const float limit_sq = j.break_impulse * j.break_impulse;
     if (length_squared(c.tick_linear) > limit_sq || length_squared(c.tick_angular) > limit_sq) {
