@@ -198,6 +198,8 @@ void solve_alone(const JointRecord& j, JointConstraint& c, SolverBody& a, Solver
   base.block_impulse = acc;
   if (ops.extras != nullptr) ops.extras(j, c, a, b, f, use_bias, base);
   solve_free_limits(j, c, a, b, f, use_bias, base);
+  // Their compensation may have pulled on a limit the block holds.
+  settle_held_limits(c, a, b, acc);
   scatter_impulses(c, acc);
 }
 
@@ -294,7 +296,8 @@ void store_joint_impulses(WorldState& state, WorldScratch& scratch) {
     j.spring_impulse = settle(c.spring_impulse);
     j.axial_impulse = settle(c.axial_impulse);
     // A limit only pushes: its impulse is kept at zero or above, as the
-    // state rule holds it, whatever rounding or a release left.
+    // state rule holds it (the passes settle it so; this holds the rule
+    // whatever rounding leaves).
     j.lower_impulse = settle_push(c.lower_impulse);
     j.upper_impulse = settle_push(c.upper_impulse);
     j.cone_impulse = settle_push(c.cone_impulse);
