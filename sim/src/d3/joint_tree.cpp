@@ -284,6 +284,15 @@ void solve_tree_rows(WorldScratch& s, const JointTree& tree) {
 
 }  // namespace
 
+float tree_row_coupling(const JointRow& r, bool r_on_a, const JointRow& s, bool s_on_a,
+                        const SolverBody& body) {
+  return coupling(r, r_on_a, s, s_on_a, body);
+}
+
+void solve_tree(WorldScratch& s, const JointTree& tree) {
+  solve_tree_rows(s, tree);
+}
+
 void build_joint_trees(WorldScratch& s) {
   s.trees.clear();
   s.tree_bodies.clear();
@@ -506,116 +515,6 @@ void project_joint_tree(const std::vector<JointRecord>& records, WorldScratch& s
     float* x = s.tree_lambda.data() + c.tree_row;
     release_pulling_limits(c, x);
     displace(c.block, x, s.solver_bodies[c.body_a], s.solver_bodies[c.body_b]);
-  }
-}
-
-namespace {
-
-// K column of an outside row on bodies (body_a, body_b) against every row
-// of tree t: the coupling through whichever of those bodies a tree joint
-// shares (immovable bodies couple nothing).
-void tree_coupling(const WorldScratch& s, const JointTree& tree, uint32_t body_a, uint32_t body_b,
-                   const JointRow& e, float* out) {
-  const SolverBody& ba = s.solver_bodies[body_a];
-  const SolverBody& bb = s.solver_bodies[body_b];
-  for (uint32_t k = tree.joint_begin; k < tree.joint_end; ++k) {
-    const JointConstraint& c = s.joint_constraints[s.tree_joints[k]];
-    for (int i = 0; i < c.block.size(); ++i) {
-      const JointRow& r = c.block.row(i);
-      float v = 0.0f;
-      if (body_a != 0 && (c.body_a == body_a || c.body_b == body_a)) {
-        v += coupling(r, c.body_a == body_a, e, true, ba);
-      }
-      if (body_b != 0 && (c.body_a == body_b || c.body_b == body_b)) {
-        v += coupling(r, c.body_a == body_b, e, false, bb);
-      }
-      out[c.tree_row + static_cast<uint32_t>(i)] = v;
-    }
-  }
-}
-
-}  // namespace
-
-void prepare_tree_group(WorldScratch& s, uint32_t t, uint32_t body_a, uint32_t body_b,
-                        const JointRow* rows, int m, float (*s_inv)[3]) {
-  const JointTree& tree = s.trees[t];
-  const size_t total = s.tree_rhs.size();
-  s.tree_extra_y.resize(3 * total);
-  s.tree_extra_c.resize(3 * total);
-  const SolverBody& ba = s.solver_bodies[body_a];
-  const SolverBody& bb = s.solver_bodies[body_b];
-  for (int k = 0; k < m; ++k) {
-    float* col = s.tree_extra_c.data() + static_cast<size_t>(k) * total;
-    tree_coupling(s, tree, body_a, body_b, rows[k], col);
-    // y_k = K^-1 col over the tree's rows.
-    for (uint32_t q = tree.joint_begin; q < tree.joint_end; ++q) {
-      const JointConstraint& c = s.joint_constraints[s.tree_joints[q]];
-      for (int i = 0; i < c.block.size(); ++i) {
-        s.tree_rhs[c.tree_row + static_cast<uint32_t>(i)] =
-            col[c.tree_row + static_cast<uint32_t>(i)];
-      }
-    }
-    solve_tree_rows(s, tree);
-    float* y = s.tree_extra_y.data() + static_cast<size_t>(k) * total;
-    for (uint32_t q = tree.joint_begin; q < tree.joint_end; ++q) {
-      const JointConstraint& c = s.joint_constraints[s.tree_joints[q]];
-      for (int i = 0; i < c.block.size(); ++i) {
-        const uint32_t at = c.tree_row + static_cast<uint32_t>(i);
-        y[at] = s.tree_lambda[at];
-      }
-    }
-  }
-  // S = K_ee - col . y, padded to 3 x 3.
-  float sm[3][3] = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};
-  for (int k = 0; k < m; ++k) {
-    const float* y = s.tree_extra_y.data() + static_cast<size_t>(k) * total;
-    for (int l = 0; l < m; ++l) {
-      float v =
-          coupling(rows[l], true, rows[k], true, ba) + coupling(rows[l], false, rows[k], false, bb);
-      const float* col = s.tree_extra_c.data() + static_cast<size_t>(l) * total;
-      for (uint32_t q = tree.joint_begin; q < tree.joint_end; ++q) {
-        const JointConstraint& c = s.joint_constraints[s.tree_joints[q]];
-        for (int i = 0; i < c.block.size(); ++i) {
-          const uint32_t at = c.tree_row + static_cast<uint32_t>(i);
-          v -= col[at] * y[at];
-        }
-      }
-      sm[k][l] = v;
-    }
-  }
-  for (int k = 0; k < m; ++k) {
-    if (!(sm[k][k] > 1e-12f)) {
-      for (int l = 0; l < 3; ++l) sm[k][l] = sm[l][k] = 0.0f;
-    }
-  }
-  const Mat3 inv = inverse_symmetric(Mat3{{sm[0][0], sm[0][1], sm[0][2]},
-                                          {sm[1][0], sm[1][1], sm[1][2]},
-                                          {sm[2][0], sm[2][1], sm[2][2]}});
-  const Vec3 cols[3] = {inv.c0, inv.c1, inv.c2};
-  for (int k = 0; k < 3; ++k) {
-    for (int l = 0; l < 3; ++l) s_inv[k][l] = k < m && l < m ? component(cols[k], l) : 0.0f;
-  }
-}
-
-void apply_tree_compensation(WorldScratch& s, uint32_t t, int m, const float* delta) {
-  const JointTree& tree = s.trees[t];
-  const size_t total = s.tree_rhs.size();
-  float comp[kMaxBlockRows];
-  for (uint32_t q = tree.joint_begin; q < tree.joint_end; ++q) {
-    JointConstraint& c = s.joint_constraints[s.tree_joints[q]];
-    bool any = false;
-    for (int i = 0; i < c.block.size(); ++i) {
-      const uint32_t at = c.tree_row + static_cast<uint32_t>(i);
-      float v = 0.0f;
-      for (int k = 0; k < m; ++k)
-        v -= s.tree_extra_y[static_cast<size_t>(k) * total + at] * delta[k];
-      comp[i] = v;
-      any = any || v != 0.0f;
-    }
-    if (!any) continue;
-    c.block.apply(s.solver_bodies[c.body_a], s.solver_bodies[c.body_b], comp);
-    for (int i = 0; i < c.block.size(); ++i)
-      s.tree_acc[c.tree_row + static_cast<uint32_t>(i)] += comp[i];
   }
 }
 

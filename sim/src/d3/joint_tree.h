@@ -68,6 +68,14 @@ void factor_joint_trees(WorldScratch& scratch);
 void solve_joint_tree(const std::vector<JointRecord>& joints, WorldScratch& scratch, uint32_t t,
                       bool use_bias);
 
+/// The velocity change of one row per unit impulse along another through
+/// one body (`*_on_a`: the row acts on that body as its joint's A).
+float tree_row_coupling(const JointRow& r, bool r_on_a, const JointRow& s, bool s_on_a,
+                        const SolverBody& body);
+/// lambda = K^-1 rhs over tree `tree` (scratch.tree_rhs in, consumed;
+/// scratch.tree_lambda out).
+void solve_tree(WorldScratch& scratch, const JointTree& tree);
+
 /// Readies one to three extra rows of a joint on solver bodies (a, b) of
 /// tree t to be solved against the whole tree held rigid: each row's
 /// coupling to the tree's rows, solved through the tree's factors (kept in
