@@ -266,6 +266,7 @@ void ClientProtocol::Impl::verify_finals(TimePoint now) {
     if (*local == server_checksum) {
       ++stats_.final_ticks_verified;
       stats_.last_final_tick = tick;
+      agreed_through_ = tick;
       if (events_.size() < kMaxQueuedEvents) {
         emit({ClientEventType::kFinalTick, tick, player_, *local, server_checksum, {}});
       }

@@ -90,6 +90,9 @@ struct ClientProtocol::Impl {
   std::deque<std::pair<Tick, game::PlayerInput>> unacked_;
   Tick input_ack_ = kNoTick;
   Tick last_final_received_ = kNoTick;
+  /// Last final tick our state is known to agree on: verified, or passed
+  /// over by a resync snapshot whose checksum matched.
+  Tick agreed_through_ = kNoTick;
   std::deque<std::pair<Tick, uint64_t>> pending_finals_;  // (tick, server checksum)
   std::map<Tick, v1::FinalTick> early_finals_;            // arrived ahead of a gap, bounded
   /// The final inputs of tick last_final_received_ (empty after a resync:

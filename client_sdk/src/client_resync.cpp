@@ -112,6 +112,12 @@ void ClientProtocol::Impl::load_resync(const v1::ResyncChunk& last_chunk, TimePo
   state_buffer_.clear();
   report_sends_ = 0;
   ++stats_.resyncs;
+  // The snapshot (its checksum checked) stands for the final ticks before
+  // it that our own simulation never verified.
+  if (tick - 1 > agreed_through_) {
+    stats_.final_ticks_resynced += static_cast<uint64_t>(tick - 1 - agreed_through_);
+    agreed_through_ = tick - 1;
+  }
   emit(
       {ClientEventType::kResynced, tick, player_, session_->simulation().checksum(), checksum, {}});
   step_due_ticks(now);

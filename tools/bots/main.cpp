@@ -258,7 +258,8 @@ int main(int argc, char** argv) {
   pump();
   io.run();
 
-  uint64_t rollbacks = 0, resimulated = 0, verified = 0, joined_ok = 0, ended_ok = 0, failed = 0;
+  uint64_t rollbacks = 0, resimulated = 0, verified = 0, resynced = 0, joined_ok = 0, ended_ok = 0,
+           failed = 0;
   int64_t min_final = INT64_MAX;
   double rtt_sum = 0;
   for (Bot& bot : fleet) {
@@ -266,6 +267,7 @@ int main(int argc, char** argv) {
     rollbacks += stats.rollbacks;
     resimulated += stats.resimulated_ticks;
     verified += stats.final_ticks_verified;
+    resynced += stats.final_ticks_resynced;
     rtt_sum += stats.rtt_ms;
     min_final = std::min<int64_t>(min_final, stats.last_final_tick + 1);
     joined_ok += bot.session->phase() != ClientSession::Phase::kJoining && !bot.failed;
@@ -287,7 +289,8 @@ int main(int argc, char** argv) {
         "\"desyncs\":%llu,"
         "\"resyncs\":%llu,\"resyncs_refused\":%llu,\"rollbacks\":%llu,\"resimulated_ticks\":%llu,"
         "\"ticks_final\":%lld,"
-        "\"final_ticks_verified\":%llu,\"rtt_ms_avg\":%.2f,\"duration_s\":%.2f}\n",
+        "\"final_ticks_verified\":%llu,\"final_ticks_resynced\":%llu,\"rtt_ms_avg\":%.2f,"
+        "\"duration_s\":%.2f}\n",
         static_cast<long long>(bots), static_cast<long long>(spectators),
         static_cast<unsigned long long>(joined_ok), static_cast<unsigned long long>(ended_ok),
         static_cast<unsigned long long>(failed), static_cast<unsigned long long>(desync_events),
@@ -295,8 +298,8 @@ int main(int argc, char** argv) {
         static_cast<unsigned long long>(refused_events), static_cast<unsigned long long>(rollbacks),
         static_cast<unsigned long long>(resimulated),
         static_cast<long long>(min_final == INT64_MAX ? 0 : min_final),
-        static_cast<unsigned long long>(verified), rtt_sum / static_cast<double>(fleet.size()),
-        elapsed);
+        static_cast<unsigned long long>(verified), static_cast<unsigned long long>(resynced),
+        rtt_sum / static_cast<double>(fleet.size()), elapsed);
   }
   std::fflush(stdout);
   if (failed > 0) return 2;

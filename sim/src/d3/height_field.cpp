@@ -46,6 +46,34 @@ uint8_t edge_bits(const HeightField& hf, const Vec3 p[3], Vec3 n, uint32_t e, in
   return classify_shared_edge(n, unit_normal(q), p[e], q[far_corner]);
 }
 
+// The active-edge bits of triangle `id` (not in a hole) from its
+// neighbours.
+uint8_t active_edges_of(const HeightField& hf, uint32_t id) {
+  Vec3 p[3];
+  height_field_corners(hf, id, p);
+  const Vec3 n = unit_normal(p);
+  const uint32_t cell = id >> 1;
+  const int64_t r = cell / (hf.cols - 1);
+  const int64_t c = cell % (hf.cols - 1);
+  uint8_t bits[3];
+  if ((id & 1) == 0) {
+    // (p00, p01, p11): left edge to cell (r, c - 1) half 1 (far corner its
+    // p00, index 0); top edge to (r + 1, c) half 1 (far corner p11, index
+    // 1); the diagonal to this cell's half 1 (far corner p10, index 2).
+    bits[0] = edge_bits(hf, p, n, 0, r, c - 1, 1, 0);
+    bits[1] = edge_bits(hf, p, n, 1, r + 1, c, 1, 1);
+    bits[2] = edge_bits(hf, p, n, 2, r, c, 1, 2);
+  } else {
+    // (p00, p11, p10): the diagonal to half 0 (far corner p01, index 1);
+    // right edge to (r, c + 1) half 0 (far corner p11, index 2); bottom
+    // edge to (r - 1, c) half 0 (far corner p00, index 0).
+    bits[0] = edge_bits(hf, p, n, 0, r, c, 0, 1);
+    bits[1] = edge_bits(hf, p, n, 1, r, c + 1, 0, 2);
+    bits[2] = edge_bits(hf, p, n, 2, r - 1, c, 0, 0);
+  }
+  return static_cast<uint8_t>(bits[0] | (bits[1] << 1) | (bits[2] << 2));
+}
+
 }  // namespace
 
 namespace height_field_detail {
@@ -115,6 +143,12 @@ Result<HeightField> build_height_field(uint32_t rows, uint32_t cols, Vec3 scale,
   hf.bounds = {
       {0.0f, lo, 0.0f},
       {static_cast<float>(cols - 1) * scale.x, hi, static_cast<float>(rows - 1) * scale.z}};
+  hf.edge_bits.assign(cells, 0);
+  for (uint32_t cell = 0; cell < cells; ++cell) {
+    if (height_field_is_hole(hf, cell)) continue;
+    hf.edge_bits[cell] = static_cast<uint16_t>(active_edges_of(hf, cell * 2) |
+                                               (active_edges_of(hf, cell * 2 + 1) << 8));
+  }
   return hf;
 }
 
@@ -123,26 +157,7 @@ TriangleRef height_field_triangle(const HeightField& hf, uint32_t id) {
   t.id = id;
   height_field_corners(hf, id, t.p);
   t.normal = unit_normal(t.p);
-  const uint32_t cell = id >> 1;
-  const int64_t r = cell / (hf.cols - 1);
-  const int64_t c = cell % (hf.cols - 1);
-  uint8_t bits[3];
-  if ((id & 1) == 0) {
-    // (p00, p01, p11): left edge to cell (r, c - 1) half 1 (far corner its
-    // p00, index 0); top edge to (r + 1, c) half 1 (far corner p11, index
-    // 1); the diagonal to this cell's half 1 (far corner p10, index 2).
-    bits[0] = edge_bits(hf, t.p, t.normal, 0, r, c - 1, 1, 0);
-    bits[1] = edge_bits(hf, t.p, t.normal, 1, r + 1, c, 1, 1);
-    bits[2] = edge_bits(hf, t.p, t.normal, 2, r, c, 1, 2);
-  } else {
-    // (p00, p11, p10): the diagonal to half 0 (far corner p01, index 1);
-    // right edge to (r, c + 1) half 0 (far corner p11, index 2); bottom
-    // edge to (r - 1, c) half 0 (far corner p00, index 0).
-    bits[0] = edge_bits(hf, t.p, t.normal, 0, r, c, 0, 1);
-    bits[1] = edge_bits(hf, t.p, t.normal, 1, r, c + 1, 0, 2);
-    bits[2] = edge_bits(hf, t.p, t.normal, 2, r - 1, c, 0, 0);
-  }
-  t.active_edges = static_cast<uint8_t>(bits[0] | (bits[1] << 1) | (bits[2] << 2));
+  t.active_edges = static_cast<uint8_t>(hf.edge_bits[id >> 1] >> (8 * (id & 1)));
   return t;
 }
 

@@ -12,9 +12,11 @@
 // is (p00, p11, p10), both counter-clockwise about +y. The triangle id is
 // cell * 2 + half with cell = r * (cols - 1) + c.
 //
-// Active edges are computed when a triangle is produced, from the
+// Active edges are computed once when the field is built, from the
 // neighbouring triangle across each edge (the same rule as the mesh's,
-// triangle.h); an edge next to a hole or the border is a boundary.
+// triangle.h); an edge next to a hole or the border is a boundary. They are
+// derived from the heights and holes alone, so a field loaded from a
+// snapshot recomputes the same bits.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -38,6 +40,10 @@ struct HeightField {
   std::vector<float> heights;  ///< rows * cols, row-major (index r * cols + c)
   std::vector<uint8_t> holes;  ///< (rows - 1) * (cols - 1) cells, 1 = hole; may be empty
   Aabb bounds;
+  /// Per cell, TriangleRef::active_edges of half 0 (low byte) and half 1
+  /// (high byte): derived at build (a triangle near a body is produced
+  /// every substep, its neighbours' normals only once).
+  std::vector<uint16_t> edge_bits;
 };
 
 /// Validates and builds. Refuses (kInvalidArgument): rows or cols outside

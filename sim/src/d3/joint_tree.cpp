@@ -244,6 +244,19 @@ void solve_tree_rows(WorldScratch& s, const JointTree& tree) {
       for (int i = 0; i < c.block.size(); ++i) front[at++] = s.tree_rhs[c.tree_row + i];
     }
     const uint32_t n = node.front;
+    // A front with nothing to carry (the column of an extra row is zero
+    // away from its bodies and their path to the root) solves to zero and
+    // eliminates nothing into the joint above.
+    bool empty = true;
+    for (uint32_t r = 0; r < n; ++r) empty = empty && front[r] == 0.0f;
+    if (empty) {
+      at = 0;
+      for (uint32_t ci = node.child_begin; ci < node.child_end; ++ci) {
+        const JointConstraint& c = joints[s.tree_children[ci]];
+        for (int i = 0; i < c.block.size(); ++i) s.tree_w[c.tree_row + i] = 0.0f;
+      }
+      continue;
+    }
     for (uint32_t r = 0; r < n; ++r) solved[r] = front[r];
     solve_dense(arena + node.factor_at, arena + node.factor_at + n * n, n, solved);
     at = 0;

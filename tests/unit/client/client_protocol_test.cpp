@@ -335,6 +335,10 @@ TEST(ClientProtocol, WrongChecksumIsReportedWithTheStateAndResyncLoadsFromChunks
   EXPECT_EQ(events[0].local_checksum, h.server.checksum_at(6));
   EXPECT_EQ(events[0].server_checksum, h.server.checksum_at(6));
   EXPECT_EQ(h.protocol.stats().resyncs, 1u);
+  // Ticks 0-4 verified; tick 5 (the desynced one) passed over by the
+  // snapshot of tick 6.
+  EXPECT_EQ(h.protocol.stats().final_ticks_verified, 5u);
+  EXPECT_EQ(h.protocol.stats().final_ticks_resynced, 1u);
 
   // Back in step: the final ticks from 6 on verify.
   h.run(4);

@@ -38,6 +38,10 @@ struct ClientStats {
   int32_t ticks_ahead = 0;            ///< our tick minus the server's estimated tick
   double input_lead_ticks = 0.0;      ///< smoothed arrival margin reported by the server
   uint64_t final_ticks_verified = 0;  ///< final ticks whose checksum matched
+  /// Final ticks passed over by resyncs instead: a client that fell behind
+  /// (or desynced) loads the server's snapshot, checked against the
+  /// server's checksum, and does not simulate the ticks before it.
+  uint64_t final_ticks_resynced = 0;
   uint64_t desyncs = 0;
   uint64_t resyncs = 0;
   uint64_t resyncs_refused = 0;  ///< snapshots that did not load (kResyncRefused)
