@@ -1,15 +1,20 @@
 // SPDX-License-Identifier: MIT
 // rewind-joint-bench: the jointed scenes of rewind/scenes/joint_scenes.h
 // (a hinge pendulum, a 20-link chain holding 100 times a link, a loaded
-// rope bridge, a 30 x 30 grid of balls on ball joints) on Rewind and on
-// Bullet 3 (joint_engines.h says how each scene becomes Bullet), in one
-// process, one thread, the engines taking turns in blocks of 10 ticks so
-// that a shared machine's load falls on both alike. Prints one CSV row per
-// (scene, engine setting) on stdout: the wall time per step and the joint
-// errors measured from the poses each engine reports (the widest anchor
-// opening, the chain's stretch, the pendulum's period against the
-// analytic one, the energy's rise, the boxes the bridge still carries),
-// progress on stderr.
+// rope bridge, a 30 x 30 grid of balls on ball joints, a pile of 50
+// ragdolls) on Rewind and on Bullet 3 (joint_engines.h says how each scene
+// becomes Bullet), in one process, one thread, the engines taking turns in
+// blocks of 10 ticks so that a shared machine's load falls on both alike.
+// Prints one CSV row per (scene, engine setting) on stdout: the wall time
+// per step and the joint errors measured from the poses each engine
+// reports (the widest anchor opening, the chain's stretch, the pendulum's
+// period against the analytic one, the energy's rise, the boxes the
+// bridge still carries), progress on stderr.
+// The ragdoll pile is the costly one (551 bodies, 500 joints, 480 ticks):
+// its six settings take about 25 s of a full run on a 2-core machine,
+// longer than the other four scenes together. It runs the whole sweep all
+// the same, since how its openings fall with substeps and iterations is
+// what its chart shows; --quick keeps a run to seconds.
 // scripts/charts_joints.py turns the rows into charts and the "3D joints"
 // section of docs/BENCHMARKS.md.
 #include <algorithm>
@@ -35,11 +40,15 @@ constexpr double kTickSeconds = 1.0 / 60.0;
 
 constexpr const char* kUsage =
     "usage: rewind-joint-bench [--scene NAME]... [--size N] [--ticks N] [--quick] [--list]\n"
-    "  Runs each jointed scene (default: pendulum, chain, bridge, grid) on Rewind\n"
-    "  (substeps 2, 4, 8; relax 1) and Bullet 3 (solver iterations 10, 20, 40),\n"
-    "  sleeping off in both, in turns of 10 ticks in one process. --quick runs\n"
-    "  the defaults only (Rewind 4 substeps, Bullet 10 iterations); --size\n"
-    "  replaces the scene's size (links, planks, grid side); --ticks its ticks.\n"
+    "  Runs each jointed scene (default: pendulum, chain, bridge, grid,\n"
+    "  ragdoll_pile) on Rewind (substeps 2, 4, 8; relax 1) and Bullet 3 (solver\n"
+    "  iterations 10, 20, 40), sleeping off in both, in turns of 10 ticks in one\n"
+    "  process. --quick runs the defaults only (Rewind 4 substeps, Bullet 10\n"
+    "  iterations); --size replaces the scene's size (links, planks, grid side,\n"
+    "  ragdolls: at most 372, which Rewind's default 4096 bodies hold); --ticks\n"
+    "  its ticks.\n"
+    "  The ragdoll pile (50 ragdolls, 480 ticks) is the slow one: about 25 s of a\n"
+    "  full run and 6 s of a --quick one on 2 cores.\n"
     "  Prints CSV on stdout (ms per step and joint errors), progress on stderr.\n"
     "  Exit 0 on success, 1 if an engine refused a scene, 2 on bad usage.\n";
 
@@ -65,6 +74,10 @@ const char* describe(const std::string& name) {
   if (name == "bridge") {
     return "N planks (1 m, 48 kg) hinged end to end between two static posts, in a shallow V, "
            "hinge friction 100 N m, 8 boxes of 125 kg dropped on them";
+  }
+  if (name == "ragdoll_pile") {
+    return "N of Rewind's ragdolls (11 capsules, cone-twist and hinge limits; 1.8 m, 70 kg) in "
+           "crossed layers of five, dropped from 0.4 to 4.5 m onto a floor";
   }
   return "an N x N sheet of spheres (0.5 m apart) on ball joints to their neighbours, held "
          "along one edge, falling from horizontal";

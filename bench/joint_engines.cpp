@@ -44,6 +44,48 @@ btVector3 bt(sim::Vec3 v) {
   return {v.x, v.y, v.z};
 }
 
+btQuaternion bt(sim::Quat q) {
+  return {q.x, q.y, q.z, q.w};
+}
+
+/// Keeps the bodies of one collision group (JointSceneBody::collision_group,
+/// held in each body's user index) from colliding, after Bullet's own
+/// group and mask test: the pair cache never sees them, as Rewind's
+/// broadphase never sees bodies whose layers and masks disagree.
+class GroupFilter final : public btOverlapFilterCallback {
+ public:
+  bool needBroadphaseCollision(btBroadphaseProxy* p0, btBroadphaseProxy* p1) const override {
+    if ((p0->m_collisionFilterGroup & p1->m_collisionFilterMask) == 0 ||
+        (p1->m_collisionFilterGroup & p0->m_collisionFilterMask) == 0) {
+      return false;
+    }
+    const int g0 = static_cast<const btCollisionObject*>(p0->m_clientObject)->getUserIndex();
+    const int g1 = static_cast<const btCollisionObject*>(p1->m_clientObject)->getUserIndex();
+    return g0 < 0 || g0 != g1;
+  }
+};
+
+/// A limited joint's frames on each side, the way Rewind makes them
+/// (World3D::create_joint): at the starting poses, A's frame has its
+/// `along` axis on axis_a, and B's is that frame swung by the shortest arc
+/// onto axis_b, so every angle counts from the starting pose (and the
+/// frames' turn about that axis, which differs from Rewind's, changes no
+/// angle). Side a of -1 is the world.
+void joint_frames(const scenes::JointScene& scene, const scenes::JointSceneJoint& j,
+                  const btVector3& along, btTransform& frame_a, btTransform& frame_b) {
+  auto turn = [&](int body) {
+    if (body < 0) return btQuaternion::getIdentity();
+    return bt(scene.bodies[static_cast<size_t>(body)].rotation);
+  };
+  const btQuaternion rot_a = turn(j.a), rot_b = turn(j.b);
+  const btVector3 axis_a = quatRotate(rot_a, bt(j.axis_a)).normalized();
+  const btVector3 axis_b = quatRotate(rot_b, bt(j.axis_b)).normalized();
+  const btQuaternion world_a = shortestArcQuat(along, axis_a);
+  const btQuaternion world_b = shortestArcQuat(axis_a, axis_b) * world_a;
+  frame_a = btTransform(rot_a.inverse() * world_a, bt(j.local_a));
+  frame_b = btTransform(rot_b.inverse() * world_b, bt(j.local_b));
+}
+
 class BulletJoints final : public JointEngine {
  public:
   explicit BulletJoints(int iterations) : iterations_(iterations) {}
@@ -62,12 +104,21 @@ class BulletJoints final : public JointEngine {
                                                        solver_.get(), config_.get());
     world_->setGravity(bt(scene.gravity));
     world_->getSolverInfo().m_numIterations = iterations_;
+    world_->getPairCache()->setOverlapFilterCallback(&filter_);
     for (const scenes::JointSceneBody& b : scene.bodies) {
       std::unique_ptr<btCollisionShape> shape;
-      if (b.shape == scenes::JointSceneShape::kSphere) {
-        shape = std::make_unique<btSphereShape>(b.half.x);
-      } else {
-        shape = std::make_unique<btBoxShape>(bt(b.half));
+      switch (b.shape) {
+        case scenes::JointSceneShape::kSphere:
+          shape = std::make_unique<btSphereShape>(b.half.x);
+          break;
+        case scenes::JointSceneShape::kBox:
+          shape = std::make_unique<btBoxShape>(bt(b.half));
+          break;
+        case scenes::JointSceneShape::kCapsule:
+          // Along local y, like Rewind's; Bullet's height is between the
+          // cap centres.
+          shape = std::make_unique<btCapsuleShape>(b.half.x, 2.0f * b.half_height);
+          break;
       }
       const float mass = b.mass_kg();
       btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape.get(),
@@ -79,6 +130,7 @@ class BulletJoints final : public JointEngine {
       info.m_angularDamping = b.angular_damping;
       auto body = std::make_unique<btRigidBody>(info);
       if (!b.fixed) body->setActivationState(DISABLE_DEACTIVATION);
+      body->setUserIndex(b.collision_group);
       world_->addRigidBody(body.get());
       shapes_.push_back(std::move(shape));
       bodies_.push_back(std::move(body));
@@ -86,7 +138,9 @@ class BulletJoints final : public JointEngine {
     for (const scenes::JointSceneJoint& j : scene.joints) {
       btRigidBody& b = *bodies_[static_cast<size_t>(j.b)];
       std::unique_ptr<btTypedConstraint> c;
-      if (j.type == scenes::JointSceneType::kBall) {
+      if (j.limited) {
+        c = limited_joint(scene, j);
+      } else if (j.type == scenes::JointSceneType::kBall) {
         if (j.a < 0) {
           c = std::make_unique<btPoint2PointConstraint>(b, bt(j.local_b));
         } else {
@@ -136,6 +190,47 @@ class BulletJoints final : public JointEngine {
   }
 
  private:
+  /// A joint with limits, on frames made as Rewind makes them
+  /// (joint_frames()). A ball joint becomes a btConeTwistConstraint (its
+  /// x axis the twist axis, both swing spans the cone's half angle), a
+  /// hinge a btHingeConstraint on frames (its z axis the hinge); both keep
+  /// Bullet's default limit softness, bias and relaxation.
+  std::unique_ptr<btTypedConstraint> limited_joint(const scenes::JointScene& scene,
+                                                   const scenes::JointSceneJoint& j) {
+    // A joint to the world joins Bullet's fixed body, whose frame is the
+    // world's, so A stays side a (the one-body constructors make the body
+    // side A instead).
+    btRigidBody& a =
+        j.a < 0 ? btTypedConstraint::getFixedBody() : *bodies_[static_cast<size_t>(j.a)];
+    btRigidBody& b = *bodies_[static_cast<size_t>(j.b)];
+    btTransform fa, fb;
+    if (j.type == scenes::JointSceneType::kBall) {
+      joint_frames(scene, j, {1, 0, 0}, fa, fb);
+      // Bullet's twist limit is symmetric, +-span about the frames' zero;
+      // Rewind's any range. Both split the relative turn into a swing
+      // then a twist t about x, so turning B's frame by -centre about x
+      // leaves the swing and makes Bullet's twist t - centre: within
+      // +-span exactly when t is within [twist_lower, twist_upper]. (The
+      // ragdoll's ranges are symmetric: centre 0.)
+      const float centre = 0.5f * (j.twist_lower + j.twist_upper);
+      const float span = 0.5f * (j.twist_upper - j.twist_lower);
+      fb.setRotation(fb.getRotation() * btQuaternion(btVector3(1, 0, 0), -centre));
+      auto c = std::make_unique<btConeTwistConstraint>(a, b, fa, fb);
+      c->setLimit(j.cone_angle, j.cone_angle, span);
+      return c;
+    }
+    joint_frames(scene, j, {0, 0, 1}, fa, fb);
+    auto h = std::make_unique<btHingeConstraint>(a, b, fa, fb);
+    // Bullet's hinge angle on frames counts B turning about the axis
+    // negative (getHingeAngle() is -0.3 for B turned +0.3 about z, checked
+    // on 3.24): Rewind's [lower, upper] is Bullet's [-upper, -lower].
+    h->setLimit(-j.upper, -j.lower);
+    if (j.friction_torque_nm > 0.0f) {
+      h->enableAngularMotor(true, 0.0f, j.friction_torque_nm * kTick);
+    }
+    return h;
+  }
+
   void clear() {
     if (world_) {
       for (auto& c : constraints_) world_->removeConstraint(c.get());
@@ -152,6 +247,7 @@ class BulletJoints final : public JointEngine {
   }
 
   int iterations_;
+  GroupFilter filter_;
   std::unique_ptr<btDefaultCollisionConfiguration> config_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;
   std::unique_ptr<btDbvtBroadphase> broadphase_;

@@ -137,7 +137,7 @@ if ((runjoints)); then
   start=$(date +%s)
   quick=()
   [[ $mode == quick ]] && quick=(--quick)
-  step "3D joints ($mode): pendulum, chain, bridge, grid on Rewind and Bullet"
+  step "3D joints ($mode): pendulum, chain, bridge, grid, ragdoll pile on Rewind and Bullet"
   build/bench/bin/rewind-joint-bench "${quick[@]}" >"$out/joints3d.csv"
   printf 'mode=%s\ndate=%s\nseconds=%s\n' "$mode" "$(date -u +%F)" \
     "$(( $(date +%s) - start ))" >"$out/joints3d_run.txt"

@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Jointed scenes, described once: bodies (spheres and boxes), ball and
-// hinge joints between them with their anchors in each body's frame, and
+// Jointed scenes, described once: bodies (spheres, boxes and capsules),
+// ball and hinge joints between them with their anchors in each body's
+// frame (and, where a scene wants them, cone-twist and hinge limits), and
 // the figures measured on them (how far a joint's two anchors are apart,
 // how much a chain stretched, a pendulum's period, the energy of the
 // whole). Shared by the stability and accuracy suites (on Rewind) and the
 // side-by-side benchmark (Rewind and Bullet build the same description).
-// Header only; depends on the engine's public API.
+// Header only but for ragdoll_pile() (src/joint_ragdoll_pile.cpp, which
+// reads its ragdolls off Rewind's ragdoll builder); depends on the
+// engine's public API.
 //
 // The scenes:
 // - hanging_chain: 20 box links on ball joints hanging from a fixed point,
@@ -18,7 +21,10 @@
 //   ball joints at their midpoints, held along one edge (a static row) and
 //   falling from horizontal;
 // - hinge_pendulum: a box rod on a hinge at its end, let go at a small
-//   angle (the physical pendulum).
+//   angle (the physical pendulum);
+// - ragdoll_pile: Rewind's 11-capsule ragdolls (rewind/sim/ragdoll3d.h)
+//   in ten crossed layers of five, dropped on a floor (the pile of the
+//   stability suite, tests/stability/ragdoll_pile3d.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -29,21 +35,34 @@
 
 namespace rwd::scenes {
 
-enum class JointSceneShape : uint8_t { kSphere, kBox };
+/// A capsule stands along its body's local y axis, as Rewind's
+/// Shape::make_capsule and Bullet's btCapsuleShape both do.
+enum class JointSceneShape : uint8_t { kSphere, kBox, kCapsule };
 
 struct JointSceneBody {
   bool fixed = false;  ///< static: never moves
   JointSceneShape shape = JointSceneShape::kBox;
-  sim::Vec3 half{0.5f, 0.5f, 0.5f};  ///< box half extents; a sphere's radius is half.x
+  /// Box half extents; a sphere's and a capsule's radius is half.x.
+  sim::Vec3 half{0.5f, 0.5f, 0.5f};
+  /// Capsule: half the distance between its cap centres, along local y.
+  float half_height = 0.0f;
   sim::Vec3 position;
   sim::Quat rotation;
   float density = 1000.0f;  ///< kg/m^3
   float angular_damping = 0.0f;
   float friction = 0.6f;
+  /// Bodies of one group (>= 0) never collide with each other (a
+  /// ragdoll's parts), while they collide with everything else; -1: in no
+  /// group. Joined bodies never collide either way.
+  int collision_group = -1;
 
   float volume() const {
     if (shape == JointSceneShape::kSphere) {
       return 4.0f / 3.0f * 3.14159265f * half.x * half.x * half.x;
+    }
+    if (shape == JointSceneShape::kCapsule) {
+      const float r = half.x;
+      return 3.14159265f * r * r * (2.0f * half_height + 4.0f / 3.0f * r);
     }
     return 8.0f * half.x * half.y * half.z;
   }
@@ -54,6 +73,20 @@ struct JointSceneBody {
     if (shape == JointSceneShape::kSphere) {
       const float i = 0.4f * m * half.x * half.x;
       return {i, i, i};
+    }
+    if (shape == JointSceneShape::kCapsule) {
+      // Rewind's capsule (sim/src/d3/shape_capsule.cpp): the cylinder and
+      // the two hemispheres share the mass by volume, each cap's inertia
+      // moved out to the centre from its own centre of mass, 3r/8 off its
+      // flat face.
+      const float r = half.x, h = half_height;
+      const float v_c = 3.14159265f * r * r * 2.0f * h;
+      const float v_s = 4.0f / 3.0f * 3.14159265f * r * r * r;
+      const float m_c = m * v_c / (v_c + v_s), m_s = m - m_c;
+      const float axial = m_c * r * r * 0.5f + m_s * r * r * 0.4f;
+      const float across =
+          m_c * (r * r * 0.25f + h * h / 3.0f) + m_s * (r * r * 0.4f + h * h + 0.75f * h * r);
+      return {across, axial, across};
     }
     const sim::Vec3 s{half.x * half.x, half.y * half.y, half.z * half.z};
     return {m * (s.y + s.z) / 3.0f, m * (s.x + s.z) / 3.0f, m * (s.x + s.y) / 3.0f};
@@ -75,6 +108,18 @@ struct JointSceneJoint {
   /// Hinge: a friction torque, N m (0: none): the joint resists turning
   /// with up to this much, as a motor held at zero speed.
   float friction_torque_nm = 0.0f;
+  /// Limits, rad, counted from the starting pose (false: none, and the
+  /// fields below are not read). A ball joint becomes a cone-twist joint:
+  /// axis_b (the twist axis, in b's frame) swings at most cone_angle away
+  /// from axis_a (the cone's centre, in a's frame), and b twists about it
+  /// within [twist_lower, twist_upper]. A hinge's angle, b turning about
+  /// the axis by the right hand, stays within [lower, upper].
+  bool limited = false;
+  float cone_angle = 0.0f;
+  float twist_lower = 0.0f;
+  float twist_upper = 0.0f;
+  float lower = 0.0f;
+  float upper = 0.0f;
 };
 
 struct JointScene {
@@ -128,7 +173,7 @@ struct JointScene {
 };
 
 /// A body's state as an engine reports it (centre = authored frame: the
-/// scenes only use spheres and boxes).
+/// scenes only use spheres, boxes and capsules).
 struct JointBodyState {
   sim::Vec3 position;
   sim::Quat rotation;
@@ -293,18 +338,33 @@ inline JointScene hinge_pendulum(float amplitude_rad = 0.05f) {
   return s;
 }
 
-/// The scenes by name ("chain", "bridge", "grid", "pendulum"); size 0
-/// takes the scene's own. An empty name field means an unknown one.
+/// `count` of Rewind's ragdolls (rewind/sim/ragdoll3d.h, default spec:
+/// 1.8 m, 70 kg, eleven capsules, cone-twist waist, neck, shoulders and
+/// hips, one-way hinges at elbows and knees) lying face up in crossed
+/// layers of five, each turned a little and dropped from 0.4 m up (0.45 m
+/// more a layer: 0.4 to 4.5 m for fifty) onto a static floor box (60 x 1 x
+/// 60 m, top at y = 0): the pile of tests/stability/ragdoll_pile3d.h. Each
+/// ragdoll is its own collision group. Parts, anchors, axes, limits,
+/// densities, damping and friction are read off the ragdolls
+/// create_ragdoll() makes, so the scene follows the builder. 480 ticks
+/// (8 s: the pile settles). Defined in src/joint_ragdoll_pile.cpp; an empty
+/// name when the builder refuses.
+JointScene ragdoll_pile(int count = 50);
+
+/// The scenes by name ("chain", "bridge", "grid", "pendulum",
+/// "ragdoll_pile"); size 0 takes the scene's own. An empty name field
+/// means an unknown one.
 inline JointScene make_joint_scene(const std::string& name, int size = 0) {
   if (name == "chain") return hanging_chain(size > 0 ? size : 20);
   if (name == "bridge") return rope_bridge(size > 0 ? size : 20);
   if (name == "grid") return joint_grid(size > 0 ? size : 30);
   if (name == "pendulum") return hinge_pendulum();
+  if (name == "ragdoll_pile") return ragdoll_pile(size > 0 ? size : 50);
   return {};
 }
 
 inline std::vector<std::string> joint_scene_names() {
-  return {"pendulum", "chain", "bridge", "grid"};
+  return {"pendulum", "chain", "bridge", "grid", "ragdoll_pile"};
 }
 
 // --- measuring ------------------------------------------------------------
@@ -479,15 +539,50 @@ struct RewindJointScene {
   }
 };
 
+/// The layer bits of collision group `group` on Rewind: a pair of the
+/// layer bits 1 to 31, a different pair for each group (the scheme
+/// tests/stability/ragdoll_pile3d.h gives its ragdolls, there from bits 16
+/// to 31), so no group's bits hold another's and a body whose mask is all
+/// but its own bits collides with every other group and with ungrouped
+/// bodies (layer bit 0, the default). 0 past the 465 groups the pairs run
+/// to.
+inline uint32_t rewind_group_layer(int group) {
+  int n = group;
+  for (uint32_t a = 1; a < 32; ++a) {
+    for (uint32_t b = a + 1; b < 32; ++b) {
+      if (n-- == 0) return (1u << a) | (1u << b);
+    }
+  }
+  return 0;
+}
+
 /// Builds `scene` in `world` (whose gravity should be scene.gravity).
-/// Joined bodies do not collide with each other.
+/// Joined bodies do not collide with each other, nor bodies of one
+/// collision group (layers: rewind_group_layer()).
 inline RewindJointScene build_rewind(sim::World3D& world, const JointScene& scene) {
   RewindJointScene r;
   for (const JointSceneBody& b : scene.bodies) {
     sim::BodyDef def;
     def.kind = b.fixed ? sim::BodyKind::kStatic : sim::BodyKind::kDynamic;
-    def.shape = b.shape == JointSceneShape::kSphere ? sim::Shape::make_sphere(b.half.x)
-                                                    : sim::Shape::make_box(b.half);
+    switch (b.shape) {
+      case JointSceneShape::kSphere:
+        def.shape = sim::Shape::make_sphere(b.half.x);
+        break;
+      case JointSceneShape::kBox:
+        def.shape = sim::Shape::make_box(b.half);
+        break;
+      case JointSceneShape::kCapsule:
+        def.shape = sim::Shape::make_capsule(b.half.x, b.half_height);
+        break;
+    }
+    if (b.collision_group >= 0) {
+      def.layer = rewind_group_layer(b.collision_group);
+      if (def.layer == 0) {
+        r.error = "body: more collision groups than Rewind's layer bits hold (465)";
+        return r;
+      }
+      def.mask = ~def.layer;
+    }
     def.position = b.position;
     def.rotation = b.rotation;
     def.density = b.density;
@@ -513,6 +608,14 @@ inline RewindJointScene build_rewind(sim::World3D& world, const JointScene& scen
       def.enable_motor = true;
       def.motor_speed = 0.0f;
       def.max_motor_torque = j.friction_torque_nm;
+    }
+    if (j.limited) {
+      def.enable_limit = true;
+      def.cone_angle = j.cone_angle;
+      def.twist_lower = j.twist_lower;
+      def.twist_upper = j.twist_upper;
+      def.lower = j.lower;
+      def.upper = j.upper;
     }
     auto id = world.create_joint(def);
     if (!id.ok()) {
