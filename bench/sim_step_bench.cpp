@@ -8,6 +8,7 @@
 #include "rewind/game/simulation.h"
 #include "rewind/game/world_lane.h"
 #include "rewind/net/rollback_session.h"
+#include "rewind/sim/world3d.h"
 
 namespace {
 
@@ -36,6 +37,23 @@ void BM_CratesTick(benchmark::State& state) {
   state.counters["bodies"] = rwd::game::world_of<rwd::sim::World3D>(sim->lane())->body_count();
 }
 BENCHMARK(BM_CratesTick)->Arg(2)->Arg(8)->Arg(32);
+
+// A whole joust match (raycast cars, jointed riders thrown on a hit, a
+// wrecking ball on a chain) from its start: ten seconds of four players
+// steering and charging, the same inputs every run. Time per iteration is
+// 600 ticks; the "ticks" counter is the rate, ticks per second.
+void BM_JoustMatch(benchmark::State& state) {
+  constexpr uint32_t kPlayers = 4;
+  constexpr int kTicks = 600;
+  for (auto _ : state) {
+    auto sim = std::move(*Simulation::create("joust", {kPlayers, 1}));
+    for (int t = 0; t < kTicks; ++t) sim->step(inputs_for(kPlayers, t));
+    benchmark::DoNotOptimize(sim->checksum());
+  }
+  state.counters["ticks"] =
+      benchmark::Counter(kTicks, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_JoustMatch)->Unit(benchmark::kMillisecond);
 
 void BM_SaveRestore(benchmark::State& state) {
   auto sim = warmed_up(8, 120);

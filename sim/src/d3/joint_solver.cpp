@@ -115,6 +115,7 @@ void prepare_joints(const WorldState& state, WorldScratch& scratch, float h) {
     c.capacity = static_cast<uint8_t>(m + l < kMaxBlockRows ? m + l : kMaxBlockRows);
   }
   build_joint_trees(scratch);
+  for (JointConstraint& c : out) c.point = is_point_joint(state.joints[c.record], c);
 }
 
 void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool trees_only) {
@@ -124,6 +125,10 @@ void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool tre
     const JointRecord& j = state.joints[c.record];
     const SolverBody& a = scratch.solver_bodies[c.body_a];
     const SolverBody& b = scratch.solver_bodies[c.body_b];
+    if (c.point) {
+      refresh_point(c, a, b);
+      continue;
+    }
     const JointOps& ops = joint_ops(j.type);
     const JointFrames f = joint_frames(c, a, b);
     const int m = ops.rows(j, f, rows);
@@ -159,7 +164,9 @@ void warm_start_joints(const WorldState& state, WorldScratch& scratch) {
     SolverBody& a = scratch.solver_bodies[c.body_a];
     SolverBody& b = scratch.solver_bodies[c.body_b];
     // The structure along the same rows its passes read and apply.
-    if (c.block.size() > 0) {
+    if (c.point) {
+      warm_start_point(c, a, b);
+    } else if (c.block.size() > 0) {
       gather_impulses(c, acc);
       c.block.apply(a, b, acc);
       warm_start_free_limits(j, c, a, b, joint_frames(c, a, b));
@@ -211,6 +218,10 @@ void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias)
   }
   for (JointConstraint& c : scratch.joint_constraints) {
     if (c.tree != kNoTree) continue;
+    if (c.point) {
+      solve_point(c, scratch.solver_bodies[c.body_a], scratch.solver_bodies[c.body_b], use_bias);
+      continue;
+    }
     solve_alone(state.joints[c.record], c, scratch.solver_bodies[c.body_a],
                 scratch.solver_bodies[c.body_b], use_bias);
   }
@@ -253,6 +264,10 @@ void project_joints(const WorldState& state, WorldScratch& scratch) {
     const JointRecord& j = state.joints[c.record];
     SolverBody& a = scratch.solver_bodies[c.body_a];
     SolverBody& b = scratch.solver_bodies[c.body_b];
+    if (c.point) {
+      project_point(c, a, b);
+      continue;
+    }
     const JointFrames f = joint_frames(c, a, b);
     structural_bias(c, f, joint_ops(j.type).angular_error(j, f), 1.0f, error);
     for (int i = 0; i < c.block.size(); ++i) error[i] = -clamp_projection(error[i]);

@@ -86,6 +86,14 @@ struct JointConstraint {
   /// Where the tree's factorization keeps what the subtree below the
   /// joint adds to its rows (rows x rows, in scratch.tree_arena).
   uint32_t tree_update = 0;
+  /// A ball joint with nothing but its point (no limit, motor or spring)
+  /// solved on its own: its three rows as one 3 x 3 point constraint
+  /// (joint_point.cpp) instead of the general block. The lever arms and
+  /// the inverse effective mass are those of the rows' last refresh.
+  bool point = false;
+  Vec3 point_ra;
+  Vec3 point_rb;
+  Mat3 point_inv_mass;
 };
 
 inline constexpr uint32_t kNoTree = 0xFFFFFFFFu;
@@ -167,6 +175,19 @@ void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias)
 /// substep; the soft bias would close it over several substeps, the
 /// projection closes it before the next.
 void project_joints(const WorldState& state, WorldScratch& scratch);
+
+// Point joints (JointConstraint::point), joint_point.cpp: the same stages
+// as the general block, in closed form.
+/// Whether a joint solved on its own is a bare point (a ball joint
+/// without limits, motor or spring).
+bool is_point_joint(const JointRecord& j, const JointConstraint& c);
+/// Its lever arms where the bodies stand and its inverse effective mass.
+void refresh_point(JointConstraint& c, const SolverBody& a, const SolverBody& b);
+void warm_start_point(const JointConstraint& c, SolverBody& a, SolverBody& b);
+/// One pass: soft toward zero error with the bias, rigid without.
+void solve_point(JointConstraint& c, SolverBody& a, SolverBody& b, bool use_bias);
+/// The position projection: the anchors moved together (clamped).
+void project_point(const JointConstraint& c, SolverBody& a, SolverBody& b);
 /// A position error as the projection takes it, clamped to
 /// kMaxProjection (m or rad) so a joint torn far apart is pulled back
 /// over several substeps instead of teleporting its bodies.
