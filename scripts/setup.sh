@@ -8,8 +8,10 @@
 # touched (update + install) only when something is missing. Non-interactive.
 # Run as root, or as a user with sudo.
 #
-# Usage: scripts/setup.sh [--check]
+# Usage: scripts/setup.sh [--check] [--wasm]
 #   --check   only report what is missing; exit 1 if anything is
+#   --wasm    also the WebAssembly toolchain (emscripten, node) for the
+#             WebAssembly determinism check (scripts/test.sh --label wasm)
 # Exit codes: 0 everything present (or installed now); 1 packages missing and
 # they could not be installed (not root and no usable sudo, or apt failed).
 set -euo pipefail
@@ -31,12 +33,15 @@ packages=(
 )
 
 check_only=0
-case "${1:-}" in
-  "") ;;
-  --check) check_only=1 ;;
-  -h|--help) sed -n '4,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"; exit 0 ;;
-  *) echo "setup: unknown option '$1' (try --help)" >&2; exit 1 ;;
-esac
+while (($#)); do
+  case "$1" in
+    --check) check_only=1 ;;
+    --wasm) packages+=(emscripten nodejs) ;;
+    -h|--help) sed -n '4,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"; exit 0 ;;
+    *) echo "setup: unknown option '$1' (try --help)" >&2; exit 1 ;;
+  esac
+  shift
+done
 
 if [[ -r /etc/os-release ]]; then
   # shellcheck disable=SC1091

@@ -6,6 +6,10 @@
 # Usage: scripts/test.sh [--debug] [--label LABEL]
 #   --debug        use the ASan + UBSan preset (build/debug) instead of release
 #   --label LABEL  run only the tests with this ctest label (e.g. determinism)
+#                  --label wasm is the WebAssembly determinism check, which
+#                  the full run leaves out (it compiles the engine with
+#                  Emscripten, several minutes): it installs emscripten and
+#                  node, and configures with -DREWIND_TEST_WASM=ON
 #
 # Steps: scripts/setup.sh (installs system packages only when some are
 # missing), cmake --preset P, cmake --build --preset P, then
@@ -31,12 +35,14 @@ done
 
 step() { echo; echo "==> $*"; }
 
+wasm=OFF
+[[ $label != wasm ]] || wasm=ON
 step "system packages"
-bash scripts/setup.sh
+if [[ $wasm == ON ]]; then bash scripts/setup.sh --wasm; else bash scripts/setup.sh; fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
 step "configure + build (preset $preset, -j$jobs)"
-cmake --preset "$preset"
+cmake --preset "$preset" -DREWIND_TEST_WASM=$wasm
 cmake --build --preset "$preset" -j"$jobs"
 
 ctest_args=(--preset "$preset" --output-on-failure -j2 --no-tests=error)

@@ -19,11 +19,17 @@
 #                  x86-64 builds (eight AVX lanes where the machine has AVX)
 #                  and aarch64 (four NEON lanes) this proves neither the
 #                  instruction set nor the lane count changes a result
+#   wasm-O3        em++ -O3 (Emscripten): WebAssembly, run under node; only
+#                  with --wasm (it takes several minutes to compile)
 #
-# Usage: run_matrix.sh [--source DIR] [--ticks N] [--jobs N] BUILD_DIR
+# Usage: run_matrix.sh [--source DIR] [--ticks N] [--jobs N] [--wasm]
+#                      [--builds NAMES] BUILD_DIR
 #   --source DIR  repository root (default: two levels above this script)
 #   --ticks N     ticks to simulate (default 600)
 #   --jobs N      parallel compile jobs (default 2, at most 2)
+#   --wasm        add the WebAssembly build
+#   --builds NAMES  only these builds (comma-separated), besides the
+#                 reference gcc-O0 that every other is compared with
 #   BUILD_DIR     where objects, binaries and outputs go (reused between runs:
 #                 objects are rebuilt only when a source or header changed)
 #
@@ -36,6 +42,8 @@ source_dir=$(cd "$script_dir/../.." && pwd)
 ticks=600
 jobs=2
 build_dir=""
+wasm=0
+only=""
 
 usage() { sed -n '4,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"; }
 
@@ -44,6 +52,8 @@ while (($#)); do
     --source) source_dir=$(cd "${2:?--source needs a directory}" && pwd); shift 2 ;;
     --ticks) ticks=${2:?--ticks needs a number}; shift 2 ;;
     --jobs) jobs=${2:?--jobs needs a number}; shift 2 ;;
+    --wasm) wasm=1; shift ;;
+    --builds) only=${2:?--builds needs a list of build names}; shift 2 ;;
     -h|--help) usage; exit 0 ;;
     -*) echo "run_matrix: unknown option '$1'" >&2; usage >&2; exit 2 ;;
     *) [[ -z $build_dir ]] || { echo "run_matrix: one BUILD_DIR only" >&2; exit 2; }
@@ -69,6 +79,13 @@ need clang++ clang
 need aarch64-linux-gnu-g++ g++-aarch64-linux-gnu
 need qemu-aarch64 qemu-user
 need ninja ninja-build
+if ((wasm)); then
+  need em++ emscripten
+  need node nodejs
+  # Emscripten's JavaScript tools need Debian's node modules (acorn), which
+  # a node not from Debian does not look for by itself.
+  export NODE_PATH="/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}"
+fi
 [[ -f /usr/include/xxhash.h ]] || {
   echo "run_matrix: FAIL: /usr/include/xxhash.h not found; install the Debian package 'libxxhash-dev'" >&2
   missing=1
@@ -132,6 +149,22 @@ builds=(
   "aarch64-O3|aarch64-linux-gnu-g++|-O3${cross_flags:+ $cross_flags}|-static|qemu-aarch64"
   "gcc-O2-lanes|g++|-O2 -DREWIND_SCALAR_LANES${gcc_flags:+ $gcc_flags}||"
 )
+# WebAssembly: one JavaScript file for node with the module inside it (a
+# separate .wasm would be fetched, which node does not do for a path);
+# memory grows as the worlds do.
+((wasm)) && builds+=("wasm-O3|em++|-O3|-sALLOW_MEMORY_GROWTH=1 -sTOTAL_STACK=8MB -sENVIRONMENT=node -sSINGLE_FILE=1|node")
+if [[ -n $only ]]; then
+  kept=()
+  for entry in "${builds[@]}"; do
+    name=${entry%%|*}
+    if [[ $name == gcc-O0 || ",$only," == *",$name,"* ]]; then kept+=("$entry"); fi
+  done
+  for name in ${only//,/ }; do
+    printf '%s\n' "${kept[@]}" | grep -q "^$name|" || {
+      echo "run_matrix: unknown build '$name' in --builds (wasm-O3 needs --wasm)" >&2; exit 2; }
+  done
+  builds=("${kept[@]}")
+fi
 
 # --- compile: one generated ninja file; it reuses objects whose inputs are
 # unchanged (depfiles track headers) and runs at most $jobs compilers --------

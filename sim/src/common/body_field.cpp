@@ -1,11 +1,24 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/sim/body_field.h"
 
-#include <bit>
 #include <cstddef>
+#include <cstring>
 
 namespace rwd::sim {
 namespace {
+
+// A float's bits and back (std::bit_cast, which some standard libraries
+// the engine builds with, Emscripten's among them, do not have yet).
+uint32_t bits_of(float v) {
+  uint32_t bits = 0;
+  std::memcpy(&bits, &v, sizeof bits);
+  return bits;
+}
+float float_of(uint32_t bits) {
+  float v = 0.0f;
+  std::memcpy(&v, &bits, sizeof v);
+  return v;
+}
 
 // The half-open range of `fields` that belongs to the body at `begin`.
 size_t body_end(const std::vector<BodyField>& fields, size_t begin) {
@@ -43,7 +56,7 @@ void compare_body(const std::vector<BodyField>& expected, size_t e, size_t e_end
 }  // namespace
 
 BodyField BodyField::float32(uint32_t body_index, std::string_view name, float value) {
-  return {body_index, name, FieldType::kFloat32, std::bit_cast<uint32_t>(value)};
+  return {body_index, name, FieldType::kFloat32, bits_of(value)};
 }
 
 BodyField BodyField::unsigned_int(uint32_t body_index, std::string_view name, uint64_t value) {
@@ -65,7 +78,7 @@ BodyField BodyField::fixed32(uint32_t body_index, std::string_view name, int64_t
 double BodyField::value() const {
   switch (type) {
     case FieldType::kFloat32:
-      return static_cast<double>(std::bit_cast<float>(static_cast<uint32_t>(bits)));
+      return static_cast<double>(float_of(static_cast<uint32_t>(bits)));
     case FieldType::kUnsigned:
       return static_cast<double>(bits);
     case FieldType::kSigned:

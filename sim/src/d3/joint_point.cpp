@@ -34,8 +34,12 @@ void solve_point(JointConstraint& c, SolverBody& a, SolverBody& b, bool use_bias
   Vec3 rhs = anchor_velocity(a, b, c.point_ra, c.point_rb);
   Vec3 impulse;
   if (use_bias) {
-    const JointFrames f = joint_frames(c, a, b);
-    rhs += f.d * c.soft.bias_rate;
+    // The anchors' gap where the bodies stand: they have not moved since
+    // the refresh (the solve comes before the substep's move), so the
+    // refreshed lever arms are where the anchors are.
+    const Vec3 d =
+        (b.delta_position - a.delta_position) + c.delta_center + (c.point_rb - c.point_ra);
+    rhs += d * c.soft.bias_rate;
     impulse =
         -(c.point_inv_mass * rhs) * c.soft.mass_scale - c.linear_impulse * c.soft.impulse_scale;
   } else {

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "d3/manifold_triangles.h"
+#include "d3/triangle_closest.h"
 
 namespace rwd::sim::d3 {
 namespace {
@@ -351,14 +352,26 @@ bool collide_convex_triangle(const ShapeCore& core, const TriangleRef& tri, bool
   }
   if (lowest - core.radius > speculative_m) return false;
 
-  ConvexProxy tri_proxy;
-  tri_proxy.points = tri.p;
-  tri_proxy.count = 3;
-  const GjkOutput g = gjk_distance(tri_proxy, *core.proxy);
   Vec3 normal;
   Vec3 p_tri;
   Vec3 p_shape;  // on the shape's surface
   float sep = 0.0f;
+  // A sphere's or a capsule's core (a point, a segment) has its closest
+  // points in closed form; a hull's come from GJK.
+  ConvexProxy tri_proxy;
+  tri_proxy.points = tri.p;
+  tri_proxy.count = 3;
+  GjkOutput g;
+  if (core.count <= 2) {
+    const CoreTriangleClosest c = closest_core_triangle(core.points, core.count, tri.p, tri.normal);
+    g.overlap = c.overlap;
+    g.distance = c.distance;
+    g.normal = c.normal;
+    g.point_a = c.on_tri;
+    g.point_b = c.on_core;
+  } else {
+    g = gjk_distance(tri_proxy, *core.proxy);
+  }
   if (!g.overlap) {
     sep = g.distance - core.radius;
     if (!(sep <= speculative_m)) return false;

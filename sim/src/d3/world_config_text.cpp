@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The 3D lane's world config as readable text, for replay tools.
 #include <charconv>
+#include <cstdio>
+#include <cstdlib>
 
 #include "rewind/sim/world3d.h"
 
@@ -11,8 +13,19 @@ namespace {
 // differently exactly when their values differ.
 std::string text(float v) {
   char buf[32];
+#if defined(__cpp_lib_to_chars)
   const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, r.ptr);
+#else
+  // A standard library without floating-point to_chars (Emscripten's): the
+  // fewest significant digits that read back to the same float.
+  for (int digits = 1; digits < 9; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, static_cast<double>(v));
+    if (std::strtof(buf, nullptr) == v) return buf;
+  }
+  std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(v));
+  return buf;
+#endif
 }
 
 std::string text(Vec3 v) {
