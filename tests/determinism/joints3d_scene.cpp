@@ -106,6 +106,31 @@ struct Scene {
     }
     joint(world, joint_between(world, JointType::kDistance, {}, boxes[0],
                                ring[0] + Vec3{0.0f, 1.0f, 0.0f}, ring[0]));
+    // A 4 x 4 sheet of spheres on bare ball joints (point joints, coloured
+    // into full and partly empty lane batches), its first row held to the
+    // world, falling from horizontal.
+    BodyId sheet[4][4];
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) {
+        sheet[r][c] = dynamic(
+            world, Shape::make_sphere(0.12f),
+            {8.0f + 0.4f * static_cast<float>(c), 4.0f, -2.0f + 0.4f * static_cast<float>(r)});
+      }
+    }
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) {
+        const Vec3 at{8.0f + 0.4f * static_cast<float>(c), 4.0f,
+                      -2.0f + 0.4f * static_cast<float>(r)};
+        if (r == 0)
+          joint(world, joint_at(world, JointType::kBall, {}, sheet[r][c], at - kZ * 0.2f));
+        if (c + 1 < 4)
+          joint(world,
+                joint_at(world, JointType::kBall, sheet[r][c], sheet[r][c + 1], at + kX * 0.2f));
+        if (r + 1 < 4)
+          joint(world,
+                joint_at(world, JointType::kBall, sheet[r][c], sheet[r + 1][c], at + kZ * 0.2f));
+      }
+    }
     // A motorized prismatic lift with limits and a spring, a weld, a soft
     // weld, a rope, a spring, a grab and a joint that breaks.
     const BodyId lift = dynamic(world, Shape::make_box({0.4f, 0.1f, 0.4f}), {-8.0f, 2.0f, 0.0f});

@@ -14,9 +14,12 @@
 namespace rwd::sim::d3 {
 
 bool is_point_joint(const JointRecord& j, const JointConstraint& c) {
+  // (A loaded state may hold a motor or spring impulse the joint no longer
+  // drives; the general path keeps warm-starting it, so such a joint stays
+  // there.)
   return j.type == JointType::kBall &&
          (j.flags & (kJointLimit | kJointSpring | kJointMotor)) == 0 && c.tree == kNoTree &&
-         c.block.size() == 3;
+         c.block.size() == 3 && j.motor_impulse == Vec3{} && j.spring_impulse == Vec3{};
 }
 
 void refresh_point(JointConstraint& c, const SolverBody& a, const SolverBody& b) {

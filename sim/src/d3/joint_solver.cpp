@@ -116,6 +116,7 @@ void prepare_joints(const WorldState& state, WorldScratch& scratch, float h) {
   }
   build_joint_trees(scratch);
   for (JointConstraint& c : out) c.point = is_point_joint(state.joints[c.record], c);
+  build_point_batches(scratch);
 }
 
 void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool trees_only) {
@@ -126,7 +127,7 @@ void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool tre
     const SolverBody& a = scratch.solver_bodies[c.body_a];
     const SolverBody& b = scratch.solver_bodies[c.body_b];
     if (c.point) {
-      refresh_point(c, a, b);
+      if (!c.batched) refresh_point(c, a, b);
       continue;
     }
     const JointOps& ops = joint_ops(j.type);
@@ -153,6 +154,7 @@ void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool tre
     }
     c.block.factor(a, b);
   }
+  if (!trees_only) refresh_point_batches(scratch);
   factor_joint_trees(scratch);
 }
 
@@ -165,14 +167,16 @@ void warm_start_joints(const WorldState& state, WorldScratch& scratch) {
     SolverBody& b = scratch.solver_bodies[c.body_b];
     // The structure along the same rows its passes read and apply.
     if (c.point) {
-      warm_start_point(c, a, b);
+      if (!c.batched) warm_start_point(c, a, b);
     } else if (c.block.size() > 0) {
       gather_impulses(c, acc);
       c.block.apply(a, b, acc);
       warm_start_free_limits(j, c, a, b, joint_frames(c, a, b));
     }
-    joint_ops(j.type).warm_start(j, c, a, b);
+    // (A point joint has no motor or spring impulse to warm-start.)
+    if (!c.point) joint_ops(j.type).warm_start(j, c, a, b);
   }
+  warm_start_point_batches(scratch);
   // The shared immovable body takes no velocity from any of it.
   scratch.solver_bodies[0].linear_velocity = {};
   scratch.solver_bodies[0].angular_velocity = {};
@@ -219,12 +223,15 @@ void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias)
   for (JointConstraint& c : scratch.joint_constraints) {
     if (c.tree != kNoTree) continue;
     if (c.point) {
-      solve_point(c, scratch.solver_bodies[c.body_a], scratch.solver_bodies[c.body_b], use_bias);
+      if (!c.batched) {
+        solve_point(c, scratch.solver_bodies[c.body_a], scratch.solver_bodies[c.body_b], use_bias);
+      }
       continue;
     }
     solve_alone(state.joints[c.record], c, scratch.solver_bodies[c.body_a],
                 scratch.solver_bodies[c.body_b], use_bias);
   }
+  solve_point_batches(scratch, use_bias);
   scratch.solver_bodies[0].linear_velocity = {};
   scratch.solver_bodies[0].angular_velocity = {};
 }
@@ -265,7 +272,7 @@ void project_joints(const WorldState& state, WorldScratch& scratch) {
     SolverBody& a = scratch.solver_bodies[c.body_a];
     SolverBody& b = scratch.solver_bodies[c.body_b];
     if (c.point) {
-      project_point(c, a, b);
+      if (!c.batched) project_point(c, a, b);
       continue;
     }
     const JointFrames f = joint_frames(c, a, b);
@@ -275,9 +282,11 @@ void project_joints(const WorldState& state, WorldScratch& scratch) {
     release_pulling_limits(c, x);
     displace(c.block, x, a, b);
   }
+  project_point_batches(scratch);
 }
 
 void sum_joint_impulses(WorldScratch& scratch) {
+  store_point_batches(scratch);
   for (JointConstraint& c : scratch.joint_constraints) {
     c.tick_linear += c.linear_impulse;
     c.tick_angular += c.angular_impulse;

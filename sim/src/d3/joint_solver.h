@@ -91,6 +91,9 @@ struct JointConstraint {
   /// (joint_point.cpp) instead of the general block. The lever arms and
   /// the inverse effective mass are those of the rows' last refresh.
   bool point = false;
+  /// A point joint packed into a lane batch (joint_point_batches.h); the
+  /// rest (no colour left) stay on the scalar point path.
+  bool batched = false;
   Vec3 point_ra;
   Vec3 point_rb;
   Mat3 point_inv_mass;

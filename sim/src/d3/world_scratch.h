@@ -12,6 +12,7 @@
 #include "d3/aabb_tree.h"
 #include "d3/broadphase.h"
 #include "d3/contact_batches.h"
+#include "d3/joint_point_batches.h"
 #include "d3/joint_solver.h"
 #include "d3/joint_tree.h"
 #include "d3/manifold.h"
@@ -201,6 +202,11 @@ class WorldScratch {
   // joints (joint_solver.cpp)
   std::vector<d3::JointConstraint> joint_constraints;
   std::vector<JointId> broken_joints;  ///< this step's, in slot order
+  // point joints in lanes (joint_point_batches.cpp), rebuilt each tick
+  std::vector<d3::PointBatch> point_batches;
+  std::vector<uint64_t> point_color_bits;  ///< per colour, one bit per solver body
+  std::vector<uint32_t> point_color_of;    ///< by joint constraint
+  d3::JointSoftness point_soft;
   // joint trees (joint_tree.cpp), rebuilt each tick
   std::vector<d3::JointTree> trees;
   std::vector<d3::JointTreeBody> tree_bodies;
@@ -212,8 +218,8 @@ class WorldScratch {
   std::vector<float> tree_w;
   std::vector<float> tree_lambda;
   std::vector<float> tree_acc;
-  std::vector<float> tree_extra_c;  ///< extra rows' couplings to a tree, 3 x rows
-  std::vector<float> tree_extra_y;  ///< the same through the tree's factors
+  std::vector<float> tree_extra_c;    ///< extra rows' couplings to a tree, 3 x rows
+  std::vector<float> tree_extra_y;    ///< the same through the tree's factors
   std::vector<uint32_t> tree_parent;  ///< union-find over solver bodies
   std::vector<uint8_t> tree_loop;
   std::vector<uint32_t> tree_count;

@@ -97,6 +97,18 @@ struct JointScene {
     JointDef weak = joint_at(world, JointType::kBall, {}, heavy, {10.0f, 3.5f, 0.0f});
     weak.break_impulse = 5.0f;  // far below its 1000 kg weight
     joints.push_back(make(world, weak));
+    // A ring of bare ball joints hung from the world (point joints, solved
+    // in lane batches).
+    const Vec3 ring[4] = {
+        {12.0f, 4.0f, 0.0f}, {12.6f, 4.0f, 0.0f}, {12.6f, 4.0f, 0.6f}, {12.0f, 4.0f, 0.6f}};
+    BodyId beads[4];
+    for (int i = 0; i < 4; ++i) beads[i] = test::add_sphere(world, ring[i], 0.15f);
+    for (int i = 0; i < 4; ++i) {
+      joints.push_back(make(world, joint_at(world, JointType::kBall, beads[i], beads[(i + 1) % 4],
+                                            (ring[i] + ring[(i + 1) % 4]) * 0.5f)));
+    }
+    joints.push_back(make(
+        world, joint_at(world, JointType::kBall, {}, beads[0], ring[0] + Vec3{0.0f, 0.3f, 0.0f})));
   }
 };
 

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Point joints (JointConstraint::point) coloured into batches and solved in
+// the solver's lanes (wide_float.h), as the contacts are (contact_batches.h).
+//
+// Colouring: each point joint, in slot order, takes the first of
+// kColorCount colours in which neither of its movable bodies has a point
+// joint yet; joints of one colour share no movable body, so the lanes of a
+// batch can be solved at once with the result of solving them one after
+// another. Batches are solved colour by colour; a joint that finds no
+// colour stays on the scalar path (joint_point.cpp). The order depends
+// only on the joint list, never on the lane count or the instruction set,
+// and every lane computes with IEEE single-precision operations alone, so
+// SSE2, NEON and plain arrays give the same bits.
+#include <cstdint>
+
+#include "d3/wide_float.h"
+
+namespace rwd::sim {
+class WorldScratch;
+}
+
+namespace rwd::sim::d3 {
+
+inline constexpr uint32_t kNoPointJoint = 0xFFFFFFFFu;
+
+/// kLanes point joints, structure of arrays. An empty lane names the
+/// immovable body 0 on both sides and is never written back.
+struct alignas(16) PointBatch {
+  uint32_t joint[kLanes];  ///< index into scratch.joint_constraints, or kNoPointJoint
+  uint32_t body_a[kLanes];
+  uint32_t body_b[kLanes];
+  uint8_t movable_a[kLanes];
+  uint8_t movable_b[kLanes];
+  alignas(16) float anchor_a[3][kLanes];  ///< from A's centre, world frame, tick start
+  alignas(16) float anchor_b[3][kLanes];
+  alignas(16) float delta_center[3][kLanes];
+  // Refreshed at each substep's start: the lever arms, what a unit
+  // impulse does to each body's angular velocity (inverse inertia times
+  // [r]x, row-major), and the inverse effective mass (symmetric).
+  alignas(16) float ra[3][kLanes];
+  alignas(16) float rb[3][kLanes];
+  alignas(16) float turn_a[9][kLanes];
+  alignas(16) float turn_b[9][kLanes];
+  alignas(16) float inv_k[6][kLanes];  ///< xx, xy, xz, yy, yz, zz
+  alignas(16) float mass_a[kLanes];
+  alignas(16) float mass_b[kLanes];  ///< inverse masses
+  alignas(16) float impulse[3][kLanes];
+};
+
+/// Colours this tick's point joints and packs them (after prepare_joints
+/// has marked them); marks the packed ones JointConstraint::batched.
+void build_point_batches(WorldScratch& scratch);
+/// The stages of joint_point.cpp over the batches.
+void refresh_point_batches(WorldScratch& scratch);
+void warm_start_point_batches(WorldScratch& scratch);
+void solve_point_batches(WorldScratch& scratch, bool use_bias);
+void project_point_batches(WorldScratch& scratch);
+/// Writes the batches' impulses back to their joints.
+void store_point_batches(WorldScratch& scratch);
+
+}  // namespace rwd::sim::d3
