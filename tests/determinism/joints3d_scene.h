@@ -3,7 +3,7 @@
 // The 3D lane's joint scene for det_checksums: every joint type (limits,
 // motors, springs, a grab, a soft weld), a tree of joints solved as one
 // system (a chain and a branching figure), a loop solved row by row, a
-// joint that breaks, a raycast-wheel car driven each tick and a character
+// sheet of bare ball joints solved in lane batches, a joint that breaks, a raycast-wheel car driven each tick and a character
 // moved by shape casts, with the world restored from a snapshot and
 // reloaded from its own bytes on the way, so the matrix holds the joint
 // solver, the vehicle and the character controller to the same bits on
