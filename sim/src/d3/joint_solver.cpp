@@ -250,9 +250,7 @@ void displace(const RowBlock& block, const float* lambda, SolverBody& a, SolverB
 }
 
 void release_pulling_limits(const JointConstraint& c, float* x) {
-  for (int i = 0; i < c.block.size(); ++i) {
-    if (c.row_kind[i] != kRowStructure && x[i] < 0.0f) x[i] = 0.0f;
-  }
+  release_block_limits(c, x, nullptr);
 }
 
 void project_joints(const WorldState& state, WorldScratch& scratch) {

@@ -197,7 +197,8 @@ inline float clamp_projection(float error) {
                                 : (error < -kMaxProjection ? -kMaxProjection : error);
 }
 /// A limit only pushes: a projection that would pull a held limit shut
-/// leaves it where it is (its displacement zeroed).
+/// releases it (see release_block_limits), so it is left where it is
+/// while the rest of the block still closes.
 void release_pulling_limits(const JointConstraint& c, float* x);
 /// Moves bodies a and b by displacements lambda[i] along the block's rows
 /// (as impulses would move velocities: -M^-1 J^T to A, + to B).
@@ -245,8 +246,18 @@ float limit_impulse(const JointConstraint& c, uint8_t kind);
 /// Bits (1 << kind) of the limits the block holds.
 uint8_t held_limits(const JointConstraint& c);
 /// A limit may only push: a held limit row whose accumulated impulse went
-/// below zero is released (its impulse taken back along its row).
+/// below zero is released, its impulse taken back by the block impulse
+/// that changes its own row's velocity alone (K^-1 e_r per released row),
+/// so the rest of the block keeps the velocities it was solved for.
+/// (Taking it back along the limit's row alone would leave the joint's
+/// other rows moving by that impulse times their coupling to it: a pulled
+/// elbow limit, released so, sets a light forearm spinning against its
+/// hinge.)
 void settle_held_limits(JointConstraint& c, SolverBody& a, SolverBody& b, float* acc);
+/// The release itself: the held limit rows of c's block whose `total`
+/// is negative are brought to zero by a combination of K^-1 columns,
+/// added to `total` and, when given, to `step`.
+void release_block_limits(const JointConstraint& c, float* total, float* step);
 /// The limits not in the block, each as a speculative row against it.
 void solve_free_limits(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
                        const JointFrames& f, bool use_bias, const ExtraBase& base);

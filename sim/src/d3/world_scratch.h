@@ -214,6 +214,8 @@ class WorldScratch {
   std::vector<float> tree_acc;
   std::vector<float> tree_extra_c;  ///< extra rows' couplings to a tree, 3 x rows
   std::vector<float> tree_extra_y;  ///< the same through the tree's factors
+  std::vector<float> tree_delta;    ///< a pass's impulses or displacements, by row
+  std::vector<float> tree_release;  ///< released limits' K^-1 columns, 8 x rows
   std::vector<uint32_t> tree_parent;  ///< union-find over solver bodies
   std::vector<uint8_t> tree_loop;
   std::vector<uint32_t> tree_count;
