@@ -473,6 +473,11 @@ void solve(WorldState& state, WorldScratch& scratch) {
   prepare_joints(state, scratch, h);
   build_batches(scratch);
   const bool joints = !scratch.joint_constraints.empty();
+  for (const ContactConstraint& c : scratch.constraints) {
+    scratch.solver_bodies[c.body_a].contacted = true;
+    scratch.solver_bodies[c.body_b].contacted = true;
+  }
+  scratch.solver_bodies[0].contacted = false;
   const float slop = config.linear_slop_m;
   scratch.pushing = false;
   bool ordered = false;
@@ -491,8 +496,9 @@ void solve(WorldState& state, WorldScratch& scratch) {
     // substep and its projection, clamped, lagged behind. Solved last,
     // the joints (a tree exactly) hand the contacts' impulse on to the
     // bodies they join; the contacts' slop, speculative margin and
-    // push-out absorb what this leaves them.
-    if (joints) solve_joints(state, scratch, true);
+    // push-out absorb what this leaves them. (Joints no contact acts on
+    // are where the first pass left them.)
+    if (joints) solve_joints(state, scratch, true, true);
     // Until some point overlaps past the slop, every push velocity and
     // impulse is zero and a push-out pass would leave them so: resting
     // scenes skip it. Likewise the push-out from the ground up, and the

@@ -212,12 +212,23 @@ void solve_alone(const JointRecord& j, JointConstraint& c, SolverBody& a, Solver
 
 }  // namespace
 
-void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias) {
+void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias,
+                  bool contacted_only) {
+  const std::vector<SolverBody>& bodies = scratch.solver_bodies;
   for (uint32_t t = 0; t < scratch.trees.size(); ++t) {
+    if (contacted_only) {
+      const JointTree& tree = scratch.trees[t];
+      bool contacted = false;
+      for (uint32_t q = tree.body_begin; q < tree.body_end; ++q) {
+        contacted = contacted || bodies[scratch.tree_bodies[q].body].contacted;
+      }
+      if (!contacted) continue;
+    }
     solve_joint_tree(state.joints, scratch, t, use_bias);
   }
   for (JointConstraint& c : scratch.joint_constraints) {
     if (c.tree != kNoTree) continue;
+    if (contacted_only && !bodies[c.body_a].contacted && !bodies[c.body_b].contacted) continue;
     if (c.point) {
       solve_point(c, scratch.solver_bodies[c.body_a], scratch.solver_bodies[c.body_b], use_bias);
       continue;

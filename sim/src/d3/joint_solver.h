@@ -166,7 +166,11 @@ void prepare_joints(const WorldState& state, WorldScratch& scratch, float h);
 /// factors must match the rows it applies).
 void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool trees_only = false);
 void warm_start_joints(const WorldState& state, WorldScratch& scratch);
-void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias);
+/// `contacted_only`: only the trees and joints with a body a contact acts
+/// on (SolverBody::contacted); the others are where the last pass left
+/// them.
+void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias,
+                  bool contacted_only = false);
 /// Closes what the substep left open of the joints' structure: each tree,
 /// and each joint on its own, solved once more for its position errors
 /// and its bodies moved by the answer (velocities untouched). A contact

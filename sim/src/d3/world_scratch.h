@@ -69,6 +69,9 @@ struct alignas(32) SolverBody {
   /// An acting joint holds the body this tick: its velocity is the
   /// joint's answer, so the free body's gyroscopic carry is not applied.
   bool jointed;
+  /// A contact of this tick acts on the body (the joints are solved again
+  /// after the contacts only where one does).
+  bool contacted;
 };
 static_assert(offsetof(SolverBody, angular_velocity) == 3 * sizeof(float) &&
                   offsetof(SolverBody, inv_mass) == 6 * sizeof(float) &&
