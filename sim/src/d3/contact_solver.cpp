@@ -473,6 +473,11 @@ void solve(WorldState& state, WorldScratch& scratch) {
   prepare_joints(state, scratch, h);
   build_batches(scratch);
   const bool joints = !scratch.joint_constraints.empty();
+  for (const ContactConstraint& c : scratch.constraints) {
+    scratch.solver_bodies[c.body_a].contacted = true;
+    scratch.solver_bodies[c.body_b].contacted = true;
+  }
+  scratch.solver_bodies[0].contacted = false;
   const float slop = config.linear_slop_m;
   scratch.pushing = false;
   bool ordered = false;
@@ -482,6 +487,18 @@ void solve(WorldState& state, WorldScratch& scratch) {
     warm_start_batches(scratch);
     if (joints) solve_joints(state, scratch, true);
     solve_batches(scratch, inv_h);
+    // The joints again after the contacts, so the velocities the bodies
+    // move by hold the joints. A contact sees a limb as a free body: a
+    // capsule's long-axis inertia is tiny, so the friction of whatever
+    // slides across a forearm rolls it at tens of rad/s where the elbow
+    // would turn the whole arm (its hinge locks that roll). Moved by the
+    // contacts' velocities, the elbow twisted by up to 0.5 rad within a
+    // substep and its projection, clamped, lagged behind. Solved last,
+    // the joints (a tree exactly) hand the contacts' impulse on to the
+    // bodies they join; the contacts' slop, speculative margin and
+    // push-out absorb what this leaves them. (Joints no contact acts on
+    // are where the first pass left them.)
+    if (joints) solve_joints(state, scratch, true, true);
     // Until some point overlaps past the slop, every push velocity and
     // impulse is zero and a push-out pass would leave them so: resting
     // scenes skip it. Likewise the push-out from the ground up, and the
@@ -498,23 +515,22 @@ void solve(WorldState& state, WorldScratch& scratch) {
       push_batches(scratch, config, inv_h);
     }
     integrate_positions(scratch, h);
-    // Joints relax at least once: their soft bias must not stay behind as
-    // velocity, whatever the contacts do.
-    if (joints) {
-      // The joints' structure closed by moving the bodies (before the
-      // contacts measure their separations, so an overlap the move made
-      // is pushed out like any other), then relaxed.
-      refresh_joint_rows(state, scratch, true);
-      solve_joints(state, scratch, false);
-    }
+    // The trees' rows where the bodies now stand, for their relax and
+    // projection.
+    if (joints) refresh_joint_rows(state, scratch, true);
     if (config.relax_iterations > 0) {
       update_separations_and_relax(scratch, slop, inv_h);
     } else {
       update_separations(scratch, slop);
     }
+    // Joints relax at least once, and after the contacts (as above: the
+    // velocities the step ends with, and the next substep starts from,
+    // hold them): their soft bias must not stay behind as velocity,
+    // whatever the contacts do.
+    if (joints) solve_joints(state, scratch, false);
     for (int32_t r = 1; r < config.relax_iterations; ++r) {
-      if (joints) solve_joints(state, scratch, false);
       solve_batches(scratch, inv_h);
+      if (joints) solve_joints(state, scratch, false);
     }
     if (joints) {
       project_joints(state, scratch);

@@ -15,11 +15,29 @@ namespace {
 // ones before it (or neither body can move along it): it is left out.
 constexpr float kPivotShare = 1e-6f;
 
+// An extra row the base already holds (or nothing can move along) has no
+// Schur complement left: what is left of its diagonal is rounding, below
+// this share of its own diagonal K_ee (float rounding leaves about 1e-6
+// of it; a row the base does not hold keeps far more: a small bob a
+// metre from its pivot, the least of the usual cases, keeps 1e-3). It
+// is left out rather than given a huge mass: a twist limit solved
+// against a tree that holds the opposite twist limit took impulses a
+// hundred thousand times too large.
+constexpr float kExtraShare = 1e-5f;
+
 float clamp_impulse(float v, float lo, float hi) {
   return v < lo ? lo : (v > hi ? hi : v);
 }
 
 }  // namespace
+
+void drop_held_rows(float (*sm)[3], const float* own, int m) {
+  for (int k = 0; k < m; ++k) {
+    if (!(own[k] > 0.0f && sm[k][k] > kExtraShare * own[k])) {
+      for (int l = 0; l < 3; ++l) sm[k][l] = sm[l][k] = 0.0f;
+    }
+  }
+}
 
 float row_velocity(const JointRow& r, const SolverBody& a, const SolverBody& b) {
   return dot(r.linear, b.linear_velocity - a.linear_velocity) +
@@ -116,23 +134,19 @@ void RowGroup::prepare(const RowBlock& block, const JointRow* rows, int m, const
   }
   // S = K_ee - K_eb K_bb^-1 K_be.
   float sm[3][3] = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};
+  float own[3] = {};
   for (int k = 0; k < m; ++k) {
     const Vec3 ia = a.inv_inertia * rows[k].angular_a;
     const Vec3 ib = b.inv_inertia * rows[k].angular_b;
     for (int l = 0; l < m; ++l) {
       float v = mass_sum * dot(rows[l].linear, rows[k].linear) + dot(rows[l].angular_a, ia) +
                 dot(rows[l].angular_b, ib);
+      if (l == k) own[k] = v;
       for (int i = 0; i < n; ++i) v -= c[l][i] * y_[k][i];
       sm[k][l] = v;
     }
   }
-  // A row the block already holds (or nothing can move along) has no
-  // complement left: it is left out rather than given a huge mass.
-  for (int k = 0; k < m; ++k) {
-    if (!(sm[k][k] > 1e-12f)) {
-      for (int l = 0; l < 3; ++l) sm[k][l] = sm[l][k] = 0.0f;
-    }
-  }
+  drop_held_rows(sm, own, m);
   // Padded to 3x3 with ones on the unused diagonal; inverse_symmetric
   // leaves the zeroed rows zero.
   const Mat3 inv = inverse_symmetric(Mat3{{sm[0][0], sm[0][1], sm[0][2]},

@@ -26,14 +26,15 @@ struct PointAccess {
   using F = FloatW;
   static constexpr int kWidth = kLanes;
   const PointBatch* batch;
+  uint8_t active = 0xFu;  ///< lanes whose bodies may be written
   static F splat(float x) { return d3::splat(x); }
   static F from(const float* p) { return load(p); }
   static void gather_rows(const float* const (&rows)[kLanes], F (&out)[8]) { load_rows(rows, out); }
   static void scatter_rows(const F (&in)[8], float* const (&rows)[kLanes]) { store_rows(in, rows); }
   uint32_t body_a(int lane) const { return batch->body_a[lane]; }
   uint32_t body_b(int lane) const { return batch->body_b[lane]; }
-  bool movable_a(int lane) const { return batch->movable_a[lane] != 0; }
-  bool movable_b(int lane) const { return batch->movable_b[lane] != 0; }
+  bool movable_a(int lane) const { return batch->movable_a[lane] != 0 && (active >> lane & 1u); }
+  bool movable_b(int lane) const { return batch->movable_b[lane] != 0 && (active >> lane & 1u); }
 };
 
 V3<F> ld3(const float (&f)[3][kLanes]) {
@@ -285,10 +286,23 @@ void warm_start_point_batches(WorldScratch& s) {
   }
 }
 
-void solve_point_batches(WorldScratch& s, bool use_bias) {
+void solve_point_batches(WorldScratch& s, bool use_bias, bool contacted_only) {
   const JointSoftness& soft = s.point_soft;
   for (PointBatch& b : s.point_batches) {
-    const PointAccess acc{&b};
+    PointAccess acc{&b};
+    alignas(16) float keep[kLanes];  // 1: the lane's impulse changes
+    if (contacted_only) {
+      acc.active = 0;
+      for (int i = 0; i < kLanes; ++i) {
+        const bool hit = b.joint[i] != kNoPointJoint && (s.solver_bodies[b.body_a[i]].contacted ||
+                                                         s.solver_bodies[b.body_b[i]].contacted);
+        acc.active = static_cast<uint8_t>(acc.active | (hit ? 1u << i : 0u));
+        keep[i] = hit ? 1.0f : 0.0f;
+      }
+      if (acc.active == 0) continue;
+    } else {
+      for (float& k : keep) k = 1.0f;
+    }
     LaneBodies<F> a = gather_bodies(acc, s.solver_bodies, false);
     LaneBodies<F> bb = gather_bodies(acc, s.solver_bodies, true);
     V3<F> rhs = anchor_velocity_lanes(b, a, bb);
@@ -309,7 +323,12 @@ void solve_point_batches(WorldScratch& s, bool use_bias) {
       const V3<F> x = inv_k_times(b, rhs);
       p = V3<F>{splat(0.0f) - x.x, splat(0.0f) - x.y, splat(0.0f) - x.z};
     }
-    st3(b.impulse, acc_impulse + p);
+    // A lane left out keeps its impulse, and its bodies are not written.
+    const auto changes = load(keep) > splat(0.0f);
+    const V3<F> next = acc_impulse + p;
+    st3(b.impulse,
+        V3<F>{select(changes, next.x, acc_impulse.x), select(changes, next.y, acc_impulse.y),
+              select(changes, next.z, acc_impulse.z)});
     apply(b, a, bb, p);
     scatter_bodies(acc, s.solver_bodies, false, a);
     scatter_bodies(acc, s.solver_bodies, true, bb);

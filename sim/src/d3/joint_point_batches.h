@@ -54,7 +54,10 @@ void build_point_batches(WorldScratch& scratch);
 /// The stages of joint_point.cpp over the batches.
 void refresh_point_batches(WorldScratch& scratch);
 void warm_start_point_batches(WorldScratch& scratch);
-void solve_point_batches(WorldScratch& scratch, bool use_bias);
+/// `contacted_only`: only the joints with a body a contact acts on (the
+/// second pass after the contacts, joint_solver.h); the others' bodies and
+/// impulses are left exactly as they are.
+void solve_point_batches(WorldScratch& scratch, bool use_bias, bool contacted_only = false);
 void project_point_batches(WorldScratch& scratch);
 /// Writes the batches' impulses back to their joints.
 void store_point_batches(WorldScratch& scratch);

@@ -9,6 +9,7 @@
 // softened for a spring. Limits are one-sided and speculative: a gap still
 // open may close within the substep, no more.
 #include "d3/joint_solver.h"
+#include "d3/joint_tree.h"
 #include "d3/world_scratch.h"
 
 namespace rwd::sim::d3 {
@@ -140,12 +141,49 @@ void scatter_impulses(JointConstraint& c, const float* acc) {
   c.angular_impulse = angular;
 }
 
-void settle_held_limits(JointConstraint& c, SolverBody& a, SolverBody& b, float* acc) {
-  for (int i = 0; i < c.block.size(); ++i) {
-    if (c.row_kind[i] == kRowStructure || acc[i] >= 0.0f) continue;
-    apply_row(c.block.row(i), a, b, -acc[i]);
-    acc[i] = 0.0f;
+void release_block_limits(const JointConstraint& c, float* total, float* step) {
+  const int n = c.block.size();
+  int released[kMaxBlockRows];
+  float column[kMaxBlockRows][kMaxBlockRows];
+  int m = 0;
+  for (int round = 0; round < kMaxLimitRows; ++round) {
+    const int before = m;
+    for (int i = 0; i < n; ++i) {
+      if (c.row_kind[i] == kRowStructure || !(total[i] < 0.0f)) continue;
+      bool seen = false;
+      for (int q = 0; q < m; ++q) seen = seen || released[q] == i;
+      if (seen) continue;
+      // Its column of K^-1: the block impulses that change its row's
+      // velocity by one and no other row's.
+      float unit[kMaxBlockRows] = {};
+      unit[i] = 1.0f;
+      c.block.solve(unit, column[m]);
+      released[m++] = i;
+    }
+    if (m == before) return;
+    // (K^-1)_RR t = -total_R zeroes every released row.
+    float w[kMaxBlockRows * kMaxBlockRows];
+    float t[kMaxBlockRows];
+    for (int r = 0; r < m; ++r) {
+      for (int q = 0; q < m; ++q) w[r * m + q] = column[q][released[r]];
+      t[r] = -total[released[r]];
+    }
+    solve_dense_spd(w, static_cast<uint32_t>(m), t);
+    for (int i = 0; i < n; ++i) {
+      float v = 0.0f;
+      for (int q = 0; q < m; ++q) v += column[q][i] * t[q];
+      total[i] += v;
+      if (step != nullptr) step[i] += v;
+    }
   }
+}
+
+void settle_held_limits(JointConstraint& c, SolverBody& a, SolverBody& b, float* acc) {
+  float step[kMaxBlockRows] = {};
+  release_block_limits(c, acc, step);
+  bool any = false;
+  for (int i = 0; i < c.block.size(); ++i) any = any || step[i] != 0.0f;
+  if (any) c.block.apply(a, b, step);
 }
 
 void solve_free_limits(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,

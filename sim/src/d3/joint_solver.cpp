@@ -216,12 +216,23 @@ void solve_alone(const JointRecord& j, JointConstraint& c, SolverBody& a, Solver
 
 }  // namespace
 
-void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias) {
+void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias,
+                  bool contacted_only) {
+  const std::vector<SolverBody>& bodies = scratch.solver_bodies;
   for (uint32_t t = 0; t < scratch.trees.size(); ++t) {
+    if (contacted_only) {
+      const JointTree& tree = scratch.trees[t];
+      bool contacted = false;
+      for (uint32_t q = tree.body_begin; q < tree.body_end; ++q) {
+        contacted = contacted || bodies[scratch.tree_bodies[q].body].contacted;
+      }
+      if (!contacted) continue;
+    }
     solve_joint_tree(state.joints, scratch, t, use_bias);
   }
   for (JointConstraint& c : scratch.joint_constraints) {
     if (c.tree != kNoTree) continue;
+    if (contacted_only && !bodies[c.body_a].contacted && !bodies[c.body_b].contacted) continue;
     if (c.point) {
       if (!c.batched) {
         solve_point(c, scratch.solver_bodies[c.body_a], scratch.solver_bodies[c.body_b], use_bias);
@@ -231,7 +242,7 @@ void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias)
     solve_alone(state.joints[c.record], c, scratch.solver_bodies[c.body_a],
                 scratch.solver_bodies[c.body_b], use_bias);
   }
-  solve_point_batches(scratch, use_bias);
+  solve_point_batches(scratch, use_bias, contacted_only);
   scratch.solver_bodies[0].linear_velocity = {};
   scratch.solver_bodies[0].angular_velocity = {};
 }
@@ -257,9 +268,7 @@ void displace(const RowBlock& block, const float* lambda, SolverBody& a, SolverB
 }
 
 void release_pulling_limits(const JointConstraint& c, float* x) {
-  for (int i = 0; i < c.block.size(); ++i) {
-    if (c.row_kind[i] != kRowStructure && x[i] < 0.0f) x[i] = 0.0f;
-  }
+  release_block_limits(c, x, nullptr);
 }
 
 void project_joints(const WorldState& state, WorldScratch& scratch) {

@@ -169,7 +169,11 @@ void prepare_joints(const WorldState& state, WorldScratch& scratch, float h);
 /// factors must match the rows it applies).
 void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool trees_only = false);
 void warm_start_joints(const WorldState& state, WorldScratch& scratch);
-void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias);
+/// `contacted_only`: only the trees and joints with a body a contact acts
+/// on (SolverBody::contacted); the others are where the last pass left
+/// them.
+void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias,
+                  bool contacted_only = false);
 /// Closes what the substep left open of the joints' structure: each tree,
 /// and each joint on its own, solved once more for its position errors
 /// and its bodies moved by the answer (velocities untouched). A contact
@@ -200,7 +204,8 @@ inline float clamp_projection(float error) {
                                 : (error < -kMaxProjection ? -kMaxProjection : error);
 }
 /// A limit only pushes: a projection that would pull a held limit shut
-/// leaves it where it is (its displacement zeroed).
+/// releases it (see release_block_limits), so it is left where it is
+/// while the rest of the block still closes.
 void release_pulling_limits(const JointConstraint& c, float* x);
 /// Moves bodies a and b by displacements lambda[i] along the block's rows
 /// (as impulses would move velocities: -M^-1 J^T to A, + to B).
@@ -248,8 +253,18 @@ float limit_impulse(const JointConstraint& c, uint8_t kind);
 /// Bits (1 << kind) of the limits the block holds.
 uint8_t held_limits(const JointConstraint& c);
 /// A limit may only push: a held limit row whose accumulated impulse went
-/// below zero is released (its impulse taken back along its row).
+/// below zero is released, its impulse taken back by the block impulse
+/// that changes its own row's velocity alone (K^-1 e_r per released row),
+/// so the rest of the block keeps the velocities it was solved for.
+/// (Taking it back along the limit's row alone would leave the joint's
+/// other rows moving by that impulse times their coupling to it: a pulled
+/// elbow limit, released so, sets a light forearm spinning against its
+/// hinge.)
 void settle_held_limits(JointConstraint& c, SolverBody& a, SolverBody& b, float* acc);
+/// The release itself: the held limit rows of c's block whose `total`
+/// is negative are brought to zero by a combination of K^-1 columns,
+/// added to `total` and, when given, to `step`.
+void release_block_limits(const JointConstraint& c, float* total, float* step);
 /// The limits not in the block, each as a speculative row against it.
 void solve_free_limits(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
                        const JointFrames& f, bool use_bias, const ExtraBase& base);

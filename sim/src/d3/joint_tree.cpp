@@ -306,6 +306,77 @@ void solve_tree(WorldScratch& s, const JointTree& tree) {
   solve_tree_rows(s, tree);
 }
 
+void solve_dense_spd(float* a, uint32_t n, float* x) {
+  float d[kMaxFrontRows];
+  factor_dense(a, d, n);
+  solve_dense(a, d, n, x);
+}
+
+void release_tree_limits(WorldScratch& s, const JointTree& tree, float* total, float* step) {
+  std::vector<JointConstraint>& joints = s.joint_constraints;
+  const size_t rows = s.tree_rhs.size();
+  uint32_t released[kMaxReleased];
+  int m = 0;
+  // A few rounds: releasing rows moves the impulses of the others, which
+  // may then pull in turn.
+  for (int round = 0; round < 3 && m < kMaxReleased; ++round) {
+    const int before = m;
+    for (uint32_t k = tree.joint_begin; k < tree.joint_end && m < kMaxReleased; ++k) {
+      const JointConstraint& c = joints[s.tree_joints[k]];
+      for (int i = 0; i < c.block.size() && m < kMaxReleased; ++i) {
+        const uint32_t at = c.tree_row + static_cast<uint32_t>(i);
+        if (c.row_kind[i] == kRowStructure || !(total[at] < 0.0f)) continue;
+        bool seen = false;
+        for (int q = 0; q < m; ++q) seen = seen || released[q] == at;
+        if (seen) continue;
+        // Its column of K^-1: the impulses that change its row's velocity
+        // by one and no other row's.
+        for (uint32_t q = tree.joint_begin; q < tree.joint_end; ++q) {
+          const JointConstraint& o = joints[s.tree_joints[q]];
+          for (int r = 0; r < o.block.size(); ++r) {
+            s.tree_rhs[o.tree_row + static_cast<uint32_t>(r)] = 0.0f;
+          }
+        }
+        s.tree_rhs[at] = 1.0f;
+        solve_tree_rows(s, tree);
+        float* column = s.tree_release.data() + static_cast<size_t>(m) * rows;
+        for (uint32_t q = tree.joint_begin; q < tree.joint_end; ++q) {
+          const JointConstraint& o = joints[s.tree_joints[q]];
+          for (int r = 0; r < o.block.size(); ++r) {
+            const uint32_t row = o.tree_row + static_cast<uint32_t>(r);
+            column[row] = s.tree_lambda[row];
+          }
+        }
+        released[m++] = at;
+      }
+    }
+    if (m == before) break;
+    // The weights t that zero every released row: (K^-1)_RR t = -total_R.
+    float w[kMaxReleased * kMaxReleased];
+    float t[kMaxReleased];
+    const uint32_t n = static_cast<uint32_t>(m);
+    for (uint32_t r = 0; r < n; ++r) {
+      for (uint32_t c = 0; c < n; ++c) {
+        w[r * n + c] = s.tree_release[static_cast<size_t>(c) * rows + released[r]];
+      }
+      t[r] = -total[released[r]];
+    }
+    solve_dense_spd(w, n, t);
+    for (uint32_t q = tree.joint_begin; q < tree.joint_end; ++q) {
+      const JointConstraint& o = joints[s.tree_joints[q]];
+      for (int r = 0; r < o.block.size(); ++r) {
+        const uint32_t row = o.tree_row + static_cast<uint32_t>(r);
+        float v = 0.0f;
+        for (uint32_t k = 0; k < n; ++k) {
+          v += s.tree_release[static_cast<size_t>(k) * rows + row] * t[k];
+        }
+        total[row] += v;
+        if (step != nullptr) step[row] += v;
+      }
+    }
+  }
+}
+
 void build_joint_trees(WorldScratch& s) {
   s.trees.clear();
   s.tree_bodies.clear();
@@ -424,6 +495,8 @@ void build_joint_trees(WorldScratch& s) {
   s.tree_w.resize(rows);
   s.tree_lambda.resize(rows);
   s.tree_acc.resize(rows);
+  s.tree_delta.resize(rows);
+  s.tree_release.resize(static_cast<size_t>(kMaxReleased) * rows);
   s.tree_factor_base = static_cast<uint32_t>(s.tree_arena.size());
 }
 
@@ -493,19 +566,23 @@ void solve_joint_tree(const std::vector<JointRecord>& records, WorldScratch& s, 
       use_bias ? joints[s.tree_joints[tree.joint_begin]].soft.mass_scale : 1.0f;
   const float impulse_scale =
       use_bias ? joints[s.tree_joints[tree.joint_begin]].soft.impulse_scale : 0.0f;
-  float delta[kMaxBlockRows];
   for (uint32_t k = tree.joint_begin; k < tree.joint_end; ++k) {
     JointConstraint& c = joints[s.tree_joints[k]];
     float* acc = s.tree_acc.data() + c.tree_row;
+    float* delta = s.tree_delta.data() + c.tree_row;
     for (int i = 0; i < c.block.size(); ++i) {
       delta[i] = s.tree_lambda[c.tree_row + i] * mass_scale - acc[i] * impulse_scale;
       acc[i] += delta[i];
     }
-    SolverBody& a = s.solver_bodies[c.body_a];
-    SolverBody& b = s.solver_bodies[c.body_b];
-    c.block.apply(a, b, delta);
-    settle_held_limits(c, a, b, acc);
-    scatter_impulses(c, acc);
+  }
+  // A held limit left pulling (by the solve, or by the extra rows'
+  // compensation before it) is released against the whole tree.
+  release_tree_limits(s, tree, s.tree_acc.data(), s.tree_delta.data());
+  for (uint32_t k = tree.joint_begin; k < tree.joint_end; ++k) {
+    JointConstraint& c = joints[s.tree_joints[k]];
+    c.block.apply(s.solver_bodies[c.body_a], s.solver_bodies[c.body_b],
+                  s.tree_delta.data() + c.tree_row);
+    scatter_impulses(c, s.tree_acc.data() + c.tree_row);
   }
 }
 
@@ -525,9 +602,17 @@ void project_joint_tree(const std::vector<JointRecord>& records, WorldScratch& s
   solve_tree_rows(s, tree);
   for (uint32_t k = tree.joint_begin; k < tree.joint_end; ++k) {
     const JointConstraint& c = joints[s.tree_joints[k]];
-    float* x = s.tree_lambda.data() + c.tree_row;
-    release_pulling_limits(c, x);
-    displace(c.block, x, s.solver_bodies[c.body_a], s.solver_bodies[c.body_b]);
+    for (int i = 0; i < c.block.size(); ++i) {
+      s.tree_delta[c.tree_row + i] = s.tree_lambda[c.tree_row + i];
+    }
+  }
+  // A held limit the displacements would pull shut is released against
+  // the whole tree: it stays where it is, the rest still closes.
+  release_tree_limits(s, tree, s.tree_delta.data(), nullptr);
+  for (uint32_t k = tree.joint_begin; k < tree.joint_end; ++k) {
+    const JointConstraint& c = joints[s.tree_joints[k]];
+    displace(c.block, s.tree_delta.data() + c.tree_row, s.solver_bodies[c.body_a],
+             s.solver_bodies[c.body_b]);
   }
 }
 

@@ -88,6 +88,21 @@ void prepare_tree_group(WorldScratch& scratch, uint32_t t, uint32_t body_a, uint
 /// accumulated impulses).
 void apply_tree_compensation(WorldScratch& scratch, uint32_t t, int m, const float* delta);
 
+/// A limit may only push: the held limit rows of tree t whose value in
+/// `total` (by tree row: accumulated impulses, or a projection's
+/// displacements) is negative are released, brought to zero by the
+/// combination of the tree's K^-1 columns for those rows (one exact solve
+/// each), which moves no other row of the tree. The combination is added
+/// to `total` and, when given, to `step`. At most kMaxReleased rows; the
+/// released set grows while releasing one makes another pull.
+void release_tree_limits(WorldScratch& scratch, const JointTree& tree, float* total, float* step);
+inline constexpr int kMaxReleased = 8;
+
+/// x = A^-1 x for a small symmetric positive semi-definite n x n matrix a
+/// (row-major, lower part read and overwritten by its factors), a row
+/// whose pivot is too small to trust left out (x zero there).
+void solve_dense_spd(float* a, uint32_t n, float* x);
+
 /// Moves the bodies of tree t so its structural rows' position errors
 /// vanish (to first order), without touching velocities: one exact solve
 /// of K x = -C applied as displacements (post-stabilization).

@@ -67,11 +67,13 @@ void prepare_tree_group(WorldScratch& s, uint32_t t, uint32_t body_a, uint32_t b
   }
   // S = K_ee - col . y, padded to 3 x 3.
   float sm[3][3] = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};
+  float own[3] = {};
   for (int k = 0; k < m; ++k) {
     const float* y = s.tree_extra_y.data() + static_cast<size_t>(k) * total;
     for (int l = 0; l < m; ++l) {
       float v = tree_row_coupling(rows[l], true, rows[k], true, ba) +
                 tree_row_coupling(rows[l], false, rows[k], false, bb);
+      if (l == k) own[k] = v;
       const float* col = s.tree_extra_c.data() + static_cast<size_t>(l) * total;
       for (uint32_t q = tree.joint_begin; q < tree.joint_end; ++q) {
         const JointConstraint& c = s.joint_constraints[s.tree_joints[q]];
@@ -83,11 +85,7 @@ void prepare_tree_group(WorldScratch& s, uint32_t t, uint32_t body_a, uint32_t b
       sm[k][l] = v;
     }
   }
-  for (int k = 0; k < m; ++k) {
-    if (!(sm[k][k] > 1e-12f)) {
-      for (int l = 0; l < 3; ++l) sm[k][l] = sm[l][k] = 0.0f;
-    }
-  }
+  drop_held_rows(sm, own, m);
   const Mat3 inv = inverse_symmetric(Mat3{{sm[0][0], sm[0][1], sm[0][2]},
                                           {sm[1][0], sm[1][1], sm[1][2]},
                                           {sm[2][0], sm[2][1], sm[2][2]}});

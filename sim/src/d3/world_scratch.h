@@ -70,6 +70,9 @@ struct alignas(32) SolverBody {
   /// An acting joint holds the body this tick: its velocity is the
   /// joint's answer, so the free body's gyroscopic carry is not applied.
   bool jointed;
+  /// A contact of this tick acts on the body (the joints are solved again
+  /// after the contacts only where one does).
+  bool contacted;
 };
 static_assert(offsetof(SolverBody, angular_velocity) == 3 * sizeof(float) &&
                   offsetof(SolverBody, inv_mass) == 6 * sizeof(float) &&
@@ -220,6 +223,8 @@ class WorldScratch {
   std::vector<float> tree_acc;
   std::vector<float> tree_extra_c;    ///< extra rows' couplings to a tree, 3 x rows
   std::vector<float> tree_extra_y;    ///< the same through the tree's factors
+  std::vector<float> tree_delta;      ///< a pass's impulses or displacements, by row
+  std::vector<float> tree_release;    ///< released limits' K^-1 columns, 8 x rows
   std::vector<uint32_t> tree_parent;  ///< union-find over solver bodies
   std::vector<uint8_t> tree_loop;
   std::vector<uint32_t> tree_count;
