@@ -54,18 +54,8 @@ void color(WorldScratch& scratch) {
     const ContactConstraint& c = scratch.constraints[k];
     const bool movable_a = scratch.solver_bodies[c.body_a].inv_mass != 0.0f;
     const bool movable_b = scratch.solver_bodies[c.body_b].inv_mass != 0.0f;
-    uint32_t chosen = kColorCount;
-    for (uint32_t col = 0; col < kColorCount; ++col) {
-      uint64_t* bits = &scratch.color_bits[col * words];
-      const bool used_a = movable_a && (bits[c.body_a / 64] >> (c.body_a % 64) & 1u) != 0;
-      const bool used_b = movable_b && (bits[c.body_b / 64] >> (c.body_b % 64) & 1u) != 0;
-      if (used_a || used_b) continue;
-      if (movable_a) bits[c.body_a / 64] |= uint64_t{1} << (c.body_a % 64);
-      if (movable_b) bits[c.body_b / 64] |= uint64_t{1} << (c.body_b % 64);
-      chosen = col;
-      break;
-    }
-    scratch.color_of[k] = chosen;
+    scratch.color_of[k] =
+        take_color(scratch.color_bits.data(), words, c.body_a, movable_a, c.body_b, movable_b);
   }
 }
 

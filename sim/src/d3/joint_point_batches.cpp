@@ -153,18 +153,10 @@ void build_point_batches(WorldScratch& s) {
     if (!c.point) continue;
     const bool movable_a = s.solver_bodies[c.body_a].inv_mass != 0.0f;
     const bool movable_b = s.solver_bodies[c.body_b].inv_mass != 0.0f;
-    for (uint32_t col = 0; col < kColorCount; ++col) {
-      uint64_t* bits = &s.point_color_bits[col * words];
-      const bool used_a = movable_a && (bits[c.body_a / 64] >> (c.body_a % 64) & 1u) != 0;
-      const bool used_b = movable_b && (bits[c.body_b / 64] >> (c.body_b % 64) & 1u) != 0;
-      if (used_a || used_b) continue;
-      if (movable_a) bits[c.body_a / 64] |= uint64_t{1} << (c.body_a % 64);
-      if (movable_b) bits[c.body_b / 64] |= uint64_t{1} << (c.body_b % 64);
-      s.point_color_of[k] = col;
-      c.batched = true;
-      any = true;
-      break;
-    }
+    s.point_color_of[k] =
+        take_color(s.point_color_bits.data(), words, c.body_a, movable_a, c.body_b, movable_b);
+    c.batched = s.point_color_of[k] != kColorCount;
+    any = any || c.batched;
   }
   if (!any) return;
   // Colour by colour, in slot order within a colour, kLanes to a batch.
