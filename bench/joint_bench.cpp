@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "joint_engines.h"
+#include "rewind/scenes/joint_scene_meter.h"
 
 namespace {
 

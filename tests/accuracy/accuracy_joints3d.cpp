@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "rewind/scenes/joint_scene_meter.h"
 #include "rewind/scenes/joint_scenes.h"
 #include "rewind/sim/det_math.h"
 #include "rewind/sim/world3d.h"

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "rewind/scenes/joint_scene_meter.h"
 #include "rewind/scenes/joint_scenes.h"
 #include "rewind/sim/world3d.h"
 

@@ -31,11 +31,20 @@ float clamp_impulse(float v, float lo, float hi) {
 
 }  // namespace
 
-void drop_held_rows(float (*sm)[3], const float* own, int m) {
+void invert_schur(float (*sm)[3], const float* own, int m, float (*out)[3]) {
   for (int k = 0; k < m; ++k) {
     if (!(own[k] > 0.0f && sm[k][k] > kExtraShare * own[k])) {
       for (int l = 0; l < 3; ++l) sm[k][l] = sm[l][k] = 0.0f;
     }
+  }
+  // Padded with ones on the unused diagonal; inverse_symmetric leaves the
+  // zeroed rows zero.
+  const Mat3 inv = inverse_symmetric(Mat3{{sm[0][0], sm[0][1], sm[0][2]},
+                                          {sm[1][0], sm[1][1], sm[1][2]},
+                                          {sm[2][0], sm[2][1], sm[2][2]}});
+  const Vec3 cols[3] = {inv.c0, inv.c1, inv.c2};
+  for (int k = 0; k < 3; ++k) {
+    for (int l = 0; l < 3; ++l) out[k][l] = k < m && l < m ? component(cols[k], l) : 0.0f;
   }
 }
 
@@ -146,16 +155,7 @@ void RowGroup::prepare(const RowBlock& block, const JointRow* rows, int m, const
       sm[k][l] = v;
     }
   }
-  drop_held_rows(sm, own, m);
-  // Padded to 3x3 with ones on the unused diagonal; inverse_symmetric
-  // leaves the zeroed rows zero.
-  const Mat3 inv = inverse_symmetric(Mat3{{sm[0][0], sm[0][1], sm[0][2]},
-                                          {sm[1][0], sm[1][1], sm[1][2]},
-                                          {sm[2][0], sm[2][1], sm[2][2]}});
-  const Vec3 cols[3] = {inv.c0, inv.c1, inv.c2};
-  for (int k = 0; k < m; ++k) {
-    for (int l = 0; l < m; ++l) s_[k][l] = component(cols[k], l);
-  }
+  invert_schur(sm, own, m, s_);
 }
 
 void RowGroup::velocity(const SolverBody& a, const SolverBody& b, float* out) const {

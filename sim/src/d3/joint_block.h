@@ -112,11 +112,11 @@ class RowGroup {
   float s_[kMaxGroupRows][kMaxGroupRows] = {};  ///< the Schur complement, inverted
 };
 
-/// Leaves out of an extra group's Schur complement S (m x m of a 3 x 3;
-/// rows and columns zeroed) the rows whose diagonal kept too small a
-/// share of their own diagonal `own` (K_ee) to trust: rows the base
-/// holds (joint_block.cpp).
-void drop_held_rows(float (*sm)[3], const float* own, int m);
+/// The inverse of an extra group's Schur complement S (m x m of a 3 x 3,
+/// the rest of `sm` the identity) into `out` (m x m, zeros elsewhere),
+/// leaving out the rows whose diagonal kept too small a share of their own
+/// diagonal `own` (K_ee) to trust: rows the base holds (joint_block.cpp).
+void invert_schur(float (*sm)[3], const float* own, int m, float (*out)[3]);
 
 /// Row velocity of a lone row.
 float row_velocity(const JointRow& r, const SolverBody& a, const SolverBody& b);

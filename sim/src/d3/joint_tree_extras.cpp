@@ -85,14 +85,7 @@ void prepare_tree_group(WorldScratch& s, uint32_t t, uint32_t body_a, uint32_t b
       sm[k][l] = v;
     }
   }
-  drop_held_rows(sm, own, m);
-  const Mat3 inv = inverse_symmetric(Mat3{{sm[0][0], sm[0][1], sm[0][2]},
-                                          {sm[1][0], sm[1][1], sm[1][2]},
-                                          {sm[2][0], sm[2][1], sm[2][2]}});
-  const Vec3 cols[3] = {inv.c0, inv.c1, inv.c2};
-  for (int k = 0; k < 3; ++k) {
-    for (int l = 0; l < 3; ++l) s_inv[k][l] = k < m && l < m ? component(cols[k], l) : 0.0f;
-  }
+  invert_schur(sm, own, m, s_inv);
 }
 
 void apply_tree_compensation(WorldScratch& s, uint32_t t, int m, const float* delta) {
