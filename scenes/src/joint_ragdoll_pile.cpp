@@ -3,7 +3,7 @@
 // ragdolls are not described a second time here: one is made with
 // create_ragdoll() in a scratch world and read back through the public
 // state (its capsules, densities, damping and friction; its joints'
-// anchors, axes and limits), and each ragdoll of the pile is placed with
+// anchors, axes, limits and friction), and each ragdoll of the pile is placed with
 // ragdoll_rest_pose(). A change to the builder's defaults reaches this
 // scene, so Bullet always gets the ragdoll Rewind's stability suite
 // stacks. Where they go repeats tests/stability/ragdoll_pile3d.h.
@@ -105,6 +105,8 @@ RagdollTemplate read_ragdoll(const sim::RagdollSpec3D& spec) {
     joint.twist_upper = record.twist_upper;
     joint.lower = record.lower;
     joint.upper = record.upper;
+    // The builder's joint friction: a motor held at zero relative speed.
+    if ((record.flags & sim::kJointMotor) != 0) joint.friction_torque_nm = record.max_motor;
     if (record.type != sim::JointType::kHinge && record.type != sim::JointType::kBall) {
       t.error = std::string("ragdoll joint ") + sim::ragdoll_joint_name(which) +
                 ": neither a ball joint nor a hinge";

@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The 3D ragdoll pile shared by the built stability suite
-// (stability3d_ragdolls.cpp) and the unbuilt known failures
-// (stability3d_known_failures.cpp): fifty ragdolls (rewind/sim/ragdoll3d.h)
+// (stability3d_ragdolls.cpp): fifty ragdolls (rewind/sim/ragdoll3d.h)
 // lying in ten crossed layers of five, each turned a little and dropped
 // from 0.4 to 4.5 m onto a floor, stepped for a number of ticks while the
 // widest joint opening and the time every part is asleep are measured.

@@ -412,6 +412,44 @@ void store_impulses(WorldState& state, const WorldScratch& scratch) {
   }
 }
 
+// Sleep timer. A dynamic body rests through each stretch of half
+// time_to_sleep_s in which no point of it strays further than
+// sleep_threshold_mps times the stretch from where the stretch began (its
+// sleep pose): its average speed over the stretch is below the threshold.
+// Straying further restarts the count from where it stands; a full
+// stretch starts the next one there. Measured by displacement, not by
+// each tick's velocity, so a body that trembles in place (a thin limb's
+// spin about its own axis flickering on and off, a limb shaking on the
+// heap it lies on) or creeps slower than the threshold comes to rest,
+// while one that goes somewhere does not; two stretches to sleep keep a
+// small pendulum's turning point (slow, but not for long) from passing
+// for rest. Kinematic bodies rest only when not driven at all.
+void update_sleep_timer(const WorldConfig& config, BodyKind kind, float extent, const SolverBody& b,
+                        float tick, BodySim& sim) {
+  const float before = sim.sleep_time;
+  if (kind != BodyKind::kDynamic) {
+    const bool still = b.linear_velocity == Vec3{} && b.angular_velocity == Vec3{};
+    sim.sleep_time = still ? sim.sleep_time + tick : 0.0f;
+  } else {
+    const float half = 0.5f * config.time_to_sleep_s;
+    const float stretch = half > tick ? half : tick;
+    // Every surface point moved by at most the centre's displacement plus
+    // the chord the turn sweeps at the extent: 2 sin(angle / 2) extent,
+    // and sin(angle / 2) is the length of the turn's vector part.
+    const Quat turn = conjugate(sim.sleep_rotation) * sim.rotation;
+    const float strayed = length(sim.position - sim.sleep_position) +
+                          2.0f * extent * length(Vec3{turn.x, turn.y, turn.z});
+    if (strayed <= config.sleep_threshold_mps * stretch) {
+      sim.sleep_time += tick;
+      if (std::floor(sim.sleep_time / stretch) == std::floor(before / stretch)) return;
+    } else {
+      sim.sleep_time = 0.0f;
+    }
+  }
+  sim.sleep_position = sim.position;
+  sim.sleep_rotation = sim.rotation;
+}
+
 void finalize(WorldState& state, WorldScratch& scratch, float tick) {
   const WorldConfig& config = state.config;
   for (size_t i = 1; i < scratch.solver_bodies.size(); ++i) {
@@ -440,25 +478,13 @@ void finalize(WorldState& state, WorldScratch& scratch, float tick) {
     }
     sim.force = {};
     sim.torque = {};
-    // Sleep timer: a body is at rest when no point of it moves faster than
-    // the threshold (|v| + extent * |w| bounds every surface point's speed).
-    // Kinematic bodies rest only when they are not driven at all.
-    // A body still being pushed out of an overlap is not at rest either.
-    bool resting = false;
-    if (state.infos[index].kind == BodyKind::kDynamic) {
-      const Vec3 v = b.linear_velocity + b.push_linear;
-      const Vec3 w = b.angular_velocity + b.push_angular;
-      float speed = length(v) + state.masses[index].extent * length(w);
-      resting = speed < config.sleep_threshold_mps;
-    } else {
-      resting = b.linear_velocity == Vec3{} && b.angular_velocity == Vec3{};
-    }
-    sim.sleep_time = resting ? sim.sleep_time + tick : 0.0f;
     // Solver bodies are in ascending body index, so events are too.
     if (settle_body(config, before, state.infos[index], sim)) {
       scratch.body_events.push_back(
           {BodyEventType::kLeftBounds, {index, state.infos[index].generation}, sim.position});
+      continue;
     }
+    update_sleep_timer(config, state.infos[index].kind, state.masses[index].extent, b, tick, sim);
   }
 }
 

@@ -4,6 +4,8 @@
 // in an order fixed by body and joint indices.
 #include "d3/joint_tree.h"
 
+#include <algorithm>
+
 #include "d3/joint_solver.h"
 #include "d3/world_scratch.h"
 
@@ -312,6 +314,17 @@ void solve_dense_spd(float* a, uint32_t n, float* x) {
   solve_dense(a, d, n, x);
 }
 
+namespace {
+
+// How many times heavier one of a joint's two moving bodies is than the
+// other (1 when either has no mass to compare).
+float mass_ratio(const SolverBody& a, const SolverBody& b) {
+  if (!(a.inv_mass > 0.0f) || !(b.inv_mass > 0.0f)) return 1.0f;
+  return a.inv_mass > b.inv_mass ? a.inv_mass / b.inv_mass : b.inv_mass / a.inv_mass;
+}
+
+}  // namespace
+
 void build_joint_trees(WorldScratch& s) {
   s.trees.clear();
   s.tree_bodies.clear();
@@ -327,6 +340,7 @@ void build_joint_trees(WorldScratch& s) {
   for (uint32_t i = 0; i < bodies; ++i) parent[i] = i;
   s.tree_loop.assign(bodies, 0);
   s.tree_count.assign(bodies, 0);
+  s.tree_mass_ratio.assign(bodies, 1.0f);
   bool any = false;
   for (JointConstraint& c : joints) {
     c.tree = kNoTree;
@@ -337,30 +351,36 @@ void build_joint_trees(WorldScratch& s) {
     if (ma && mb) {
       const uint32_t ra = find(parent, c.body_a);
       const uint32_t rb = find(parent, c.body_b);
+      const float ratio = mass_ratio(s.solver_bodies[c.body_a], s.solver_bodies[c.body_b]);
       if (ra == rb) {
         s.tree_loop[ra] = 1;
-      } else if (ra < rb) {
-        parent[rb] = ra;
-        s.tree_loop[ra] |= s.tree_loop[rb];
-        s.tree_count[ra] += s.tree_count[rb];
+        s.tree_mass_ratio[ra] = std::max(s.tree_mass_ratio[ra], ratio);
       } else {
-        parent[ra] = rb;
-        s.tree_loop[rb] |= s.tree_loop[ra];
-        s.tree_count[rb] += s.tree_count[ra];
+        const uint32_t root = ra < rb ? ra : rb;
+        const uint32_t other = ra < rb ? rb : ra;
+        parent[other] = root;
+        s.tree_loop[root] |= s.tree_loop[other];
+        s.tree_count[root] += s.tree_count[other];
+        s.tree_mass_ratio[root] =
+            std::max({s.tree_mass_ratio[root], s.tree_mass_ratio[other], ratio});
       }
     }
     ++s.tree_count[find(parent, ma ? c.body_a : c.body_b)];
     any = true;
   }
   if (!any) return;
-  // A tree is a loop-free component of two or more such joints; a lone
-  // joint is already exact on its own.
+  // A tree is a loop-free component of two or more such joints (a lone
+  // joint is already exact on its own) that the row-by-row passes would
+  // let sag: more joints than a load crosses in a few passes, or bodies
+  // of very different mass joined.
   auto in_tree = [&](const JointConstraint& c) {
     if (c.block.size() == 0) return false;
     const bool ma = movable(s, c.body_a);
     if (!ma && !movable(s, c.body_b)) return false;
     const uint32_t root = find(parent, ma ? c.body_a : c.body_b);
-    return s.tree_loop[root] == 0 && s.tree_count[root] >= 2;
+    return s.tree_loop[root] == 0 && s.tree_count[root] >= 2 &&
+           (s.tree_count[root] > kRowByRowTreeJoints ||
+            s.tree_mass_ratio[root] > kRowByRowMassRatio);
   };
   // Each moving body's tree joints, in slot order.
   s.tree_incidence_start.assign(bodies + 1, 0);

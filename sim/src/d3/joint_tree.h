@@ -32,6 +32,16 @@ class WorldScratch;
 
 namespace rwd::sim::d3 {
 
+/// Trees the row-by-row passes hold well enough are left to them, being
+/// cheaper and settle sooner (a pile of ragdolls, ten joints each and
+/// parts within 13 times each other's mass, opens by under a centimetre
+/// and sleeps sooner than solved exactly): a tree is
+/// solved exactly when it has more joints than this or joins two moving
+/// bodies more than kRowByRowMassRatio times apart in mass (a chain
+/// holding a load, a bridge of many planks).
+inline constexpr uint32_t kRowByRowTreeJoints = 12;
+inline constexpr float kRowByRowMassRatio = 30.0f;
+
 /// Rows of the joints below one body that one front may hold; a body
 /// with more leaves its component to the row-by-row solve.
 inline constexpr uint32_t kMaxFrontRows = 36;

@@ -215,6 +215,9 @@ Status check_spec(const RagdollSpec3D& spec, Layout& l) {
   if (!in_range(spec.angular_damping, 0.0f, 100.0f)) {
     return invalid("angular_damping must be in [0, 100] 1/s");
   }
+  if (!in_range(spec.joint_friction, 0.0f, 1.0f)) {
+    return invalid("joint_friction must be in [0, 1]");
+  }
   return Status::Ok();
 }
 
@@ -237,8 +240,29 @@ bool speed_ok(Vec3 v) {
          length_squared(quantize(v)) <= kMaxSpeed * kMaxSpeed;
 }
 
+// The torque what hangs below joint j weighs held out level, N m: the
+// mass of its child and the parts beyond it, under standard gravity, at
+// the distance from the joint to their centre of mass in the rest pose.
+// Parts come parents first, so one pass finds the parts below.
+float hanging_torque(const RagdollSpec3D& spec, const Layout& l, uint32_t j) {
+  constexpr float kStandardGravity = 9.81f;
+  std::array<bool, kParts> below{};
+  below[j + 1] = true;
+  float mass = 0.0f;
+  Vec3 moment{};
+  for (uint32_t p = j + 1; p < kParts; ++p) {
+    if (p > j + 1) below[p] = below[idx(kParent[p - 1])];
+    if (!below[p]) continue;
+    const float m = kMassFraction[p] * spec.mass_kg;
+    mass += m;
+    moment += l.centre[p] * m;
+  }
+  const float lever = length(moment * (1.0f / mass) - l.joint[j]);
+  return spec.joint_friction * mass * kStandardGravity * lever;
+}
+
 // A joint's definition in its two parts' own frames.
-JointDef joint_def(const Layout& l, uint32_t j, BodyId parent, BodyId child) {
+JointDef joint_def(const Layout& l, uint32_t j, BodyId parent, BodyId child, float friction_nm) {
   const uint32_t a = idx(kParent[j]);
   const uint32_t b = j + 1;
   const JointLimits& lim = kLimits[j];
@@ -249,6 +273,10 @@ JointDef joint_def(const Layout& l, uint32_t j, BodyId parent, BodyId child) {
   def.anchor_a = inv_rotate(l.turn[a], l.joint[j] - l.centre[a]);
   def.anchor_b = inv_rotate(l.turn[b], l.joint[j] - l.centre[b]);
   def.enable_limit = true;
+  // Joint friction: a motor toward no relative turn, as strong as the
+  // friction torque and no stronger.
+  def.enable_motor = friction_nm > 0.0f;
+  def.max_motor_torque = friction_nm;
   if (lim.type == JointType::kHinge) {
     def.axis_a = inv_rotate(l.turn[a], kHingeAxis);
     def.axis_b = inv_rotate(l.turn[b], kHingeAxis);
@@ -363,7 +391,8 @@ Result<Ragdoll3D> create_ragdoll(World3D& world, const RagdollSpec3D& spec) {
     r.parts[p] = *id;
   }
   for (uint32_t j = 0; j < kJoints; ++j) {
-    const JointDef def = joint_def(l, j, r.parts[idx(kParent[j])], r.parts[j + 1]);
+    const JointDef def =
+        joint_def(l, j, r.parts[idx(kParent[j])], r.parts[j + 1], hanging_torque(spec, l, j));
     Result<JointId> id = world.create_joint(def);
     if (!id.ok()) {
       destroy_parts(world, r.parts, kParts);

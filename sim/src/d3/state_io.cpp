@@ -28,7 +28,7 @@ constexpr uint8_t kMagic[4] = {'R', 'W', 'D', '3'};
 // the state refers to, and each body's continuous and contact-events flags.
 // 6: joint slots after the contacts. 7: scheduled queries after the
 // joints; each body's event mask in its contact-events byte.
-constexpr uint32_t kVersion = 7;
+constexpr uint32_t kVersion = 8;
 // Starts the scheduled queries in the checksum's stream.
 constexpr uint32_t kQueriesTag = 0x53514451u;  // "QDQS"
 // Bounds the allocation a hostile header can request.

@@ -199,6 +199,10 @@ Status check_body(const WorldConfig& config, const GeometryStore& store, const B
   if (!(std::isfinite(sim.sleep_time) && sim.sleep_time >= 0.0f)) {
     return invalid("sleep time must be finite and >= 0");
   }
+  if (!is_finite(sim.sleep_position) || !is_finite(sim.sleep_rotation) ||
+      std::fabs(length_squared(sim.sleep_rotation) - 1.0f) > kRotationTolerance) {
+    return invalid("sleep pose must be finite with a unit rotation");
+  }
   const bool still = sim.linear_velocity == Vec3{} && sim.angular_velocity == Vec3{} &&
                      sim.force == Vec3{} && sim.torque == Vec3{};
   if (info.kind == BodyKind::kStatic && (info.awake != 0 || !still)) {
@@ -399,6 +403,12 @@ bool settle_body(const WorldConfig& config, const BodySim& before, BodyInfo& inf
     sim.torque = {};
   }
   if (!(std::isfinite(sim.sleep_time) && sim.sleep_time >= 0.0f)) sim.sleep_time = 0.0f;
+  if (!is_finite(sim.sleep_position) || !is_finite(sim.sleep_rotation) ||
+      std::fabs(length_squared(sim.sleep_rotation) - 1.0f) > kRotationTolerance) {
+    sim.sleep_time = 0.0f;
+    sim.sleep_position = sim.position;
+    sim.sleep_rotation = sim.rotation;
+  }
   if (inside_bounds(config, sim.position)) return false;
   sim.position = {clampf(sim.position.x, config.bounds_lower.x, config.bounds_upper.x),
                   clampf(sim.position.y, config.bounds_lower.y, config.bounds_upper.y),

@@ -114,6 +114,8 @@ void visit_body(Io& io, Info& b, Sim& m) {
   io.flag("continuous", b.continuous);
   io.event_mask("event_mask", b.event_mask);
   io.f32("sleep_time", m.sleep_time);
+  io.vec3("sleep_position", m.sleep_position);
+  io.quat("sleep_rotation", m.sleep_rotation);
 }
 
 /// The fields of one contact cache record.

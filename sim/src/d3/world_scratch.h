@@ -228,6 +228,7 @@ class WorldScratch {
   std::vector<uint32_t> tree_parent;  ///< union-find over solver bodies
   std::vector<uint8_t> tree_loop;
   std::vector<uint32_t> tree_count;
+  std::vector<float> tree_mass_ratio;
   std::vector<uint8_t> tree_seen;
   std::vector<uint32_t> tree_incidence_start;
   std::vector<uint32_t> tree_incidence;

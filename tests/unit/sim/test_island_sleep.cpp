@@ -33,6 +33,55 @@ TEST(IslandSleep, RestingStackSleepsTogether) {
   EXPECT_EQ(world.events().size(), 2u);
 }
 
+// The threshold is an average speed: a body drifting through empty space
+// slower than sleep_threshold_mps sleeps, one drifting faster never does,
+// and a sleeping body keeps its pose (a stretch of rest starts where the
+// body stands).
+TEST(IslandSleep, ABodySleepsWhenSlowerThanTheThresholdOnAverage) {
+  for (const float speed : {0.04f, 0.06f}) {
+    WorldConfig config;
+    config.gravity = {};
+    World3D world(config);
+    const BodyId box = add_box(world, {0.0f, 5.0f, 0.0f}, {0.1f, 0.1f, 0.1f});
+    ASSERT_TRUE(world.set_linear_velocity(box, {speed, 0.0f, 0.0f}).ok());
+    step_seconds(world, 3.0f);
+    if (speed < config.sleep_threshold_mps) {
+      EXPECT_FALSE(world.is_awake(box)) << speed << " m/s";
+      const Vec3 p = world.position(box);
+      step_seconds(world, 1.0f);
+      EXPECT_EQ(world.position(box), p);
+    } else {
+      EXPECT_TRUE(world.is_awake(box)) << speed << " m/s";
+      EXPECT_GT(world.position(box).x, 0.9f * speed * 3.0f);
+    }
+  }
+}
+
+// A small pendulum passes through a slow turning point every half swing;
+// it never counts as resting, as two stretches of half time_to_sleep_s
+// each span no more than one of them.
+TEST(IslandSleep, ASmallPendulumStaysAwake) {
+  World3D world;
+  BodyDef rod;
+  rod.shape = Shape::make_box({0.05f, 0.5f, 0.05f});
+  rod.position = {0.5f * 0.0998f, 9.5f, 0.0f};  // 0.1 rad from hanging straight
+  rod.rotation = {0.0f, 0.0f, 0.05f, 0.99875f};
+  const Result<BodyId> id = world.create_body(rod);
+  ASSERT_TRUE(id.ok());
+  JointDef hinge;
+  hinge.type = JointType::kHinge;
+  hinge.body_b = *id;
+  hinge.anchor_a = {0.0f, 10.0f, 0.0f};
+  hinge.anchor_b = {0.0f, 0.5f, 0.0f};
+  hinge.axis_a = {0.0f, 0.0f, 1.0f};
+  hinge.axis_b = {0.0f, 0.0f, 1.0f};
+  ASSERT_TRUE(world.create_joint(hinge).ok());
+  for (int t = 0; t < 600; ++t) {
+    world.step();
+    ASSERT_TRUE(world.is_awake(*id)) << "asleep at tick " << t + 1;
+  }
+}
+
 TEST(IslandSleep, SetterWakesBodyAndImpactWakesIsland) {
   World3D world;
   add_ground(world);

@@ -226,7 +226,11 @@ struct Drop {
     test::add_ground(world);
     RagdollSpec3D spec;
     if (kind == 0) {
+      // Standing, leaning 6 degrees forward: joint friction
+      // (RagdollSpec3D::joint_friction) holds a figure let go in exact
+      // balance up like a statue, as it would a real one.
       spec.position = {0.0f, ragdoll_pelvis_height(spec) + 0.01f, 0.0f};
+      spec.rotation = axis_angle({1.0f, 0.0f, 0.0f}, 0.1f);
     } else {
       spec.position = {0.0f, 2.2f, 0.0f};
       spec.rotation = axis_angle({0.6f, -0.3f, 0.7f}, 2.4f);
@@ -559,6 +563,11 @@ TEST(Ragdoll3D, BadSpecsAreRefusedNamingTheFieldWithTheWorldUnchanged) {
   s = good;
   s.linear_damping = 1e3f;
   refused(s, "linear_damping");
+  s = good;
+  s.joint_friction = 1.5f;
+  refused(s, "joint_friction");
+  s.joint_friction = NAN;
+  refused(s, "joint_friction");
   // 12 bodies in a world of 30: one more ragdoll fits, a second does not.
   s = good;
   s.position = {3.0f, 2.0f, 0.0f};

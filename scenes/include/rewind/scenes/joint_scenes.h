@@ -105,8 +105,10 @@ struct JointSceneJoint {
   /// Hinge axis in each body's frame (world when a is -1).
   sim::Vec3 axis_a{0.0f, 0.0f, 1.0f};
   sim::Vec3 axis_b{0.0f, 0.0f, 1.0f};
-  /// Hinge: a friction torque, N m (0: none): the joint resists turning
-  /// with up to this much, as a motor held at zero speed.
+  /// A friction torque, N m (0: none): the joint resists turning with up
+  /// to this much, as a motor held at zero relative speed. Bullet's hinges
+  /// take it as a motor too; its cone-twist joints have no velocity motor
+  /// and go without (which costs Rewind, not Bullet, the extra rows).
   float friction_torque_nm = 0.0f;
   /// Limits, rad, counted from the starting pose (false: none, and the
   /// fields below are not read). A ball joint becomes a cone-twist joint:

@@ -155,6 +155,15 @@ struct RagdollSpec3D {
   /// lets a limp body settle instead of rocking on its round capsules.
   float linear_damping = 0.0f;
   float angular_damping = 0.5f;
+  /// Joint friction, in [0, 1]: each joint resists turning with up to this
+  /// share of the torque that what hangs below it (its child part and the
+  /// parts beyond) weighs held out level under standard gravity, 9.81
+  /// m/s^2 (the rest pose's lever from the joint to their centre of mass).
+  /// Built as the joint's motor toward no relative turn
+  /// (JointDef::enable_motor, max_motor_torque), so a limb still falls
+  /// while a swinging head or a rocking arm comes to rest and a heap of
+  /// figures can sleep. 0: free joints, no motor.
+  float joint_friction = 0.25f;
   /// 0 leaves every part's user_data 0; otherwise part p gets
   /// user_data_base + p (so a contact's body names the ragdoll and part).
   uint64_t user_data_base = 0;

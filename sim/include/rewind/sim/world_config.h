@@ -25,8 +25,14 @@ struct WorldConfig {
   float linear_slop_m = 0.005f;            ///< allowed penetration, m
   float speculative_distance_m = 0.02f;    ///< contacts are kept this far apart, m
   bool enable_sleep = true;
-  float sleep_threshold_mps = 0.05f;  ///< body speed below which it may sleep
-  float time_to_sleep_s = 0.5f;       ///< seconds below the threshold before sleeping
+  /// A body rests through each half of time_to_sleep_s in which no point
+  /// of it strays more than sleep_threshold_mps times that half from where
+  /// the half began (its average speed stays below the threshold: a body
+  /// trembling in place or creeping slower rests, one going somewhere
+  /// starts over). An island sleeps once every body in it has rested for
+  /// time_to_sleep_s.
+  float sleep_threshold_mps = 0.05f;  ///< m/s
+  float time_to_sleep_s = 0.5f;       ///< seconds within the threshold before sleeping
   uint32_t max_bodies = 4096;         ///< create_body refuses beyond this
   /// The box body centres may occupy, metres (each component in
   /// [-1e5, 1e5], lower < upper). Bodies cannot be created or placed

@@ -54,7 +54,13 @@ struct BodySim {
   Vec3 angular_velocity;    ///< rad/s, world frame
   Vec3 force;               ///< N, accumulated for the next step only
   Vec3 torque;              ///< N m, world frame, accumulated for the next step only
-  float sleep_time = 0.0f;  ///< seconds spent below the sleep threshold
+  float sleep_time = 0.0f;  ///< seconds at rest (WorldConfig::sleep_threshold_mps)
+  /// Where the body's current stretch of rest began: it stays at rest
+  /// while no point of it strays more than sleep_threshold_mps x
+  /// time_to_sleep_s / 2 from here, and a new stretch starts every
+  /// time_to_sleep_s / 2 (WorldConfig).
+  Vec3 sleep_position;  ///< metres
+  Quat sleep_rotation;
 };
 
 /// Mass properties of one body slot, derived from shape, density and kind.
