@@ -159,11 +159,24 @@ void build_point_batches(WorldScratch& s) {
     any = any || c.batched;
   }
   if (!any) return;
-  // Colour by colour, in slot order within a colour, kLanes to a batch.
+  // Colour by colour, in slot order within a colour, kLanes to a batch:
+  // the batched joints sorted by colour in one counting pass.
+  s.point_color_start.assign(kColorCount + 1, 0);
+  for (uint32_t k = 0; k < joints.size(); ++k) {
+    if (joints[k].batched) ++s.point_color_start[s.point_color_of[k] + 1];
+  }
+  for (uint32_t col = 0; col < kColorCount; ++col) {
+    s.point_color_start[col + 1] += s.point_color_start[col];
+  }
+  s.point_color_order.resize(s.point_color_start[kColorCount]);
+  s.point_color_fill.assign(s.point_color_start.begin(), s.point_color_start.end() - 1);
+  for (uint32_t k = 0; k < joints.size(); ++k) {
+    if (joints[k].batched) s.point_color_order[s.point_color_fill[s.point_color_of[k]]++] = k;
+  }
   for (uint32_t col = 0; col < kColorCount; ++col) {
     int lane = kLanes;
-    for (uint32_t k = 0; k < joints.size(); ++k) {
-      if (s.point_color_of[k] != col) continue;
+    for (uint32_t q = s.point_color_start[col]; q < s.point_color_start[col + 1]; ++q) {
+      const uint32_t k = s.point_color_order[q];
       if (lane == kLanes) {
         PointBatch& fresh = s.point_batches.emplace_back();
         for (int i = 0; i < kLanes; ++i) {
@@ -173,6 +186,7 @@ void build_point_batches(WorldScratch& s) {
           for (int d = 0; d < 3; ++d) {
             fresh.anchor_a[d][i] = fresh.anchor_b[d][i] = fresh.delta_center[d][i] = 0.0f;
             fresh.impulse[d][i] = 0.0f;
+            fresh.tick_impulse[d][i] = 0.0f;
           }
         }
         lane = 0;
@@ -352,12 +366,24 @@ void project_point_batches(WorldScratch& s) {
   }
 }
 
-void store_point_batches(WorldScratch& s) {
+void sum_point_batches(WorldScratch& s) {
+  for (PointBatch& b : s.point_batches) {
+    for (int d = 0; d < 3; ++d) {
+      for (int i = 0; i < kLanes; ++i) b.tick_impulse[d][i] += b.impulse[d][i];
+    }
+  }
+}
+
+void store_point_batches(WorldScratch& s, int substeps) {
   for (const PointBatch& b : s.point_batches) {
     for (int i = 0; i < kLanes; ++i) {
       if (b.joint[i] == kNoPointJoint) continue;
-      s.joint_constraints[b.joint[i]].linear_impulse = {b.impulse[0][i], b.impulse[1][i],
-                                                        b.impulse[2][i]};
+      JointConstraint& c = s.joint_constraints[b.joint[i]];
+      c.linear_impulse = {b.impulse[0][i], b.impulse[1][i], b.impulse[2][i]};
+      c.tick_linear = {b.tick_impulse[0][i], b.tick_impulse[1][i], b.tick_impulse[2][i]};
+      // (The angular impulse a point joint holds, from a loaded state, is
+      // summed as the other joints' are.)
+      for (int k = 0; k < substeps; ++k) c.tick_angular += c.angular_impulse;
     }
   }
 }

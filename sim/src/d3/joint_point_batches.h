@@ -27,6 +27,11 @@ inline constexpr uint32_t kNoPointJoint = 0xFFFFFFFFu;
 /// kLanes point joints, structure of arrays. An empty lane names the
 /// immovable body 0 on both sides and is never written back.
 struct alignas(16) PointBatch {
+  // Left unset when made (the batch is a kilobyte, made afresh each tick):
+  // build_point_batches() sets what it packs for every lane, and
+  // refresh_point_batches() every lane of the rest before any pass reads
+  // them.
+  PointBatch() {}          // NOLINT(modernize-use-equals-default): = default would zero it
   uint32_t joint[kLanes];  ///< index into scratch.joint_constraints, or kNoPointJoint
   uint32_t body_a[kLanes];
   uint32_t body_b[kLanes];
@@ -46,6 +51,7 @@ struct alignas(16) PointBatch {
   alignas(16) float mass_a[kLanes];
   alignas(16) float mass_b[kLanes];  ///< inverse masses
   alignas(16) float impulse[3][kLanes];
+  alignas(16) float tick_impulse[3][kLanes];  ///< impulse summed over the tick's substeps
 };
 
 /// Colours this tick's point joints and packs them (after prepare_joints
@@ -59,7 +65,12 @@ void warm_start_point_batches(WorldScratch& scratch);
 /// impulses are left exactly as they are.
 void solve_point_batches(WorldScratch& scratch, bool use_bias, bool contacted_only = false);
 void project_point_batches(WorldScratch& scratch);
-/// Writes the batches' impulses back to their joints.
-void store_point_batches(WorldScratch& scratch);
+/// Adds each lane's impulse to its sum over the tick (once a substep, as
+/// sum_joint_impulses() does for the other joints).
+void sum_point_batches(WorldScratch& scratch);
+/// Writes the batches' impulses and their sums over the tick back to their
+/// joints, once the tick's `substeps` are done (before the impulses are
+/// stored and the breaks checked).
+void store_point_batches(WorldScratch& scratch, int substeps);
 
 }  // namespace rwd::sim::d3

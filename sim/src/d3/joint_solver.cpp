@@ -43,8 +43,30 @@ bool joint_acts(const WorldState& state, const JointRecord& j) {
 
 void prepare_joints(const WorldState& state, WorldScratch& scratch, float h) {
   std::vector<JointConstraint>& out = scratch.joint_constraints;
-  out.clear();
-  if (state.live_joints == 0) return;
+  if (state.live_joints == 0) {
+    out.clear();
+    return;
+  }
+  // The constraints of the last tick are reused in place rather than made
+  // afresh (each is most of a kilobyte, and zeroing them was a tenth of a
+  // large joint scene's step). The loop below sets the joint's own fields,
+  // next() resets the tick's sums, the block and its rows' kinds, and the
+  // stages after set the rest before reading it (the trees and batches
+  // mark every joint; the block's factor, a tree's offsets and a point
+  // joint's levers are written where they are made).
+  size_t used = 0;
+  auto next = [&]() -> JointConstraint& {
+    if (used == out.size()) out.emplace_back();
+    JointConstraint& c = out[used++];
+    c.tick_linear = Vec3{};
+    c.tick_angular = Vec3{};
+    c.block.clear();
+    for (int i = 0; i < kMaxBlockRows; ++i) {
+      c.row_kind[i] = kRowStructure;
+      c.row_gap[i] = 0.0f;
+    }
+    return c;
+  };
   const WorldConfig& config = state.config;
   float hertz = 2.0f * config.contact_hertz;
   if (hertz > 0.25f / h) hertz = 0.25f / h;
@@ -58,7 +80,7 @@ void prepare_joints(const WorldState& state, WorldScratch& scratch, float h) {
     // Neither side moves this tick (asleep, static or kinematic at rest
     // with a sleeping partner): nothing to solve.
     if (ia == 0 && ib == 0) continue;
-    JointConstraint& c = out.emplace_back();
+    JointConstraint& c = next();
     c.record = k;
     c.body_a = ia;
     c.body_b = ib;
@@ -114,26 +136,32 @@ void prepare_joints(const WorldState& state, WorldScratch& scratch, float h) {
     const int l = m > 0 && ops.limits != nullptr ? ops.limits(j, f, limits) : 0;
     c.capacity = static_cast<uint8_t>(m + l < kMaxBlockRows ? m + l : kMaxBlockRows);
   }
+  out.resize(used);
   build_joint_trees(scratch);
   for (JointConstraint& c : out) c.point = is_point_joint(state.joints[c.record], c);
   build_point_batches(scratch);
+  scratch.joint_general.clear();
+  for (uint32_t k = 0; k < out.size(); ++k) {
+    if (!out[k].batched) scratch.joint_general.push_back(k);
+  }
 }
 
 void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool trees_only) {
   JointRow rows[kMaxBlockRows];
-  for (JointConstraint& c : scratch.joint_constraints) {
+  for (const uint32_t index : scratch.joint_general) {
+    JointConstraint& c = scratch.joint_constraints[index];
     if (c.block.size() == 0 || (trees_only && c.tree == kNoTree)) continue;
     const JointRecord& j = state.joints[c.record];
     const SolverBody& a = scratch.solver_bodies[c.body_a];
     const SolverBody& b = scratch.solver_bodies[c.body_b];
     if (c.point) {
-      if (!c.batched) refresh_point(c, a, b);
+      refresh_point(c, a, b);
       continue;
     }
     const JointOps& ops = joint_ops(j.type);
     const JointFrames f = joint_frames(c, a, b);
     const int m = ops.rows(j, f, rows);
-    c.block = RowBlock{};
+    c.block.clear();
     for (int i = 0; i < m; ++i) {
       c.block.add(rows[i]);
       c.row_kind[i] = kRowStructure;
@@ -161,13 +189,14 @@ void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool tre
 void warm_start_joints(const WorldState& state, WorldScratch& scratch) {
   refresh_joint_rows(state, scratch);
   float acc[kMaxBlockRows];
-  for (const JointConstraint& c : scratch.joint_constraints) {
+  for (const uint32_t k : scratch.joint_general) {
+    const JointConstraint& c = scratch.joint_constraints[k];
     const JointRecord& j = state.joints[c.record];
     SolverBody& a = scratch.solver_bodies[c.body_a];
     SolverBody& b = scratch.solver_bodies[c.body_b];
     // The structure along the same rows its passes read and apply.
     if (c.point) {
-      if (!c.batched) warm_start_point(c, a, b);
+      warm_start_point(c, a, b);
     } else if (c.block.size() > 0) {
       gather_impulses(c, acc);
       c.block.apply(a, b, acc);
@@ -230,13 +259,12 @@ void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias,
     }
     solve_joint_tree(state.joints, scratch, t, use_bias);
   }
-  for (JointConstraint& c : scratch.joint_constraints) {
+  for (const uint32_t k : scratch.joint_general) {
+    JointConstraint& c = scratch.joint_constraints[k];
     if (c.tree != kNoTree) continue;
     if (contacted_only && !bodies[c.body_a].contacted && !bodies[c.body_b].contacted) continue;
     if (c.point) {
-      if (!c.batched) {
-        solve_point(c, scratch.solver_bodies[c.body_a], scratch.solver_bodies[c.body_b], use_bias);
-      }
+      solve_point(c, scratch.solver_bodies[c.body_a], scratch.solver_bodies[c.body_b], use_bias);
       continue;
     }
     solve_alone(state.joints[c.record], c, scratch.solver_bodies[c.body_a],
@@ -275,13 +303,14 @@ void project_joints(const WorldState& state, WorldScratch& scratch) {
   for (uint32_t t = 0; t < scratch.trees.size(); ++t) project_joint_tree(state.joints, scratch, t);
   float error[kMaxBlockRows];
   float x[kMaxBlockRows];
-  for (const JointConstraint& c : scratch.joint_constraints) {
+  for (const uint32_t k : scratch.joint_general) {
+    const JointConstraint& c = scratch.joint_constraints[k];
     if (c.tree != kNoTree || c.block.size() == 0) continue;
     const JointRecord& j = state.joints[c.record];
     SolverBody& a = scratch.solver_bodies[c.body_a];
     SolverBody& b = scratch.solver_bodies[c.body_b];
     if (c.point) {
-      if (!c.batched) project_point(c, a, b);
+      project_point(c, a, b);
       continue;
     }
     const JointFrames f = joint_frames(c, a, b);
@@ -295,8 +324,9 @@ void project_joints(const WorldState& state, WorldScratch& scratch) {
 }
 
 void sum_joint_impulses(WorldScratch& scratch) {
-  store_point_batches(scratch);
-  for (JointConstraint& c : scratch.joint_constraints) {
+  sum_point_batches(scratch);
+  for (const uint32_t k : scratch.joint_general) {
+    JointConstraint& c = scratch.joint_constraints[k];
     c.tick_linear += c.linear_impulse;
     c.tick_angular += c.angular_impulse;
   }
@@ -321,6 +351,7 @@ float settle_push(float v) {
 }  // namespace
 
 void store_joint_impulses(WorldState& state, WorldScratch& scratch) {
+  store_point_batches(scratch, state.config.substeps);
   for (const JointConstraint& c : scratch.joint_constraints) {
     JointRecord& j = state.joints[c.record];
     j.linear_impulse = settle(c.linear_impulse);

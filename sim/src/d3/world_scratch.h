@@ -209,6 +209,13 @@ class WorldScratch {
   std::vector<d3::PointBatch> point_batches;
   std::vector<uint64_t> point_color_bits;  ///< per colour, one bit per solver body
   std::vector<uint32_t> point_color_of;    ///< by joint constraint
+  std::vector<uint32_t>
+      point_color_start;  ///< batched joints by colour: order[start[c], start[c+1])
+  std::vector<uint32_t> point_color_order;
+  std::vector<uint32_t> point_color_fill;
+  /// The joint constraints not in a lane batch, ascending: the joint
+  /// passes walk these and leave the batched ones to the lanes.
+  std::vector<uint32_t> joint_general;
   d3::JointSoftness point_soft;
   // joint trees (joint_tree.cpp), rebuilt each tick
   std::vector<d3::JointTree> trees;
