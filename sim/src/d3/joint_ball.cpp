@@ -83,10 +83,17 @@ void ball_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, Solver
   const bool motor = (j.flags & kJointMotor) != 0;
   if (spring || motor) {
     // Both drive the three relative angular velocities.
-    JointRow rows[3];
-    orientation_rows(rows);
-    ExtraGroup group;
-    group.prepare(base, rows, 3, a, b);
+    // Against a tree the base changes with every pass; against the joint's
+    // own block, only when the block is refreshed.
+    ExtraGroup in_tree;
+    const bool alone = base.scratch == nullptr;
+    if (!alone || !c.orientation_ready) {
+      JointRow rows[3];
+      orientation_rows(rows);
+      (alone ? c.orientation : in_tree).prepare(base, rows, 3, a, b);
+      c.orientation_ready = alone;
+    }
+    const ExtraGroup& group = alone ? c.orientation : in_tree;
     if (spring) {
       // The rotation from where B should be (A's rotation times the
       // target) to where it is, in the world.

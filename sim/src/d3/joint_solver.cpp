@@ -61,6 +61,7 @@ void prepare_joints(const WorldState& state, WorldScratch& scratch, float h) {
     c.tick_linear = Vec3{};
     c.tick_angular = Vec3{};
     c.block.clear();
+    c.orientation_ready = false;
     for (int i = 0; i < kMaxBlockRows; ++i) {
       c.row_kind[i] = kRowStructure;
       c.row_gap[i] = 0.0f;
@@ -181,6 +182,7 @@ void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool tre
       }
     }
     c.block.factor(a, b);
+    c.orientation_ready = false;
   }
   if (!trees_only) refresh_point_batches(scratch);
   factor_joint_trees(scratch);

@@ -94,6 +94,12 @@ struct JointConstraint {
   /// A point joint packed into a lane batch (joint_point_batches.h); the
   /// rest (no colour left) stay on the scalar point path.
   bool batched = false;
+  /// A ball joint's motor and spring rows (the three relative turns)
+  /// against its block, made at the first pass after each refresh of the
+  /// block and kept for the substep's other passes: neither the block nor
+  /// those rows change between refreshes (joints solved on their own).
+  bool orientation_ready = false;
+  ExtraGroup orientation;
   Vec3 point_ra;
   Vec3 point_rb;
   Mat3 point_inv_mass;
