@@ -83,8 +83,9 @@ void ball_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, Solver
   const bool motor = (j.flags & kJointMotor) != 0;
   if (spring || motor) {
     // Both drive the three relative angular velocities.
-    // Against a tree the base changes with every pass; against the joint's
-    // own block, only when the block is refreshed.
+    // Against a tree the base is the tree's factor, which every pass may
+    // find refactored; against the joint's own block it changes only when
+    // the block is refreshed.
     ExtraGroup in_tree;
     const bool alone = base.scratch == nullptr;
     if (!alone || !c.orientation_ready) {
