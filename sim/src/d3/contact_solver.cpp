@@ -541,6 +541,7 @@ void solve(WorldState& state, WorldScratch& scratch) {
       push_batches(scratch, config, inv_h);
     }
     integrate_positions(scratch, h);
+    scratch.joint_frames_fresh = false;
     // The trees' rows where the bodies now stand, for their relax and
     // projection.
     if (joints) refresh_joint_rows(state, scratch, true);

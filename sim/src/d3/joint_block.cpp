@@ -5,6 +5,8 @@
 // same on every build.
 #include "d3/joint_block.h"
 
+#include <type_traits>
+
 #include "d3/joint_tree.h"
 #include "d3/world_scratch.h"
 
@@ -60,48 +62,85 @@ void apply_row(const JointRow& r, SolverBody& a, SolverBody& b, float lambda) {
   b.angular_velocity += b.inv_inertia * (r.angular_b * lambda);
 }
 
-void RowBlock::factor(const SolverBody& a, const SolverBody& b) {
-  mass_sum_ = a.inv_mass + b.inv_mass;
-  for (int i = 0; i < n_; ++i) {
-    ia_[i] = a.inv_inertia * rows_[i].angular_a;
-    ib_[i] = b.inv_inertia * rows_[i].angular_b;
-  }
-  for (int i = 0; i < n_; ++i) {
-    const float kii = mass_sum_ * dot(rows_[i].linear, rows_[i].linear) +
-                      dot(rows_[i].angular_a, ia_[i]) + dot(rows_[i].angular_b, ib_[i]);
-    float di = kii;
-    for (int k = 0; k < i; ++k) di -= l_[i][k] * l_[i][k] * d_[k];
-    kept_[i] = kii > 0.0f && di > kPivotShare * kii;
-    d_[i] = kept_[i] ? di : 0.0f;
-    for (int j = i + 1; j < n_; ++j) {
-      if (!kept_[i]) {
-        l_[j][i] = 0.0f;
-        continue;
-      }
-      float kji = mass_sum_ * dot(rows_[j].linear, rows_[i].linear) +
-                  dot(rows_[j].angular_a, ia_[i]) + dot(rows_[j].angular_b, ib_[i]);
-      for (int k = 0; k < i; ++k) kji -= l_[j][k] * l_[i][k] * d_[k];
-      l_[j][i] = kji / d_[i];
-    }
+namespace {
+
+// Calls f with the row count as a constant for the counts joints have, so
+// the loops over rows unroll; the arithmetic is the same either way.
+template <class F>
+void with_rows(int n, F&& f) {
+  switch (n) {
+    case 1:
+      f(std::integral_constant<int, 1>{});
+      return;
+    case 2:
+      f(std::integral_constant<int, 2>{});
+      return;
+    case 3:
+      f(std::integral_constant<int, 3>{});
+      return;
+    case 4:
+      f(std::integral_constant<int, 4>{});
+      return;
+    case 5:
+      f(std::integral_constant<int, 5>{});
+      return;
+    case 6:
+      f(std::integral_constant<int, 6>{});
+      return;
+    default:
+      f(n);
+      return;
   }
 }
 
-void RowBlock::solve(const float* rhs, float* x) const {
-  float z[kMaxBlockRows] = {};
-  for (int i = 0; i < n_; ++i) {
-    float v = rhs[i];
-    for (int k = 0; k < i; ++k) v -= l_[i][k] * z[k];
-    z[i] = kept_[i] ? v : 0.0f;
-  }
-  for (int i = n_ - 1; i >= 0; --i) {
-    if (!kept_[i]) {
-      x[i] = 0.0f;
-      continue;
+}  // namespace
+
+void RowBlock::factor(const SolverBody& a, const SolverBody& b) {
+  mass_sum_ = a.inv_mass + b.inv_mass;
+  with_rows(n_, [&](auto n) {
+    for (int i = 0; i < n; ++i) {
+      ia_[i] = a.inv_inertia * rows_[i].angular_a;
+      ib_[i] = b.inv_inertia * rows_[i].angular_b;
     }
-    float v = z[i] / d_[i];
-    for (int k = i + 1; k < n_; ++k) v -= l_[k][i] * x[k];
-    x[i] = v;
-  }
+    for (int i = 0; i < n; ++i) {
+      const float kii = mass_sum_ * dot(rows_[i].linear, rows_[i].linear) +
+                        dot(rows_[i].angular_a, ia_[i]) + dot(rows_[i].angular_b, ib_[i]);
+      float di = kii;
+      for (int k = 0; k < i; ++k) di -= l_[i][k] * l_[i][k] * d_[k];
+      kept_[i] = kii > 0.0f && di > kPivotShare * kii;
+      d_[i] = kept_[i] ? di : 0.0f;
+      for (int j = i + 1; j < n; ++j) {
+        if (!kept_[i]) {
+          l_[j][i] = 0.0f;
+          continue;
+        }
+        float kji = mass_sum_ * dot(rows_[j].linear, rows_[i].linear) +
+                    dot(rows_[j].angular_a, ia_[i]) + dot(rows_[j].angular_b, ib_[i]);
+        for (int k = 0; k < i; ++k) kji -= l_[j][k] * l_[i][k] * d_[k];
+        l_[j][i] = kji / d_[i];
+      }
+    }
+  });
+}
+
+void RowBlock::solve(const float* rhs, float* x) const {
+  with_rows(n_, [&](auto n) {
+    float z[kMaxBlockRows];
+    for (int i = 0; i < n; ++i) {
+      float v = rhs[i];
+      for (int k = 0; k < i; ++k) v -= l_[i][k] * z[k];
+      z[i] = kept_[i] ? v : 0.0f;
+    }
+    for (int i = n - 1; i >= 0; --i) {
+      if (!kept_[i]) {
+        x[i] = 0.0f;
+        continue;
+      }
+      float v = z[i] / d_[i];
+      for (int k = i + 1; k < n; ++k) v -= l_[k][i] * x[k];
+      x[i] = v;
+    }
+  });
 }
 
 float RowBlock::velocity(int i, const SolverBody& a, const SolverBody& b) const {
@@ -109,33 +148,38 @@ float RowBlock::velocity(int i, const SolverBody& a, const SolverBody& b) const 
 }
 
 void RowBlock::coupling(const JointRow& other, float* out) const {
-  for (int i = 0; i < n_; ++i) {
-    out[i] = mass_sum_ * dot(rows_[i].linear, other.linear) + dot(ia_[i], other.angular_a) +
-             dot(ib_[i], other.angular_b);
-  }
+  with_rows(n_, [&](auto n) {
+    for (int i = 0; i < n; ++i) {
+      out[i] = mass_sum_ * dot(rows_[i].linear, other.linear) + dot(ia_[i], other.angular_a) +
+               dot(ib_[i], other.angular_b);
+    }
+  });
 }
 
 void RowBlock::apply(SolverBody& a, SolverBody& b, const float* lambda) const {
   Vec3 linear{};
   Vec3 angular_a{};
   Vec3 angular_b{};
-  for (int i = 0; i < n_; ++i) {
-    linear += rows_[i].linear * lambda[i];
-    angular_a += rows_[i].angular_a * lambda[i];
-    angular_b += rows_[i].angular_b * lambda[i];
-  }
+  with_rows(n_, [&](auto n) {
+    for (int i = 0; i < n; ++i) {
+      linear += rows_[i].linear * lambda[i];
+      angular_a += rows_[i].angular_a * lambda[i];
+      angular_b += rows_[i].angular_b * lambda[i];
+    }
+  });
   a.linear_velocity -= linear * a.inv_mass;
   a.angular_velocity -= a.inv_inertia * angular_a;
   b.linear_velocity += linear * b.inv_mass;
   b.angular_velocity += b.inv_inertia * angular_b;
 }
 
-void RowGroup::prepare(const RowBlock& block, const JointRow* rows, int m, const SolverBody& a,
-                       const SolverBody& b) {
+template <int M>
+void RowGroupOf<M>::prepare(const RowBlock& block, const JointRow* rows, int m, const SolverBody& a,
+                            const SolverBody& b) {
   m_ = m;
   const int n = block.size();
   const float mass_sum = a.inv_mass + b.inv_mass;
-  float c[kMaxGroupRows][kMaxBlockRows];
+  float c[M][kMaxBlockRows];
   for (int k = 0; k < m; ++k) {
     rows_[k] = rows[k];
     block.coupling(rows[k], c[k]);
@@ -155,14 +199,20 @@ void RowGroup::prepare(const RowBlock& block, const JointRow* rows, int m, const
       sm[k][l] = v;
     }
   }
-  invert_schur(sm, own, m, s_);
+  float inverse[3][3];
+  invert_schur(sm, own, m, inverse);
+  for (int k = 0; k < M; ++k) {
+    for (int l = 0; l < M; ++l) s_[k][l] = inverse[k][l];
+  }
 }
 
-void RowGroup::velocity(const SolverBody& a, const SolverBody& b, float* out) const {
+template <int M>
+void RowGroupOf<M>::velocity(const SolverBody& a, const SolverBody& b, float* out) const {
   for (int k = 0; k < m_; ++k) out[k] = row_velocity(rows_[k], a, b);
 }
 
-void RowGroup::solve(const float* rhs, float* x) const {
+template <int M>
+void RowGroupOf<M>::solve(const float* rhs, float* x) const {
   for (int k = 0; k < m_; ++k) {
     float v = 0.0f;
     for (int l = 0; l < m_; ++l) v += s_[l][k] * rhs[l];
@@ -170,8 +220,9 @@ void RowGroup::solve(const float* rhs, float* x) const {
   }
 }
 
-void RowGroup::apply(const RowBlock& block, SolverBody& a, SolverBody& b, const float* delta,
-                     float* block_impulse) const {
+template <int M>
+void RowGroupOf<M>::apply(const RowBlock& block, SolverBody& a, SolverBody& b, const float* delta,
+                          float* block_impulse) const {
   const int n = block.size();
   float compensation[kMaxBlockRows] = {};
   for (int k = 0; k < m_; ++k) {
@@ -181,6 +232,9 @@ void RowGroup::apply(const RowBlock& block, SolverBody& a, SolverBody& b, const 
   block.apply(a, b, compensation);
   for (int i = 0; i < n; ++i) block_impulse[i] += compensation[i];
 }
+
+template class RowGroupOf<1>;
+template class RowGroupOf<kMaxGroupRows>;
 
 void solve_block(const RowBlock& block, SolverBody& a, SolverBody& b, const float* bias,
                  const JointSoftness& soft, bool use_bias, float* impulse) {
@@ -239,21 +293,52 @@ void ExtraGroup::apply(const ExtraBase& base, SolverBody& a, SolverBody& b,
   apply_tree_compensation(*base.scratch, base.tree, m_, delta);
 }
 
+namespace {
+
+// The impulse step of an extra row whose solve gave x: soft per the terms,
+// the accumulated impulse kept in [lo, hi].
+float extra_step(const RowTerms& t, float x, float lo, float hi, float& impulse) {
+  const float lambda = -x * t.mass_scale - impulse * t.impulse_scale;
+  const float next = clamp_impulse(impulse + lambda, lo, hi);
+  const float delta = next - impulse;
+  impulse = next;
+  return delta;
+}
+
+}  // namespace
+
 void solve_extra_row(const ExtraBase& base, SolverBody& a, SolverBody& b, const JointRow& row,
-                     const RowTerms& t, float speed, float lo, float hi, float& impulse) {
+                     const RowTerms& t, float speed, float lo, float hi, float& impulse, int slot) {
   const float cdot = row_velocity(row, a, b);
   const float rhs = cdot - speed + t.bias;
   // An open limit holding nothing and not closing within the substep: the
   // solve would clamp its impulse to zero anyway.
   if (lo == 0.0f && impulse == 0.0f && rhs >= 0.0f) return;
+  float x = 0.0f;
+  if (base.scratch == nullptr) {
+    // Against the joint's own block: made here, or kept from the pass
+    // before at the same rows.
+    RowGroupOf<1> made;
+    const RowGroupOf<1>* group = &made;
+    if (base.kept != nullptr) {
+      KeptRow& kept = base.kept[slot];
+      if (!kept.ready) {
+        kept.group.prepare(*base.block, &row, 1, a, b);
+        kept.ready = true;
+      }
+      group = &kept.group;
+    } else {
+      made.prepare(*base.block, &row, 1, a, b);
+    }
+    group->solve(&rhs, &x);
+    const float delta = extra_step(t, x, lo, hi, impulse);
+    if (delta != 0.0f) group->apply(*base.block, a, b, &delta, base.block_impulse);
+    return;
+  }
   ExtraGroup group;
   group.prepare(base, &row, 1, a, b);
-  float x = 0.0f;
   group.solve(&rhs, &x);
-  const float lambda = -x * t.mass_scale - impulse * t.impulse_scale;
-  const float next = clamp_impulse(impulse + lambda, lo, hi);
-  const float delta = next - impulse;
-  impulse = next;
+  const float delta = extra_step(t, x, lo, hi, impulse);
   if (delta != 0.0f) group.apply(base, a, b, &delta);
 }
 

@@ -93,11 +93,14 @@ class RowBlock {
   bool kept_[kMaxBlockRows] = {};
 };
 
-/// One to three extra rows solved against a rigid block (see above).
-class RowGroup {
+/// Up to M (at most kMaxGroupRows) extra rows solved against a rigid
+/// block (see above). M = 1 is a lone limit or motor row, small enough to
+/// keep between passes (JointConstraint::extras).
+template <int M>
+class RowGroupOf {
  public:
   /// `block` must be factored; `block_impulse` (its rows' accumulated
-  /// impulses) takes the compensating impulses apply() adds.
+  /// impulses) takes the compensating impulses apply() adds. m <= M.
   void prepare(const RowBlock& block, const JointRow* rows, int m, const SolverBody& a,
                const SolverBody& b);
   int size() const { return m_; }
@@ -111,11 +114,14 @@ class RowGroup {
              float* block_impulse) const;
 
  private:
+  // Written by prepare() for the rows it is given before anything reads
+  // them (not zeroed: a group is made on the stack every pass).
   int m_ = 0;
-  JointRow rows_[kMaxGroupRows];
-  float y_[kMaxGroupRows][kMaxBlockRows] = {};  ///< K_bb^-1 K_be, per group row
-  float s_[kMaxGroupRows][kMaxGroupRows] = {};  ///< the Schur complement, inverted
+  JointRow rows_[M];
+  float y_[M][kMaxBlockRows];  ///< K_bb^-1 K_be, per group row
+  float s_[M][M];              ///< the Schur complement, inverted
 };
+using RowGroup = RowGroupOf<kMaxGroupRows>;
 
 /// The inverse of an extra group's Schur complement S (m x m of a 3 x 3,
 /// the rest of `sm` the identity) into `out` (m x m, zeros elsewhere),
@@ -133,6 +139,18 @@ void apply_row(const JointRow& r, SolverBody& a, SolverBody& b, float lambda);
 void solve_block(const RowBlock& block, SolverBody& a, SolverBody& b, const float* bias,
                  const JointSoftness& soft, bool use_bias, float* impulse);
 
+/// A one-row group against a joint's own block (a limit, or the axis a
+/// motor and spring drive), kept for the passes of a substep that see the
+/// same block and the same row (JointConstraint::kept).
+struct KeptRow {
+  RowGroupOf<1> group;
+  bool ready = false;
+};
+/// Where a joint keeps its one-row groups: slot 0 for the axis of a motor
+/// or spring, the limit kinds (kRowLower, kRowUpper, kRowCone) for theirs.
+inline constexpr int kKeptRows = 4;
+inline constexpr int kKeptAxis = 0;
+
 /// What a joint's extra rows (springs, motors, limits not in its
 /// structure) are solved against, held rigid: its own block, or (`tree`
 /// set) every structural row of the joint tree it is in, so a spring on a
@@ -144,6 +162,10 @@ struct ExtraBase {
   uint32_t tree = 0;
   uint32_t body_a = 0;  ///< the joint's solver bodies
   uint32_t body_b = 0;
+  /// Set for a joint on its own whose bodies stand where its rows were
+  /// last refreshed: its one-row groups by slot, made once and kept (see
+  /// KeptRow). Null otherwise: each pass makes them anew.
+  KeptRow* kept = nullptr;
 };
 
 /// One to three extra rows solved together against a rigid base.
@@ -168,8 +190,9 @@ class ExtraGroup {
 /// One extra row against its base: drives its velocity to `speed` plus
 /// the terms' bias, its accumulated `impulse` kept in [lo, hi]. A one-sided
 /// row (lo 0) that holds no impulse and is not being driven shut costs
-/// one velocity read.
+/// one velocity read. `slot` (kKeptAxis or a limit kind) names the row's
+/// kept group when the base keeps them.
 void solve_extra_row(const ExtraBase& base, SolverBody& a, SolverBody& b, const JointRow& row,
-                     const RowTerms& t, float speed, float lo, float hi, float& impulse);
+                     const RowTerms& t, float speed, float lo, float hi, float& impulse, int slot);
 
 }  // namespace rwd::sim::d3

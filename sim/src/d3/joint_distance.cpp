@@ -45,19 +45,19 @@ void solve_distance(const JointRecord& j, JointConstraint& c, SolverBody& a, Sol
   const JointRow line = linear_jacobian(n, f.ra, f.rb);
   if (j.type == JointType::kSpring) {
     solve_extra_row(base, a, b, line, spring_terms(c.spring_soft, len - j.length), 0.0f,
-                    -kUnbounded, kUnbounded, c.spring_impulse.x);
+                    -kUnbounded, kUnbounded, c.spring_impulse.x, kKeptAxis);
   }
   if (rigid(j)) {
     solve_extra_row(base, a, b, line, structural_terms(c.soft, len - j.min_length, use_bias), 0.0f,
-                    -kUnbounded, kUnbounded, c.axial_impulse);
+                    -kUnbounded, kUnbounded, c.axial_impulse, kKeptAxis);
   } else if (ranged(j)) {
     if (j.min_length > 0.0f) {
       solve_extra_row(base, a, b, line, limit_terms(c.soft, len - j.min_length, c.h, use_bias),
-                      0.0f, 0.0f, kUnbounded, c.lower_impulse);
+                      0.0f, 0.0f, kUnbounded, c.lower_impulse, kRowLower);
     }
     solve_extra_row(base, a, b, linear_jacobian(-n, f.ra, f.rb),
                     limit_terms(c.soft, j.max_length - len, c.h, use_bias), 0.0f, 0.0f, kUnbounded,
-                    c.upper_impulse);
+                    c.upper_impulse, kRowUpper);
   }
   c.linear_impulse = n * line_impulse(c);
 }

@@ -39,9 +39,9 @@ Vec3 hinge_tilt(const JointRecord&, const JointFrames& f) {
   return cross(rotate(f.fa, kAxisX), rotate(f.fb, kAxisX));
 }
 
+// (The warm start follows the rows' refresh: the frames it kept hold.)
 void warm_start_hinge(const JointRecord&, const JointConstraint& c, SolverBody& a, SolverBody& b) {
-  const JointFrames f = joint_frames(c, a, b);
-  apply_angular(a, b, rotate(f.fa, kAxisX) * axial_impulse(c));
+  apply_angular(a, b, rotate(c.frames.fa, kAxisX) * axial_impulse(c));
 }
 
 // The angle range.
@@ -62,11 +62,12 @@ void hinge_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, Solve
   if ((j.flags & kJointSpring) != 0) {
     solve_extra_row(base, a, b, turn,
                     spring_terms(c.spring_soft, wrap_angle(angle - j.spring_target)), 0.0f,
-                    -kUnbounded, kUnbounded, c.spring_impulse.x);
+                    -kUnbounded, kUnbounded, c.spring_impulse.x, kKeptAxis);
   }
   if ((j.flags & kJointMotor) != 0) {
     const float max = j.max_motor * c.h;
-    solve_extra_row(base, a, b, turn, RowTerms{}, j.motor_speed, -max, max, c.motor_impulse.x);
+    solve_extra_row(base, a, b, turn, RowTerms{}, j.motor_speed, -max, max, c.motor_impulse.x,
+                    kKeptAxis);
   }
 }
 

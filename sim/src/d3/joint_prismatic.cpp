@@ -58,11 +58,12 @@ void prismatic_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, S
   const JointRow slide = linear_jacobian(xa, arm_a, f.rb);
   if ((j.flags & kJointSpring) != 0) {
     solve_extra_row(base, a, b, slide, spring_terms(c.spring_soft, translation - j.spring_target),
-                    0.0f, -kUnbounded, kUnbounded, c.spring_impulse.x);
+                    0.0f, -kUnbounded, kUnbounded, c.spring_impulse.x, kKeptAxis);
   }
   if ((j.flags & kJointMotor) != 0) {
     const float max = j.max_motor * c.h;
-    solve_extra_row(base, a, b, slide, RowTerms{}, j.motor_speed, -max, max, c.motor_impulse.x);
+    solve_extra_row(base, a, b, slide, RowTerms{}, j.motor_speed, -max, max, c.motor_impulse.x,
+                    kKeptAxis);
   }
 }
 

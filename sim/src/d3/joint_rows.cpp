@@ -187,30 +187,27 @@ void settle_held_limits(JointConstraint& c, SolverBody& a, SolverBody& b, float*
 }
 
 void solve_free_limits(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                       const JointFrames& f, bool use_bias, const ExtraBase& base) {
+                       const JointFrames& f, bool use_bias, const ExtraBase& base,
+                       bool at_refresh) {
   const JointOps& ops = joint_ops(j.type);
   if (ops.limits == nullptr) return;
-  LimitRow limits[kMaxLimitRows];
-  const int n = ops.limits(j, f, limits);
+  LimitRow computed[kMaxLimitRows];
+  const LimitRow* limits = at_refresh ? c.limits : computed;
+  const int n = at_refresh ? c.limit_count : ops.limits(j, f, computed);
   const uint8_t held = held_limits(c);
   for (int k = 0; k < n; ++k) {
     const LimitRow& l = limits[k];
     if ((held & (1u << l.kind)) != 0) continue;
     solve_extra_row(base, a, b, l.row, limit_terms(c.soft, l.gap, c.h, use_bias), 0.0f, 0.0f,
-                    kUnbounded, limit_impulse(c, l.kind));
+                    kUnbounded, limit_impulse(c, l.kind), l.kind);
   }
 }
 
-void warm_start_free_limits(const JointRecord& j, const JointConstraint& c, SolverBody& a,
-                            SolverBody& b, const JointFrames& f) {
-  const JointOps& ops = joint_ops(j.type);
-  if (ops.limits == nullptr) return;
-  LimitRow limits[kMaxLimitRows];
-  const int n = ops.limits(j, f, limits);
+void warm_start_free_limits(const JointConstraint& c, SolverBody& a, SolverBody& b) {
   const uint8_t held = held_limits(c);
-  for (int k = 0; k < n; ++k) {
-    if ((held & (1u << limits[k].kind)) != 0) continue;
-    apply_row(limits[k].row, a, b, limit_impulse(c, limits[k].kind));
+  for (int k = 0; k < c.limit_count; ++k) {
+    if ((held & (1u << c.limits[k].kind)) != 0) continue;
+    apply_row(c.limits[k].row, a, b, limit_impulse(c, c.limits[k].kind));
   }
 }
 

@@ -171,9 +171,12 @@ void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool tre
     // joint reserved): solved with it, and in a tree with the whole tree,
     // it holds the way the structure does, where a row against one
     // joint's block alone would be undone by the rest of the tree.
+    c.frames = f;
+    c.limit_count = 0;
     if (ops.limits != nullptr) {
-      LimitRow limits[kMaxLimitRows];
-      const int n = ops.limits(j, f, limits);
+      const LimitRow* limits = c.limits;
+      const int n = ops.limits(j, f, c.limits);
+      c.limit_count = static_cast<uint8_t>(n);
       for (int k = 0; k < n && c.block.size() < c.capacity; ++k) {
         if (limits[k].gap > 0.0f) continue;
         c.row_kind[c.block.size()] = limits[k].kind;
@@ -183,8 +186,12 @@ void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool tre
     }
     c.block.factor(a, b);
     c.orientation_ready = false;
+    for (KeptRow& kept : c.kept) kept.ready = false;
   }
-  if (!trees_only) refresh_point_batches(scratch);
+  if (!trees_only) {
+    refresh_point_batches(scratch);
+    scratch.joint_frames_fresh = true;
+  }
   factor_joint_trees(scratch);
 }
 
@@ -202,7 +209,7 @@ void warm_start_joints(const WorldState& state, WorldScratch& scratch) {
     } else if (c.block.size() > 0) {
       gather_impulses(c, acc);
       c.block.apply(a, b, acc);
-      warm_start_free_limits(j, c, a, b, joint_frames(c, a, b));
+      warm_start_free_limits(c, a, b);
     }
     // (A point joint has no motor or spring impulse to warm-start.)
     if (!c.point) joint_ops(j.type).warm_start(j, c, a, b);
@@ -217,15 +224,17 @@ namespace {
 
 // One pass over a joint solved on its own: its extra rows, then its
 // structure as one block.
+// `at_refresh`: the bodies stand where the rows were refreshed, so the
+// frames, limits and one-row groups kept then hold.
 void solve_alone(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                 bool use_bias) {
+                 bool use_bias, bool at_refresh) {
   const JointOps& ops = joint_ops(j.type);
   const int m = c.block.size();
   if (m == 0) {
     ops.solve(j, c, a, b, use_bias);
     return;
   }
-  const JointFrames f = joint_frames(c, a, b);
+  const JointFrames f = at_refresh ? c.frames : joint_frames(c, a, b);
   float acc[kMaxBlockRows];
   gather_impulses(c, acc);
   float bias[kMaxBlockRows] = {};
@@ -238,8 +247,9 @@ void solve_alone(const JointRecord& j, JointConstraint& c, SolverBody& a, Solver
   ExtraBase base;
   base.block = &c.block;
   base.block_impulse = acc;
+  if (at_refresh) base.kept = c.kept;
   if (ops.extras != nullptr) ops.extras(j, c, a, b, f, use_bias, base);
-  solve_free_limits(j, c, a, b, f, use_bias, base);
+  solve_free_limits(j, c, a, b, f, use_bias, base, at_refresh);
   // Their compensation may have pulled on a limit the block holds.
   settle_held_limits(c, a, b, acc);
   scatter_impulses(c, acc);
@@ -270,7 +280,7 @@ void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias,
       continue;
     }
     solve_alone(state.joints[c.record], c, scratch.solver_bodies[c.body_a],
-                scratch.solver_bodies[c.body_b], use_bias);
+                scratch.solver_bodies[c.body_b], use_bias, scratch.joint_frames_fresh);
   }
   solve_point_batches(scratch, use_bias, contacted_only);
   scratch.solver_bodies[0].linear_velocity = {};

@@ -35,6 +35,32 @@ namespace rwd::sim::d3 {
 
 struct SolverBody;
 
+/// The bodies' current frames within a substep: where the anchors and the
+/// joint frames are after the bodies' motion since the tick began.
+struct JointFrames {
+  Vec3 ra;  ///< anchor on A from A's centre
+  Vec3 rb;
+  Vec3 d;   ///< anchor B minus anchor A (the point error)
+  Quat qa;  ///< A's rotation now
+  Quat qb;
+  Quat fa;  ///< the joint frame on A now
+  Quat fb;
+};
+
+/// What a block row is: part of the joint's structure, or one of its
+/// limits (whose impulse is kept in lower_impulse, upper_impulse or
+/// cone_impulse, and may only push).
+enum : uint8_t { kRowStructure = 0, kRowLower = 1, kRowUpper = 2, kRowCone = 3 };
+
+/// One limit of a joint where the bodies stand: its row (oriented so a
+/// positive impulse opens the gap) and the gap (rad or m; < 0 crossed).
+struct LimitRow {
+  JointRow row;
+  float gap = 0.0f;
+  uint8_t kind = kRowLower;
+};
+inline constexpr int kMaxLimitRows = 3;
+
 /// One joint as the solver sees it for a tick. Anchors and frames are
 /// world-oriented at the start of the tick; each pass turns them by how far
 /// the bodies have turned since (their delta rotations), so the joint
@@ -103,35 +129,19 @@ struct JointConstraint {
   Vec3 point_ra;
   Vec3 point_rb;
   Mat3 point_inv_mass;
+  /// The frames and the limits where the bodies stood at the rows' last
+  /// refresh. The bodies stay there until the substep's move
+  /// (WorldScratch::joint_frames_fresh), so the warm start and the passes
+  /// before the move read these rather than work them out again.
+  JointFrames frames;
+  LimitRow limits[kMaxLimitRows];
+  uint8_t limit_count = 0;
+  /// The one-row groups against the block at those frames (KeptRow), for
+  /// a joint solved on its own.
+  KeptRow kept[kKeptRows];
 };
 
 inline constexpr uint32_t kNoTree = 0xFFFFFFFFu;
-
-/// The bodies' current frames within a substep: where the anchors and the
-/// joint frames are after the bodies' motion since the tick began.
-struct JointFrames {
-  Vec3 ra;  ///< anchor on A from A's centre
-  Vec3 rb;
-  Vec3 d;   ///< anchor B minus anchor A (the point error)
-  Quat qa;  ///< A's rotation now
-  Quat qb;
-  Quat fa;  ///< the joint frame on A now
-  Quat fb;
-};
-
-/// What a block row is: part of the joint's structure, or one of its
-/// limits (whose impulse is kept in lower_impulse, upper_impulse or
-/// cone_impulse, and may only push).
-enum : uint8_t { kRowStructure = 0, kRowLower = 1, kRowUpper = 2, kRowCone = 3 };
-
-/// One limit of a joint where the bodies stand: its row (oriented so a
-/// positive impulse opens the gap) and the gap (rad or m; < 0 crossed).
-struct LimitRow {
-  JointRow row;
-  float gap = 0.0f;
-  uint8_t kind = kRowLower;
-};
-inline constexpr int kMaxLimitRows = 3;
 
 /// The functions of one joint type.
 struct JointOps {
@@ -271,11 +281,14 @@ void settle_held_limits(JointConstraint& c, SolverBody& a, SolverBody& b, float*
 /// is negative are brought to zero by a combination of K^-1 columns,
 /// added to `total` and, when given, to `step`.
 void release_block_limits(const JointConstraint& c, float* total, float* step);
-/// The limits not in the block, each as a speculative row against it.
+/// The limits not in the block, each as a speculative row against it:
+/// those at frames `f`, or (`at_refresh`, f being c.frames) the ones the
+/// refresh kept.
 void solve_free_limits(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
-                       const JointFrames& f, bool use_bias, const ExtraBase& base);
-void warm_start_free_limits(const JointRecord& j, const JointConstraint& c, SolverBody& a,
-                            SolverBody& b, const JointFrames& f);
+                       const JointFrames& f, bool use_bias, const ExtraBase& base,
+                       bool at_refresh = false);
+/// Applies the free limits' impulses along their rows at the refresh.
+void warm_start_free_limits(const JointConstraint& c, SolverBody& a, SolverBody& b);
 /// The bias of each block row: its error (the point error along a linear
 /// row, the type's angular error about an angular row, a held limit's
 /// gap) times rate.

@@ -271,6 +271,10 @@ class WorldScratch {
   /// have work, and only then is its order computed.
   bool deep_overlap = false;
   bool pushing = false;  ///< the push-out has run this tick
+  /// The bodies stand where the joints' rows were last refreshed (from
+  /// the refresh at a substep's start to its move): the joints' kept
+  /// frames, limits and one-row groups hold (JointConstraint::frames).
+  bool joint_frames_fresh = false;
   // islands
   std::vector<uint32_t> island_parent;
   std::vector<float> island_sleep_time;
