@@ -18,8 +18,9 @@ bool is_point_joint(const JointRecord& j, const JointConstraint& c) {
   // drives; the general path keeps warm-starting it, so such a joint stays
   // there.)
   return j.type == JointType::kBall &&
-         (j.flags & (kJointLimit | kJointSpring | kJointMotor)) == 0 && c.tree == kNoTree &&
-         c.block.size() == 3 && j.motor_impulse == Vec3{} && j.spring_impulse == Vec3{};
+         ((j.flags & (kJointLimit | kJointSpring | kJointMotor)) == 0 || has_angular_part(j)) &&
+         c.tree == kNoTree && c.block.size() == 3 &&
+         ((j.flags & kJointMotor) != 0 || j.motor_impulse == Vec3{}) && j.spring_impulse == Vec3{};
 }
 
 void refresh_point(JointConstraint& c, const SolverBody& a, const SolverBody& b) {

@@ -139,7 +139,14 @@ void prepare_joints(const WorldState& state, WorldScratch& scratch, float h) {
   }
   out.resize(used);
   build_joint_trees(scratch);
-  for (JointConstraint& c : out) c.point = is_point_joint(state.joints[c.record], c);
+  scratch.joint_angular.clear();
+  for (uint32_t k = 0; k < out.size(); ++k) {
+    JointConstraint& c = out[k];
+    const JointRecord& j = state.joints[c.record];
+    c.point = is_point_joint(j, c);
+    c.angular = c.point && has_angular_part(j);
+    if (c.angular) scratch.joint_angular.push_back(k);
+  }
   build_point_batches(scratch);
   scratch.joint_general.clear();
   for (uint32_t k = 0; k < out.size(); ++k) {
@@ -189,6 +196,7 @@ void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool tre
     for (KeptRow& kept : c.kept) kept.ready = false;
   }
   if (!trees_only) {
+    refresh_angular_parts(state, scratch);
     refresh_point_batches(scratch);
     scratch.joint_frames_fresh = true;
   }
@@ -197,6 +205,7 @@ void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool tre
 
 void warm_start_joints(const WorldState& state, WorldScratch& scratch) {
   refresh_joint_rows(state, scratch);
+  warm_start_angular_parts(state, scratch);
   float acc[kMaxBlockRows];
   for (const uint32_t k : scratch.joint_general) {
     const JointConstraint& c = scratch.joint_constraints[k];
@@ -260,6 +269,8 @@ void solve_alone(const JointRecord& j, JointConstraint& c, SolverBody& a, Solver
 void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias,
                   bool contacted_only) {
   const std::vector<SolverBody>& bodies = scratch.solver_bodies;
+  // The angular parts before their points (the structure ends the pass).
+  solve_angular_parts(state, scratch, use_bias, contacted_only);
   for (uint32_t t = 0; t < scratch.trees.size(); ++t) {
     if (contacted_only) {
       const JointTree& tree = scratch.trees[t];

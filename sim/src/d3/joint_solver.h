@@ -61,6 +61,16 @@ struct LimitRow {
 };
 inline constexpr int kMaxLimitRows = 3;
 
+/// What a unit turn impulse does to two bodies' velocities, with the
+/// linear impulse at a point joint's anchors that keeps them together
+/// (joint_angular.cpp).
+struct TurnResponse {
+  Vec3 va;  ///< A's linear velocity
+  Vec3 wa;  ///< A's angular velocity
+  Vec3 vb;
+  Vec3 wb;
+};
+
 /// One joint as the solver sees it for a tick. Anchors and frames are
 /// world-oriented at the start of the tick; each pass turns them by how far
 /// the bodies have turned since (their delta rotations), so the joint
@@ -139,6 +149,20 @@ struct JointConstraint {
   /// The one-row groups against the block at those frames (KeptRow), for
   /// a joint solved on its own.
   KeptRow kept[kKeptRows];
+  /// A point joint with an angular part (joint_angular.cpp): a ball
+  /// joint's cone-twist limit and angular motor solved apart from its
+  /// point. The limits are `limits`, with their effective masses against
+  /// the point; the motor's inverse effective mass against it is
+  /// angular_inv_mass; the point's own inverse effective mass (made at
+  /// frames.ra, frames.rb) is angular_point_inv.
+  bool angular = false;
+  float limit_mass[kMaxLimitRows] = {};
+  Mat3 angular_inv_mass;
+  Mat3 angular_point_inv;
+  /// What a unit impulse of each limit, and of the motor about each world
+  /// axis, does to the bodies' velocities (the point held).
+  TurnResponse limit_response[kMaxLimitRows];
+  TurnResponse motor_response[3];
 };
 
 inline constexpr uint32_t kNoTree = 0xFFFFFFFFu;
@@ -201,9 +225,19 @@ void project_joints(const WorldState& state, WorldScratch& scratch);
 
 // Point joints (JointConstraint::point), joint_point.cpp: the same stages
 // as the general block, in closed form.
-/// Whether a joint solved on its own is a bare point (a ball joint
-/// without limits, motor or spring).
+/// Whether a joint solved on its own is solved as a point: a ball joint
+/// without a spring (its limit and motor, if any, its angular part).
 bool is_point_joint(const JointRecord& j, const JointConstraint& c);
+/// Whether a ball joint's limit and motor may be solved apart from its
+/// point (no spring; a motor impulse only with a motor).
+bool has_angular_part(const JointRecord& j);
+/// The angular parts' stages (joint_angular.cpp), over
+/// scratch.joint_angular: their rows where the bodies stand (at a
+/// substep's start), the warm start, and a pass before the points'.
+void refresh_angular_parts(const WorldState& state, WorldScratch& scratch);
+void warm_start_angular_parts(const WorldState& state, WorldScratch& scratch);
+void solve_angular_parts(const WorldState& state, WorldScratch& scratch, bool use_bias,
+                         bool contacted_only);
 /// Its lever arms where the bodies stand and its inverse effective mass.
 void refresh_point(JointConstraint& c, const SolverBody& a, const SolverBody& b);
 void warm_start_point(const JointConstraint& c, SolverBody& a, SolverBody& b);

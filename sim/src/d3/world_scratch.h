@@ -216,6 +216,9 @@ class WorldScratch {
   /// The joint constraints not in a lane batch, ascending: the joint
   /// passes walk these and leave the batched ones to the lanes.
   std::vector<uint32_t> joint_general;
+  /// The point joints with an angular part (JointConstraint::angular),
+  /// ascending.
+  std::vector<uint32_t> joint_angular;
   d3::JointSoftness point_soft;
   // joint trees (joint_tree.cpp), rebuilt each tick
   std::vector<d3::JointTree> trees;

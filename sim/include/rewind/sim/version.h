@@ -41,9 +41,12 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///      (its sleep pose in the snapshot) rather than by each tick's speed;
 ///      small joint trees of like masses (ragdolls) solved row by row;
 ///      atan by a shorter series
-inline constexpr uint32_t kSimRevision = 8;
+///   9  a ball joint's cone-twist limit and motor solved apart from its
+///      point (each row against the point held), the point with the point
+///      joints; a limit reached stays a row rather than joining the block
+inline constexpr uint32_t kSimRevision = 9;
 
-/// "rewind-sim r8": the engine identity a replay records.
+/// "rewind-sim r9": the engine identity a replay records.
 inline std::string engine_version() {
   return std::string(kEngineName) + " r" + std::to_string(kSimRevision);
 }
