@@ -59,22 +59,126 @@ void apply_motor(const JointConstraint& c, SolverBody& a, SolverBody& b, Vec3 d)
   apply_response(c.motor_response[2], a, b, d.z);
 }
 
-// The limits where the bodies stand (frames f), each with its effective
-// mass against the point.
-void find_limits(const JointRecord& j, JointConstraint& c, const SolverBody& a, const SolverBody& b,
-                 const JointFrames& f) {
-  c.limit_count = static_cast<uint8_t>(joint_ops(j.type).limits(j, f, c.limits));
-  for (int k = 0; k < c.limit_count; ++k) {
-    const Vec3 u = c.limits[k].row.angular_b;
-    const float own = dot(u, a.inv_inertia * u) + dot(u, b.inv_inertia * u);
-    const Vec3 cu = coupling(c, a, b, u);
-    const float schur = own - dot(cu, c.angular_point_inv * cu);
-    c.limit_mass[k] = own > 0.0f && schur > kExtraShare * own ? 1.0f / schur : 0.0f;
-    c.limit_response[k] = turn_response(c, a, b, u);
-  }
+// Limit k's effective mass against the point and its response, made
+// when a pass first needs them after the refresh (most limits of a pile
+// stand open through most substeps). They depend only on the refresh's
+// rows and the tick's inertia, so when they are made does not matter.
+void ready_limit(JointConstraint& c, const SolverBody& a, const SolverBody& b, int k) {
+  if ((c.limit_ready & (1u << k)) != 0) return;
+  c.limit_ready = static_cast<uint8_t>(c.limit_ready | (1u << k));
+  const Vec3 u = c.limits[k].row.angular_b;
+  const float own = dot(u, a.inv_inertia * u) + dot(u, b.inv_inertia * u);
+  const Vec3 cu = coupling(c, a, b, u);
+  const float schur = own - dot(cu, c.angular_point_inv * cu);
+  c.limit_mass[k] = own > 0.0f && schur > kExtraShare * own ? 1.0f / schur : 0.0f;
+  c.limit_response[k] = turn_response(c, a, b, u);
 }
 
-void solve_part(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
+constexpr Vec3 kAxisX{1.0f, 0.0f, 0.0f};
+constexpr Vec3 kAxisY{0.0f, 1.0f, 0.0f};
+constexpr Vec3 kAxisZ{0.0f, 0.0f, 1.0f};
+
+float wrap_angle(float angle) {
+  if (angle > kPi) return angle - 2.0f * kPi;
+  if (angle < -kPi) return angle + 2.0f * kPi;
+  return angle;
+}
+
+// A hinge at the refresh: its axis and angle, the two turns off the axis
+// with their misalignment and their 2 x 2 Schur complement against the
+// point (inverted; a turn the point holds is left out), and the
+// responses of all three turns. (Its limits are rows about the axis.)
+void refresh_hinge(JointConstraint& c, const SolverBody& a, const SolverBody& b) {
+  const JointFrames& f = c.frames;
+  const Vec3 xa = rotate(f.fa, kAxisX);
+  c.hinge_axis = xa;
+  c.hinge_angle = twist_angle(conjugate(f.fa) * f.fb);
+  c.align_axis[0] = rotate(f.fa, kAxisY);
+  c.align_axis[1] = rotate(f.fa, kAxisZ);
+  const Vec3 tilt = cross(xa, rotate(f.fb, kAxisX));
+  float own[2];
+  Vec3 col[2];
+  for (int k = 0; k < 2; ++k) {
+    const Vec3 u = c.align_axis[k];
+    c.align_error[k] = dot(tilt, u);
+    own[k] = dot(u, a.inv_inertia * u) + dot(u, b.inv_inertia * u);
+    col[k] = coupling(c, a, b, u);
+    c.align_response[k] = turn_response(c, a, b, u);
+    c.align_impulse[k] = dot(c.angular_impulse, u);
+  }
+  const Vec3 y0 = c.angular_point_inv * col[0];
+  const Vec3 y1 = c.angular_point_inv * col[1];
+  const Vec3 u0 = c.align_axis[0];
+  const Vec3 u1 = c.align_axis[1];
+  float s00 = own[0] - dot(col[0], y0);
+  float s11 = own[1] - dot(col[1], y1);
+  float s01 = dot(u0, a.inv_inertia * u1) + dot(u0, b.inv_inertia * u1) - dot(col[0], y1);
+  const bool keep0 = own[0] > 0.0f && s00 > kExtraShare * own[0];
+  const bool keep1 = own[1] > 0.0f && s11 > kExtraShare * own[1];
+  if (!keep0) s00 = 1.0f, s01 = 0.0f;
+  if (!keep1) s11 = 1.0f, s01 = 0.0f;
+  const float det = s00 * s11 - s01 * s01;
+  const float inv_det = det > 0.0f ? 1.0f / det : 0.0f;
+  c.align_inv[0] = keep0 ? s11 * inv_det : 0.0f;
+  c.align_inv[1] = keep0 && keep1 ? -s01 * inv_det : 0.0f;
+  c.align_inv[2] = keep1 ? s00 * inv_det : 0.0f;
+  const float own_axis = dot(xa, a.inv_inertia * xa) + dot(xa, b.inv_inertia * xa);
+  const Vec3 cx = coupling(c, a, b, xa);
+  const float schur = own_axis - dot(cx, c.angular_point_inv * cx);
+  c.axial_mass = own_axis > 0.0f && schur > kExtraShare * own_axis ? 1.0f / schur : 0.0f;
+  c.axial_response = turn_response(c, a, b, xa);
+}
+
+// The limits, each a one-sided row against the point.
+void solve_limits(JointConstraint& c, SolverBody& a, SolverBody& b, bool use_bias, bool at_refresh);
+
+// The hinge's rows about its axis: spring, motor, limits; then the two
+// turns off it (its structure beside the point).
+void solve_hinge(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
+                 bool use_bias, bool at_refresh) {
+  const Vec3 axis = c.hinge_axis;
+  // After the move the angle has turned by the axis's relative velocity
+  // over the substep (see solve_limits).
+  const float angle =
+      at_refresh ? c.hinge_angle : c.hinge_angle + c.h * dot(axis, relative_angular_velocity(a, b));
+  if ((j.flags & kJointSpring) != 0) {
+    const RowTerms t = spring_terms(c.spring_soft, wrap_angle(angle - j.spring_target));
+    const float rhs = dot(axis, relative_angular_velocity(a, b)) + t.bias;
+    const float lambda = -c.axial_mass * rhs * t.mass_scale - c.spring_impulse.x * t.impulse_scale;
+    c.spring_impulse.x += lambda;
+    apply_response(c.axial_response, a, b, lambda);
+  }
+  if ((j.flags & kJointMotor) != 0) {
+    const float rhs = dot(axis, relative_angular_velocity(a, b)) - j.motor_speed;
+    const float max = j.max_motor * c.h;
+    const float old = c.motor_impulse.x;
+    float next = old - c.axial_mass * rhs;
+    next = next > max ? max : (next < -max ? -max : next);
+    c.motor_impulse.x = next;
+    apply_response(c.axial_response, a, b, next - old);
+  }
+  if ((j.flags & kJointLimit) != 0) solve_limits(c, a, b, use_bias, at_refresh);
+  // The two turns off the axis, together: soft toward the refresh's
+  // misalignment with the bias, rigid without.
+  const Vec3 w = relative_angular_velocity(a, b);
+  float rhs[2];
+  for (int k = 0; k < 2; ++k) {
+    rhs[k] = dot(c.align_axis[k], w) + (use_bias ? c.soft.bias_rate * c.align_error[k] : 0.0f);
+  }
+  const float x0 = c.align_inv[0] * rhs[0] + c.align_inv[1] * rhs[1];
+  const float x1 = c.align_inv[1] * rhs[0] + c.align_inv[2] * rhs[1];
+  const float mass_scale = use_bias ? c.soft.mass_scale : 1.0f;
+  const float impulse_scale = use_bias ? c.soft.impulse_scale : 0.0f;
+  const float l0 = -x0 * mass_scale - c.align_impulse[0] * impulse_scale;
+  const float l1 = -x1 * mass_scale - c.align_impulse[1] * impulse_scale;
+  c.align_impulse[0] += l0;
+  c.align_impulse[1] += l1;
+  apply_response(c.align_response[0], a, b, l0);
+  apply_response(c.align_response[1], a, b, l1);
+  c.angular_impulse = c.align_axis[0] * c.align_impulse[0] + c.align_axis[1] * c.align_impulse[1];
+}
+
+void solve_ball(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverBody& b,
                 bool use_bias, bool at_refresh) {
   if ((j.flags & kJointMotor) != 0) {
     // Toward the target relative angular velocity, the accumulated
@@ -88,7 +192,11 @@ void solve_part(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverB
     c.motor_impulse = next;
     apply_motor(c, a, b, next - old);
   }
-  if ((j.flags & kJointLimit) == 0) return;
+  if ((j.flags & kJointLimit) != 0) solve_limits(c, a, b, use_bias, at_refresh);
+}
+
+void solve_limits(JointConstraint& c, SolverBody& a, SolverBody& b, bool use_bias,
+                  bool at_refresh) {
   // After the substep's move the rows are the refresh's (a substep
   // behind, as the general path's block is in its relax) and each gap has
   // moved by the rows' velocity over the substep: the velocity the bodies
@@ -106,6 +214,7 @@ void solve_part(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverB
     const float rhs = dot(l.row.angular_b, relative_angular_velocity(a, b)) + t.bias;
     // Open, holding nothing and not closing within the substep.
     if (impulse == 0.0f && rhs >= 0.0f) continue;
+    ready_limit(c, a, b, k);
     const float lambda = -c.limit_mass[k] * rhs * t.mass_scale - impulse * t.impulse_scale;
     const float next = impulse + lambda > 0.0f ? impulse + lambda : 0.0f;
     const float delta = next - impulse;
@@ -117,6 +226,7 @@ void solve_part(const JointRecord& j, JointConstraint& c, SolverBody& a, SolverB
 }  // namespace
 
 bool has_angular_part(const JointRecord& j) {
+  if (j.type == JointType::kHinge) return true;
   return j.type == JointType::kBall && (j.flags & kJointSpring) == 0 &&
          (j.flags & (kJointLimit | kJointMotor)) != 0 &&
          ((j.flags & kJointMotor) != 0 || j.motor_impulse == Vec3{});
@@ -131,6 +241,16 @@ void refresh_angular_parts(const WorldState& state, WorldScratch& scratch) {
     c.frames = joint_frames(c, a, b);
     c.angular_point_inv = inverse_symmetric(point_mass_matrix(
         a.inv_mass, a.inv_inertia, c.frames.ra, b.inv_mass, b.inv_inertia, c.frames.rb));
+    c.limit_count = 0;
+    c.limit_ready = 0;
+    if ((j.flags & kJointLimit) != 0) {
+      c.limit_count = static_cast<uint8_t>(joint_ops(j.type).limits(j, c.frames, c.limits));
+    }
+    c.hinge = j.type == JointType::kHinge;
+    if (c.hinge) {
+      refresh_hinge(c, a, b);
+      continue;
+    }
     if ((j.flags & kJointMotor) != 0) {
       // The three turns' Schur complement against the point:
       // (I_A + I_B) - C^T K^-1 C, C's columns the turns' couplings.
@@ -149,21 +269,28 @@ void refresh_angular_parts(const WorldState& state, WorldScratch& scratch) {
       c.motor_response[1] = turn_response(c, a, b, {0.0f, 1.0f, 0.0f});
       c.motor_response[2] = turn_response(c, a, b, {0.0f, 0.0f, 1.0f});
     }
-    c.limit_count = 0;
-    if ((j.flags & kJointLimit) != 0) find_limits(j, c, a, b, c.frames);
   }
 }
 
 void warm_start_angular_parts(const WorldState& state, WorldScratch& scratch) {
   for (const uint32_t k : scratch.joint_angular) {
-    const JointConstraint& c = scratch.joint_constraints[k];
+    JointConstraint& c = scratch.joint_constraints[k];
     SolverBody& a = scratch.solver_bodies[c.body_a];
     SolverBody& b = scratch.solver_bodies[c.body_b];
-    // (Without a motor the impulse is zero and its responses unset:
-    // has_angular_part.)
-    if ((state.joints[c.record].flags & kJointMotor) != 0) apply_motor(c, a, b, c.motor_impulse);
+    if (state.joints[c.record].type == JointType::kHinge) {
+      apply_response(c.axial_response, a, b, c.motor_impulse.x + c.spring_impulse.x);
+      apply_response(c.align_response[0], a, b, c.align_impulse[0]);
+      apply_response(c.align_response[1], a, b, c.align_impulse[1]);
+    } else if ((state.joints[c.record].flags & kJointMotor) != 0) {
+      // (Without a motor the impulse is zero and its responses unset:
+      // has_angular_part.)
+      apply_motor(c, a, b, c.motor_impulse);
+    }
     for (int q = 0; q < c.limit_count; ++q) {
-      apply_response(c.limit_response[q], a, b, limit_impulse(c, c.limits[q].kind));
+      const float impulse = limit_impulse(c, c.limits[q].kind);
+      if (impulse == 0.0f) continue;
+      ready_limit(c, a, b, q);
+      apply_response(c.limit_response[q], a, b, impulse);
     }
   }
 }
@@ -176,10 +303,54 @@ void solve_angular_parts(const WorldState& state, WorldScratch& scratch, bool us
     SolverBody& a = bodies[c.body_a];
     SolverBody& b = bodies[c.body_b];
     if (contacted_only && !a.contacted && !b.contacted) continue;
-    solve_part(state.joints[c.record], c, a, b, use_bias, scratch.joint_frames_fresh);
+    const JointRecord& j = state.joints[c.record];
+    if (j.type == JointType::kHinge) {
+      solve_hinge(j, c, a, b, use_bias, scratch.joint_frames_fresh);
+    } else {
+      solve_ball(j, c, a, b, use_bias, scratch.joint_frames_fresh);
+    }
   }
   bodies[0].linear_velocity = {};
   bodies[0].angular_velocity = {};
+}
+
+void project_angular_parts(const WorldState& state, WorldScratch& scratch) {
+  std::vector<SolverBody>& bodies = scratch.solver_bodies;
+  for (const uint32_t k : scratch.joint_angular) {
+    JointConstraint& c = scratch.joint_constraints[k];
+    if (!c.hinge) continue;
+    SolverBody& a = bodies[c.body_a];
+    SolverBody& b = bodies[c.body_b];
+    // The hinge's axes brought back into line (its point after, with the
+    // points), by the same responses as its impulses, clamped.
+    const JointFrames f = joint_frames(c, a, b);
+    const Vec3 tilt = cross(rotate(f.fa, kAxisX), rotate(f.fb, kAxisX));
+    const float e0 = clamp_projection(dot(tilt, c.align_axis[0]));
+    const float e1 = clamp_projection(dot(tilt, c.align_axis[1]));
+    const float x0 = -(c.align_inv[0] * e0 + c.align_inv[1] * e1);
+    const float x1 = -(c.align_inv[1] * e0 + c.align_inv[2] * e1);
+    // A limit crossed is brought back too, about the axis.
+    float x2 = 0.0f;
+    const JointRecord& j = state.joints[c.record];
+    if ((j.flags & kJointLimit) != 0) {
+      const float angle = twist_angle(conjugate(f.fa) * f.fb);
+      if (angle < j.lower) x2 = -c.axial_mass * clamp_projection(angle - j.lower);
+      if (angle > j.upper) x2 = -c.axial_mass * clamp_projection(angle - j.upper);
+    }
+    const TurnResponse& r0 = c.align_response[0];
+    const TurnResponse& r1 = c.align_response[1];
+    const TurnResponse& r2 = c.axial_response;
+    if (a.inv_mass > 0.0f) {
+      a.delta_position += r0.va * x0 + r1.va * x1 + r2.va * x2;
+      a.delta_rotation =
+          integrate_rotation(a.delta_rotation, r0.wa * x0 + r1.wa * x1 + r2.wa * x2, 1.0f);
+    }
+    if (b.inv_mass > 0.0f) {
+      b.delta_position += r0.vb * x0 + r1.vb * x1 + r2.vb * x2;
+      b.delta_rotation =
+          integrate_rotation(b.delta_rotation, r0.wb * x0 + r1.wb * x1 + r2.wb * x2, 1.0f);
+    }
+  }
 }
 
 }  // namespace rwd::sim::d3

@@ -14,9 +14,11 @@
 namespace rwd::sim::d3 {
 
 bool is_point_joint(const JointRecord& j, const JointConstraint& c) {
-  // (A loaded state may hold a motor or spring impulse the joint no longer
-  // drives; the general path keeps warm-starting it, so such a joint stays
-  // there.)
+  // A hinge on its own: its turns are its angular part, whatever it drives.
+  if (j.type == JointType::kHinge) return c.tree == kNoTree;
+  // (A loaded state may hold a motor or spring impulse a ball joint no
+  // longer drives; the general path keeps warm-starting it, so such a
+  // joint stays there.)
   return j.type == JointType::kBall &&
          ((j.flags & (kJointLimit | kJointSpring | kJointMotor)) == 0 || has_angular_part(j)) &&
          c.tree == kNoTree && c.block.size() == 3 &&

@@ -323,6 +323,7 @@ void release_pulling_limits(const JointConstraint& c, float* x) {
 }
 
 void project_joints(const WorldState& state, WorldScratch& scratch) {
+  project_angular_parts(state, scratch);
   for (uint32_t t = 0; t < scratch.trees.size(); ++t) project_joint_tree(state.joints, scratch, t);
   float error[kMaxBlockRows];
   float x[kMaxBlockRows];
@@ -348,6 +349,11 @@ void project_joints(const WorldState& state, WorldScratch& scratch) {
 
 void sum_joint_impulses(WorldScratch& scratch) {
   sum_point_batches(scratch);
+  // (The batched joints' angular parts; the rest are summed below.)
+  for (const uint32_t k : scratch.joint_angular) {
+    JointConstraint& c = scratch.joint_constraints[k];
+    if (c.batched) c.tick_angular += c.angular_impulse;
+  }
   for (const uint32_t k : scratch.joint_general) {
     JointConstraint& c = scratch.joint_constraints[k];
     c.tick_linear += c.linear_impulse;

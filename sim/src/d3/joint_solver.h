@@ -163,6 +163,22 @@ struct JointConstraint {
   /// axis, does to the bodies' velocities (the point held).
   TurnResponse limit_response[kMaxLimitRows];
   TurnResponse motor_response[3];
+  /// Bit k: limit k's mass and response are made (joint_angular.cpp).
+  uint8_t limit_ready = 0;
+  /// A hinge's angular part at the refresh: its axis and angle; the two
+  /// turns off the axis, their misalignment (rad), accumulated impulses
+  /// and inverse 2 x 2 effective mass against the point (xx, xy, yy);
+  /// the axis turn's effective mass; the three turns' responses.
+  bool hinge = false;
+  Vec3 hinge_axis;
+  float hinge_angle = 0.0f;
+  Vec3 align_axis[2];
+  float align_error[2] = {};
+  float align_impulse[2] = {};
+  float align_inv[3] = {};
+  float axial_mass = 0.0f;
+  TurnResponse align_response[2];
+  TurnResponse axial_response;
 };
 
 inline constexpr uint32_t kNoTree = 0xFFFFFFFFu;
@@ -238,6 +254,9 @@ void refresh_angular_parts(const WorldState& state, WorldScratch& scratch);
 void warm_start_angular_parts(const WorldState& state, WorldScratch& scratch);
 void solve_angular_parts(const WorldState& state, WorldScratch& scratch, bool use_bias,
                          bool contacted_only);
+/// The hinges' turns off their axes brought back into line, and their
+/// angles back within their limits (before the points' projection).
+void project_angular_parts(const WorldState& state, WorldScratch& scratch);
 /// Its lever arms where the bodies stand and its inverse effective mass.
 void refresh_point(JointConstraint& c, const SolverBody& a, const SolverBody& b);
 void warm_start_point(const JointConstraint& c, SolverBody& a, SolverBody& b);
