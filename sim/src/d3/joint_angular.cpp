@@ -28,21 +28,48 @@ namespace {
 // (what is left is rounding): it is left out, as joint_block.cpp does.
 constexpr float kExtraShare = 1e-5f;
 
-// What a unit turn impulse about `u` (-u to A, +u to B) does to the
-// point rows' velocities: (I_A u) x r_A + (I_B u) x r_B.
-Vec3 coupling(const JointConstraint& c, const SolverBody& a, const SolverBody& b, Vec3 u) {
-  return cross(a.inv_inertia * u, c.frames.ra) + cross(b.inv_inertia * u, c.frames.rb);
+// A unit turn impulse about `u` (-u to A, +u to B) against the point:
+// what it does to each body's angular velocity alone (I u), to the point
+// rows' velocities (C u = (I_A u) x r_A + (I_B u) x r_B), and K^-1 C u,
+// the anchors' compensating impulse with its sign turned.
+struct Turn {
+  Vec3 u;
+  Vec3 ia;
+  Vec3 ib;
+  Vec3 c;
+  Vec3 y;
+};
+
+Turn make_turn(const JointConstraint& c, const SolverBody& a, const SolverBody& b, Vec3 u) {
+  Turn t;
+  t.u = u;
+  t.ia = a.inv_inertia * u;
+  t.ib = b.inv_inertia * u;
+  t.c = cross(t.ia, c.frames.ra) + cross(t.ib, c.frames.rb);
+  t.y = c.angular_point_inv * t.c;
+  return t;
 }
 
-// What a unit turn impulse about `u`, with the anchors' compensating
-// linear impulse p = -K^-1 C u, does to the bodies' velocities.
+// Entry (t, s) of the turns' Schur complement against the point.
+float schur(const Turn& t, const Turn& s) {
+  return dot(t.u, s.ia) + dot(t.u, s.ib) - dot(t.c, s.y);
+}
+
+// The inverse effective mass of a lone turn: 1 / its Schur complement, or
+// 0 when the point holds it.
+float turn_mass(const Turn& t) {
+  const float own = dot(t.u, t.ia) + dot(t.u, t.ib);
+  const float s = own - dot(t.c, t.y);
+  return own > 0.0f && s > kExtraShare * own ? 1.0f / s : 0.0f;
+}
+
+// What the turn's unit impulse, with the anchors' impulse p = -K^-1 C u,
+// does to the bodies' velocities.
 TurnResponse turn_response(const JointConstraint& c, const SolverBody& a, const SolverBody& b,
-                           Vec3 u) {
-  const Vec3 ia = a.inv_inertia * u;
-  const Vec3 ib = b.inv_inertia * u;
-  const Vec3 p = -(c.angular_point_inv * (cross(ia, c.frames.ra) + cross(ib, c.frames.rb)));
-  return {-(p * a.inv_mass), -(ia + a.inv_inertia * cross(c.frames.ra, p)), p * b.inv_mass,
-          ib + b.inv_inertia * cross(c.frames.rb, p)};
+                           const Turn& t) {
+  const Vec3 p = -t.y;
+  return {-(p * a.inv_mass), -(t.ia + a.inv_inertia * cross(c.frames.ra, p)), p * b.inv_mass,
+          t.ib + b.inv_inertia * cross(c.frames.rb, p)};
 }
 
 void apply_response(const TurnResponse& r, SolverBody& a, SolverBody& b, float delta) {
@@ -66,12 +93,9 @@ void apply_motor(const JointConstraint& c, SolverBody& a, SolverBody& b, Vec3 d)
 void ready_limit(JointConstraint& c, const SolverBody& a, const SolverBody& b, int k) {
   if ((c.limit_ready & (1u << k)) != 0) return;
   c.limit_ready = static_cast<uint8_t>(c.limit_ready | (1u << k));
-  const Vec3 u = c.limits[k].row.angular_b;
-  const float own = dot(u, a.inv_inertia * u) + dot(u, b.inv_inertia * u);
-  const Vec3 cu = coupling(c, a, b, u);
-  const float schur = own - dot(cu, c.angular_point_inv * cu);
-  c.limit_mass[k] = own > 0.0f && schur > kExtraShare * own ? 1.0f / schur : 0.0f;
-  c.limit_response[k] = turn_response(c, a, b, u);
+  const Turn t = make_turn(c, a, b, c.limits[k].row.angular_b);
+  c.limit_mass[k] = turn_mass(t);
+  c.limit_response[k] = turn_response(c, a, b, t);
 }
 
 constexpr Vec3 kAxisX{1.0f, 0.0f, 0.0f};
@@ -96,25 +120,23 @@ void refresh_hinge(JointConstraint& c, const SolverBody& a, const SolverBody& b)
   c.align_axis[0] = rotate(f.fa, kAxisY);
   c.align_axis[1] = rotate(f.fa, kAxisZ);
   const Vec3 tilt = cross(xa, rotate(f.fb, kAxisX));
-  float own[2];
-  Vec3 col[2];
+  const Turn t0 = make_turn(c, a, b, c.align_axis[0]);
+  const Turn t1 = make_turn(c, a, b, c.align_axis[1]);
+  const Turn tx = make_turn(c, a, b, xa);
+  const Turn* align[2] = {&t0, &t1};
   for (int k = 0; k < 2; ++k) {
-    const Vec3 u = c.align_axis[k];
-    c.align_error[k] = dot(tilt, u);
-    own[k] = dot(u, a.inv_inertia * u) + dot(u, b.inv_inertia * u);
-    col[k] = coupling(c, a, b, u);
-    c.align_response[k] = turn_response(c, a, b, u);
-    c.align_impulse[k] = dot(c.angular_impulse, u);
+    c.align_error[k] = dot(tilt, c.align_axis[k]);
+    c.align_response[k] = turn_response(c, a, b, *align[k]);
+    c.align_impulse[k] = dot(c.angular_impulse, c.align_axis[k]);
   }
-  const Vec3 y0 = c.angular_point_inv * col[0];
-  const Vec3 y1 = c.angular_point_inv * col[1];
-  const Vec3 u0 = c.align_axis[0];
-  const Vec3 u1 = c.align_axis[1];
-  float s00 = own[0] - dot(col[0], y0);
-  float s11 = own[1] - dot(col[1], y1);
-  float s01 = dot(u0, a.inv_inertia * u1) + dot(u0, b.inv_inertia * u1) - dot(col[0], y1);
-  const bool keep0 = own[0] > 0.0f && s00 > kExtraShare * own[0];
-  const bool keep1 = own[1] > 0.0f && s11 > kExtraShare * own[1];
+  // The 2 x 2 inverted, leaving out a turn the point holds.
+  const float own0 = dot(t0.u, t0.ia) + dot(t0.u, t0.ib);
+  const float own1 = dot(t1.u, t1.ia) + dot(t1.u, t1.ib);
+  float s00 = schur(t0, t0);
+  float s11 = schur(t1, t1);
+  float s01 = schur(t0, t1);
+  const bool keep0 = own0 > 0.0f && s00 > kExtraShare * own0;
+  const bool keep1 = own1 > 0.0f && s11 > kExtraShare * own1;
   if (!keep0) s00 = 1.0f, s01 = 0.0f;
   if (!keep1) s11 = 1.0f, s01 = 0.0f;
   const float det = s00 * s11 - s01 * s01;
@@ -122,11 +144,8 @@ void refresh_hinge(JointConstraint& c, const SolverBody& a, const SolverBody& b)
   c.align_inv[0] = keep0 ? s11 * inv_det : 0.0f;
   c.align_inv[1] = keep0 && keep1 ? -s01 * inv_det : 0.0f;
   c.align_inv[2] = keep1 ? s00 * inv_det : 0.0f;
-  const float own_axis = dot(xa, a.inv_inertia * xa) + dot(xa, b.inv_inertia * xa);
-  const Vec3 cx = coupling(c, a, b, xa);
-  const float schur = own_axis - dot(cx, c.angular_point_inv * cx);
-  c.axial_mass = own_axis > 0.0f && schur > kExtraShare * own_axis ? 1.0f / schur : 0.0f;
-  c.axial_response = turn_response(c, a, b, xa);
+  c.axial_mass = turn_mass(tx);
+  c.axial_response = turn_response(c, a, b, tx);
 }
 
 // The limits, each a one-sided row against the point.
@@ -252,22 +271,16 @@ void refresh_angular_parts(const WorldState& state, WorldScratch& scratch) {
       continue;
     }
     if ((j.flags & kJointMotor) != 0) {
-      // The three turns' Schur complement against the point:
-      // (I_A + I_B) - C^T K^-1 C, C's columns the turns' couplings.
-      const Vec3 col[3] = {coupling(c, a, b, {1.0f, 0.0f, 0.0f}),
-                           coupling(c, a, b, {0.0f, 1.0f, 0.0f}),
-                           coupling(c, a, b, {0.0f, 0.0f, 1.0f})};
-      const Mat3 own = a.inv_inertia + b.inv_inertia;
-      const Vec3 own_col[3] = {own.c0, own.c1, own.c2};
-      Vec3 s[3];
+      // The three turns about the world axes, their Schur complement
+      // against the point ((I_A + I_B) - C^T K^-1 C) inverted.
+      const Turn t[3] = {make_turn(c, a, b, kAxisX), make_turn(c, a, b, kAxisY),
+                         make_turn(c, a, b, kAxisZ)};
+      Vec3 col[3];
       for (int q = 0; q < 3; ++q) {
-        const Vec3 y = c.angular_point_inv * col[q];
-        s[q] = own_col[q] - Vec3{dot(col[0], y), dot(col[1], y), dot(col[2], y)};
+        col[q] = {schur(t[0], t[q]), schur(t[1], t[q]), schur(t[2], t[q])};
+        c.motor_response[q] = turn_response(c, a, b, t[q]);
       }
-      c.angular_inv_mass = inverse_symmetric(Mat3{s[0], s[1], s[2]});
-      c.motor_response[0] = turn_response(c, a, b, {1.0f, 0.0f, 0.0f});
-      c.motor_response[1] = turn_response(c, a, b, {0.0f, 1.0f, 0.0f});
-      c.motor_response[2] = turn_response(c, a, b, {0.0f, 0.0f, 1.0f});
+      c.angular_inv_mass = inverse_symmetric(Mat3{col[0], col[1], col[2]});
     }
   }
 }

@@ -33,34 +33,11 @@ Vec3 anchor_velocity(const SolverBody& a, const SolverBody& b, Vec3 ra, Vec3 rb)
   return vb - va;
 }
 
-Vec3 relative_angular_velocity(const SolverBody& a, const SolverBody& b) {
-  return b.angular_velocity - a.angular_velocity;
-}
-
 void apply_linear(SolverBody& a, SolverBody& b, Vec3 ra, Vec3 rb, Vec3 p) {
   a.linear_velocity -= p * a.inv_mass;
   a.angular_velocity -= a.inv_inertia * cross(ra, p);
   b.linear_velocity += p * b.inv_mass;
   b.angular_velocity += b.inv_inertia * cross(rb, p);
-}
-
-void apply_angular(SolverBody& a, SolverBody& b, Vec3 l) {
-  a.angular_velocity -= a.inv_inertia * l;
-  b.angular_velocity += b.inv_inertia * l;
-}
-
-RowTerms structural_terms(const JointSoftness& soft, float error, bool use_bias) {
-  if (!use_bias) return {};
-  return {soft.bias_rate * error, soft.mass_scale, soft.impulse_scale};
-}
-
-RowTerms limit_terms(const JointSoftness& soft, float gap, float h, bool use_bias) {
-  if (gap > 0.0f) return {gap / h, 1.0f, 0.0f};  // speculative: may close within the substep
-  return structural_terms(soft, gap, use_bias);
-}
-
-RowTerms spring_terms(const JointSoftness& spring, float error) {
-  return {spring.bias_rate * error, spring.mass_scale, spring.impulse_scale};
 }
 
 int point_rows(const JointFrames& f, JointRow* out) {

@@ -25,6 +25,7 @@
 
 #include "d3/joint_block.h"
 #include "d3/joint_math.h"
+#include "d3/solver_body.h"
 #include "rewind/sim/world_state.h"
 
 namespace rwd::sim {
@@ -32,8 +33,6 @@ class WorldScratch;
 }
 
 namespace rwd::sim::d3 {
-
-struct SolverBody;
 
 /// The bodies' current frames within a substep: where the anchors and the
 /// joint frames are after the bodies' motion since the tick began.
@@ -290,19 +289,32 @@ JointFrames joint_frames(const JointConstraint& c, const SolverBody& a, const So
 /// Velocity of anchor B relative to anchor A.
 Vec3 anchor_velocity(const SolverBody& a, const SolverBody& b, Vec3 ra, Vec3 rb);
 /// Angular velocity of B relative to A.
-Vec3 relative_angular_velocity(const SolverBody& a, const SolverBody& b);
+inline Vec3 relative_angular_velocity(const SolverBody& a, const SolverBody& b) {
+  return b.angular_velocity - a.angular_velocity;
+}
 /// Applies a linear impulse p at the anchors: -p to A at ra, +p to B at rb.
 void apply_linear(SolverBody& a, SolverBody& b, Vec3 ra, Vec3 rb, Vec3 p);
 /// Applies an angular impulse L: -L to A, +L to B.
-void apply_angular(SolverBody& a, SolverBody& b, Vec3 l);
+inline void apply_angular(SolverBody& a, SolverBody& b, Vec3 l) {
+  a.angular_velocity -= a.inv_inertia * l;
+  b.angular_velocity += b.inv_inertia * l;
+}
 /// A structural row with position error `error`: soft with the bias,
 /// rigid (no bias) in the relax pass.
-RowTerms structural_terms(const JointSoftness& soft, float error, bool use_bias);
+inline RowTerms structural_terms(const JointSoftness& soft, float error, bool use_bias) {
+  if (!use_bias) return {};
+  return {soft.bias_rate * error, soft.mass_scale, soft.impulse_scale};
+}
 /// A one-sided limit whose `gap` must stay >= 0: speculative while open
 /// (it may close within the substep, no more), structural once crossed.
-RowTerms limit_terms(const JointSoftness& soft, float gap, float h, bool use_bias);
+inline RowTerms limit_terms(const JointSoftness& soft, float gap, float h, bool use_bias) {
+  if (gap > 0.0f) return {gap / h, 1.0f, 0.0f};  // speculative: may close within the substep
+  return structural_terms(soft, gap, use_bias);
+}
 /// A spring toward zero `error`, soft in every pass.
-RowTerms spring_terms(const JointSoftness& spring, float error);
+inline RowTerms spring_terms(const JointSoftness& spring, float error) {
+  return {spring.bias_rate * error, spring.mass_scale, spring.impulse_scale};
+}
 
 /// The point rows: the anchors coincide (three world axes); returns 3.
 int point_rows(const JointFrames& f, JointRow* out);
