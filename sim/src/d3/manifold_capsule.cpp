@@ -38,28 +38,29 @@ float clampf(float v, float lo, float hi) {
   return v < lo ? lo : (v > hi ? hi : v);
 }
 
+// Any unit vector perpendicular to u.
+Vec3 perpendicular(Vec3 u) {
+  const Vec3 other = std::fabs(u.x) < 0.6f ? Vec3{1.0f, 0.0f, 0.0f} : Vec3{0.0f, 1.0f, 0.0f};
+  return normalize_or_zero(cross(u, other));
+}
+
 // One contact between two spheres of radius ra at qa and rb at qb, normal
-// from a to b (or `fallback` where the centres meet).
-bool sphere_point(Vec3 qa, float ra, Vec3 qb, float rb, Vec3 fallback, float speculative_m,
-                  uint32_t id, Manifold& out) {
+// from a to b (or, where the centres meet, any normal perpendicular to
+// `axis`: worked out only then).
+bool sphere_point(Vec3 qa, float ra, Vec3 qb, float rb, Vec3 axis, float speculative_m, uint32_t id,
+                  Manifold& out) {
   const Vec3 d = qb - qa;
   const float dist_sq = length_squared(d);
   const float reach = ra + rb + speculative_m;
   if (dist_sq > reach * reach) return false;
   const float dist = std::sqrt(dist_sq);
-  const Vec3 n = dist > 1e-9f ? d * (1.0f / dist) : fallback;
+  const Vec3 n = dist > 1e-9f ? d * (1.0f / dist) : perpendicular(axis);
   out.normal = n;
   out.point_count = 1;
   out.points[0].point = ((qa + n * ra) + (qb - n * rb)) * 0.5f;
   out.points[0].separation = dist - ra - rb;
   out.points[0].feature_id = id;
   return true;
-}
-
-// Any unit vector perpendicular to u.
-Vec3 perpendicular(Vec3 u) {
-  const Vec3 other = std::fabs(u.x) < 0.6f ? Vec3{1.0f, 0.0f, 0.0f} : Vec3{0.0f, 1.0f, 0.0f};
-  return normalize_or_zero(cross(u, other));
 }
 
 }  // namespace
@@ -107,8 +108,7 @@ void collide_capsule_sphere(const CapsulePose& capsule, Vec3 center, float radiu
   const float s =
       clampf(dot(center - capsule.center, capsule.axis), -capsule.half_height, capsule.half_height);
   const Vec3 q = capsule.center + capsule.axis * s;
-  sphere_point(q, capsule.radius, center, radius, perpendicular(capsule.axis), speculative_m, 0,
-               out);
+  sphere_point(q, capsule.radius, center, radius, capsule.axis, speculative_m, 0, out);
 }
 
 void collide_capsules(const CapsulePose& a, const CapsulePose& b, float speculative_m,
@@ -126,8 +126,8 @@ void collide_capsules(const CapsulePose& a, const CapsulePose& b, float speculat
     float s = clampf((bb * bw - aw) / denom, -a.half_height, a.half_height);
     const float t = clampf(bb * s + bw, -b.half_height, b.half_height);
     s = clampf(bb * t - aw, -a.half_height, a.half_height);
-    sphere_point(a.center + ua * s, a.radius, b.center + ub * t, b.radius, perpendicular(ua),
-                 speculative_m, 0, out);
+    sphere_point(a.center + ua * s, a.radius, b.center + ub * t, b.radius, ua, speculative_m, 0,
+                 out);
     return;
   }
   // Side by side: the stretch of A that B's segment covers, seen along A.
@@ -140,8 +140,7 @@ void collide_capsules(const CapsulePose& a, const CapsulePose& b, float speculat
   const Vec3 qa_mid = a.center + ua * mid;
   const float t_mid = clampf(dot(qa_mid - b.center, ub), -b.half_height, b.half_height);
   Manifold one;
-  if (!sphere_point(qa_mid, a.radius, b.center + ub * t_mid, b.radius, perpendicular(ua),
-                    speculative_m, 0, one)) {
+  if (!sphere_point(qa_mid, a.radius, b.center + ub * t_mid, b.radius, ua, speculative_m, 0, one)) {
     return;
   }
   if (!(hi - lo > 1e-4f)) {  // end to end: one point
