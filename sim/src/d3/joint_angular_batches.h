@@ -2,11 +2,13 @@
 #pragma once
 // The angular parts (joint_angular.cpp) of the point joints packed into
 // lane batches (joint_point_batches.h), solved in the same lanes as their
-// points: each pass over a batch runs its lanes' angular parts, then its
-// lanes' points, on the bodies gathered once (the scalar path's order: the
-// angular part before its point). The maths is joint_angular.cpp's, each
-// row against the point held rigid, written once for kLanes lanes
-// (joint_angular_lanes.h).
+// points: refreshed with their points (against the point's inverse mass
+// just made) and warm-started with them; their passes and the hinges'
+// projection run over the batches before the joints' structure, as the
+// scalar path orders them (the angular parts before the points; see
+// joint_point_batches.h for why not batch by batch). The maths is
+// joint_angular.cpp's, each row against the point held rigid, written
+// once for kLanes lanes (joint_angular_lanes.h).
 //
 // A batch holds joints of one kind only (PointBatch::kind): bare points,
 // ball joints with an angular part, or hinges; the angular parts' data

@@ -72,9 +72,8 @@ void build_point_batches(const WorldState& state, WorldScratch& scratch);
 /// batch, then the trees, the other joints and the points), the order the
 /// scalar path keeps. (Each batch's angular parts just before its points,
 /// colour by colour, spares a gather and a scatter a pass, but a ragdoll
-/// pile's limbs then settle later, some not within 8 s: the friction
-/// motors of later colours act on velocities the points of earlier ones
-/// have just moved.)
+/// pile then settled later, a nudged one not within 8 s: measured, not
+/// explained.)
 void refresh_point_batches(WorldScratch& scratch);
 void warm_start_point_batches(WorldScratch& scratch);
 /// `contacted_only`: only the joints with a body a contact acts on (the
