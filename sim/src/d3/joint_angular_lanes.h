@@ -7,6 +7,7 @@
 #include "d3/joint_angular_batches.h"
 #include "d3/joint_lanes.h"
 #include "d3/joint_solver.h"
+#include "d3/lane_atan2.h"
 
 namespace rwd::sim::d3 {
 namespace {
@@ -87,31 +88,20 @@ inline V3<F> axis_z(const LaneQuat& q) {
           splat(1.0f) + (q.x * ty - q.y * tx)};
 }
 
-// det_atan2 and twist_angle lane by lane: each lane calls the engine's own
-// deterministic function (det_math.h, computed in double with + - * /
-// alone), so a lane's angle is bit for bit the one-float one on every
-// target. (A lane version in float would round differently from the
-// scalar function; in double it would need two double vectors per four
-// floats. These are one or two angles a joint a substep.)
+// det_atan2 lane by lane (lane_atan2.h), and twist_angle (joint_math.h)
+// of conjugate(fa) * fb: bit for bit the one-float functions.
 inline F atan2_lanes(F y, F x) {
-  alignas(16) float fy[kLanes];
-  alignas(16) float fx[kLanes];
-  store(fy, y);
-  store(fx, x);
-  for (int i = 0; i < kLanes; ++i) fy[i] = det_atan2(fy[i], fx[i]);
-  return load(fy);
+  return det_atan2_lanes(y, x);
 }
 
-// The twist angle of conjugate(fa) * fb (twist_angle, joint_math.h).
 inline F twist_lanes(const LaneQuat& fa, const LaneQuat& fb) {
   const F zero = splat(0.0f);
   const LaneQuat rel = quat_mul({zero - fa.x, zero - fa.y, zero - fa.z, fa.w}, fb);
-  alignas(16) float fx[kLanes];
-  alignas(16) float fw[kLanes];
-  store(fx, rel.x);
-  store(fw, rel.w);
-  for (int i = 0; i < kLanes; ++i) fx[i] = twist_angle(Quat{fx[i], 0.0f, 0.0f, fw[i]});
-  return load(fx);
+  // (det_atan2 of two zeros is zero: twist_angle's own test for them
+  // gives the same.)
+  F angle = splat(2.0f) * det_atan2_lanes(rel.x, rel.w);
+  angle = select(angle > splat(kPi), angle - splat(2.0f * kPi), angle);
+  return select(angle < splat(-kPi), angle + splat(2.0f * kPi), angle);
 }
 
 // A unit turn impulse about u against the point (joint_angular.cpp's Turn).

@@ -4,14 +4,18 @@
 // world: a hub holds more of them than there are colours, so the first
 // ones (in slot order) are coloured into lane batches with their angular
 // parts and the last stay scalar. Their limits hold on both paths, and
-// the world restores and re-steps bit for bit.
+// the world restores and re-steps bit for bit. The lanes' atan2 is
+// det_atan2 bit for bit.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "d3/lane_atan2.h"
 #include "joint_test_helpers.h"
 #include "rewind/sim/det_math.h"
 #include "rewind/sim/world3d.h"
@@ -138,6 +142,54 @@ TEST(JointAngularBatches, LimitsHoldInLanesAndScalarAndTheWorldReStepsBitForBit)
     twin.world.step();
     ASSERT_EQ(twin.world.checksum(), reference[static_cast<size_t>(i)]) << "tick " << i;
   }
+}
+
+uint32_t bits(float f) {
+  uint32_t u = 0;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
+
+TEST(JointAngularBatches, LaneAtan2IsDetAtan2BitForBit) {
+  // Zeros of both signs, the axes, equal magnitudes, tan(pi/8) on either
+  // side of the series' shift, tiny, subnormal and huge values, and
+  // random pairs of every sign and scale.
+  const float special[] = {0.0f,   -0.0f,   1.0f,        -1.0f,   0.41421354f, 0.41421357f,
+                           1e-30f, -1e-30f, 1e-40f,      -1e-40f, 3e38f,       -3e38f,
+                           0.5f,   2.0f,    0.70710677f, 1e-6f,   -1e-6f,      123.0f};
+  std::vector<float> ys;
+  std::vector<float> xs;
+  for (const float y : special) {
+    for (const float x : special) {
+      ys.push_back(y);
+      xs.push_back(x);
+    }
+  }
+  test::Rng rng;
+  for (int i = 0; i < 20000; ++i) {
+    const float scale = i % 3 == 0 ? 1e-4f : (i % 3 == 1 ? 1.0f : 1e4f);
+    ys.push_back(rng.uniform(-1.0f, 1.0f) * scale);
+    xs.push_back(rng.uniform(-1.0f, 1.0f) * (i % 5 == 0 ? scale * 1e-3f : scale));
+  }
+  while (ys.size() % d3::kLanes != 0) {
+    ys.push_back(1.0f);
+    xs.push_back(1.0f);
+  }
+  int differ = 0;
+  for (size_t i = 0; i < ys.size(); i += d3::kLanes) {
+    alignas(16) float out[d3::kLanes];
+    d3::store(out, d3::det_atan2_lanes(d3::load(&ys[i]), d3::load(&xs[i])));
+    for (int k = 0; k < d3::kLanes; ++k) {
+      const float want = det_atan2(ys[i + k], xs[i + k]);
+      if (bits(out[k]) != bits(want)) {
+        if (++differ < 10) {
+          ADD_FAILURE() << "atan2(" << ys[i + k] << ", " << xs[i + k] << "): lanes " << out[k]
+                        << ", det_atan2 " << want;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(differ, 0);
 }
 
 }  // namespace
