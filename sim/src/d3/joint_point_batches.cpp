@@ -3,108 +3,15 @@
 // packing, and the stages of joint_point.cpp written once for kLanes lanes.
 #include "d3/joint_point_batches.h"
 
-#include <cstddef>
-
 #include "d3/contact_lane_bodies.h"
+#include "d3/joint_angular_lanes.h"
+#include "d3/joint_lanes.h"
 #include "d3/joint_solver.h"
+#include "d3/joint_types.h"
 #include "d3/world_scratch.h"
 
 namespace rwd::sim::d3 {
 namespace {
-
-// A solver body's position row: the ninth float of its inverse inertia
-// (written back unchanged), then its delta position and delta rotation.
-inline constexpr int kPositionRow = 24;
-static_assert(offsetof(SolverBody, delta_position) == 25 * sizeof(float) &&
-                  offsetof(SolverBody, delta_rotation) == 28 * sizeof(float),
-              "the position row is the ninth inertia float, delta position, delta rotation");
-
-using F = FloatW;
-
-// The lanes of one batch (contact_lanes.h's access, for contact_lane_bodies.h).
-struct PointAccess {
-  using F = FloatW;
-  static constexpr int kWidth = kLanes;
-  const PointBatch* batch;
-  uint8_t active = 0xFu;  ///< lanes whose bodies may be written
-  static F splat(float x) { return d3::splat(x); }
-  static F from(const float* p) { return load(p); }
-  static void gather_rows(const float* const (&rows)[kLanes], F (&out)[8]) { load_rows(rows, out); }
-  static void scatter_rows(const F (&in)[8], float* const (&rows)[kLanes]) { store_rows(in, rows); }
-  uint32_t body_a(int lane) const { return batch->body_a[lane]; }
-  uint32_t body_b(int lane) const { return batch->body_b[lane]; }
-  bool movable_a(int lane) const { return batch->movable_a[lane] != 0 && (active >> lane & 1u); }
-  bool movable_b(int lane) const { return batch->movable_b[lane] != 0 && (active >> lane & 1u); }
-};
-
-V3<F> ld3(const float (&f)[3][kLanes]) {
-  return {load(f[0]), load(f[1]), load(f[2])};
-}
-void st3(float (&f)[3][kLanes], const V3<F>& v) {
-  store(f[0], v.x);
-  store(f[1], v.y);
-  store(f[2], v.z);
-}
-
-struct LaneQuat {
-  F x, y, z, w;
-};
-
-// rotate(q, v) of math.h, lane by lane.
-V3<F> rotate_lanes(const LaneQuat& q, const V3<F>& v) {
-  const V3<F> u{q.x, q.y, q.z};
-  const V3<F> t = cross3(u, v) * splat(2.0f);
-  return v + t * q.w + cross3(u, t);
-}
-
-// integrate_rotation(q, w, 1) of math.h, lane by lane (a zero length gives
-// the identity, as normalize does).
-LaneQuat integrate_lanes(const LaneQuat& q, const V3<F>& w) {
-  const F hh = splat(0.5f);
-  const V3<F> d{w.x * hh, w.y * hh, w.z * hh};
-  // dq * q with dq.w = 0.
-  const F rx = d.x * q.w + d.y * q.z - d.z * q.y;
-  const F ry = d.y * q.w - d.x * q.z + d.z * q.x;
-  const F rz = d.x * q.y - d.y * q.x + d.z * q.w;
-  const F rw = splat(0.0f) - d.x * q.x - d.y * q.y - d.z * q.z;
-  const LaneQuat s{q.x + rx, q.y + ry, q.z + rz, q.w + rw};
-  const F len = sqrt(s.x * s.x + s.y * s.y + s.z * s.z + s.w * s.w);
-  const auto real = len > splat(1e-12f);
-  const F inv = splat(1.0f) / select(real, len, splat(1.0f));
-  return {select(real, s.x * inv, splat(0.0f)), select(real, s.y * inv, splat(0.0f)),
-          select(real, s.z * inv, splat(0.0f)), select(real, s.w * inv, splat(1.0f))};
-}
-
-// The lanes' bodies' position rows.
-struct LanePositions {
-  F keep;  // the row's first float (inertia), written back unchanged
-  V3<F> p;
-  LaneQuat q;
-};
-
-LanePositions gather_positions(const PointBatch& batch, const std::vector<SolverBody>& bodies,
-                               bool side_b) {
-  const float* rows[kLanes];
-  for (int i = 0; i < kLanes; ++i) {
-    rows[i] = body_row(bodies[side_b ? batch.body_b[i] : batch.body_a[i]]) + kPositionRow;
-  }
-  F f[8];
-  load_rows(rows, f);
-  return {f[0], {f[1], f[2], f[3]}, {f[4], f[5], f[6], f[7]}};
-}
-
-void scatter_positions(const PointBatch& batch, std::vector<SolverBody>& bodies, bool side_b,
-                       const LanePositions& s) {
-  alignas(32) float sink[8];
-  float* rows[kLanes];
-  for (int i = 0; i < kLanes; ++i) {
-    const bool movable = side_b ? batch.movable_b[i] != 0 : batch.movable_a[i] != 0;
-    rows[i] = movable ? body_row(bodies[side_b ? batch.body_b[i] : batch.body_a[i]]) + kPositionRow
-                      : sink;
-  }
-  const F f[8] = {s.keep, s.p.x, s.p.y, s.p.z, s.q.x, s.q.y, s.q.z, s.q.w};
-  store_rows(f, rows);
-}
 
 // T v for a turn matrix stored column-major in 9 lane rows.
 V3<F> turn(const float (&t)[9][kLanes], const V3<F>& v) {
@@ -140,8 +47,51 @@ V3<F> anchor_velocity_lanes(const PointBatch& b, const LaneBodies<F>& a, const L
 
 }  // namespace
 
-void build_point_batches(WorldScratch& s) {
+namespace {
+
+uint8_t point_kind(const JointRecord& j, const JointConstraint& c) {
+  if (!c.angular) return kPointBare;
+  return j.type == JointType::kHinge ? kPointHinge : kPointBall;
+}
+
+// A fresh batch of `kind` (its part batch too), every lane empty.
+uint32_t open_batch(WorldScratch& s, uint8_t kind) {
+  PointBatch& fresh = s.point_batches.emplace_back();
+  fresh.kind = kind;
+  fresh.part = 0;
+  for (int i = 0; i < kLanes; ++i) {
+    fresh.joint[i] = kNoPointJoint;
+    fresh.body_a[i] = fresh.body_b[i] = 0;
+    fresh.movable_a[i] = fresh.movable_b[i] = 0;
+    for (int d = 0; d < 3; ++d) {
+      fresh.anchor_a[d][i] = fresh.anchor_b[d][i] = fresh.delta_center[d][i] = 0.0f;
+      fresh.impulse[d][i] = 0.0f;
+      fresh.tick_impulse[d][i] = 0.0f;
+    }
+  }
+  const auto index = static_cast<uint32_t>(s.point_batches.size() - 1);
+  if (kind == kPointBall) {
+    s.ball_batches.push_back(index);
+    fresh.part = static_cast<uint32_t>(s.ball_parts.size());
+    BallPartBatch& part = s.ball_parts.emplace_back();
+    for (int i = 0; i < kLanes; ++i) clear_ball_lane(part, i);
+  } else if (kind == kPointHinge) {
+    s.hinge_batches.push_back(index);
+    fresh.part = static_cast<uint32_t>(s.hinge_parts.size());
+    HingePartBatch& part = s.hinge_parts.emplace_back();
+    for (int i = 0; i < kLanes; ++i) clear_hinge_lane(part, i);
+  }
+  return index;
+}
+
+}  // namespace
+
+void build_point_batches(const WorldState& state, WorldScratch& s) {
   s.point_batches.clear();
+  s.ball_parts.clear();
+  s.hinge_parts.clear();
+  s.ball_batches.clear();
+  s.hinge_batches.clear();
   std::vector<JointConstraint>& joints = s.joint_constraints;
   const size_t words = (s.solver_bodies.size() + 63) / 64;
   s.point_color_bits.assign(words * kColorCount, 0);
@@ -159,8 +109,10 @@ void build_point_batches(WorldScratch& s) {
     any = any || c.batched;
   }
   if (!any) return;
-  // Colour by colour, in slot order within a colour, kLanes to a batch:
-  // the batched joints sorted by colour in one counting pass.
+  // Colour by colour, in slot order within a colour, kLanes of one kind to
+  // a batch: the batched joints sorted by colour in one counting pass.
+  // (The joints of a colour share no movable body, so how they are
+  // grouped into batches within it changes no result.)
   s.point_color_start.assign(kColorCount + 1, 0);
   for (uint32_t k = 0; k < joints.size(); ++k) {
     if (joints[k].batched) ++s.point_color_start[s.point_color_of[k] + 1];
@@ -173,48 +125,45 @@ void build_point_batches(WorldScratch& s) {
   for (uint32_t k = 0; k < joints.size(); ++k) {
     if (joints[k].batched) s.point_color_order[s.point_color_fill[s.point_color_of[k]]++] = k;
   }
+  constexpr int kKinds = 3;
   for (uint32_t col = 0; col < kColorCount; ++col) {
-    int lane = kLanes;
+    uint32_t open[kKinds] = {};
+    int lane[kKinds] = {kLanes, kLanes, kLanes};
     for (uint32_t q = s.point_color_start[col]; q < s.point_color_start[col + 1]; ++q) {
       const uint32_t k = s.point_color_order[q];
-      if (lane == kLanes) {
-        PointBatch& fresh = s.point_batches.emplace_back();
-        for (int i = 0; i < kLanes; ++i) {
-          fresh.joint[i] = kNoPointJoint;
-          fresh.body_a[i] = fresh.body_b[i] = 0;
-          fresh.movable_a[i] = fresh.movable_b[i] = 0;
-          for (int d = 0; d < 3; ++d) {
-            fresh.anchor_a[d][i] = fresh.anchor_b[d][i] = fresh.delta_center[d][i] = 0.0f;
-            fresh.impulse[d][i] = 0.0f;
-            fresh.tick_impulse[d][i] = 0.0f;
-          }
-        }
-        lane = 0;
-      }
-      PointBatch& b = s.point_batches.back();
       const JointConstraint& c = joints[k];
-      b.joint[lane] = k;
-      b.body_a[lane] = c.body_a;
-      b.body_b[lane] = c.body_b;
-      b.movable_a[lane] = s.solver_bodies[c.body_a].inv_mass != 0.0f ? 1 : 0;
-      b.movable_b[lane] = s.solver_bodies[c.body_b].inv_mass != 0.0f ? 1 : 0;
+      const JointRecord& j = state.joints[c.record];
+      const uint8_t kind = point_kind(j, c);
+      if (lane[kind] == kLanes) {
+        open[kind] = open_batch(s, kind);
+        lane[kind] = 0;
+      }
+      PointBatch& b = s.point_batches[open[kind]];
+      const int i = lane[kind]++;
+      b.joint[i] = k;
+      b.body_a[i] = c.body_a;
+      b.body_b[i] = c.body_b;
+      b.movable_a[i] = s.solver_bodies[c.body_a].inv_mass != 0.0f ? 1 : 0;
+      b.movable_b[i] = s.solver_bodies[c.body_b].inv_mass != 0.0f ? 1 : 0;
       const Vec3 v[3] = {c.anchor_a, c.anchor_b, c.delta_center};
       float(*dst[3])[kLanes] = {b.anchor_a, b.anchor_b, b.delta_center};
       for (int f = 0; f < 3; ++f) {
-        dst[f][0][lane] = v[f].x;
-        dst[f][1][lane] = v[f].y;
-        dst[f][2][lane] = v[f].z;
+        dst[f][0][i] = v[f].x;
+        dst[f][1][i] = v[f].y;
+        dst[f][2][i] = v[f].z;
       }
-      b.impulse[0][lane] = c.linear_impulse.x;
-      b.impulse[1][lane] = c.linear_impulse.y;
-      b.impulse[2][lane] = c.linear_impulse.z;
-      ++lane;
+      b.impulse[0][i] = c.linear_impulse.x;
+      b.impulse[1][i] = c.linear_impulse.y;
+      b.impulse[2][i] = c.linear_impulse.z;
+      if (kind == kPointBall) pack_ball_lane(s.ball_parts[b.part], i, j, c);
+      if (kind == kPointHinge) pack_hinge_lane(s.hinge_parts[b.part], i, j, c);
     }
   }
-  // Every batched joint has the same softness (prepare_joints).
+  // Every batched joint has the same softness and substep (prepare_joints).
   for (const JointConstraint& c : joints) {
     if (c.batched) {
       s.point_soft = c.soft;
+      s.point_h = c.h;
       break;
     }
   }
@@ -272,12 +221,24 @@ void refresh_point_batches(WorldScratch& s) {
     const F det = k[0][0] * c00 + k[0][1] * c01 + k[0][2] * c02;
     // Positive for any lane with a movable body; an empty lane gets zeros.
     const F inv = inverse_or_zero<PointAccess>(det);
-    store(b.inv_k[0], c00 * inv);
-    store(b.inv_k[1], c01 * inv);
-    store(b.inv_k[2], c02 * inv);
-    store(b.inv_k[3], c11 * inv);
-    store(b.inv_k[4], c12 * inv);
-    store(b.inv_k[5], c22 * inv);
+    const F k6[6] = {c00 * inv, c01 * inv, c02 * inv, c11 * inv, c12 * inv, c22 * inv};
+    for (int q = 0; q < 6; ++q) store(b.inv_k[q], k6[q]);
+    if (b.kind == kPointBare) continue;
+    // The angular part against the point just made.
+    const PointLanes pt{ra,
+                        rb,
+                        va.inv_mass,
+                        vb.inv_mass,
+                        ia,
+                        ib,
+                        {ta[0], ta[1], ta[2]},
+                        {tb[0], tb[1], tb[2]},
+                        {k6[0], k6[1], k6[2], k6[3], k6[4], k6[5]}};
+    if (b.kind == kPointBall) {
+      refresh_ball_lanes(s.ball_parts[b.part], pt, pa.q, pb.q);
+    } else {
+      refresh_hinge_lanes(s.hinge_parts[b.part], pt, pa.q, pb.q);
+    }
   }
 }
 
@@ -286,9 +247,64 @@ void warm_start_point_batches(WorldScratch& s) {
     const PointAccess acc{&b};
     LaneBodies<F> a = gather_bodies(acc, s.solver_bodies, false);
     LaneBodies<F> bb = gather_bodies(acc, s.solver_bodies, true);
+    if (b.kind == kPointBall) warm_start_ball_lanes(s.ball_parts[b.part], a, bb);
+    if (b.kind == kPointHinge) warm_start_hinge_lanes(s.hinge_parts[b.part], a, bb);
     apply(b, a, bb, ld3(b.impulse));
     scatter_bodies(acc, s.solver_bodies, false, a);
     scatter_bodies(acc, s.solver_bodies, true, bb);
+  }
+}
+
+namespace {
+
+// The lanes a pass changes: all of a batch's, or (`contacted_only`) those
+// with a body a contact acts on; `keep` 1 for those. False: none.
+bool pass_lanes(const WorldScratch& s, const PointBatch& b, bool contacted_only, PointAccess& acc,
+                float (&keep)[kLanes]) {
+  if (!contacted_only) {
+    for (float& k : keep) k = 1.0f;
+    return true;
+  }
+  acc.active = 0;
+  for (int i = 0; i < kLanes; ++i) {
+    const bool hit = b.joint[i] != kNoPointJoint && (s.solver_bodies[b.body_a[i]].contacted ||
+                                                     s.solver_bodies[b.body_b[i]].contacted);
+    acc.active = static_cast<uint8_t>(acc.active | (hit ? 1u << i : 0u));
+    keep[i] = hit ? 1.0f : 0.0f;
+  }
+  return acc.active != 0;
+}
+
+}  // namespace
+
+void solve_angular_batches(WorldScratch& s, bool use_bias, bool contacted_only) {
+  const JointSoftness& soft = s.point_soft;
+  const F h = splat(s.point_h);
+  const bool at_refresh = s.joint_frames_fresh;
+  // The ball joints' parts first, then the hinges': a hinge's limit (an
+  // elbow's, a knee's) ends the angular pass holding. The other way round
+  // the shoulders' and hips' friction and cones, solved after, turned the
+  // upper limbs against the elbows and knees just held: a running figure
+  // handed over to the simulation bent an elbow 2 degrees backwards
+  // (0.1 degree this way).
+  for (const std::vector<uint32_t>* kind : {&s.ball_batches, &s.hinge_batches}) {
+    for (const uint32_t index : *kind) {
+      PointBatch& b = s.point_batches[index];
+      PointAccess acc{&b};
+      alignas(16) float keep[kLanes];  // 1: the lane's impulses change
+      if (!pass_lanes(s, b, contacted_only, acc, keep)) continue;
+      LaneBodies<F> a = gather_bodies(acc, s.solver_bodies, false);
+      LaneBodies<F> bb = gather_bodies(acc, s.solver_bodies, true);
+      // A lane left out keeps its impulses, and its bodies are not written.
+      const auto changes = load(keep) > splat(0.0f);
+      if (b.kind == kPointBall) {
+        solve_ball_lanes(s.ball_parts[b.part], soft, h, use_bias, at_refresh, changes, a, bb);
+      } else {
+        solve_hinge_lanes(s.hinge_parts[b.part], soft, h, use_bias, at_refresh, changes, a, bb);
+      }
+      scatter_bodies(acc, s.solver_bodies, false, a);
+      scatter_bodies(acc, s.solver_bodies, true, bb);
+    }
   }
 }
 
@@ -297,20 +313,11 @@ void solve_point_batches(WorldScratch& s, bool use_bias, bool contacted_only) {
   for (PointBatch& b : s.point_batches) {
     PointAccess acc{&b};
     alignas(16) float keep[kLanes];  // 1: the lane's impulse changes
-    if (contacted_only) {
-      acc.active = 0;
-      for (int i = 0; i < kLanes; ++i) {
-        const bool hit = b.joint[i] != kNoPointJoint && (s.solver_bodies[b.body_a[i]].contacted ||
-                                                         s.solver_bodies[b.body_b[i]].contacted);
-        acc.active = static_cast<uint8_t>(acc.active | (hit ? 1u << i : 0u));
-        keep[i] = hit ? 1.0f : 0.0f;
-      }
-      if (acc.active == 0) continue;
-    } else {
-      for (float& k : keep) k = 1.0f;
-    }
+    if (!pass_lanes(s, b, contacted_only, acc, keep)) continue;
     LaneBodies<F> a = gather_bodies(acc, s.solver_bodies, false);
     LaneBodies<F> bb = gather_bodies(acc, s.solver_bodies, true);
+    // A lane left out keeps its impulse, and its bodies are not written.
+    const auto changes = load(keep) > splat(0.0f);
     V3<F> rhs = anchor_velocity_lanes(b, a, bb);
     const V3<F> acc_impulse = ld3(b.impulse);
     V3<F> p;
@@ -329,8 +336,6 @@ void solve_point_batches(WorldScratch& s, bool use_bias, bool contacted_only) {
       const V3<F> x = inv_k_times(b, rhs);
       p = V3<F>{splat(0.0f) - x.x, splat(0.0f) - x.y, splat(0.0f) - x.z};
     }
-    // A lane left out keeps its impulse, and its bodies are not written.
-    const auto changes = load(keep) > splat(0.0f);
     const V3<F> next = acc_impulse + p;
     st3(b.impulse,
         V3<F>{select(changes, next.x, acc_impulse.x), select(changes, next.y, acc_impulse.y),
@@ -338,6 +343,19 @@ void solve_point_batches(WorldScratch& s, bool use_bias, bool contacted_only) {
     apply(b, a, bb, p);
     scatter_bodies(acc, s.solver_bodies, false, a);
     scatter_bodies(acc, s.solver_bodies, true, bb);
+  }
+}
+
+void project_angular_batches(WorldScratch& s) {
+  const F zero = splat(0.0f);
+  for (const uint32_t index : s.hinge_batches) {
+    const PointBatch& b = s.point_batches[index];
+    LanePositions pa = gather_positions(b, s.solver_bodies, false);
+    LanePositions pb = gather_positions(b, s.solver_bodies, true);
+    project_hinge_lanes(s.hinge_parts[b.part], load(b.mass_a) > zero, load(b.mass_b) > zero, pa,
+                        pb);
+    scatter_positions(b, s.solver_bodies, false, pa);
+    scatter_positions(b, s.solver_bodies, true, pb);
   }
 }
 
@@ -372,6 +390,7 @@ void sum_point_batches(WorldScratch& s) {
       for (int i = 0; i < kLanes; ++i) b.tick_impulse[d][i] += b.impulse[d][i];
     }
   }
+  for (HingePartBatch& p : s.hinge_parts) sum_hinge_part(p);
 }
 
 void store_point_batches(WorldScratch& s, int substeps) {
@@ -381,8 +400,14 @@ void store_point_batches(WorldScratch& s, int substeps) {
       JointConstraint& c = s.joint_constraints[b.joint[i]];
       c.linear_impulse = {b.impulse[0][i], b.impulse[1][i], b.impulse[2][i]};
       c.tick_linear = {b.tick_impulse[0][i], b.tick_impulse[1][i], b.tick_impulse[2][i]};
-      // (The angular impulse a point joint holds, from a loaded state, is
-      // summed as the other joints' are.)
+      if (b.kind == kPointHinge) {
+        // Its turns' impulses, and their sums over the tick.
+        store_hinge_lane(s.hinge_parts[b.part], i, c);
+        continue;
+      }
+      if (b.kind == kPointBall) store_ball_lane(s.ball_parts[b.part], i, c);
+      // (The angular impulse a point joint or a ball joint's angular part
+      // holds, from a loaded state, is summed as the other joints' are.)
       for (int k = 0; k < substeps; ++k) c.tick_angular += c.angular_impulse;
     }
   }

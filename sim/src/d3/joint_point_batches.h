@@ -18,7 +18,8 @@
 
 namespace rwd::sim {
 class WorldScratch;
-}
+struct WorldState;
+}  // namespace rwd::sim
 
 namespace rwd::sim::d3 {
 
@@ -37,6 +38,11 @@ struct alignas(16) PointBatch {
   uint32_t body_b[kLanes];
   uint8_t movable_a[kLanes];
   uint8_t movable_b[kLanes];
+  /// What its lanes are (kPointBare, kPointBall, kPointHinge:
+  /// joint_angular_batches.h), and for an angular kind its part batch's
+  /// index (in scratch.ball_parts or scratch.hinge_parts).
+  uint8_t kind;
+  uint32_t part;
   alignas(16) float anchor_a[3][kLanes];  ///< from A's centre, world frame, tick start
   alignas(16) float anchor_b[3][kLanes];
   alignas(16) float delta_center[3][kLanes];
@@ -55,18 +61,34 @@ struct alignas(16) PointBatch {
 };
 
 /// Colours this tick's point joints and packs them (after prepare_joints
-/// has marked them); marks the packed ones JointConstraint::batched.
-void build_point_batches(WorldScratch& scratch);
-/// The stages of joint_point.cpp over the batches.
+/// has marked them), each batch with joints of one kind (a bare point, a
+/// ball joint's or a hinge's angular part with it); marks the packed ones
+/// JointConstraint::batched.
+void build_point_batches(const WorldState& state, WorldScratch& scratch);
+/// The stages of joint_point.cpp and joint_angular.cpp over the batches.
+/// A batch's lanes' angular parts are refreshed and warm-started with
+/// their points; their passes and the hinges' projection are stages of
+/// their own, run before the joints' structure (the angular parts of every
+/// batch, then the trees, the other joints and the points), the order the
+/// scalar path keeps. (Each batch's angular parts just before its points,
+/// colour by colour, spares a gather and a scatter a pass, but a ragdoll
+/// pile then settled later, a nudged one not within 8 s: measured, not
+/// explained.)
 void refresh_point_batches(WorldScratch& scratch);
 void warm_start_point_batches(WorldScratch& scratch);
 /// `contacted_only`: only the joints with a body a contact acts on (the
 /// second pass after the contacts, joint_solver.h); the others' bodies and
 /// impulses are left exactly as they are.
 void solve_point_batches(WorldScratch& scratch, bool use_bias, bool contacted_only = false);
+/// The batches' angular parts' passes (same `contacted_only`), before the
+/// points'.
+void solve_angular_batches(WorldScratch& scratch, bool use_bias, bool contacted_only = false);
 void project_point_batches(WorldScratch& scratch);
-/// Adds each lane's impulse to its sum over the tick (once a substep, as
-/// sum_joint_impulses() does for the other joints).
+/// The batched hinges' axes and limits brought back (before any point's
+/// projection).
+void project_angular_batches(WorldScratch& scratch);
+/// Adds each lane's impulses to their sums over the tick (once a substep,
+/// as sum_joint_impulses() does for the other joints).
 void sum_point_batches(WorldScratch& scratch);
 /// Writes the batches' impulses and their sums over the tick back to their
 /// joints, once the tick's `substeps` are done (before the impulses are

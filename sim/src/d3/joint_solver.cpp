@@ -147,11 +147,18 @@ void prepare_joints(const WorldState& state, WorldScratch& scratch, float h) {
     c.angular = c.point && has_angular_part(j);
     if (c.angular) scratch.joint_angular.push_back(k);
   }
-  build_point_batches(scratch);
+  build_point_batches(state, scratch);
   scratch.joint_general.clear();
   for (uint32_t k = 0; k < out.size(); ++k) {
     if (!out[k].batched) scratch.joint_general.push_back(k);
   }
+  // A batched joint's angular part is solved in its batch's lanes: the
+  // scalar angular path keeps the rest.
+  size_t kept = 0;
+  for (const uint32_t k : scratch.joint_angular) {
+    if (!out[k].batched) scratch.joint_angular[kept++] = k;
+  }
+  scratch.joint_angular.resize(kept);
 }
 
 void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool trees_only) {
@@ -271,6 +278,7 @@ void solve_joints(const WorldState& state, WorldScratch& scratch, bool use_bias,
   const std::vector<SolverBody>& bodies = scratch.solver_bodies;
   // The angular parts before their points (the structure ends the pass).
   solve_angular_parts(state, scratch, use_bias, contacted_only);
+  solve_angular_batches(scratch, use_bias, contacted_only);
   for (uint32_t t = 0; t < scratch.trees.size(); ++t) {
     if (contacted_only) {
       const JointTree& tree = scratch.trees[t];
@@ -324,6 +332,7 @@ void release_pulling_limits(const JointConstraint& c, float* x) {
 
 void project_joints(const WorldState& state, WorldScratch& scratch) {
   project_angular_parts(state, scratch);
+  project_angular_batches(scratch);
   for (uint32_t t = 0; t < scratch.trees.size(); ++t) project_joint_tree(state.joints, scratch, t);
   float error[kMaxBlockRows];
   float x[kMaxBlockRows];
@@ -349,11 +358,6 @@ void project_joints(const WorldState& state, WorldScratch& scratch) {
 
 void sum_joint_impulses(WorldScratch& scratch) {
   sum_point_batches(scratch);
-  // (The batched joints' angular parts; the rest are summed below.)
-  for (const uint32_t k : scratch.joint_angular) {
-    JointConstraint& c = scratch.joint_constraints[k];
-    if (c.batched) c.tick_angular += c.angular_impulse;
-  }
   for (const uint32_t k : scratch.joint_general) {
     JointConstraint& c = scratch.joint_constraints[k];
     c.tick_linear += c.linear_impulse;

@@ -73,8 +73,17 @@ inline MaskW operator>(FloatW a, FloatW b) {
 inline FloatW select(MaskW m, FloatW a, FloatW b) {
   return {_mm_or_ps(_mm_and_ps(m.v, a.v), _mm_andnot_ps(m.v, b.v))};
 }
+inline MaskW operator>=(FloatW a, FloatW b) {
+  return {_mm_cmpge_ps(a.v, b.v)};
+}
+inline MaskW operator==(FloatW a, FloatW b) {
+  return {_mm_cmpeq_ps(a.v, b.v)};
+}
 inline MaskW operator|(MaskW a, MaskW b) {
   return {_mm_or_ps(a.v, b.v)};
+}
+inline MaskW operator&(MaskW a, MaskW b) {
+  return {_mm_and_ps(a.v, b.v)};
 }
 /// Bit i set when lane i of m is true.
 inline uint32_t lane_bits(MaskW m) {
@@ -122,8 +131,17 @@ inline MaskW operator>(FloatW a, FloatW b) {
 inline FloatW select(MaskW m, FloatW a, FloatW b) {
   return {vbslq_f32(m.v, a.v, b.v)};
 }
+inline MaskW operator>=(FloatW a, FloatW b) {
+  return {vcgeq_f32(a.v, b.v)};
+}
+inline MaskW operator==(FloatW a, FloatW b) {
+  return {vceqq_f32(a.v, b.v)};
+}
 inline MaskW operator|(MaskW a, MaskW b) {
   return {vorrq_u32(a.v, b.v)};
+}
+inline MaskW operator&(MaskW a, MaskW b) {
+  return {vandq_u32(a.v, b.v)};
 }
 inline uint32_t lane_bits(MaskW m) {
   const uint32x4_t weights = {1u, 2u, 4u, 8u};
@@ -184,9 +202,24 @@ inline FloatW select(MaskW m, FloatW a, FloatW b) {
   for (int i = 0; i < kLanes; ++i) r.v[i] = m.v[i] ? a.v[i] : b.v[i];
   return r;
 }
+inline MaskW operator>=(FloatW a, FloatW b) {
+  MaskW m;
+  for (int i = 0; i < kLanes; ++i) m.v[i] = a.v[i] >= b.v[i];
+  return m;
+}
+inline MaskW operator==(FloatW a, FloatW b) {
+  MaskW m;
+  for (int i = 0; i < kLanes; ++i) m.v[i] = a.v[i] == b.v[i];
+  return m;
+}
 inline MaskW operator|(MaskW a, MaskW b) {
   MaskW m;
   for (int i = 0; i < kLanes; ++i) m.v[i] = a.v[i] || b.v[i];
+  return m;
+}
+inline MaskW operator&(MaskW a, MaskW b) {
+  MaskW m;
+  for (int i = 0; i < kLanes; ++i) m.v[i] = a.v[i] && b.v[i];
   return m;
 }
 inline uint32_t lane_bits(MaskW m) {

@@ -12,6 +12,7 @@
 #include "d3/aabb_tree.h"
 #include "d3/broadphase.h"
 #include "d3/contact_batches.h"
+#include "d3/joint_angular_batches.h"
 #include "d3/joint_point_batches.h"
 #include "d3/joint_solver.h"
 #include "d3/joint_tree.h"
@@ -161,8 +162,12 @@ class WorldScratch {
   std::vector<JointId> broken_joints;  ///< this step's, in slot order
   // point joints in lanes (joint_point_batches.cpp), rebuilt each tick
   std::vector<d3::PointBatch> point_batches;
-  std::vector<uint64_t> point_color_bits;  ///< per colour, one bit per solver body
-  std::vector<uint32_t> point_color_of;    ///< by joint constraint
+  std::vector<d3::BallPartBatch> ball_parts;    ///< their angular parts, by kind
+  std::vector<d3::HingePartBatch> hinge_parts;  ///< (joint_angular_batches.h)
+  std::vector<uint32_t> ball_batches;           ///< the point batches of each angular
+  std::vector<uint32_t> hinge_batches;          ///< kind, in order
+  std::vector<uint64_t> point_color_bits;       ///< per colour, one bit per solver body
+  std::vector<uint32_t> point_color_of;         ///< by joint constraint
   std::vector<uint32_t>
       point_color_start;  ///< batched joints by colour: order[start[c], start[c+1])
   std::vector<uint32_t> point_color_order;
@@ -170,10 +175,11 @@ class WorldScratch {
   /// The joint constraints not in a lane batch, ascending: the joint
   /// passes walk these and leave the batched ones to the lanes.
   std::vector<uint32_t> joint_general;
-  /// The point joints with an angular part (JointConstraint::angular),
-  /// ascending.
+  /// The point joints with an angular part (JointConstraint::angular)
+  /// not in a lane batch, ascending.
   std::vector<uint32_t> joint_angular;
   d3::JointSoftness point_soft;
+  float point_h = 0.0f;  ///< the batched joints' substep
   // joint trees (joint_tree.cpp), rebuilt each tick
   std::vector<d3::JointTree> trees;
   std::vector<d3::JointTreeBody> tree_bodies;

@@ -44,9 +44,12 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///   9  a ball joint's cone-twist limit and motor solved apart from its
 ///      point (each row against the point held), the point with the point
 ///      joints; a limit reached stays a row rather than joining the block
-inline constexpr uint32_t kSimRevision = 9;
+///  10  the angular parts of the point joints in lane batches (ball joints'
+///      and hinges') solved in the batches' lanes beside their points, a
+///      batch's lanes all of one kind
+inline constexpr uint32_t kSimRevision = 10;
 
-/// "rewind-sim r9": the engine identity a replay records.
+/// "rewind-sim r10": the engine identity a replay records.
 inline std::string engine_version() {
   return std::string(kEngineName) + " r" + std::to_string(kSimRevision);
 }
