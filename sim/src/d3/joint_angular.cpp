@@ -1,16 +1,20 @@
 // SPDX-License-Identifier: MIT
-// The angular part of a ball joint whose point is solved as a point joint
-// (JointConstraint::angular, joint_solver.h): its cone-twist limit and its
-// angular motor, each solved before the point in every pass (the point
-// ends the pass holding) against the point held rigid, as the general
-// path solves a joint's extra rows against its block (joint_block.h): a
-// row's effective mass is the Schur complement of the point's 3 x 3, and
-// its impulse comes with the linear impulse at the anchors that leaves
-// the anchors' relative velocity as it was. So the joint's friction stops
-// a limb about its joint, not about its centre of mass. Written for these
+// The angular part of a joint whose point is solved as a point joint
+// (JointConstraint::angular, joint_solver.h): a ball joint's cone-twist
+// limit and angular motor, or a hinge's two turns off its axis (its
+// structure beside the point) and the spring, motor and limits about the
+// axis. Each row is solved before the point in every pass (the point ends
+// the pass holding) against the point held rigid, as the general path
+// solves a joint's extra rows against its block (joint_block.h): a row's
+// effective mass is the Schur complement of the point's 3 x 3, and its
+// impulse comes with the linear impulse at the anchors that leaves the
+// anchors' relative velocity as it was. So the joint's friction stops a
+// limb about its joint, not about its centre of mass. Written for these
 // rows alone (a turn about a world axis against a point), each costs a
-// few dozen operations a pass, and the point joints around them run in
-// the solver's lanes (joint_point_batches.h): this is the ragdoll's joint.
+// few dozen operations a pass. This file is the scalar path, for the
+// joints that found no colour; the rest run in the lanes of their points'
+// batches with the same maths (joint_angular_batches.h). This is the
+// ragdoll's joint.
 //
 // Unlike the general path, a limit already reached does not join the
 // point in one block: it stays a row against the point, the point solved
