@@ -219,8 +219,8 @@ inline void solve_limit_lanes(const JointSoftness& soft, F h, bool use_bias, Mas
 
 // ---- ball joints ----
 
-[[gnu::noinline]] void refresh_ball_lanes(BallPartBatch& p, const PointLanes& pt,
-                                          const LaneQuat& qa, const LaneQuat& qb) {
+inline void refresh_ball_lanes(BallPartBatch& p, const PointLanes& pt, const LaneQuat& qa,
+                               const LaneQuat& qb) {
   const LaneQuat fa = quat_mul(qa, ld_quat(p.frame_a));
   const LaneQuat fb = quat_mul(qb, ld_quat(p.frame_b));
   const F zero = splat(0.0f);
@@ -313,8 +313,7 @@ inline void apply_motor_lanes(const BallPartBatch& p, LaneBodies<F>& a, LaneBodi
   apply_response(p.motor_response[2], a, b, d.z);
 }
 
-[[gnu::noinline]] void warm_start_ball_lanes(const BallPartBatch& p, LaneBodies<F>& a,
-                                             LaneBodies<F>& b) {
+inline void warm_start_ball_lanes(const BallPartBatch& p, LaneBodies<F>& a, LaneBodies<F>& b) {
   const F zero = splat(0.0f);
   // (Without a motor a lane's motor impulse is zero: has_angular_part.)
   if (p.any_motor) apply_motor_lanes(p, a, b, ld3(p.motor_impulse));
@@ -367,8 +366,8 @@ inline void solve_ball_lanes(BallPartBatch& p, const JointSoftness& soft, F h, b
 
 // ---- hinges ----
 
-[[gnu::noinline]] void refresh_hinge_lanes(HingePartBatch& p, const PointLanes& pt,
-                                           const LaneQuat& qa, const LaneQuat& qb) {
+inline void refresh_hinge_lanes(HingePartBatch& p, const PointLanes& pt, const LaneQuat& qa,
+                                const LaneQuat& qb) {
   const LaneQuat fa = quat_mul(qa, ld_quat(p.frame_a));
   const LaneQuat fb = quat_mul(qb, ld_quat(p.frame_b));
   const V3<F> xa = axis_x(fa);
@@ -410,8 +409,7 @@ inline void solve_ball_lanes(BallPartBatch& p, const JointSoftness& soft, F h, b
   turn_response(pt, tx, p.axial_response);
 }
 
-[[gnu::noinline]] void warm_start_hinge_lanes(const HingePartBatch& p, LaneBodies<F>& a,
-                                              LaneBodies<F>& b) {
+inline void warm_start_hinge_lanes(const HingePartBatch& p, LaneBodies<F>& a, LaneBodies<F>& b) {
   const F zero = splat(0.0f);
   const MaskW limited = on(p.limit_on);
   const F lower = select(limited, load(p.limit_impulse[0]), zero);

@@ -66,16 +66,19 @@ struct alignas(16) PointBatch {
 /// JointConstraint::batched.
 void build_point_batches(const WorldState& state, WorldScratch& scratch);
 /// The stages of joint_point.cpp and joint_angular.cpp over the batches.
-/// A batch's lanes' angular parts are refreshed and warm-started with
-/// their points; their passes and the hinges' projection are stages of
-/// their own, run before the joints' structure (the angular parts of every
-/// batch, then the trees, the other joints and the points), the order the
-/// scalar path keeps. (Each batch's angular parts just before its points,
-/// colour by colour, spares a gather and a scatter a pass, but a ragdoll
-/// pile then settled later, a nudged one not within 8 s: measured, not
-/// explained.)
+/// A batch's lanes' angular parts are refreshed after their points (against
+/// the point's inverse mass just made); their warm start, passes and the
+/// hinges' projection are stages of their own, run before the joints'
+/// structure (the angular parts of every batch, then the trees, the other
+/// joints and the points), the order the scalar path keeps. (Each batch's
+/// angular parts just before its points, colour by colour, spares a gather
+/// and a scatter a pass, but a ragdoll pile then settled later, a nudged
+/// one not within 8 s: measured, not explained.)
 void refresh_point_batches(WorldScratch& scratch);
 void warm_start_point_batches(WorldScratch& scratch);
+/// The batches' angular parts' warm start (with the scalar path's, before
+/// any structure's).
+void warm_start_angular_batches(WorldScratch& scratch);
 /// `contacted_only`: only the joints with a body a contact acts on (the
 /// second pass after the contacts, joint_solver.h); the others' bodies and
 /// impulses are left exactly as they are.

@@ -213,6 +213,7 @@ void refresh_joint_rows(const WorldState& state, WorldScratch& scratch, bool tre
 void warm_start_joints(const WorldState& state, WorldScratch& scratch) {
   refresh_joint_rows(state, scratch);
   warm_start_angular_parts(state, scratch);
+  warm_start_angular_batches(scratch);
   float acc[kMaxBlockRows];
   for (const uint32_t k : scratch.joint_general) {
     const JointConstraint& c = scratch.joint_constraints[k];
