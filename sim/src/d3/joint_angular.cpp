@@ -102,16 +102,6 @@ void ready_limit(JointConstraint& c, const SolverBody& a, const SolverBody& b, i
   c.limit_response[k] = turn_response(c, a, b, t);
 }
 
-constexpr Vec3 kAxisX{1.0f, 0.0f, 0.0f};
-constexpr Vec3 kAxisY{0.0f, 1.0f, 0.0f};
-constexpr Vec3 kAxisZ{0.0f, 0.0f, 1.0f};
-
-float wrap_angle(float angle) {
-  if (angle > kPi) return angle - 2.0f * kPi;
-  if (angle < -kPi) return angle + 2.0f * kPi;
-  return angle;
-}
-
 // A hinge at the refresh: its axis and angle, the two turns off the axis
 // with their misalignment and their 2 x 2 Schur complement against the
 // point (inverted; a turn the point holds is left out), and the

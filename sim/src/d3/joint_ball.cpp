@@ -14,8 +14,6 @@
 namespace rwd::sim::d3 {
 namespace {
 
-constexpr Vec3 kAxisX{1.0f, 0.0f, 0.0f};
-
 // Where the cone and twist limits stand: the swing angle and the axis it
 // grows about, the twist angle and the axis it grows about.
 struct ConeTwist {

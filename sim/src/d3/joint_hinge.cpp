@@ -12,16 +12,6 @@
 namespace rwd::sim::d3 {
 namespace {
 
-constexpr Vec3 kAxisX{1.0f, 0.0f, 0.0f};
-constexpr Vec3 kAxisY{0.0f, 1.0f, 0.0f};
-constexpr Vec3 kAxisZ{0.0f, 0.0f, 1.0f};
-
-float wrap_angle(float angle) {
-  if (angle > kPi) return angle - 2.0f * kPi;
-  if (angle < -kPi) return angle + 2.0f * kPi;
-  return angle;
-}
-
 // The impulse about the hinge axis of its spring and motor.
 float axial_impulse(const JointConstraint& c) {
   return c.motor_impulse.x + c.spring_impulse.x;

@@ -150,6 +150,18 @@ inline float twist_angle(Quat q) {
   return angle;
 }
 
+/// The joint frame's axes (a hinge turns about x; a cone opens about x).
+inline constexpr Vec3 kAxisX{1.0f, 0.0f, 0.0f};
+inline constexpr Vec3 kAxisY{0.0f, 1.0f, 0.0f};
+inline constexpr Vec3 kAxisZ{0.0f, 0.0f, 1.0f};
+
+/// An angle difference in [-2 pi, 2 pi] brought into [-pi, pi].
+inline float wrap_angle(float angle) {
+  if (angle > kPi) return angle - 2.0f * kPi;
+  if (angle < -kPi) return angle + 2.0f * kPi;
+  return angle;
+}
+
 /// The shortest-arc rotation taking unit vector `from` onto unit `to`.
 inline Quat arc_between(Vec3 from, Vec3 to) {
   const float c = dot(from, to);

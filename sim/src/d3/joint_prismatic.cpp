@@ -12,10 +12,6 @@
 namespace rwd::sim::d3 {
 namespace {
 
-constexpr Vec3 kAxisX{1.0f, 0.0f, 0.0f};
-constexpr Vec3 kAxisY{0.0f, 1.0f, 0.0f};
-constexpr Vec3 kAxisZ{0.0f, 0.0f, 1.0f};
-
 float axial_impulse(const JointConstraint& c) {
   return c.motor_impulse.x + c.spring_impulse.x;
 }

@@ -177,7 +177,7 @@ inline D select(M m, D a, D b) {
 #endif
 
 // atan_unit of det_math.cpp: atan on [0, 1], shifted by pi/4 above
-// tan(pi/8), the series in Estrin's order.
+// 0.4142 (the tangent of pi/8), the series in Estrin's order.
 inline D atan_unit(D t) {
   const D one = dsplat(1.0);
   const M shift = t > dsplat(0.41421356237309503);

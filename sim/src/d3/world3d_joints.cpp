@@ -18,10 +18,9 @@
 namespace rwd::sim {
 
 using d3::is_live;
+using d3::kAxisX;
 
 namespace {
-
-constexpr Vec3 kAxisX{1.0f, 0.0f, 0.0f};
 
 Status invalid(const std::string& field, const std::string& why) {
   return Status::Error(ErrorCode::kInvalidArgument, "joint." + field + ": " + why);
