@@ -23,6 +23,8 @@ packages=(
   clang libclang-rt-14-dev clang-format
   # libraries
   libasio-dev libprotobuf-dev protobuf-compiler libxxhash-dev libsodium-dev
+  # the HTTP endpoints (metrics, control API, the Agones SDK client): Boost.Beast, JSON
+  libboost1.81-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   # peer engines for the side-by-side benchmarks (bench/ only) and the charts
   libbullet-dev libbox2d-dev gnuplot-nox

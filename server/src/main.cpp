@@ -8,6 +8,7 @@
 #include "rewind/cli/flag_parser.h"
 #include "rewind/cli/host_port.h"
 #include "rewind/server/agones_lifecycle.h"
+#include "rewind/server/api_keys.h"
 #include "rewind/server/server.h"
 #include "rewind/server/server_log.h"
 
@@ -35,6 +36,7 @@ bool write_port_file(const std::string& path, const std::vector<uint16_t>& ports
 struct MatchOutputs {
   std::string port_file;
   std::string metrics_port_file;
+  std::string control_port_file;
   bool summary_json = false;
 };
 
@@ -52,6 +54,11 @@ int host_match(const rwd::server::ServerConfig& config, const MatchOutputs& outp
   if (!outputs.metrics_port_file.empty() &&
       !write_port_file(outputs.metrics_port_file, {(*server)->metrics_port()})) {
     write_log(LogLevel::kError, "cannot write --metrics-port-file " + outputs.metrics_port_file);
+    return 1;
+  }
+  if (!outputs.control_port_file.empty() &&
+      !write_port_file(outputs.control_port_file, {(*server)->control_port()})) {
+    write_log(LogLevel::kError, "cannot write --control-port-file " + outputs.control_port_file);
     return 1;
   }
   (*server)->run();
@@ -113,8 +120,25 @@ int main(int argc, char** argv) {
   flags.add_int("threads", &threads, 0, 64,
                 "threads running the matches (0 = one per core, at most one per match)");
   flags.add_bool("control", &control,
-                 "serve the control API on --metrics-bind: GET/POST /matches, DELETE "
-                 "/matches/<id>; the process then runs until signalled (bind it privately)");
+                 "serve the control API on --control-bind (GET/POST /matches, GET/DELETE "
+                 "/matches/<id>), every call with a bearer key of --control-keys; the process "
+                 "then runs until signalled");
+  std::string control_bind =
+      config.control_bind.address + ":" + std::to_string(config.control_bind.port);
+  std::string control_keys, control_port_file, metrics_keys;
+  flags.add_string("control-bind", &control_bind,
+                   "with --control: HOST:PORT of the control API (port 0 = any free port)");
+  flags.add_string("control-keys", &control_keys,
+                   "with --control (required): bearer keys of the control API's callers, one "
+                   "'NAME KEY [admin]' a line (rewind-token api-key)");
+  flags.add_string("control-port-file", &control_port_file,
+                   "write the bound control TCP port to this file once listening");
+  int64_t lobbies_per_caller = config.control_policy.lobbies_per_caller;
+  flags.add_int("control-lobbies-per-caller", &lobbies_per_caller, 1, 256,
+                "with --control: matches one caller may have waiting for players at once");
+  double max_lobby_seconds = config.control_policy.max_lobby_seconds;
+  flags.add_double("control-max-lobby", &max_lobby_seconds, 1, 86400,
+                   "with --control: the longest join_timeout a control call may ask for, seconds");
   flags.add_int("players", &players, 1, 32, "player slots; the match starts when all are joined");
   int64_t start_players = config.match.start_players;
   flags.add_int("start-players", &start_players, 0, 32,
@@ -152,6 +176,9 @@ int main(int argc, char** argv) {
                    "free port; empty = off)");
   flags.add_string("metrics-port-file", &metrics_port_file,
                    "write the bound metrics TCP port to this file once listening");
+  flags.add_string("metrics-keys", &metrics_keys,
+                   "scrapes must carry a bearer key of this file ('NAME KEY' a line); required "
+                   "to serve metrics on an address other than loopback");
   bool agones = false;
   rwd::server::AgonesLifecycleOptions agones_options;
   flags.add_bool("agones", &agones,
@@ -222,11 +249,39 @@ int main(int argc, char** argv) {
     write_log(LogLevel::kError, "--metrics-port-file needs --metrics-bind");
     return rwd::cli::kExitUsage;
   }
+  if (!metrics_keys.empty()) {
+    auto keys = rwd::server::ApiKeys::load(metrics_keys);
+    if (!keys.ok()) {
+      write_log(LogLevel::kError, "--metrics-keys " + keys.status().message());
+      return rwd::cli::kExitUsage;
+    }
+    config.metrics_keys = std::move(*keys);
+  }
+  if (control) {
+    if (!rwd::cli::split_host_port(control_bind, &config.control_bind.address,
+                                   &config.control_bind.port)) {
+      write_log(LogLevel::kError, "--control-bind: expected HOST:PORT, got '" + control_bind + "'");
+      return rwd::cli::kExitUsage;
+    }
+    if (!control_keys.empty()) {
+      auto keys = rwd::server::ApiKeys::load(control_keys);
+      if (!keys.ok()) {
+        write_log(LogLevel::kError, "--control-keys " + keys.status().message());
+        return rwd::cli::kExitUsage;
+      }
+      config.control_keys = std::move(*keys);
+    }
+    config.control_policy.lobbies_per_caller = static_cast<uint32_t>(lobbies_per_caller);
+    config.control_policy.max_lobby_seconds = max_lobby_seconds;
+  } else if (!control_keys.empty() || !control_port_file.empty()) {
+    write_log(LogLevel::kError, "--control-keys and --control-port-file need --control");
+    return rwd::cli::kExitUsage;
+  }
   config.match.match_id = match_id;
   config.match.join_timeout_s = join_timeout;
   config.match.peer_timeout_s = peer_timeout;
 
-  const MatchOutputs outputs{port_file, metrics_port_file, summary_json};
+  const MatchOutputs outputs{port_file, metrics_port_file, control_port_file, summary_json};
   if (!agones) return host_match(config, outputs);
   if (config.matches != 1 || config.control) {
     // An Agones GameServer is one allocation, so one match.

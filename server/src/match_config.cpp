@@ -5,8 +5,11 @@
 
 namespace rwd::server {
 
+// A name, never a path: the id becomes a file name (replays) and a
+// directory (desync reports), so "..", "." and a leading dot are refused.
 bool is_match_id(std::string_view id) {
-  if (id.empty() || id.size() > 64) return false;
+  if (id.empty() || id.size() > 64 || id.front() == '.') return false;
+  if (id.find("..") != std::string_view::npos) return false;
   for (const char c : id) {
     const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
                     c == '.' || c == '_' || c == '-';
@@ -26,7 +29,8 @@ Status MatchConfig::validate() const {
   }
   if (!is_match_id(match_id)) {
     return bad("match id '" + match_id.substr(0, 64) +
-               "' must be 1 to 64 characters of A-Z a-z 0-9 . _ -");
+               "' must be a name: 1 to 64 characters of A-Z a-z 0-9 . _ -, not starting "
+               "with '.' and without '..'");
   }
   if (players < 1 || players > game::kMaxPlayers) {
     return bad("players must be in [1, " + std::to_string(game::kMaxPlayers) + "]");

@@ -2,11 +2,12 @@
 #include "rewind/server/server.h"
 
 #include <algorithm>
+#include <asio/ip/address.hpp>
 #include <asio/post.hpp>
 #include <csignal>
+#include <filesystem>
 #include <thread>
 
-#include "rewind/cli/json_text.h"
 #include "rewind/server/server_log.h"
 
 namespace rwd::server {
@@ -16,15 +17,8 @@ namespace {
 // backend or a scrape to see how they ended, bounded for a long-lived host.
 constexpr size_t kEndedKept = 64;
 
-HttpAnswer json_answer(std::string status, std::string body) {
-  HttpAnswer answer;
-  answer.status = std::move(status);
-  answer.body = std::move(body) + "\n";
-  return answer;
-}
-
-HttpAnswer json_error(std::string status, std::string_view message) {
-  return json_answer(std::move(status), "{\"error\":" + cli::json_string(message) + "}");
+std::string bracketed(const std::string& address) {
+  return address.find(':') != std::string::npos ? "[" + address + "]" : address;
 }
 
 }  // namespace
@@ -38,7 +32,27 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   }
   if (config.matches > config.max_matches) return bad("more matches than max matches");
   if (config.matches == 0 && !config.control) return bad("no matches to host (0 without control)");
-  if (config.control && !config.metrics) return bad("the control API needs the metrics endpoint");
+  if (config.control && !config.control_keys) {
+    return bad(
+        "the control API needs --control-keys FILE: bearer keys, one caller a line "
+        "(rewind-token api-key makes one); whoever reaches it can start and stop matches");
+  }
+  if (config.control) {
+    if (Status status = config.control_policy.validate(); !status.ok()) return status;
+  }
+  for (const auto& [name, bind] : {std::pair{"metrics", config.metrics},
+                                   std::pair{"control", std::optional(config.control_bind)}}) {
+    std::error_code error;
+    if (bind) asio::ip::make_address(bind->address, error);
+    if (error) {
+      return bad(std::string(name) + ": bad address '" + bind->address + "': " + error.message());
+    }
+  }
+  if (config.metrics && !config.metrics_keys && !is_loopback_address(config.metrics->address)) {
+    return bad("refusing to serve /metrics on " + config.metrics->address +
+               " without --metrics-keys FILE: on an address other than loopback every scrape "
+               "must carry a bearer key (or bind 127.0.0.1)");
+  }
   if (config.port != 0 && config.port + config.matches - 1 > 65535) {
     return bad("ports " + std::to_string(config.port) + "+" + std::to_string(config.matches) +
                " run past 65535");
@@ -59,16 +73,22 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
     server->launch_ports_.push_back((*runner)->port());
     server->launch_.push_back(*runner);
   }
+  Server* self = server.get();
   if (config.metrics) {
-    Server* self = server.get();
-    auto metrics = MetricsHttp::open(
-        server->strand_, config.metrics->address, config.metrics->port,
-        [self] { return render_metrics(self->samples()); }, {},
-        [self](std::string_view method, std::string_view target) {
-          return self->route(method, target);
-        });
+    auto metrics = HttpEndpoint::open(
+        "metrics", config.metrics->address, config.metrics->port,
+        [self](const HttpRequest& request) { return self->serve_metrics(request); });
     if (!metrics.ok()) return metrics.status();
     server->metrics_ = std::move(*metrics);
+  }
+  if (config.control) {
+    server->control_api_ = std::make_unique<ControlApi>(
+        static_cast<ControlTarget&>(*server), *config.control_keys, config.control_policy);
+    auto control = HttpEndpoint::open(
+        "control", config.control_bind.address, config.control_bind.port,
+        [self](const HttpRequest& request) { return self->control_api_->handle(request); });
+    if (!control.ok()) return control.status();
+    server->control_ = std::move(*control);
   }
   const uint32_t cores = std::max(1u, std::thread::hardware_concurrency());
   const uint32_t most = std::max(1u, config.control ? config.max_matches : config.matches);
@@ -80,7 +100,14 @@ Server::Server(const ServerConfig& config)
     : config_(config), strand_(asio::make_strand(io_)), signals_(strand_, SIGINT, SIGTERM) {}
 
 Server::~Server() {
+  // The endpoints' handlers reach into this server: they stop first.
+  close_endpoints();
   io_.stop();
+}
+
+void Server::close_endpoints() {
+  if (metrics_) metrics_->close();
+  if (control_) control_->close();
 }
 
 MatchConfig Server::config_for(const MatchConfig& base, const std::string& id) const {
@@ -104,7 +131,8 @@ MatchConfig Server::config_for(const MatchConfig& base, const std::string& id) c
   return match;
 }
 
-Result<std::shared_ptr<MatchRunner>> Server::add_match(const MatchConfig& config, uint16_t port) {
+Result<std::shared_ptr<MatchRunner>> Server::add_match(const MatchConfig& config, uint16_t port,
+                                                       const std::string& owner) {
   std::lock_guard lock(matches_mutex_);
   size_t alive = 0;
   for (const auto& match : matches_) {
@@ -125,6 +153,7 @@ Result<std::shared_ptr<MatchRunner>> Server::add_match(const MatchConfig& config
   settings.port = port;
   settings.server_key = config_.server_key;
   settings.name_in_logs = many();
+  settings.owner = owner;
   auto runner = MatchRunner::create(
       io_, settings, [this](MatchRunner&) { asio::post(strand_, [this] { on_match_ended(); }); });
   if (!runner.ok()) return runner.status();
@@ -143,14 +172,24 @@ Result<std::shared_ptr<MatchRunner>> Server::add_match(const MatchConfig& config
   return *runner;
 }
 
-Result<std::shared_ptr<MatchRunner>> Server::allocate(const MatchRequest& request) {
+Result<std::shared_ptr<MatchRunner>> Server::allocate(const MatchRequest& request,
+                                                      const std::string& owner) {
   MatchConfig config = config_for(request.match, request.match.match_id);
-  auto runner = add_match(config, request.port);
+  // A finished match's replay is its record: a new match under the same id
+  // would overwrite it, so the id stays taken while the file exists.
+  std::error_code ignored;
+  if (!config.replay_path.empty() && std::filesystem::exists(config.replay_path, ignored)) {
+    return Status::Error(ErrorCode::kInvalidArgument, "match id '" + config.match_id +
+                                                          "' has a replay (" + config.replay_path +
+                                                          "): ids are not reused while it exists");
+  }
+  auto runner = add_match(config, request.port, owner);
   if (!runner.ok()) return runner.status();
   (*runner)->start();
   write_log(LogLevel::kInfo, "allocated match '" + (*runner)->id() + "' ('" + config.game + "', " +
                                  std::to_string(config.players) + " players) on port " +
-                                 std::to_string((*runner)->port()));
+                                 std::to_string((*runner)->port()) +
+                                 (owner.empty() ? std::string() : " for " + owner));
   return runner;
 }
 
@@ -194,12 +233,20 @@ void Server::run() {
     match->start();
   }
   if (metrics_) {
-    const std::string& address = config_.metrics->address;
-    const bool v6 = address.find(':') != std::string::npos;
-    write_log(LogLevel::kInfo, std::string(config_.control ? "metrics and control" : "metrics") +
-                                   " on http://" + (v6 ? "[" + address + "]" : address) + ":" +
-                                   std::to_string(metrics_->port()) + "/" +
-                                   (config_.control ? " (/metrics, /matches)" : "metrics"));
+    write_log(LogLevel::kInfo, "metrics on http://" + bracketed(config_.metrics->address) + ":" +
+                                   std::to_string(metrics_->port()) + "/metrics" +
+                                   (config_.metrics_keys ? " (bearer keys required)" : ""));
+  }
+  if (control_) {
+    write_log(LogLevel::kInfo, "control API on http://" + bracketed(config_.control_bind.address) +
+                                   ":" + std::to_string(control_->port()) + "/matches (" +
+                                   std::to_string(config_.control_keys->size()) + " bearer keys)");
+    if (!is_loopback_address(config_.control_bind.address)) {
+      write_log(LogLevel::kWarning,
+                "the control API is on " + config_.control_bind.address +
+                    " over plain HTTP: its bearer keys cross the network in the clear; keep it "
+                    "on a private network or behind a TLS proxy");
+    }
   }
   if (launch.size() > 1 || config_.control) {
     write_log(LogLevel::kInfo, std::to_string(launch.size()) + " matches at launch, at most " +
@@ -210,6 +257,7 @@ void Server::run() {
   for (uint32_t i = 1; i < threads_; ++i) pool.emplace_back([this] { io_.run(); });
   io_.run();
   for (std::thread& thread : pool) thread.join();
+  close_endpoints();
 }
 
 void Server::shutdown(const std::string& reason) {
@@ -245,73 +293,79 @@ void Server::maybe_finish() {
     }
   }
   finished_ = true;
-  if (metrics_) metrics_->close();
   signals_.cancel();
   // Nothing is left but the closed sockets' last handlers.
   io_.stop();
 }
 
-std::optional<HttpAnswer> Server::route(std::string_view method, std::string_view target) {
-  if (!config_.control) return std::nullopt;
-  const size_t question = target.find('?');
-  const std::string_view path = target.substr(0, question);
-  const std::string_view query =
-      question == std::string_view::npos ? std::string_view() : target.substr(question + 1);
-  if (path == "/matches") {
-    if (method == "GET" || method == "HEAD") return json_answer("200 OK", matches_json());
-    if (method != "POST") return json_error("405 Method Not Allowed", "GET or POST /matches");
-    if (stopping_) return json_error("503 Service Unavailable", "the server is stopping");
-    auto request = parse_match_request(query, config_.match);
-    if (!request.ok()) return json_error("400 Bad Request", request.status().message());
-    auto runner = allocate(*request);
-    if (!runner.ok()) {
-      const ErrorCode code = runner.status().code();
-      return json_error(code == ErrorCode::kCapacity          ? "503 Service Unavailable"
-                        : code == ErrorCode::kInvalidArgument ? "409 Conflict"
-                                                              : "500 Internal Server Error",
-                        runner.status().message());
-    }
-    return json_answer("201 Created", "{\"id\":" + cli::json_string((*runner)->id()) +
-                                          ",\"port\":" + std::to_string((*runner)->port()) + "}");
+HttpReply Server::serve_metrics(const HttpRequest& request) {
+  if (request.path() != "/metrics") {
+    return HttpReply{404, "text/plain; charset=utf-8", "not found: try /metrics\n", {}};
   }
-  if (path.starts_with("/matches/")) {
-    const std::string_view id = path.substr(9);
-    if (method != "DELETE") return json_error("405 Method Not Allowed", "DELETE /matches/<id>");
-    std::shared_ptr<MatchRunner> found;
-    {
-      std::lock_guard lock(matches_mutex_);
-      for (const auto& match : matches_) {
-        if (match->id() == id && !match->ended()) found = match;
-      }
-    }
-    if (!found) return json_error("404 Not Found", "no running match with that id");
-    found->stop("stopped by the control API");
-    return json_answer("202 Accepted",
-                       "{\"id\":" + cli::json_string(found->id()) + ",\"stopping\":true}");
+  if (config_.metrics_keys && !config_.metrics_keys->authenticate(request.authorization)) {
+    HttpReply reply{401, "text/plain; charset=utf-8", "a bearer key is required\n", {}};
+    reply.headers.emplace_back("WWW-Authenticate", "Bearer realm=\"rewind-metrics\"");
+    return reply;
   }
-  return std::nullopt;
+  if (request.method != "GET" && request.method != "HEAD") {
+    return HttpReply{405, "text/plain; charset=utf-8", "GET /metrics\n", {}};
+  }
+  return HttpReply{200, "text/plain; version=0.0.4", render_metrics(samples()), {}};
 }
 
-std::string Server::matches_json() const {
+HttpEndpoint::Stats Server::metrics_http_stats() const {
+  return metrics_ ? metrics_->stats() : HttpEndpoint::Stats{};
+}
+
+HttpEndpoint::Stats Server::control_http_stats() const {
+  return control_ ? control_->stats() : HttpEndpoint::Stats{};
+}
+
+MatchListing Server::listing_of(const MatchRunner& match) {
+  const MetricsSample sample = match.sample();
+  MatchListing out;
+  out.id = match.id();
+  out.owner = match.owner();
+  out.game = match.config().game;
+  out.port = match.port();
+  out.players = match.config().players;
+  out.phase = sample.phase;
+  out.players_connected = sample.players_connected;
+  out.ticks_final = sample.stats.ticks_final;
+  out.end_reason = sample.stats.end_reason;
+  out.ended = match.ended();
+  return out;
+}
+
+Result<MatchListing> Server::allocate_match(const MatchRequest& request, const std::string& owner) {
+  auto runner = allocate(request, owner);
+  if (!runner.ok()) return runner.status();
+  return listing_of(**runner);
+}
+
+std::vector<MatchListing> Server::list_matches() const {
   std::vector<std::shared_ptr<MatchRunner>> matches;
   {
     std::lock_guard lock(matches_mutex_);
     matches = matches_;
   }
-  std::string out = "[";
-  for (const auto& match : matches) {
-    const MetricsSample s = match->sample();
-    if (out.size() > 1) out += ",";
-    out += "{\"id\":" + cli::json_string(match->id()) +
-           ",\"port\":" + std::to_string(match->port()) +
-           ",\"game\":" + cli::json_string(match->config().game) +
-           ",\"players\":" + std::to_string(match->config().players) + ",\"phase\":\"" +
-           phase_name(s.phase) + "\"" +
-           ",\"players_connected\":" + std::to_string(s.players_connected) +
-           ",\"ticks_final\":" + std::to_string(s.stats.ticks_final) +
-           ",\"end_reason\":" + cli::json_string(s.stats.end_reason) + "}";
+  std::vector<MatchListing> out;
+  out.reserve(matches.size());
+  for (const auto& match : matches) out.push_back(listing_of(*match));
+  return out;
+}
+
+Status Server::stop_match(std::string_view id, const std::string& reason) {
+  std::shared_ptr<MatchRunner> found;
+  {
+    std::lock_guard lock(matches_mutex_);
+    for (const auto& match : matches_) {
+      if (match->id() == id && !match->ended()) found = match;
+    }
   }
-  return out + "]";
+  if (!found) return Status::Error(ErrorCode::kNotFound, "no running match with that id");
+  found->stop(reason);
+  return Status::Ok();
 }
 
 }  // namespace rwd::server

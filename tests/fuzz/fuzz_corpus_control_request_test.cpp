@@ -14,9 +14,15 @@ namespace {
 
 std::vector<std::vector<uint8_t>> seeds() {
   const std::string texts[] = {
-      "POST /matches?id=duel-7&players=2&ticks=3600 HTTP/1.1\r\nHost: x\r\n\r\n",
-      "GET /matches HTTP/1.1\r\n\r\n",
-      "DELETE /matches/duel-7 HTTP/1.1\r\nContent-Length: 0\r\n\r\n",
+      "POST /matches?id=duel-7&players=2&ticks=3600 HTTP/1.1\r\nHost: x\r\n"
+      "Authorization: Bearer 0123456789abcdef0123456789abcdef\r\n\r\n",
+      "GET /matches HTTP/1.1\r\nAuthorization: bearer fedcba9876543210fedcba9876543210\r\n\r\n",
+      "DELETE /matches/bob-match HTTP/1.1\r\nContent-Length: 0\r\n"
+      "Authorization: Bearer 0123456789abcdef0123456789abcdef\r\n\r\n",
+      "DELETE /matches/alice-match HTTP/1.1\r\n"
+      "Authorization: Bearer 00000000000000000000000000000000ffff\r\n\r\n",
+      "POST /matches?id=..&join_timeout=86400 HTTP/1.1\r\n"
+      "Authorization: Bearer 0123456789abcdef0123456789abcdef\r\nContent-Length: 3\r\n\r\nabc",
       "GET /metrics HTTP/1.0\r\n\r\n",
       "id=a&game=crates&players=4&spectators=2&tick_rate=30&window=8&seed=9&port=7000",
       "join_timeout=1.5&peer_timeout=0.25&ticks=0",

@@ -28,8 +28,9 @@ int fuzz_world3d_snapshot_one(const uint8_t* data, size_t size);
 /// and a session's payload opener; none may accept what lacks the keys.
 int fuzz_secure_packet_one(const uint8_t* data, size_t size);
 
-/// Control API requests: MetricsHttp::respond's request-line and header
-/// checks, and parse_match_request on the query of routed targets.
+/// Control API requests: the HTTP endpoints' request parser, ControlApi's
+/// rules (bearer keys, quotas, ownership) against a stand-in server, and
+/// parse_match_request on the bytes as a query.
 int fuzz_control_request_one(const uint8_t* data, size_t size);
 
 /// JSON documents (the Agones GameServer record): parse_json, then write

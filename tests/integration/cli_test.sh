@@ -32,6 +32,13 @@ check 1 "unknown game 'chess'" rewind-server --game chess --port 0
 check 64 "--metrics-bind: expected HOST:PORT, got 'nowhere'" rewind-server --metrics-bind nowhere
 check 64 "--metrics-port-file needs --metrics-bind" rewind-server --metrics-port-file x --port 0
 check 1 "metrics: bad address 'nowhere.invalid'" rewind-server --metrics-bind nowhere.invalid:0 --port 0
+check 1 "refusing to serve /metrics on 0.0.0.0 without --metrics-keys" rewind-server --metrics-bind 0.0.0.0:0 --port 0
+check 1 "the control API needs --control-keys FILE" rewind-server --control --matches 0 --port 0
+check 64 "--control-keys /nonexistent/keys: cannot read it" rewind-server --control --control-keys /nonexistent/keys
+check 64 "--control-keys and --control-port-file need --control" rewind-server --control-keys x
+check 64 "--control-bind: expected HOST:PORT" rewind-server --control --control-bind nowhere
+check 64 "are required" rewind-token api-key --name a
+check 1 "match id '..' must be a name" rewind-server --match-id .. --port 0
 check 1 '"level":"error","msg":"unknown game' rewind-server --game chess --port 0 --log-json
 check 64 "--agones-health-period: 0 is outside [0.1, 60]" rewind-server --agones --agones-health-period 0
 AGONES_SDK_HTTP_PORT=x check 64 "AGONES_SDK_HTTP_PORT='x' is not a port number" rewind-server --agones

@@ -3,6 +3,7 @@
 //   keygen  a new server key (64 hex digits), shared with rewind-server
 //   mint    a connect token for one client and slot, as one hex line
 //   inspect what a token says in the clear (never its keys)
+//   api-key a bearer key for the server's HTTP endpoints, added to a keys file
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -19,10 +20,11 @@ namespace {
 using namespace rwd;
 
 constexpr const char* kUsage =
-    "rewind-token keygen|mint|inspect [flags]\n"
+    "rewind-token keygen|mint|inspect|api-key [flags]\n"
     "  keygen  --out FILE            write a new server key (refuses to overwrite)\n"
     "  mint    --key-file FILE --match ID --slot N --client-id N [--expires-in S] [--out FILE]\n"
-    "  inspect --token-file FILE | --token HEX\n";
+    "  inspect --token-file FILE | --token HEX\n"
+    "  api-key --name NAME --keys FILE [--admin]  add a bearer key for the HTTP endpoints\n";
 
 Result<std::string> read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -74,6 +76,60 @@ int keygen(int argc, const char* const* argv) {
   const net::Key key = net::generate_key();
   if (Status s = write_secret(out, net::to_hex(key) + "\n"); !s.ok()) return fail("keygen", s);
   std::cout << "wrote a new server key to " << out << "\n";
+  return 0;
+}
+
+// Appends "NAME KEY [admin]" to a keys file (rewind-server --control-keys,
+// --metrics-keys), creating it owner-only; prints the key for the caller.
+int api_key(int argc, const char* const* argv) {
+  std::string name, keys_file;
+  bool admin = false;
+  cli::FlagParser flags("rewind-token api-key", "rewind-token api-key --name NAME --keys FILE",
+                        "Adds a caller with a new random bearer key (64 hex digits) to FILE, "
+                        "one 'NAME KEY [admin]' a line,\nand prints the key: the caller sends "
+                        "'Authorization: Bearer KEY'.");
+  flags.add_string("name", &name, "the caller's name (A-Z a-z 0-9 . _ -, at most 64)");
+  flags.add_string("keys", &keys_file, "keys file to add to (created mode 0600 if missing)");
+  flags.add_bool("admin", &admin, "the caller may stop any match, not only its own");
+  if (Status s = flags.parse(argc, argv, 2); !s.ok()) return fail("api-key", s), cli::kExitUsage;
+  if (flags.help_requested()) return std::cout << flags.help_text(), 0;
+  const bool name_ok = !name.empty() && name.size() <= 64 &&
+                       name.find_first_not_of(
+                           "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                           "0123456789._-") == std::string::npos;
+  if (!name_ok || keys_file.empty()) {
+    return fail("api-key", Status::Error(ErrorCode::kInvalidArgument,
+                                         "--name (A-Z a-z 0-9 . _ -) and --keys are required")),
+           cli::kExitUsage;
+  }
+  std::string existing;
+  if (std::filesystem::exists(keys_file)) {
+    Result<std::string> text = read_text(keys_file);
+    if (!text.ok()) return fail("api-key", text.status());
+    existing = *text;
+    std::istringstream lines(existing);
+    for (std::string line; std::getline(lines, line);) {
+      std::istringstream words(line);
+      std::string first;
+      if (words >> first && first == name) {
+        return fail("api-key", Status::Error(ErrorCode::kInvalidArgument,
+                                             "'" + name + "' is already in " + keys_file));
+      }
+    }
+  }
+  const std::string key = net::to_hex(net::generate_key());
+  const std::string line = name + " " + key + (admin ? " admin" : "") + "\n";
+  if (existing.empty()) {
+    if (Status s = write_secret(keys_file, line); !s.ok()) return fail("api-key", s);
+  } else {
+    std::ofstream out(keys_file, std::ios::binary | std::ios::app);
+    if (!existing.ends_with('\n')) out << "\n";
+    out << line;
+    if (!out.flush()) {
+      return fail("api-key", Status::Error(ErrorCode::kIo, "cannot write " + keys_file));
+    }
+  }
+  std::cout << key << "\n";
   return 0;
 }
 
@@ -155,6 +211,7 @@ int main(int argc, char** argv) {
   if (command == "keygen") return keygen(argc, argv);
   if (command == "mint") return mint(argc, argv);
   if (command == "inspect") return inspect(argc, argv);
+  if (command == "api-key") return api_key(argc, argv);
   if (command == "--help" || command == "-h") return std::cout << kUsage, 0;
   std::cerr << (command.empty() ? "rewind-token: no command\n"
                                 : "rewind-token: unknown command '" + command + "'\n")

@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <thread>
 
+#include "http_test_client.h"
 #include "rewind/client/client_session.h"
 #include "rewind/game/crates_game.h"
 #include "rewind/game/game_registry.h"
@@ -81,6 +83,8 @@ ServerConfig control_config() {
   config.port = 0;
   config.matches = 0;
   config.control = true;
+  config.control_bind = ServerConfig::HttpBind{"127.0.0.1", 0};
+  config.control_keys = *ApiKeys::parse(std::string("backend ") + std::string(44, 'k') + "\n");
   config.threads = 2;
   config.metrics = ServerConfig::MetricsBind{"127.0.0.1", 0};
   config.match.players = 1;
@@ -216,8 +220,20 @@ TEST(ServerMatches, LaunchMatchesTakeConsecutiveIdsAndPaths) {
 
 TEST(ServerMatches, BadProcessConfigsAreRefused) {
   ServerConfig config = control_config();
-  config.metrics.reset();
-  EXPECT_FALSE(Server::create(config).ok());  // control without the endpoint
+  config.control_keys.reset();
+  auto keyless = Server::create(config);
+  ASSERT_FALSE(keyless.ok());  // control without bearer keys
+  EXPECT_NE(keyless.status().message().find("--control-keys"), std::string::npos);
+  config = control_config();
+  config.metrics = ServerConfig::MetricsBind{"0.0.0.0", 0};
+  auto exposed = Server::create(config);
+  ASSERT_FALSE(exposed.ok());  // metrics on every address without keys
+  EXPECT_NE(exposed.status().message().find("--metrics-keys"), std::string::npos);
+  config.metrics_keys = config.control_keys;
+  EXPECT_TRUE(Server::create(config).ok());
+  config = control_config();
+  config.control_policy.lobbies_per_caller = 0;
+  EXPECT_FALSE(Server::create(config).ok());
   config = control_config();
   config.control = false;
   EXPECT_FALSE(Server::create(config).ok());  // no matches and no control
@@ -228,6 +244,58 @@ TEST(ServerMatches, BadProcessConfigsAreRefused) {
   config = control_config();
   config.match.match_id = "no spaces";
   EXPECT_FALSE(Server::create(config).ok());
+  config.match.match_id = "..";
+  EXPECT_FALSE(Server::create(config).ok());
+}
+
+TEST(ServerMatches, AnIdIsNotReusedWhileItsReplayExists) {
+  ServerConfig config = control_config();
+  const auto dir = std::filesystem::path(testing::TempDir()) / "rewind_server_replay_ids";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  config.match.replay_path = (dir / "{match}.rwr").string();
+  auto server = Server::create(config);
+  ASSERT_TRUE(server.ok()) << server.status().message();
+  MatchRequest request;
+  request.match = config.match;
+  request.match.match_id = "kept";
+  {
+    std::FILE* file = std::fopen((dir / "kept.rwr").c_str(), "w");
+    std::fclose(file);
+  }
+  auto refused = (*server)->allocate(request);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.status().message().find("has a replay"), std::string::npos);
+  EXPECT_EQ(std::filesystem::file_size(dir / "kept.rwr"), 0u);  // untouched
+  std::filesystem::remove(dir / "kept.rwr");
+  EXPECT_TRUE((*server)->allocate(request).ok());
+}
+
+// The real endpoints: control calls need a key, and a control port full of
+// held sockets does not stop a scrape on the metrics port.
+TEST(ServerMatches, ControlAndMetricsAreSeparateEndpoints) {
+  auto server = Server::create(control_config());
+  ASSERT_TRUE(server.ok()) << server.status().message();
+  ASSERT_NE((*server)->control_port(), 0);
+  ASSERT_NE((*server)->metrics_port(), (*server)->control_port());
+  std::thread runner([&] { (*server)->run(); });
+  testing_http::Client control((*server)->control_port());
+  testing_http::Client metrics((*server)->metrics_port());
+  const std::string key = "Authorization: Bearer " + std::string(44, 'k') + "\r\n";
+  EXPECT_EQ(testing_http::status_of(control.exchange("POST /matches?id=a HTTP/1.1\r\n\r\n")), 401);
+  const std::string made =
+      control.exchange("POST /matches?id=a&join_timeout=5 HTTP/1.1\r\n" + key + "\r\n");
+  EXPECT_EQ(testing_http::status_of(made), 201) << made;
+  EXPECT_EQ(testing_http::status_of(control.exchange("GET /metrics HTTP/1.1\r\n\r\n")), 404);
+  std::vector<std::unique_ptr<asio::ip::tcp::socket>> held;
+  for (int i = 0; i < 32; ++i) held.push_back(control.connect());
+  for (int i = 0; i < 5; ++i) {
+    const std::string scrape = metrics.exchange("GET /metrics HTTP/1.1\r\n\r\n");
+    EXPECT_EQ(testing_http::status_of(scrape), 200);
+    EXPECT_NE(scrape.find("match=\"a\""), std::string::npos);
+  }
+  (*server)->shutdown("test over");
+  runner.join();
 }
 
 }  // namespace

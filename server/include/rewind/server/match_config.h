@@ -62,7 +62,8 @@ struct MatchConfig {
   Status validate() const;
 };
 
-/// True for a valid MatchConfig::match_id.
+/// True for a valid MatchConfig::match_id: a name, never a path (1 to 64
+/// characters of A-Z a-z 0-9 . _ -, no leading '.', no "..").
 bool is_match_id(std::string_view id);
 
 }  // namespace rwd::server

@@ -36,6 +36,9 @@ class MatchRunner : public std::enable_shared_from_this<MatchRunner> {
     /// Prefix this match's log lines with its id (a process hosting more
     /// than one match does).
     bool name_in_logs = false;
+    /// The control API caller that allocated the match; empty for launch
+    /// matches.
+    std::string owner;
   };
   /// Called once, on the match's strand, after the match has ended and its
   /// socket is closed. The runner may be released from there.
@@ -53,6 +56,7 @@ class MatchRunner : public std::enable_shared_from_this<MatchRunner> {
 
   const std::string& id() const { return settings_.match.match_id; }
   const MatchConfig& config() const { return settings_.match; }
+  const std::string& owner() const { return settings_.owner; }
   uint16_t port() const { return port_; }
   bool ended() const { return ended_.load(std::memory_order_acquire); }
   /// What the match reports now (published after every tick), from any

@@ -8,15 +8,18 @@
 #include <asio/io_context.hpp>
 #include <asio/signal_set.hpp>
 #include <asio/strand.hpp>
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "rewind/server/api_keys.h"
+#include "rewind/server/control_api.h"
+#include "rewind/server/http_endpoint.h"
 #include "rewind/server/match_request.h"
 #include "rewind/server/match_runner.h"
-#include "rewind/server/metrics_http.h"
 #include "rewind/server/metrics_text.h"
 
 namespace rwd::server {
@@ -40,21 +43,29 @@ struct ServerConfig {
   /// The key shared with the match backend that mints connect tokens
   /// (rewind-token). Set: secure connections only. Empty: tokenless.
   std::optional<net::Key> server_key;
-  /// Where GET /metrics is served over HTTP (Prometheus text); unset: no
-  /// endpoint. Port 0 takes any free port (see Server::metrics_port()).
-  struct MetricsBind {
+  /// An HTTP endpoint's address: an IPv4 or IPv6 literal and a TCP port
+  /// (0: any free port).
+  struct HttpBind {
     std::string address;
     uint16_t port = 0;
   };
-  std::optional<MetricsBind> metrics;
-  /// Serves the control API (GET/POST /matches, DELETE /matches/<id>) on
-  /// the metrics endpoint, which must be set; the process then runs until
-  /// signalled instead of ending with its last match. Bind it to a private
-  /// address: whoever reaches it can start and stop matches.
+  using MetricsBind = HttpBind;
+  /// Where GET /metrics is served (Prometheus text); unset: no endpoint.
+  /// On an address other than loopback it needs metrics_keys.
+  std::optional<HttpBind> metrics;
+  /// Set: every scrape must carry a bearer key of this file.
+  std::optional<ApiKeys> metrics_keys;
+  /// Serves the control API (ControlApi: GET/POST /matches, DELETE
+  /// /matches/<id>) on control_bind, with control_keys required; the
+  /// process then runs until signalled instead of ending with its last
+  /// match.
   bool control = false;
+  HttpBind control_bind{"127.0.0.1", 7790};
+  std::optional<ApiKeys> control_keys;
+  ControlPolicy control_policy;
 };
 
-class Server {
+class Server final : private ControlTarget {
  public:
   /// Binds every launch match's socket and the metrics endpoint. Errors
   /// name what failed (bad config, port in use, replay path not writable).
@@ -69,7 +80,8 @@ class Server {
   /// Allocates and starts a match; thread-safe. kInvalidArgument for a bad
   /// config or an id already alive, kCapacity when max_matches are
   /// alive, kIo when the port cannot be bound.
-  Result<std::shared_ptr<MatchRunner>> allocate(const MatchRequest& request);
+  Result<std::shared_ptr<MatchRunner>> allocate(const MatchRequest& request,
+                                                const std::string& owner = {});
 
   /// Every match's report, launch matches first, then in allocation order
   /// (ended ones too, the newest 64 of them).
@@ -81,6 +93,11 @@ class Server {
   uint16_t port() const { return launch_ports_.empty() ? 0 : launch_ports_.front(); }
   /// The metrics endpoint's TCP port; 0 when there is none.
   uint16_t metrics_port() const { return metrics_ ? metrics_->port() : 0; }
+  /// The control API's TCP port; 0 without it.
+  uint16_t control_port() const { return control_ ? control_->port() : 0; }
+  /// The endpoints' counters (zero without them).
+  HttpEndpoint::Stats metrics_http_stats() const;
+  HttpEndpoint::Stats control_http_stats() const;
   /// Threads run() uses.
   uint32_t threads() const { return threads_; }
 
@@ -90,24 +107,37 @@ class Server {
  private:
   /// The match config for `id`, with its replay and desync paths.
   MatchConfig config_for(const MatchConfig& base, const std::string& id) const;
-  Result<std::shared_ptr<MatchRunner>> add_match(const MatchConfig& config, uint16_t port);
+  Result<std::shared_ptr<MatchRunner>> add_match(const MatchConfig& config, uint16_t port,
+                                                 const std::string& owner = {});
   void on_match_ended();
   void stop_all(const std::string& reason);
   void maybe_finish();
-  std::optional<HttpAnswer> route(std::string_view method, std::string_view target);
-  std::string matches_json() const;
+  HttpReply serve_metrics(const HttpRequest& request);
+  void close_endpoints();
+  static MatchListing listing_of(const MatchRunner& match);
+  // ControlTarget, on the control endpoint's thread.
+  const MatchConfig& match_defaults() const override { return config_.match; }
+  Result<MatchListing> allocate_match(const MatchRequest& request,
+                                      const std::string& owner) override;
+  std::vector<MatchListing> list_matches() const override;
+  Status stop_match(std::string_view id, const std::string& reason) override;
+  bool stopping() const override { return stopping_.load(std::memory_order_acquire); }
   bool many() const { return config_.matches > 1 || config_.control; }
 
   ServerConfig config_;
   asio::io_context io_;
   asio::strand<asio::io_context::executor_type> strand_;  ///< signals, HTTP, bookkeeping
   asio::signal_set signals_;
-  std::unique_ptr<MetricsHttp> metrics_;  ///< null without ServerConfig::metrics
+  // Each on its own thread, so scrapes, control calls and ticks never
+  // wait for one another.
+  std::unique_ptr<HttpEndpoint> metrics_;  ///< null without ServerConfig::metrics
+  std::unique_ptr<ControlApi> control_api_;
+  std::unique_ptr<HttpEndpoint> control_;  ///< null without ServerConfig::control
   uint32_t threads_ = 1;
   std::vector<uint16_t> launch_ports_;
   std::vector<std::shared_ptr<MatchRunner>> launch_;  ///< started by run()
-  bool stopping_ = false;  ///< on the strand: a signal came, matches are ending
-  bool finished_ = false;  ///< on the strand: run() is returning
+  std::atomic<bool> stopping_{false};                 ///< a signal came, matches are ending
+  bool finished_ = false;                             ///< on the strand: run() is returning
 
   mutable std::mutex matches_mutex_;
   std::vector<std::shared_ptr<MatchRunner>> matches_;  ///< creation order

@@ -1,0 +1,373 @@
+// SPDX-License-Identifier: MIT
+#include "rewind/server/http_endpoint.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <boost/beast/core/flat_buffer.hpp>
+#include <boost/beast/core/tcp_stream.hpp>
+#include <boost/beast/http/error.hpp>
+#include <boost/beast/http/parser.hpp>
+#include <boost/beast/http/read.hpp>
+#include <boost/beast/http/string_body.hpp>
+#include <boost/beast/http/write.hpp>
+#include <exception>
+#include <list>
+#include <optional>
+#include <thread>
+
+namespace rwd::server {
+namespace {
+
+namespace asio = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
+using tcp = asio::ip::tcp;
+using error_code = boost::system::error_code;
+
+// After an accept error (out of file descriptors, say) the next accept
+// would fail at once again: wait instead of spinning.
+constexpr std::chrono::milliseconds kAcceptRetry{100};
+
+using RequestParser = http::request_parser<http::string_body>;
+
+void limit(RequestParser& parser, const HttpEndpointLimits& limits) {
+  parser.header_limit(static_cast<uint32_t>(std::min<size_t>(limits.max_header_bytes, UINT32_MAX)));
+  parser.body_limit(limits.max_body_bytes);
+}
+
+HttpRequest request_of(const http::request<http::string_body>& message) {
+  HttpRequest request;
+  request.method = std::string(message.method_string());
+  request.target = std::string(message.target());
+  request.authorization = std::string(message[http::field::authorization]);
+  request.body = message.body();
+  return request;
+}
+
+}  // namespace
+
+Result<HttpRequest> parse_http_request(std::string_view bytes, const HttpEndpointLimits& limits) {
+  RequestParser parser;
+  limit(parser, limits);
+  parser.eager(true);
+  error_code error;
+  size_t used = 0;
+  while (!error && used < bytes.size() && !parser.is_done()) {
+    used += parser.put(asio::buffer(bytes.data() + used, bytes.size() - used), error);
+    if (error == http::error::need_more) break;
+  }
+  if (!error && !parser.is_done()) {
+    parser.put_eof(error);  // a body that runs to the end of the bytes
+  }
+  if (error == http::error::header_limit) {
+    return Status::Error(ErrorCode::kCapacity, "request head too large");
+  }
+  if (error == http::error::body_limit) {
+    return Status::Error(ErrorCode::kCapacity, "request body too large");
+  }
+  if (error || !parser.is_done()) {
+    return Status::Error(ErrorCode::kCorrupt,
+                         "not an HTTP request: " + (error ? error.message() : "incomplete"));
+  }
+  HttpRequest request = request_of(parser.get());
+  if (request.target.empty() || request.target.front() != '/') {
+    return Status::Error(ErrorCode::kCorrupt, "not an HTTP request: the target is not a path");
+  }
+  return request;
+}
+
+std::string_view HttpRequest::path() const {
+  return std::string_view(target).substr(0, target.find('?'));
+}
+
+std::string_view HttpRequest::query() const {
+  const size_t question = target.find('?');
+  return question == std::string::npos ? std::string_view()
+                                       : std::string_view(target).substr(question + 1);
+}
+
+bool is_loopback_address(std::string_view address) {
+  error_code error;
+  const asio::ip::address ip = asio::ip::make_address(std::string(address), error);
+  if (error) return false;
+  if (ip.is_loopback()) return true;
+  return ip.is_v6() && ip.to_v6().is_v4_mapped() &&
+         asio::ip::make_address_v4(asio::ip::v4_mapped, ip.to_v6()).is_loopback();
+}
+
+class HttpConnection;
+
+struct HttpEndpoint::Impl {
+  Impl(std::string endpoint_name, Handler handler_fn, Limits given)
+      : acceptor(io),
+        retry(io),
+        name(std::move(endpoint_name)),
+        handler(std::move(handler_fn)),
+        limits(given) {}
+
+  void accept_next();
+  void on_accept(const error_code& error, tcp::socket socket);
+  /// Makes room for one more connection; false when none can give way.
+  bool make_room();
+  void shut_down();
+
+  asio::io_context io{1};
+  tcp::acceptor acceptor;
+  asio::steady_timer retry;
+  std::string name;
+  Handler handler;
+  Limits limits;
+  std::thread thread;
+  bool serving = true;  // on the endpoint's thread
+  std::atomic<bool> closed{false};
+  // Open connections, oldest first; each removes itself when it ends.
+  std::list<HttpConnection*> live;
+  size_t evicting = 0;  // connections closed for room whose handlers are still pending
+
+  std::atomic<uint64_t> answered{0}, refused{0}, bad_requests{0}, timed_out{0}, evicted{0}, busy{0};
+};
+
+// One accepted socket: read one request, answer it, then read and discard
+// until the client closes (so closing never resets a connection whose
+// answer is still on its way). The stream's deadline, set once at accept,
+// ends it whatever it is doing.
+class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
+ public:
+  enum class Phase : uint8_t { kReading, kAnswering, kDraining };
+
+  HttpConnection(HttpEndpoint::Impl& endpoint, tcp::socket socket)
+      : endpoint_(endpoint), stream_(std::move(socket)) {
+    position_ = endpoint_.live.insert(endpoint_.live.end(), this);
+  }
+  ~HttpConnection() {
+    if (evicted_) --endpoint_.evicting;
+    endpoint_.live.erase(position_);
+  }
+  HttpConnection(const HttpConnection&) = delete;
+  HttpConnection& operator=(const HttpConnection&) = delete;
+
+  Phase phase() const { return phase_; }
+  bool evicted() const { return evicted_; }
+
+  void start() {
+    parser_.emplace();
+    limit(*parser_, endpoint_.limits);
+    stream_.expires_after(endpoint_.limits.deadline);
+    http::async_read(
+        stream_, buffer_, *parser_,
+        [self = shared_from_this()](const error_code& error, size_t) { self->on_read(error); });
+  }
+
+  // Closes the socket for a newer connection: the pending operation ends
+  // with operation_aborted and the last reference goes with it.
+  void evict() {
+    evicted_ = true;
+    ++endpoint_.evicting;
+    ++endpoint_.evicted;
+    stop();
+  }
+
+  void stop() {
+    error_code ignored;
+    stream_.socket().shutdown(tcp::socket::shutdown_both, ignored);
+    stream_.socket().close(ignored);
+  }
+
+ private:
+  void on_read(const error_code& error) {
+    if (!endpoint_.serving || error == asio::error::operation_aborted) return;
+    if (error == beast::error::timeout) {
+      ++endpoint_.timed_out;
+      return;
+    }
+    if (error == http::error::header_limit) return reject(431, "request head too large\n");
+    if (error == http::error::body_limit) return reject(413, "request body too large\n");
+    // A client that closes before sending anything asked for nothing.
+    if (error == http::error::end_of_stream) return;
+    if (error.category() == http::make_error_code(http::error::header_limit).category() ||
+        error == asio::error::eof) {
+      return reject(400, "bad request\n");
+    }
+    if (error) return;  // reset, broken pipe: nobody to answer
+    HttpRequest request = request_of(parser_->get());
+    error_code ignored;
+    const tcp::endpoint peer = stream_.socket().remote_endpoint(ignored);
+    request.peer = peer.address().to_string();
+    HttpReply reply;
+    if (request.target.empty() || request.target.front() != '/') {
+      return reject(400, "bad request\n");
+    }
+    try {
+      reply = endpoint_.handler(request);
+    } catch (const std::exception& thrown) {
+      reply = HttpReply{500, "text/plain; charset=utf-8", "internal error\n", {}};
+    }
+    ++(reply.status < 300 ? endpoint_.answered : endpoint_.refused);
+    answer(std::move(reply), request.method == "HEAD");
+  }
+
+  void reject(unsigned status, std::string body) {
+    ++endpoint_.bad_requests;
+    answer(HttpReply{status, "text/plain; charset=utf-8", std::move(body), {}}, false);
+  }
+
+  void answer(HttpReply reply, bool head_only) {
+    phase_ = Phase::kAnswering;
+    response_.result(reply.status);
+    response_.version(11);
+    response_.set(http::field::content_type, reply.content_type);
+    for (const auto& [field, value] : reply.headers) response_.set(field, value);
+    response_.keep_alive(false);
+    response_.body() = std::move(reply.body);
+    response_.prepare_payload();
+    if (head_only) response_.body().clear();  // Content-Length stays the GET's
+    http::async_write(stream_, response_,
+                      [self = shared_from_this()](const error_code& error, size_t) {
+                        if (error || !self->endpoint_.serving) return self->stop();
+                        error_code ignored;
+                        self->stream_.socket().shutdown(tcp::socket::shutdown_send, ignored);
+                        self->drain();
+                      });
+  }
+
+  void drain() {
+    phase_ = Phase::kDraining;
+    stream_.async_read_some(asio::buffer(discard_),
+                            [self = shared_from_this()](const error_code& error, size_t) {
+                              if (error || !self->endpoint_.serving) return self->stop();
+                              self->drain();
+                            });
+  }
+
+  HttpEndpoint::Impl& endpoint_;
+  beast::tcp_stream stream_;
+  beast::flat_buffer buffer_;
+  std::optional<RequestParser> parser_;
+  http::response<http::string_body> response_;
+  std::array<char, 512> discard_{};
+  std::list<HttpConnection*>::iterator position_;
+  Phase phase_ = Phase::kReading;
+  bool evicted_ = false;
+};
+
+void HttpEndpoint::Impl::accept_next() {
+  acceptor.async_accept(
+      [this](const error_code& error, tcp::socket socket) { on_accept(error, std::move(socket)); });
+}
+
+void HttpEndpoint::Impl::on_accept(const error_code& error, tcp::socket socket) {
+  if (!serving) return;
+  if (error) {
+    retry.expires_after(kAcceptRetry);
+    retry.async_wait([this](const error_code& waited) {
+      if (!waited && serving) accept_next();
+    });
+    return;
+  }
+  if (live.size() - evicting >= limits.max_connections && !make_room()) {
+    ++busy;
+    // A fresh socket's send buffer is empty, so this short write does not
+    // block; whatever happens, the socket is closed.
+    static constexpr std::string_view kBusy =
+        "HTTP/1.1 503 Service Unavailable\r\nContent-Length: 0\r\nConnection: close\r\n\r\n";
+    error_code ignored;
+    socket.non_blocking(true, ignored);
+    socket.write_some(asio::buffer(kBusy.data(), kBusy.size()), ignored);
+    socket.close(ignored);
+  } else {
+    std::make_shared<HttpConnection>(*this, std::move(socket))->start();
+  }
+  accept_next();
+}
+
+bool HttpEndpoint::Impl::make_room() {
+  // A connection that is done and only draining goes first, then the one
+  // that has waited longest for its request; one being answered stays.
+  HttpConnection* oldest_reading = nullptr;
+  for (HttpConnection* connection : live) {
+    if (connection->evicted()) continue;
+    if (connection->phase() == HttpConnection::Phase::kDraining) {
+      connection->evict();
+      return true;
+    }
+    if (oldest_reading == nullptr && connection->phase() == HttpConnection::Phase::kReading) {
+      oldest_reading = connection;
+    }
+  }
+  if (oldest_reading == nullptr) return false;
+  oldest_reading->evict();
+  return true;
+}
+
+void HttpEndpoint::Impl::shut_down() {
+  serving = false;
+  error_code ignored;
+  acceptor.close(ignored);
+  retry.cancel();
+  for (HttpConnection* connection : live) connection->stop();
+}
+
+Result<std::unique_ptr<HttpEndpoint>> HttpEndpoint::open(std::string_view name,
+                                                         std::string_view address, uint16_t port,
+                                                         Handler handler, Limits limits) {
+  const std::string prefix(name);
+  error_code error;
+  const asio::ip::address ip = asio::ip::make_address(std::string(address), error);
+  if (error) {
+    return Status::Error(
+        ErrorCode::kInvalidArgument,
+        prefix + ": bad address '" + std::string(address) + "': " + error.message());
+  }
+  if (limits.max_connections == 0) {
+    return Status::Error(ErrorCode::kInvalidArgument, prefix + ": max connections must be > 0");
+  }
+  auto impl = std::make_unique<Impl>(prefix, std::move(handler), limits);
+  const tcp::endpoint endpoint(ip, port);
+  impl->acceptor.open(endpoint.protocol(), error);
+  if (!error) impl->acceptor.set_option(tcp::acceptor::reuse_address(true), error);
+  if (!error) impl->acceptor.bind(endpoint, error);
+  if (!error) impl->acceptor.listen(asio::socket_base::max_listen_connections, error);
+  const uint16_t bound = error ? 0 : impl->acceptor.local_endpoint(error).port();
+  if (error) {
+    return Status::Error(ErrorCode::kIo, prefix + ": cannot listen on " + std::string(address) +
+                                             ":" + std::to_string(port) + ": " + error.message());
+  }
+  impl->accept_next();
+  Impl* raw = impl.get();
+  impl->thread = std::thread([raw] { raw->io.run(); });
+  std::unique_ptr<HttpEndpoint> out(new HttpEndpoint(std::move(impl)));
+  out->port_ = bound;
+  return out;
+}
+
+HttpEndpoint::HttpEndpoint(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+HttpEndpoint::~HttpEndpoint() {
+  close();
+}
+
+void HttpEndpoint::close() {
+  if (impl_->closed.exchange(true)) return;
+  // Every operation ends with operation_aborted, its handler drops its
+  // connection, and run() returns once nothing is pending.
+  asio::post(impl_->io, [impl = impl_.get()] { impl->shut_down(); });
+  impl_->thread.join();
+}
+
+HttpEndpoint::Stats HttpEndpoint::stats() const {
+  Stats out;
+  out.answered = impl_->answered.load();
+  out.refused = impl_->refused.load();
+  out.bad_requests = impl_->bad_requests.load();
+  out.timed_out = impl_->timed_out.load();
+  out.evicted = impl_->evicted.load();
+  out.busy = impl_->busy.load();
+  return out;
+}
+
+}  // namespace rwd::server
