@@ -12,6 +12,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rewind/server/match_request.h"
@@ -38,8 +39,13 @@ struct ServerConfig {
   /// Threads running the matches; 0: one per core, at most one per match.
   uint32_t threads = 0;
   /// The key shared with the match backend that mints connect tokens
-  /// (rewind-token). Set: secure connections only. Empty: tokenless.
+  /// (rewind-token). Set: secure connections only. Empty: tokenless, which
+  /// is refused on a non-loopback bind_address unless
+  /// insecure_tokenless_public is set.
   std::optional<net::Key> server_key;
+  /// Allows tokenless mode on an address other hosts reach (a network the
+  /// operator trusts); run() then warns loudly.
+  bool insecure_tokenless_public = false;
   /// Where GET /metrics is served over HTTP (Prometheus text); unset: no
   /// endpoint. Port 0 takes any free port (see Server::metrics_port()).
   struct MetricsBind {
@@ -53,6 +59,16 @@ struct ServerConfig {
   /// address: whoever reaches it can start and stop matches.
   bool control = false;
 };
+
+/// Whether `address` (an IP literal) is a loopback address: 127.0.0.0/8,
+/// ::1 or ::ffff:127.x.y.z. False for anything else, names included.
+bool is_loopback_address(std::string_view address);
+
+/// kInvalidArgument when `config` is tokenless on an address that parses
+/// and is not loopback, without insecure_tokenless_public; the message says
+/// how to run secure. Server::create checks it; a caller that does work
+/// before creating the server (an Agones lifecycle) checks it first.
+Status check_tokenless_exposure(const ServerConfig& config);
 
 class Server {
  public:

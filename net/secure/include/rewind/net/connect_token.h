@@ -31,7 +31,9 @@ namespace rwd::net {
 inline constexpr size_t kKeyBytes = 32;
 using Key = std::array<uint8_t, kKeyBytes>;
 
-inline constexpr uint8_t kConnectTokenVersion = 1;
+/// 2: the handshake's challenge token carries the token's MAC (tokens
+/// connect once); version 1 tokens and requests are refused.
+inline constexpr uint8_t kConnectTokenVersion = 2;
 inline constexpr size_t kTokenNonceBytes = 24;
 /// The sealed private part: client id, slot, both keys, the AEAD tag.
 inline constexpr size_t kSealedTokenBytes = 8 + 4 + 2 * kKeyBytes + 16;
