@@ -10,7 +10,10 @@
 //     id and keys.
 // The client sends only the sealed part. Whoever copies it off the wire
 // lacks the keys, so cannot answer the server's challenge nor read or
-// forge a packet: a token works only for the client holding its keys.
+// forge a packet: a token works only for the client holding its keys. And
+// it works once: the server remembers a token that connected until it
+// expires (UsedTokens), so a client that comes back needs a fresh token,
+// minted for the same client id and slot.
 //
 // Wire layout of a serialized token (little-endian), kConnectTokenBytes:
 //   version u8 | match tag u64 | expiry i64 | slot u32 | client id u64 |
