@@ -21,13 +21,16 @@
 # Debian's dockerd is started with the vfs storage driver and no bridge network,
 # and stopped at exit); the base images debian:12 and debian:12-slim (when the
 # daemon lacks them: a bookworm minbase made by debootstrap and `docker import`ed,
-# its tarballs cached); the image rewind:local (BuildKit, host network); the
-# secure compose match on the host network (a key and tokens in the volume, the
-# server, 4 bots behind simulated latency and loss); its summaries (ended on its
-# tick budget, every player joined over a secure session, every bot finished, no
-# desync); the replay from the volume verified by rewind-replay in a container.
-# The match's containers and volume are removed at exit; the images are kept, so
-# a second run starts warm.
+# its tarballs cached); the image rewind:local (BuildKit, host network), and its
+# refusal to run without a key (its default command reads one from /run/secrets)
+# or tokenless on 0.0.0.0; the secure compose match on the host network (a key
+# in its own volume, mounted as the server's secret; tokens in the replays
+# volume; the server; 4 bots behind simulated latency and loss); its summaries
+# (ended on its tick budget, every player joined over a secure session, every
+# bot finished, no desync); the replay from the volume verified by rewind-replay
+# in a container.
+# The match's containers and volumes are removed at exit; the images are kept,
+# so a second run starts warm.
 #
 # Exit codes: 0 passed; 1 a step failed (the message names it); 2 bad usage.
 set -euo pipefail
@@ -289,6 +292,20 @@ DOCKER_BUILDKIT=1 "$docker" build --network host --progress plain \
   --build-arg "REWIND_PROGRAMS=$programs" -f docker/Dockerfile -t rewind:local . \
   >"$work/image-build.log" 2>&1 || fail "docker build failed: $(tail -15 "$work/image-build.log")"
 echo "    $("$docker" image inspect -f '{{.Size}}' rewind:local | awk '{printf "%.0f MB", $1 / 1e6}')"
+# Secure by default: without a key mounted the default command refuses to
+# start (saying how to make one), and so does a command that leaves the key
+# out on 0.0.0.0.
+status=0
+"$docker" run --rm --network host rewind:local >"$work/no-key.log" 2>&1 || status=$?
+((status == 64)) && grep -q "rewind_server_key: cannot read it" "$work/no-key.log" \
+  && grep -q "rewind-token keygen" "$work/no-key.log" \
+  || fail "the image ran without a key (exit $status): $(tail -3 "$work/no-key.log")"
+status=0
+"$docker" run --rm --network host rewind:local --bind 0.0.0.0 --port 0 >"$work/tokenless.log" 2>&1 \
+  || status=$?
+((status == 1)) && grep -q "refusing to run tokenless on 0.0.0.0" "$work/tokenless.log" \
+  || fail "the image ran tokenless on 0.0.0.0 (exit $status): $(tail -3 "$work/tokenless.log")"
+echo "    without a key: refused (exit 64); tokenless on 0.0.0.0: refused (exit 1)"
 
 # --- 6. the compose match ------------------------------------------------------------
 step "compose match: keys, server, 4 bots ($ticks ticks at 60 Hz, host network)"

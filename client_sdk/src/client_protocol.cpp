@@ -14,6 +14,10 @@ namespace rwd::client {
 namespace {
 
 constexpr auto kJoinResend = std::chrono::milliseconds(250);
+// A tokenless server takes a cookie for one to two of its windows: a join
+// still unanswered after this long asks for a fresh one first.
+constexpr auto kCookieRefresh = std::chrono::seconds(3);
+static_assert(kCookieRefresh < std::chrono::seconds(net::kCookieWindowS));
 constexpr auto kLobbyPing = std::chrono::milliseconds(100);
 constexpr auto kMatchPing = std::chrono::milliseconds(250);
 constexpr auto kReportResend = std::chrono::milliseconds(500);
@@ -199,6 +203,12 @@ void ClientProtocol::Impl::send_join(TimePoint now) {
     transmit(handshake_->request());  // until a challenge comes back
     return;
   }
+  if (!handshake_ && (!cookie_ || now - cookie_at_ >= kCookieRefresh)) {
+    cookie_.reset();
+    if (hello_.empty()) hello_ = net::make_hello();
+    transmit(hello_);  // until a cookie comes back
+    return;
+  }
   // Until the server speaks, it may have missed our response.
   if (handshake_ && !secure_confirmed_) transmit(handshake_response_);
   v1::Envelope envelope;
@@ -298,6 +308,11 @@ void ClientProtocol::Impl::send(v1::Envelope& envelope, TimePoint now) {
   connection_.stamp(envelope, now);
   if (!net::encode_envelope(envelope, encode_buffer_).ok()) return;
   if (!handshake_) {
+    if (envelope.has_join_request() && cookie_) {
+      net::frame_join(*cookie_, encode_buffer_, framed_buffer_);
+      transmit(framed_buffer_);
+      return;
+    }
     transmit(encode_buffer_);
     return;
   }

@@ -15,6 +15,7 @@
 
 #include "datagram_queue.h"
 #include "rewind/client/client_protocol.h"
+#include "rewind/net/address_cookie.h"
 #include "rewind/net/chunked_transfer.h"
 #include "rewind/net/connection.h"
 #include "rewind/net/secure_channel.h"
@@ -121,6 +122,13 @@ struct ClientProtocol::Impl {
   DatagramQueue outbox_{kMaxQueuedDatagrams};
   ClientStats stats_;
   std::vector<uint8_t> encode_buffer_;
+  // Tokenless servers: the cookie that admits our join (net/address_cookie.h),
+  // asked for with a Hello, and when it came (it is asked for again before
+  // the server stops taking it).
+  std::optional<net::AddressCookie> cookie_;
+  TimePoint cookie_at_;
+  std::vector<uint8_t> hello_;
+  std::vector<uint8_t> framed_buffer_;
   // Secure connections (ClientConfig::connect_token): the handshake, its
   // response (resent with the join until the server speaks), and buffers.
   std::optional<net::ClientHandshake> handshake_;

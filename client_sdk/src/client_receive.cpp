@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The client protocol's inbound side: opening (on a secure connection) and
-// decoding the server's datagrams, dropping whatever is not for this
-// connection or repeats, and the messages that move the phase on: the
-// join's answer, the match's start and end, a pong, a disconnect.
+// The client protocol's inbound side: a tokenless server's cookie, opening
+// (on a secure connection) and decoding the server's datagrams, dropping
+// whatever is not for this connection or repeats, and the messages that
+// move the phase on: the join's answer, the match's start and end, a pong,
+// a disconnect.
 #include <chrono>
 
 #include "client_protocol_impl.h"
@@ -48,6 +49,19 @@ void ClientProtocol::Impl::receive(std::span<const uint8_t> datagram, TimePoint 
     }
     secure_confirmed_ = true;
     datagram = opened_buffer_;
+  } else if (net::cookie_packet_kind(datagram) == net::CookiePacket::kCookie) {
+    // A tokenless server's answer to our Hello: the join goes out at once
+    // with it (a second cookie, the answer to a resent Hello, only renews).
+    const std::optional<net::AddressCookie> cookie = net::read_cookie(datagram);
+    if (!cookie || phase_ != ClientPhase::kJoining) {
+      ++stats_.packets_rejected;
+      return;
+    }
+    const bool first = !cookie_;
+    cookie_ = *cookie;
+    cookie_at_ = now;
+    if (first) send_join(now);
+    return;
   }
   auto decoded = net::decode_envelope(datagram);
   if (!decoded.ok()) {

@@ -162,7 +162,12 @@ int main(int argc, char** argv) {
                    "store desync reports in this directory (empty = count only)");
   flags.add_string("key-file", &key_file,
                    "server key shared with the token backend (rewind-token keygen): secure "
-                   "connections only; without it the server is TOKENLESS (local tests only)");
+                   "connections only; without it the server is TOKENLESS, which it refuses on "
+                   "a non-loopback --bind (local tests only)");
+  bool insecure_tokenless_public = false;
+  flags.add_bool("insecure-tokenless-on-public-address", &insecure_tokenless_public,
+                 "allow TOKENLESS mode (no --key-file) on a non-loopback --bind, on a network "
+                 "you trust: anyone who reaches the port takes a free seat");
   flags.add_string("match-id", &match_id, "match id bound into connect tokens");
   flags.add_double("join-timeout", &join_timeout, 0.1, 86400, "seconds to wait for all players");
   flags.add_double("peer-timeout", &peer_timeout, 0.1, 3600,
@@ -233,7 +238,8 @@ int main(int argc, char** argv) {
     if (file == nullptr || !key.ok()) {
       write_log(LogLevel::kError,
                 "--key-file " + key_file + ": " +
-                    (file == nullptr ? "cannot read it" : key.status().message()));
+                    (file == nullptr ? "cannot read it" : key.status().message()) +
+                    " (a server key is 64 hex digits: rewind-token keygen --out FILE makes one)");
       return rwd::cli::kExitUsage;
     }
     config.server_key = *key;
@@ -281,6 +287,8 @@ int main(int argc, char** argv) {
   config.match.join_timeout_s = join_timeout;
   config.match.peer_timeout_s = peer_timeout;
 
+  config.insecure_tokenless_public = insecure_tokenless_public;
+
   const MatchOutputs outputs{port_file, metrics_port_file, control_port_file, summary_json};
   if (!agones) return host_match(config, outputs);
   if (config.matches != 1 || config.control) {
@@ -292,6 +300,12 @@ int main(int argc, char** argv) {
   if (!sdk_port.ok()) {
     write_log(LogLevel::kError, "--agones: " + sdk_port.status().message());
     return rwd::cli::kExitUsage;
+  }
+  // Checked before the GameServer is Ready: Server::create would refuse it
+  // only once allocated.
+  if (rwd::Status status = rwd::server::check_tokenless_exposure(config); !status.ok()) {
+    write_log(LogLevel::kError, status.message());
+    return 1;
   }
   rwd::server::AgonesSdk::Options sdk_options;
   sdk_options.port = *sdk_port;

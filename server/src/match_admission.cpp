@@ -72,15 +72,16 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
   std::optional<uint32_t> slot;
   if (config_.secure) {
     // The slot is the one the sender's token names (the gateway checked
-    // the token and the keys). A client restarted in the lobby comes back
-    // from a new address with the same token and takes its slot again;
-    // another client's token for a held slot is refused.
+    // the token and the keys). A client restarted comes back from a new
+    // address with a fresh token for its client id and takes its slot
+    // again; another client's token takes a slot only once its holder is
+    // dropped (peer timeout, goodbye): the gateway's rule too (seated()).
     if (who->slot >= config_.players) {
       reject("player slot " + std::to_string(who->slot) + " does not exist");
       return;
     }
     const Peer& held = peers_[who->slot];
-    if (held.joined && held.client_id != who->client_id) {
+    if (held.joined && held.connected && !held.left && held.client_id != who->client_id) {
       reject("player slot " + std::to_string(who->slot) + " is held by another client");
       return;
     }
@@ -123,7 +124,7 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
   peer.connected = true;
   peer.endpoint = from;
   peer.join_nonce = request.nonce();
-  peer.client_id = who != nullptr ? who->client_id : 0;
+  peer.client_id = config_.secure ? who->client_id : 0;
   peer.connection.emplace(now, id);
   peer.last_receive = now;
   peer.name = request.client_name();
@@ -143,7 +144,7 @@ bool MatchHost::seat_spectator(const v1::JoinRequest& request, const Endpoint& f
   // A secure server seats a spectator where its token says; a tokenless
   // one in the first seat nobody holds (or whose holder went silent).
   std::optional<uint32_t> seat;
-  if (who != nullptr) {
+  if (config_.secure) {
     const uint32_t s = who->slot - config_.players;
     if (s < spectators_.size()) {
       const Peer& held = spectators_[s];
@@ -161,7 +162,7 @@ bool MatchHost::seat_spectator(const v1::JoinRequest& request, const Endpoint& f
   peer.connected = true;
   peer.endpoint = from;
   peer.join_nonce = request.nonce();
-  peer.client_id = who != nullptr ? who->client_id : 0;
+  peer.client_id = config_.secure ? who->client_id : 0;
   peer.connection.emplace(now, ids_.next());
   peer.last_receive = now;
   peer.name = request.client_name();
@@ -185,6 +186,22 @@ void MatchHost::restart_peer(Peer& peer) {
   peer.desync = DesyncAssembly{};
   peer.handled_reports.clear();
   peer.resynced_once = false;
+}
+
+void MatchHost::free_silent_lobby_seats(TimePoint now) {
+  for (uint32_t p = 0; p < peers_.size() + spectators_.size(); ++p) {
+    Peer& peer = p < peers_.size() ? peers_[p] : spectators_[p - peers_.size()];
+    if (!peer.joined) continue;
+    const bool silent =
+        std::chrono::duration<double>(now - peer.last_receive).count() > config_.peer_timeout_s;
+    if (!peer.left && peer.connected && !silent) continue;
+    const bool player = p < peers_.size();
+    log_line(std::string(player ? "player " : "spectator ") +
+             std::to_string(player ? p : p - config_.players) +
+             (peer.left ? " left the lobby" : " went silent in the lobby") + "; its seat is free");
+    if (player) --stats_.players_joined;
+    peer = Peer{};
+  }
 }
 
 void MatchHost::start_match(TimePoint now) {

@@ -115,6 +115,12 @@ uint32_t MatchHost::players_connected() const {
   return count;
 }
 
+bool MatchHost::seated(uint32_t slot, const Endpoint& endpoint) const {
+  if (slot >= peers_.size() + spectators_.size()) return false;
+  const Peer& peer = slot < peers_.size() ? peers_[slot] : spectators_[slot - peers_.size()];
+  return peer.joined && peer.connected && !peer.left && peer.endpoint == endpoint;
+}
+
 MatchHost::Peer* MatchHost::find_peer(uint64_t connection_id, uint32_t* player) {
   for (uint32_t p = 0; p < peers_.size() + spectators_.size(); ++p) {
     Peer& peer = p < peers_.size() ? peers_[p] : spectators_[p - peers_.size()];
@@ -142,6 +148,12 @@ void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from
   }
   const v1::Envelope& envelope = *decoded;
   if (envelope.has_join_request()) {
+    if (who == nullptr) {
+      // Tokenless, and the address has not answered a cookie: it may not
+      // be the sender's, so nothing is taken from it nor sent to it.
+      ++stats_.rejected_packets;
+      return;
+    }
     handle_join(envelope, from, now, who);
     return;
   }
@@ -300,6 +312,7 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
 void MatchHost::on_tick(TimePoint now) {
   if (phase_ == Phase::kEnded) return;
   if (phase_ == Phase::kLobby) {
+    free_silent_lobby_seats(now);
     if (seconds_between(created_, now) > config_.join_timeout_s) {
       end("lobby timeout: " + std::to_string(stats_.players_joined) + " of " +
               std::to_string(config_.players) + " players joined",

@@ -3,6 +3,7 @@
 
 #include <asio/post.hpp>
 #include <chrono>
+#include <cmath>
 #include <exception>
 
 #include "rewind/server/server_log.h"
@@ -31,13 +32,22 @@ Result<std::shared_ptr<MatchRunner>> MatchRunner::create(asio::io_context& io,
   runner->port_ = runner->socket_->local_port();
   // The callbacks below run on the strand only (from the match's own
   // handlers), and the runner outlives them: they die with its members.
+  const auto send_raw = [self](const Endpoint& to, std::span<const uint8_t> bytes) {
+    self->socket_->queue_send(bytes, to);
+  };
   if (settings.server_key) {
-    runner->gateway_ =
-        std::make_unique<SecureGateway>(*settings.server_key, settings.match.match_id,
-                                        settings.match.players + settings.match.max_spectators,
-                                        [self](const Endpoint& to, std::span<const uint8_t> bytes) {
-                                          self->socket_->queue_send(bytes, to);
-                                        });
+    SecureGateway::Options options;
+    options.slots = settings.match.players + settings.match.max_spectators;
+    // The gateway lets another client's token take a slot when the match
+    // has dropped its holder, and asks the match which that is.
+    options.join_grace_s = static_cast<int64_t>(std::ceil(settings.match.peer_timeout_s));
+    options.seated = [self](uint32_t slot, const Endpoint& endpoint) {
+      return self->host_->seated(slot, endpoint);
+    };
+    runner->gateway_ = std::make_unique<SecureGateway>(
+        *settings.server_key, settings.match.match_id, std::move(options), send_raw);
+  } else {
+    runner->tokenless_ = std::make_unique<TokenlessGateway>(send_raw);
   }
   LogMatchScope scope(runner->log_name());
   auto host = MatchHost::create(
@@ -122,7 +132,12 @@ void MatchRunner::fail(const std::string& reason) {
 void MatchRunner::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from, TimePoint now) {
   if (finished_) return;
   if (!gateway_) {
-    guarded("handling a datagram", [&] { host_->on_datagram(bytes, from, now); });
+    guarded("handling a datagram", [&] {
+      tokenless_->on_datagram(
+          bytes, from, now,
+          [this, now](std::span<const uint8_t> envelope, const Endpoint& sender,
+                      const Admission* who) { host_->on_datagram(envelope, sender, now, who); });
+    });
     return;
   }
   guarded("handling a datagram", [&] {

@@ -23,6 +23,22 @@ std::string bracketed(const std::string& address) {
 
 }  // namespace
 
+Status check_tokenless_exposure(const ServerConfig& config) {
+  if (config.server_key || config.insecure_tokenless_public) return Status::Ok();
+  std::error_code error;
+  (void)asio::ip::make_address(config.bind_address, error);
+  // An address that does not parse fails to bind, with its own message.
+  if (error || is_loopback_address(config.bind_address)) return Status::Ok();
+  return Status::Error(
+      ErrorCode::kInvalidArgument,
+      "refusing to run tokenless on " + config.bind_address +
+          ", an address other hosts can reach: without connect tokens anyone who reaches the "
+          "port takes a free seat. Run secure: make a server key (rewind-token keygen --out "
+          "server.key), start with --key-file server.key and give each client a connect token "
+          "minted with the same key (rewind-token mint). For local tests bind 127.0.0.1; on a "
+          "network you trust, --insecure-tokenless-on-public-address allows it");
+}
+
 Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   auto bad = [](const std::string& message) {
     return Status::Error(ErrorCode::kInvalidArgument, message);
@@ -63,6 +79,7 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   MatchConfig first = server->config_for(config.match, config.match.match_id);
   first.secure = config.server_key.has_value();
   if (Status status = first.validate(); !status.ok()) return status;
+  if (Status status = check_tokenless_exposure(config); !status.ok()) return status;
   for (uint32_t i = 0; i < config.matches; ++i) {
     const std::string id = config.matches == 1
                                ? config.match.match_id
@@ -219,9 +236,20 @@ void Server::run() {
     if (!stopping_) stop_all(reason);
   });
   const std::vector<std::shared_ptr<MatchRunner>> launch = std::move(launch_);
-  const std::string mode = config_.server_key
-                               ? "secure connections (connect tokens)"
-                               : "TOKENLESS (any address takes a free slot: local tests only)";
+  const bool loopback = is_loopback_address(config_.bind_address);
+  const std::string mode =
+      config_.server_key ? "secure connections (connect tokens)"
+      : loopback         ? "TOKENLESS on loopback (any local process takes a free slot: local "
+                           "tests only)"
+                 : "TOKENLESS ON A PUBLIC ADDRESS (any host that reaches the port takes a free "
+                   "slot)";
+  if (!config_.server_key && !loopback) {
+    write_log(LogLevel::kWarning,
+              "INSECURE: tokenless on " + config_.bind_address +
+                  " (--insecure-tokenless-on-public-address): nothing authenticates a client; "
+                  "anyone who sees the traffic can act for a player. Use --key-file with "
+                  "connect tokens outside a trusted network");
+  }
   for (const auto& match : launch) {
     const MatchConfig& c = match->config();
     LogMatchScope scope(launch.size() > 1 ? match->id() : std::string_view());

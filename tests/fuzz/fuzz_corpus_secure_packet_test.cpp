@@ -9,6 +9,7 @@
 
 #include "corpus_mutator.h"
 #include "fuzz_entries.h"
+#include "rewind/net/address_cookie.h"
 #include "rewind/net/connect_token.h"
 #include "rewind/net/secure_channel.h"
 
@@ -32,7 +33,14 @@ std::vector<std::vector<uint8_t>> seeds() {
     const std::string hex = to_hex(write_connect_token(token));
     return std::vector<uint8_t>(hex.begin(), hex.end());
   }();
-  return {client.request(), challenge, response, payload, write_connect_token(token), hex_bytes};
+  // A tokenless server's cookie exchange: the hello, a cookie, a join.
+  const AddressCookieGate cookies(generate_key());
+  std::vector<uint8_t> cookie_reply;
+  EXPECT_TRUE(cookies.on_hello(make_hello(), from, 1'900'000'000, cookie_reply).ok());
+  std::vector<uint8_t> join;
+  frame_join(*read_cookie(cookie_reply), std::vector<uint8_t>{0x08, 0x02, 0x52, 0x00}, join);
+  return {client.request(), challenge,    response,     payload, write_connect_token(token),
+          hex_bytes,        make_hello(), cookie_reply, join};
 }
 
 TEST(FuzzCorpusSecurePacket, SeedsAndTruncations) {
@@ -52,6 +60,7 @@ TEST(FuzzCorpusSecurePacket, RandomBytes) {
     bytes.resize(rng.below(1300));
     for (uint8_t& b : bytes) b = static_cast<uint8_t>(rng.next());
     if (!bytes.empty() && i % 2 == 0) bytes[0] = static_cast<uint8_t>(0xC1 + i % 4);
+    if (!bytes.empty() && i % 4 == 1) bytes[0] = static_cast<uint8_t>(0xB1 + i % 3);
     ASSERT_EQ(fuzz_secure_packet_one(bytes.data(), bytes.size()), 0);
   }
   EXPECT_EQ(fuzz_secure_packet_one(nullptr, 0), 0);

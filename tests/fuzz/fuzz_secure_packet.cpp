@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
 // Secure-connection parsers, fed the same bytes: the connect token reader,
 // the hex reader, the server's request and response handlers, the client's
-// challenge handler and a session's payload opener. None may crash, and
-// none may accept what was not made with the keys (these keys are fresh
-// per process and never appear in the input, so anything accepted is a
-// broken invariant) -- except the token reader, whose input is not sealed.
+// challenge handler, a session's payload opener, and a tokenless server's
+// address-cookie handlers (hello, join) with the client's cookie reader.
+// None may crash, and none may accept what was not made with the keys
+// (these keys are fresh per process and never appear in the input, so
+// anything accepted is a broken invariant) -- except the token reader,
+// whose input is not sealed, and the hello, which any client may send
+// (but whose answer is never larger than it).
 #include <cstdio>
 #include <cstdlib>
 #include <span>
@@ -12,6 +15,7 @@
 #include <vector>
 
 #include "fuzz_entries.h"
+#include "rewind/net/address_cookie.h"
 #include "rewind/net/connect_token.h"
 #include "rewind/net/secure_channel.h"
 
@@ -25,6 +29,7 @@ namespace {
 struct Keys {
   rwd::net::Key server = rwd::net::generate_key();
   rwd::net::Key challenge = rwd::net::generate_key();
+  rwd::net::Key cookie = rwd::net::generate_key();
   uint64_t tag = rwd::net::connect_match_tag("fuzz");
   rwd::net::ConnectToken token =
       *rwd::net::make_connect_token(server, "fuzz", 0, 1, 1'900'003'600, 1'900'000'000);
@@ -66,5 +71,18 @@ int fuzz_secure_packet_one(const uint8_t* data, size_t size) {
   SecureSession session(generate_key(), generate_key(), k.tag);
   std::vector<uint8_t> out;
   if (session.open(bytes, out).ok()) invariant_broken("a payload accepted without the key");
+  const AddressCookieGate cookies(k.cookie);
+  if (cookies.on_hello(bytes, from, 1'900'000'000, reply).ok()) {
+    if (reply.size() > size) invariant_broken("a cookie larger than its hello");
+  } else if (!reply.empty()) {
+    invariant_broken("a refused hello got a reply");
+  }
+  if (cookies.open_join(bytes, from, 1'900'000'000).ok()) {
+    invariant_broken("a join accepted without the cookie key");
+  }
+  if (const std::optional<AddressCookie> cookie = read_cookie(bytes);
+      cookie && size != kCookieReplyBytes) {
+    invariant_broken("a cookie read from a packet of the wrong size");
+  }
   return 0;
 }

@@ -165,7 +165,7 @@ unreachable)
   AGONES_SDK_HTTP_PORT=$(python3 -c "import socket; s = socket.socket(); s.bind(('127.0.0.1', 0)); print(s.getsockname()[1])")
   status=0
   started=$(date +%s%N)
-  timeout 30 "$bin/rewind-server" --agones --agones-sidecar-timeout 1 --port 0 \
+  timeout 30 "$bin/rewind-server" --agones --agones-sidecar-timeout 1 --bind 127.0.0.1 --port 0 \
     --port-file port >server.json 2>server.log || status=$?
   elapsed_ms=$((($(date +%s%N) - started) / 1000000))
   [ "$status" = 1 ] || fail "exit $status (want 1): $(cat server.log)"

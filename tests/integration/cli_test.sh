@@ -31,14 +31,14 @@ check 64 "--tick-rate: 0 is outside [1, 1000]" rewind-server --tick-rate 0
 check 1 "unknown game 'chess'" rewind-server --game chess --port 0
 check 64 "--metrics-bind: expected HOST:PORT, got 'nowhere'" rewind-server --metrics-bind nowhere
 check 64 "--metrics-port-file needs --metrics-bind" rewind-server --metrics-port-file x --port 0
-check 1 "metrics: bad address 'nowhere.invalid'" rewind-server --metrics-bind nowhere.invalid:0 --port 0
-check 1 "refusing to serve /metrics on 0.0.0.0 without --metrics-keys" rewind-server --metrics-bind 0.0.0.0:0 --port 0
-check 1 "the control API needs --control-keys FILE" rewind-server --control --matches 0 --port 0
+check 1 "metrics: bad address 'nowhere.invalid'" rewind-server --metrics-bind nowhere.invalid:0 --bind 127.0.0.1 --port 0
+check 1 "refusing to serve /metrics on 0.0.0.0 without --metrics-keys" rewind-server --metrics-bind 0.0.0.0:0 --bind 127.0.0.1 --port 0
+check 1 "the control API needs --control-keys FILE" rewind-server --control --matches 0 --bind 127.0.0.1 --port 0
 check 64 "--control-keys /nonexistent/keys: cannot read it" rewind-server --control --control-keys /nonexistent/keys
 check 64 "--control-keys and --control-port-file need --control" rewind-server --control-keys x
 check 64 "--control-bind: expected HOST:PORT" rewind-server --control --control-bind nowhere
 check 64 "are required" rewind-token api-key --name a
-check 1 "match id '..' must be a name" rewind-server --match-id .. --port 0
+check 1 "match id '..' must be a name" rewind-server --match-id .. --bind 127.0.0.1 --port 0
 check 1 '"level":"error","msg":"unknown game' rewind-server --game chess --port 0 --log-json
 check 64 "--agones-health-period: 0 is outside [0.1, 60]" rewind-server --agones --agones-health-period 0
 AGONES_SDK_HTTP_PORT=x check 64 "AGONES_SDK_HTTP_PORT='x' is not a port number" rewind-server --agones
@@ -54,6 +54,14 @@ check 64 "--slot: 99 is outside [0, 63]" rewind-token mint --slot 99
 check 64 "are required" rewind-token mint --match m
 check 1 "cannot read /nonexistent/key" rewind-token mint --key-file /nonexistent/key --match m --slot 0 --client-id 1
 check 64 "--key-file /nonexistent/key: cannot read it" rewind-server --key-file /nonexistent/key --port 0
+# Tokenless only on loopback, unless the operator says otherwise; the
+# refusal says how to run secure (also before an Agones GameServer is Ready).
+check 1 "refusing to run tokenless on 0.0.0.0" rewind-server --port 0
+check 1 "rewind-token keygen --out server.key" rewind-server --bind :: --port 0
+check 1 "refusing to run tokenless on 0.0.0.0" rewind-server --agones --port 0
+check 2 "TOKENLESS on loopback" rewind-server --bind 127.0.0.1 --port 0 --join-timeout 0.1
+check 2 "INSECURE: tokenless on 0.0.0.0" rewind-server --port 0 --join-timeout 0.1 \
+  --insecure-tokenless-on-public-address
 check 64 "connect token 0: not a hex digit" rewind-bots --token nothex
 check 64 "connect token 0: a connect token is" rewind-bots --token 00ff
 check 64 "--bots and --spectators are both 0" rewind-bots --bots 0

@@ -8,6 +8,10 @@
          part of a real token replayed from this address (it gets a challenge
          it cannot read), and forged responses. Exits 1 if the server answers
          anything but that challenge, or answers more bytes than it received.
+  copied SERVER_PORT TOKENS
+         While the match runs: every player's token, copied (keys included),
+         presented from new addresses. A token connects once, so none gets a
+         challenge. Exits 1 if the server answers any.
   proxy  LISTEN_PORT_FILE SERVER_PORT SECONDS
          A UDP relay between the bots and the server that also attacks: every
          client datagram is replayed (from its own address and from another),
@@ -97,6 +101,27 @@ def probe(port: int, tokens_path: str, foreign_path: str) -> int:
     return 0 if received < sent else 1
 
 
+def copied(port: int, tokens_path: str) -> int:
+    tokens = [bytes.fromhex(line) for line in open(tokens_path).read().split()]
+    server = ("127.0.0.1", port)
+    socks = []
+    for token in tokens:
+        sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        sock.bind(("127.0.0.1", 0))
+        socks.append(sock)
+        for _ in range(3):  # resent, as a client would until answered
+            sock.sendto(request_from_token(token), server)
+    replies = 0
+    end = time.time() + 0.5
+    while time.time() < end:
+        ready, _, _ = select.select(socks, [], [], max(0.0, end - time.time()))
+        for s in ready:
+            s.recvfrom(2048)
+            replies += 1
+    print(json.dumps({"copied_tokens": len(tokens), "replies": replies}))
+    return 0 if replies == 0 else 1
+
+
 def proxy(port_file: str, server_port: int, seconds: float) -> int:
     listen = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
     listen.bind(("127.0.0.1", 0))
@@ -157,6 +182,8 @@ def proxy(port_file: str, server_port: int, seconds: float) -> int:
 def main() -> int:
     if len(sys.argv) == 5 and sys.argv[1] == "probe":
         return probe(int(sys.argv[2]), sys.argv[3], sys.argv[4])
+    if len(sys.argv) == 4 and sys.argv[1] == "copied":
+        return copied(int(sys.argv[2]), sys.argv[3])
     if len(sys.argv) == 5 and sys.argv[1] == "proxy":
         return proxy(sys.argv[2], int(sys.argv[3]), float(sys.argv[4]))
     print(__doc__, file=sys.stderr)

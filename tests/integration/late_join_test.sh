@@ -6,7 +6,9 @@
 # inputs count from then on; the replay verifies.
 #   late_join_test.sh MODE BIN_DIR WORK_DIR
 # MODE: token (a secure server; the late player's token names slot 2) or
-# tokenless (the first free slot).
+# tokenless (the first free slot; joins without an address cookie, in the
+# lobby and with the slot open, get no answer and take no seat:
+# hostile_tokenless.py).
 set -euo pipefail
 mode=$1
 bin=$2
@@ -36,6 +38,14 @@ if [ "$mode" = token ]; then
 fi
 start_server "${server_args[@]}"
 connect=(--connect "127.0.0.1:$port" --duration $(( ticks / tick_rate + 30 )) --summary-json)
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+probe() {
+  [ "$mode" = tokenless ] || return 0
+  python3 "$here/hostile_tokenless.py" probe "$port" >"probe-$1.json" \
+    || fail "cookieless joins were answered ($1): $(cat "probe-$1.json")"
+  echo "probe ($1): $(cat "probe-$1.json")"
+}
+probe lobby
 
 "$bin/rewind-bots" --bots 2 "${connect[@]}" "${first_tokens[@]}" >first.json 2>first.log &
 first=$!
@@ -44,6 +54,7 @@ for _ in $(seq 1 100); do grep -q "2 of 3 players joined" server.log && break; s
 grep -q "2 of 3 players joined; tick 0 in [0-9]* ticks (the other slots are open" server.log ||
   fail "the match did not start with 2 of 3: $(tail -3 server.log)"
 sleep 3  # the match is well under way
+probe running
 "$bin/rewind-bots" --bots 1 "${connect[@]}" "${late_tokens[@]}" >late.json 2>late.log ||
   fail "the late player failed: $(tail -5 late.log)"
 wait "$first" || fail "the first players failed: $(tail -5 first.log)"

@@ -3,8 +3,11 @@
 # A player's process dies mid-match and a new one takes the slot back.
 #   rejoin_test.sh MODE BIN_DIR WORK_DIR
 # MODE:
-#   token      a secure server: the restarted client presents the same
-#              connect token from a new port and rejoins its own slot;
+#   token      a secure server: the dead player's token, presented again
+#              (a copy, keys included), is refused; the backend mints a
+#              fresh token for the same client id and slot, and the
+#              restarted client rejoins its own slot with it from a new
+#              port once the server has dropped the dead connection;
 #   tokenless  the dead player times out, and the next joiner takes the
 #              free slot.
 # Either way the newcomer catches up from a snapshot and plays to the end
@@ -49,7 +52,20 @@ for _ in $(seq 1 100); do grep -q "all 2 players joined" server.log && break; sl
 sleep 3
 kill -9 "$doomed"
 wait "$doomed" 2>/dev/null || true
-[ "$mode" = tokenless ] && sleep 2  # past --peer-timeout: the slot is free
+if [ "$mode" = token ]; then
+  # A token connects once: the dead player's token (or a copy of it) gets
+  # no challenge, so that bot never joins.
+  status=0
+  "$bin/rewind-bots" --bots 1 --connect "127.0.0.1:$port" --duration 2 --summary-json \
+    --token-file token1 >copied.json 2>copied.log || status=$?
+  [ "$status" = 2 ] && [ "$(json copied.json joined)" = 0 ] \
+    || fail "a used token joined again (exit $status): $(cat copied.json)"
+  # What the backend does for a client that comes back: a fresh token for
+  # the same client id and slot.
+  "$bin/rewind-token" mint --key-file server.key --match m --slot 1 --client-id 2 >token1
+else
+  sleep 2  # past --peer-timeout: the slot is free
+fi
 # shellcheck disable=SC2046
 "$bin/rewind-bots" --bots 1 "${connect[@]}" $(token_for 1) --seed 3 >newcomer.json 2>newcomer.log \
   || fail "the newcomer failed: $(tail -5 newcomer.log)"
@@ -57,6 +73,10 @@ wait "$stayer" || fail "the other player failed: $(tail -5 stayer.log)"
 wait "$server_pid" || fail "server exit: $(tail -5 server.log)"
 
 grep -q "player 1 rejoined" server.log || fail "the server did not log a rejoin: $(tail -20 server.log)"
+if [ "$mode" = token ]; then
+  [ "$(json server.json secure_sessions)" = 3 ] || fail "sessions: $(cat server.json)"
+  [ "$(json server.json secure_refused)" -ge 1 ] || fail "the used token was not refused: $(cat server.json)"
+fi
 for who in stayer newcomer; do
   [ "$(json $who.json finished)" = 1 ] || fail "$who did not finish: $(cat $who.json)"
   [ "$(json $who.json desyncs)" = 0 ] || fail "$who desynced: $(cat $who.json)"

@@ -8,9 +8,10 @@
 # responses get nothing (but the one challenge, smaller than its request).
 # Then 4 bots play through a relay that replays every datagram (from their
 # addresses and another), alters some and raises the sequence of others by a
-# million: the match ends with every bot finished and no desync, the server
-# counts what it dropped, and the replay verifies. A tokenless client and a
-# client with a token for another server never join.
+# million; while they play, copies of their tokens (keys included) get no
+# challenge (a token connects once). The match ends with every bot finished
+# and no desync, the server counts what it dropped, and the replay verifies.
+# A tokenless client and a client with a token for another server never join.
 set -euo pipefail
 bin=$1
 work=$2
@@ -57,8 +58,14 @@ relay_pid=$!
 for _ in $(seq 1 50); do [ -s relay_port ] && break; sleep 0.1; done
 [ -s relay_port ] || fail "relay did not start"
 "$bin/rewind-bots" --bots "$players" --connect "127.0.0.1:$(cat relay_port)" --token-file tokens \
-  --duration $(( ticks / tick_rate + 30 )) --summary-json >bots.json 2>bots.log \
-  || fail "bots failed: $(tail -5 bots.log)"
+  --duration $(( ticks / tick_rate + 30 )) --summary-json >bots.json 2>bots.log &
+bots_pid=$!
+pids+=("$bots_pid")
+for _ in $(seq 1 100); do grep -q "players joined" server.log && break; sleep 0.1; done
+python3 "$here/hostile_secure.py" copied "$port" tokens >copied.json \
+  || fail "copied tokens were answered: $(cat copied.json)"
+echo "copied: $(cat copied.json)"
+wait "$bots_pid" || fail "bots failed: $(tail -5 bots.log)"
 wait "$server_pid" || fail "server exit $?: $(tail -5 server.log)"
 kill "$relay_pid" 2>/dev/null || true
 

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "rewind/game/crates_game.h"
+#include "rewind/net/address_cookie.h"
 #include "rewind/net/connection.h"
 #include "rewind/net/envelope_codec.h"
 #include "rewind/proto/input_wire.h"
@@ -99,6 +100,13 @@ class ScriptedPeer final : public HeadlessMatch::Peer {
   }
 
   void receive(std::span<const uint8_t> datagram, TimePoint now) override {
+    if (const std::optional<net::AddressCookie> cookie = net::read_cookie(datagram)) {
+      if (joining_ && !cookie_) {
+        cookie_ = *cookie;
+        last_join_ = now - kJoinResend;  // the join goes out on the next update
+      }
+      return;
+    }
     auto decoded = net::decode_envelope(datagram);
     if (!decoded.ok()) return;
     const v1::Envelope& e = *decoded;
@@ -153,11 +161,19 @@ class ScriptedPeer final : public HeadlessMatch::Peer {
     if (joining_) {
       if (now - last_join_ >= kJoinResend) {
         last_join_ = now;
+        if (!cookie_) {
+          send_(net::make_hello());  // until the server's cookie comes back
+          return;
+        }
         v1::Envelope envelope;
         envelope.mutable_join_request()->set_game(game_);
         envelope.mutable_join_request()->set_client_name(name_);
         envelope.mutable_join_request()->set_nonce(nonce_);
-        send(envelope, now);
+        connection_.stamp(envelope, now);
+        if (net::encode_envelope(envelope, buffer_).ok()) {
+          net::frame_join(*cookie_, buffer_, framed_);
+          send_(framed_);
+        }
       }
       return;
     }
@@ -235,6 +251,8 @@ class ScriptedPeer final : public HeadlessMatch::Peer {
   SendFn send_;
   net::Connection connection_;
   std::vector<uint8_t> buffer_;
+  std::vector<uint8_t> framed_;
+  std::optional<net::AddressCookie> cookie_;  // the server's, for our join
   bool joining_ = false;
   bool started_ = false;
   bool ending_ = false;
@@ -284,6 +302,10 @@ Result<std::unique_ptr<HeadlessMatch>> HeadlessMatch::create(const HeadlessConfi
       self->now_);
   if (!host.ok()) return host.status();
   match->host_ = std::move(*host);
+  match->gateway_ = std::make_unique<server::TokenlessGateway>(
+      [self](const server::Endpoint& to, std::span<const uint8_t> bytes) {
+        self->transmit(Direction::kToClient, static_cast<uint32_t>(to.port() - kFirstPort), bytes);
+      });
 
   const auto period =
       std::chrono::nanoseconds(1'000'000'000LL / static_cast<int64_t>(config.match.tick_rate_hz));
@@ -349,7 +371,12 @@ void HeadlessMatch::deliver_due() {
     in_flight_.pop();
     if (item.direction == Direction::kToServer) {
       const auto begin = std::chrono::steady_clock::now();
-      host_->on_datagram(item.bytes, endpoint_of(item.peer), item.at);
+      gateway_->on_datagram(
+          item.bytes, endpoint_of(item.peer), item.at,
+          [this, &item](std::span<const uint8_t> envelope, const server::Endpoint& from,
+                        const server::Admission* who) {
+            host_->on_datagram(envelope, from, item.at, who);
+          });
       host_busy_ += std::chrono::steady_clock::now() - begin;
     } else {
       peers_[item.peer]->receive(item.bytes, item.at);

@@ -25,6 +25,7 @@
 #include "rewind/client/client_session.h"
 #include "rewind/game/player_input.h"
 #include "rewind/server/match_host.h"
+#include "rewind/server/tokenless_gateway.h"
 
 namespace rwd::test {
 
@@ -119,6 +120,9 @@ class HeadlessMatch {
   HeadlessConfig config_;
   TimePoint now_;
   std::unique_ptr<server::MatchHost> host_;
+  /// The front door a tokenless server puts before the host (address
+  /// cookies), so the peers join as they would over a socket.
+  std::unique_ptr<server::TokenlessGateway> gateway_;
   std::vector<std::unique_ptr<Peer>> peers_;
   std::priority_queue<InFlight, std::vector<InFlight>, std::greater<>> in_flight_;
   uint64_t next_order_ = 0;

@@ -24,7 +24,10 @@ constexpr const char* kUsage =
     "  keygen  --out FILE            write a new server key (refuses to overwrite)\n"
     "  mint    --key-file FILE --match ID --slot N --client-id N [--expires-in S] [--out FILE]\n"
     "  inspect --token-file FILE | --token HEX\n"
-    "  api-key --name NAME --keys FILE [--admin]  add a bearer key for the HTTP endpoints\n";
+    "  api-key --name NAME --keys FILE [--admin]  add a bearer key for the HTTP endpoints\n"
+    "A token connects once. For a client that comes back (a new process, a lost\n"
+    "connection), mint a fresh token with the same --client-id and --slot; the server\n"
+    "takes it once it has dropped the old connection (--peer-timeout).\n";
 
 Result<std::string> read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -136,10 +139,15 @@ int api_key(int argc, const char* const* argv) {
 int mint(int argc, const char* const* argv) {
   std::string key_file, match, out;
   int64_t slot = -1, client_id = 0, expires_in = 3600;
-  cli::FlagParser flags("rewind-token mint",
-                        "rewind-token mint --key-file FILE --match ID --slot N --client-id N",
-                        "Mints a connect token for one client: prints it as one hex line, or "
-                        "writes it to --out.");
+  cli::FlagParser flags(
+      "rewind-token mint", "rewind-token mint --key-file FILE --match ID --slot N --client-id N",
+      "Mints a connect token for one client: prints it as one hex line, or writes it to --out.\n"
+      "A token connects once: the server remembers it until it expires and refuses it again,\n"
+      "copies included. For a client that comes back (a new process, a lost connection), mint\n"
+      "a fresh token with the same --client-id and --slot: the server ignores it while that\n"
+      "client is still connected and takes it once the match has dropped the old connection\n"
+      "(rewind-server --peer-timeout). A token for another client id takes the slot only\n"
+      "then, too: it never cuts a connected holder off.");
   flags.add_string("key-file", &key_file, "the server key (rewind-token keygen)");
   flags.add_string("match", &match, "the match id the server runs (--match-id)");
   flags.add_int("slot", &slot, 0, 63, "the player slot the token takes");

@@ -17,6 +17,7 @@ constexpr size_t kXNonce = crypto_aead_xchacha20poly1305_ietf_NPUBBYTES;
 constexpr size_t kNonce = crypto_aead_chacha20poly1305_ietf_NPUBBYTES;
 static_assert(kTag == crypto_aead_chacha20poly1305_ietf_ABYTES);
 static_assert(kTag == crypto_aead_xchacha20poly1305_ietf_ABYTES);
+static_assert(kTokenMacBytes == kTag);  // the MAC is the sealed part's AEAD tag
 constexpr size_t kRequestHeader = 1 + 1 + 8 + 8 + 4;
 static_assert(kRequestHeader + kTokenNonceBytes + kSealedTokenBytes <= kRequestBytes);
 constexpr size_t kChallengePlain = kChallengeTokenBytes - kXNonce - kTag;
@@ -162,7 +163,8 @@ ServerGate::ServerGate(const Key& server_key, const Key& challenge_key, uint64_t
 }
 
 Status ServerGate::on_request(std::span<const uint8_t> packet, const PeerAddress& from,
-                              int64_t now_unix_s, std::vector<uint8_t>& reply) {
+                              int64_t now_unix_s, std::vector<uint8_t>& reply,
+                              RequestedToken* requested) {
   reply.clear();
   if (packet.size() != kRequestBytes || packet[0] != static_cast<uint8_t>(SecurePacket::kRequest)) {
     return corrupt("a request is exactly 1000 bytes");
@@ -179,6 +181,13 @@ Status ServerGate::on_request(std::span<const uint8_t> packet, const PeerAddress
   Result<PrivateToken> token =
       open_private_token(server_key_, match_tag, expiry, slot, nonce, sealed, now_unix_s);
   if (!token.ok()) return token.status();
+  // The sealed part's tag names the token: it authenticated, so only the
+  // backend's key could have made it, and no two tokens share it.
+  TokenMac mac;
+  std::memcpy(mac.data(), sealed.data() + kSealedTokenBytes - kTokenMacBytes, kTokenMacBytes);
+  if (requested != nullptr) {
+    *requested = RequestedToken{token->client_id, token->slot, expiry, mac};
+  }
 
   // The challenge token: what the server needs to finish the handshake,
   // sealed under its own key and bound to the address it is sent to.
@@ -195,6 +204,7 @@ Status ServerGate::on_request(std::span<const uint8_t> packet, const PeerAddress
   address_bytes(from, w.at);
   w.at += kAddressBytes;
   w.raw(salt, sizeof salt);
+  w.raw(mac.data(), mac.size());
   uint8_t challenge_token[kChallengeTokenBytes];
   randombytes_buf(challenge_token, kXNonce);
   unsigned long long size = 0;
@@ -243,6 +253,7 @@ Result<ConnectedClient> ServerGate::on_response(std::span<const uint8_t> packet,
   uint8_t address[kAddressBytes];
   r.raw(address, kAddressBytes);
   r.raw(client.salt.data(), kSaltBytes);
+  r.raw(client.token_mac.data(), kTokenMacBytes);
   sodium_memzero(plain, sizeof plain);
   uint8_t expected_address[kAddressBytes];
   address_bytes(from, expected_address);

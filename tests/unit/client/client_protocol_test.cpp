@@ -7,10 +7,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 
 #include "fake_server.h"
+#include "rewind/net/address_cookie.h"
 #include "rewind/net/chunked_transfer.h"
 #include "rewind/net/connect_token.h"
 #include "rewind/net/envelope_codec.h"
@@ -50,9 +52,17 @@ struct Harness {
   }
 
   /// What the client queued, read by the server (undecodable ones fail).
+  /// A tokenless client's Hello is answered with a cookie at once (unless
+  /// answer_hellos is off) and counted, not returned.
   std::vector<v1::Envelope> sent() {
     std::vector<v1::Envelope> out;
     while (auto datagram = protocol.next_datagram()) {
+      if (net::cookie_packet_kind(*datagram) == net::CookiePacket::kHello) {
+        EXPECT_EQ(datagram->size(), net::kHelloBytes);
+        ++hellos;
+        if (answer_hellos) deliver(cookie_reply);
+        continue;
+      }
       auto envelope = server.read(*datagram, now);
       EXPECT_TRUE(envelope.has_value()) << "the client sent something the server cannot read";
       if (envelope) out.push_back(std::move(*envelope));
@@ -105,6 +115,13 @@ struct Harness {
   ClientProtocol protocol;
   TimePoint now = TimePoint{} + std::chrono::seconds(1000);
   std::map<Tick, int> provided;
+  bool answer_hellos = true;
+  size_t hellos = 0;
+  const std::vector<uint8_t> cookie_reply = [] {
+    std::vector<uint8_t> reply(net::kCookieReplyBytes, 0x5A);
+    reply[0] = static_cast<uint8_t>(net::CookiePacket::kCookie);
+    return reply;
+  }();
 };
 
 std::vector<ClientEventType> types_of(const std::vector<ClientEvent>& events) {
@@ -152,6 +169,52 @@ TEST(ClientProtocol, JoinsWaitsInTheLobbyAndStarts) {
   const auto events = h.events();
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].type, ClientEventType::kMatchStarted);
+}
+
+// A tokenless server answers nothing before the client's address has
+// echoed its cookie: the client asks with a padded Hello, joins with the
+// cookie at once, and asks again before the cookie grows too old.
+TEST(ClientProtocol, TokenlessJoinFetchesAnAddressCookieFirst) {
+  Harness h;
+  h.answer_hellos = false;
+  h.protocol.connect(h.now);
+  EXPECT_TRUE(h.sent().empty());
+  EXPECT_EQ(h.hellos, 1u);
+  h.advance(std::chrono::milliseconds(250));
+  EXPECT_TRUE(h.sent().empty());
+  EXPECT_EQ(h.hellos, 2u);  // unanswered: asked again, nothing else sent
+
+  h.deliver(h.cookie_reply);
+  auto datagram = h.protocol.next_datagram();
+  ASSERT_TRUE(datagram.has_value());
+  ASSERT_EQ(net::cookie_packet_kind(*datagram), net::CookiePacket::kJoin);
+  EXPECT_TRUE(std::equal(h.cookie_reply.begin() + 1, h.cookie_reply.end(), datagram->begin() + 1));
+  auto join = net::decode_envelope(datagram->subspan(net::kJoinOverhead));
+  ASSERT_TRUE(join.ok());
+  EXPECT_EQ(join->join_request().nonce(), kNonce);
+  // A second cookie (the answer to the resent Hello) sends nothing more.
+  h.deliver(h.cookie_reply);
+  EXPECT_FALSE(h.protocol.next_datagram().has_value());
+  // Unanswered, the join is resent with the same cookie...
+  h.advance(std::chrono::milliseconds(250));
+  auto out = h.sent();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_TRUE(out[0].has_join_request());
+  // ... until the cookie is 3 s old: then a fresh one is asked for.
+  for (int i = 0; i < 11; ++i) h.advance(std::chrono::milliseconds(250));
+  (void)h.sent();
+  EXPECT_EQ(h.hellos, 3u);
+
+  // Joined, a cookie is nobody's business.
+  h.answer_hellos = true;
+  h.advance(std::chrono::milliseconds(250));
+  (void)h.sent();
+  h.deliver(h.server.join_accept(kNonce, 0, h.now));
+  ASSERT_EQ(h.protocol.phase(), ClientPhase::kLobby);
+  const uint64_t rejected = h.protocol.stats().packets_rejected;
+  h.deliver(h.cookie_reply);
+  EXPECT_EQ(h.protocol.stats().packets_rejected, rejected + 1);
+  EXPECT_EQ(h.protocol.phase(), ClientPhase::kLobby);
 }
 
 TEST(ClientProtocol, JoinRejectEndsTheSessionAndSilenceTimesItOut) {

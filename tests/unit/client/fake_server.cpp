@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 
+#include "rewind/net/address_cookie.h"
 #include "rewind/net/chunked_transfer.h"
 #include "rewind/net/envelope_codec.h"
 #include "rewind/proto/input_wire.h"
@@ -23,6 +24,9 @@ std::optional<v1::Envelope> FakeServer::read(std::span<const uint8_t> datagram,
   if (secure_) {
     if (!secure_->open(datagram, opened).ok()) return std::nullopt;
     datagram = opened;
+  } else if (net::cookie_packet_kind(datagram) == net::CookiePacket::kJoin &&
+             datagram.size() > net::kJoinOverhead) {
+    datagram = datagram.subspan(net::kJoinOverhead);  // a tokenless join: past its cookie
   }
   auto envelope = net::decode_envelope(datagram);
   if (!envelope.ok()) return std::nullopt;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/net/connection.h"
+#include "rewind/net/envelope_codec.h"
 
 #include <gtest/gtest.h>
 
@@ -39,7 +40,7 @@ TEST(Connection, StampFillsHeaderAndCounts) {
   Connection c(kT0, 0xABCD, 10);
   v1::Envelope e;
   EXPECT_EQ(c.stamp(e, kT0), 10u);
-  EXPECT_EQ(e.protocol_version(), 1u);
+  EXPECT_EQ(e.protocol_version(), kProtocolVersion);
   EXPECT_EQ(e.connection_id(), 0xABCDu);
   EXPECT_EQ(e.sequence(), 10u);
   EXPECT_EQ(e.ack(), 0u);

@@ -7,6 +7,8 @@
 // answer to an unauthenticated packet is larger than the packet.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -190,6 +192,41 @@ TEST(SecureChannel, ResponsesCountOnlyFromTheChallengedAddressInTime) {
   EXPECT_EQ(response2, response);
 }
 
+// The token's MAC (its sealed part's tag) names it from the request to the
+// connected client, so a server can refuse a token it has seen connect.
+TEST(SecureChannel, TheTokensMacTravelsThroughTheHandshake) {
+  Fixture f;
+  const ConnectToken t = f.token(2, 55);
+  ClientHandshake client(t);
+  std::vector<uint8_t> challenge;
+  RequestedToken requested;
+  ASSERT_TRUE(
+      f.gate.on_request(client.request(), address(1, 5000), kNow, challenge, &requested).ok());
+  EXPECT_EQ(requested.client_id, 55u);
+  EXPECT_EQ(requested.slot, 2u);
+  EXPECT_EQ(requested.expiry_unix_s, t.expiry_unix_s);
+  EXPECT_TRUE(std::equal(requested.mac.begin(), requested.mac.end(),
+                         t.sealed.end() - static_cast<std::ptrdiff_t>(kTokenMacBytes)));
+  std::vector<uint8_t> response;
+  ASSERT_TRUE(client.on_challenge(challenge, response).ok());
+  auto connected = f.gate.on_response(response, address(1, 5000), kNow);
+  ASSERT_TRUE(connected.ok());
+  EXPECT_EQ(connected->token_mac, requested.mac);
+  // Another token for the same client and slot has another MAC.
+  ClientHandshake other(f.token(2, 55));
+  RequestedToken other_requested;
+  ASSERT_TRUE(
+      f.gate.on_request(other.request(), address(1, 5000), kNow, challenge, &other_requested).ok());
+  EXPECT_NE(other_requested.mac, requested.mac);
+  // A version 1 request (before tokens carried their MAC through) is refused.
+  std::vector<uint8_t> old_version = client.request();
+  old_version[1] = 1;
+  EXPECT_FALSE(f.gate.on_request(old_version, address(1, 5000), kNow, challenge).ok());
+  EXPECT_TRUE(challenge.empty());
+}
+
+// At this layer (no memory of its own) a token still handshakes again; the
+// server's gateway refuses it (UsedTokens). The keys are fresh each time.
 TEST(SecureChannel, ReconnectingWithTheSameTokenGetsFreshKeys) {
   Fixture f;
   const ConnectToken t = f.token(3);

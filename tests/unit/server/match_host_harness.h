@@ -68,6 +68,12 @@ class HostHarness {
   void raw(const Endpoint& from, std::span<const uint8_t> bytes) {
     host_->on_datagram(bytes, from, now_);
   }
+  /// As from an address that answered a cookie (TokenlessGateway): how a
+  /// tokenless join reaches the host.
+  void admitted(const Endpoint& from, std::span<const uint8_t> bytes) {
+    const Admission proven;
+    host_->on_datagram(bytes, from, now_, &proven);
+  }
   void send(FakeClient& client, v1::Envelope envelope) {
     envelope.set_connection_id(client.connection_id);
     envelope.set_sequence(client.sequence++);
@@ -79,7 +85,7 @@ class HostHarness {
     v1::Envelope envelope;
     envelope.mutable_join_request()->set_game("crates");
     envelope.mutable_join_request()->set_nonce(port);
-    raw(client.endpoint, encode(envelope));
+    admitted(client.endpoint, encode(envelope));
     for (const v1::Envelope& answer : outbox_.received[client.endpoint]) {
       if (answer.has_join_accept()) {
         client.connection_id = answer.join_accept().connection_id();
@@ -102,6 +108,11 @@ class HostHarness {
   }
   void tick() {
     now_ += std::chrono::milliseconds(16);
+    host_->on_tick(now_);
+  }
+  /// Lets `by` pass, then ticks once.
+  void wait(std::chrono::milliseconds by) {
+    now_ += by;
     host_->on_tick(now_);
   }
   /// Both players send on time for `ticks` ticks, acknowledging nothing.

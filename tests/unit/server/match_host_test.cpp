@@ -73,7 +73,7 @@ TEST(MatchHost, ASpectatorWatchesButNeverPlays) {
   join.mutable_join_request()->set_game("crates");
   join.mutable_join_request()->set_spectator(true);
   join.mutable_join_request()->set_nonce(7);
-  h.raw(watcher.endpoint, h.encode(join));
+  h.admitted(watcher.endpoint, h.encode(join));
   const std::vector<v1::Envelope>& answers = h.outbox().received[watcher.endpoint];
   ASSERT_EQ(answers.size(), 1u);
   ASSERT_TRUE(answers[0].has_join_accept());
@@ -188,7 +188,7 @@ TEST(MatchHost, RepeatedJoinIsIdempotentAndExtraPlayersAreRefused) {
   v1::Envelope envelope;
   envelope.mutable_join_request()->set_game("crates");
   envelope.mutable_join_request()->set_nonce(9);
-  h.raw(late, h.encode(envelope));
+  h.admitted(late, h.encode(envelope));
   ASSERT_FALSE(h.outbox().received[late].empty());
   EXPECT_TRUE(h.outbox().received[late].back().has_join_reject());
 }

@@ -17,7 +17,11 @@ struct ClientConfig {
   std::string name = "client";  ///< shown in server logs, <= 64 bytes
   /// A serialized connect token (rewind-token mint; read_connect_token):
   /// required by a secure server, which names the slot by it; every
-  /// datagram is then sealed. Empty: the tokenless mode of local tests.
+  /// datagram is then sealed. A token connects once: to come back (a new
+  /// process, a lost connection) get a fresh token from the backend for the
+  /// same client id and slot; the server takes it once it has dropped the
+  /// old connection (its peer timeout). Empty: the tokenless mode of local
+  /// tests (the join first fetches an address cookie from the server).
   std::vector<uint8_t> connect_token;
   /// Join as a spectator: a read-only seat that receives every final tick
   /// and verifies its checksum but sends no inputs (the input provider is

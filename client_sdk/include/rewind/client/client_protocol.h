@@ -2,7 +2,8 @@
 #pragma once
 // A game client's side of a hosted match with no socket and no clock:
 // datagrams and times go in, datagrams and events come out. It joins
-// (through the secure handshake when given a connect token), waits in the
+// (through the secure handshake when given a connect token; otherwise
+// after fetching the tokenless server's address cookie), waits in the
 // lobby, submits inputs, predicts the other players and rolls back when
 // their real inputs arrive, compares its checksum with the server's for
 // every final tick, reports a desync and resynchronizes from the server's

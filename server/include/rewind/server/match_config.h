@@ -31,7 +31,8 @@ struct MatchConfig {
   std::string match_id = "match";
   /// Connections come through a SecureGateway (connect tokens, sealed
   /// packets) and every join names its slot by its token. False: the
-  /// tokenless mode for local tests, where any address takes a free slot.
+  /// tokenless mode for local tests, where any address that answered a
+  /// cookie (TokenlessGateway) takes a free slot.
   bool secure = false;
   std::string replay_path;  ///< empty: no replay file
   bool replay_overwrite = true;

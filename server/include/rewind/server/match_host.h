@@ -53,7 +53,10 @@ class MatchHost {
   /// allowed is counted and dropped; nothing a client sends can stop the
   /// match or act for another player. In secure mode (MatchConfig::secure)
   /// `who` is what the sender's connect token names (SecureGateway), and a
-  /// datagram without it is dropped.
+  /// datagram without it is dropped. In tokenless mode a join is taken only
+  /// with a `who` (its slot and client id unused): the sender's address
+  /// answered a cookie (TokenlessGateway); nothing is sent to an address
+  /// that did not.
   void on_datagram(std::span<const uint8_t> bytes, const Endpoint& from, TimePoint now,
                    const Admission* who = nullptr);
   /// Runs one tick of the loop: re-simulate on late input, finalize, step,
@@ -69,6 +72,11 @@ class MatchHost {
   MatchStats stats() const;
   /// Joined players still heard from: not timed out, not gone.
   uint32_t players_connected() const;
+  /// Whether the client at `endpoint` holds `slot` (a player slot, or
+  /// players + a spectator seat) now: joined, and neither dropped by the
+  /// peer timeout nor gone. The secure gateway asks, so that it lets a
+  /// token for another client take a slot exactly when the match would.
+  bool seated(uint32_t slot, const Endpoint& endpoint) const;
   Tick current_tick() const { return session_->current_tick(); }
   /// The server's clock in ticks: negative during the start countdown.
   Tick server_tick() const { return session_->current_tick() - countdown_ticks_; }
@@ -142,6 +150,9 @@ class MatchHost {
   /// A new connection takes a slot mid-match: per-connection state starts
   /// over, so the broadcast sends it a snapshot and final ticks after it.
   void restart_peer(Peer& peer);
+  /// In the lobby: a seat whose holder left or went silent for the peer
+  /// timeout is free again, so a squatter cannot hold it until the start.
+  void free_silent_lobby_seats(TimePoint now);
   void start_match(TimePoint now);
   void send_match_start(Peer& peer, TimePoint now);
   void send_match_end(TimePoint now);

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// One hosted match inside a server process: its UDP socket, its secure
-// gateway, its MatchHost and its tick timer, all on one strand of the
-// process's io_context, so several matches tick in parallel on a pool of
-// threads while each match's handlers run one at a time. A failure of the
-// game logic (anything thrown out of the match) ends this match only: its
-// clients hear the end, its replay is finished as far as it was final, and
-// the process and its other matches go on.
+// One hosted match inside a server process: its UDP socket, its front door
+// (the secure gateway, or the tokenless one), its MatchHost and its tick
+// timer, all on one strand of the process's io_context, so several matches
+// tick in parallel on a pool of threads while each match's handlers run one
+// at a time. A failure of the game logic (anything thrown out of the match)
+// ends this match only: its clients hear the end, its replay is finished as
+// far as it was final, and the process and its other matches go on.
 #include <asio/io_context.hpp>
 #include <asio/steady_timer.hpp>
 #include <asio/strand.hpp>
@@ -22,6 +22,7 @@
 #include "rewind/server/metrics_text.h"
 #include "rewind/server/secure_gateway.h"
 #include "rewind/server/tick_histogram.h"
+#include "rewind/server/tokenless_gateway.h"
 
 namespace rwd::server {
 
@@ -87,7 +88,8 @@ class MatchRunner : public std::enable_shared_from_this<MatchRunner> {
   asio::steady_timer timer_;
   std::optional<net::PolledUdpSocket> socket_;  ///< read once a tick, see on_tick_timer()
   uint16_t port_ = 0;
-  std::unique_ptr<SecureGateway> gateway_;  ///< null in tokenless mode
+  std::unique_ptr<SecureGateway> gateway_;       ///< null in tokenless mode
+  std::unique_ptr<TokenlessGateway> tokenless_;  ///< null in secure mode
   std::unique_ptr<MatchHost> host_;
   EndedFn on_ended_;
   std::chrono::nanoseconds period_;

@@ -13,6 +13,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rewind/server/api_keys.h"
@@ -41,8 +42,13 @@ struct ServerConfig {
   /// Threads running the matches; 0: one per core, at most one per match.
   uint32_t threads = 0;
   /// The key shared with the match backend that mints connect tokens
-  /// (rewind-token). Set: secure connections only. Empty: tokenless.
+  /// (rewind-token). Set: secure connections only. Empty: tokenless, which
+  /// is refused on a non-loopback bind_address unless
+  /// insecure_tokenless_public is set.
   std::optional<net::Key> server_key;
+  /// Allows tokenless mode on an address other hosts reach (a network the
+  /// operator trusts); run() then warns loudly.
+  bool insecure_tokenless_public = false;
   /// An HTTP endpoint's address: an IPv4 or IPv6 literal and a TCP port
   /// (0: any free port).
   struct HttpBind {
@@ -64,6 +70,12 @@ struct ServerConfig {
   std::optional<ApiKeys> control_keys;
   ControlPolicy control_policy;
 };
+
+/// kInvalidArgument when `config` is tokenless on an address that parses
+/// and is not loopback, without insecure_tokenless_public; the message says
+/// how to run secure. Server::create checks it; a caller that does work
+/// before creating the server (an Agones lifecycle) checks it first.
+Status check_tokenless_exposure(const ServerConfig& config);
 
 class Server final : private ControlTarget {
  public:

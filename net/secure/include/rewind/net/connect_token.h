@@ -10,7 +10,10 @@
 //     id and keys.
 // The client sends only the sealed part. Whoever copies it off the wire
 // lacks the keys, so cannot answer the server's challenge nor read or
-// forge a packet: a token works only for the client holding its keys.
+// forge a packet: a token works only for the client holding its keys. And
+// it works once: the server remembers a token that connected until it
+// expires (UsedTokens), so a client that comes back needs a fresh token,
+// minted for the same client id and slot.
 //
 // Wire layout of a serialized token (little-endian), kConnectTokenBytes:
 //   version u8 | match tag u64 | expiry i64 | slot u32 | client id u64 |
@@ -31,7 +34,9 @@ namespace rwd::net {
 inline constexpr size_t kKeyBytes = 32;
 using Key = std::array<uint8_t, kKeyBytes>;
 
-inline constexpr uint8_t kConnectTokenVersion = 1;
+/// 2: the handshake's challenge token carries the token's MAC (tokens
+/// connect once); version 1 tokens and requests are refused.
+inline constexpr uint8_t kConnectTokenVersion = 2;
 inline constexpr size_t kTokenNonceBytes = 24;
 /// The sealed private part: client id, slot, both keys, the AEAD tag.
 inline constexpr size_t kSealedTokenBytes = 8 + 4 + 2 * kKeyBytes + 16;

@@ -15,9 +15,12 @@
 //
 // The server keeps no state and never sends more bytes than it received
 // until the client has proved, from its own address, that it holds the
-// token's keys. Session keys are derived from the token's keys and the
-// server's salt, so a client that reconnects with the same token gets
-// fresh keys (no nonce is ever reused under one key). Payload packets are
+// token's keys. A token connects once: the challenge token carries the
+// token's MAC (the tag of its sealed part, unique to each minted token) so
+// that the server's caller (SecureGateway) can remember it from the moment
+// a key holder connected, and refuse the token again until it expires.
+// Session keys are derived from the token's keys and the server's salt, so
+// every handshake gets fresh keys (no nonce is ever reused under one key). Payload packets are
 // ChaCha20-Poly1305 with the packet sequence as nonce and a replay window:
 // a forged, altered or replayed datagram is dropped before any game code
 // sees it.
@@ -27,6 +30,8 @@
 //             nonce 24 | sealed token | zero padding to kRequestBytes
 //   Challenge 0xC2 | nonce 24 | sealed(server-to-client key:
 //             salt 16 | challenge token) + 16   (XChaCha20-Poly1305)
+//             (the version byte of a Request is kConnectTokenVersion: it
+//             names the handshake's layouts as well as the token's)
 //   Response  0xC3 | challenge token | tag 16 (keyed BLAKE2b under the
 //             client-to-server key over the challenge token)
 //   Payload   0xC4 | sequence u64 | sealed(session key: bytes) + 16
@@ -52,18 +57,23 @@ enum class SecurePacket : uint8_t {
 /// A request is padded to this size, so no answer to it is ever larger.
 inline constexpr size_t kRequestBytes = 1000;
 /// Salt, and the challenge token: client id u64, slot u32, both keys,
-/// token expiry i64, challenge expiry i64, address 19, salt 16, sealed
-/// with a random nonce (24) and a tag (16).
+/// token expiry i64, challenge expiry i64, address 19, salt 16, token MAC
+/// 16, sealed with a random nonce (24) and a tag (16).
 inline constexpr size_t kSaltBytes = 16;
 inline constexpr size_t kAddressBytes = 19;
+inline constexpr size_t kTokenMacBytes = 16;
 inline constexpr size_t kChallengeTokenBytes =
-    24 + (8 + 4 + 2 * kKeyBytes + 8 + 8 + kAddressBytes + kSaltBytes) + 16;
+    24 + (8 + 4 + 2 * kKeyBytes + 8 + 8 + kAddressBytes + kSaltBytes + kTokenMacBytes) + 16;
 inline constexpr size_t kChallengeBytes = 1 + 24 + kSaltBytes + kChallengeTokenBytes + 16;
 inline constexpr size_t kResponseBytes = 1 + kChallengeTokenBytes + 16;
 /// Bytes a payload packet adds to what it carries.
 inline constexpr size_t kPayloadOverhead = 1 + 8 + 16;
 /// A challenge token is good for this long after it was issued.
 inline constexpr int64_t kChallengeLifetimeS = 10;
+
+/// What identifies one minted token: the tag that authenticates its sealed
+/// part (random-looking, and different for every token minted).
+using TokenMac = std::array<uint8_t, kTokenMacBytes>;
 
 /// Where a datagram came from, as the transport saw it: IPv4 addresses
 /// are mapped into IPv6 (::ffff:a.b.c.d) so one form serves both.
@@ -113,11 +123,20 @@ class SecureSession {
   ReplayWindow window_;
 };
 
+/// What an accepted Request's token names (read from its sealed part).
+struct RequestedToken {
+  uint64_t client_id = 0;
+  uint32_t slot = 0;
+  int64_t expiry_unix_s = 0;
+  TokenMac mac{};
+};
+
 /// A client that proved it holds a token's keys.
 struct ConnectedClient {
   uint64_t client_id = 0;
   uint32_t slot = 0;
   int64_t token_expiry_unix_s = 0;
+  TokenMac token_mac{};  ///< the token it connected with
   /// The server's salt: the same handshake answered twice (a duplicated or
   /// replayed Response) carries the same salt.
   std::array<uint8_t, kSaltBytes> salt{};
@@ -133,9 +152,11 @@ class ServerGate {
 
   /// A Request from `from`: the Challenge to send back into `reply`, or
   /// an error (kCorrupt: malformed; kInvalidArgument: a token this server
-  /// refuses) after which nothing must be sent.
+  /// refuses) after which nothing must be sent. `requested`, when given,
+  /// receives what the token names, so the caller can still decide not to
+  /// send the Challenge (a token already used, a client already connected).
   Status on_request(std::span<const uint8_t> packet, const PeerAddress& from, int64_t now_unix_s,
-                    std::vector<uint8_t>& reply);
+                    std::vector<uint8_t>& reply, RequestedToken* requested = nullptr);
   /// A Response from `from`: the client, or an error (malformed, not from
   /// the address challenged, expired, or a tag the token's key did not make).
   Result<ConnectedClient> on_response(std::span<const uint8_t> packet, const PeerAddress& from,

@@ -11,7 +11,8 @@
 namespace rwd::net {
 
 /// Wire protocol version carried in every Envelope; a receiver drops any other.
-inline constexpr uint32_t kProtocolVersion = 1;
+/// 2: a tokenless join travels in a cookie packet (net/address_cookie.h).
+inline constexpr uint32_t kProtocolVersion = 2;
 /// Largest datagram Rewind sends or accepts, in bytes. Chosen to stay below
 /// the common 1280-byte IPv6 minimum MTU minus IP/UDP headers, so datagrams
 /// are never fragmented.
