@@ -24,7 +24,7 @@ packages=(
   # libraries
   libasio-dev libprotobuf-dev protobuf-compiler libxxhash-dev libsodium-dev
   # the HTTP endpoints (metrics, control API, the Agones SDK client): Boost.Beast, JSON
-  libboost1.81-dev nlohmann-json3-dev
+  libboost1.81-dev nlohmann-json3-dev libssl-dev openssl
   libgtest-dev libgmock-dev libbenchmark-dev
   # peer engines for the side-by-side benchmarks (bench/ only) and the charts
   libbullet-dev libbox2d-dev gnuplot-nox

@@ -7,6 +7,7 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
+#include <boost/asio/ssl/context.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <boost/beast/core/flat_buffer.hpp>
 #include <boost/beast/core/tcp_stream.hpp>
@@ -15,10 +16,12 @@
 #include <boost/beast/http/read.hpp>
 #include <boost/beast/http/string_body.hpp>
 #include <boost/beast/http/write.hpp>
+#include <boost/beast/ssl/ssl_stream.hpp>
 #include <exception>
 #include <list>
 #include <optional>
 #include <thread>
+#include <type_traits>
 
 namespace rwd::server {
 namespace {
@@ -47,6 +50,32 @@ HttpRequest request_of(const http::request<http::string_body>& message) {
   request.authorization = std::string(message[http::field::authorization]);
   request.body = message.body();
   return request;
+}
+
+// TLS 1.2 and newer with the server's certificate; with a client CA,
+// mutual TLS: a client without a certificate that CA signed never gets to
+// send a request.
+Result<asio::ssl::context> tls_context(const std::string& prefix, const HttpTls& tls) {
+  asio::ssl::context context(asio::ssl::context::tls_server);
+  context.set_options(asio::ssl::context::default_workarounds | asio::ssl::context::no_sslv2 |
+                      asio::ssl::context::no_sslv3 | asio::ssl::context::no_tlsv1 |
+                      asio::ssl::context::no_tlsv1_1);
+  const auto fail = [&](const std::string& what, const std::string& file, const error_code& e) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         prefix + ": TLS " + what + " " + file + ": " + e.message());
+  };
+  error_code error;
+  context.use_certificate_chain_file(tls.certificate_file, error);
+  if (error) return fail("certificate", tls.certificate_file, error);
+  context.use_private_key_file(tls.private_key_file, asio::ssl::context::pem, error);
+  if (error) return fail("private key", tls.private_key_file, error);
+  if (!tls.client_ca_file.empty()) {
+    context.load_verify_file(tls.client_ca_file, error);
+    if (error) return fail("client CA", tls.client_ca_file, error);
+    context.set_verify_mode(asio::ssl::verify_peer | asio::ssl::verify_fail_if_no_peer_cert, error);
+    if (error) return fail("client CA", tls.client_ca_file, error);
+  }
+  return context;
 }
 
 }  // namespace
@@ -100,7 +129,7 @@ bool is_loopback_address(std::string_view address) {
          asio::ip::make_address_v4(asio::ip::v4_mapped, ip.to_v6()).is_loopback();
 }
 
-class HttpConnection;
+class ConnectionBase;
 
 struct HttpEndpoint::Impl {
   Impl(std::string endpoint_name, Handler handler_fn, Limits given)
@@ -122,46 +151,35 @@ struct HttpEndpoint::Impl {
   std::string name;
   Handler handler;
   Limits limits;
+  std::optional<asio::ssl::context> tls;  // set: every connection is TLS
   std::thread thread;
   bool serving = true;  // on the endpoint's thread
   std::atomic<bool> closed{false};
   // Open connections, oldest first; each removes itself when it ends.
-  std::list<HttpConnection*> live;
+  std::list<ConnectionBase*> live;
   size_t evicting = 0;  // connections closed for room whose handlers are still pending
 
-  std::atomic<uint64_t> answered{0}, refused{0}, bad_requests{0}, timed_out{0}, evicted{0}, busy{0};
+  std::atomic<uint64_t> answered{0}, refused{0}, bad_requests{0}, timed_out{0}, evicted{0}, busy{0},
+      tls_failures{0};
 };
 
-// One accepted socket: read one request, answer it, then read and discard
-// until the client closes (so closing never resets a connection whose
-// answer is still on its way). The stream's deadline, set once at accept,
-// ends it whatever it is doing.
-class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
+// What the endpoint needs of a connection, whatever its stream.
+class ConnectionBase {
  public:
   enum class Phase : uint8_t { kReading, kAnswering, kDraining };
 
-  HttpConnection(HttpEndpoint::Impl& endpoint, tcp::socket socket)
-      : endpoint_(endpoint), stream_(std::move(socket)) {
+  explicit ConnectionBase(HttpEndpoint::Impl& endpoint) : endpoint_(endpoint) {
     position_ = endpoint_.live.insert(endpoint_.live.end(), this);
   }
-  ~HttpConnection() {
+  virtual ~ConnectionBase() {
     if (evicted_) --endpoint_.evicting;
     endpoint_.live.erase(position_);
   }
-  HttpConnection(const HttpConnection&) = delete;
-  HttpConnection& operator=(const HttpConnection&) = delete;
+  ConnectionBase(const ConnectionBase&) = delete;
+  ConnectionBase& operator=(const ConnectionBase&) = delete;
 
   Phase phase() const { return phase_; }
   bool evicted() const { return evicted_; }
-
-  void start() {
-    parser_.emplace();
-    limit(*parser_, endpoint_.limits);
-    stream_.expires_after(endpoint_.limits.deadline);
-    http::async_read(
-        stream_, buffer_, *parser_,
-        [self = shared_from_this()](const error_code& error, size_t) { self->on_read(error); });
-  }
 
   // Closes the socket for a newer connection: the pending operation ends
   // with operation_aborted and the last reference goes with it.
@@ -171,14 +189,84 @@ class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
     ++endpoint_.evicted;
     stop();
   }
+  virtual void stop() = 0;
 
-  void stop() {
+ protected:
+  HttpEndpoint::Impl& endpoint_;
+  Phase phase_ = Phase::kReading;
+
+ private:
+  std::list<ConnectionBase*>::iterator position_;
+  bool evicted_ = false;
+};
+
+// One accepted socket: (a TLS handshake,) read one request, answer it, then
+// end the connection: a plain one reads and discards until the client
+// closes (so closing never resets a connection whose answer is still on
+// its way), a TLS one sends its close_notify. The deadline, set once at
+// accept, ends it whatever it is doing. A TLS handshake counts as waiting
+// for the request.
+template <class Stream>
+class HttpConnection final : public ConnectionBase,
+                             public std::enable_shared_from_this<HttpConnection<Stream>> {
+ public:
+  static constexpr bool kTls = !std::is_same_v<Stream, beast::tcp_stream>;
+
+  HttpConnection(HttpEndpoint::Impl& endpoint, tcp::socket socket)
+      : ConnectionBase(endpoint), stream_(make_stream(endpoint, std::move(socket))) {}
+
+  void start() {
+    beast::get_lowest_layer(stream_).expires_after(endpoint_.limits.deadline);
+    if constexpr (kTls) {
+      stream_.async_handshake(asio::ssl::stream_base::server,
+                              [self = this->shared_from_this()](const error_code& error) {
+                                self->on_handshake(error);
+                              });
+    } else {
+      read();
+    }
+  }
+
+  void stop() override {
     error_code ignored;
-    stream_.socket().shutdown(tcp::socket::shutdown_both, ignored);
-    stream_.socket().close(ignored);
+    tcp::socket& socket = beast::get_lowest_layer(stream_).socket();
+    socket.shutdown(tcp::socket::shutdown_both, ignored);
+    socket.close(ignored);
   }
 
  private:
+  static Stream make_stream(HttpEndpoint::Impl& endpoint, tcp::socket socket) {
+    if constexpr (kTls) {
+      return Stream(beast::tcp_stream(std::move(socket)), *endpoint.tls);
+    } else {
+      (void)endpoint;
+      return Stream(std::move(socket));
+    }
+  }
+
+  void on_handshake(const error_code& error) {
+    if (!endpoint_.serving || error == asio::error::operation_aborted) return;
+    if (error == beast::error::timeout) {
+      ++endpoint_.timed_out;
+      return;
+    }
+    // No certificate, one the client CA did not sign, not TLS at all.
+    if (error) {
+      ++endpoint_.tls_failures;
+      return stop();
+    }
+    read();
+  }
+
+  void read() {
+    parser_.emplace();
+    limit(*parser_, endpoint_.limits);
+    http::async_read(stream_, buffer_, *parser_,
+                     [self = this->shared_from_this()](const error_code& error, size_t) {
+                       self->on_read(error);
+                     });
+  }
+
   void on_read(const error_code& error) {
     if (!endpoint_.serving || error == asio::error::operation_aborted) return;
     if (error == beast::error::timeout) {
@@ -193,10 +281,10 @@ class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
         error == asio::error::eof) {
       return reject(400, "bad request\n");
     }
-    if (error) return;  // reset, broken pipe: nobody to answer
+    if (error) return;  // reset, broken pipe, a TLS alert: nobody to answer
     HttpRequest request = request_of(parser_->get());
     error_code ignored;
-    const tcp::endpoint peer = stream_.socket().remote_endpoint(ignored);
+    const tcp::endpoint peer = beast::get_lowest_layer(stream_).socket().remote_endpoint(ignored);
     request.peer = peer.address().to_string();
     HttpReply reply;
     if (request.target.empty() || request.target.front() != '/') {
@@ -227,32 +315,37 @@ class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
     response_.prepare_payload();
     if (head_only) response_.body().clear();  // Content-Length stays the GET's
     http::async_write(stream_, response_,
-                      [self = shared_from_this()](const error_code& error, size_t) {
+                      [self = this->shared_from_this()](const error_code& error, size_t) {
                         if (error || !self->endpoint_.serving) return self->stop();
-                        error_code ignored;
-                        self->stream_.socket().shutdown(tcp::socket::shutdown_send, ignored);
-                        self->drain();
+                        self->finish();
                       });
   }
 
-  void drain() {
+  void finish() {
     phase_ = Phase::kDraining;
+    if constexpr (kTls) {
+      stream_.async_shutdown(
+          [self = this->shared_from_this()](const error_code&) { self->stop(); });
+    } else {
+      error_code ignored;
+      stream_.socket().shutdown(tcp::socket::shutdown_send, ignored);
+      drain();
+    }
+  }
+
+  void drain() {
     stream_.async_read_some(asio::buffer(discard_),
-                            [self = shared_from_this()](const error_code& error, size_t) {
+                            [self = this->shared_from_this()](const error_code& error, size_t) {
                               if (error || !self->endpoint_.serving) return self->stop();
                               self->drain();
                             });
   }
 
-  HttpEndpoint::Impl& endpoint_;
-  beast::tcp_stream stream_;
+  Stream stream_;
   beast::flat_buffer buffer_;
   std::optional<RequestParser> parser_;
   http::response<http::string_body> response_;
   std::array<char, 512> discard_{};
-  std::list<HttpConnection*>::iterator position_;
-  Phase phase_ = Phase::kReading;
-  bool evicted_ = false;
 };
 
 void HttpEndpoint::Impl::accept_next() {
@@ -279,8 +372,11 @@ void HttpEndpoint::Impl::on_accept(const error_code& error, tcp::socket socket) 
     socket.non_blocking(true, ignored);
     socket.write_some(asio::buffer(kBusy.data(), kBusy.size()), ignored);
     socket.close(ignored);
+  } else if (tls) {
+    std::make_shared<HttpConnection<beast::ssl_stream<beast::tcp_stream>>>(*this, std::move(socket))
+        ->start();
   } else {
-    std::make_shared<HttpConnection>(*this, std::move(socket))->start();
+    std::make_shared<HttpConnection<beast::tcp_stream>>(*this, std::move(socket))->start();
   }
   accept_next();
 }
@@ -288,14 +384,14 @@ void HttpEndpoint::Impl::on_accept(const error_code& error, tcp::socket socket) 
 bool HttpEndpoint::Impl::make_room() {
   // A connection that is done and only draining goes first, then the one
   // that has waited longest for its request; one being answered stays.
-  HttpConnection* oldest_reading = nullptr;
-  for (HttpConnection* connection : live) {
+  ConnectionBase* oldest_reading = nullptr;
+  for (ConnectionBase* connection : live) {
     if (connection->evicted()) continue;
-    if (connection->phase() == HttpConnection::Phase::kDraining) {
+    if (connection->phase() == ConnectionBase::Phase::kDraining) {
       connection->evict();
       return true;
     }
-    if (oldest_reading == nullptr && connection->phase() == HttpConnection::Phase::kReading) {
+    if (oldest_reading == nullptr && connection->phase() == ConnectionBase::Phase::kReading) {
       oldest_reading = connection;
     }
   }
@@ -309,12 +405,13 @@ void HttpEndpoint::Impl::shut_down() {
   error_code ignored;
   acceptor.close(ignored);
   retry.cancel();
-  for (HttpConnection* connection : live) connection->stop();
+  for (ConnectionBase* connection : live) connection->stop();
 }
 
 Result<std::unique_ptr<HttpEndpoint>> HttpEndpoint::open(std::string_view name,
                                                          std::string_view address, uint16_t port,
-                                                         Handler handler, Limits limits) {
+                                                         Handler handler, Limits limits,
+                                                         const std::optional<HttpTls>& tls) {
   const std::string prefix(name);
   error_code error;
   const asio::ip::address ip = asio::ip::make_address(std::string(address), error);
@@ -327,6 +424,11 @@ Result<std::unique_ptr<HttpEndpoint>> HttpEndpoint::open(std::string_view name,
     return Status::Error(ErrorCode::kInvalidArgument, prefix + ": max connections must be > 0");
   }
   auto impl = std::make_unique<Impl>(prefix, std::move(handler), limits);
+  if (tls) {
+    auto context = tls_context(prefix, *tls);
+    if (!context.ok()) return context.status();
+    impl->tls.emplace(std::move(*context));
+  }
   const tcp::endpoint endpoint(ip, port);
   impl->acceptor.open(endpoint.protocol(), error);
   if (!error) impl->acceptor.set_option(tcp::acceptor::reuse_address(true), error);
@@ -367,6 +469,7 @@ HttpEndpoint::Stats HttpEndpoint::stats() const {
   out.timed_out = impl_->timed_out.load();
   out.evicted = impl_->evicted.load();
   out.busy = impl_->busy.load();
+  out.tls_failures = impl_->tls_failures.load();
   return out;
 }
 

@@ -181,6 +181,14 @@ int main(int argc, char** argv) {
                    "free port; empty = off)");
   flags.add_string("metrics-port-file", &metrics_port_file,
                    "write the bound metrics TCP port to this file once listening");
+  rwd::server::HttpTls tls;
+  flags.add_string("http-tls-cert", &tls.certificate_file,
+                   "serve the metrics and control endpoints over HTTPS with this PEM certificate "
+                   "chain (with --http-tls-key)");
+  flags.add_string("http-tls-key", &tls.private_key_file, "the PEM private key of --http-tls-cert");
+  flags.add_string("http-tls-client-ca", &tls.client_ca_file,
+                   "mutual TLS: clients of both endpoints must present a certificate this PEM CA "
+                   "signed");
   flags.add_string("metrics-keys", &metrics_keys,
                    "scrapes must carry a bearer key of this file ('NAME KEY' a line); required "
                    "to serve metrics on an address other than loopback");
@@ -254,6 +262,14 @@ int main(int argc, char** argv) {
   } else if (!metrics_port_file.empty()) {
     write_log(LogLevel::kError, "--metrics-port-file needs --metrics-bind");
     return rwd::cli::kExitUsage;
+  }
+  if (!tls.certificate_file.empty() || !tls.private_key_file.empty() ||
+      !tls.client_ca_file.empty()) {
+    if (tls.certificate_file.empty() || tls.private_key_file.empty()) {
+      write_log(LogLevel::kError, "--http-tls-cert and --http-tls-key go together");
+      return rwd::cli::kExitUsage;
+    }
+    config.http_tls = tls;
   }
   if (!metrics_keys.empty()) {
     auto keys = rwd::server::ApiKeys::load(metrics_keys);

@@ -64,10 +64,13 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
       return bad(std::string(name) + ": bad address '" + bind->address + "': " + error.message());
     }
   }
-  if (config.metrics && !config.metrics_keys && !is_loopback_address(config.metrics->address)) {
+  const bool mutual_tls = config.http_tls && !config.http_tls->client_ca_file.empty();
+  if (config.metrics && !config.metrics_keys && !mutual_tls &&
+      !is_loopback_address(config.metrics->address)) {
     return bad("refusing to serve /metrics on " + config.metrics->address +
                " without --metrics-keys FILE: on an address other than loopback every scrape "
-               "must carry a bearer key (or bind 127.0.0.1)");
+               "must carry a bearer key or a client certificate (--http-tls-client-ca), or bind "
+               "127.0.0.1");
   }
   if (config.port != 0 && config.port + config.matches - 1 > 65535) {
     return bad("ports " + std::to_string(config.port) + "+" + std::to_string(config.matches) +
@@ -94,7 +97,8 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   if (config.metrics) {
     auto metrics = HttpEndpoint::open(
         "metrics", config.metrics->address, config.metrics->port,
-        [self](const HttpRequest& request) { return self->serve_metrics(request); });
+        [self](const HttpRequest& request) { return self->serve_metrics(request); }, {},
+        config.http_tls);
     if (!metrics.ok()) return metrics.status();
     server->metrics_ = std::move(*metrics);
   }
@@ -103,7 +107,8 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
         static_cast<ControlTarget&>(*server), *config.control_keys, config.control_policy);
     auto control = HttpEndpoint::open(
         "control", config.control_bind.address, config.control_bind.port,
-        [self](const HttpRequest& request) { return self->control_api_->handle(request); });
+        [self](const HttpRequest& request) { return self->control_api_->handle(request); }, {},
+        config.http_tls);
     if (!control.ok()) return control.status();
     server->control_ = std::move(*control);
   }
@@ -260,20 +265,28 @@ void Server::run() {
                                    std::to_string(c.window_ticks) + ", " + mode);
     match->start();
   }
+  const std::string scheme = config_.http_tls ? "https://" : "http://";
+  const std::string tls_note = !config_.http_tls                          ? ""
+                               : config_.http_tls->client_ca_file.empty() ? ", TLS"
+                                                                          : ", mutual TLS";
   if (metrics_) {
-    write_log(LogLevel::kInfo, "metrics on http://" + bracketed(config_.metrics->address) + ":" +
+    write_log(LogLevel::kInfo, "metrics on " + scheme + bracketed(config_.metrics->address) + ":" +
                                    std::to_string(metrics_->port()) + "/metrics" +
-                                   (config_.metrics_keys ? " (bearer keys required)" : ""));
+                                   (config_.metrics_keys ? " (bearer keys required" + tls_note + ")"
+                                    : tls_note.empty()   ? ""
+                                                         : " (" + tls_note.substr(2) + ")"));
   }
   if (control_) {
-    write_log(LogLevel::kInfo, "control API on http://" + bracketed(config_.control_bind.address) +
-                                   ":" + std::to_string(control_->port()) + "/matches (" +
-                                   std::to_string(config_.control_keys->size()) + " bearer keys)");
-    if (!is_loopback_address(config_.control_bind.address)) {
+    write_log(LogLevel::kInfo,
+              "control API on " + scheme + bracketed(config_.control_bind.address) + ":" +
+                  std::to_string(control_->port()) + "/matches (" +
+                  std::to_string(config_.control_keys->size()) + " bearer keys" + tls_note + ")");
+    if (!config_.http_tls && !is_loopback_address(config_.control_bind.address)) {
       write_log(LogLevel::kWarning,
                 "the control API is on " + config_.control_bind.address +
-                    " over plain HTTP: its bearer keys cross the network in the clear; keep it "
-                    "on a private network or behind a TLS proxy");
+                    " over plain HTTP: its bearer keys cross the network in the clear; give it "
+                    "--http-tls-cert/--http-tls-key (and --http-tls-client-ca) or keep it on a "
+                    "private network");
     }
   }
   if (launch.size() > 1 || config_.control) {

@@ -38,6 +38,8 @@ check 64 "--control-keys /nonexistent/keys: cannot read it" rewind-server --cont
 check 64 "--control-keys and --control-port-file need --control" rewind-server --control-keys x
 check 64 "--control-bind: expected HOST:PORT" rewind-server --control --control-bind nowhere
 check 64 "are required" rewind-token api-key --name a
+check 64 "--http-tls-cert and --http-tls-key go together" rewind-server --http-tls-cert c.pem
+check 1 "metrics: TLS certificate /nonexistent/c.pem" rewind-server --bind 127.0.0.1 --port 0 --metrics-bind 127.0.0.1:0 --http-tls-cert /nonexistent/c.pem --http-tls-key /nonexistent/k.pem
 check 1 "match id '..' must be a name" rewind-server --match-id .. --bind 127.0.0.1 --port 0
 check 1 '"level":"error","msg":"unknown game' rewind-server --game chess --port 0 --log-json
 check 64 "--agones-health-period: 0 is outside [0.1, 60]" rewind-server --agones --agones-health-period 0

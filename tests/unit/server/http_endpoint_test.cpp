@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <thread>
 #include <vector>
 
 #include "http_test_client.h"
@@ -86,6 +87,10 @@ TEST_F(HttpEndpointTest, ASilentClientIsClosedAtTheDeadline) {
   bool closed = false;
   EXPECT_EQ(client_->read_all(*socket, 5s, &closed), "");
   EXPECT_TRUE(closed);
+  // The endpoint counts the timeout on its own thread, just after closing.
+  for (int i = 0; i < 500 && endpoint_->stats().timed_out == 0; ++i) {
+    std::this_thread::sleep_for(10ms);
+  }
   EXPECT_EQ(endpoint_->stats().timed_out, 1u);
   EXPECT_EQ(status_of(client_->exchange("GET /metrics HTTP/1.1\r\n\r\n")), 200);
 }

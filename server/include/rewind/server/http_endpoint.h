@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -59,6 +60,15 @@ struct HttpEndpointLimits {
   size_t max_connections = 16;
 };
 
+/// TLS for an endpoint, from PEM files read once at open().
+struct HttpTls {
+  std::string certificate_file;  ///< the server's certificate chain
+  std::string private_key_file;  ///< its private key (unencrypted)
+  /// Set: mutual TLS. A client must present a certificate this CA signed,
+  /// or the handshake fails before any request is read.
+  std::string client_ca_file;
+};
+
 class HttpEndpoint {
  public:
   /// Answers one request; runs on the endpoint's thread, one at a time.
@@ -74,15 +84,18 @@ class HttpEndpoint {
     uint64_t timed_out = 0;     ///< closed at the deadline before a whole request arrived
     uint64_t evicted = 0;       ///< closed to make room for a newer connection
     uint64_t busy = 0;          ///< refused with 503: every connection was mid-request
+    uint64_t tls_failures = 0;  ///< TLS handshakes that failed (no or a foreign certificate)
   };
 
   /// Listens on `address` (an IPv4 or IPv6 literal) and `port` (0: any free
   /// port, see port()) and serves on a thread of its own until close().
-  /// `name` ("metrics", "control") prefixes errors. kInvalidArgument for an
-  /// unparsable address, kIo when the OS refuses the bind.
+  /// `name` ("metrics", "control") prefixes errors. With `tls` every
+  /// connection is HTTPS. kInvalidArgument for an unparsable address or a
+  /// TLS file that does not load, kIo when the OS refuses the bind.
   static Result<std::unique_ptr<HttpEndpoint>> open(std::string_view name, std::string_view address,
                                                     uint16_t port, Handler handler,
-                                                    Limits limits = {});
+                                                    Limits limits = {},
+                                                    const std::optional<HttpTls>& tls = {});
 
   uint16_t port() const { return port_; }
   Stats stats() const;

@@ -61,6 +61,9 @@ struct ServerConfig {
   std::optional<HttpBind> metrics;
   /// Set: every scrape must carry a bearer key of this file.
   std::optional<ApiKeys> metrics_keys;
+  /// Set: both HTTP endpoints speak only HTTPS; with a client CA, mutual
+  /// TLS (which also lets /metrics leave loopback without metrics_keys).
+  std::optional<HttpTls> http_tls;
   /// Serves the control API (ControlApi: GET/POST /matches, DELETE
   /// /matches/<id>) on control_bind, with control_keys required; the
   /// process then runs until signalled instead of ending with its last
