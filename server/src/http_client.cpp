@@ -1,18 +1,31 @@
 // SPDX-License-Identifier: MIT
+// The only file that includes Boost.Beast (and Boost.Asio): both are
+// header-only and slow to compile, so the HTTP client and the reader its
+// tests and fuzz target drive share this one translation unit.
 #include "rewind/server/http_client.h"
 
-#include <asio/buffer.hpp>
-#include <asio/connect.hpp>
-#include <asio/error.hpp>
-#include <asio/io_context.hpp>
-#include <asio/ip/tcp.hpp>
-#include <asio/read.hpp>
-#include <asio/steady_timer.hpp>
-#include <asio/write.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core/flat_buffer.hpp>
+#include <boost/beast/core/string.hpp>
+#include <boost/beast/core/tcp_stream.hpp>
+#include <boost/beast/http/error.hpp>
+#include <boost/beast/http/message.hpp>
+#include <boost/beast/http/parser.hpp>
+#include <boost/beast/http/read.hpp>
+#include <boost/beast/http/string_body.hpp>
+#include <boost/beast/http/write.hpp>
+#include <iterator>
 #include <utility>
 
 namespace rwd::server {
 namespace {
+
+namespace net = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
+using tcp = net::ip::tcp;
+using ResponseParser = http::response_parser<http::string_body>;
 
 bool is_method(std::string_view text) {
   if (text.empty() || text.size() > 16) return false;
@@ -22,6 +35,8 @@ bool is_method(std::string_view text) {
   return true;
 }
 
+// Beast writes the target as given: without this check a caller's target
+// could carry a space or CRLF into the request line.
 bool is_target(std::string_view text) {
   if (text.empty() || text.front() != '/' || text.size() > 2048) return false;
   for (const char c : text) {
@@ -30,97 +45,107 @@ bool is_target(std::string_view text) {
   return true;
 }
 
-std::string format_request(std::string_view host, uint16_t port, const HttpRequest& request) {
-  std::string out = request.method + " " + request.target + " HTTP/1.1\r\n";
-  out += "Host: " + std::string(host) + ":" + std::to_string(port) + "\r\n";
-  out += "Accept: application/json\r\nConnection: close\r\n";
-  if (request.method != "GET") {
-    out += "Content-Type: application/json\r\n";
-    out += "Content-Length: " + std::to_string(request.body.size()) + "\r\n";
+// The one configuration of the parser, for http_call and
+// parse_http_response alike.
+void apply_limits(const HttpResponseLimits& limits, ResponseParser* parser) {
+  parser->header_limit(limits.max_header_bytes);
+  parser->body_limit(static_cast<std::uint64_t>(limits.max_body_bytes));
+}
+
+bool is_parse_error(const beast::error_code& error) {
+  return error.category() == http::make_error_code(http::error::need_more).category();
+}
+
+// What a parse that ended with `error` (none: a complete response) comes to,
+// with the checks Beast leaves to its caller. Messages start with `context`.
+Result<HttpResponse> take_response(ResponseParser* parser, const beast::error_code& error,
+                                   const HttpResponseLimits& limits, const std::string& context) {
+  auto refuse = [&](ErrorCode code, const std::string& what) {
+    return Status::Error(code, context + what);
+  };
+  if (error == http::error::body_limit) {
+    return refuse(ErrorCode::kCapacity,
+                  "body longer than " + std::to_string(limits.max_body_bytes) + " bytes");
   }
-  out += "\r\n";
-  if (request.method != "GET") out += request.body;
+  if (error == http::error::header_limit) {
+    return refuse(ErrorCode::kCapacity, "header section longer than " +
+                                            std::to_string(limits.max_header_bytes) + " bytes");
+  }
+  if (error == http::error::end_of_stream) {
+    return refuse(ErrorCode::kCorrupt, "the connection closed before a response");
+  }
+  if (error == http::error::partial_message) {
+    return refuse(ErrorCode::kCorrupt, "the connection closed mid-response");
+  }
+  if (error) return refuse(ErrorCode::kCorrupt, "malformed response: " + error.message());
+
+  auto& message = parser->get();
+  const unsigned status = message.result_int();
+  // Beast takes any three digits.
+  if (status < 100 || status > 599) {
+    return refuse(ErrorCode::kCorrupt, "status code " + std::to_string(status) + " out of range");
+  }
+  // Beast de-chunks a coding list that ends in chunked and reads any other
+  // to the end of the connection; either way the body would still be in a
+  // coding (gzip, ...) that nothing here decodes.
+  const auto codings = message.equal_range(http::field::transfer_encoding);
+  if (codings.first != codings.second && (std::next(codings.first) != codings.second ||
+                                          !beast::iequals(codings.first->value(), "chunked"))) {
+    return refuse(ErrorCode::kCorrupt, "unsupported Transfer-Encoding");
+  }
+  HttpResponse out;
+  out.status = static_cast<int>(status);
+  out.reason = std::string(message.reason());
+  out.body = std::move(message.body());
   return out;
 }
 
-// One call's state. The steps chain asynchronously on a private
-// io_context, so a single timer can cancel whichever step is pending when
-// the deadline passes.
+// One call's connection. The steps chain asynchronously on a private
+// io_context so that the stream's timer, set once to the call's deadline,
+// ends whichever step is pending: Beast then closes the socket and the step
+// fails with error::timeout. (Beast's synchronous reads ignore the timer.)
 struct Call {
-  explicit Call(size_t max_bytes) : resolver(io), socket(io), timer(io), limit(max_bytes) {}
+  explicit Call(const HttpResponseLimits& limits) { apply_limits(limits, &parser); }
 
-  void fail(const std::string& step, const std::error_code& error) {
-    fail_with(step + ": " + error.message());
-  }
-
-  void fail_with(std::string text) {
-    if (!error_text.empty()) return;
-    error_text = std::move(text);
-    timer.cancel();
-    resolver.cancel();
-    std::error_code ignored;
-    socket.close(ignored);
-  }
-
-  void start(const std::string& host, uint16_t port) {
-    resolver.async_resolve(
-        host, std::to_string(port),
-        [this](const std::error_code& error, const asio::ip::tcp::resolver::results_type& found) {
-          if (error) return fail("resolve", error);
-          connect(found);
-        });
-  }
-
-  // Every address the name resolved to, in order ("localhost" may be ::1
-  // first while the service listens on 127.0.0.1 only).
-  void connect(const asio::ip::tcp::resolver::results_type& found) {
-    asio::async_connect(socket, found,
-                        [this](const std::error_code& error, const asio::ip::tcp::endpoint&) {
-                          if (error) return fail("connect", error);
-                          write();
-                        });
-  }
-
-  void write() {
-    asio::async_write(socket, asio::buffer(wire), [this](const std::error_code& error, size_t) {
-      if (error) return fail("write", error);
-      read_more();
+  void connect(const tcp::resolver::results_type& addresses) {
+    // Every address the name resolved to, in order ("localhost" may be ::1
+    // first while the service listens on 127.0.0.1 only).
+    stream.async_connect(addresses, [this](const beast::error_code& error, const tcp::endpoint&) {
+      if (error) return fail("connect", error);
+      write();
     });
   }
 
-  void read_more() {
-    // Bounded: one byte past the limit is enough to know it is too long.
-    const size_t room = limit + 1 - received.size();
-    const size_t old = received.size();
-    received.resize(old + std::min<size_t>(room, 4096));
-    socket.async_read_some(
-        asio::buffer(received.data() + old, received.size() - old),
-        [this, old](const std::error_code& error, size_t n) {
-          received.resize(old + n);
-          if (error == asio::error::eof) {
-            done = true;
-            timer.cancel();
-            return;
-          }
-          if (error) return fail("read", error);
-          if (received.size() > limit) {
-            too_long = true;
-            return fail_with("response longer than " + std::to_string(limit) + " bytes");
-          }
-          read_more();
-        });
+  void write() {
+    http::async_write(stream, request, [this](const beast::error_code& error, size_t) {
+      if (error) return fail("write", error);
+      read();
+    });
   }
 
-  asio::io_context io{1};
-  asio::ip::tcp::resolver resolver;
-  asio::ip::tcp::socket socket;
-  asio::steady_timer timer;
-  size_t limit;
-  std::string wire;
-  std::string received;
-  std::string error_text;
-  bool done = false;
-  bool too_long = false;
+  void read() {
+    http::async_read(stream, buffer, parser, [this](const beast::error_code& error, size_t) {
+      // A malformed answer is the response's fault, not the connection's.
+      if (error && !is_parse_error(error)) return fail("read", error);
+      read_error = error;
+      beast::error_code ignored;
+      stream.socket().shutdown(tcp::socket::shutdown_both, ignored);
+    });
+  }
+
+  void fail(const char* step, const beast::error_code& error) {
+    failed_step = step;
+    io_error = error;
+  }
+
+  net::io_context io{1};
+  beast::tcp_stream stream{io};
+  http::request<http::string_body> request;
+  beast::flat_buffer buffer;
+  ResponseParser parser;
+  const char* failed_step = nullptr;  ///< set when connecting, writing or reading failed
+  beast::error_code io_error;
+  beast::error_code read_error;  ///< the parser's, once reading ended
 };
 
 }  // namespace
@@ -135,25 +160,70 @@ Result<HttpResponse> http_call(std::string_view host, uint16_t port, const HttpR
     return Status::Error(ErrorCode::kInvalidArgument,
                          "HTTP: malformed target '" + request.target + "'");
   }
+  const auto deadline = std::chrono::steady_clock::now() + limits.deadline;
   const std::string where = std::string(host) + ":" + std::to_string(port);
-  Call call(limits.max_response_bytes);
-  call.wire = format_request(host, port, request);
-  call.timer.expires_after(limits.deadline);
-  call.timer.async_wait([&call, &limits](const std::error_code& error) {
-    if (error || call.done) return;
-    call.fail_with("no answer within " + std::to_string(limits.deadline.count()) + " ms");
-  });
-  call.start(std::string(host), port);
+  const std::string context =
+      "HTTP " + request.method + " " + request.target + " to " + where + ": ";
+
+  Call call(limits.response);
+  http::request<http::string_body>& wire = call.request;
+  wire.method_string(request.method);
+  wire.target(request.target);
+  wire.version(11);
+  wire.set(http::field::host, where);
+  wire.set(http::field::accept, "application/json");
+  wire.keep_alive(false);
+  if (request.method != "GET") {
+    wire.set(http::field::content_type, "application/json");
+    wire.body() = request.body;
+    wire.content_length(request.body.size());
+  }
+
+  // Synchronous: asio's resolver cannot interrupt getaddrinfo either, so an
+  // asynchronous resolve under the deadline would wait for it just the same.
+  beast::error_code error;
+  tcp::resolver resolver(call.io);
+  const auto addresses = resolver.resolve(std::string(host), std::to_string(port), error);
+  if (error) return Status::Error(ErrorCode::kIo, context + "resolve: " + error.message());
+
+  call.stream.expires_at(deadline);
+  call.connect(addresses);
   call.io.run();
-  if (call.too_long) {
-    return Status::Error(ErrorCode::kCapacity, "HTTP " + request.method + " " + request.target +
-                                                   " to " + where + ": " + call.error_text);
+  if (call.failed_step != nullptr) {
+    const std::string why =
+        call.io_error == beast::error::timeout
+            ? "no answer within " + std::to_string(limits.deadline.count()) + " ms"
+            : call.io_error.message();
+    return Status::Error(ErrorCode::kIo, context + call.failed_step + ": " + why);
   }
-  if (!call.done) {
-    return Status::Error(ErrorCode::kIo, "HTTP " + request.method + " " + request.target + " to " +
-                                             where + ": " + call.error_text);
+  return take_response(&call.parser, call.read_error, limits.response, context);
+}
+
+Result<HttpResponse> parse_http_response(std::string_view bytes, const HttpResponseLimits& limits) {
+  ResponseParser parser;
+  apply_limits(limits, &parser);
+  parser.eager(true);  // as http::read sets it
+  // http::read's loop, with `bytes` as all the connection ever delivers:
+  // put() while it makes progress; once it needs more, the peer has closed.
+  beast::error_code error;
+  net::const_buffer rest(bytes.data(), bytes.size());
+  while (!parser.is_done()) {
+    if (rest.size() > 0) {
+      rest += parser.put(rest, error);
+      if (error != http::error::need_more) {
+        if (error) break;
+        continue;
+      }
+      error = {};
+    }
+    if (parser.got_some()) {
+      parser.put_eof(error);
+    } else {
+      error = http::error::end_of_stream;
+    }
+    break;
   }
-  return parse_http_response(call.received, limits.max_response_bytes);
+  return take_response(&parser, error, limits, "HTTP response: ");
 }
 
 }  // namespace rwd::server

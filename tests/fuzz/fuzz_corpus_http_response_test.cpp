@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Runs fuzz_http_response_one over a deterministic corpus: responses framed
 // by Content-Length, by chunks (with extensions and trailers) and by the
-// connection's end, all their truncations and mutations, and random bytes.
+// connection's end, with conflicting framings, all their truncations and
+// mutations, and random bytes.
 // A broken invariant aborts, failing the test.
 #include <gtest/gtest.h>
 
@@ -22,6 +23,8 @@ std::vector<std::vector<uint8_t>> seeds() {
       "HTTP/1.0 404 Not Found\r\nServer: x\r\n\r\nnot found",
       "HTTP/1.1 204 No Content\r\n\r\n",
       "HTTP/1.1 500\r\nContent-Length: 0\r\n\r\n",
+      "HTTP/1.1 200 OK\r\nContent-Length: 3, 3\r\nTransfer-Encoding: gzip\r\n\r\nabc",
+      "HTTP/1.1 100 Continue\r\n\r\nHTTP/1.1 200 OK\r\n\r\n{}",
   };
   std::vector<std::vector<uint8_t>> out;
   for (const std::string& text : texts) out.emplace_back(text.begin(), text.end());

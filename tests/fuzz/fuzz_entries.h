@@ -33,13 +33,14 @@ int fuzz_secure_packet_one(const uint8_t* data, size_t size);
 /// parse_match_request on the bytes as a query.
 int fuzz_control_request_one(const uint8_t* data, size_t size);
 
-/// JSON documents (the Agones GameServer record): parse_json, then write
-/// what it accepts canonically and read it back equal; the GameServer reader
-/// over the same bytes.
-int fuzz_json_value_one(const uint8_t* data, size_t size);
+/// Agones GameServer records (JSON): parse_agones_game_server, the match
+/// settings of what it accepts applied or refused whole, and the record
+/// written back as a document read back equal.
+int fuzz_agones_game_server_one(const uint8_t* data, size_t size);
 
-/// Whole HTTP/1.1 responses: parse_http_response, then re-frame what it
-/// accepts by Content-Length and read it back the same.
+/// Whole HTTP/1.1 responses: parse_http_response (the HTTP client's Beast
+/// parser), then re-frame what it accepts by Content-Length and read it back
+/// the same.
 int fuzz_http_response_one(const uint8_t* data, size_t size);
 
 /// Chunk sequences (resync snapshots, desync dumps): ChunkAssembler checked

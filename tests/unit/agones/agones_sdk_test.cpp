@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The Agones SDK client: reading the GameServer record as the REST API
-// documents it, the sidecar's port from the environment, and the calls'
-// requests, answers and failures against a loopback HTTP server.
+// The Agones SDK client: the sidecar's port from the environment, and the
+// calls' requests, answers and failures against a loopback HTTP server.
 #include "rewind/server/agones_sdk.h"
 
 #include <gtest/gtest.h>
@@ -16,64 +15,6 @@ namespace rwd::server {
 namespace {
 
 using testing::LocalHttpServer;
-
-// The GET /gameserver answer as the REST API documents it.
-constexpr std::string_view kDocumented = R"({
-  "object_meta": {
-    "name": "local", "namespace": "default", "uid": "1234", "resource_version": "v1",
-    "generation": "1", "creation_timestamp": "1531795395",
-    "annotations": {"annotation": "true", "rewind.dev/players": "4"},
-    "labels": {"islocal": "true"}
-  },
-  "status": {"state": "Ready", "address": "127.0.0.1",
-             "ports": [{"name": "default", "port": 7777}, {"name": "alt", "port": "7778"}]}
-})";
-
-TEST(AgonesGameServer, ReadsTheDocumentedShape) {
-  auto gs = parse_agones_game_server(kDocumented);
-  ASSERT_TRUE(gs.ok()) << gs.status().message();
-  EXPECT_EQ(gs->name, "local");
-  EXPECT_EQ(gs->state, "Ready");
-  EXPECT_EQ(gs->address, "127.0.0.1");
-  ASSERT_EQ(gs->ports.size(), 2u);
-  EXPECT_EQ(gs->ports[0].name, "default");
-  EXPECT_EQ(gs->ports[0].port, 7777);
-  EXPECT_EQ(gs->ports[1].port, 7778);
-  EXPECT_EQ(gs->annotations.at("rewind.dev/players"), "4");
-  EXPECT_EQ(gs->labels.at("islocal"), "true");
-}
-
-TEST(AgonesGameServer, AbsentFieldsReadAsEmpty) {
-  auto gs = parse_agones_game_server(R"({"status":{"state":"Scheduled","ports":null}})");
-  ASSERT_TRUE(gs.ok()) << gs.status().message();
-  EXPECT_EQ(gs->state, "Scheduled");
-  EXPECT_TRUE(gs->name.empty());
-  EXPECT_TRUE(gs->ports.empty());
-  EXPECT_TRUE(gs->annotations.empty());
-  EXPECT_TRUE(parse_agones_game_server("{}").ok());
-}
-
-TEST(AgonesGameServer, WrongTypesAreRefused) {
-  auto message = [](std::string_view json) {
-    auto gs = parse_agones_game_server(json);
-    EXPECT_FALSE(gs.ok()) << json;
-    EXPECT_EQ(gs.status().code(), ErrorCode::kCorrupt);
-    return gs.status().message();
-  };
-  EXPECT_EQ(message("[]"), "GameServer: the document is not an object");
-  EXPECT_EQ(message(R"({"status":{"state":3}})"),
-            "GameServer: status.state is a number, not a string");
-  EXPECT_EQ(message(R"({"object_meta":{"labels":{"a":1}}})"),
-            "GameServer: object_meta.labels[\"a\"] is not a string");
-  EXPECT_EQ(message(R"({"object_meta":"x"})"), "GameServer: object_meta is a string, not a object");
-  EXPECT_EQ(message(R"({"status":{"ports":[{"port":70000}]}})"),
-            "GameServer: status.ports[].port is not a port number in [0, 65535]");
-  EXPECT_EQ(message(R"({"status":{"ports":[{"port":"7a"}]}})"),
-            "GameServer: status.ports[].port is not a port number in [0, 65535]");
-  EXPECT_EQ(message(R"({"status":{"ports":[7777]}})"),
-            "GameServer: status.ports[] is not an object");
-  EXPECT_EQ(message("{"), "GameServer: JSON: unterminated object at byte 1");
-}
 
 TEST(AgonesSdk, PortFromTheEnvironment) {
   EXPECT_EQ(*agones_port_from_env(nullptr), kAgonesDefaultHttpPort);
@@ -120,7 +61,7 @@ TEST(AgonesSdk, GameServerIsReadFromTheAnswer) {
   LocalHttpServer sidecar([](const std::string& request) {
     if (request.rfind("GET /gameserver ", 0) != 0)
       return LocalHttpServer::json_answer("404 No", "");
-    return LocalHttpServer::json_answer("200 OK", std::string(kDocumented));
+    return LocalHttpServer::json_answer("200 OK", R"({"status":{"state":"Ready"}})");
   });
   auto gs = sdk_for(sidecar.port()).game_server();
   ASSERT_TRUE(gs.ok()) << gs.status().message();
@@ -140,13 +81,17 @@ TEST(AgonesSdk, ErrorsNameTheCallAndTheCause) {
   LocalHttpServer garbled([](const std::string&) { return std::string("SSH-2.0-x\r\n\r\n"); });
   const Status bad = sdk_for(garbled.port()).health();
   EXPECT_EQ(bad.code(), ErrorCode::kCorrupt);
-  EXPECT_EQ(bad.message(), "HTTP response: malformed status line");
+  EXPECT_EQ(bad.message(), "HTTP POST /health to 127.0.0.1:" + std::to_string(garbled.port()) +
+                               ": malformed response: bad version");
 
   LocalHttpServer not_json(
       [](const std::string&) { return LocalHttpServer::json_answer("200 OK", "<html>"); });
   auto gs = sdk_for(not_json.port()).game_server();
   ASSERT_FALSE(gs.ok());
-  EXPECT_EQ(gs.status().message(), "GameServer: JSON: unexpected character at byte 0");
+  EXPECT_EQ(gs.status().code(), ErrorCode::kCorrupt);
+  EXPECT_EQ(gs.status().message().rfind("GameServer: JSON: parse error at line 1, column 1: ", 0),
+            0u)
+      << gs.status().message();
 }
 
 TEST(AgonesSdk, NoListenerIsAnIoError) {
@@ -172,7 +117,7 @@ TEST(AgonesSdk, ASilentSidecarTimesOut) {
   const auto took = std::chrono::steady_clock::now() - start;
   EXPECT_EQ(status.code(), ErrorCode::kIo);
   EXPECT_EQ(status.message(), "HTTP POST /health to 127.0.0.1:" + std::to_string(silent.port()) +
-                                  ": no answer within 200 ms");
+                                  ": read: no answer within 200 ms");
   EXPECT_GE(took, std::chrono::milliseconds(190));
   EXPECT_LT(took, std::chrono::seconds(2));
 }

@@ -8,37 +8,17 @@
 // share no state: one AgonesSdk may be used from several threads.
 #include <chrono>
 #include <cstdint>
-#include <map>
 #include <string>
 #include <string_view>
 #include <utility>
-#include <vector>
 
+#include "rewind/server/agones_game_server.h"
 #include "rewind/sim/status.h"
 
 namespace rwd::server {
 
 /// The sidecar's REST port when AGONES_SDK_HTTP_PORT is not set.
 inline constexpr uint16_t kAgonesDefaultHttpPort = 9358;
-
-/// What the server reads of its GameServer record (GET /gameserver).
-struct AgonesGameServer {
-  std::string name;     ///< object_meta.name
-  std::string state;    ///< status.state: "Scheduled", "RequestReady", "Ready", "Allocated", ...
-  std::string address;  ///< status.address: where players connect (empty before scheduling)
-  struct Port {
-    std::string name;  ///< e.g. "default"
-    int64_t port = 0;  ///< the public (host) port players connect to, [0, 65535]
-  };
-  std::vector<Port> ports;                         ///< status.ports
-  std::map<std::string, std::string> labels;       ///< object_meta.labels
-  std::map<std::string, std::string> annotations;  ///< object_meta.annotations
-};
-
-/// Reads a GameServer from the JSON GET /gameserver answers. Fields the
-/// server does not use are skipped; the ones it uses must have their
-/// documented types (an absent one reads as empty). Errors are kCorrupt.
-Result<AgonesGameServer> parse_agones_game_server(std::string_view json);
 
 /// The sidecar's port from the value of AGONES_SDK_HTTP_PORT: null (unset)
 /// gives kAgonesDefaultHttpPort; otherwise decimal digits in [1, 65535],

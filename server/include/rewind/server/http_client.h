@@ -1,18 +1,20 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // A blocking HTTP/1.1 client for short calls to a local service (the
-// Agones SDK sidecar). Each call opens its own connection and io_context,
-// sends one request with `Connection: close`, reads until the peer closes
-// and parses the answer; a deadline bounds the whole call. Blocking: call it
-// from a thread that may wait (never from the tick loop). Calls on
-// different threads are independent.
+// Agones SDK sidecar), on Boost.Beast. Each call opens its own connection
+// and io_context, sends one request with `Connection: close` and reads one
+// response; a deadline bounds the call. Blocking: call it from a thread that
+// may wait (never from the tick loop). Calls on different threads are
+// independent.
+//
+// Beast stays out of this header: its headers are heavy to compile and
+// only server/src/http_client.cpp includes them.
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
 
-#include "rewind/server/http_response.h"
 #include "rewind/sim/status.h"
 
 namespace rwd::server {
@@ -24,20 +26,47 @@ struct HttpRequest {
   std::string body;
 };
 
-struct HttpCallLimits {
-  /// From resolving the host to the peer closing the connection.
-  std::chrono::milliseconds deadline{2000};
-  /// Responses longer than this (status line, headers, body) are refused.
-  size_t max_response_bytes = 1 << 20;
+struct HttpResponse {
+  int status = 0;  ///< [100, 599]
+  /// The reason phrase; when the peer sent none, the standard one for the
+  /// status ("Internal Server Error"), as Beast reports it.
+  std::string reason;
+  std::string body;  ///< de-chunked
 };
 
-/// Sends `request` to `host`:`port` (a name such as "localhost", tried at
-/// each address it resolves to, or an IP literal) and returns the parsed
-/// response, whatever its status code. Errors: kInvalidArgument for a
-/// malformed method or target, kIo when resolving, connecting, writing or
-/// reading fails or the deadline passes (the message names which, and the
-/// host and port), kCorrupt or kCapacity from parse_http_response.
+struct HttpResponseLimits {
+  /// The status line and the header fields together.
+  uint32_t max_header_bytes = 16 << 10;
+  /// The body once de-chunked.
+  size_t max_body_bytes = 1 << 20;
+};
+
+struct HttpCallLimits {
+  /// From the start of the call to the end of the response. Name resolution
+  /// counts against it but cannot be interrupted (getaddrinfo blocks; asio's
+  /// cancel waits for it too): address the service as an IP literal or a
+  /// name resolved locally, such as "localhost".
+  std::chrono::milliseconds deadline{2000};
+  HttpResponseLimits response;
+};
+
+/// Sends `request` to `host`:`port` (a name, tried at each address it
+/// resolves to, or an IP literal) and returns the response, whatever its
+/// status code. Errors name the call and the host and port:
+/// kInvalidArgument for a malformed method or target; kIo when resolving,
+/// connecting, writing or reading fails or the deadline passes (the message
+/// names the step); kCorrupt for a malformed or truncated response; kCapacity
+/// for one over the limits.
 Result<HttpResponse> http_call(std::string_view host, uint16_t port, const HttpRequest& request,
                                const HttpCallLimits& limits = {});
+
+/// Reads `bytes` as everything a peer sent before closing the connection,
+/// through the same parser, limits and checks as http_call: bodies framed
+/// by Content-Length, by chunked transfer coding, or by the end of the
+/// connection. Bytes after a complete response are ignored, as http_call
+/// never reads them. Errors are kCorrupt, or kCapacity past `limits`, with
+/// a message naming the problem. For tests and the fuzz target.
+Result<HttpResponse> parse_http_response(std::string_view bytes,
+                                         const HttpResponseLimits& limits = {});
 
 }  // namespace rwd::server
