@@ -155,6 +155,19 @@ TEST(HttpCall, SendsOneRequestAndReadsTheAnswer) {
   EXPECT_EQ(sent.substr(sent.size() - 11), "\r\n\r\n{\"b\":2}");
 }
 
+TEST(HttpCall, AnAnswerInManyReadsComesWhole) {
+  std::string body(300'000, 'x');
+  for (size_t i = 0; i < body.size(); i += 997) body[i] = static_cast<char>('a' + i % 26);
+  LocalHttpServer server([&body](const std::string&) {
+    // Padding headers too, so the head itself may span reads.
+    return "HTTP/1.1 200 OK\r\nX-Pad: " + std::string(8000, 'p') +
+           "\r\nContent-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
+  });
+  auto response = http_call("127.0.0.1", server.port(), HttpRequest{}, quick());
+  ASSERT_TRUE(response.ok()) << response.status().message();
+  EXPECT_EQ(response->body, body);
+}
+
 TEST(HttpCall, MalformedRequestsAreNotSent) {
   HttpRequest request;
   request.method = "get";
