@@ -160,10 +160,6 @@ void World2D::body_ids(std::vector<BodyId2D>& out) const {
   }
 }
 
-namespace {
-const BodyRecord2D kNoBody{};
-}
-
 #define REWIND_BODY_OR(value)      \
   if (!is_valid(id)) return value; \
   const BodyRecord2D& body = state_.bodies[id.index]
