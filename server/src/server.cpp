@@ -44,6 +44,9 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
                " run past 65535");
   }
   if (config.threads > 64) return bad("threads must be in [0, 64]");
+  if (!(config.tick_budget > 0.0 && config.tick_budget <= 1.0)) {
+    return bad("tick budget must be in (0, 1]");
+  }
   auto server = std::make_unique<Server>(config);
   // Checked once up front so a bad shared setting names itself, not match-1.
   MatchConfig first = server->config_for(config.match, config.match.match_id);
@@ -63,7 +66,11 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
     Server* self = server.get();
     auto metrics = MetricsHttp::open(
         server->strand_, config.metrics->address, config.metrics->port,
-        [self] { return render_metrics(self->samples()); }, {},
+        [self] {
+          const ProcessSample process = self->process_sample();
+          return render_metrics(self->samples(), &process);
+        },
+        {},
         [self](std::string_view method, std::string_view target) {
           return self->route(method, target);
         });
@@ -73,11 +80,17 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   const uint32_t cores = std::max(1u, std::thread::hardware_concurrency());
   const uint32_t most = std::max(1u, config.control ? config.max_matches : config.matches);
   server->threads_ = config.threads != 0 ? config.threads : std::min(cores, most);
+  server->load_->set_threads(server->threads_);
   return server;
 }
 
 Server::Server(const ServerConfig& config)
-    : config_(config), strand_(asio::make_strand(io_)), signals_(strand_, SIGINT, SIGTERM) {}
+    : config_(config),
+      strand_(asio::make_strand(io_)),
+      signals_(strand_, SIGINT, SIGTERM),
+      load_(config.load
+                ? config.load
+                : std::make_shared<LoadMonitor>(config.tick_budget, net::SteadyClock::now())) {}
 
 Server::~Server() {
   io_.stop();
@@ -125,6 +138,7 @@ Result<std::shared_ptr<MatchRunner>> Server::add_match(const MatchConfig& config
   settings.port = port;
   settings.server_key = config_.server_key;
   settings.name_in_logs = many();
+  settings.load = load_;
   auto runner = MatchRunner::create(
       io_, settings, [this](MatchRunner&) { asio::post(strand_, [this] { on_match_ended(); }); });
   if (!runner.ok()) return runner.status();
@@ -144,6 +158,13 @@ Result<std::shared_ptr<MatchRunner>> Server::add_match(const MatchConfig& config
 }
 
 Result<std::shared_ptr<MatchRunner>> Server::allocate(const MatchRequest& request) {
+  // A match more would slow every match already here: refused while the
+  // threads are busy past the budget or ticks already slip.
+  if (std::string reason = load_->overload_reason(net::SteadyClock::now()); !reason.empty()) {
+    refused_.fetch_add(1, std::memory_order_relaxed);
+    write_log(LogLevel::kWarning, "refused match '" + request.match.match_id + "': " + reason);
+    return Status::Error(ErrorCode::kCapacity, reason);
+  }
   MatchConfig config = config_for(request.match, request.match.match_id);
   auto runner = add_match(config, request.port);
   if (!runner.ok()) return runner.status();
@@ -152,6 +173,21 @@ Result<std::shared_ptr<MatchRunner>> Server::allocate(const MatchRequest& reques
                                  std::to_string(config.players) + " players) on port " +
                                  std::to_string((*runner)->port()));
   return runner;
+}
+
+bool Server::healthy() const {
+  return load_->healthy(net::SteadyClock::now());
+}
+
+ProcessSample Server::process_sample() const {
+  const net::TimePoint now = net::SteadyClock::now();
+  ProcessSample out;
+  out.tick_load = load_->load(now).busy;
+  out.tick_budget = load_->tick_budget();
+  out.overloaded = !load_->overload_reason(now).empty();
+  out.healthy = load_->healthy(now);
+  out.matches_refused = refused_.load(std::memory_order_relaxed);
+  return out;
 }
 
 std::vector<MetricsSample> Server::samples() const {

@@ -8,12 +8,14 @@
 #include <asio/io_context.hpp>
 #include <asio/signal_set.hpp>
 #include <asio/strand.hpp>
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "rewind/server/load_monitor.h"
 #include "rewind/server/match_request.h"
 #include "rewind/server/match_runner.h"
 #include "rewind/server/metrics_http.h"
@@ -52,6 +54,14 @@ struct ServerConfig {
   /// signalled instead of ending with its last match. Bind it to a private
   /// address: whoever reaches it can start and stop matches.
   bool control = false;
+  /// The share of the match threads' time spent ticking (over the last
+  /// LoadMonitor::kWindowS seconds) beyond which allocate() refuses new
+  /// matches, in (0, 1]. Ticks slipping refuse them too.
+  double tick_budget = 0.75;
+  /// Where the matches report their ticks; null: the server makes its own
+  /// with tick_budget. Shared so that a health check living longer than
+  /// the Server (the Agones pinger) can read it.
+  std::shared_ptr<LoadMonitor> load;
 };
 
 class Server {
@@ -68,8 +78,15 @@ class Server {
   void shutdown(const std::string& reason);
   /// Allocates and starts a match; thread-safe. kInvalidArgument for a bad
   /// config or an id already alive, kCapacity when max_matches are
-  /// alive, kIo when the port cannot be bound.
+  /// alive or the server is overloaded ("overloaded: ...": the tick load is
+  /// over ServerConfig::tick_budget, or ticks slip), kIo when the port
+  /// cannot be bound.
   Result<std::shared_ptr<MatchRunner>> allocate(const MatchRequest& request);
+  /// False while the matches' ticks slip persistently or the tick loop
+  /// stalled (LoadMonitor::healthy); thread-safe.
+  bool healthy() const;
+  /// The process's load, as /metrics reports it; thread-safe.
+  ProcessSample process_sample() const;
 
   /// Every match's report, launch matches first, then in allocation order
   /// (ended ones too, the newest 64 of them).
@@ -104,6 +121,8 @@ class Server {
   asio::signal_set signals_;
   std::unique_ptr<MetricsHttp> metrics_;  ///< null without ServerConfig::metrics
   uint32_t threads_ = 1;
+  std::shared_ptr<LoadMonitor> load_;
+  std::atomic<uint64_t> refused_{0};  ///< allocations refused as overloaded
   std::vector<uint16_t> launch_ports_;
   std::vector<std::shared_ptr<MatchRunner>> launch_;  ///< started by run()
   bool stopping_ = false;  ///< on the strand: a signal came, matches are ending
