@@ -211,6 +211,9 @@ TEST(ServerMatches, LaunchMatchesTakeConsecutiveIdsAndPaths) {
     EXPECT_EQ(samples[i].match, "match-" + std::to_string(i + 1));
     EXPECT_EQ(samples[i].phase, MatchHost::Phase::kEnded);
     EXPECT_EQ(samples[i].stats.end_reason.rfind("lobby timeout", 0), 0u);
+    // Every tick the loop ran had its start measured against its time.
+    EXPECT_GT(samples[i].tick_time.count(), 0u);
+    EXPECT_EQ(samples[i].tick_lateness.count(), samples[i].tick_time.count());
     EXPECT_TRUE(std::filesystem::exists(dir / ("game-match-" + std::to_string(i + 1) + ".rwr")));
   }
 }
