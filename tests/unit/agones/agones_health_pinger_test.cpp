@@ -9,9 +9,11 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <memory>
 #include <thread>
 
 #include "local_http_server.h"
+#include "rewind/server/load_monitor.h"
 
 namespace rwd::server {
 namespace {
@@ -84,6 +86,26 @@ TEST(AgonesHealthPinger, PingsAreWithheldWhileTheProcessIsUnhealthy) {
   pinger.stop();
   EXPECT_EQ(pinger.failed(), 0u);
   EXPECT_EQ(sidecar.requests().size(), pinger.sent());
+}
+
+TEST(AgonesHealthPinger, ALoadMonitorWhoseMatchStoppedTickingWithholdsPings) {
+  // As run_agones_match wires it: the pinger asks the load monitor. A match
+  // that started ten (made-up) seconds ago and never ticked is a stalled
+  // loop, whatever the machine's speed.
+  LocalHttpServer sidecar(
+      [](const std::string&) { return LocalHttpServer::json_answer("200 OK", "{}"); });
+  const AgonesSdk sdk = sdk_for(sidecar.port());
+  const auto now = std::chrono::steady_clock::now();
+  auto load = std::make_shared<LoadMonitor>(0.75, now - 10s);
+  load->match_started(now - 10s);
+  AgonesHealthPinger pinger(
+      sdk, 10ms, [load] { return load->unhealthy_reason(std::chrono::steady_clock::now()); });
+  ASSERT_TRUE(eventually([&] { return pinger.withheld() >= 2; }));
+  EXPECT_EQ(pinger.sent(), 0u);
+  // The match ends: nothing is live, so nothing is stalled.
+  load->match_ended();
+  ASSERT_TRUE(eventually([&] { return pinger.sent() >= 1; }));
+  pinger.stop();
 }
 
 TEST(AgonesHealthPinger, StopDoesNotWaitForTheNextPeriod) {
