@@ -6,14 +6,24 @@
 # match, the server's CPU time (every thread, from /proc/PID/task/*/schedstat,
 # nanoseconds) read over a window in the middle of the matches.
 #
+# Then, in the same run, the socket-less host work of the same match: the
+# host benchmark's secure headless match of PLAYERS players (simulation,
+# finalization, intake, broadcast, encoding, sealing; no sockets, no timers),
+# median per tick, and the ratio of the two.
+#
 # Usage: scripts/server_cpu.sh [--players N] [--matches M] [--seconds S] [--bin DIR]
-#   --players N   players per match (default 8)
-#   --matches M   matches in the one server process (default 1)
-#   --seconds S   the measured window (default 15; the matches run S + 10 s)
-#   --bin DIR     the programs (default build/release/bin)
-# Prints one line: matches, players, ticks in the window, server CPU ms,
-# CPU µs per match and tick, context switches per second, and the bytes per
-# player per second the server sent. Exit 1 when a match or a bot failed.
+#                              [--bench-bin DIR]
+#   --players N      players per match (default 8)
+#   --matches M      matches in the one server process (default 1)
+#   --seconds S      the measured window (default 15; the matches run S + 10 s)
+#   --bin DIR        the programs (default build/release/bin)
+#   --bench-bin DIR  rewind_host_bench (default build/bench/bin; the bench
+#                    preset); without it the second figure is skipped
+# Prints: matches, players, ticks in the window, server CPU ms, CPU µs per
+# match and tick, context switches per second, the bytes per player per
+# second the server sent; the ticks that started late or were dropped (the
+# summary's ticks_late, ticks_missed); then the host work per tick and
+# live / host. Exit 1 when a match or a bot failed.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -21,6 +31,7 @@ players=8
 matches=1
 seconds=15
 bin=build/release/bin
+bench_bin=build/bench/bin
 usage() { sed -n '4,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"; }
 while (($#)); do
   case "$1" in
@@ -28,11 +39,14 @@ while (($#)); do
     --matches) matches=${2:?}; shift 2 ;;
     --seconds) seconds=${2:?}; shift 2 ;;
     --bin) bin=${2:?}; shift 2 ;;
+    --bench-bin) bench_bin=${2:?}; shift 2 ;;
     -h|--help) usage; exit 0 ;;
     *) echo "server_cpu: unknown option '$1'" >&2; usage >&2; exit 2 ;;
   esac
 done
 bin=$(cd "$bin" && pwd)
+host_bench=""
+[ -x "$bench_bin/rewind_host_bench" ] && host_bench=$(cd "$bench_bin" && pwd)/rewind_host_bench
 tick_rate=60
 ticks=$(( (seconds + 10) * tick_rate ))
 work=$(mktemp -d)
@@ -74,20 +88,50 @@ cpu1=$(cpu_ns); cs1=$(switches); t1=$(date +%s.%N)
 status=0
 for b in "${bots[@]}"; do wait "$b" || status=1; done
 wait "$server" || status=1
-python3 - "$cpu0" "$cpu1" "$cs0" "$cs1" "$t0" "$t1" "$matches" "$players" "$tick_rate" <<'PY'
-import json, sys
+# The socket-less host work of the same match, after the live one so the
+# two never share the CPU.
+host_us=""
+if [ -n "$host_bench" ]; then
+  "$host_bench" --benchmark_filter="BM_HostTick/players:$players/secure:1/" \
+    --benchmark_format=json >host.json 2>/dev/null || true
+fi
+python3 - "$cpu0" "$cpu1" "$cs0" "$cs1" "$t0" "$t1" "$matches" "$players" "$tick_rate" \
+  "$host_bench" <<'PY'
+import json, os, sys
 cpu0, cpu1, cs0, cs1 = (int(x) for x in sys.argv[1:5])
 t0, t1 = float(sys.argv[5]), float(sys.argv[6])
 matches, players, rate = (int(x) for x in sys.argv[7:10])
+host_bench = sys.argv[10]
 window = t1 - t0
 ticks = window * rate
 summaries = [json.loads(l) for l in open("server.json") if l.strip()]
 sent = sum(s["bytes_out"] for s in summaries)
 duration = max(s["duration_s"] for s in summaries)
+live_us = (cpu1 - cpu0) / 1e3 / ticks / matches
 print(f"matches {matches}, players {players}: {ticks:.0f} ticks in {window:.1f} s; "
-      f"server CPU {(cpu1 - cpu0) / 1e6:.1f} ms = {(cpu1 - cpu0) / 1e3 / ticks / matches:.0f} us "
-      f"per match and tick; {(cs1 - cs0) / window:.0f} context switches/s; "
+      f"server CPU {(cpu1 - cpu0) / 1e6:.1f} ms = {live_us:.0f} us per match and tick; "
+      f"{(cs1 - cs0) / window:.0f} context switches/s; "
       f"{sent / duration / (players * matches):.0f} B/s sent per player")
+late = sum(s.get("ticks_late", 0) for s in summaries)
+missed = sum(s.get("ticks_missed", 0) for s in summaries)
+worst = max(s.get("tick_lateness_max_s", 0.0) for s in summaries)
+print(f"tick pace: {late} ticks started a period or more late, {missed} dropped "
+      f"(latest start {worst * 1e3:.1f} ms after its time)")
+host = None
+if host_bench and os.path.exists("host.json"):
+    try:
+        runs = json.load(open("host.json"))["benchmarks"]
+        host = runs[0]["host_us_median"] if runs else None
+    except (ValueError, KeyError, IndexError):
+        host = None
+if host:
+    print(f"socket-less host work (rewind_host_bench, secure {players}-player match): "
+          f"{host:.0f} us per tick (median); live / host = {live_us / host:.1f}")
+elif host_bench:
+    print(f"socket-less host work: rewind_host_bench has no secure {players}-player figure "
+          "(it runs 2, 4, 8, 16 and 32 players)")
+else:
+    print("socket-less host work: no rewind_host_bench (build the bench preset, or --bench-bin)")
 PY
 for m in $(seq 1 "$matches"); do
   grep -q '"desyncs":0' "bots-$m.json" || { echo "server_cpu: match $m: $(cat "bots-$m.json")" >&2; status=1; }

@@ -157,14 +157,20 @@ int run_agones_match(const ServerConfig& base, const AgonesSdk& sdk,
   write_log(LogLevel::kInfo, "agones: GameServer '" + first->name + "' is " +
                                  (first->state.empty() ? "in no state yet" : first->state));
 
-  // From here to the exit: pings on their own thread, never the tick loop's.
+  // From here to the exit: pings on their own thread, never the tick loop's,
+  // withheld while the match's ticks slip persistently (the load monitor
+  // outlives the Server that feeds it: the pinger reads it to the end).
+  const std::shared_ptr<LoadMonitor> load =
+      base.load ? base.load : std::make_shared<LoadMonitor>(base.tick_budget, Clock::now());
   AgonesHealthPinger pinger(
-      sdk, std::chrono::duration_cast<std::chrono::milliseconds>(seconds(options.health_period_s)));
+      sdk, std::chrono::duration_cast<std::chrono::milliseconds>(seconds(options.health_period_s)),
+      [load] { return load->unhealthy_reason(Clock::now()); });
   auto finish = [&](int exit_status, const std::string& why) {
     send_shutdown(sdk, why);
     pinger.stop();
     write_log(LogLevel::kInfo, "agones: " + std::to_string(pinger.sent()) + " health pings, " +
-                                   std::to_string(pinger.failed()) + " failed");
+                                   std::to_string(pinger.failed()) + " failed, " +
+                                   std::to_string(pinger.withheld()) + " withheld");
     return exit_status;
   };
 
@@ -192,6 +198,7 @@ int run_agones_match(const ServerConfig& base, const AgonesSdk& sdk,
   }
 
   ServerConfig config = base;
+  config.load = load;
   auto applied = apply_agones_match_settings(*allocated, &config.match);
   if (!applied.ok()) {
     write_log(LogLevel::kError,

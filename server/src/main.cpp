@@ -119,6 +119,10 @@ int main(int argc, char** argv) {
                 "most matches alive at once, launch and control together");
   flags.add_int("threads", &threads, 0, 64,
                 "threads running the matches (0 = one per core, at most one per match)");
+  double tick_budget = config.tick_budget;
+  flags.add_double("tick-budget", &tick_budget, 0.01, 1,
+                   "share of the match threads' time spent ticking (last 5 s) beyond which the "
+                   "control API refuses new matches as overloaded; slipping ticks refuse them too");
   flags.add_bool("control", &control,
                  "serve the control API on --control-bind (GET/POST /matches, GET/DELETE "
                  "/matches/<id>), every call with a bearer key of --control-keys; the process "
@@ -223,6 +227,7 @@ int main(int argc, char** argv) {
   config.matches = static_cast<uint32_t>(matches);
   config.max_matches = static_cast<uint32_t>(max_matches);
   config.threads = static_cast<uint32_t>(threads);
+  config.tick_budget = tick_budget;
   config.control = control;
   config.match.game = game;
   config.bind_address = bind;

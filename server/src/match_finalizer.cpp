@@ -88,7 +88,8 @@ void MatchHost::finalize_ready_ticks() {
 void MatchHost::broadcast(TimePoint now) {
   const Tick oldest_held = finals_.oldest();
   // Each run packed once, for every client but its player.
-  relay_packed_.resize(relay_batch_.size());
+  // Never shrunk: each string keeps its capacity from tick to tick.
+  if (relay_packed_.size() < relay_batch_.size()) relay_packed_.resize(relay_batch_.size());
   for (size_t r = 0; r < relay_batch_.size(); ++r) {
     relay_packed_[r].clear();
     proto::append_relayed_run(relay_batch_[r].player, relay_batch_[r].first_tick, server_tick(),
@@ -99,7 +100,7 @@ void MatchHost::broadcast(TimePoint now) {
     broadcast_to(spectators_[s], config_.players + s, oldest_held, now);
   }
   relay_batch_.clear();
-  relay_packed_.clear();
+  broadcast_arena_.Reset();
 }
 
 void MatchHost::broadcast_to(Peer& peer, uint32_t p, Tick oldest_held, TimePoint now) {
@@ -121,7 +122,8 @@ void MatchHost::broadcast_to(Peer& peer, uint32_t p, Tick oldest_held, TimePoint
       resync_pending = true;
     }
   }
-  v1::Envelope envelope;
+  // On the broadcast arena, freed once every client's datagram is out.
+  v1::Envelope& envelope = *google::protobuf::Arena::CreateMessage<v1::Envelope>(&broadcast_arena_);
   v1::FinalTicks* out = envelope.mutable_final_ticks();
   const bool player = p < config_.players;  // spectators send no inputs
   out->set_input_ack_tick(player ? session_->queue(p).contiguous_through() : kNoTick);

@@ -22,6 +22,19 @@ double seconds_between(TimePoint a, TimePoint b) {
   return std::chrono::duration<double>(b - a).count();
 }
 
+google::protobuf::ArenaOptions arena_on(char* block, size_t size) {
+  google::protobuf::ArenaOptions options;
+  options.initial_block = block;
+  options.initial_block_size = size;
+  return options;
+}
+
+// Frees everything on an arena when the scope ends.
+struct ArenaReset {
+  google::protobuf::Arena& arena;
+  ~ArenaReset() { arena.Reset(); }
+};
+
 }  // namespace
 
 Result<std::unique_ptr<MatchHost>> MatchHost::create(const MatchConfig& config, SendFn send,
@@ -80,6 +93,9 @@ MatchHost::MatchHost(const MatchConfig& config, SendFn send,
       tick_started_(now),
       ended_(now),
       ids_(net::ConnectionIdGenerator::from_os_entropy()),
+      arena_blocks_(new char[kReceiveArenaBytes + kBroadcastArenaBytes]),
+      receive_arena_(arena_on(arena_blocks_.get(), kReceiveArenaBytes)),
+      broadcast_arena_(arena_on(arena_blocks_.get() + kReceiveArenaBytes, kBroadcastArenaBytes)),
       forensics_(config.desync_dir, std::move(env)) {
   final_inputs_.resize(config.players);
   final_history_.assign(kFinalHistory, FinalRecord{});
@@ -141,12 +157,12 @@ void MatchHost::on_datagram(std::span<const uint8_t> bytes, const Endpoint& from
     ++stats_.rejected_packets;
     return;
   }
-  auto decoded = net::decode_envelope(bytes);
-  if (!decoded.ok()) {
+  ArenaReset reset{receive_arena_};
+  v1::Envelope& envelope = *google::protobuf::Arena::CreateMessage<v1::Envelope>(&receive_arena_);
+  if (!net::decode_envelope(bytes, envelope).ok()) {
     ++stats_.rejected_packets;
     return;
   }
-  const v1::Envelope& envelope = *decoded;
   if (envelope.has_join_request()) {
     if (who == nullptr) {
       // Tokenless, and the address has not answered a cookie: it may not
@@ -409,7 +425,12 @@ void MatchHost::close_if_done(TimePoint now) {
 void MatchHost::send(Peer& peer, v1::Envelope& envelope, TimePoint now) {
   if (!peer.connection) return;
   peer.connection->stamp(envelope, now);
-  if (Status status = net::encode_envelope(envelope, encode_buffer_); !status.ok()) {
+  // The tick's final ticks and relayed inputs were checked when they came
+  // in and packed by this host: checking them again would unpack every
+  // packed input for every client. Everything else is checked in full.
+  const net::EncodeCheck check =
+      envelope.has_final_ticks() ? net::EncodeCheck::kHeader : net::EncodeCheck::kFull;
+  if (Status status = net::encode_envelope(envelope, encode_buffer_, check); !status.ok()) {
     log_line("dropping an unencodable message: " + status.message());
     return;
   }

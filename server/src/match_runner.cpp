@@ -71,13 +71,15 @@ MatchRunner::MatchRunner(asio::io_context& io, const Settings& settings, EndedFn
       strand_(asio::make_strand(io)),
       timer_(strand_),
       on_ended_(std::move(on_ended)),
-      period_(std::chrono::nanoseconds(1'000'000'000LL / settings.match.tick_rate_hz)) {}
+      schedule_(std::chrono::nanoseconds(1'000'000'000LL / settings.match.tick_rate_hz)) {}
 
 void MatchRunner::start() {
   asio::post(strand_, [self = shared_from_this()] {
     if (self->started_ || self->finished_) return;
     self->started_ = true;
-    self->next_tick_ = net::SteadyClock::now() + self->period_;
+    const TimePoint now = net::SteadyClock::now();
+    self->schedule_.start(now);
+    if (self->settings_.load) self->settings_.load->match_started(now);
     self->schedule_tick();
   });
 }
@@ -149,7 +151,7 @@ void MatchRunner::on_datagram(std::span<const uint8_t> bytes, const Endpoint& fr
 }
 
 void MatchRunner::schedule_tick() {
-  timer_.expires_at(next_tick_);
+  timer_.expires_at(schedule_.due());
   timer_.async_wait([self = shared_from_this()](const std::error_code& error) {
     if (!error) self->on_tick_timer();
   });
@@ -164,27 +166,34 @@ void MatchRunner::schedule_tick() {
 void MatchRunner::on_tick_timer() {
   if (finished_) return;
   const TimePoint now = net::SteadyClock::now();
+  schedule_.begin(now);
   socket_->drain([this, now](std::span<const uint8_t> bytes, const Endpoint& from) {
     on_datagram(bytes, from, now);
   });
+  if (!finished_) guarded("ticking", [&] { host_->on_tick(now); });
+  if (!finished_) socket_->flush_sends();
+  // Wall time, for operators and the load policy only: nothing in the
+  // match reads it.
+  const TimePoint done = net::SteadyClock::now();
+  tick_time_.observe(done - now);
+  // Ticks stay on their absolute grid, so they never drift: a late loop
+  // runs the due ticks back to back, and after a long stall (a stopped
+  // process, a starved thread) the grid restarts instead of bursting.
+  const int64_t dropped = finished_ ? 0 : schedule_.end(done);
+  if (settings_.load) {
+    settings_.load->record_tick(now, done - now, schedule_.behind() > 0,
+                                static_cast<uint64_t>(dropped));
+  }
   if (finished_) return;
-  guarded("ticking", [&] { host_->on_tick(now); });
-  if (finished_) return;
-  socket_->flush_sends();
-  // Wall time, for operators only: nothing in the match reads it.
-  tick_time_.observe(net::SteadyClock::now() - now);
+  if (dropped > 0) {
+    LogMatchScope scope(log_name());
+    write_log(LogLevel::kWarning, "tick loop stalled; dropped " + std::to_string(dropped) +
+                                      " ticks and restarted the schedule");
+  }
   publish();
   if (host_->phase() == MatchHost::Phase::kEnded) {
     finish();
     return;
-  }
-  // Ticks are scheduled on an absolute grid so they never drift; after a
-  // long stall (a stopped process) the grid restarts instead of bursting.
-  next_tick_ += period_;
-  if (now - next_tick_ > 10 * period_) {
-    LogMatchScope scope(log_name());
-    write_log(LogLevel::kInfo, "tick loop stalled; resetting the schedule");
-    next_tick_ = now + period_;
   }
   schedule_tick();
 }
@@ -193,6 +202,7 @@ void MatchRunner::finish() {
   if (finished_) return;
   finished_ = true;
   timer_.cancel();
+  if (started_ && settings_.load) settings_.load->match_ended();
   socket_->flush_sends();  // the match's last words: its end, to every client
   socket_->close();
   publish();
@@ -216,6 +226,11 @@ void MatchRunner::publish() {
   sample.phase = finished_ ? MatchHost::Phase::kEnded : host_->phase();
   sample.players_connected = finished_ ? 0 : host_->players_connected();
   sample.tick_time = tick_time_;
+  sample.tick_lateness = schedule_.lateness();
+  sample.ticks_behind = schedule_.behind();
+  sample.stats.ticks_late = schedule_.late();
+  sample.stats.ticks_missed = schedule_.missed();
+  sample.stats.tick_lateness_max_s = static_cast<double>(schedule_.lateness().max_ns()) / 1e9;
   std::lock_guard lock(published_mutex_);
   published_ = std::move(sample);
 }

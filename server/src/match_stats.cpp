@@ -35,7 +35,9 @@ std::string MatchStats::to_json() const {
       << ",\"end_reason\":\"" << end_reason << "\",\"secure\":" << (secure ? "true" : "false")
       << ",\"secure_challenges\":" << secure_challenges
       << ",\"secure_sessions\":" << secure_sessions << ",\"secure_refused\":" << secure_refused
-      << ",\"secure_dropped\":" << secure_dropped << "}";
+      << ",\"secure_dropped\":" << secure_dropped << ",\"ticks_late\":" << ticks_late
+      << ",\"ticks_missed\":" << ticks_missed << ",\"tick_lateness_max_s\":" << tick_lateness_max_s
+      << "}";
   return out.str();
 }
 
@@ -57,6 +59,8 @@ std::string MatchStats::to_text() const {
   } else {
     out << "; tokenless";
   }
+  out << "; ticks late " << ticks_late << ", missed " << ticks_missed << " (latest start "
+      << tick_lateness_max_s * 1e3 << " ms after its time)";
   return out.str();
 }
 
@@ -72,6 +76,11 @@ std::string MatchStats::problems() const {
   add(desync_dumps_unreadable, "desync reports had an unreadable client dump");
   add(desync_report_write_failures, "desync reports could not be written");
   add(keyframe_load_failures, "replay keyframes did not load on the server and were left out");
+  // Either way the clients saw the server's clock stutter: late ticks come
+  // in bursts, dropped ones leave the match's clock behind the wall clock.
+  // The usual cause is a process short of CPU (see --tick-budget).
+  add(ticks_late, "ticks started a period or more late (run back to back to catch up)");
+  add(ticks_missed, "ticks were dropped after the tick loop stalled");
   return out;
 }
 

@@ -3,6 +3,7 @@
 
 #include <charconv>
 #include <string_view>
+#include <type_traits>
 
 namespace rwd::server {
 namespace {
@@ -55,17 +56,23 @@ void add_phase(std::string& out, std::span<const MetricsSample> matches) {
   }
 }
 
-void add_tick_time(std::string& out, std::span<const MetricsSample> matches) {
-  add_header(out, "tick_seconds", "Wall time of each tick of the match's loop.", "histogram");
+// One histogram family (`name`_bucket, _sum, _count) over every match.
+void add_histogram(std::string& out, std::string_view name, std::string_view help,
+                   std::span<const MetricsSample> matches,
+                   const TickHistogram& (*of)(const MetricsSample&)) {
+  add_header(out, name, help, "histogram");
+  const std::string bucket = std::string(name) + "_bucket";
+  const std::string sum = std::string(name) + "_sum";
+  const std::string count = std::string(name) + "_count";
   for (const MetricsSample& match : matches) {
-    const TickHistogram& ticks = match.tick_time;
+    const TickHistogram& ticks = of(match);
     uint64_t cumulative = 0;
-    for (size_t bucket = 0; bucket < TickHistogram::bucket_total(); ++bucket) {
-      cumulative += ticks.bucket_count(bucket);
-      add_label(out, "tick_seconds_bucket", match);
+    for (size_t b = 0; b < ticks.bucket_total(); ++b) {
+      cumulative += ticks.bucket_count(b);
+      add_label(out, bucket, match);
       out.append(",le=\"");
-      if (bucket < TickHistogram::kBoundsNs.size()) {
-        add_seconds(out, TickHistogram::kBoundsNs[bucket]);
+      if (b < ticks.bounds().size()) {
+        add_seconds(out, ticks.bounds()[b]);
       } else {
         out.append("+Inf");
       }
@@ -73,15 +80,20 @@ void add_tick_time(std::string& out, std::span<const MetricsSample> matches) {
       add_number(out, cumulative);
       out.append("\n");
     }
-    add_label(out, "tick_seconds_sum", match);
+    add_label(out, sum, match);
     out.append("} ");
     add_seconds(out, static_cast<int64_t>(ticks.sum_ns()));
     out.append("\n");
-    add_label(out, "tick_seconds_count", match);
+    add_label(out, count, match);
     out.append("} ");
     add_number(out, ticks.count());
     out.append("\n");
   }
+}
+
+void add_tick_time(std::string& out, std::span<const MetricsSample> matches) {
+  add_histogram(out, "tick_seconds", "Wall time of each tick of the match's loop.", matches,
+                [](const MetricsSample& m) -> const TickHistogram& { return m.tick_time; });
   add_header(out, "tick_seconds_max", "Longest tick of the match's loop so far.", "gauge");
   for (const MetricsSample& match : matches) {
     add_label(out, "tick_seconds_max", match);
@@ -89,6 +101,37 @@ void add_tick_time(std::string& out, std::span<const MetricsSample> matches) {
     add_seconds(out, match.tick_time.max_ns());
     out.append("\n");
   }
+  add_histogram(out, "tick_lateness_seconds",
+                "How long after its scheduled time each tick started.", matches,
+                [](const MetricsSample& m) -> const TickHistogram& { return m.tick_lateness; });
+}
+
+void add_process(std::string& out, const ProcessSample& process) {
+  auto gauge = [&out](std::string_view name, std::string_view help, std::string_view type,
+                      auto value) {
+    add_header(out, name, help, type);
+    out.append("rewind_").append(name).append(" ");
+    if constexpr (std::is_floating_point_v<decltype(value)>) {
+      char text[32];
+      const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+      out.append(text, end);
+    } else {
+      add_number(out, static_cast<uint64_t>(value));
+    }
+    out.append("\n");
+  };
+  gauge("tick_load",
+        "Share of the match threads' time spent ticking over the last seconds (may pass 1 "
+        "when the threads wait for a CPU).",
+        "gauge", process.tick_load);
+  gauge("tick_budget", "The tick load beyond which new matches are refused (--tick-budget).",
+        "gauge", process.tick_budget);
+  gauge("overloaded", "1 while new matches are refused: tick load over budget, or ticks slipping.",
+        "gauge", process.overloaded ? 1 : 0);
+  gauge("healthy", "0 while ticks slip persistently or stalled (Agones health pings stop).",
+        "gauge", process.healthy ? 1 : 0);
+  gauge("matches_refused_total", "Matches refused because the server was overloaded.", "counter",
+        process.matches_refused);
 }
 
 void add_family(std::string& out, const Metric& metric, std::string_view type,
@@ -104,13 +147,15 @@ void add_family(std::string& out, const Metric& metric, std::string_view type,
 
 }  // namespace
 
-std::string render_metrics(std::span<const MetricsSample> matches) {
+std::string render_metrics(std::span<const MetricsSample> matches, const ProcessSample* process) {
   using S = MatchStats;
   const Metric gauges[] = {
       {"players_joined", "Player slots taken.", nullptr,
        [](const MetricsSample& m) { return uint64_t{m.stats.players_joined}; }},
       {"players_connected", "Joined players the server currently hears from.", nullptr,
        [](const MetricsSample& m) { return uint64_t{m.players_connected}; }},
+      {"ticks_behind", "Whole periods the match's last tick started after it was due (0: on time).",
+       nullptr, [](const MetricsSample& m) { return static_cast<uint64_t>(m.ticks_behind); }},
   };
   const Metric counters[] = {
       {"ticks_final_total", "Ticks made final (inputs fixed, broadcast with their checksum).",
@@ -159,6 +204,11 @@ std::string render_metrics(std::span<const MetricsSample> matches) {
       {"secure_dropped_total",
        "Datagrams dropped before the match saw them (unauthenticated, replayed, not secure).",
        &S::secure_dropped, nullptr},
+      {"ticks_late_total",
+       "Ticks that started a period or more after they were due (run back to back to catch up).",
+       &S::ticks_late, nullptr},
+      {"ticks_missed_total", "Ticks dropped from the schedule after the tick loop stalled.",
+       &S::ticks_missed, nullptr},
   };
   std::string out;
   out.reserve(4096 + 6144 * matches.size());
@@ -168,6 +218,7 @@ std::string render_metrics(std::span<const MetricsSample> matches) {
   out.append("rewind_matches ");
   add_number(out, live);
   out.append("\n");
+  if (process != nullptr) add_process(out, *process);
   for (const Metric& metric : gauges) add_family(out, metric, "gauge", matches);
   add_phase(out, matches);
   for (const Metric& metric : counters) add_family(out, metric, "counter", matches);

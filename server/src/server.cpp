@@ -77,6 +77,9 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
                " run past 65535");
   }
   if (config.threads > 64) return bad("threads must be in [0, 64]");
+  if (!(config.tick_budget > 0.0 && config.tick_budget <= 1.0)) {
+    return bad("tick budget must be in (0, 1]");
+  }
   auto server = std::make_unique<Server>(config);
   // Checked once up front so a bad shared setting names itself, not match-1.
   MatchConfig first = server->config_for(config.match, config.match.match_id);
@@ -115,11 +118,17 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   const uint32_t cores = std::max(1u, std::thread::hardware_concurrency());
   const uint32_t most = std::max(1u, config.control ? config.max_matches : config.matches);
   server->threads_ = config.threads != 0 ? config.threads : std::min(cores, most);
+  server->load_->set_threads(server->threads_);
   return server;
 }
 
 Server::Server(const ServerConfig& config)
-    : config_(config), strand_(asio::make_strand(io_)), signals_(strand_, SIGINT, SIGTERM) {}
+    : config_(config),
+      strand_(asio::make_strand(io_)),
+      signals_(strand_, SIGINT, SIGTERM),
+      load_(config.load
+                ? config.load
+                : std::make_shared<LoadMonitor>(config.tick_budget, net::SteadyClock::now())) {}
 
 Server::~Server() {
   // The endpoints' handlers reach into this server: they stop first.
@@ -176,6 +185,7 @@ Result<std::shared_ptr<MatchRunner>> Server::add_match(const MatchConfig& config
   settings.server_key = config_.server_key;
   settings.name_in_logs = many();
   settings.owner = owner;
+  settings.load = load_;
   auto runner = MatchRunner::create(
       io_, settings, [this](MatchRunner&) { asio::post(strand_, [this] { on_match_ended(); }); });
   if (!runner.ok()) return runner.status();
@@ -196,6 +206,13 @@ Result<std::shared_ptr<MatchRunner>> Server::add_match(const MatchConfig& config
 
 Result<std::shared_ptr<MatchRunner>> Server::allocate(const MatchRequest& request,
                                                       const std::string& owner) {
+  // A match more would slow every match already here: refused while the
+  // threads are busy past the budget or ticks already slip.
+  if (std::string reason = load_->overload_reason(net::SteadyClock::now()); !reason.empty()) {
+    refused_.fetch_add(1, std::memory_order_relaxed);
+    write_log(LogLevel::kWarning, "refused match '" + request.match.match_id + "': " + reason);
+    return Status::Error(ErrorCode::kCapacity, reason);
+  }
   MatchConfig config = config_for(request.match, request.match.match_id);
   // A finished match's replay is its record: a new match under the same id
   // would overwrite it, so the id stays taken while the file exists.
@@ -213,6 +230,21 @@ Result<std::shared_ptr<MatchRunner>> Server::allocate(const MatchRequest& reques
                                  std::to_string((*runner)->port()) +
                                  (owner.empty() ? std::string() : " for " + owner));
   return runner;
+}
+
+bool Server::healthy() const {
+  return load_->healthy(net::SteadyClock::now());
+}
+
+ProcessSample Server::process_sample() const {
+  const net::TimePoint now = net::SteadyClock::now();
+  ProcessSample out;
+  out.tick_load = load_->load(now).busy;
+  out.tick_budget = load_->tick_budget();
+  out.overloaded = !load_->overload_reason(now).empty();
+  out.healthy = load_->healthy(now);
+  out.matches_refused = refused_.load(std::memory_order_relaxed);
+  return out;
 }
 
 std::vector<MetricsSample> Server::samples() const {
@@ -351,7 +383,8 @@ HttpReply Server::serve_metrics(const HttpRequest& request) {
   if (request.method != "GET" && request.method != "HEAD") {
     return HttpReply{405, "text/plain; charset=utf-8", "GET /metrics\n", {}};
   }
-  return HttpReply{200, "text/plain; version=0.0.4", render_metrics(samples()), {}};
+  const ProcessSample process = process_sample();
+  return HttpReply{200, "text/plain; version=0.0.4", render_metrics(samples(), &process), {}};
 }
 
 HttpEndpoint::Stats Server::metrics_http_stats() const {

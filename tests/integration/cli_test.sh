@@ -28,6 +28,8 @@ check 64 "--port: 70000 is outside [0, 65535]" rewind-server --port 70000
 check 64 "--players: expected an integer, got 'four'" rewind-server --players four
 check 64 "--window: missing value" rewind-server --window
 check 64 "--tick-rate: 0 is outside [1, 1000]" rewind-server --tick-rate 0
+check 64 "--tick-budget: 0 is outside [0.01, 1]" rewind-server --tick-budget 0
+check 64 "--tick-budget: 1.5 is outside [0.01, 1]" rewind-server --tick-budget 1.5
 check 1 "unknown game 'chess'" rewind-server --game chess --port 0
 check 64 "--metrics-bind: expected HOST:PORT, got 'nowhere'" rewind-server --metrics-bind nowhere
 check 64 "--metrics-port-file needs --metrics-bind" rewind-server --metrics-port-file x --port 0

@@ -7,9 +7,10 @@
 
 #include "rewind/game/crates_game.h"
 #include "rewind/net/address_cookie.h"
+#include "rewind/net/connect_token.h"
 #include "rewind/net/connection.h"
 #include "rewind/net/envelope_codec.h"
-#include "rewind/proto/input_wire.h"
+#include "scripted_peer.h"
 
 namespace rwd::test {
 
@@ -29,10 +30,9 @@ class HeadlessMatch::Peer {
 
 namespace {
 
-using SendFn = std::function<void(std::span<const uint8_t>)>;
 constexpr uint16_t kFirstPort = 20000;
-constexpr auto kJoinResend = std::chrono::milliseconds(250);
-constexpr auto kEndingWait = std::chrono::milliseconds(1500);
+// Connect tokens of secure matches live this long, from the real clock.
+constexpr int64_t kTokenLifetimeS = 6 * 3600;
 
 Clock::duration from_ms(double ms) {
   return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(ms));
@@ -77,197 +77,21 @@ class SdkPeer final : public HeadlessMatch::Peer {
   SdkClientResult result_;
 };
 
-// A protocol peer without a simulation: joins, sends its scripted inputs a
-// little ahead of the server's clock (every unacknowledged one, in one
-// frame), acknowledges the final ticks it got, leaves at the end.
-class ScriptedPeer final : public HeadlessMatch::Peer {
+// The scripted peers, plain or secure, as headless peers.
+template <typename Scripted>
+class ScriptedAdapter final : public HeadlessMatch::Peer {
  public:
-  ScriptedPeer(const std::string& game, const std::string& name, uint64_t nonce, InputScript inputs,
-               double lead_ticks, Clock::duration period, SendFn send)
-      : game_(game),
-        name_(name),
-        nonce_(nonce),
-        inputs_(std::move(inputs)),
-        lead_ticks_(lead_ticks),
-        period_(period),
-        send_(std::move(send)),
-        connection_(TimePoint{}) {}
-
-  void start(TimePoint now) override {
-    connection_ = net::Connection(now);
-    joining_ = true;
-    last_join_ = now - kJoinResend;
-  }
-
+  template <typename... Args>
+  explicit ScriptedAdapter(Args&&... args) : peer_(std::forward<Args>(args)...) {}
+  void start(TimePoint now) override { peer_.start(now); }
   void receive(std::span<const uint8_t> datagram, TimePoint now) override {
-    if (const std::optional<net::AddressCookie> cookie = net::read_cookie(datagram)) {
-      if (joining_ && !cookie_) {
-        cookie_ = *cookie;
-        last_join_ = now - kJoinResend;  // the join goes out on the next update
-      }
-      return;
-    }
-    auto decoded = net::decode_envelope(datagram);
-    if (!decoded.ok()) return;
-    const v1::Envelope& e = *decoded;
-    if (e.has_join_accept()) {
-      if (!joining_ || e.join_accept().nonce() != nonce_) return;
-      connection_.set_connection_id(e.join_accept().connection_id());
-    }
-    if (connection_.connection_id() == 0 || e.connection_id() != connection_.connection_id()) {
-      return;
-    }
-    if (!connection_.on_receive(e, now).is_new()) return;
-    switch (e.payload_case()) {
-      case v1::Envelope::kJoinAccept:
-        player_ = e.join_accept().player();
-        joining_ = false;
-        break;
-      case v1::Envelope::kMatchStart:
-        started_ = true;
-        hear_server_tick(e.match_start().server_tick(), now);
-        break;
-      case v1::Envelope::kFinalTicks:
-        on_final_ticks(e.final_ticks(), now);
-        break;
-      case v1::Envelope::kResyncChunk:
-        // The server thinks we fell behind its history and restarts us from
-        // a snapshot. Without a simulation there is nothing to load: take
-        // the snapshot's tick as the new base, as a client would.
-        if (e.resync_chunk().tick() - 1 > contiguous_) {
-          contiguous_ = e.resync_chunk().tick() - 1;
-          ahead_.erase(ahead_.begin(), ahead_.upper_bound(contiguous_));
-        }
-        break;
-      case v1::Envelope::kMatchEnd:
-        if (done_) {
-          say_goodbye(now);  // our goodbye was lost: the server still waits
-        } else if (!ending_) {
-          ending_ = true;
-          end_tick_ = e.match_end().last_final_tick();
-          ending_deadline_ = now + kEndingWait;
-        }
-        break;
-      case v1::Envelope::kDisconnect:
-        done_ = true;
-        break;
-      default:
-        break;  // relayed inputs and pongs: nothing to do without a simulation
-    }
+    peer_.receive(datagram, now);
   }
-
-  void update(TimePoint now) override {
-    if (done_) return;
-    if (joining_) {
-      if (now - last_join_ >= kJoinResend) {
-        last_join_ = now;
-        if (!cookie_) {
-          send_(net::make_hello());  // until the server's cookie comes back
-          return;
-        }
-        v1::Envelope envelope;
-        envelope.mutable_join_request()->set_game(game_);
-        envelope.mutable_join_request()->set_client_name(name_);
-        envelope.mutable_join_request()->set_nonce(nonce_);
-        connection_.stamp(envelope, now);
-        if (net::encode_envelope(envelope, buffer_).ok()) {
-          net::frame_join(*cookie_, buffer_, framed_);
-          send_(framed_);
-        }
-      }
-      return;
-    }
-    if (!started_) return;
-    if (ending_ && (contiguous_ >= end_tick_ || now >= ending_deadline_)) {
-      say_goodbye(now);
-      done_ = true;
-      return;
-    }
-    if (sent_once_ && now - last_frame_ < period_) return;
-    sent_once_ = true;
-    last_frame_ = now;
-    // Inputs up to where the server will be when they arrive, plus a margin.
-    const double elapsed_ticks = std::chrono::duration<double>(now - heard_at_).count() /
-                                 std::chrono::duration<double>(period_).count();
-    const auto target = static_cast<Tick>(std::floor(server_tick_ + elapsed_ticks + lead_ticks_));
-    const Tick first = std::max<Tick>(input_ack_ + 1, 0);
-    v1::Envelope envelope;
-    v1::InputFrame* frame = envelope.mutable_input_frame();
-    frame->set_player(player_);
-    frame->set_first_tick(first);
-    frame->set_last_final_tick_seen(contiguous_);
-    if (!ending_) {
-      for (Tick t = first; t <= target && t < first + 64; ++t) {
-        *frame->add_inputs() = proto::to_wire(inputs_ ? inputs_(player_, t) : game::PlayerInput{});
-      }
-    }
-    send(envelope, now);
-  }
-
-  bool done() const override { return done_; }
+  void update(TimePoint now) override { peer_.update(now); }
+  bool done() const override { return peer_.done(); }
 
  private:
-  void hear_server_tick(int32_t tick, TimePoint now) {
-    if (tick > server_tick_ || heard_at_ == TimePoint{}) {
-      server_tick_ = tick;
-      heard_at_ = now;
-    }
-  }
-
-  void on_final_ticks(const v1::FinalTicks& finals, TimePoint now) {
-    hear_server_tick(finals.server_tick(), now);
-    input_ack_ = std::max(input_ack_, finals.input_ack_tick());
-    for (const v1::FinalTick& f : finals.ticks()) {
-      if (f.tick() <= contiguous_) continue;
-      if (f.tick() > contiguous_ + 1) {
-        ahead_.insert(f.tick());
-        continue;
-      }
-      contiguous_ = f.tick();
-      while (!ahead_.empty() && *ahead_.begin() <= contiguous_ + 1) {
-        contiguous_ = std::max(contiguous_, *ahead_.begin());
-        ahead_.erase(ahead_.begin());
-      }
-    }
-  }
-
-  void say_goodbye(TimePoint now) {
-    v1::Envelope bye;
-    bye.mutable_disconnect()->set_reason("match over");
-    send(bye, now);
-  }
-
-  void send(v1::Envelope& envelope, TimePoint now) {
-    connection_.stamp(envelope, now);
-    if (net::encode_envelope(envelope, buffer_).ok()) send_(buffer_);
-  }
-
-  std::string game_;
-  std::string name_;
-  uint64_t nonce_;
-  InputScript inputs_;
-  double lead_ticks_;
-  Clock::duration period_;
-  SendFn send_;
-  net::Connection connection_;
-  std::vector<uint8_t> buffer_;
-  std::vector<uint8_t> framed_;
-  std::optional<net::AddressCookie> cookie_;  // the server's, for our join
-  bool joining_ = false;
-  bool started_ = false;
-  bool ending_ = false;
-  bool done_ = false;
-  bool sent_once_ = false;
-  uint32_t player_ = 0;
-  TimePoint last_join_;
-  TimePoint last_frame_;
-  TimePoint heard_at_;
-  TimePoint ending_deadline_;
-  int32_t server_tick_ = 0;
-  Tick input_ack_ = kNoTick;
-  Tick contiguous_ = kNoTick;  // every final tick up to here was received
-  Tick end_tick_ = kNoTick;
-  std::set<Tick> ahead_;  // final ticks received beyond a gap
+  Scripted peer_;
 };
 
 uint64_t mix(uint64_t z) {
@@ -294,18 +118,40 @@ Result<std::unique_ptr<HeadlessMatch>> HeadlessMatch::create(const HeadlessConfi
   }
   auto match = std::make_unique<HeadlessMatch>(config, net::SteadyClock::now());
   HeadlessMatch* self = match.get();
+  auto to_client = [self](const server::Endpoint& to, std::span<const uint8_t> bytes) {
+    self->transmit(Direction::kToClient, static_cast<uint32_t>(to.port() - kFirstPort), bytes);
+  };
+  server::MatchConfig match_config = config.match;
+  match_config.secure = config.secure;
+  const net::Key server_key = net::generate_key();
+  if (config.secure) {
+    // The secure gateway sits between the network and the host as in the
+    // server (MatchRunner): it answers handshakes, opens what arrives and
+    // seals what the host sends.
+    server::SecureGateway::Options options;
+    options.slots = config.match.players + config.match.max_spectators;
+    options.join_grace_s = static_cast<int64_t>(std::ceil(config.match.peer_timeout_s));
+    options.seated = [self](uint32_t slot, const server::Endpoint& endpoint) {
+      return self->host_->seated(slot, endpoint);
+    };
+    match->gateway_ = std::make_unique<server::SecureGateway>(
+        server_key, config.match.match_id, std::move(options), to_client);
+  }
   auto host = server::MatchHost::create(
-      config.match,
-      [self](const server::Endpoint& to, std::span<const uint8_t> bytes) {
-        self->transmit(Direction::kToClient, static_cast<uint32_t>(to.port() - kFirstPort), bytes);
+      match_config,
+      [self, to_client](const server::Endpoint& to, std::span<const uint8_t> bytes) {
+        if (self->gateway_) {
+          self->gateway_->send(to, bytes);
+        } else {
+          to_client(to, bytes);
+        }
       },
       self->now_);
   if (!host.ok()) return host.status();
   match->host_ = std::move(*host);
-  match->gateway_ = std::make_unique<server::TokenlessGateway>(
-      [self](const server::Endpoint& to, std::span<const uint8_t> bytes) {
-        self->transmit(Direction::kToClient, static_cast<uint32_t>(to.port() - kFirstPort), bytes);
-      });
+  if (!config.secure) {
+    match->tokenless_ = std::make_unique<server::TokenlessGateway>(to_client);
+  }
 
   const auto period =
       std::chrono::nanoseconds(1'000'000'000LL / static_cast<int64_t>(config.match.tick_rate_hz));
@@ -314,10 +160,18 @@ Result<std::unique_ptr<HeadlessMatch>> HeadlessMatch::create(const HeadlessConfi
   // the server's clock is a one-way trip old when heard, the inputs take
   // another, and two ticks of margin cover jitter and the update step.
   const double lead_ticks = 2.0 * (config.latency_ms + config.jitter_ms) / period_ms + 2.0;
+  const int64_t unix_now = self->unix_seconds(self->now_);
   for (uint32_t i = 0; i < config.match.players; ++i) {
     auto send = [self, i](std::span<const uint8_t> bytes) {
       self->transmit(Direction::kToServer, i, bytes);
     };
+    std::optional<net::ConnectToken> token;
+    if (config.secure) {
+      auto minted = net::make_connect_token(server_key, config.match.match_id, i, i + 1,
+                                            unix_now + kTokenLifetimeS, unix_now);
+      if (!minted.ok()) return minted.status();
+      token = *minted;
+    }
     if (i < config.sdk_clients) {
       client::ClientConfig client_config;
       client_config.game = config.match.game;
@@ -326,20 +180,42 @@ Result<std::unique_ptr<HeadlessMatch>> HeadlessMatch::create(const HeadlessConfi
       if (static_cast<int32_t>(i) == config.corrupt_client) {
         client_config.debug_corrupt_at_tick = config.corrupt_at_tick;
       }
+      if (token) client_config.connect_token = net::write_connect_token(*token);
       auto session = client::ClientSession::create_detached(client_config, send);
       if (!session.ok()) return session.status();
       match->peers_.push_back(std::make_unique<SdkPeer>(std::move(*session), config.inputs));
     } else {
-      match->peers_.push_back(std::make_unique<ScriptedPeer>(
-          config.match.game, "scripted-" + std::to_string(i), mix(config.seed ^ mix(i)),
-          config.inputs, lead_ticks, period, send));
+      ScriptedPeer::Settings settings;
+      settings.game = config.match.game;
+      settings.name = "scripted-" + std::to_string(i);
+      settings.nonce = mix(config.seed ^ mix(i));
+      settings.inputs = config.inputs;
+      settings.lead_ticks = lead_ticks;
+      settings.period = period;
+      if (token) {
+        match->peers_.push_back(
+            std::make_unique<ScriptedAdapter<SecurePeer>>(*token, std::move(settings), send));
+      } else {
+        match->peers_.push_back(
+            std::make_unique<ScriptedAdapter<ScriptedPeer>>(std::move(settings), send));
+      }
     }
   }
   return match;
 }
 
 HeadlessMatch::HeadlessMatch(const HeadlessConfig& config, TimePoint start)
-    : config_(config), now_(start), rng_(config.seed) {}
+    : config_(config),
+      now_(start),
+      start_(start),
+      unix_start_s_(std::chrono::duration_cast<std::chrono::seconds>(
+                        std::chrono::system_clock::now().time_since_epoch())
+                        .count()),
+      rng_(config.seed) {}
+
+int64_t HeadlessMatch::unix_seconds(TimePoint at) const {
+  return unix_start_s_ + std::chrono::duration_cast<std::chrono::seconds>(at - start_).count();
+}
 
 HeadlessMatch::~HeadlessMatch() = default;
 
@@ -371,12 +247,20 @@ void HeadlessMatch::deliver_due() {
     in_flight_.pop();
     if (item.direction == Direction::kToServer) {
       const auto begin = std::chrono::steady_clock::now();
-      gateway_->on_datagram(
-          item.bytes, endpoint_of(item.peer), item.at,
-          [this, &item](std::span<const uint8_t> envelope, const server::Endpoint& from,
-                        const server::Admission* who) {
-            host_->on_datagram(envelope, from, item.at, who);
-          });
+      const server::Endpoint from = endpoint_of(item.peer);
+      if (gateway_) {
+        gateway_->on_datagram(item.bytes, from, unix_seconds(item.at),
+                              [&](std::span<const uint8_t> envelope, const server::Endpoint& sender,
+                                  const server::Admission& who) {
+                                host_->on_datagram(envelope, sender, item.at, &who);
+                              });
+      } else {
+        tokenless_->on_datagram(item.bytes, from, item.at,
+                                [&](std::span<const uint8_t> envelope,
+                                    const server::Endpoint& sender, const server::Admission* who) {
+                                  host_->on_datagram(envelope, sender, item.at, who);
+                                });
+      }
       host_busy_ += std::chrono::steady_clock::now() - begin;
     } else {
       peers_[item.peer]->receive(item.bytes, item.at);
@@ -401,6 +285,9 @@ HeadlessResult HeadlessMatch::run() {
       host_->on_tick(now_);
       host_busy_ += std::chrono::steady_clock::now() - begin;
       ++host_ticks_;
+      host_tick_seconds_.push_back(
+          std::chrono::duration<double>(host_busy_ - busy_before_).count());
+      busy_before_ = host_busy_;
       next_tick += period;
     }
     bool all_done = host_->phase() == server::MatchHost::Phase::kEnded;
@@ -418,6 +305,7 @@ HeadlessResult HeadlessMatch::run() {
   result.simulated_seconds = std::chrono::duration<double>(now_ - start).count();
   result.host_busy_seconds = std::chrono::duration<double>(host_busy_).count();
   result.host_ticks = host_ticks_;
+  result.host_tick_seconds = std::move(host_tick_seconds_);
   result.datagrams_to_clients = datagrams_to_clients_;
   for (uint32_t i = 0; i < peers_.size(); ++i) {
     if (i < config_.sdk_clients) {

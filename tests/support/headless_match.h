@@ -7,11 +7,14 @@
 // minutes at 60 Hz) plays in as long as the simulations take to step.
 //
 // The SDK sessions predict, roll back, verify every final checksum, report
-// desyncs and resync, exactly as in a game. The scripted peers only speak
-// the protocol through the real envelope codec and connection layer: they
-// join, send their inputs ahead of the server with redundancy, acknowledge
-// final ticks and say goodbye. They let a 16-player match run at the cost
-// of a few simulations instead of seventeen.
+// desyncs and resync, exactly as in a game. The scripted peers
+// (scripted_peer.h) only speak the protocol through the real envelope codec
+// and connection layer: they join, send their inputs ahead of the server
+// with redundancy, acknowledge final ticks and say goodbye. They let a
+// 16-player match run at the cost of a few simulations instead of
+// seventeen. A secure match puts the server's SecureGateway in front of the
+// host and gives every peer a connect token, as rewind-server does with a
+// key.
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -26,16 +29,15 @@
 #include "rewind/game/player_input.h"
 #include "rewind/server/match_host.h"
 #include "rewind/server/tokenless_gateway.h"
+#include "rewind/server/secure_gateway.h"
+#include "scripted_peer.h"
 
 namespace rwd::test {
 
-using TimePoint = net::TimePoint;
-
-/// Inputs as a pure function of the player slot and the tick.
-using InputScript = std::function<game::PlayerInput(uint32_t player, Tick tick)>;
-
 struct HeadlessConfig {
   server::MatchConfig match;  ///< players = SDK clients + scripted peers
+  /// Connect tokens and sealed datagrams, through the server's gateway.
+  bool secure = false;
   /// How many of the peers are client SDK sessions; the rest are scripted.
   uint32_t sdk_clients = 2;
   /// Rollback depth of the SDK sessions.
@@ -72,9 +74,14 @@ struct HeadlessResult {
   double simulated_seconds = 0.0;
   bool timed_out = false;  ///< max_match_seconds passed before everything ended
   /// Wall time the host spent in on_tick and on_datagram (the server's
-  /// whole work: simulation, finalization, intake, broadcast, encoding),
+  /// whole work: simulation, finalization, intake, broadcast, encoding,
+  /// and in a secure match the gateway's opening and sealing),
   /// and the server ticks it ran, for the host benchmark.
   double host_busy_seconds = 0.0;
+  /// The same, tick by tick: each tick with the datagrams the host took
+  /// since the tick before. On a shared machine a few ticks are stretched
+  /// by preemption; their median is not.
+  std::vector<double> host_tick_seconds;
   uint64_t host_ticks = 0;
   uint64_t datagrams_to_clients = 0;
 };
@@ -116,19 +123,26 @@ class HeadlessMatch {
   void transmit(Direction direction, uint32_t peer, std::span<const uint8_t> bytes);
   void deliver_due();
   server::Endpoint endpoint_of(uint32_t peer) const;
+  /// The wall clock's seconds at a simulated time (token expiry).
+  int64_t unix_seconds(TimePoint at) const;
 
   HeadlessConfig config_;
   TimePoint now_;
+  TimePoint start_;
+  int64_t unix_start_s_ = 0;
+  std::unique_ptr<server::SecureGateway> gateway_;  ///< secure matches only
   std::unique_ptr<server::MatchHost> host_;
   /// The front door a tokenless server puts before the host (address
   /// cookies), so the peers join as they would over a socket.
-  std::unique_ptr<server::TokenlessGateway> gateway_;
+  std::unique_ptr<server::TokenlessGateway> tokenless_;  ///< tokenless matches only
   std::vector<std::unique_ptr<Peer>> peers_;
   std::priority_queue<InFlight, std::vector<InFlight>, std::greater<>> in_flight_;
   uint64_t next_order_ = 0;
   std::mt19937_64 rng_;
   LinkFilter filter_;
   std::chrono::steady_clock::duration host_busy_{};
+  std::chrono::steady_clock::duration busy_before_{};  // host_busy_ at the last tick
+  std::vector<double> host_tick_seconds_;
   uint64_t host_ticks_ = 0;
   uint64_t datagrams_to_clients_ = 0;
 };

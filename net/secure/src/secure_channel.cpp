@@ -143,15 +143,18 @@ Status SecureSession::open(std::span<const uint8_t> packet, std::vector<uint8_t>
   packet_nonce(sequence, nonce);
   uint8_t ad[9];
   payload_ad(match_tag_, ad);
-  std::vector<uint8_t> plain(packet.size() - kPayloadOverhead);
+  // Opened into the session's scratch buffer, then swapped with `out`:
+  // a refused packet leaves `out` as it was, and the two buffers keep their
+  // capacity, so a session allocates nothing per datagram once warm.
+  scratch_.resize(packet.size() - kPayloadOverhead);
   unsigned long long size = 0;
-  if (crypto_aead_chacha20poly1305_ietf_decrypt(plain.data(), &size, nullptr, r.at,
+  if (crypto_aead_chacha20poly1305_ietf_decrypt(scratch_.data(), &size, nullptr, r.at,
                                                 packet.size() - 9, ad, sizeof ad, nonce,
                                                 receive_key_.data()) != 0) {
     return corrupt("a payload packet that does not authenticate");
   }
+  out.swap(scratch_);
   window_.accept(sequence);
-  out.swap(plain);
   return Status::Ok();
 }
 

@@ -225,9 +225,7 @@ Status check_payload(const Envelope& e) {
   return corrupt("unknown payload");
 }
 
-}  // namespace
-
-Status validate_envelope(const Envelope& envelope) {
+Status validate_header(const Envelope& envelope) {
   if (envelope.protocol_version() != kProtocolVersion) {
     return corrupt("protocol_version " + std::to_string(envelope.protocol_version()) +
                    ", expected " + std::to_string(kProtocolVersion));
@@ -240,16 +238,22 @@ Status validate_envelope(const Envelope& envelope) {
   if (envelope.connection_id() == 0 && !pre_connection) {
     return corrupt("connection_id is 0 on a post-handshake message");
   }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status validate_envelope(const Envelope& envelope) {
+  if (Status s = validate_header(envelope); !s.ok()) return s;
   return check_payload(envelope);
 }
 
-Result<Envelope> decode_envelope(std::span<const uint8_t> bytes) {
+Status decode_envelope(std::span<const uint8_t> bytes, Envelope& out) {
   if (bytes.empty()) return corrupt("empty datagram");
   if (bytes.size() > kMaxDatagramBytes) {
     return corrupt("datagram is " + std::to_string(bytes.size()) + " bytes, limit " +
                    std::to_string(kMaxDatagramBytes));
   }
-  Envelope envelope;
   bool parsed = false;
   {
     // protobuf logs an ERROR line for every string field with invalid UTF-8;
@@ -258,16 +262,23 @@ Result<Envelope> decode_envelope(std::span<const uint8_t> bytes) {
     // and only hides non-fatal messages while a parse runs.
     google::protobuf::LogSilencer quiet;
     // The size check above keeps the int cast exact.
-    parsed = envelope.ParseFromArray(bytes.data(), static_cast<int>(bytes.size()));
+    parsed = out.ParseFromArray(bytes.data(), static_cast<int>(bytes.size()));
   }
   if (!parsed) return corrupt("not a valid protobuf Envelope");
-  if (Status s = validate_envelope(envelope); !s.ok()) return s;
+  return validate_envelope(out);
+}
+
+Result<Envelope> decode_envelope(std::span<const uint8_t> bytes) {
+  Envelope envelope;
+  if (Status s = decode_envelope(bytes, envelope); !s.ok()) return s;
   return envelope;
 }
 
-Status encode_envelope(const Envelope& envelope, std::vector<uint8_t>& out) {
+Status encode_envelope(const Envelope& envelope, std::vector<uint8_t>& out, EncodeCheck check) {
   out.clear();
-  if (Status s = validate_envelope(envelope); !s.ok()) {
+  if (Status s =
+          check == EncodeCheck::kFull ? validate_envelope(envelope) : validate_header(envelope);
+      !s.ok()) {
     return Status::Error(ErrorCode::kInvalidArgument, "encode refused: " + s.message());
   }
   const size_t size = envelope.ByteSizeLong();

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 #include "d3/body_storage.h"
 #include "d3/pipeline.h"
@@ -34,44 +36,59 @@ constexpr uint32_t kQueriesTag = 0x53514451u;  // "QDQS"
 // Bounds the allocation a hostile header can request.
 constexpr uint32_t kMaxSlots = 1u << 24;
 
-// Streams the canonical fields into either a hasher or a byte buffer.
+// Streams the canonical fields into a hasher (Out = StateHasher) or a byte
+// buffer (Out = std::vector<uint8_t>); both emit the same bytes in the same
+// order. The checksum of every final tick walks every field of the state
+// (thousands), so the hashing side gathers the fields in a block of its own,
+// inlined, and hands the hasher whole blocks: one call per block instead of
+// a call per field. Streaming XXH3 hashes the same bytes to the same value
+// however they are split.
+template <class Out>
 class Sink {
  public:
-  explicit Sink(StateHasher* h) : hasher_(h) {}
-  explicit Sink(std::vector<uint8_t>* b) : bytes_(b) {}
-  void u8(uint8_t v) {
-    if (hasher_ != nullptr) {
-      hasher_->add_u8(v);
+  explicit Sink(Out& out) : out_(out) {}
+  Sink(const Sink&) = delete;
+  Sink& operator=(const Sink&) = delete;
+  ~Sink() {
+    if constexpr (kHashing) flush();
+  }
+  [[gnu::always_inline]] void u8(uint8_t v) {
+    if constexpr (kHashing) {
+      if (used_ + 1 > sizeof block_) flush();
+      block_[used_++] = v;
     } else {
-      bytes_->push_back(v);
+      out_.push_back(v);
     }
   }
-  void u32(uint32_t v) {
-    if (hasher_ != nullptr) {
-      hasher_->add_u32(v);
+  [[gnu::always_inline]] void u32(uint32_t v) {
+    if constexpr (kHashing) {
+      if (used_ + 4 > sizeof block_) flush();
+      for (int i = 0; i < 4; ++i) block_[used_ + i] = static_cast<uint8_t>(v >> (8 * i));
+      used_ += 4;
     } else {
-      for (int i = 0; i < 4; ++i) bytes_->push_back(static_cast<uint8_t>(v >> (8 * i)));
+      for (int i = 0; i < 4; ++i) out_.push_back(static_cast<uint8_t>(v >> (8 * i)));
     }
   }
-  void u64(uint64_t v) {
+  [[gnu::always_inline]] void u64(uint64_t v) {
     u32(static_cast<uint32_t>(v));
     u32(static_cast<uint32_t>(v >> 32));
   }
-  void f32(float v) {
-    if (hasher_ != nullptr) {
-      hasher_->add_f32(v);  // folds -0 onto +0
-    } else {
-      uint32_t bits = 0;
-      std::memcpy(&bits, &v, 4);
-      u32(bits);
+  [[gnu::always_inline]] void f32(float v) {
+    // The checksum folds -0 onto +0, as StateHasher::add_f32 does, so two
+    // equal values always hash alike; the encoding keeps the bits.
+    if constexpr (kHashing) {
+      if (v == 0.0f) v = 0.0f;
     }
+    uint32_t bits = 0;
+    std::memcpy(&bits, &v, 4);
+    u32(bits);
   }
-  void vec3(Vec3 v) {
+  [[gnu::always_inline]] void vec3(Vec3 v) {
     f32(v.x);
     f32(v.y);
     f32(v.z);
   }
-  void quat(Quat q) {
+  [[gnu::always_inline]] void quat(Quat q) {
     f32(q.x);
     f32(q.y);
     f32(q.z);
@@ -79,14 +96,21 @@ class Sink {
   }
 
  private:
-  StateHasher* hasher_ = nullptr;
-  std::vector<uint8_t>* bytes_ = nullptr;
+  static constexpr bool kHashing = std::is_same_v<Out, StateHasher>;
+  void flush() {
+    out_.add_bytes(block_, used_);
+    used_ = 0;
+  }
+  Out& out_;
+  size_t used_ = 0;
+  uint8_t block_[kHashing ? 1024 : 1];
 };
 
 // The schema's visitor over a Sink: names are for the dump only.
+template <class Out>
 class SinkIo {
  public:
-  explicit SinkIo(Sink& s) : s_(s) {}
+  explicit SinkIo(Sink<Out>& s) : s_(s) {}
   void u8(const char*, uint8_t v) { s_.u8(v); }
   void flag(const char*, uint8_t v) { s_.u8(v); }
   void boolean(const char*, bool v) { s_.u8(v ? 1 : 0); }
@@ -104,16 +128,18 @@ class SinkIo {
   void quat(const char*, Quat q) { s_.quat(q); }
 
  private:
-  Sink& s_;
+  Sink<Out>& s_;
 };
 
-void write_config(Sink& s, const WorldConfig& c) {
-  SinkIo io(s);
+template <class Out>
+void write_config(Sink<Out>& s, const WorldConfig& c) {
+  SinkIo<Out> io(s);
   d3::visit_config(io, c);
 }
 
-void write_joints(Sink& s, const WorldState& st) {
-  SinkIo io(s);
+template <class Out>
+void write_joints(Sink<Out>& s, const WorldState& st) {
+  SinkIo<Out> io(s);
   s.u32(static_cast<uint32_t>(st.joints.size()));
   for (const JointRecord& j : st.joints) {
     s.u32(j.generation);
@@ -122,16 +148,18 @@ void write_joints(Sink& s, const WorldState& st) {
   }
 }
 
-void write_queries(Sink& s, const WorldState& st) {
-  SinkIo io(s);
+template <class Out>
+void write_queries(Sink<Out>& s, const WorldState& st) {
+  SinkIo<Out> io(s);
   s.u64(st.last_query_ticket);
   s.u32(static_cast<uint32_t>(st.queries.size()));
   for (const ScheduledQueryRecord& q : st.queries) d3::visit_query(io, q);
 }
 
-void write_state(Sink& s, const WorldState& st) {
+template <class Out>
+void write_state(Sink<Out>& s, const WorldState& st) {
   write_config(s, st.config);
-  SinkIo io(s);
+  SinkIo<Out> io(s);
   s.u64(st.step_count);
   s.u32(static_cast<uint32_t>(st.infos.size()));
   for (size_t i = 0; i < st.infos.size(); ++i) {
@@ -289,7 +317,7 @@ Status corrupt_body(uint32_t index, const std::string& why) {
 }  // namespace
 
 void World3D::hash_state(const WorldState& state, StateHasher& hasher) {
-  Sink sink(&hasher);
+  Sink<StateHasher> sink(hasher);
   write_state(sink, state);
   // A world that never had a joint hashes as it did before joints existed,
   // and one that never scheduled a query as it did before queries could be.
@@ -305,7 +333,7 @@ void World3D::hash_state(const WorldState& state, StateHasher& hasher) {
 void World3D::serialize(std::vector<uint8_t>& out) const {
   out.clear();
   for (uint8_t b : kMagic) out.push_back(b);
-  Sink sink(&out);
+  Sink<std::vector<uint8_t>> sink(out);
   sink.u32(kVersion);
   // The geometry this state refers to, so a world holding other geometry
   // refuses it instead of simulating other shapes under the same ids.
@@ -319,7 +347,7 @@ void World3D::serialize(std::vector<uint8_t>& out) const {
 
 void World3D::encode_config(const WorldConfig& config, std::vector<uint8_t>& out) {
   out.clear();
-  Sink sink(&out);
+  Sink<std::vector<uint8_t>> sink(out);
   write_config(sink, config);
 }
 

@@ -55,6 +55,53 @@ TEST(EnvelopeCodec, RoundTripsEveryPayloadKind) {
             static_cast<size_t>(v1::Envelope::descriptor()->oneof_decl(0)->field_count()));
 }
 
+TEST(EnvelopeCodec, DecodesIntoAReusedEnvelope) {
+  // One message decoded into over and over (as the server does on an
+  // arena) holds exactly the last datagram each time, nothing of the one
+  // before.
+  v1::Envelope reused;
+  for (const v1::Envelope& e : sample_envelopes()) {
+    std::vector<uint8_t> bytes;
+    ASSERT_TRUE(encode_envelope(e, bytes).ok());
+    ASSERT_TRUE(decode_envelope(bytes, reused).ok());
+    EXPECT_TRUE(same(reused, e)) << reused.ShortDebugString();
+  }
+  v1::Envelope bad = header();
+  bad.set_protocol_version(kProtocolVersion + 1);
+  bad.mutable_ping();
+  const Status refused = decode_envelope(raw_bytes(bad), reused);
+  EXPECT_EQ(refused.code(), ErrorCode::kCorrupt);
+  EXPECT_NE(refused.message().find("protocol_version"), std::string::npos);
+  EXPECT_EQ(decode_envelope({}, reused).code(), ErrorCode::kCorrupt);
+}
+
+TEST(EnvelopeCodec, AHeaderOnlyEncodeStillRefusesABadHeaderOrSize) {
+  std::vector<uint8_t> out;
+  v1::Envelope version = sample_envelopes()[10];
+  version.set_protocol_version(kProtocolVersion + 1);
+  EXPECT_EQ(encode_envelope(version, out, EncodeCheck::kHeader).code(),
+            ErrorCode::kInvalidArgument);
+  v1::Envelope anonymous = sample_envelopes()[10];
+  anonymous.set_connection_id(0);
+  EXPECT_EQ(encode_envelope(anonymous, out, EncodeCheck::kHeader).code(),
+            ErrorCode::kInvalidArgument);
+  EXPECT_FALSE(encode_envelope(header(), out, EncodeCheck::kHeader).ok());  // no payload
+  v1::Envelope big = header();
+  big.mutable_final_ticks()->set_relayed(std::string(kMaxDatagramBytes, 'x'));
+  EXPECT_EQ(encode_envelope(big, out, EncodeCheck::kHeader).code(), ErrorCode::kCapacity);
+  EXPECT_TRUE(out.empty());
+  // What it leaves to its caller: the payload's own limits.
+  v1::Envelope negative = sample_envelopes()[10];
+  negative.mutable_final_ticks()->mutable_ticks(0)->set_tick(-1);
+  EXPECT_FALSE(encode_envelope(negative, out).ok());
+  EXPECT_TRUE(encode_envelope(negative, out, EncodeCheck::kHeader).ok());
+  // And a valid envelope encodes to the same bytes either way.
+  std::vector<uint8_t> full;
+  ASSERT_TRUE(encode_envelope(sample_envelopes()[10], full).ok());
+  ASSERT_TRUE(encode_envelope(sample_envelopes()[10], out, EncodeCheck::kHeader).ok());
+  EXPECT_EQ(out, full);
+}
+
 TEST(EnvelopeCodec, RejectsEmpty) {
   Result<v1::Envelope> r = decode_envelope({});
   ASSERT_FALSE(r.ok());

@@ -218,14 +218,14 @@ TEST(MetricsText, TickHistogramIsCumulativeWithSumCountAndMax) {
   EXPECT_EQ(h.at("rewind_tick_seconds_bucket{match=\"m\",le=\"+Inf\"}"), 4);
   EXPECT_EQ(h.at("rewind_tick_seconds_count{match=\"m\"}"), 4);
   EXPECT_DOUBLE_EQ(h.at("rewind_tick_seconds_sum{match=\"m\"}"), 0.020065);
-  EXPECT_EQ(h.size(), TickHistogram::bucket_total() + 2);
+  EXPECT_EQ(h.size(), TickHistogram().bucket_total() + 2);
   // Ordered by their bounds, the buckets never decrease.
   std::map<double, double> by_bound;
   for (const auto& [series, value] : h) {
     const size_t le = series.find("le=\"");
     if (le != std::string::npos) by_bound[std::strtod(series.c_str() + le + 4, nullptr)] = value;
   }
-  EXPECT_EQ(by_bound.size(), TickHistogram::bucket_total());
+  EXPECT_EQ(by_bound.size(), TickHistogram().bucket_total());
   double previous = 0;
   for (const auto& [bound, value] : by_bound) {
     EXPECT_GE(value, previous) << bound;
@@ -261,7 +261,7 @@ TEST(MetricsText, SeveralMatchesAreSeriesOfOneFamily) {
       1);
   // An ended match is still reported but no longer counted as hosted.
   EXPECT_EQ(f.at("rewind_matches").samples.at("rewind_matches"), 1);
-  EXPECT_EQ(f.at("rewind_tick_seconds").samples.size(), 2 * (TickHistogram::bucket_total() + 2));
+  EXPECT_EQ(f.at("rewind_tick_seconds").samples.size(), 2 * (TickHistogram().bucket_total() + 2));
 }
 
 TEST(MetricsText, NoMatchesStillDescribesEveryFamily) {
@@ -269,6 +269,52 @@ TEST(MetricsText, NoMatchesStillDescribesEveryFamily) {
   EXPECT_EQ(f.at("rewind_matches").samples.at("rewind_matches"), 0);
   EXPECT_TRUE(f.count("rewind_ticks_final_total"));
   EXPECT_TRUE(f.at("rewind_ticks_final_total").help);
+  EXPECT_TRUE(f.count("rewind_tick_lateness_seconds"));
+  EXPECT_FALSE(f.count("rewind_tick_load"));  // process figures only when given
+}
+
+TEST(MetricsText, TickLatenessAndSlippedTicksPerMatch) {
+  MetricsSample sample = sample_with_counts();
+  sample.tick_lateness.observe(std::chrono::microseconds(40));
+  sample.tick_lateness.observe(std::chrono::microseconds(80));
+  sample.tick_lateness.observe(std::chrono::milliseconds(20));  // more than a 60 Hz period
+  sample.ticks_behind = 1;
+  sample.stats.ticks_late = 1;
+  sample.stats.ticks_missed = 12;
+  const std::map<std::string, Family> f = parse(render_one(sample));
+  const auto& h = f.at("rewind_tick_lateness_seconds").samples;
+  EXPECT_EQ(f.at("rewind_tick_lateness_seconds").type, "histogram");
+  EXPECT_EQ(h.at("rewind_tick_lateness_seconds_bucket{match=\"m\",le=\"5e-05\"}"), 1);
+  EXPECT_EQ(h.at("rewind_tick_lateness_seconds_bucket{match=\"m\",le=\"0.0001\"}"), 2);
+  EXPECT_EQ(h.at("rewind_tick_lateness_seconds_bucket{match=\"m\",le=\"0.01\"}"), 2);
+  EXPECT_EQ(h.at("rewind_tick_lateness_seconds_bucket{match=\"m\",le=\"0.025\"}"), 3);
+  EXPECT_EQ(h.at("rewind_tick_lateness_seconds_bucket{match=\"m\",le=\"+Inf\"}"), 3);
+  EXPECT_EQ(h.at("rewind_tick_lateness_seconds_count{match=\"m\"}"), 3);
+  EXPECT_DOUBLE_EQ(h.at("rewind_tick_lateness_seconds_sum{match=\"m\"}"), 0.02012);
+  EXPECT_EQ(h.size(), sample.tick_lateness.bucket_total() + 2);
+  EXPECT_EQ(f.at("rewind_ticks_late_total").samples.at("rewind_ticks_late_total{match=\"m\"}"), 1);
+  EXPECT_EQ(f.at("rewind_ticks_missed_total").samples.at("rewind_ticks_missed_total{match=\"m\"}"),
+            12);
+  EXPECT_EQ(f.at("rewind_ticks_behind").type, "gauge");
+  EXPECT_EQ(f.at("rewind_ticks_behind").samples.at("rewind_ticks_behind{match=\"m\"}"), 1);
+}
+
+TEST(MetricsText, TheProcessLoadIsUnlabelled) {
+  ProcessSample process;
+  process.tick_load = 0.5;
+  process.tick_budget = 0.75;
+  process.overloaded = true;
+  process.healthy = false;
+  process.matches_refused = 3;
+  const MetricsSample sample = sample_with_counts();
+  const std::map<std::string, Family> f =
+      parse(render_metrics(std::span<const MetricsSample>(&sample, 1), &process));
+  EXPECT_DOUBLE_EQ(f.at("rewind_tick_load").samples.at("rewind_tick_load"), 0.5);
+  EXPECT_DOUBLE_EQ(f.at("rewind_tick_budget").samples.at("rewind_tick_budget"), 0.75);
+  EXPECT_EQ(f.at("rewind_overloaded").samples.at("rewind_overloaded"), 1);
+  EXPECT_EQ(f.at("rewind_healthy").samples.at("rewind_healthy"), 0);
+  EXPECT_EQ(f.at("rewind_matches_refused_total").type, "counter");
+  EXPECT_EQ(f.at("rewind_matches_refused_total").samples.at("rewind_matches_refused_total"), 3);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // One server process hosting several matches on real loopback sockets and
 // a pool of threads: matches allocated through the control API side by
-// side, and a match whose game logic throws ending alone.
+// side, a match whose game logic throws ending alone, and new matches
+// refused while the process is overloaded.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -214,6 +215,9 @@ TEST(ServerMatches, LaunchMatchesTakeConsecutiveIdsAndPaths) {
     EXPECT_EQ(samples[i].match, "match-" + std::to_string(i + 1));
     EXPECT_EQ(samples[i].phase, MatchHost::Phase::kEnded);
     EXPECT_EQ(samples[i].stats.end_reason.rfind("lobby timeout", 0), 0u);
+    // Every tick the loop ran had its start measured against its time.
+    EXPECT_GT(samples[i].tick_time.count(), 0u);
+    EXPECT_EQ(samples[i].tick_lateness.count(), samples[i].tick_time.count());
     EXPECT_TRUE(std::filesystem::exists(dir / ("game-match-" + std::to_string(i + 1) + ".rwr")));
   }
 }
@@ -246,6 +250,13 @@ TEST(ServerMatches, BadProcessConfigsAreRefused) {
   EXPECT_FALSE(Server::create(config).ok());
   config.match.match_id = "..";
   EXPECT_FALSE(Server::create(config).ok());
+  for (const double budget : {0.0, -0.5, 1.01}) {
+    config = control_config();
+    config.tick_budget = budget;
+    auto refused = Server::create(config);
+    ASSERT_FALSE(refused.ok()) << budget;
+    EXPECT_NE(refused.status().message().find("tick budget"), std::string::npos);
+  }
 }
 
 TEST(ServerMatches, AnIdIsNotReusedWhileItsReplayExists) {
@@ -296,6 +307,35 @@ TEST(ServerMatches, ControlAndMetricsAreSeparateEndpoints) {
   }
   (*server)->shutdown("test over");
   runner.join();
+}
+
+TEST(ServerMatches, AnOverloadedServerRefusesNewMatches) {
+  using namespace std::chrono_literals;
+  // A load record whose last seconds kept both match threads busy: made
+  // up relative to now, so no real tick (nor the machine's speed) matters.
+  const net::TimePoint now = net::SteadyClock::now();
+  ServerConfig config = control_config();
+  config.load = std::make_shared<LoadMonitor>(0.5, now - 60s);
+  for (int s = 1; s <= 10; ++s) config.load->record_tick(now - s * 1s, 2s, false, 0);
+  auto server = Server::create(config);
+  ASSERT_TRUE(server.ok()) << server.status().message();
+  MatchRequest request;
+  request.match = config.match;
+  request.match.match_id = "one-more";
+  auto refused = (*server)->allocate(request);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), ErrorCode::kCapacity);
+  EXPECT_EQ(refused.status().message().rfind("overloaded: ", 0), 0u) << refused.status().message();
+  EXPECT_NE(refused.status().message().find("budget 50%"), std::string::npos)
+      << refused.status().message();
+  EXPECT_TRUE((*server)->samples().empty());
+  const ProcessSample process = (*server)->process_sample();
+  EXPECT_TRUE(process.overloaded);
+  EXPECT_EQ(process.matches_refused, 1u);
+  EXPECT_DOUBLE_EQ(process.tick_budget, 0.5);
+  EXPECT_GT(process.tick_load, 0.5);
+  // Busy but punctual: the process is still healthy.
+  EXPECT_TRUE((*server)->healthy());
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 // One match hosted as an Agones GameServer (rewind-server --agones):
 //   1. GET /gameserver until the SDK sidecar answers (it may start after
 //      the server), within sidecar_timeout_s;
-//   2. health pings start on their own thread and run until the end;
+//   2. health pings start on their own thread and run until the end,
+//      withheld while the match's ticks slip persistently (LoadMonitor),
+//      so that Agones marks the GameServer Unhealthy;
 //   3. POST /ready, then GET /gameserver every poll_period_s until the
 //      state is "Allocated", within allocation_timeout_s;
 //   4. the allocation's `rewind.dev/...` annotations and labels override the

@@ -7,6 +7,7 @@
 // through a callback, and the wall clock and files it needs (a replay's
 // date, desync reports) come through a MatchEnvironment. That keeps every
 // rule here testable on its own.
+#include <google/protobuf/arena.h>
 #include <asio/ip/udp.hpp>
 #include <chrono>
 #include <cstdint>
@@ -208,6 +209,16 @@ class MatchHost {
   uint32_t next_snapshot_id_ = 1;
   net::ConnectionIdGenerator ids_;  // unguessable by other clients
   std::vector<uint8_t> encode_buffer_;
+  // The messages of the hot path live on arenas reset after each use: a
+  // datagram parsed (receive_arena_) and the tick's datagram to every
+  // client (broadcast_arena_) cost no allocation once their first blocks
+  // are warm. Two arenas, because a datagram can start the match, whose
+  // messages must not be freed under the one being handled.
+  static constexpr size_t kReceiveArenaBytes = 8 * 1024;
+  static constexpr size_t kBroadcastArenaBytes = 32 * 1024;
+  std::unique_ptr<char[]> arena_blocks_;
+  google::protobuf::Arena receive_arena_;
+  google::protobuf::Arena broadcast_arena_;
   std::vector<uint8_t> state_buffer_;
   std::vector<game::PlayerInput> final_inputs_;
   bool replay_failed_ = false;

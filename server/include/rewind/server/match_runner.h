@@ -18,11 +18,13 @@
 #include <string>
 
 #include "rewind/net/polled_udp_socket.h"
+#include "rewind/server/load_monitor.h"
 #include "rewind/server/match_host.h"
 #include "rewind/server/metrics_text.h"
 #include "rewind/server/secure_gateway.h"
 #include "rewind/server/tick_histogram.h"
 #include "rewind/server/tokenless_gateway.h"
+#include "rewind/server/tick_schedule.h"
 
 namespace rwd::server {
 
@@ -40,6 +42,9 @@ class MatchRunner : public std::enable_shared_from_this<MatchRunner> {
     /// The control API caller that allocated the match; empty for launch
     /// matches.
     std::string owner;
+    /// Where the match reports each tick's start, work and lateness (the
+    /// process's load); none when null.
+    std::shared_ptr<LoadMonitor> load;
   };
   /// Called once, on the match's strand, after the match has ended and its
   /// socket is closed. The runner may be released from there.
@@ -92,9 +97,8 @@ class MatchRunner : public std::enable_shared_from_this<MatchRunner> {
   std::unique_ptr<TokenlessGateway> tokenless_;  ///< null in secure mode
   std::unique_ptr<MatchHost> host_;
   EndedFn on_ended_;
-  std::chrono::nanoseconds period_;
-  TimePoint next_tick_;
-  TickHistogram tick_time_;  ///< wall time of each MatchHost::on_tick
+  TickSchedule schedule_;    ///< when ticks are due, how late they start
+  TickHistogram tick_time_;  ///< wall time of each tick: datagrams in, MatchHost::on_tick, out
   bool started_ = false;
   bool finished_ = false;
   std::atomic<bool> ended_{false};

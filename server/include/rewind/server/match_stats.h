@@ -50,6 +50,13 @@ struct MatchStats {
   uint64_t secure_sessions = 0;
   uint64_t secure_refused = 0;
   uint64_t secure_dropped = 0;
+  /// The tick loop's punctuality (TickSchedule; zero where no loop ran, as
+  /// in a headless match): ticks that started a period or more after they
+  /// were due (run back to back to catch up), ticks dropped from the
+  /// schedule after a stall (never run), and the latest start.
+  uint64_t ticks_late = 0;
+  uint64_t ticks_missed = 0;
+  double tick_lateness_max_s = 0.0;
   double duration_s = 0.0;
   std::string end_reason;
 
@@ -58,8 +65,8 @@ struct MatchStats {
   /// The end-of-match summary, one readable line.
   std::string to_text() const;
   /// What went wrong that an operator must look at (snapshots that did not
-  /// load, unreadable desync dumps, reports not written), one line; empty
-  /// when nothing did.
+  /// load, unreadable desync dumps, reports not written, ticks that slipped),
+  /// one line; empty when nothing did.
   std::string problems() const;
 };
 

@@ -19,6 +19,7 @@
 #include "rewind/server/api_keys.h"
 #include "rewind/server/control_api.h"
 #include "rewind/server/http_endpoint.h"
+#include "rewind/server/load_monitor.h"
 #include "rewind/server/match_request.h"
 #include "rewind/server/match_runner.h"
 #include "rewind/server/metrics_text.h"
@@ -72,6 +73,14 @@ struct ServerConfig {
   HttpBind control_bind{"127.0.0.1", 7790};
   std::optional<ApiKeys> control_keys;
   ControlPolicy control_policy;
+  /// The share of the match threads' time spent ticking (over the last
+  /// LoadMonitor::kWindowS seconds) beyond which allocate() refuses new
+  /// matches, in (0, 1]. Ticks slipping refuse them too.
+  double tick_budget = 0.75;
+  /// Where the matches report their ticks; null: the server makes its own
+  /// with tick_budget. Shared so that a health check living longer than
+  /// the Server (the Agones pinger) can read it.
+  std::shared_ptr<LoadMonitor> load;
 };
 
 /// kInvalidArgument when `config` is tokenless on an address that parses
@@ -94,9 +103,17 @@ class Server final : private ControlTarget {
   void shutdown(const std::string& reason);
   /// Allocates and starts a match; thread-safe. kInvalidArgument for a bad
   /// config or an id already alive, kCapacity when max_matches are
-  /// alive, kIo when the port cannot be bound.
+  /// alive or the server is overloaded ("overloaded: ...": the tick load is
+  /// over ServerConfig::tick_budget, or ticks slip), kIo when the port
+  /// cannot be bound. `owner`: the control API caller asking; empty for
+  /// the process itself.
   Result<std::shared_ptr<MatchRunner>> allocate(const MatchRequest& request,
                                                 const std::string& owner = {});
+  /// False while the matches' ticks slip persistently or the tick loop
+  /// stalled (LoadMonitor::healthy); thread-safe.
+  bool healthy() const;
+  /// The process's load, as /metrics reports it; thread-safe.
+  ProcessSample process_sample() const;
 
   /// Every match's report, launch matches first, then in allocation order
   /// (ended ones too, the newest 64 of them).
@@ -149,6 +166,8 @@ class Server final : private ControlTarget {
   std::unique_ptr<ControlApi> control_api_;
   std::unique_ptr<HttpEndpoint> control_;  ///< null without ServerConfig::control
   uint32_t threads_ = 1;
+  std::shared_ptr<LoadMonitor> load_;
+  std::atomic<uint64_t> refused_{0};  ///< allocations refused as overloaded
   std::vector<uint16_t> launch_ports_;
   std::vector<std::shared_ptr<MatchRunner>> launch_;  ///< started by run()
   std::atomic<bool> stopping_{false};                 ///< a signal came, matches are ending

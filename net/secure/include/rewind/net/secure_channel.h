@@ -107,10 +107,10 @@ class SecureSession {
 
   /// Seals `payload` into one Payload packet in `out` (replacing it).
   void seal(std::span<const uint8_t> payload, std::vector<uint8_t>& out);
-  /// Opens a Payload packet into `out`: kCorrupt when it is malformed, was
-  /// not sealed with the peer's key for this match, or was altered;
-  /// kInvalidArgument when its sequence was already seen or is too old.
-  /// A refused packet changes nothing.
+  /// Opens a Payload packet into `out` (replacing it): kCorrupt when it is
+  /// malformed, was not sealed with the peer's key for this match, or was
+  /// altered; kInvalidArgument when its sequence was already seen or is too
+  /// old. A refused packet changes nothing, `out` included.
   Status open(std::span<const uint8_t> packet, std::vector<uint8_t>& out);
 
   uint64_t sent() const { return next_sequence_; }
@@ -121,6 +121,7 @@ class SecureSession {
   uint64_t match_tag_ = 0;
   uint64_t next_sequence_ = 0;
   ReplayWindow window_;
+  std::vector<uint8_t> scratch_;  ///< open() decrypts here before it swaps with `out`
 };
 
 /// What an accepted Request's token names (read from its sealed part).

@@ -38,15 +38,32 @@ inline constexpr uint32_t kMaxTickRateHz = 1000;            ///< JoinAccept.tick
 /// != kProtocolVersion, no payload, connection_id 0 on a payload other than
 /// JoinRequest/JoinReject, or a payload that breaks validate_envelope().
 Result<rwd::v1::Envelope> decode_envelope(std::span<const uint8_t> bytes);
+/// The same into `out` (replacing its contents), so a receiver can reuse a
+/// message, or one on a protobuf arena, instead of allocating one per
+/// datagram. On an error `out` holds whatever was parsed: drop it.
+Status decode_envelope(std::span<const uint8_t> bytes, rwd::v1::Envelope& out);
 
 /// Checks the header and per-payload sanity limits listed above (sizes,
 /// counts, axis ranges, chunk indices, non-negative ticks). Returns kCorrupt
 /// with a message on the first violation. Does not check the encoded size.
 Status validate_envelope(const rwd::v1::Envelope& envelope);
 
+/// What encode_envelope checks before it serializes.
+enum class EncodeCheck : uint8_t {
+  /// Everything decode_envelope checks.
+  kFull,
+  /// The header (version, payload, connection id) and the size only: for a
+  /// sender whose payload is made only of values it checked itself, where
+  /// checking again would unpack every packed input it just packed (the
+  /// server's per-tick FinalTicks to every client).
+  kHeader,
+};
+
 /// Serializes `envelope` into `out` (replacing its contents). Refuses, leaving
 /// `out` empty, anything decode_envelope would reject: an invalid envelope
-/// (kInvalidArgument) or one larger than kMaxDatagramBytes (kCapacity).
-Status encode_envelope(const rwd::v1::Envelope& envelope, std::vector<uint8_t>& out);
+/// (kInvalidArgument; with EncodeCheck::kHeader only an invalid header) or
+/// one larger than kMaxDatagramBytes (kCapacity).
+Status encode_envelope(const rwd::v1::Envelope& envelope, std::vector<uint8_t>& out,
+                       EncodeCheck check = EncodeCheck::kFull);
 
 }  // namespace rwd::net
