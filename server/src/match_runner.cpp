@@ -221,6 +221,9 @@ void MatchRunner::publish() {
     sample.stats.secure_sessions = g.connects;
     sample.stats.secure_refused = g.refused;
     sample.stats.secure_dropped = g.dropped;
+  } else if (tokenless_) {
+    sample.stats.address_cookies = tokenless_->stats().cookies;
+    sample.stats.cookies_refused = tokenless_->stats().refused;
   }
   if (!failure_.empty()) sample.stats.end_reason = failure_;
   sample.phase = finished_ ? MatchHost::Phase::kEnded : host_->phase();

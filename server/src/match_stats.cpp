@@ -35,7 +35,8 @@ std::string MatchStats::to_json() const {
       << ",\"end_reason\":\"" << end_reason << "\",\"secure\":" << (secure ? "true" : "false")
       << ",\"secure_challenges\":" << secure_challenges
       << ",\"secure_sessions\":" << secure_sessions << ",\"secure_refused\":" << secure_refused
-      << ",\"secure_dropped\":" << secure_dropped << ",\"ticks_late\":" << ticks_late
+      << ",\"secure_dropped\":" << secure_dropped << ",\"address_cookies\":" << address_cookies
+      << ",\"cookies_refused\":" << cookies_refused << ",\"ticks_late\":" << ticks_late
       << ",\"ticks_missed\":" << ticks_missed << ",\"tick_lateness_max_s\":" << tick_lateness_max_s
       << "}";
   return out.str();
@@ -57,7 +58,8 @@ std::string MatchStats::to_text() const {
     out << "; secure: " << secure_challenges << " challenges, " << secure_sessions << " sessions, "
         << secure_refused << " handshakes refused, " << secure_dropped << " datagrams dropped";
   } else {
-    out << "; tokenless";
+    out << "; tokenless: " << address_cookies << " address cookies, " << cookies_refused
+        << " refused";
   }
   out << "; ticks late " << ticks_late << ", missed " << ticks_missed << " (latest start "
       << tick_lateness_max_s * 1e3 << " ms after its time)";

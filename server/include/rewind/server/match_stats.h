@@ -50,6 +50,11 @@ struct MatchStats {
   uint64_t secure_sessions = 0;
   uint64_t secure_refused = 0;
   uint64_t secure_dropped = 0;
+  /// Tokenless mode's front door (zero when secure): hellos answered with
+  /// an address cookie, and datagrams refused before the match saw them
+  /// (malformed hellos, joins without a good cookie).
+  uint64_t address_cookies = 0;
+  uint64_t cookies_refused = 0;
   /// The tick loop's punctuality (TickSchedule; zero where no loop ran, as
   /// in a headless match): ticks that started a period or more after they
   /// were due (run back to back to catch up), ticks dropped from the
