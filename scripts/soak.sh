@@ -15,11 +15,16 @@
 #                        [--loss X] [--duplicate X] [--reorder X]
 #                        [--rss-growth-mb MB]
 #   --minutes M        length of the match (default 10)
-#   --asan             run the ASan + UBSan build (build/debug, built with
-#                      the debug preset when its programs are missing);
-#                      leaks found at exit fail the run
+#   --asan             run the server under ASan + UBSan (build/debug, built
+#                      with the debug preset when its programs are missing);
+#                      a sanitizer report or a leak at exit fails the run.
+#                      The bots are the release build's when it has them:
+#                      64 clients' simulations under ASan cannot keep a
+#                      real-time match on two cores
 #   --bin DIR          the programs' directory (default build/release/bin,
 #                      or build/debug/bin with --asan)
+#   --bots-bin DIR     rewind-bots' directory (default: --bin's, or
+#                      build/release/bin with --asan when it is there)
 #   --work DIR         where the key, tokens, logs and replay go (default a
 #                      new temporary directory, kept)
 #   --players N        player slots, 1-32 (default 32)
@@ -37,7 +42,7 @@
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-minutes=10 asan=0 bin="" work="" players=32 spectators=32 tick_rate=30
+minutes=10 asan=0 bin="" bots_bin="" work="" players=32 spectators=32 tick_rate=30
 loss=0.1 duplicate=0.1 reorder=0.1 rss_growth_mb=16
 usage() { sed -n '4,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"; }
 need() { [[ -n ${2:-} ]] || { echo "soak: $1 needs a value" >&2; exit 2; }; }
@@ -46,6 +51,7 @@ while (($#)); do
     --minutes) need "$1" "${2:-}"; minutes=$2; shift 2 ;;
     --asan) asan=1; shift ;;
     --bin) need "$1" "${2:-}"; bin=$2; shift 2 ;;
+    --bots-bin) need "$1" "${2:-}"; bots_bin=$2; shift 2 ;;
     --work) need "$1" "${2:-}"; work=$2; shift 2 ;;
     --players) need "$1" "${2:-}"; players=$2; shift 2 ;;
     --spectators) need "$1" "${2:-}"; spectators=$2; shift 2 ;;
@@ -78,9 +84,14 @@ if [[ -z $bin ]]; then
     bin=$root/build/release/bin
   fi
 fi
-for p in rewind-server rewind-bots rewind-token rewind-replay; do
+if [[ -z $bots_bin ]]; then
+  bots_bin=$bin
+  if ((asan)) && [[ -x $root/build/release/bin/rewind-bots ]]; then bots_bin=$root/build/release/bin; fi
+fi
+for p in rewind-server rewind-token rewind-replay; do
   [[ -x $bin/$p ]] || { echo "soak: $bin/$p is missing (build it first)" >&2; exit 2; }
 done
+[[ -x $bots_bin/rewind-bots ]] || { echo "soak: $bots_bin/rewind-bots is missing" >&2; exit 2; }
 [[ -n $work ]] || work=$(mktemp -d "${TMPDIR:-/tmp}/rewind-soak.XXXXXX")
 mkdir -p "$work"
 cd "$work"
@@ -117,12 +128,24 @@ for _ in $(seq 1 300); do [[ -s port ]] && break; sleep 0.1; done
 [[ -s port ]] || fail "the server did not start: $(tail -3 server.log)"
 
 duration=$(python3 -c "print(int($minutes * 60 + 180))")
-"$bin/rewind-bots" --bots "$players" --spectators "$spectators" \
-  --connect "127.0.0.1:$(cat port)" --token-file tokens --loss "$loss" \
-  --duplicate "$duplicate" --reorder "$reorder" --duration "$duration" \
+# Two bots processes, so the clients' simulations use both cores: the
+# players with the first tokens, the spectators with the rest.
+head -n "$players" tokens >tokens.players
+tail -n +"$((players + 1))" tokens >tokens.spectators
+bots_pids=()
+"$bots_bin/rewind-bots" --bots "$players" --spectators 0 \
+  --connect "127.0.0.1:$(cat port)" --token-file tokens.players --loss "$loss" \
+  --duplicate "$duplicate" --reorder "$reorder" --duration "$duration" --seed 1 \
   --summary-json >bots.json 2>bots.log &
-bots_pid=$!
-pids+=("$bots_pid")
+bots_pids+=($!)
+if ((spectators > 0)); then
+  "$bots_bin/rewind-bots" --bots 0 --spectators "$spectators" \
+    --connect "127.0.0.1:$(cat port)" --token-file tokens.spectators --loss "$loss" \
+    --duplicate "$duplicate" --reorder "$reorder" --duration "$duration" --seed 2 \
+    --summary-json >spectators.json 2>spectators.log &
+  bots_pids+=($!)
+fi
+pids+=("${bots_pids[@]}")
 
 # The server's resident size every 5 s while it runs (kB), for the trend.
 : >rss.txt
@@ -134,17 +157,20 @@ done
 server_status=0
 wait "$server_pid" || server_status=$?
 bots_status=0
-wait "$bots_pid" || bots_status=$?
+for p in "${bots_pids[@]}"; do wait "$p" || bots_status=$?; done
 
 problems=()
 ((server_status == 0)) || problems+=("the server exited with $server_status: $(tail -3 server.log)")
 ((bots_status == 0)) || problems+=("the bots exited with $bots_status: $(tail -3 bots.log)")
-grep -q "ERROR: \(AddressSanitizer\|LeakSanitizer\)\|runtime error:" server.log bots.log &&
-  problems+=("a sanitizer report: $(grep -m1 "ERROR: \|runtime error:" server.log bots.log)")
+touch spectators.log spectators.json
+grep -q "ERROR: \(AddressSanitizer\|LeakSanitizer\)\|runtime error:" server.log bots.log \
+  spectators.log && problems+=("a sanitizer report: $(grep -m1 "ERROR: \|runtime error:" \
+  server.log bots.log spectators.log)")
 field() { python3 -c "import json,sys; print(json.loads(open(sys.argv[1]).read().strip().splitlines()[-1]).get(sys.argv[2], ''))" "$1" "$2" 2>/dev/null || true; }
 ticks_final=$(field server.json ticks_final)
-finished=$(field bots.json finished)
-desyncs=$(field bots.json desyncs)
+count() { local v; v=$(field "$1" "$2"); [[ $v =~ ^[0-9]+$ ]] && echo "$v" || echo 0; }
+finished=$(( $(count bots.json finished) + $(count spectators.json finished) ))
+desyncs=$(( $(count bots.json desyncs) + $(count spectators.json desyncs) ))
 reports=$(field server.json desync_reports)
 [[ $ticks_final == "$ticks" ]] || problems+=("$ticks_final of $ticks ticks final")
 [[ $finished == "$clients" ]] || problems+=("$finished of $clients clients finished")
