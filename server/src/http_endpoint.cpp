@@ -87,11 +87,17 @@ Result<HttpRequest> parse_http_request(std::string_view bytes, const HttpEndpoin
   error_code error;
   size_t used = 0;
   while (!error && used < bytes.size() && !parser.is_done()) {
-    used += parser.put(asio::buffer(bytes.data() + used, bytes.size() - used), error);
-    if (error == http::error::need_more) break;
+    const size_t taken = parser.put(asio::buffer(bytes.data() + used, bytes.size() - used), error);
+    used += taken;
+    if (error == http::error::need_more || taken == 0) break;
   }
   if (!error && !parser.is_done()) {
-    parser.put_eof(error);  // a body that runs to the end of the bytes
+    // Nothing at all is no request; otherwise the end of the bytes ends a
+    // body that runs to the end, or leaves the message short.
+    if (!parser.got_some()) {
+      return Status::Error(ErrorCode::kCorrupt, "not an HTTP request: no bytes");
+    }
+    parser.put_eof(error);
   }
   if (error == http::error::header_limit) {
     return Status::Error(ErrorCode::kCapacity, "request head too large");
