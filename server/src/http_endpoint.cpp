@@ -298,7 +298,7 @@ class HttpConnection final : public ConnectionBase,
     }
     try {
       reply = endpoint_.handler(request);
-    } catch (const std::exception& thrown) {
+    } catch (const std::exception&) {
       reply = HttpReply{500, "text/plain; charset=utf-8", "internal error\n", {}};
     }
     ++(reply.status < 300 ? endpoint_.answered : endpoint_.refused);

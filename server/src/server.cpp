@@ -387,14 +387,6 @@ HttpReply Server::serve_metrics(const HttpRequest& request) {
   return HttpReply{200, "text/plain; version=0.0.4", render_metrics(samples(), &process), {}};
 }
 
-HttpEndpoint::Stats Server::metrics_http_stats() const {
-  return metrics_ ? metrics_->stats() : HttpEndpoint::Stats{};
-}
-
-HttpEndpoint::Stats Server::control_http_stats() const {
-  return control_ ? control_->stats() : HttpEndpoint::Stats{};
-}
-
 MatchListing Server::listing_of(const MatchRunner& match) {
   const MetricsSample sample = match.sample();
   MatchListing out;

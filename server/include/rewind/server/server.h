@@ -127,9 +127,6 @@ class Server final : private ControlTarget {
   uint16_t metrics_port() const { return metrics_ ? metrics_->port() : 0; }
   /// The control API's TCP port; 0 without it.
   uint16_t control_port() const { return control_ ? control_->port() : 0; }
-  /// The endpoints' counters (zero without them).
-  HttpEndpoint::Stats metrics_http_stats() const;
-  HttpEndpoint::Stats control_http_stats() const;
   /// Threads run() uses.
   uint32_t threads() const { return threads_; }
 
