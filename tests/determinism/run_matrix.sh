@@ -10,15 +10,15 @@
 # difference -- runs every build and diffs its per-tick checksums against the
 # g++ -O0 build.
 #
-#   gcc-O0         g++ -O0                          (the reference)
+#   gcc-O0         g++ -O0 -DREWIND_SCALAR_LANES    (the reference): the
+#                  solver's four lanes as plain arrays instead of SSE2 or
+#                  eight AVX lanes; every other build runs SIMD lanes (eight
+#                  AVX where the machine has AVX, four NEON on aarch64), so
+#                  comparing each with it proves neither the instruction set
+#                  nor the lane count changes a result
 #   gcc-O3-native  g++ -O3 -march=native
 #   clang-O3       clang++ -O3
 #   aarch64-O3     aarch64-linux-gnu-g++ -O3 -static, run under qemu-aarch64
-#   gcc-O2-lanes   g++ -O2 -DREWIND_SCALAR_LANES: the solver's four lanes as
-#                  plain arrays instead of SSE2 or eight AVX lanes; with the
-#                  x86-64 builds (eight AVX lanes where the machine has AVX)
-#                  and aarch64 (four NEON lanes) this proves neither the
-#                  instruction set nor the lane count changes a result
 #   wasm-O3        em++ -O3 (Emscripten): WebAssembly, run under node; only
 #                  with --wasm (it takes several minutes to compile)
 #
@@ -143,11 +143,10 @@ cross_flags=${cross_flags% }
 
 # name | compiler | flags | link flags | runner
 builds=(
-  "gcc-O0|g++|-O0${gcc_flags:+ $gcc_flags}||"
+  "gcc-O0|g++|-O0 -DREWIND_SCALAR_LANES${gcc_flags:+ $gcc_flags}||"
   "gcc-O3-native|g++|-O3 -march=native${gcc_flags:+ $gcc_flags}||"
   "clang-O3|clang++|-O3||"
   "aarch64-O3|aarch64-linux-gnu-g++|-O3${cross_flags:+ $cross_flags}|-static|qemu-aarch64"
-  "gcc-O2-lanes|g++|-O2 -DREWIND_SCALAR_LANES${gcc_flags:+ $gcc_flags}||"
 )
 # WebAssembly: one JavaScript file for node with the module inside it (a
 # separate .wasm would be fetched, which node does not do for a path);
