@@ -191,9 +191,19 @@ int ClientProtocol::Impl::update(TimePoint now) {
        awaiting_resync_ || now >= ending_deadline_)) {
     finish_ending(now);
   }
-  // Acknowledge new final ticks even when no tick was stepped (at the
-  // prediction barrier nothing else would carry the acknowledgement).
-  if (phase_ != ClientPhase::kEnded && last_final_received_ > last_final_acked_) send_inputs(now);
+  // Acknowledge new final ticks. A player's next input packet, due within a
+  // tick, carries the acknowledgement, so it is not sent alone at once: that
+  // would double the datagrams each player sends, and the server resends a
+  // final tick only two ticks past its round trip. It goes alone when no
+  // input packet took it within a tick period (at the prediction barrier,
+  // after the last input) and always for a spectator, who sends no inputs.
+  if (phase_ != ClientPhase::kEnded && last_final_received_ > last_final_acked_) {
+    if (!ack_waiting_) {
+      ack_waiting_ = true;
+      ack_waiting_since_ = now;
+    }
+    if (spectator_ || seconds(now - ack_waiting_since_) >= period_s()) send_inputs(now);
+  }
   return session_->current_tick() - before;
 }
 
@@ -258,6 +268,7 @@ void ClientProtocol::Impl::send_inputs(TimePoint now) {
                                          : unacked_.front().first);
   frame->set_last_final_tick_seen(last_final_received_);
   last_final_acked_ = last_final_received_;
+  ack_waiting_ = false;
   for (const auto& [tick, input] : unacked_) *frame->add_inputs() = proto::to_wire(input);
   send(envelope, now);
 }

@@ -103,6 +103,10 @@ struct ClientProtocol::Impl {
   std::vector<game::PlayerInput> relayed_buffer_;
   std::vector<proto::RelayedRun> relayed_runs_;
   Tick last_final_acked_ = kNoTick;  // last_final_received_ as last sent
+  /// Since when an acknowledgement of new final ticks has waited for an
+  /// input packet to carry it (meaningful while ack_waiting_).
+  TimePoint ack_waiting_since_;
+  bool ack_waiting_ = false;
   int report_sends_ = 0;
   int32_t server_tick_ = 0;
   bool awaiting_resync_ = false;

@@ -282,6 +282,63 @@ TEST(ClientProtocol, TakesEachInputOnceAndResendsItUntilAcknowledged) {
   EXPECT_TRUE(checked);
 }
 
+std::vector<v1::InputFrame> input_frames(const std::vector<v1::Envelope>& sent) {
+  std::vector<v1::InputFrame> out;
+  for (const v1::Envelope& e : sent) {
+    if (e.has_input_frame()) out.push_back(e.input_frame());
+  }
+  return out;
+}
+
+TEST(ClientProtocol, AcknowledgementsRideOnTheNextInputPacket) {
+  Harness h;
+  h.join_and_start();
+  h.run(4);
+  (void)h.sent();
+  Tick delivered = kNoTick;
+  for (int i = 0; i < 30; ++i) {
+    // The server's broadcast lands between two of the client's ticks: the
+    // client reads it at once, but sends nothing until its next tick.
+    h.catch_up_server();
+    const Tick newest = h.server.next_tick() - 1;
+    h.deliver(h.server.final_ticks(delivered + 1, newest, newest, h.now));
+    delivered = newest;
+    const Tick before = h.client_tick();
+    h.advance(std::chrono::microseconds(0));
+    if (h.client_tick() == before) {
+      EXPECT_TRUE(input_frames(h.sent()).empty())
+          << "period " << i << ": the acknowledgement went alone, a tick before an input packet";
+    }
+    h.advance(kTick);
+    // At most one input packet a tick; it carries the acknowledgement.
+    const auto sent = input_frames(h.sent());
+    ASSERT_EQ(sent.size(), 1u) << "period " << i;
+    EXPECT_EQ(sent.back().last_final_tick_seen(), delivered) << "period " << i;
+  }
+  EXPECT_EQ(h.protocol.stats().final_ticks_verified, static_cast<uint64_t>(delivered + 1));
+}
+
+TEST(ClientProtocol, AcknowledgementGoesAloneWhenNoInputPacketTakesItWithinATick) {
+  Harness h;
+  h.join_and_start();
+  h.run(12);
+  h.deliver(h.server.final_ticks(0, 5, 11, h.now));
+  h.deliver(h.server.match_end(9, h.now));
+  h.advance(std::chrono::microseconds(0));
+  ASSERT_EQ(h.protocol.phase(), ClientPhase::kEnding);
+  (void)h.sent();
+  // Every input is sent; final ticks 6..8 still need acknowledging.
+  h.deliver(h.server.final_ticks(6, 8, 11, h.now));
+  h.advance(std::chrono::microseconds(0));
+  EXPECT_TRUE(input_frames(h.sent()).empty());
+  h.advance(kTick / 2);
+  EXPECT_TRUE(input_frames(h.sent()).empty());
+  h.advance(kTick / 2 + std::chrono::microseconds(1));
+  const auto frames = input_frames(h.sent());
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(frames[0].last_final_tick_seen(), 8);
+}
+
 TEST(ClientProtocol, VerifiesFinalTicksInOrderEvenWhenTheyArriveOutOfOrder) {
   Harness h;
   h.join_and_start();
