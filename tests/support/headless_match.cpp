@@ -2,8 +2,10 @@
 #include "headless_match.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <set>
+#include <thread>
 
 #include "rewind/game/crates_game.h"
 #include "rewind/net/address_cookie.h"
@@ -134,8 +136,8 @@ Result<std::unique_ptr<HeadlessMatch>> HeadlessMatch::create(const HeadlessConfi
     options.seated = [self](uint32_t slot, const server::Endpoint& endpoint) {
       return self->host_->seated(slot, endpoint);
     };
-    match->gateway_ = std::make_unique<server::SecureGateway>(
-        server_key, config.match.match_id, std::move(options), to_client);
+    match->gateway_ = std::make_unique<server::SecureGateway>(server_key, config.match.match_id,
+                                                              std::move(options), to_client);
   }
   auto host = server::MatchHost::create(
       match_config,
@@ -277,8 +279,12 @@ HeadlessResult HeadlessMatch::run() {
   HeadlessResult result;
   for (auto& peer : peers_) peer->start(now_);
   TimePoint next_tick = now_ + period;
+  const auto wall_start = std::chrono::steady_clock::now();
   for (;;) {
     now_ += step;
+    if (config_.wall_paced && now_ >= next_tick) {
+      std::this_thread::sleep_until(wall_start + (next_tick - start));
+    }
     deliver_due();
     if (now_ >= next_tick) {
       const auto begin = std::chrono::steady_clock::now();

@@ -28,8 +28,8 @@
 #include "rewind/client/client_session.h"
 #include "rewind/game/player_input.h"
 #include "rewind/server/match_host.h"
-#include "rewind/server/tokenless_gateway.h"
 #include "rewind/server/secure_gateway.h"
+#include "rewind/server/tokenless_gateway.h"
 #include "scripted_peer.h"
 
 namespace rwd::test {
@@ -52,6 +52,11 @@ struct HeadlessConfig {
   uint64_t seed = 1;         ///< seeds the network's random decisions
   InputScript inputs;        ///< every player's inputs; neutral when empty
   int updates_per_tick = 2;  ///< client updates per server tick period
+  /// Ticks the host on the wall clock's grid of the tick period (sleeping in
+  /// between, as a live server does) instead of back to back: the host work
+  /// then runs after an idle wait, with whatever that costs on the machine
+  /// (cold caches, a waking core). Simulated time is unchanged.
+  bool wall_paced = false;
   /// Gives up (the run reports it) after this much simulated time.
   double max_match_seconds = 7200.0;
 };
