@@ -96,7 +96,11 @@ void fill_lane(ContactBatch& batch, int lane, uint32_t index, const ContactConst
     bp.tangent_impulse1[lane] = cp.tangent_impulse1;
     bp.tangent_impulse2[lane] = cp.tangent_impulse2;
     bp.max_normal_impulse[lane] = cp.max_normal_impulse;
-    bp.tick_normal_impulse[lane] = 0.0f;
+    // The tick's impulse is what each substep applied: the warm starts of
+    // substeps 2..n, and the last substep's at the end (unpack_batches).
+    // The first warm start applies last tick's last substep again, so it is
+    // taken back here.
+    bp.tick_normal_impulse[lane] = -cp.normal_impulse;
     bp.push_impulse[lane] = 0.0f;
   }
 }
@@ -429,7 +433,7 @@ void unpack_batches(WorldScratch& scratch) {
         cp.tangent_impulse1 = bp.tangent_impulse1[lane];
         cp.tangent_impulse2 = bp.tangent_impulse2[lane];
         cp.max_normal_impulse = bp.max_normal_impulse[lane];
-        cp.tick_normal_impulse = bp.tick_normal_impulse[lane];
+        cp.tick_normal_impulse = bp.tick_normal_impulse[lane] + bp.normal_impulse[lane];
       }
     });
   }

@@ -95,8 +95,9 @@ struct alignas(32) ContactBatch {
     float tangent_impulse1[kBatchLanes];
     float tangent_impulse2[kBatchLanes];
     float max_normal_impulse[kBatchLanes];
-    /// Sum of the normal impulses the tick's substeps warm-started with:
-    /// about the normal impulse of the whole tick (rolling resistance).
+    /// The normal impulse the tick's substeps applied so far: the warm
+    /// starts of substeps 2..n (less the first's, last tick's), completed
+    /// with the last substep's when unpacked (events, rolling resistance).
     float tick_normal_impulse[kBatchLanes];
     float push_impulse[kBatchLanes];  ///< accumulated push-out impulse of this tick
   } points[kMaxManifoldPoints];

@@ -2,10 +2,15 @@
 // Contact events: a merge of last step's cache and this step's, both sorted
 // by (index_a, index_b). A pair that keeps its indices but changed
 // generation (a body destroyed and its slot reused) is two different pairs:
-// the old one exits and the new one enters. An event is made when either
+// the old one exits and the new one enters. Events are built after the
+// solve: a pair the solver pushed apart this tick touches this tick
+// (mark_pushed_contacts), so an impact stopped by a speculative contact
+// before the surfaces met enters in the tick its impulse is applied. An event is made when either
 // body's mask (BodyInfo::event_mask) has its type's bit; the details of
 // enter and stay events (point, normal, depth, impulse) are filled after
 // the solve, from the contact cache (fill_event_details).
+#include <algorithm>
+
 #include "d3/pipeline.h"
 
 namespace rwd::sim::d3 {
@@ -44,6 +49,22 @@ bool reported(const WorldState& state, const ContactRecord& r, ContactEventType 
 
 }  // namespace
 
+void mark_pushed_contacts(WorldState& state, WorldScratch& scratch) {
+  scratch.pushed_records.clear();
+  for (const ContactConstraint& c : scratch.constraints) {
+    ContactRecord& rec = state.contacts[c.record];
+    if (rec.touching != 0) continue;
+    float sum = 0.0f;
+    for (uint32_t p = 0; p < c.point_count; ++p) sum += c.points[p].tick_normal_impulse;
+    if (sum > 0.0f) {
+      rec.touching = 1;
+      scratch.pushed_records.push_back(c.record);
+    }
+  }
+  // Constraints come in solver order; the event merge wants record order.
+  std::sort(scratch.pushed_records.begin(), scratch.pushed_records.end());
+}
+
 void build_events(const WorldState& state, WorldScratch& scratch) {
   std::vector<ContactEvent>& events = scratch.events;
   std::vector<uint32_t>& records = scratch.event_records;
@@ -57,12 +78,17 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
     records.push_back(index);
   };
   if (scratch.contacts_unchanged) {
-    // The cache carried over whole: every touching pair stays.
+    // The cache carried over whole: every touching pair stays, but for
+    // those the solve pushed apart first this tick, which enter.
     uint32_t touching = 0;
+    size_t pushed = 0;
     for (uint32_t k = 0; k < state.contacts.size(); ++k) {
       const ContactRecord& r = state.contacts[k];
       if (r.touching == 0) continue;
-      add(ContactEventType::kStay, r, k);
+      while (pushed < scratch.pushed_records.size() && scratch.pushed_records[pushed] < k) ++pushed;
+      const bool entered =
+          pushed < scratch.pushed_records.size() && scratch.pushed_records[pushed] == k;
+      add(entered ? ContactEventType::kEnter : ContactEventType::kStay, r, k);
       ++touching;
     }
     scratch.stats.touching_manifolds = touching;
@@ -110,10 +136,9 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
 void fill_event_details(const WorldState& state, WorldScratch& scratch) {
   const float substeps = static_cast<float>(state.config.substeps);
   if (scratch.events.empty()) return;
-  // The tick's normal impulse of each record the solver handled: the
-  // substeps' warm-start impulses summed (a rolling body's last substep can
-  // carry none); a record it did not (both bodies asleep) falls back to the
-  // last substep's times the substeps.
+  // The tick's normal impulse of each record the solver handled: every
+  // substep's, and the bounce's; a record it did not (both bodies asleep)
+  // falls back to the last substep's times the substeps.
   std::vector<float>& tick_impulse = scratch.record_impulse;
   tick_impulse.assign(state.contacts.size(), -1.0f);
   for (const ContactConstraint& c : scratch.constraints) {

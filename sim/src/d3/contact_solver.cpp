@@ -394,6 +394,7 @@ void apply_restitution(WorldScratch& scratch, const WorldConfig& config) {
       if (total < 0.0f) total = 0.0f;
       impulse = total - cp.normal_impulse;
       cp.normal_impulse = total;
+      cp.tick_normal_impulse += impulse;
       apply_impulse(a, b, cp.anchor_a, cp.anchor_b, c.normal * impulse);
     }
   }

@@ -6,10 +6,12 @@
 //                      sleeping contacts carried over
 //   island_sleep.cpp   wake_touched_islands: sleeping islands touched by an
 //                      awake body wake before solving
-//   contact_events.cpp build_events: enter/stay/exit from old vs new cache
 //   contact_solver.cpp solve: TGS-Soft substeps, restitution, write back
 //                      (support_order.cpp orders its push-out,
 //                      angular_momentum.cpp the gyroscopic term)
+//   continuous.cpp     continuous_collision: sweeps of fast bodies
+//   contact_events.cpp mark_pushed_contacts, build_events: enter/stay/exit
+//                      from old vs new cache; fill_event_details
 //   island_sleep.cpp   update_sleep: islands at rest fall asleep
 // Scheduled queries (scheduled_queries.cpp) run before the first stage and
 // after the last; they read the state and never write it.
@@ -66,6 +68,11 @@ void wake_body(WorldState& state, uint32_t index);
 /// Wakes every live body with a touching contact with `id`.
 void wake_touching(WorldState& state, BodyId id);
 
+/// After the solve: a solid pair not yet touching (its points beyond the
+/// speculative distance) that the solver pushed apart this tick touches
+/// from now on (until the next narrowphase decides again); its records are
+/// listed in scratch.pushed_records, in record order.
+void mark_pushed_contacts(WorldState& state, WorldScratch& scratch);
 /// Fills scratch.events from scratch.other_contacts (last step) and
 /// state.contacts (this step), and scratch.event_records with each event's
 /// record in state.contacts (kNoRecord for exits).

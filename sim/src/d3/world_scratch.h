@@ -58,7 +58,8 @@ struct ConstraintPoint {
   float tangent_impulse1;
   float tangent_impulse2;
   float max_normal_impulse;
-  /// N*s: the substeps' warm-start impulses summed (ContactBatch).
+  /// N*s: the normal impulse of the whole tick, every substep's and the
+  /// bounce's (ContactBatch, apply_restitution).
   float tick_normal_impulse;
 };
 
@@ -245,8 +246,9 @@ class WorldScratch {
   // output
   bool stage_timing = false;  ///< World3D::set_stage_timing
   std::vector<ContactEvent> events;
-  std::vector<uint32_t> event_records;  ///< per event: its record, or kNoRecord (exits)
-  std::vector<float> record_impulse;    ///< per record: the tick's normal impulse, or -1
+  std::vector<uint32_t> event_records;   ///< per event: its record, or kNoRecord (exits)
+  std::vector<uint32_t> pushed_records;  ///< records that touch by the solve's push this tick
+  std::vector<float> record_impulse;     ///< per record: the tick's normal impulse, or -1
   std::vector<BodyEvent> body_events;
   // scheduled queries (scheduled_queries.cpp): by pending query, this
   // step's answer; the hits of all of them in the order they ran, each

@@ -156,6 +156,41 @@ TEST(ContactEvents, ARollingBallReportsItsWeight) {
   EXPECT_NEAR(world.events()[0].impulse, weight_per_tick, 0.1f * weight_per_tick);
 }
 
+// A fast body is stopped by a speculative contact before its surfaces
+// meet: the tick whose impulse stops it is the tick that reports it, with
+// that impulse, and the next tick's stay carries only the resting weight.
+TEST(ContactEvents, AnImpactIsReportedInTheTickItsImpulseIsApplied) {
+  for (const float speed : {4.0f, 8.0f, 15.0f}) {
+    SCOPED_TRACE(speed);
+    World3D world;
+    add_ground(world);
+    const BodyId box = add_box(world, {0.0f, 2.0f, 0.0f});
+    ASSERT_TRUE(world.set_linear_velocity(box, {0.0f, -speed, 0.0f}).ok());
+    const float mass = world.mass(box);
+    const float dt = world.config().tick_seconds;
+    const float gravity = world.config().gravity.y;
+    bool impacted = false;
+    for (int i = 0; i < 120 && !impacted; ++i) {
+      const float before = world.linear_velocity(box).y;
+      world.step();
+      // N s the ground pushed with this tick: the momentum change less gravity's.
+      const float pushed = mass * (world.linear_velocity(box).y - before) - mass * gravity * dt;
+      if (pushed < 0.05f * mass * speed) {
+        EXPECT_EQ(count(world, ContactEventType::kEnter), 0) << "tick " << i;
+        continue;
+      }
+      impacted = true;
+      ASSERT_EQ(count(world, ContactEventType::kEnter), 1)
+          << "tick " << i << ": impulse " << pushed << " N s with no event";
+      EXPECT_NEAR(world.events()[0].impulse, pushed, 0.05f * pushed);
+      world.step();
+      ASSERT_EQ(count(world, ContactEventType::kStay), 1);
+      EXPECT_LT(world.events()[0].impulse, 0.25f * pushed);
+    }
+    EXPECT_TRUE(impacted);
+  }
+}
+
 TEST(ContactEvents, SensorEventsCarryTheOverlap) {
   World3D world;
   BodyDef zone;
