@@ -23,7 +23,7 @@ void add_closed_box(World2D& world) {
 double energy(const World2D& world, std::span<const BodyId2D> ids, double r) {
   double e = 0.0;
   for (BodyId2D id : ids) {
-    const double m = d(world.mass(id));
+    const double m = d(world.mass(id).to_fx());
     const double v = speed(world, id);
     const double w = d(world.angular_velocity(id));
     // A disc's moment of inertia about its centre is m r^2 / 2.
@@ -71,7 +71,7 @@ TEST(Stability2D, ConfinedCirclesStayInAndLoseEnergy) {
   double kinetic = 0.0;
   for (BodyId2D id : circles) {
     const double v = speed(world, id);
-    kinetic += 0.5 * d(world.mass(id)) * v * v;
+    kinetic += 0.5 * d(world.mass(id).to_fx()) * v * v;
   }
   report("confined100 energy_gain_pct", 100.0 * (e_max - e0) / e0, "%", "<=", 1.0);
   report("confined100 end_kinetic_pct", 100.0 * kinetic / e0, "%", "<=", 1.0);

@@ -4,13 +4,36 @@
 namespace rwd::sim2d::detail {
 namespace {
 
+// a * b rounded once, half up, exactly as wmul rounds: b is split at its
+// 32nd bit (b = hi 2^32 + lo, 0 <= lo < 2^32), so that
+// floor((a b + 1/2) / 2^32) = a hi + floor((a lo + 1/2) / 2^32) and no
+// partial product leaves 128 bits. Needs |a| < 2^94 and |a b| < 2^158.
+constexpr WW wwmul(WW a, WW b) {
+  const WW hi = b >> kWFrac;
+  const WW lo = b - hi * kWOne;
+  return a * hi + ((a * lo + kWHalf) >> kWFrac);
+}
+
+// a / b truncated toward zero, as wdiv; b != 0 and |a| < 2^94.
+constexpr WW wwdiv(WW a, WW b) {
+  return a * kWOne / b;
+}
+
+// vcross and vdot without the narrowing to int64.
+constexpr WW wwcross(V2 a, V2 b) {
+  return (static_cast<I128>(a.x) * b.y - static_cast<I128>(a.y) * b.x + kWHalf) >> kWFrac;
+}
+constexpr WW wwdot(V2 a, V2 b) {
+  return (static_cast<I128>(a.x) * b.x + static_cast<I128>(a.y) * b.y + kWHalf) >> kWFrac;
+}
+
 MassData2 circle_mass(const Shape2D& shape, W density) {
   const W r = w_from(shape.radius);
-  const W rr = wmul(r, r);
+  const W rr = wmul(r, r);  // r < 2^15 m: r^2 < 2^30 m^2 fits
   MassData2 out;
-  out.mass = wmul(density, wmul(kWPi, rr));
+  out.mass = wwmul(density, wwmul(kWPi, rr));
   out.center = v_from(shape.vertices[0]);
-  out.inertia = wmul(out.mass, rr) / 2;
+  out.inertia = wwmul(out.mass, rr) / 2;
   return out;
 }
 
@@ -22,13 +45,13 @@ MassData2 capsule_mass(const Shape2D& shape, W density) {
   const V2 p1 = v_from(shape.vertices[0]);
   const V2 p2 = v_from(shape.vertices[1]);
   const W length = vlength(p2 - p1);
-  const W ll = wmul(length, length);
-  const W circle_mass = wmul(density, wmul(kWPi, rr));
-  const W box_mass = wmul(density, wmul(2 * r, length));
+  const WW ll = wwmul(length, length);
+  const WW circle_mass = wwmul(density, wwmul(kWPi, rr));
+  const WW box_mass = wwmul(density, wwmul(2 * WW{r}, length));
   const W lc = wdiv(4 * r, 3 * kWPi);
   const W h = length / 2;
-  const W circle_inertia = wmul(circle_mass, rr / 2 + wmul(h, h) + wmul(2 * h, lc));
-  const W box_inertia = wmul(box_mass, 4 * rr + ll) / 12;
+  const WW circle_inertia = wwmul(circle_mass, rr / 2 + wwmul(h, h) + wwmul(2 * WW{h}, lc));
+  const WW box_inertia = wwmul(box_mass, 4 * WW{rr} + ll) / 12;
   MassData2 out;
   out.mass = circle_mass + box_mass;
   out.center = {(p1.x + p2.x) / 2, (p1.y + p2.y) / 2};
@@ -53,28 +76,31 @@ MassData2 polygon_mass(const Shape2D& shape, W density) {
     for (int i = 0; i < n; ++i) v[i] = pushed[i];
   }
   const V2 origin = v[0];
-  W area = 0;
-  V2 center;
-  W inertia = 0;  // about `origin`, per unit density
+  WW area = 0;
+  WW center_x = 0;
+  WW center_y = 0;
+  WW inertia = 0;  // about `origin`, per unit density
   for (int i = 1; i + 1 < n; ++i) {
     const V2 e1 = v[i] - origin;
     const V2 e2 = v[i + 1] - origin;
-    const W d = vcross(e1, e2);
-    const W triangle_area = d / 2;
+    const WW d = wwcross(e1, e2);
+    const WW triangle_area = d / 2;
     area += triangle_area;
-    center.x += wmul(triangle_area, e1.x + e2.x);
-    center.y += wmul(triangle_area, e1.y + e2.y);
-    const W intx2 = wmul(e1.x, e1.x) + wmul(e2.x, e1.x) + wmul(e2.x, e2.x);
-    const W inty2 = wmul(e1.y, e1.y) + wmul(e2.y, e1.y) + wmul(e2.y, e2.y);
-    inertia += wmul(d, intx2 + inty2) / 12;
+    center_x += wwmul(triangle_area, e1.x + e2.x);
+    center_y += wwmul(triangle_area, e1.y + e2.y);
+    const WW intx2 = wwmul(e1.x, e1.x) + wwmul(e2.x, e1.x) + wwmul(e2.x, e2.x);
+    const WW inty2 = wwmul(e1.y, e1.y) + wwmul(e2.y, e1.y) + wwmul(e2.y, e2.y);
+    inertia += wwmul(d, intx2 + inty2) / 12;
   }
   MassData2 out;
   if (area <= 0) return out;  // validate_shape() refuses such polygons
-  center = {wdiv(center.x, 3 * area), wdiv(center.y, 3 * area)};
-  out.mass = wmul(density, area);
+  // The centroid lies inside the polygon, so it fits the int64 range.
+  const V2 center{static_cast<W>(wwdiv(center_x, 3 * area)),
+                  static_cast<W>(wwdiv(center_y, 3 * area))};
+  out.mass = wwmul(density, area);
   out.center = origin + center;
   // Parallel axes: from the fan's origin to the centre of mass.
-  out.inertia = wmul(density, inertia) - wmul(out.mass, vdot(center, center));
+  out.inertia = wwmul(density, inertia) - wwmul(out.mass, wwdot(center, center));
   return out;
 }
 

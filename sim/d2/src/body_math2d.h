@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // Small conversions between a body record and what the API speaks of.
+#include "body_mass2d.h"
+#include "rewind/sim/status.h"
 #include "rewind/sim2d/world2d_state.h"
 #include "wmath.h"
 
@@ -14,14 +16,24 @@ inline Xf origin_transform(const BodyRecord2D& body) {
   return {body.center - rotate(body.rotation, body.local_center), body.rotation};
 }
 
-/// Sets local_center, inv_mass and inv_inertia from the shape and density
-/// (kg/m^2). Static and kinematic bodies get zero inverses and turn about
-/// their origin (local_center zero); a locked rotation has zero inverse
-/// inertia.
-void set_mass_from_shape(BodyRecord2D& body, W density);
+/// kInvalidArgument naming the limit when a dynamic body of this mass and
+/// inertia is outside the range body2d.h documents (kMinBodyMass2D ..
+/// kMaxBodyMass2D, kMinBodyInertia2D .. kMaxBodyInertia2D); the inertia is
+/// not checked for a body that never turns.
+Status check_mass_range(const MassData2& mass, bool lock_rotation);
 
-/// The body's mass in kg (0 when it has no finite mass).
+/// Sets local_center, inv_mass and inv_inertia from `mass` (the body's
+/// shape at its density; check_mass_range() passed). Static and kinematic
+/// bodies get zero inverses and turn about their origin (local_center
+/// zero); a locked rotation has zero inverse inertia.
+void set_mass(BodyRecord2D& body, const MassData2& mass);
+
+/// The body's mass in kg (0 when it has no finite mass): the inverse of
+/// the inverse mass the solver uses.
 W body_mass(const BodyRecord2D& body);
+/// Its rotational inertia about the centre of mass in kg m^2 (0 when it
+/// never turns), likewise from the inverse.
+W body_inertia(const BodyRecord2D& body);
 
 }  // namespace rwd::sim2d::detail
 

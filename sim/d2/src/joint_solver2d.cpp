@@ -71,6 +71,10 @@ void prepare_joints(World2DState& state, StepScratch2D& scratch, W h) {
     const BodyRecord2D& body_b = state.bodies[j.b];
     if (!(body_a.flags & kBodyEnabled) || !(body_b.flags & kBodyEnabled)) continue;
     if (!is_moving(body_a) && !is_moving(body_b)) continue;
+    // Between two static or kinematic bodies every inverse mass is zero, so
+    // no row can move anything (each effective mass is zero); left out, such
+    // a joint costs nothing and its impulses stay zero.
+    if (body_a.kind != BodyKind2D::kDynamic && body_b.kind != BodyKind2D::kDynamic) continue;
     const SolverBody2D& a = scratch.bodies[j.a];
     const SolverBody2D& b = scratch.bodies[j.b];
     JointConstraint2D c;

@@ -56,6 +56,10 @@ Status check_def(const BodyDef2D& def, const World2DConfig& config) {
   if (!in_range(def.material.rolling_resistance, Fx(), 1_fx)) {
     return invalid("material.rolling_resistance must be in [0, 1]");
   }
+  if (!def.awake && def.kind == BodyKind2D::kDynamic &&
+      (def.linear_velocity != Vec2{} || def.angular_velocity != Fx())) {
+    return invalid("a body created asleep must have zero velocities (a sleeping body has none)");
+  }
   const Fx speed_cap = config.max_linear_speed;
   if (!in_range(def.linear_velocity.x, -speed_cap, speed_cap) ||
       !in_range(def.linear_velocity.y, -speed_cap, speed_cap)) {
@@ -78,7 +82,10 @@ Result<BodyId2D> World2D::create_body(const BodyDef2D& def) {
   if (Status s = check_def(def, state_.config); !s.ok()) return s;
   BodyRecord2D body;
   body.kind = def.kind;
-  body.flags = kBodyLive | kBodyEnabled | kBodyAwake;
+  body.flags = kBodyLive | kBodyEnabled;
+  // Asleep from the start is the state a settled body reaches (flag clear,
+  // no velocity): everything that wakes one wakes it.
+  if (def.awake || def.kind != BodyKind2D::kDynamic) body.flags |= kBodyAwake;
   if (def.sensor) body.flags |= kBodySensor;
   if (def.trigger) body.flags |= kBodyTrigger;
   if (def.lock_rotation) body.flags |= kBodyLockRotation;
@@ -92,7 +99,11 @@ Result<BodyId2D> World2D::create_body(const BodyDef2D& def) {
   body.angular_damping = def.angular_damping;
   body.gravity_scale = def.gravity_scale;
   body.material = def.material;
-  set_mass_from_shape(body, w_from(def.density));
+  if (def.kind == BodyKind2D::kDynamic) {
+    const MassData2 mass = compute_mass(def.shape, w_from(def.density));
+    if (Status s = check_mass_range(mass, def.lock_rotation); !s.ok()) return s;
+    set_mass(body, mass);
+  }
   body.rotation = rotation_from_angle(def.angle);
   body.center = v_from(def.position) + rotate(body.rotation, body.local_center);
   if (!inside_bounds(state_.config, body.center)) {
@@ -191,9 +202,13 @@ Fx World2D::angular_velocity(BodyId2D id) const {
   REWIND_BODY_OR(Fx());
   return w_to_fx(body.angular_velocity);
 }
-Fx World2D::mass(BodyId2D id) const {
-  REWIND_BODY_OR(Fx());
-  return w_to_fx(body_mass(body));
+fixed::FxWide World2D::mass(BodyId2D id) const {
+  REWIND_BODY_OR(fixed::FxWide());
+  return fixed::FxWide::from_raw(body_mass(body));
+}
+fixed::FxWide World2D::rotational_inertia(BodyId2D id) const {
+  REWIND_BODY_OR(fixed::FxWide());
+  return fixed::FxWide::from_raw(body_inertia(body));
 }
 Fx World2D::z(BodyId2D id) const {
   REWIND_BODY_OR(Fx());

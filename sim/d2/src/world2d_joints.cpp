@@ -90,11 +90,11 @@ Result<JointId2D> World2D::create_joint(const JointDef2D& def) {
   if (!is_valid(def.body_a) || !is_valid(def.body_b)) {
     return Status::Error(ErrorCode::kNotFound, "joint: no such body");
   }
+  // Both bodies may be static or kinematic (as Box2D allows): such a joint
+  // moves nothing, but it is kept, saved and reported like any other, so a
+  // scene authored that way loads whole.
   const BodyRecord2D& a = state_.bodies[def.body_a.index];
   const BodyRecord2D& b = state_.bodies[def.body_b.index];
-  if (a.kind != BodyKind2D::kDynamic && b.kind != BodyKind2D::kDynamic) {
-    return invalid("at least one of the bodies must be dynamic");
-  }
   const Xf xa = origin_transform(a);
   const Xf xb = origin_transform(b);
 

@@ -52,6 +52,20 @@ Status check_body(const BodyRecord2D& body, const World2DConfig& config, uint32_
   if (body.kind != BodyKind2D::kDynamic && (body.inv_mass != 0 || body.inv_inertia != 0)) {
     return corrupt(at + "a static or kinematic body with finite mass");
   }
+  // A dynamic body's inverses are those of a mass and inertia create_body()
+  // accepts (body2d.h), so a snapshot cannot bring in a body the step's
+  // integer range was never sized for.
+  if (body.kind == BodyKind2D::kDynamic) {
+    if (body.inv_mass < winv(kMaxBodyMass2D.raw()) || body.inv_mass > winv(kMinBodyMass2D.raw())) {
+      return corrupt(at + "mass outside the 2D lane's range");
+    }
+    const bool locked = (body.flags & kBodyLockRotation) != 0;
+    if (locked ? body.inv_inertia != 0
+               : (body.inv_inertia < winv(kMaxBodyInertia2D.raw()) ||
+                  body.inv_inertia > winv(kMinBodyInertia2D.raw()))) {
+      return corrupt(at + "rotational inertia outside the 2D lane's range");
+    }
+  }
   return Status::Ok();
 }
 

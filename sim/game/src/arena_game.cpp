@@ -224,7 +224,7 @@ void ArenaGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs, 
       state.dash_cooldown[p] = kDashCooldownTicks;
     }
     if (!(dv == Vec2{})) {
-      (void)world.apply_linear_impulse(disc, dv * world.mass(disc), world.position(disc));
+      (void)world.apply_linear_impulse(disc, dv * world.mass(disc).to_fx(), world.position(disc));
     }
   }
 }

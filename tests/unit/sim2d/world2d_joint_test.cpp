@@ -248,5 +248,141 @@ TEST(World2DJoints, JointsSurviveRestoreAndSnapshotBytes) {
   EXPECT_EQ(world.joint_count(), 7u);
 }
 
+// Static and kinematic bodies on both sides (Box2D's joint grid has six
+// such joints): every type is accepted and kept, moves nothing, takes no
+// impulse, saves and reloads, and can be destroyed.
+struct NonDynamicScene {
+  BodyId2D ground;
+  BodyId2D post;
+  BodyId2D spinner;  ///< kinematic, moving and turning
+  BodyId2D lift;     ///< kinematic, moving
+  BodyId2D parked;   ///< kinematic, still
+};
+
+NonDynamicScene build_non_dynamic(World2D& world) {
+  NonDynamicScene s;
+  s.ground = add_body(world, BodyKind2D::kStatic, make_box(5_fx, 0.5_fx), {Fx(), -0.5_fx});
+  s.post = add_body(world, BodyKind2D::kStatic, make_box(0.1_fx, 1_fx), {6_fx, 1_fx});
+  s.spinner = add_body(world, BodyKind2D::kKinematic, make_box(1_fx, 0.1_fx), {Fx(), 3_fx});
+  s.lift = add_body(world, BodyKind2D::kKinematic, make_circle(0.5_fx), {3_fx, 6_fx});
+  s.parked = add_body(world, BodyKind2D::kKinematic, make_capsule({}, {1_fx, Fx()}, 0.2_fx),
+                      {-3_fx, 4_fx});
+  EXPECT_TRUE(world.set_linear_velocity(s.spinner, {1_fx, 0.25_fx}).ok());
+  EXPECT_TRUE(world.set_angular_velocity(s.spinner, 0.5_fx).ok());
+  EXPECT_TRUE(world.set_linear_velocity(s.lift, {Fx(), -0.5_fx}).ok());
+  // A ball falling beside them keeps the step's other stages busy.
+  add_body(world, BodyKind2D::kDynamic, make_circle(0.25_fx), {-6_fx, 2_fx});
+  return s;
+}
+
+std::vector<JointId2D> join_non_dynamic(World2D& world, const NonDynamicScene& s) {
+  const BodyId2D pairs[4][2] = {
+      {s.ground, s.spinner}, {s.spinner, s.lift}, {s.ground, s.post}, {s.lift, s.parked}};
+  const JointType2D types[6] = {JointType2D::kDistance,  JointType2D::kRevolute,
+                                JointType2D::kPrismatic, JointType2D::kWheel,
+                                JointType2D::kWeld,      JointType2D::kGrab};
+  std::vector<JointId2D> joints;
+  for (const auto& pair : pairs) {
+    for (const JointType2D type : types) {
+      JointDef2D def = joint_at(type, pair[0], pair[1], {1_fx, 2_fx});
+      def.anchor_b = {2_fx, 3_fx};
+      def.length = 0.5_fx;  // far from the anchors' distance: a large error
+      def.enable_limit = true;
+      def.lower = -0.1_fx;
+      def.upper = 0.1_fx;
+      def.enable_motor = true;
+      def.motor_speed = 5_fx;
+      def.max_motor = 1000_fx;
+      def.enable_spring = type != JointType2D::kRevolute;
+      def.linear_hertz = 2_fx;
+      def.target = {-20_fx, 20_fx};
+      def.break_impulse = Fx::epsilon();  // any impulse at all would break it
+      const Result<JointId2D> id = world.create_joint(def);
+      EXPECT_TRUE(id.ok()) << static_cast<int>(type) << ": " << id.status().message();
+      if (id.ok()) joints.push_back(*id);
+    }
+  }
+  return joints;
+}
+
+TEST(World2DJoints, JointsBetweenStaticAndKinematicBodiesMoveNothing) {
+  World2D world;
+  World2D plain;  // the same bodies without the joints
+  const NonDynamicScene s = build_non_dynamic(world);
+  build_non_dynamic(plain);
+  const std::vector<JointId2D> joints = join_non_dynamic(world, s);
+  ASSERT_EQ(joints.size(), 24u);
+  EXPECT_EQ(world.joint_count(), 24u);
+  std::vector<BodyId2D> ids;
+  world.body_ids(ids);
+  for (int t = 0; t < 120; ++t) {
+    world.step();
+    plain.step();
+  }
+  // Kinematic bodies kept the velocities they were given, exactly.
+  for (const BodyId2D id : ids) {
+    EXPECT_EQ(world.position(id), plain.position(id)) << id.index;
+    EXPECT_EQ(world.rotation(id).c, plain.rotation(id).c) << id.index;
+    EXPECT_EQ(world.rotation(id).s, plain.rotation(id).s) << id.index;
+    EXPECT_EQ(world.linear_velocity(id), plain.linear_velocity(id)) << id.index;
+    EXPECT_EQ(world.angular_velocity(id), plain.angular_velocity(id)) << id.index;
+  }
+  EXPECT_NEAR(to_double(world.position(s.spinner).x), 2.0, 0.001);
+  EXPECT_NEAR(to_double(world.position(s.lift).y), 5.0, 0.001);
+  // No impulse at all: nothing broke, no force is reported.
+  for (const JointId2D j : joints) {
+    EXPECT_TRUE(world.is_valid(j));
+    EXPECT_FALSE(world.is_joint_broken(j)) << j.index;
+    EXPECT_EQ(world.joint_force(j), Vec2{}) << j.index;
+    const JointRecord2D& record = world.state().joints[j.index];
+    EXPECT_EQ(record.linear_impulse, detail::V2{});
+    EXPECT_EQ(record.angular_impulse | record.axial_impulse | record.spring_impulse |
+                  record.motor_impulse | record.lower_impulse | record.upper_impulse,
+              0);
+  }
+  // Steering them is accepted too.
+  EXPECT_TRUE(world.set_motor_speed(joints[1], -2_fx).ok());
+  EXPECT_TRUE(world.set_grab_target(joints[5], {1_fx, 1_fx}).ok());
+  for (size_t k = 0; k < joints.size(); k += 2) {
+    ASSERT_TRUE(world.destroy_joint(joints[k]).ok());
+    EXPECT_FALSE(world.is_valid(joints[k]));
+  }
+  EXPECT_EQ(world.joint_count(), 12u);
+  // Destroying a body takes its joints: the spinner is in 12 of the 24,
+  // 6 of them left.
+  ASSERT_TRUE(world.destroy_body(s.spinner).ok());
+  EXPECT_EQ(world.joint_count(), 6u);
+}
+
+TEST(World2DJoints, JointsBetweenStaticAndKinematicBodiesRestoreAndReload) {
+  World2D world;
+  const NonDynamicScene s = build_non_dynamic(world);
+  join_non_dynamic(world, s);
+  for (int t = 0; t < 20; ++t) world.step();
+  World2DState saved;
+  world.save(saved);
+  std::vector<uint8_t> bytes;
+  world.serialize(bytes);
+  std::vector<uint64_t> expected;
+  for (int t = 0; t < 60; ++t) {
+    world.step();
+    expected.push_back(world.checksum());
+  }
+  world.restore(saved);
+  World2D copy;
+  ASSERT_TRUE(copy.deserialize(bytes).ok());
+  EXPECT_EQ(copy.joint_count(), 24u);
+  for (size_t t = 0; t < expected.size(); ++t) {
+    world.step();
+    copy.step();
+    ASSERT_EQ(world.checksum(), expected[t]) << t;
+    ASSERT_EQ(copy.checksum(), expected[t]) << t;
+  }
+  std::vector<uint8_t> again;
+  copy.serialize(again);
+  world.serialize(bytes);
+  EXPECT_EQ(again, bytes);
+}
+
 }  // namespace
 }  // namespace rwd::sim2d

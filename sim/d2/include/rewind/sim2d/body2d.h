@@ -2,11 +2,13 @@
 #pragma once
 // Bodies of the 2D lane: handles, kinds and the definition a body is made
 // from. Public values are Q16.16 (Fx) in metres, seconds, kilograms and
-// radians; the world keeps them in Q32.32 inside.
+// radians, masses and inertias Q32.32 (FxWide); the world keeps them all in
+// Q32.32 inside.
 #include <cstdint>
 
 #include "rewind/fixed/fx.h"
 #include "rewind/fixed/fx_literal.h"
+#include "rewind/fixed/fx_wide.h"
 #include "rewind/fixed/vec2.h"
 #include "rewind/sim2d/shape2d.h"
 
@@ -31,6 +33,30 @@ enum class BodyKind2D : uint8_t {
   kDynamic = 2,    ///< moved by gravity, contacts, forces and impulses
 };
 
+// The range of a dynamic body's mass and rotational inertia. The solver
+// works with their inverses in Q32.32, so the heaviest bodies keep fewer
+// significant bits there: a body moves as if its mass were off by a
+// fraction below m / 2^32 kg (0.025% at the limit) and turns as if its
+// inertia were off by a fraction below I / 2^32 kg m^2 (6% at the limit; a
+// 40 t plate 200 m square is 0.6% off), the same in every row it is solved
+// in, so it still behaves as one consistent rigid body. Impulses grow as
+// mass x speed and their turning effect as mass x size x speed: the step's
+// integer range holds them for a 40 t body (even a 200 m plate) up to the
+// default speed cap of 400 m/s, but only up to about 100 m/s of impact
+// speed for a body at both upper limits at once. The lower limits refuse
+// only bodies whose inverse would not fit (a disc of density 1 less than
+// 1 cm across: lock its rotation or make it denser).
+
+/// The lightest dynamic body, kg: 2^-30 (about 1 microgram).
+inline constexpr fixed::FxWide kMinBodyMass2D = fixed::FxWide::from_raw(4);
+/// The heaviest dynamic body, kg: 2^20 = 1,048,576 (about 1,000 t).
+inline constexpr fixed::FxWide kMaxBodyMass2D = fixed::FxWide::from_raw(int64_t{1} << 52);
+/// The smallest rotational inertia about the centre of mass, kg m^2: 2^-30.
+inline constexpr fixed::FxWide kMinBodyInertia2D = fixed::FxWide::from_raw(4);
+/// The largest, kg m^2: 2^28 = 268,435,456 (a 200 m x 200 m plate of
+/// 40 t has 2.67e8).
+inline constexpr fixed::FxWide kMaxBodyInertia2D = fixed::FxWide::from_raw(int64_t{1} << 60);
+
 /// Surface response. Per contact: friction is the geometric mean of the two
 /// bodies', restitution and rolling resistance the larger of the two.
 struct Material2D {
@@ -51,7 +77,11 @@ struct BodyDef2D {
   /// Drawing/layering depth: carried in state and the checksum, never
   /// collided on (bodies on every z meet).
   Fx z;
-  Fx density = 1_fx;          ///< kg/m^2, (0, 30000]; dynamic bodies only
+  /// kg/m^2, (0, 30000]; dynamic bodies only. The body's mass (shape area
+  /// x density) must lie in [kMinBodyMass2D, kMaxBodyMass2D] and its
+  /// rotational inertia in [kMinBodyInertia2D, kMaxBodyInertia2D] (not
+  /// checked with lock_rotation); create_body() refuses it otherwise.
+  Fx density = 1_fx;
   Fx linear_damping = Fx();   ///< 1/s, [0, 1000]
   Fx angular_damping = Fx();  ///< 1/s, [0, 1000]
   Fx gravity_scale = 1_fx;    ///< multiplies world gravity, [-100, 100]
@@ -74,6 +104,15 @@ struct BodyDef2D {
   /// kept, so the next step's contact stops it (a bullet never crosses a
   /// thin wall). Costs nothing for bodies without it.
   bool continuous = false;
+  /// false: a dynamic body starts asleep, exactly as one that fell asleep
+  /// (World2D::is_awake() is false): it stays where it is put, even in
+  /// mid-air, until something wakes it: a touch by a moving body, a joint
+  /// created to it or to a moving body, a force, impulse, velocity or
+  /// transform set on it, or wake_body() (in a world with enable_sleep off
+  /// too). Its velocities must then be zero (a sleeping body has none).
+  /// Ignored for static and kinematic bodies (they are never awake). Part
+  /// of state like every sleeping body.
+  bool awake = true;
   uint64_t user_data = 0;  ///< game tag; part of state and the checksum
 };
 

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Joints of the 2D lane. A joint ties two bodies (one may be static) with a
-// constraint the soft-step solver works on beside the contacts: warm
-// started, part of the world state and the checksum. Anchors are given in
-// world coordinates at creation and kept in each body's frame.
+// Joints of the 2D lane. A joint ties two bodies (either may be static or
+// kinematic) with a constraint the soft-step solver works on beside the
+// contacts: warm started, part of the world state and the checksum.
+// Anchors are given in world coordinates at creation and kept in each
+// body's frame.
 #include <cstdint>
 
 #include "rewind/fixed/fx.h"

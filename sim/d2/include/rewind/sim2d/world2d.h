@@ -92,8 +92,15 @@ class World2D {
   Vec2 center_of_mass(BodyId2D id) const;
   Vec2 linear_velocity(BodyId2D id) const;
   Fx angular_velocity(BodyId2D id) const;
-  /// kg, saturated at Fx::max(); 0 for static and kinematic bodies.
-  Fx mass(BodyId2D id) const;
+  /// kg, Q32.32 (up to kMaxBodyMass2D; to_fx() saturates at 32,768 kg):
+  /// the inverse of the inverse mass the solver uses, so area x density
+  /// to a fraction below mass / 2^32 kg (body2d.h). 0 for static and
+  /// kinematic bodies.
+  fixed::FxWide mass(BodyId2D id) const;
+  /// kg m^2 about the centre of mass, Q32.32 (up to kMaxBodyInertia2D),
+  /// likewise the inverse of what the solver uses. 0 for static and
+  /// kinematic bodies and for a locked rotation.
+  fixed::FxWide rotational_inertia(BodyId2D id) const;
   Fx z(BodyId2D id) const;
   uint64_t user_data(BodyId2D id) const;
   const Shape2D* shape(BodyId2D id) const;
@@ -134,9 +141,12 @@ class World2D {
 
   // --- joints -------------------------------------------------------------
 
-  /// Creates a joint between two live bodies (at least one dynamic);
-  /// kInvalidArgument naming the field, kNotFound for a stale body or
-  /// kCapacity (max_bodies joints) leave the world unchanged.
+  /// Creates a joint between two live bodies; kInvalidArgument naming the
+  /// field, kNotFound for a stale body or kCapacity (max_bodies joints)
+  /// leave the world unchanged. A joint between two static or kinematic
+  /// bodies is accepted and kept (saved, hashed, queried, destroyed like
+  /// any) but moves nothing: its impulses and joint_force() stay zero and
+  /// it never breaks; kinematic bodies keep the velocities you give them.
   Result<JointId2D> create_joint(const JointDef2D& def);
   /// Destroys a joint; destroying a body destroys its joints too.
   Status destroy_joint(JointId2D id);
