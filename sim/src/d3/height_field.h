@@ -95,6 +95,17 @@ void height_field_query(const HeightField& hf, const Aabb& local_box, Visit&& vi
 bool height_field_raycast(const HeightField& hf, Vec3 origin, Vec3 dir, float max_t, float& t,
                           Vec3& normal, uint32_t& id);
 
+/// The signed distance from q to the field's surface (local frame, metres),
+/// into `out`; false when every cell is a hole. The magnitude is the
+/// distance to the nearest point of the surface. Negative when q is under
+/// the surface: within the footprint (0 <= x <= (cols - 1) * scale.x,
+/// 0 <= z <= (rows - 1) * scale.z), over a cell that is not a hole, and
+/// below the surface's height there. Positive everywhere else, beside the
+/// field and under a hole included (height_field_distance.cpp). Ties
+/// between equally near triangles go to the lower id; a pure function of
+/// the field and q. No allocation.
+bool height_field_signed_distance(const HeightField& hf, Vec3 q, SurfaceDistance& out);
+
 namespace height_field_detail {
 /// Range of cells along one axis whose span [i * spacing, (i + 1) *
 /// spacing] may meet [lo, hi], widened by one cell against rounding;

@@ -112,6 +112,14 @@ void mesh_query(const TriangleMesh& mesh, const Aabb& local_box, Visit&& visit) 
 bool mesh_raycast(const TriangleMesh& mesh, Vec3 origin, Vec3 dir, float max_t, float& t,
                   Vec3& normal, uint32_t& triangle);
 
+/// The signed distance from q to the mesh's surface (local frame, metres):
+/// negative behind it, by the angle-weighted pseudo-normal of the feature
+/// (face, edge, vertex) nearest q (mesh_distance.cpp), so negative exactly
+/// inside a closed mesh wound counter-clockwise from outside. The same for
+/// one- and two-sided meshes. Ties between equally near triangles go to
+/// the lower index; a pure function of the mesh and q. No allocation.
+SurfaceDistance mesh_signed_distance(const TriangleMesh& mesh, Vec3 q);
+
 namespace mesh_detail {
 /// Builds mesh.nodes and mesh.order from mesh.vertices and mesh.triangles
 /// (mesh_bvh.cpp).

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 // Point and pair queries: the signed distance from a point to a body's
-// surface, the body nearest a point, and the manifold of two bodies. A point is a sphere of radius
-// zero, so the collide table's sphere routines give the answer: the separation is the signed
-// distance, the manifold point lies midway between the query point and the surface (so the surface
-// point is twice it less the query point), and the normal runs from the point toward the body.
+// surface, the body nearest a point, and the manifold of two bodies. To a solid, a point is a
+// sphere of radius zero, so the collide table's sphere routines give the answer: the separation is
+// the signed distance, the manifold point lies midway between the query point and the surface (so
+// the surface point is twice it less the query point), and the normal runs from the point toward
+// the body. A mesh or a height field has its own routine (ShapeOps::signed_distance), which knows
+// which side of the surface is behind it.
 #include <algorithm>
 #include <cmath>
 
@@ -11,16 +13,29 @@
 #include "d3/manifold.h"
 #include "d3/pipeline.h"
 #include "d3/query_filter.h"
+#include "d3/shape_ops.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim {
 namespace {
 
-// The point's distance to body i, if within `reach` (or inside).
+// The point's distance to body i, if within `reach` (or inside). A surface
+// is measured whatever the reach (its nearest triangle is searched for
+// outward from the point, so a reach would save little); the caller
+// decides whether it counts.
 std::optional<PointHit> point_to_body(const WorldState& state, const GeometryStore& store,
                                       uint32_t i, Vec3 point, float reach) {
   const BodyInfo& info = state.infos[i];
   const BodySim& sim = state.sims[i];
+  const d3::ShapeOps& ops = d3::shape_ops(info.shape.type);
+  if (ops.signed_distance != nullptr) {
+    d3::SurfaceDistance s;
+    if (!ops.signed_distance(info.shape, store, sim.position, mat3_from_quat(sim.rotation), point,
+                             s)) {
+      return std::nullopt;
+    }
+    return PointHit{BodyId{i, info.generation}, s.distance, s.point, s.normal};
+  }
   Shape dot = Shape::make_sphere(0.0f);
   d3::Manifold m;
   d3::collide_shapes(dot, {point, Quat{}, Mat3{}}, info.shape,
@@ -59,6 +74,11 @@ std::optional<PointHit> World3D::nearest_body(Vec3 point, float max_distance,
   for (const uint32_t i : candidates) {
     const std::optional<PointHit> hit = point_to_body(state_, *geometry_, i, point, max_distance);
     if (!hit || hit->distance > max_distance) continue;
+    // A surface has no inside: it counts when it is within reach on either
+    // side, so whether it does never depends on how far the broadphase's
+    // bounds reach below it.
+    const bool surface = d3::shape_ops(state_.infos[i].shape.type).signed_distance != nullptr;
+    if (surface && -hit->distance > max_distance) continue;
     if (!best || hit->distance < best->distance) best = hit;
   }
   return best;

@@ -149,6 +149,6 @@ ShapeCastOutput sweep(const Shape& s, const GeometryStore& store, Vec3 position,
 }  // namespace
 
 extern const ShapeOps kBoxOps{"box",   true,        check,   canonical, extent, volume,
-                              inertia, half_bounds, raycast, proxy,     sweep};
+                              inertia, half_bounds, raycast, proxy,     sweep,  nullptr};
 
 }  // namespace rwd::sim::d3

@@ -130,7 +130,8 @@ ConvexProxy proxy(const Shape& s, const GeometryStore& /*store*/, ProxyPoints& s
 
 }  // namespace
 
-extern const ShapeOps kCapsuleOps{"capsule", true,        check,   canonical, extent,      volume,
-                                  inertia,   half_bounds, raycast, proxy,     sweep_convex};
+extern const ShapeOps kCapsuleOps{"capsule", true,   check,        canonical,
+                                  extent,    volume, inertia,      half_bounds,
+                                  raycast,   proxy,  sweep_convex, nullptr};
 
 }  // namespace rwd::sim::d3

@@ -152,6 +152,6 @@ void collide_compound(const Shape& a, const ShapePose& pa, const Shape& b, const
 }
 
 extern const ShapeOps kCompoundOps{"compound", true,        check,   canonical, extent, volume,
-                                   inertia,    half_bounds, raycast, nullptr,   sweep};
+                                   inertia,    half_bounds, raycast, nullptr,   sweep,  nullptr};
 
 }  // namespace rwd::sim::d3

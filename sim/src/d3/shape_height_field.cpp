@@ -47,6 +47,14 @@ ShapeCastOutput sweep(const Shape& s, const GeometryStore& store, Vec3 position,
                       swept, translation, max_fraction);
 }
 
+bool signed_distance(const Shape& s, const GeometryStore& store, Vec3 position, const Mat3& axes,
+                     Vec3 point, SurfaceDistance& out) {
+  const HeightField& h = field_of(s, store);
+  return signed_distance_source(
+      source_frame(position, axes, bounds_center(h.bounds)), point, out,
+      [&h](Vec3 q, SurfaceDistance& d) { return height_field_signed_distance(h, q, d); });
+}
+
 }  // namespace
 
 void collide_height_field_convex(const Shape& field, const ShapePose& pose, const Shape& shape,
@@ -57,16 +65,9 @@ void collide_height_field_convex(const Shape& field, const ShapePose& pose, cons
                         triangles_of(h), shape, shape_pose, store, speculative_m, out);
 }
 
-extern const ShapeOps kHeightFieldOps{"height field",
-                                      false,
-                                      check,
-                                      canonical,
-                                      surface_extent,
-                                      surface_volume,
-                                      surface_inertia,
-                                      surface_half_bounds,
-                                      raycast,
-                                      nullptr,
-                                      sweep};
+extern const ShapeOps kHeightFieldOps{
+    "height field", false,          check,           canonical,
+    surface_extent, surface_volume, surface_inertia, surface_half_bounds,
+    raycast,        nullptr,        sweep,           signed_distance};
 
 }  // namespace rwd::sim::d3

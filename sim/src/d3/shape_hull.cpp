@@ -97,7 +97,7 @@ ConvexProxy proxy(const Shape& s, const GeometryStore& store, ProxyPoints& /*sto
 
 }  // namespace
 
-extern const ShapeOps kHullOps{"hull",  true,        check,   canonical, extent,      volume,
-                               inertia, half_bounds, raycast, proxy,     sweep_convex};
+extern const ShapeOps kHullOps{"hull",  true,        check,   canonical, extent,       volume,
+                               inertia, half_bounds, raycast, proxy,     sweep_convex, nullptr};
 
 }  // namespace rwd::sim::d3

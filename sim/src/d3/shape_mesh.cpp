@@ -50,6 +50,16 @@ ShapeCastOutput sweep(const Shape& s, const GeometryStore& store, Vec3 position,
                       triangles_of(m), swept, translation, max_fraction);
 }
 
+bool signed_distance(const Shape& s, const GeometryStore& store, Vec3 position, const Mat3& axes,
+                     Vec3 point, SurfaceDistance& out) {
+  const TriangleMesh& m = mesh_of(s, store);
+  return signed_distance_source(source_frame(position, axes, bounds_center(m.bounds)), point, out,
+                                [&m](Vec3 q, SurfaceDistance& d) {
+                                  d = mesh_signed_distance(m, q);
+                                  return true;
+                                });
+}
+
 }  // namespace
 
 void collide_mesh_convex(const Shape& mesh, const ShapePose& pose, const Shape& shape,
@@ -60,16 +70,8 @@ void collide_mesh_convex(const Shape& mesh, const ShapePose& pose, const Shape& 
                         m.one_sided, triangles_of(m), shape, shape_pose, store, speculative_m, out);
 }
 
-extern const ShapeOps kMeshOps{"mesh",
-                               false,
-                               check,
-                               canonical,
-                               surface_extent,
-                               surface_volume,
-                               surface_inertia,
-                               surface_half_bounds,
-                               raycast,
-                               nullptr,
-                               sweep};
+extern const ShapeOps kMeshOps{"mesh",         false,          check,           canonical,
+                               surface_extent, surface_volume, surface_inertia, surface_half_bounds,
+                               raycast,        nullptr,        sweep,           signed_distance};
 
 }  // namespace rwd::sim::d3

@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "d3/gjk.h"
+#include "d3/triangle.h"
 #include "rewind/sim/geometry.h"
 #include "rewind/sim/math.h"
 #include "rewind/sim/shape.h"
@@ -68,6 +69,15 @@ struct ShapeOps {
   ShapeCastOutput (*sweep)(const Shape& shape, const GeometryStore& store, Vec3 position,
                            const Mat3& axes, const ConvexProxy& swept, Vec3 translation,
                            float max_fraction);
+  /// The signed distance from `point` to a surface (a mesh, a height
+  /// field) with its mass frame at `position`, `axes`: everything in the
+  /// world frame; false when there is no surface (a height field of holes
+  /// only). nullptr for the solid shapes, whose contact with a point (the
+  /// collide table's sphere routines at radius zero) is their signed
+  /// distance. A surface's contact cannot be: it meets a point behind a
+  /// two-sided surface as one in front of its back face.
+  bool (*signed_distance)(const Shape& shape, const GeometryStore& store, Vec3 position,
+                          const Mat3& axes, Vec3 point, SurfaceDistance& out);
 };
 
 /// ShapeOps::sweep of the convex shapes: their proxy against the swept one.

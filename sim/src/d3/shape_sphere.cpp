@@ -77,7 +77,7 @@ bool ray_sphere(Vec3 origin, Vec3 dir, float max_distance, Vec3 center, float ra
   return true;
 }
 
-extern const ShapeOps kSphereOps{"sphere", true,        check,   canonical, extent,      volume,
-                                 inertia,  half_bounds, raycast, proxy,     sweep_convex};
+extern const ShapeOps kSphereOps{"sphere", true,        check,   canonical, extent,       volume,
+                                 inertia,  half_bounds, raycast, proxy,     sweep_convex, nullptr};
 
 }  // namespace rwd::sim::d3

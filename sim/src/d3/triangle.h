@@ -39,6 +39,14 @@ struct TriangleRef {
   uint32_t id = 0;
 };
 
+/// A point's signed distance to a triangle source's surface, in the
+/// source's local frame (mesh_signed_distance, height_field_signed_distance).
+struct SurfaceDistance {
+  float distance = 0.0f;  ///< metres; negative behind the surface
+  Vec3 point;             ///< the surface's point nearest the query point
+  Vec3 normal;            ///< unit; the way the distance grows (the outward normal)
+};
+
 /// (b - a) x (c - a): twice the area times the unit normal.
 inline Vec3 triangle_cross(Vec3 a, Vec3 b, Vec3 c) {
   return cross(b - a, c - a);

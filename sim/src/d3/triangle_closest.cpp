@@ -117,4 +117,73 @@ CoreTriangleClosest closest_core_triangle(const Vec3* points, uint32_t count, co
   return out;
 }
 
+PointTriangleClosest closest_point_triangle(Vec3 q, const Vec3 p[3]) {
+  PointTriangleClosest out;
+  const auto at = [&](Vec3 point, TriangleFeature feature, uint32_t index) {
+    out.point = point;
+    out.distance_sq = length_squared(q - point);
+    out.feature = feature;
+    out.index = index;
+    return out;
+  };
+  // Each denominator is a squared length or area, positive for a triangle
+  // with an area; a sliver whose rounding makes it zero gets the feature's
+  // first point rather than a NaN.
+  const auto ratio = [](float num, float den) { return den > 0.0f ? num / den : 0.0f; };
+  // The region tests work on q's projections onto the two edges from each
+  // corner; each feature is tried once, vertices before the edges they
+  // bound, so every q lands in exactly one region.
+  const Vec3 ab = p[1] - p[0];
+  const Vec3 ac = p[2] - p[0];
+  const Vec3 aq = q - p[0];
+  const float d1 = dot(ab, aq);
+  const float d2 = dot(ac, aq);
+  if (d1 <= 0.0f && d2 <= 0.0f) return at(p[0], TriangleFeature::kVertex, 0);
+  const Vec3 bq = q - p[1];
+  const float d3 = dot(ab, bq);
+  const float d4 = dot(ac, bq);
+  if (d3 >= 0.0f && d4 <= d3) return at(p[1], TriangleFeature::kVertex, 1);
+  const float vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
+    return at(p[0] + ab * ratio(d1, d1 - d3), TriangleFeature::kEdge, 0);
+  }
+  const Vec3 cq = q - p[2];
+  const float d5 = dot(ab, cq);
+  const float d6 = dot(ac, cq);
+  if (d6 >= 0.0f && d5 <= d6) return at(p[2], TriangleFeature::kVertex, 2);
+  const float vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) {
+    return at(p[0] + ac * ratio(d2, d2 - d6), TriangleFeature::kEdge, 2);
+  }
+  const float va = d3 * d6 - d5 * d4;
+  if (va <= 0.0f && d4 - d3 >= 0.0f && d5 - d6 >= 0.0f) {
+    return at(p[1] + (p[2] - p[1]) * ratio(d4 - d3, (d4 - d3) + (d5 - d6)), TriangleFeature::kEdge,
+              1);
+  }
+  const float sum = va + vb + vc;
+  return at(p[0] + ab * ratio(vb, sum) + ac * ratio(vc, sum), TriangleFeature::kFace, 0);
+}
+
+SurfaceDistance signed_surface_distance(Vec3 q, const PointTriangleClosest& at, Vec3 face_normal,
+                                        bool behind, Vec3 on_surface) {
+  SurfaceDistance out;
+  const Vec3 off = q - at.point;
+  const float d = std::sqrt(at.distance_sq);
+  out.distance = behind ? -d : d;
+  out.point = at.point;
+  if (at.feature == TriangleFeature::kFace) {
+    // Off a face, q - point is the face normal scaled; the normal itself is
+    // exact. It is turned only where the caller's side disagrees with the
+    // face's (a height field's point outside its footprint, below the
+    // plane of its nearest face); on the face it is the face's.
+    const float side = dot(off, face_normal);
+    out.normal = side == 0.0f || (side > 0.0f) != behind ? face_normal : -face_normal;
+  } else if (d > 1e-30f) {  // 1 / d stays finite
+    out.normal = off * ((behind ? -1.0f : 1.0f) / d);
+  } else {
+    out.normal = on_surface;
+  }
+  return out;
+}
+
 }  // namespace rwd::sim::d3

@@ -88,6 +88,20 @@ bool raycast_source(const SourceFrame& f, Vec3 origin, Vec3 dir, float max_dista
   return true;
 }
 
+/// ShapeOps::signed_distance of a source: `measure(local_point, local)`
+/// fills the SurfaceDistance in the local frame (or returns false), and
+/// the answer is mapped back to the world frame.
+template <class Measure>
+bool signed_distance_source(const SourceFrame& f, Vec3 point, SurfaceDistance& out,
+                            Measure&& measure) {
+  SurfaceDistance local;
+  if (!measure(to_local(f, point), local)) return false;
+  out.distance = local.distance;
+  out.point = f.origin + f.axes * local.point;
+  out.normal = f.axes * local.normal;
+  return true;
+}
+
 /// The source (A) against the convex `shape` (B) at `pose`: one manifold,
 /// normal from the source to the shape, in the world frame.
 template <class Query>

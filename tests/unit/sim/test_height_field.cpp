@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Height fields: validation, the triangles against a mesh built from the
 // same grid (corners, normals and active edges), the box query and the ray
-// walk against brute force, holes, and a sphere on a slope at the analytic
-// distance.
+// walk against brute force, holes, the signed distance against brute force,
+// and a sphere on a slope at the analytic distance.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +10,7 @@
 
 #include "d3/height_field.h"
 #include "d3/manifold_triangles.h"
+#include "d3/triangle_closest.h"
 #include "mesh_test_shapes.h"
 #include "sim_test_scenes.h"
 
@@ -192,6 +193,53 @@ TEST(HeightField, RaycastMatchesBruteForce) {
     EXPECT_LE(dot(n, d), 0.0f);
   }
   EXPECT_GT(hits, 300);
+}
+
+// The signed distance against every triangle (magnitude and nearest point
+// to the bit: the ring walk skips no cell that could win) and its sign
+// against a ray straight down from above the field: under the surface
+// exactly when the ray meets it above the point. Points range from under
+// the field to well beside and above it.
+TEST(HeightField, SignedDistanceMatchesBruteForce) {
+  const HeightField hf = bumpy(25, {0.5f, 1.5f, 0.75f}, true, 31);
+  test::Rng rng{4};
+  const uint32_t tri_count = 2 * 24 * 24;
+  int under = 0;
+  for (int q = 0; q < 1000; ++q) {
+    const float far = q % 5 == 0 ? 40.0f : 2.0f;
+    const Vec3 at{rng.uniform(-far, 12.0f + far), rng.uniform(-4.0f, 4.0f) * (far / 2.0f),
+                  rng.uniform(-far, 18.0f + far)};
+    SurfaceDistance got;
+    ASSERT_TRUE(height_field_signed_distance(hf, at, got));
+    PointTriangleClosest want;
+    bool any = false;
+    for (uint32_t k = 0; k < tri_count; ++k) {
+      if (height_field_is_hole(hf, k >> 1)) continue;
+      Vec3 p[3];
+      height_field_corners(hf, k, p);
+      const PointTriangleClosest c = closest_point_triangle(at, p);
+      if (!any || c.distance_sq < want.distance_sq) want = c;
+      any = true;
+    }
+    EXPECT_EQ(std::fabs(got.distance), std::sqrt(want.distance_sq)) << q;
+    EXPECT_EQ(got.point, want.point) << q;
+    if (std::fabs(got.distance) < 1e-4f) continue;  // on the surface: either sign
+    const Vec3 top{at.x, hf.bounds.upper.y + 1.0f, at.z};
+    float t = 0;
+    Vec3 n;
+    uint32_t id = 0;
+    const bool below =
+        height_field_raycast(hf, top, {0, -1, 0}, 1e30f, t, n, id) && top.y - t > at.y;
+    EXPECT_EQ(got.distance < 0.0f, below) << q << ": " << got.distance;
+    under += below ? 1 : 0;
+  }
+  EXPECT_GT(under, 150);
+  // A field of holes only has no surface.
+  const std::vector<float> h(4, 0.0f);
+  const std::vector<uint8_t> holes = {1};
+  const HeightField none = *build_height_field(2, 2, {1, 1, 1}, h, holes);
+  SurfaceDistance d;
+  EXPECT_FALSE(height_field_signed_distance(none, {0.5f, 0.0f, 0.5f}, d));
 }
 
 TEST(HeightField, SphereOnSlopeAtAnalyticDistance) {

@@ -1,14 +1,17 @@
 // SPDX-License-Identifier: MIT
 // Triangle meshes: validation messages, the tree's box query and ray query
-// against brute force on random triangle soups, bit-identical rebuilds, and
-// the active-edge flags of a flat grid, a convex ridge and a concave valley.
+// against brute force on random triangle soups, bit-identical rebuilds, the
+// active-edge flags of a flat grid, a convex ridge and a concave valley, and
+// the signed distance's nearest triangle against brute force.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <vector>
 
 #include "d3/mesh.h"
+#include "d3/triangle_closest.h"
 #include "mesh_test_shapes.h"
 #include "sim_test_scenes.h"
 
@@ -141,6 +144,30 @@ TEST(Mesh, RaycastMatchesBruteForce) {
       }
     }
     EXPECT_GT(hits, 80);
+  }
+}
+
+// The signed distance's magnitude, nearest point and triangle tie-break
+// against every triangle of random soups: the tree walk skips no triangle
+// that could win, so the answer is the brute force's to the bit.
+TEST(Mesh, SignedDistanceMagnitudeMatchesBruteForce) {
+  test::Rng rng{5};
+  for (uint32_t n : {1u, 17u, 300u, 2000u}) {
+    const TriangleMesh mesh = test::build_ok(random_soup(rng, n));
+    for (int q = 0; q < 200; ++q) {
+      const float r = q % 4 == 0 ? 60.0f : 12.0f;  // some far outside the soup
+      const Vec3 at{rng.uniform(-r, r), rng.uniform(-r, r), rng.uniform(-r, r)};
+      const SurfaceDistance got = mesh_signed_distance(mesh, at);
+      PointTriangleClosest want;
+      for (uint32_t t = 0; t < n; ++t) {
+        Vec3 p[3];
+        for (int k = 0; k < 3; ++k) p[k] = mesh.vertices[mesh.triangles[t].v[k]];
+        const PointTriangleClosest c = closest_point_triangle(at, p);
+        if (t == 0 || c.distance_sq < want.distance_sq) want = c;
+      }
+      EXPECT_EQ(std::fabs(got.distance), std::sqrt(want.distance_sq)) << n << " " << q;
+      EXPECT_EQ(got.point, want.point) << n << " " << q;
+    }
   }
 }
 

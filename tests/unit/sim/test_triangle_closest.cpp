@@ -2,7 +2,8 @@
 // The closed-form closest points of a point or a segment and a triangle
 // (d3/triangle_closest.h): hand-computed cases, and random ones against
 // GJK on the same cores (distances within 1e-4 of the larger of 1 and the
-// distance; both report an overlap for a segment through the triangle).
+// distance; both report an overlap for a segment through the triangle); and
+// the nearest point of a triangle with its feature against the point core.
 #include <cmath>
 #include <cstdint>
 
@@ -11,6 +12,7 @@
 #include "d3/gjk.h"
 #include "d3/triangle_closest.h"
 #include "gjk_test_shapes.h"
+#include "sim_test_scenes.h"
 
 namespace rwd::sim::d3 {
 namespace {
@@ -81,6 +83,41 @@ TEST(TriangleClosest, RandomCoresAgreeWithGjk) {
     EXPECT_NEAR(length(c.on_core - c.on_tri), c.distance, 1e-5f) << "case " << i;
   }
   EXPECT_GT(overlaps, 50) << "the random cases should cross some triangles";
+}
+
+// The nearest point of a triangle to a point, with its feature, against
+// the core routine's (a one-point core): the same distance, and a point
+// on the feature named (a vertex exactly, an edge within rounding, the
+// face in the plane and inside every edge).
+TEST(TriangleClosest, PointFeatureAgreesWithTheCoreRoutine) {
+  test::Rng rng{9};
+  int seen[3] = {0, 0, 0};
+  for (int i = 0; i < 4000; ++i) {
+    Vec3 tri[3];
+    for (Vec3& v : tri) v = {rng.uniform(-2, 2), rng.uniform(-1, 1), rng.uniform(-2, 2)};
+    const Vec3 n = normalize_or_zero(cross(tri[1] - tri[0], tri[2] - tri[0]));
+    if (n == Vec3{}) continue;
+    const Vec3 q{rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-3, 3)};
+    const PointTriangleClosest c = closest_point_triangle(q, tri);
+    const CoreTriangleClosest want = closest_core_triangle(&q, 1, tri, n);
+    EXPECT_NEAR(std::sqrt(c.distance_sq), want.distance, 1e-5f) << "case " << i;
+    EXPECT_NEAR(length(c.point - want.on_tri), 0.0f, 1e-5f) << "case " << i;
+    ++seen[static_cast<int>(c.feature)];
+    if (c.feature == TriangleFeature::kVertex) {
+      EXPECT_EQ(c.point, tri[c.index]) << "case " << i;
+    } else if (c.feature == TriangleFeature::kEdge) {
+      const Vec3 a = tri[c.index];
+      const Vec3 e = tri[(c.index + 1) % 3] - a;
+      EXPECT_LT(length(cross(c.point - a, e)), 1e-5f * length(e)) << "case " << i;
+    } else {
+      EXPECT_NEAR(dot(c.point - tri[0], n), 0.0f, 1e-5f) << "case " << i;
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_GE(dot(cross(tri[(k + 1) % 3] - tri[k], c.point - tri[k]), n), -1e-5f)
+            << "case " << i;
+      }
+    }
+  }
+  for (int f = 0; f < 3; ++f) EXPECT_GT(seen[f], 200) << "feature " << f;
 }
 
 }  // namespace

@@ -61,7 +61,8 @@ struct ContactManifold {
 /// The nearest surface point of a body to a query point.
 struct PointHit {
   BodyId body;
-  float distance = 0.0f;  ///< metres to the surface; negative inside the body
+  float distance = 0.0f;  ///< metres to the surface; negative inside the body (behind a
+                          ///< mesh, under a height field: World3D::signed_distance)
   Vec3 point;             ///< the nearest point on the body's surface
   Vec3 normal;            ///< the surface's outward normal there
 };

@@ -282,15 +282,41 @@ class World3D {
   /// its first touch, into `out` (cleared first; keeps its capacity).
   Status shape_cast_all(const Shape& shape, Vec3 position, Quat rotation, Vec3 translation,
                         const QueryFilter& filter, std::vector<ShapeCastHit>& out) const;
-  /// The body whose surface is nearest `point` within `max_distance` m
-  /// (a body the point is inside counts, at its negative depth), or
-  /// nullopt; ties go to the lower index. A non-finite point or a negative
-  /// or non-finite distance finds nothing.
+  /// The body whose surface is nearest `point` within `max_distance` m,
+  /// by signed_distance(), or nullopt; ties go to the lower index. A solid
+  /// the point is inside counts, at its negative depth; a mesh or a height
+  /// field counts when its surface is within `max_distance` on either
+  /// side, at its signed distance (so a point deep under a height field
+  /// does not find it). A non-finite point or a negative or non-finite
+  /// distance finds nothing.
   std::optional<PointHit> nearest_body(Vec3 point, float max_distance,
                                        const QueryFilter& filter = {}) const;
-  /// Signed distance from `point` to a body's surface (negative inside)
-  /// with the nearest surface point and its normal; nullopt for an unknown
-  /// id or a non-finite point.
+  /// Signed distance (m) from `point` to a body's surface, with the
+  /// surface's point nearest it and the unit normal there, pointing the way
+  /// the distance grows (outward); nullopt for an unknown id, a non-finite
+  /// point or a height field that is all holes. The magnitude is always
+  /// the distance to the nearest surface point; the sign says the side:
+  /// - a solid (sphere, box, capsule, hull, compound): negative inside.
+  /// - a triangle mesh, one- or two-sided: negative behind the surface,
+  ///   the side its triangles' normals (counter-clockwise winding) point
+  ///   away from; for a closed mesh wound that way, inside. Where the
+  ///   nearest point is on an edge or a vertex the side is that of the
+  ///   angle-weighted pseudo-normal there (the normals of the triangles
+  ///   meeting at it, each weighted by its angle at that point), which
+  ///   gets the inside of a closed mesh right at edges and corners too; a
+  ///   lone triangle makes every point behind its plane negative.
+  ///   Triangles meet where their corners have the same coordinates,
+  ///   whether or not they share vertex indices.
+  /// - a height field: negative under the surface, that is within its
+  ///   footprint (the x, z extent of its samples), over a cell that is not
+  ///   a hole, and below the surface's height there; then the magnitude is
+  ///   the distance to the nearest surface point (not the height
+  ///   difference, on a slope). Beside the footprint and under a hole the
+  ///   distance is positive, whatever the height.
+  /// A point on the surface reads about 0, of either sign. Meshes and
+  /// height fields are searched outward from the point, so the cost grows
+  /// with the distance to them (a cell or two of a field, a few tree nodes
+  /// of a mesh, for a point near the surface).
   std::optional<PointHit> signed_distance(BodyId id, Vec3 point) const;
   /// The contact manifold of two live bodies as they stand: points whose
   /// separation is at most `max_separation` m (0: touching or overlapping;
