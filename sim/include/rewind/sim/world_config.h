@@ -11,8 +11,13 @@ namespace rwd::sim {
 struct WorldConfig {
   Vec3 gravity{0.0f, -9.81f, 0.0f};   ///< m/s^2
   float tick_seconds = 1.0f / 60.0f;  ///< length of one step(), (0, 0.1]
-  int32_t substeps = 4;               ///< TGS-Soft substeps per tick, [1, 64]
-  int32_t relax_iterations = 1;       ///< rigid contact passes after each substep's move, [0, 16]
+  /// TGS-Soft substeps per tick, [1, 64]. Box stacking needs a substep of
+  /// at most 1/180 s (3 at 60 Hz ticks): at 1/120 s (2 at 60 Hz, 4 at 30
+  /// Hz) box pyramids of base 20 and 30 fall apart within 10 s, at 1/60 s
+  /// (1 at 60 Hz) even base 10 and a 20-box stack fail
+  /// (tests/stability/stability3d_known_failures.cpp).
+  int32_t substeps = 4;
+  int32_t relax_iterations = 1;  ///< rigid contact passes after each substep's move, [0, 16]
   /// The push-out of overlaps deeper than the slop acts as a spring-damper
   /// of this frequency (Hz, > 0; at most a quarter of the substep rate, twice
   /// that against static bodies) and damping ratio (>= 0): it separates at
