@@ -13,8 +13,10 @@ struct Spin {
 };
 
 /// Carries the angular momentum a body had at orientation `q0` with angular
-/// velocity `w` over its turn to `q1`: returns the velocity (and a slightly
-/// corrected orientation) that keep |L| and the kinetic energy of rotation.
-Spin carry_angular_momentum(const BodyMass& mass, Quat q0, Quat q1, Vec3 w);
+/// velocity `w` over its turn to `q1` during a tick of `tick` seconds:
+/// returns the velocity and a corrected orientation (turned by the mean of
+/// the tick's start and end rates) that keep |L| and the kinetic energy of
+/// rotation.
+Spin carry_angular_momentum(const BodyMass& mass, Quat q0, Quat q1, Vec3 w, float tick);
 
 }  // namespace rwd::sim::d3

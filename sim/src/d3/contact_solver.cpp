@@ -473,7 +473,7 @@ void finalize(WorldState& state, WorldScratch& scratch, float tick) {
       // models a free body, and applied after the joints it would undo
       // their motors and, for a body at rest, turn it by noise.)
       const Spin spin = carry_angular_momentum(state.masses[index], before.rotation, sim.rotation,
-                                               b.angular_velocity);
+                                               b.angular_velocity, tick);
       sim.angular_velocity = spin.angular_velocity;
       sim.rotation = spin.rotation;
     }

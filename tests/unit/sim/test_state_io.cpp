@@ -202,8 +202,10 @@ namespace {
 // body's continuous-collision and contact-events flags and its rolling
 // resistance. Revision 8: the checksum covers each body's sleep pose, and a
 // body rests by how far it strays over half of time_to_sleep_s rather than
-// by each tick's speed (WorldConfig::sleep_threshold_mps).
-constexpr uint64_t kPinnedPileChecksum = 0x3ba110ec382a76ddull;
+// by each tick's speed (WorldConfig::sleep_threshold_mps). Revision 11: the
+// gyroscopic term turns the falling boxes by the trapezoidal rule and keeps
+// their energy through |L|^2 - 2 E I_mid.
+constexpr uint64_t kPinnedPileChecksum = 0xc64627e069f25b44ull;
 
 TEST(StateIo, PinnedChecksumOfTheReferencePile) {
   World3D world;

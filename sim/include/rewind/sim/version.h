@@ -47,9 +47,11 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///  10  the angular parts of the point joints in lane batches (ball joints'
 ///      and hinges') solved in the batches' lanes beside their points, a
 ///      batch's lanes all of one kind
-inline constexpr uint32_t kSimRevision = 10;
+///  11  gyroscopic term turned by the mean of the tick's start and end
+///      rates, its energy kept through |L|^2 - 2 E I_mid
+inline constexpr uint32_t kSimRevision = 11;
 
-/// "rewind-sim r10": the engine identity a replay records.
+/// "rewind-sim r11": the engine identity a replay records.
 inline std::string engine_version() {
   return std::string(kEngineName) + " r" + std::to_string(kSimRevision);
 }
