@@ -336,15 +336,34 @@ void face_contact(const HullView& ref, uint32_t ref_face, const HullView& inc,
   const Vec3 n = rf.normal;
 
   // Incident face: the most anti-parallel to n (ties to the lower index),
-  // compared in inc's own frame so its stored normals are used as they are.
+  // compared in inc's own frame so its stored normals are used as they are,
+  // among the faces that hold one of inc's deepest vertices along -n (within
+  // kDepthTie). The most anti-parallel face of all need not hold the deepest
+  // vertex (a hull standing on a corner next to a broad face turned nearly
+  // down), and a clip of a face without it misses the point of contact
+  // that matters most. A face resting flat holds the deepest vertices, so
+  // resting contacts choose as before.
+  float deepest = dot(n, inc_vertices[0]);
+  for (uint32_t v = 1; v < inc.vertex_count; ++v) {
+    const float d = dot(n, inc_vertices[v]);
+    if (d < deepest) deepest = d;
+  }
   const Vec3 n_inc = ref_to_inc * n;
   uint32_t inc_face = 0;
-  float lowest = dot(inc.faces[0].normal, n_inc);
-  for (uint32_t f = 1; f < inc.face_count; ++f) {
-    const float d = dot(inc.faces[f].normal, n_inc);
-    if (d < lowest) {
+  float lowest = 0.0f;
+  bool found = false;
+  for (uint32_t f = 0; f < inc.face_count; ++f) {
+    const HullFace& face = inc.faces[f];
+    bool holds = false;
+    for (uint32_t k = 0; k < loop_count(face) && !holds; ++k) {
+      holds = dot(n, inc_vertices[inc.face_vertices[face.first + k]]) <= deepest + kDepthTie;
+    }
+    if (!holds) continue;
+    const float d = dot(face.normal, n_inc);
+    if (!found || d < lowest) {
       lowest = d;
       inc_face = f;
+      found = true;
     }
   }
 
