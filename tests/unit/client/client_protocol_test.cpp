@@ -105,6 +105,15 @@ struct Harness {
     (void)sent();
     (void)events();
   }
+  /// Joins, runs 12 ticks, then the server sends final ticks 0..5 and ends
+  /// the match at tick 9: the client is left ending, waiting for 6..9.
+  void start_ending() {
+    join_and_start();
+    run(12);
+    deliver(server.final_ticks(0, 5, 11, now));
+    deliver(server.match_end(9, now));
+    advance(std::chrono::microseconds(0));
+  }
   /// Runs the client for `ticks` tick periods and the server alongside.
   void run(int ticks) {
     for (int i = 0; i < ticks; ++i) advance(kTick);
@@ -320,11 +329,7 @@ TEST(ClientProtocol, AcknowledgementsRideOnTheNextInputPacket) {
 
 TEST(ClientProtocol, AcknowledgementGoesAloneWhenNoInputPacketTakesItWithinATick) {
   Harness h;
-  h.join_and_start();
-  h.run(12);
-  h.deliver(h.server.final_ticks(0, 5, 11, h.now));
-  h.deliver(h.server.match_end(9, h.now));
-  h.advance(std::chrono::microseconds(0));
+  h.start_ending();
   ASSERT_EQ(h.protocol.phase(), ClientPhase::kEnding);
   (void)h.sent();
   // Every input is sent; final ticks 6..8 still need acknowledging.
@@ -549,11 +554,7 @@ TEST(ClientProtocol, GarbageDuplicatesAndStrangersLeaveStateIntact) {
 
 TEST(ClientProtocol, MatchEndWaitsForTheLastFinalTickThenSaysGoodbye) {
   Harness h;
-  h.join_and_start();
-  h.run(12);
-  h.deliver(h.server.final_ticks(0, 5, 11, h.now));
-  h.deliver(h.server.match_end(9, h.now));
-  h.advance(std::chrono::microseconds(0));
+  h.start_ending();
   EXPECT_EQ(h.protocol.phase(), ClientPhase::kEnding);
   (void)h.sent();
   h.deliver(h.server.final_ticks(6, 9, 11, h.now));
