@@ -40,7 +40,7 @@ TEST(ManifoldDeepest, BoxAndHullOnABumpyField) {
   test::Rng rng{31};
   for (float& h : bumps) h = rng.uniform(0.0f, 0.05f);
   const GeometryId id = *world.geometry().add_height_field(n, n, {1, 1, 1}, bumps);
-  const BodyId field = add_static(world, Shape::make_height_field(id), {-4.0f, 0.0f, -4.0f});
+  const BodyId field = test::add_static(world, Shape::make_height_field(id), {-4.0f, 0.0f, -4.0f});
   // Placing only: the surface height under (x, z), read from the signed
   // distance of a point above it (the field is flat enough that the
   // nearest surface point is nearly straight below), the highest of three

@@ -22,6 +22,18 @@ inline BodyId add_ground(World3D& world, float friction = 0.6f) {
   return *id;
 }
 
+/// A static body of `shape` at the pose given.
+inline BodyId add_static(World3D& world, Shape shape, Vec3 position, Quat rotation = {}) {
+  BodyDef def;
+  def.kind = BodyKind::kStatic;
+  def.shape = shape;
+  def.position = position;
+  def.rotation = rotation;
+  auto id = world.create_body(def);
+  EXPECT_TRUE(id.ok()) << id.status().message();
+  return *id;
+}
+
 inline BodyId add_box(World3D& world, Vec3 position, Vec3 half = {0.5f, 0.5f, 0.5f},
                       float restitution = 0.0f, float friction = 0.6f) {
   BodyDef def;

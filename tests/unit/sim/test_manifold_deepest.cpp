@@ -182,17 +182,6 @@ int hull_poses(World3D& world, BodyId ground, const std::vector<Moving>& hulls,
   return failed;
 }
 
-BodyId add_static(World3D& world, Shape shape, Vec3 position, Quat rotation = {}) {
-  BodyDef def;
-  def.kind = BodyKind::kStatic;
-  def.shape = shape;
-  def.position = position;
-  def.rotation = rotation;
-  auto id = world.create_body(def);
-  EXPECT_TRUE(id.ok()) << id.status().message();
-  return *id;
-}
-
 float flat(float, float) {
   return 0.0f;
 }
@@ -213,7 +202,7 @@ TEST(ManifoldDeepest, BoxAndHullOnATriangleAndAMesh) {
       {-20.0f, 0.0f, -20.0f}, {0.0f, 0.0f, 20.0f}, {20.0f, 0.0f, -20.0f}};
   const std::vector<uint32_t> tri_index = {0, 1, 2};
   const BodyId lone =
-      add_static(world, Shape::make_mesh(*world.geometry().add_mesh(tri, tri_index)), {});
+      test::add_static(world, Shape::make_mesh(*world.geometry().add_mesh(tri, tri_index)), {});
   // A flat 4 x 4 grid of 1 m quads, two triangles each, 100 m away.
   std::vector<Vec3> grid;
   std::vector<uint32_t> grid_index;
@@ -226,7 +215,7 @@ TEST(ManifoldDeepest, BoxAndHullOnATriangleAndAMesh) {
       grid_index.insert(grid_index.end(), {i, i + 5, i + 1, i + 1, i + 5, i + 6});
     }
   }
-  const BodyId mesh = add_static(
+  const BodyId mesh = test::add_static(
       world, Shape::make_mesh(*world.geometry().add_mesh(grid, grid_index)), {100.0f, 0.0f, 0.0f});
   const Moving box = make_box_moving();
   const std::vector<Moving> hulls = make_hulls(world);
@@ -249,10 +238,10 @@ TEST(ManifoldDeepest, BoxAndHullOnHeightFields) {
   for (uint32_t r = 0; r < n; ++r) {
     for (uint32_t c = 0; c < n; ++c) slope[r * n + c] = 0.1f * c + 0.05f * r;
   }
-  const BodyId flat_field = add_static(
+  const BodyId flat_field = test::add_static(
       world, Shape::make_height_field(*world.geometry().add_height_field(n, n, {1, 1, 1}, level)),
       {-4.0f, 0.0f, -4.0f});
-  const BodyId sloped_field = add_static(
+  const BodyId sloped_field = test::add_static(
       world, Shape::make_height_field(*world.geometry().add_height_field(n, n, {1, 1, 1}, slope)),
       {96.0f, 0.0f, -4.0f});
   auto sloped = [](float x, float z) { return 0.1f * (x - 96.0f) + 0.05f * (z + 4.0f); };
