@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // ClientProtocol with no socket and no clock: every datagram it receives is
 // made by the server's codec (fake_server.h) and every time is given, so
-// each step of join, lobby, inputs, final ticks, desync, resync and the end
-// of the match is checked exactly.
+// each step of join, lobby, final ticks, desync, resync and the end of the
+// match is checked exactly (inputs and acknowledgements:
+// client_inputs_test.cpp; the harness: client_protocol_harness.h).
 #include "rewind/client/client_protocol.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <chrono>
 #include <map>
 
+#include "client_protocol_harness.h"
 #include "fake_server.h"
 #include "rewind/net/address_cookie.h"
 #include "rewind/net/chunked_transfer.h"
@@ -20,124 +22,6 @@
 
 namespace rwd::test {
 namespace {
-
-using client::ClientConfig;
-using client::ClientEvent;
-using client::ClientEventType;
-using client::ClientPhase;
-using client::ClientProtocol;
-using net::TimePoint;
-
-constexpr uint64_t kNonce = 0x5EED'0000'0000'0042ull;
-constexpr auto kTick = std::chrono::microseconds(16'667);
-
-game::PlayerInput own_input(Tick tick) {
-  return {static_cast<int16_t>((tick * 37) % 2001 - 1000), static_cast<int16_t>(tick % 7),
-          static_cast<uint32_t>(tick % 3)};
-}
-
-ClientProtocol make_protocol(const ClientConfig& config) {
-  auto protocol = ClientProtocol::create(config, kNonce);
-  if (!protocol.ok()) throw std::runtime_error(protocol.status().message());
-  return std::move(*protocol);
-}
-
-struct Harness {
-  explicit Harness(const ClientConfig& config = {}, const FakeMatch& match = {})
-      : server(match), protocol(make_protocol(config)) {
-    protocol.set_input_provider([this](Tick tick) {
-      ++provided[tick];
-      return own_input(tick);
-    });
-  }
-
-  /// What the client queued, read by the server (undecodable ones fail).
-  /// A tokenless client's Hello is answered with a cookie at once (unless
-  /// answer_hellos is off) and counted, not returned.
-  std::vector<v1::Envelope> sent() {
-    std::vector<v1::Envelope> out;
-    while (auto datagram = protocol.next_datagram()) {
-      if (net::cookie_packet_kind(*datagram) == net::CookiePacket::kHello) {
-        EXPECT_EQ(datagram->size(), net::kHelloBytes);
-        ++hellos;
-        if (answer_hellos) deliver(cookie_reply);
-        continue;
-      }
-      auto envelope = server.read(*datagram, now);
-      EXPECT_TRUE(envelope.has_value()) << "the client sent something the server cannot read";
-      if (envelope) out.push_back(std::move(*envelope));
-    }
-    return out;
-  }
-  std::vector<ClientEvent> events() {
-    std::vector<ClientEvent> out;
-    ClientEvent event;
-    while (protocol.poll_event(event)) out.push_back(event);
-    return out;
-  }
-  void deliver(std::span<const uint8_t> bytes) { protocol.receive(bytes, now); }
-  int advance(std::chrono::microseconds by) {
-    now += by;
-    return protocol.update(now);
-  }
-  Tick client_tick() const { return protocol.rollback()->current_tick(); }
-  /// Steps the server through every tick the client has simulated, with
-  /// the client's own inputs and `others` for the rest.
-  void catch_up_server(game::PlayerInput others = {}) {
-    while (server.next_tick() < client_tick()) {
-      server.step({own_input(server.next_tick()), others});
-    }
-  }
-
-  void join() {
-    protocol.connect(now);
-    const auto out = sent();
-    ASSERT_EQ(out.size(), 1u);
-    ASSERT_TRUE(out[0].has_join_request());
-    EXPECT_EQ(out[0].join_request().nonce(), kNonce);
-    deliver(server.join_accept(kNonce, 0, now));
-    ASSERT_EQ(protocol.phase(), ClientPhase::kLobby);
-  }
-  void join_and_start() {
-    join();
-    deliver(server.match_start(0, now));
-    ASSERT_EQ(protocol.phase(), ClientPhase::kRunning);
-    (void)sent();
-    (void)events();
-  }
-  /// Joins, runs 12 ticks, then the server sends final ticks 0..5 and ends
-  /// the match at tick 9: the client is left ending, waiting for 6..9.
-  void start_ending() {
-    join_and_start();
-    run(12);
-    deliver(server.final_ticks(0, 5, 11, now));
-    deliver(server.match_end(9, now));
-    advance(std::chrono::microseconds(0));
-  }
-  /// Runs the client for `ticks` tick periods and the server alongside.
-  void run(int ticks) {
-    for (int i = 0; i < ticks; ++i) advance(kTick);
-    catch_up_server();
-  }
-
-  FakeServer server;
-  ClientProtocol protocol;
-  TimePoint now = TimePoint{} + std::chrono::seconds(1000);
-  std::map<Tick, int> provided;
-  bool answer_hellos = true;
-  size_t hellos = 0;
-  const std::vector<uint8_t> cookie_reply = [] {
-    std::vector<uint8_t> reply(net::kCookieReplyBytes, 0x5A);
-    reply[0] = static_cast<uint8_t>(net::CookiePacket::kCookie);
-    return reply;
-  }();
-};
-
-std::vector<ClientEventType> types_of(const std::vector<ClientEvent>& events) {
-  std::vector<ClientEventType> out;
-  for (const ClientEvent& e : events) out.push_back(e.type);
-  return out;
-}
 
 TEST(ClientProtocol, JoinsWaitsInTheLobbyAndStarts) {
   Harness h;
@@ -245,103 +129,6 @@ TEST(ClientProtocol, JoinRejectEndsTheSessionAndSilenceTimesItOut) {
   silent.advance(std::chrono::milliseconds(200));
   EXPECT_EQ(silent.protocol.phase(), ClientPhase::kEnded);
   ASSERT_FALSE(silent.events().empty());
-}
-
-TEST(ClientProtocol, TakesEachInputOnceAndResendsItUntilAcknowledged) {
-  Harness h;
-  h.join_and_start();
-  std::map<Tick, game::PlayerInput> seen;  // every input the frames carried
-  Tick newest_sent = kNoTick;
-  for (int i = 0; i < 20; ++i) {
-    h.advance(kTick);
-    for (const v1::Envelope& e : h.sent()) {
-      if (!e.has_input_frame()) continue;
-      const v1::InputFrame& frame = e.input_frame();
-      EXPECT_EQ(frame.player(), 0u);
-      // Redundancy: with nothing acknowledged, every frame starts at tick 0.
-      EXPECT_EQ(frame.first_tick(), 0);
-      for (int k = 0; k < frame.inputs_size(); ++k) {
-        const Tick tick = frame.first_tick() + k;
-        auto input = proto::from_wire(frame.inputs(k));
-        ASSERT_TRUE(input.ok());
-        EXPECT_EQ(*input, own_input(tick));
-        seen[tick] = *input;
-        newest_sent = std::max(newest_sent, tick);
-      }
-    }
-  }
-  ASSERT_GE(h.client_tick(), 18);
-  EXPECT_EQ(newest_sent, h.client_tick() - 1);
-  EXPECT_EQ(seen.size(), static_cast<size_t>(h.client_tick()));
-  // The provider was asked exactly once per simulated tick.
-  ASSERT_EQ(h.provided.size(), static_cast<size_t>(h.client_tick()));
-  for (const auto& [tick, calls] : h.provided) EXPECT_EQ(calls, 1) << "tick " << tick;
-
-  // Once the server acknowledges through tick 9, frames start at 10.
-  h.catch_up_server();
-  h.deliver(h.server.final_ticks(0, 0, 9, h.now));
-  h.advance(kTick);
-  bool checked = false;
-  for (const v1::Envelope& e : h.sent()) {
-    if (!e.has_input_frame()) continue;
-    EXPECT_EQ(e.input_frame().first_tick(), 10);
-    EXPECT_EQ(e.input_frame().last_final_tick_seen(), 0);
-    checked = true;
-  }
-  EXPECT_TRUE(checked);
-}
-
-std::vector<v1::InputFrame> input_frames(const std::vector<v1::Envelope>& sent) {
-  std::vector<v1::InputFrame> out;
-  for (const v1::Envelope& e : sent) {
-    if (e.has_input_frame()) out.push_back(e.input_frame());
-  }
-  return out;
-}
-
-TEST(ClientProtocol, AcknowledgementsRideOnTheNextInputPacket) {
-  Harness h;
-  h.join_and_start();
-  h.run(4);
-  (void)h.sent();
-  Tick delivered = kNoTick;
-  for (int i = 0; i < 30; ++i) {
-    // The server's broadcast lands between two of the client's ticks: the
-    // client reads it at once, but sends nothing until its next tick.
-    h.catch_up_server();
-    const Tick newest = h.server.next_tick() - 1;
-    h.deliver(h.server.final_ticks(delivered + 1, newest, newest, h.now));
-    delivered = newest;
-    const Tick before = h.client_tick();
-    h.advance(std::chrono::microseconds(0));
-    if (h.client_tick() == before) {
-      EXPECT_TRUE(input_frames(h.sent()).empty())
-          << "period " << i << ": the acknowledgement went alone, a tick before an input packet";
-    }
-    h.advance(kTick);
-    // At most one input packet a tick; it carries the acknowledgement.
-    const auto sent = input_frames(h.sent());
-    ASSERT_EQ(sent.size(), 1u) << "period " << i;
-    EXPECT_EQ(sent.back().last_final_tick_seen(), delivered) << "period " << i;
-  }
-  EXPECT_EQ(h.protocol.stats().final_ticks_verified, static_cast<uint64_t>(delivered + 1));
-}
-
-TEST(ClientProtocol, AcknowledgementGoesAloneWhenNoInputPacketTakesItWithinATick) {
-  Harness h;
-  h.start_ending();
-  ASSERT_EQ(h.protocol.phase(), ClientPhase::kEnding);
-  (void)h.sent();
-  // Every input is sent; final ticks 6..8 still need acknowledging.
-  h.deliver(h.server.final_ticks(6, 8, 11, h.now));
-  h.advance(std::chrono::microseconds(0));
-  EXPECT_TRUE(input_frames(h.sent()).empty());
-  h.advance(kTick / 2);
-  EXPECT_TRUE(input_frames(h.sent()).empty());
-  h.advance(kTick / 2 + std::chrono::microseconds(1));
-  const auto frames = input_frames(h.sent());
-  ASSERT_EQ(frames.size(), 1u);
-  EXPECT_EQ(frames[0].last_final_tick_seen(), 8);
 }
 
 TEST(ClientProtocol, VerifiesFinalTicksInOrderEvenWhenTheyArriveOutOfOrder) {
