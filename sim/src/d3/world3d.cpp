@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // World3D: the public surface. Validates every argument before touching
-// state, owns the step pipeline's order, and keeps scratch apart from state.
+// state and keeps scratch apart from state (the step's stages:
+// world3d_step.cpp).
 #include "rewind/sim/world3d.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "d3/body_storage.h"
@@ -473,92 +473,6 @@ Status World3D::set_user_data(BodyId id, uint64_t user_data) {
   if (!is_live(state_, id)) return not_found();
   state_.infos[id.index].user_data = user_data;
   return Status::Ok();
-}
-
-// --- stepping ---------------------------------------------------------------
-
-void World3D::step() {
-  WorldScratch& s = *scratch_;
-  s.stats = StepStats{};
-  s.body_events.clear();
-  s.broken_joints.clear();
-  // Scheduled queries bracket the stages: they read the state, never write
-  // it, so a world with them steps exactly as one without.
-  clear_step_queries();
-  const bool queries = !state_.queries.empty();
-  if (queries) run_scheduled_queries(QueryPhase::kPrePhysics);
-  if (!s.stage_timing) {
-    d3::find_pairs(state_, s);
-    d3::update_contacts(state_, s);
-    d3::wake_touched_islands(state_, s);
-    d3::solve(state_, s);
-    d3::apply_rolling_resistance(state_, s);
-    d3::continuous_collision(state_, s);
-    d3::mark_pushed_contacts(state_, s);
-    d3::build_events(state_, s);
-    d3::fill_event_details(state_, s);
-    d3::update_sleep(state_, s);
-    ++state_.step_count;
-  } else {
-    timed_stages();
-  }
-  if (queries) {
-    run_scheduled_queries(QueryPhase::kPostPhysics);
-    finish_scheduled_queries();
-  }
-}
-
-void World3D::timed_stages() {
-  WorldScratch& s = *scratch_;
-  // The same stages, each timed (the times are diagnostics, never state).
-  using Clock = std::chrono::steady_clock;
-  StepStats::StageTimes& t = s.stats.times;
-  const auto us = [](Clock::time_point from, Clock::time_point to) {
-    return std::chrono::duration<double, std::micro>(to - from).count();
-  };
-  const Clock::time_point t0 = Clock::now();
-  d3::find_pairs(state_, s);
-  const Clock::time_point t1 = Clock::now();
-  d3::update_contacts(state_, s);
-  const Clock::time_point t2 = Clock::now();
-  d3::wake_touched_islands(state_, s);
-  const Clock::time_point t3 = Clock::now();
-  d3::solve(state_, s);
-  d3::apply_rolling_resistance(state_, s);
-  d3::continuous_collision(state_, s);
-  const Clock::time_point t4 = Clock::now();
-  d3::mark_pushed_contacts(state_, s);
-  d3::build_events(state_, s);
-  d3::fill_event_details(state_, s);
-  const Clock::time_point t4b = Clock::now();
-  d3::update_sleep(state_, s);
-  const Clock::time_point t5 = Clock::now();
-  t.broadphase_us = us(t0, t1);
-  t.narrowphase_us = us(t1, t2);
-  t.events_us = us(t2, t3) + us(t4, t4b);
-  t.solver_us = us(t3, t4);
-  t.sleep_us = us(t4b, t5);
-  ++state_.step_count;
-}
-
-void World3D::set_stage_timing(bool on) {
-  scratch_->stage_timing = on;
-}
-
-std::span<const ContactEvent> World3D::events() const {
-  return scratch_->events;
-}
-std::span<const BodyEvent> World3D::body_events() const {
-  return scratch_->body_events;
-}
-const StepStats& World3D::stats() const {
-  return scratch_->stats;
-}
-const WorldConfig& World3D::config() const {
-  return state_.config;
-}
-uint64_t World3D::step_count() const {
-  return state_.step_count;
 }
 
 // --- state ------------------------------------------------------------------
