@@ -6,6 +6,8 @@
 // (mass properties, live count, free list) is neither hashed nor encoded:
 // it is a function of what is. What a valid body is comes from
 // state_rules.h, the rule the step keeps too.
+#include <bit>
+#include <cassert>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -43,44 +45,58 @@ constexpr uint32_t kMaxSlots = 1u << 24;
 // inlined, and hands the hasher whole blocks: one call per block instead of
 // a call per field. Streaming XXH3 hashes the same bytes to the same value
 // however they are split.
+// The hashing side's block of gathered fields, kept apart from the Sink so
+// that the Sink's cursor can live in a register: a byte store into the
+// block cannot then be taken for a write to the cursor.
+struct HashBlock {
+  // Handed to the hasher once past kFlushAt, checked at the start of each
+  // record; a record (a body, a contact, a joint: a few hundred bytes at
+  // most) then always fits in what is left, so a field is written with no
+  // check of its own.
+  static constexpr size_t kFlushAt = 1024;
+  static constexpr size_t kRecordMax = 1024;
+  uint8_t bytes[kFlushAt + kRecordMax];
+};
+
 template <class Out>
 class Sink {
  public:
-  explicit Sink(Out& out) : out_(out) {}
+  explicit Sink(Out& out) requires(!std::is_same_v<Out, StateHasher>)
+      : out_(out), block_(nullptr) {}
+  Sink(Out& out, HashBlock& block) requires std::is_same_v<Out, StateHasher>
+      : out_(out), block_(block.bytes) {}
   Sink(const Sink&) = delete;
   Sink& operator=(const Sink&) = delete;
   ~Sink() {
     if constexpr (kHashing) flush();
   }
-  [[gnu::always_inline]] void u8(uint8_t v) {
+  /// Starts a record of at most HashBlock::kRecordMax bytes.
+  [[gnu::always_inline]] void record() {
     if constexpr (kHashing) {
-      if (used_ + 1 > sizeof block_) flush();
-      block_[used_++] = v;
-    } else {
-      out_.push_back(v);
+      if (used_ > HashBlock::kFlushAt) flush();
     }
   }
+  [[gnu::always_inline]] void u8(uint8_t v) { put(&v, 1); }
   [[gnu::always_inline]] void u32(uint32_t v) {
-    if constexpr (kHashing) {
-      if (used_ + 4 > sizeof block_) flush();
-      for (int i = 0; i < 4; ++i) block_[used_ + i] = static_cast<uint8_t>(v >> (8 * i));
-      used_ += 4;
-    } else {
-      for (int i = 0; i < 4; ++i) out_.push_back(static_cast<uint8_t>(v >> (8 * i)));
-    }
+    // One little-endian store per field: the encoding is little-endian on
+    // every host, and a store of four bytes at once is what keeps the
+    // checksum of thousands of fields cheap.
+    if constexpr (std::endian::native == std::endian::big) v = byteswap32(v);
+    uint8_t b[4];
+    std::memcpy(b, &v, 4);
+    put(b, 4);
   }
   [[gnu::always_inline]] void u64(uint64_t v) {
     u32(static_cast<uint32_t>(v));
     u32(static_cast<uint32_t>(v >> 32));
   }
   [[gnu::always_inline]] void f32(float v) {
-    // The checksum folds -0 onto +0, as StateHasher::add_f32 does, so two
-    // equal values always hash alike; the encoding keeps the bits.
-    if constexpr (kHashing) {
-      if (v == 0.0f) v = 0.0f;
-    }
     uint32_t bits = 0;
     std::memcpy(&bits, &v, 4);
+    // The checksum folds -0 onto +0, as StateHasher::add_f32 does, so two
+    // equal values always hash alike; the encoding keeps the bits. On the
+    // bits, not the float: no compare that a NaN could take either way.
+    if constexpr (kHashing) bits = bits == 0x80000000u ? 0u : bits;
     u32(bits);
   }
   [[gnu::always_inline]] void vec3(Vec3 v) {
@@ -97,13 +113,27 @@ class Sink {
 
  private:
   static constexpr bool kHashing = std::is_same_v<Out, StateHasher>;
+  static constexpr uint32_t byteswap32(uint32_t v) {
+    return (v >> 24) | ((v >> 8) & 0xff00u) | ((v << 8) & 0xff0000u) | (v << 24);
+  }
+  [[gnu::always_inline]] void put(const uint8_t* bytes, size_t size) {
+    if constexpr (kHashing) {
+      assert(used_ + size <= sizeof(HashBlock::bytes) && "a record past HashBlock::kRecordMax");
+      std::memcpy(block_ + used_, bytes, size);
+      used_ += size;
+    } else {
+      const size_t at = out_.size();
+      out_.resize(at + size);
+      std::memcpy(out_.data() + at, bytes, size);
+    }
+  }
   void flush() {
     out_.add_bytes(block_, used_);
     used_ = 0;
   }
   Out& out_;
+  uint8_t* block_;
   size_t used_ = 0;
-  uint8_t block_[kHashing ? 1024 : 1];
 };
 
 // The schema's visitor over a Sink: names are for the dump only.
@@ -111,21 +141,23 @@ template <class Out>
 class SinkIo {
  public:
   explicit SinkIo(Sink<Out>& s) : s_(s) {}
-  void u8(const char*, uint8_t v) { s_.u8(v); }
-  void flag(const char*, uint8_t v) { s_.u8(v); }
-  void boolean(const char*, bool v) { s_.u8(v ? 1 : 0); }
+  [[gnu::always_inline]] void u8(const char*, uint8_t v) { s_.u8(v); }
+  [[gnu::always_inline]] void flag(const char*, uint8_t v) { s_.u8(v); }
+  [[gnu::always_inline]] void boolean(const char*, bool v) { s_.u8(v ? 1 : 0); }
   template <class E>
-  void enumeration(const char*, E v, E) {
+  [[gnu::always_inline]] void enumeration(const char*, E v, E) {
     s_.u8(static_cast<uint8_t>(v));
   }
-  void count(const char*, uint8_t v, uint8_t) { s_.u8(v); }
-  void event_mask(const char*, EventMask v) { s_.u8(d3::encode_event_mask(v)); }
-  void u32(const char*, uint32_t v) { s_.u32(v); }
-  void i32(const char*, int32_t v) { s_.u32(static_cast<uint32_t>(v)); }
-  void u64(const char*, uint64_t v) { s_.u64(v); }
-  void f32(const char*, float v) { s_.f32(v); }
-  void vec3(const char*, Vec3 v) { s_.vec3(v); }
-  void quat(const char*, Quat q) { s_.quat(q); }
+  [[gnu::always_inline]] void count(const char*, uint8_t v, uint8_t) { s_.u8(v); }
+  [[gnu::always_inline]] void event_mask(const char*, EventMask v) {
+    s_.u8(d3::encode_event_mask(v));
+  }
+  [[gnu::always_inline]] void u32(const char*, uint32_t v) { s_.u32(v); }
+  [[gnu::always_inline]] void i32(const char*, int32_t v) { s_.u32(static_cast<uint32_t>(v)); }
+  [[gnu::always_inline]] void u64(const char*, uint64_t v) { s_.u64(v); }
+  [[gnu::always_inline]] void f32(const char*, float v) { s_.f32(v); }
+  [[gnu::always_inline]] void vec3(const char*, Vec3 v) { s_.vec3(v); }
+  [[gnu::always_inline]] void quat(const char*, Quat q) { s_.quat(q); }
 
  private:
   Sink<Out>& s_;
@@ -134,14 +166,17 @@ class SinkIo {
 template <class Out>
 void write_config(Sink<Out>& s, const WorldConfig& c) {
   SinkIo<Out> io(s);
+  s.record();
   d3::visit_config(io, c);
 }
 
 template <class Out>
 void write_joints(Sink<Out>& s, const WorldState& st) {
   SinkIo<Out> io(s);
+  s.record();
   s.u32(static_cast<uint32_t>(st.joints.size()));
   for (const JointRecord& j : st.joints) {
+    s.record();
     s.u32(j.generation);
     s.u8(j.alive);
     if (j.alive != 0) d3::visit_joint(io, j);
@@ -151,27 +186,37 @@ void write_joints(Sink<Out>& s, const WorldState& st) {
 template <class Out>
 void write_queries(Sink<Out>& s, const WorldState& st) {
   SinkIo<Out> io(s);
+  s.record();
   s.u64(st.last_query_ticket);
   s.u32(static_cast<uint32_t>(st.queries.size()));
-  for (const ScheduledQueryRecord& q : st.queries) d3::visit_query(io, q);
+  for (const ScheduledQueryRecord& q : st.queries) {
+    s.record();
+    d3::visit_query(io, q);
+  }
 }
 
 template <class Out>
 void write_state(Sink<Out>& s, const WorldState& st) {
   write_config(s, st.config);
   SinkIo<Out> io(s);
+  s.record();
   s.u64(st.step_count);
   s.u32(static_cast<uint32_t>(st.infos.size()));
   for (size_t i = 0; i < st.infos.size(); ++i) {
     const BodyInfo& b = st.infos[i];
+    s.record();
     // Dead slots matter too: their generation decides the next id there.
     s.u32(b.generation);
     s.u8(b.alive);
     if (b.alive == 0) continue;
     d3::visit_body(io, b, st.sims[i]);
   }
+  s.record();
   s.u32(static_cast<uint32_t>(st.contacts.size()));
-  for (const ContactRecord& r : st.contacts) d3::visit_contact(io, r);
+  for (const ContactRecord& r : st.contacts) {
+    s.record();
+    d3::visit_contact(io, r);
+  }
 }
 
 class Reader {
@@ -317,7 +362,8 @@ Status corrupt_body(uint32_t index, const std::string& why) {
 }  // namespace
 
 void World3D::hash_state(const WorldState& state, StateHasher& hasher) {
-  Sink<StateHasher> sink(hasher);
+  HashBlock block;
+  Sink<StateHasher> sink(hasher, block);
   write_state(sink, state);
   // A world that never had a joint hashes as it did before joints existed,
   // and one that never scheduled a query as it did before queries could be.
@@ -325,6 +371,7 @@ void World3D::hash_state(const WorldState& state, StateHasher& hasher) {
   if (state.last_query_ticket != 0) {
     // Joints may have been absent: the queries' tag keeps the two sections
     // from reading as each other.
+    sink.record();
     sink.u32(kQueriesTag);
     write_queries(sink, state);
   }

@@ -52,7 +52,7 @@ inline bool decode_event_mask(uint8_t byte, EventMask& mask) {
 }
 
 template <class Io, class Config>
-void visit_config(Io& io, Config& c) {
+[[gnu::always_inline]] inline void visit_config(Io& io, Config& c) {
   io.vec3("gravity", c.gravity);
   io.f32("tick_seconds", c.tick_seconds);
   io.i32("substeps", c.substeps);
@@ -73,7 +73,7 @@ void visit_config(Io& io, Config& c) {
 
 /// The fields of a shape, as "shape.*".
 template <class Io, class S>
-void visit_shape(Io& io, S& shape) {
+[[gnu::always_inline]] inline void visit_shape(Io& io, S& shape) {
   io.enumeration("shape.type", shape.type, static_cast<ShapeType>(kShapeTypeCount - 1));
   if (shape.uses_geometry()) {
     // The shape's sizes are its geometry's; the id names it.
@@ -88,7 +88,7 @@ void visit_shape(Io& io, S& shape) {
 /// The fields of a live body slot (its generation and alive flag, which
 /// every slot has, are the caller's).
 template <class Io, class Info, class Sim>
-void visit_body(Io& io, Info& b, Sim& m) {
+[[gnu::always_inline]] inline void visit_body(Io& io, Info& b, Sim& m) {
   io.enumeration("kind", b.kind, BodyKind::kDynamic);
   io.flag("sensor", b.sensor);
   io.flag("awake", b.awake);
@@ -120,7 +120,7 @@ void visit_body(Io& io, Info& b, Sim& m) {
 
 /// The fields of one contact cache record.
 template <class Io, class Record>
-void visit_contact(Io& io, Record& r) {
+[[gnu::always_inline]] inline void visit_contact(Io& io, Record& r) {
   io.u32("index_a", r.index_a);
   io.u32("generation_a", r.generation_a);
   io.u32("index_b", r.index_b);
@@ -147,7 +147,7 @@ void visit_contact(Io& io, Record& r) {
 /// The fields of a live joint slot (its generation and alive flag, which
 /// every slot has, are the caller's).
 template <class Io, class Joint>
-void visit_joint(Io& io, Joint& j) {
+[[gnu::always_inline]] inline void visit_joint(Io& io, Joint& j) {
   io.enumeration("type", j.type, static_cast<JointType>(kJointTypeCount - 1));
   io.u8("flags", j.flags);
   io.u32("index_a", j.index_a);
@@ -191,7 +191,7 @@ void visit_joint(Io& io, Joint& j) {
 /// The fields of one scheduled query (ScheduledQueryRecord): a ray's or
 /// an overlap's, by its kind.
 template <class Io, class Query>
-void visit_query(Io& io, Query& q) {
+[[gnu::always_inline]] inline void visit_query(Io& io, Query& q) {
   io.u64("ticket", q.ticket);
   io.u64("user_tag", q.user_tag);
   io.enumeration("kind", q.kind, ScheduledQueryKind::kOverlap);
