@@ -65,6 +65,54 @@ void BM_PileBullet(benchmark::State& state) {
   run_scene_ticks(state, engine, "pile");
 }
 
+// Small worlds, where a step's fixed cost is most of it: a box sliding to
+// a stop (2 bodies, 121 ticks at size 5), a box sliding down a 30-degree
+// slope (2 bodies, 120 ticks), a heavy box on a light one (3 bodies, 600
+// ticks), ten boxes created half inside each other (11 bodies, 180 ticks).
+// Default settings, sleep on, as a game runs them; a rollback server
+// re-simulates worlds like these many times a tick. The scene name is the
+// first argument's label.
+constexpr const char* kSmallScenes[] = {"slide", "incline_slip", "mass_ratio", "overlap"};
+constexpr int kSmallSizes[] = {5, 30, 100, 10};
+
+void small_scene(benchmark::State& state, Engine& engine) {
+  const auto which = static_cast<size_t>(state.range(0));
+  state.SetLabel(kSmallScenes[which]);
+  const int size = kSmallSizes[which];
+  std::unique_ptr<rwd::scenes::Scene> scene;
+  rwd::Tick tick = 0;
+  auto rebuild = [&] {
+    scene = rwd::scenes::make_scene(kSmallScenes[which], size);
+    std::string error;
+    engine.reset(scene->world(), scene->body_capacity());
+    if (!scene->build(engine, error)) state.SkipWithError(error.c_str());
+    tick = 0;
+  };
+  rebuild();
+  for (auto _ : state) {
+    if (tick == scene->ticks()) {
+      state.PauseTiming();
+      rebuild();
+      state.ResumeTiming();
+    }
+    scene->before_step(tick, engine);
+    engine.step();
+    scene->after_step(tick, engine);
+    ++tick;
+  }
+  state.counters["bodies"] = scene->body_capacity();
+}
+void BM_SmallRewind(benchmark::State& state) {
+  rwd::scenes::RewindEngine engine;
+  small_scene(state, engine);
+}
+void BM_SmallBullet(benchmark::State& state) {
+  rwd::bench::BulletEngine engine;
+  small_scene(state, engine);
+}
+BENCHMARK(BM_SmallRewind)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SmallBullet)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+
 // One whole scene per benchmark: a pyramid runs 600 ticks, a pile 360.
 BENCHMARK(BM_PyramidRewind)
     ->Arg(20)

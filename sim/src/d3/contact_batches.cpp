@@ -34,6 +34,85 @@ struct HalfBatch {
   ContactBatch& first() const { return *batch; }
 };
 
+// One lane in plain floats: what a batch of one or two constraints runs
+// on (a small world's, a colour's last few, the overflow's), where eight or
+// four lanes would compute mostly empty lanes: a pass over a whole batch
+// costs about as much with one constraint as with eight. Each operation is
+// the IEEE single-precision one, as in every lane type (wide_float.h), so
+// a constraint's result does not depend on which access ran it.
+struct Float1 {
+  float v;
+};
+struct Mask1 {
+  bool v;
+};
+inline Float1 operator+(Float1 a, Float1 b) {
+  return {a.v + b.v};
+}
+inline Float1 operator-(Float1 a, Float1 b) {
+  return {a.v - b.v};
+}
+inline Float1 operator*(Float1 a, Float1 b) {
+  return {a.v * b.v};
+}
+inline Float1 operator/(Float1 a, Float1 b) {
+  return {a.v / b.v};
+}
+inline Float1 sqrt(Float1 a) {
+  return {__builtin_sqrtf(a.v)};
+}
+// Ordered compares: false for NaN, as the lanes' are.
+inline Mask1 operator<(Float1 a, Float1 b) {
+  return {a.v < b.v};
+}
+inline Mask1 operator>(Float1 a, Float1 b) {
+  return {a.v > b.v};
+}
+inline Mask1 operator>=(Float1 a, Float1 b) {
+  return {a.v >= b.v};
+}
+inline Mask1 operator==(Float1 a, Float1 b) {
+  return {a.v == b.v};
+}
+inline Mask1 operator|(Mask1 a, Mask1 b) {
+  return {a.v || b.v};
+}
+inline Mask1 operator&(Mask1 a, Mask1 b) {
+  return {a.v && b.v};
+}
+inline Float1 select(Mask1 m, Float1 a, Float1 b) {
+  return m.v ? a : b;
+}
+
+struct OneLane {
+  using F = Float1;
+  static constexpr int kWidth = 1;
+  ContactBatch* batch;
+  int lane;
+  static F splat(float x) { return {x}; }
+  static F from(const float* p) { return {p[0]}; }
+  static void to(float* p, F v) { p[0] = v.v; }
+  F ld(const float (&field)[kBatchLanes]) const { return {field[lane]}; }
+  void st(float (&field)[kBatchLanes], F v) const { field[lane] = v.v; }
+  static void gather_rows(const float* const (&rows)[1], F (&out)[8]) {
+    for (int k = 0; k < 8; ++k) out[k] = {rows[0][k]};
+  }
+  static void scatter_rows(const F (&in)[8], float* const (&rows)[1]) {
+    for (int k = 0; k < 8; ++k) rows[0][k] = in[k].v;
+  }
+  uint32_t body_a(int) const { return batch->body_a[lane]; }
+  uint32_t body_b(int) const { return batch->body_b[lane]; }
+  bool movable_a(int) const { return batch->movable_a[lane] != 0; }
+  bool movable_b(int) const { return batch->movable_b[lane] != 0; }
+  ContactBatch& first() const { return *batch; }
+};
+
+// Batches of at most this many constraints run one lane at a time.
+constexpr uint32_t kOneLaneMax = 2;
+bool one_lane(const ContactBatch& b) {
+  return b.lanes_used <= kOneLaneMax;
+}
+
 bool use_eight_lanes() {
 #if defined(REWIND_LANES_AVX)
   static const bool available = lanes8_available();
@@ -152,6 +231,29 @@ void push_half(const HalfBatch& h, std::vector<SolverBody>& bodies, const PushSe
   for_point_bound(*h.batch, [&](auto n) { push_lanes<decltype(n)::value>(h, bodies, push); });
 }
 
+// The passes on one lane, for the batch's point bound.
+void prepare_one(const OneLane& l, const std::vector<SolverBody>& bodies) {
+  for_point_bound(*l.batch, [&](auto n) { prepare_lanes<decltype(n)::value>(l, bodies); });
+}
+void warm_start_one(const OneLane& l, std::vector<SolverBody>& bodies) {
+  for_point_bound(*l.batch, [&](auto n) { warm_start_lanes<decltype(n)::value>(l, bodies); });
+}
+void solve_one(const OneLane& l, std::vector<SolverBody>& bodies, float inv_h) {
+  for_point_bound(*l.batch, [&](auto n) { solve_lanes<decltype(n)::value>(l, bodies, inv_h); });
+}
+void separations_one(const OneLane& l, const std::vector<SolverBody>& bodies) {
+  for_point_bound(*l.batch, [&](auto n) { separations_lanes<decltype(n)::value>(l, bodies); });
+}
+void push_one(const OneLane& l, std::vector<SolverBody>& bodies, const PushSettings& push) {
+  for_point_bound(*l.batch, [&](auto n) { push_lanes<decltype(n)::value>(l, bodies, push); });
+}
+// Each used lane of a batch in turn (they share no movable body, so the
+// order is no matter).
+template <class Fn>
+void for_each_lane(ContactBatch& b, Fn fn) {
+  for (int lane = 0; lane < b.lanes_used; ++lane) fn(OneLane{&b, lane});
+}
+
 #if !defined(REWIND_LANES_AVX)
 // Without AVX in the build the eight-lane passes never run; these keep
 // for_batches' callers whole and would take the two halves in turn.
@@ -182,17 +284,21 @@ void push_full(ContactBatch& b, std::vector<SolverBody>& bodies, const PushSetti
 }
 #endif
 
-// Runs a pass on every batch in order: `full` (eight AVX lanes) where the
-// processor has AVX, else `half` on each half that holds a constraint.
-// Batches of the constraints that found no colour hold one each and always
-// take the four-lane path.
-template <class Full, class Half>
-void for_batches(WorldScratch& scratch, Full full, Half half) {
+// Runs a pass on every batch in order: `one` on each lane of a batch of
+// one or two constraints (the overflow's batches, which hold one each,
+// among them), else `full` (eight AVX lanes) where the processor has AVX,
+// else `half` on each half that holds a constraint.
+template <class One, class Full, class Half>
+void for_batches(WorldScratch& scratch, One one, Full full, Half half) {
   std::vector<ContactBatch>& batches = scratch.batches;
   const bool eight = use_eight_lanes();
   const uint32_t colored_end = scratch.batch_start[kColorCount];
   for (uint32_t k = 0; k < batches.size(); ++k) {
     ContactBatch& b = batches[k];
+    if (one_lane(b)) {
+      for_each_lane(b, one);
+      continue;
+    }
     if (eight && k < colored_end) {
       full(b);
       continue;
@@ -244,6 +350,7 @@ void build_batches(WorldScratch& scratch) {
       // at zero too).
       ContactBatch& batch = scratch.batches.emplace_back();
       batch.point_bound = 1;
+      batch.lanes_used = static_cast<uint8_t>(std::min(per_batch, end - first));
       for (uint32_t lane = 0; lane < kBatchLanes; ++lane) {
         const uint32_t at = first + lane;
         if (lane < per_batch && at < end) {
@@ -262,7 +369,8 @@ void build_batches(WorldScratch& scratch) {
   scratch.batch_start[kColorCount + 1] = static_cast<uint32_t>(scratch.batches.size());
   const std::vector<SolverBody>& bodies = scratch.solver_bodies;
   for_batches(
-      scratch, [&](ContactBatch& b) { prepare_full(b, bodies); },
+      scratch, [&](const OneLane& l) { prepare_one(l, bodies); },
+      [&](ContactBatch& b) { prepare_full(b, bodies); },
       [&](const HalfBatch& h) { prepare_half(h, bodies); });
   copy_back_masses(scratch);
 }
@@ -270,7 +378,8 @@ void build_batches(WorldScratch& scratch) {
 void warm_start_batches(WorldScratch& scratch) {
   std::vector<SolverBody>& bodies = scratch.solver_bodies;
   for_batches(
-      scratch, [&](ContactBatch& b) { warm_start_full(b, bodies); },
+      scratch, [&](const OneLane& l) { warm_start_one(l, bodies); },
+      [&](ContactBatch& b) { warm_start_full(b, bodies); },
       [&](const HalfBatch& h) { warm_start_half(h, bodies); });
 }
 
@@ -291,10 +400,15 @@ void solve_pass(WorldScratch& scratch, float inv_h, Each each) {
   uint32_t color = 0;
   for (uint32_t k = 0; k < batches.size(); ++k) {
     ContactBatch& b = batches[k];
+    if (one_lane(b)) {
+      each(b);
+      for_each_lane(b, [&](const OneLane& l) { solve_one(l, bodies, inv_h); });
+      continue;
+    }
     if (eight && k < colored_end) {
       while (scratch.batch_start[color + 1] <= k) ++color;
-      const bool pair =
-          k + 1 < scratch.batch_start[color + 1] && batches[k + 1].point_bound == b.point_bound;
+      const bool pair = k + 1 < scratch.batch_start[color + 1] &&
+                        batches[k + 1].point_bound == b.point_bound && !one_lane(batches[k + 1]);
       each(b);
       if (!pair) {
         solve_full(b, bodies, inv_h);
@@ -370,6 +484,11 @@ void push_batches(WorldScratch& scratch, const WorldConfig& config, float inv_h)
   };
   for_batches(
       scratch,
+      [&](const OneLane& l) {
+        // As for the upper half below: a lane's push only marks bodies, so
+        // a batch busy before its first lane is busy after it.
+        if (!idle(*l.batch)) push_one(l, bodies, push);
+      },
       [&](ContactBatch& b) {
         if (!idle(b)) push_full(b, bodies, push);
       },
@@ -395,6 +514,13 @@ void separation_pass(WorldScratch& scratch, float slop, bool relax, float inv_h)
   const uint32_t colored_end = scratch.batch_start[kColorCount];
   const auto separations = [&](ContactBatch& b) {
     const uint32_t k = static_cast<uint32_t>(&b - scratch.batches.data());
+    if (one_lane(b)) {
+      for_each_lane(b, [&](const OneLane& l) {
+        separations_one(l, bodies);
+        copy_back_separations(scratch, slop, b, l.lane, 1);
+      });
+      return;
+    }
     if (eight && k < colored_end) {
       separations_full(b, bodies);
       copy_back_separations(scratch, slop, b);

@@ -110,6 +110,8 @@ struct alignas(32) ContactBatch {
   /// separation update: a batch without one whose bodies are not being
   /// pushed has nothing to push out.
   uint8_t overlapping;
+  /// Lanes holding a constraint; they are the first ones.
+  uint8_t lanes_used;
   /// The most points any lane holds (1 to kMaxManifoldPoints): the passes
   /// run that many. Constraints are packed by point count within a colour,
   /// so most batches are full of manifolds of one size.
