@@ -113,6 +113,38 @@ void BM_SmallBullet(benchmark::State& state) {
 BENCHMARK(BM_SmallRewind)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_SmallBullet)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
+// A world at rest: the sleep scene's pyramid of base N stepped until every
+// body sleeps (untimed), then the steps of the asleep world: what a world
+// costs per step for being there. One iteration = one step.
+void asleep_world(benchmark::State& state, Engine& engine) {
+  const int size = static_cast<int>(state.range(0));
+  auto scene = rwd::scenes::make_scene("sleep", size);
+  std::string error;
+  engine.reset(scene->world(), scene->body_capacity());
+  if (!scene->build(engine, error)) {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  for (int t = 0; t < 600 && engine.awake_count() > 0; ++t) engine.step();
+  if (engine.awake_count() > 0) {
+    state.SkipWithError("the pyramid did not fall asleep in 10 s");
+    return;
+  }
+  for (auto _ : state) engine.step();
+  state.counters["bodies"] = scene->body_capacity();
+  state.counters["awake"] = engine.awake_count();
+}
+void BM_AsleepRewind(benchmark::State& state) {
+  rwd::scenes::RewindEngine engine;
+  asleep_world(state, engine);
+}
+void BM_AsleepBullet(benchmark::State& state) {
+  rwd::bench::BulletEngine engine;
+  asleep_world(state, engine);
+}
+BENCHMARK(BM_AsleepRewind)->Arg(10)->Arg(30)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_AsleepBullet)->Arg(10)->Arg(30)->Unit(benchmark::kMicrosecond);
+
 // One whole scene per benchmark: a pyramid runs 600 ticks, a pile 360.
 BENCHMARK(BM_PyramidRewind)
     ->Arg(20)

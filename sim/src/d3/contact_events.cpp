@@ -11,6 +11,7 @@
 // the solve, from the contact cache (fill_event_details).
 #include <algorithm>
 
+#include "d3/body_storage.h"
 #include "d3/pipeline.h"
 
 namespace rwd::sim::d3 {
@@ -39,6 +40,13 @@ EventMask mask_of(const WorldState& state, uint32_t index, uint32_t generation) 
   const BodyInfo& info = state.infos[index];
   if (info.alive == 0 || info.generation != generation) return kEventAll;
   return info.event_mask;
+}
+
+// A pair neither of whose bodies moves this step (asleep or static): it
+// reports no stay. Its touch goes on unchanged until one of them wakes,
+// and a world of sleeping bodies then reports nothing at all.
+bool resting(const WorldState& state, const ContactRecord& r) {
+  return !is_active(state.infos[r.index_a]) && !is_active(state.infos[r.index_b]);
 }
 
 bool reported(const WorldState& state, const ContactRecord& r, ContactEventType type) {
@@ -78,18 +86,18 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
     records.push_back(index);
   };
   if (scratch.contacts_unchanged) {
-    // The cache carried over whole: every touching pair stays, but for
-    // those the solve pushed apart first this tick, which enter.
+    // The cache carried over whole, every pair in it resting: no stays;
+    // only those the solve pushed apart first this tick would enter.
     uint32_t touching = 0;
     size_t pushed = 0;
     for (uint32_t k = 0; k < state.contacts.size(); ++k) {
       const ContactRecord& r = state.contacts[k];
       if (r.touching == 0) continue;
+      ++touching;
       while (pushed < scratch.pushed_records.size() && scratch.pushed_records[pushed] < k) ++pushed;
       const bool entered =
           pushed < scratch.pushed_records.size() && scratch.pushed_records[pushed] == k;
-      add(entered ? ContactEventType::kEnter : ContactEventType::kStay, r, k);
-      ++touching;
+      if (entered) add(ContactEventType::kEnter, r, k);
     }
     scratch.stats.touching_manifolds = touching;
     return;
@@ -118,7 +126,8 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
       bool is = c.touching != 0;
       const auto at = static_cast<uint32_t>(j);
       if (same_bodies(o, c)) {
-        if (is) add(was ? ContactEventType::kStay : ContactEventType::kEnter, c, at);
+        if (is && !was) add(ContactEventType::kEnter, c, at);
+        if (is && was && !resting(state, c)) add(ContactEventType::kStay, c, at);
         if (was && !is) add(ContactEventType::kExit, o, kNoRecord);
       } else {
         // Type order within a key: enter (0) before exit (2).

@@ -100,6 +100,7 @@ void wake_body(WorldState& state, uint32_t index) {
   if (!is_simulated(info) || info.kind == BodyKind::kStatic) return;
   state.sims[index].sleep_time = 0.0f;
   info.awake = 1;
+  state.at_rest = false;
 }
 
 void wake_touching(WorldState& state, BodyId id) {

@@ -183,6 +183,7 @@ Result<BodyId> World3D::create_body(const BodyDef& def) {
   state_.masses[index] = mass;
   ++state_.live_count;
   d3::mark_world_edited(*scratch_);
+  state_.at_rest = false;
   return BodyId{index, generation};
 }
 
@@ -202,6 +203,7 @@ Status World3D::destroy_body(BodyId id) {
               id.index);
   --state_.live_count;
   d3::mark_world_edited(*scratch_);
+  state_.at_rest = false;
   return Status::Ok();
 }
 
@@ -279,6 +281,7 @@ Status World3D::set_transform(BodyId id, Vec3 position, Quat rotation) {
   sim.rotation = q;
   d3::wake_body(state_, id.index);
   d3::mark_world_edited(*scratch_);
+  state_.at_rest = false;
   return Status::Ok();
 }
 
@@ -437,6 +440,7 @@ Status World3D::set_enabled(BodyId id, bool enabled) {
     d3::disable_body(info, state_.sims[id.index]);
   }
   d3::mark_world_edited(*scratch_);
+  state_.at_rest = false;
   return Status::Ok();
 }
 
@@ -485,6 +489,7 @@ void World3D::restore(const WorldState& in) {
   state_ = in;
   // Scratch derived from the old state must not leak into the next step.
   d3::mark_world_edited(*scratch_);
+  state_.at_rest = false;
   scratch_->events.clear();
   scratch_->body_events.clear();
   scratch_->broken_joints.clear();

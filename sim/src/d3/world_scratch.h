@@ -261,6 +261,9 @@ class WorldScratch {
   std::vector<RayHit> query_ray_scratch;   ///< one raycast_all's hits
   std::vector<BodyId> query_body_scratch;  ///< one overlap's bodies
   StepStats stats;
+  /// The stats of the step that found the world at rest, which every
+  /// skipped step of the resting world reports again (times zero).
+  StepStats rest_stats;
 };
 
 }  // namespace rwd::sim

@@ -29,8 +29,15 @@ TEST(IslandSleep, RestingStackSleepsTogether) {
   step_seconds(world, 1.0f);
   EXPECT_EQ(world.position(b), p);
   EXPECT_EQ(world.linear_velocity(b), Vec3{});
-  // Touching contacts persist while asleep (stay events keep coming).
-  EXPECT_EQ(world.events().size(), 2u);
+  // Touching contacts persist while asleep, but a resting pair reports no
+  // stay: a sleeping world reports nothing.
+  EXPECT_EQ(world.stats().touching_manifolds, 2u);
+  EXPECT_TRUE(world.events().empty());
+  // Woken, both pairs stay again (never enter: they never stopped touching).
+  ASSERT_TRUE(world.apply_linear_impulse(b, {0.0f, 0.0f, 1.0f}, world.position(b)).ok());
+  world.step();
+  ASSERT_EQ(world.events().size(), 2u);
+  for (const ContactEvent& e : world.events()) EXPECT_EQ(e.type, ContactEventType::kStay);
 }
 
 // The threshold is an average speed: a body drifting through empty space

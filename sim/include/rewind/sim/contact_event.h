@@ -9,8 +9,11 @@ namespace rwd::sim {
 
 enum class ContactEventType : uint8_t {
   kEnter = 0,  ///< the pair started touching this tick
-  kStay = 1,   ///< the pair touched last tick and still does
-  kExit = 2,   ///< the pair touched last tick and no longer does (or a body was destroyed)
+  /// the pair touched last tick and still does, and one of its bodies is
+  /// awake: a resting pair (both asleep, or asleep on a static body)
+  /// reports no stay until one of them wakes
+  kStay = 1,
+  kExit = 2,  ///< the pair touched last tick and no longer does (or a body was destroyed)
 };
 
 /// One contact event from the last step. `a.index < b.index` always; events

@@ -212,6 +212,13 @@ struct WorldState {
   std::vector<ScheduledQueryRecord> queries;
   /// The last QueryTicket::id handed out (0: none ever).
   uint64_t last_query_ticket = 0;
+  /// Derived, neither hashed nor encoded: the last step found no body
+  /// awake and only resting pairs in the contact cache, and reported
+  /// nothing, and no body has been woken, made, destroyed, moved or
+  /// switched since. A step of such a world changes nothing but the step
+  /// count, so it is skipped (World3D::step). Anything that wakes a body
+  /// (d3::wake_body) or edits the world clears it; a restore clears it.
+  bool at_rest = false;
 };
 
 static_assert(std::is_trivially_copyable_v<BodyInfo>);
