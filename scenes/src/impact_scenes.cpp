@@ -50,8 +50,10 @@ class ProjectileScene final : public kit::SpecScene {
 /// pairing; the convex pile cycles through box, capsule, sphere, rock (a
 /// stretched icosahedron hull) and hexagonal prism hull; the mesh pile drops
 /// the convex mix onto a bumpy triangle-mesh floor (0.5 m cells, bumps of
-/// +-8 cm) instead of a box.
-enum class PileMix : uint8_t { kBoxes, kCapsules, kConvex, kOnMesh };
+/// +-8 cm) instead of a box; the compound pile drops tables (a top on four
+/// legs, five boxes) and dumbbells (a capsule bar with a ball at each end)
+/// in turn, bodies that rest on a few small contacts far apart.
+enum class PileMix : uint8_t { kBoxes, kCapsules, kConvex, kOnMesh, kCompounds };
 
 class PileScene final : public kit::SpecScene {
  public:
@@ -62,6 +64,22 @@ class PileScene final : public kit::SpecScene {
       std::vector<Vec3> prism = kit::prism_points(6, 0.28f, 0.36f);
       for (Vec3& p : prism) p.y -= 0.18f;
       prism_ = add_hull(std::move(prism));
+    }
+    if (mix == PileMix::kCompounds) {
+      // Both reach at most 0.37 m from their origin, inside the lattice's
+      // 0.4 m half pitch.
+      std::vector<sim::CompoundChild> table = {
+          {Shape::make_box({0.28f, 0.02f, 0.18f}), {0.0f, 0.12f, 0.0f}, {}}};
+      for (const float x : {-0.25f, 0.25f}) {
+        for (const float z : {-0.15f, 0.15f}) {
+          table.push_back({Shape::make_box({0.02f, 0.1f, 0.02f}), {x, 0.0f, z}, {}});
+        }
+      }
+      table_ = add_compound(std::move(table));
+      const Quat lying = kit::axis_angle({0.0f, 0.0f, 1.0f}, kit::radians(90.0f));
+      dumbbell_ = add_compound({{Shape::make_capsule(0.03f, 0.25f), {}, lying},
+                                {Shape::make_sphere(0.09f), {-0.28f, 0.0f, 0.0f}, {}},
+                                {Shape::make_sphere(0.09f), {0.28f, 0.0f, 0.0f}, {}}});
     }
     // About ten layers of k x k boxes, 0.8 m apart (a turned box reaches
     // at most 0.39 m from its centre, so none starts touching another).
@@ -111,6 +129,8 @@ class PileScene final : public kit::SpecScene {
         return "convex_pile";
       case PileMix::kOnMesh:
         return "mesh_pile";
+      case PileMix::kCompounds:
+        return "compound_pile";
     }
     return "pile";
   }
@@ -184,6 +204,8 @@ class PileScene final : public kit::SpecScene {
           default:
             return box;
         }
+      case PileMix::kCompounds:
+        return kit::hull(i % 2 == 0 ? table_ : dumbbell_, p);
     }
     return box;
   }
@@ -191,6 +213,8 @@ class PileScene final : public kit::SpecScene {
   PileMix mix_ = PileMix::kBoxes;
   Shape rock_;
   Shape prism_;
+  Shape table_;
+  Shape dumbbell_;
   float inner_half_ = 0.0f;
   float wall_top_ = 0.0f;
   size_t first_box_ = 0;
@@ -267,6 +291,10 @@ std::unique_ptr<Scene> make_convex_pile(int count) {
 std::unique_ptr<Scene> make_mesh_pile(int count) {
   if (count < 1 || count > 100000) return nullptr;
   return std::make_unique<PileScene>(count, PileMix::kOnMesh);
+}
+std::unique_ptr<Scene> make_compound_pile(int count) {
+  if (count < 1 || count > 100000) return nullptr;
+  return std::make_unique<PileScene>(count, PileMix::kCompounds);
 }
 std::unique_ptr<Scene> make_overlap(int count) {
   if (count < 1 || count > 50) return nullptr;

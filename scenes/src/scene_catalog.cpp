@@ -106,6 +106,12 @@ const std::vector<SceneEntry>& scene_catalog() {
        {250, 500, 1000},
        500,
        make_convex_pile},
+      {"compound_pile",
+       "N compounds, tables (five boxes) and dumbbells (a capsule and two balls) in turn, "
+       "dropped into a bin, 6 s",
+       {200},
+       200,
+       make_compound_pile},
       {"mesh_pile",
        "N bodies of the convex pile's mix dropped into a bin on a bumpy triangle-mesh floor, 6 s",
        {250, 1000},

@@ -31,6 +31,7 @@ std::unique_ptr<Scene> make_compound_balance(int count);
 std::unique_ptr<Scene> make_hull_slip(int degrees);
 std::unique_ptr<Scene> make_roll_stop(int tenths);
 std::unique_ptr<Scene> make_convex_pile(int count);
+std::unique_ptr<Scene> make_compound_pile(int count);
 std::unique_ptr<Scene> make_mesh_pile(int count);
 std::unique_ptr<Scene> make_field_boxes(int count);
 std::unique_ptr<Scene> make_overlap(int count);

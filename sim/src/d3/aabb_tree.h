@@ -64,6 +64,15 @@ class AabbTree {
   /// t * dir, 0 <= t <= max_t, touches (slab test; in tree order).
   template <typename Visit>
   void ray_query(Vec3 origin, Vec3 dir, float max_t, Visit&& visit) const;
+  /// For the closest hit: visits leaves near to far (each node's nearer
+  /// child first) and skips every node the segment reaches only past
+  /// `reach`, which visit(body) may shorten as it finds hits. A leaf is
+  /// skipped only when its box starts past the reach by a margin far above
+  /// the rounding of the box test, so every leaf whose exact hit lies
+  /// within the reach is still visited: a caller keeping the nearest hit
+  /// (ties to the lower id) gets what visiting every leaf would give.
+  template <typename Visit>
+  void ray_query_nearest(Vec3 origin, Vec3 dir, float& reach, Visit&& visit) const;
 
   /// Calls visit(body) for every leaf whose box the box `start` touches
   /// somewhere on its way along `translation` (the segment of its centre
@@ -140,6 +149,35 @@ void AabbTree::query(const Aabb& box, Visit&& visit) const {
   walk([&box](const Aabb& node) { return overlaps(node, box); }, visit);
 }
 
+// Whether the segment origin + t dir, t in [0, max_t], touches the box,
+// and from which t (entry; 0 when the origin is inside).
+inline bool segment_enters(const Aabb& box, Vec3 origin, Vec3 inv_dir, float max_t, float& entry) {
+  float t_lo = 0.0f;
+  float t_hi = max_t;
+  for (int i = 0; i < 3; ++i) {
+    const float o = component(origin, i);
+    const float lo = component(box.lower, i);
+    const float hi = component(box.upper, i);
+    const float inv = component(inv_dir, i);
+    if (!std::isfinite(inv)) {  // parallel to the slabs
+      if (o < lo || o > hi) return false;
+      continue;
+    }
+    float t0 = (lo - o) * inv;
+    float t1 = (hi - o) * inv;
+    if (t0 > t1) {
+      const float t = t0;
+      t0 = t1;
+      t1 = t;
+    }
+    if (t0 > t_lo) t_lo = t0;
+    if (t1 < t_hi) t_hi = t1;
+    if (t_lo > t_hi) return false;
+  }
+  entry = t_lo;
+  return true;
+}
+
 // Whether the segment origin + t dir, t in [0, max_t], touches the box.
 inline bool segment_hits(const Aabb& box, Vec3 origin, Vec3 inv_dir, float max_t) {
   float t_lo = 0.0f;
@@ -171,6 +209,57 @@ template <typename Visit>
 void AabbTree::ray_query(Vec3 origin, Vec3 dir, float max_t, Visit&& visit) const {
   const Vec3 inv_dir{1.0f / dir.x, 1.0f / dir.y, 1.0f / dir.z};
   walk([&](const Aabb& node) { return segment_hits(node, origin, inv_dir, max_t); }, visit);
+}
+
+template <typename Visit>
+void AabbTree::ray_query_nearest(Vec3 origin, Vec3 dir, float& reach, Visit&& visit) const {
+  if (root_ == kNull) return;
+  const Vec3 inv_dir{1.0f / dir.x, 1.0f / dir.y, 1.0f / dir.z};
+  // The skip margin: a thousandth of the reach and a millimetre, where the
+  // box test's rounding is a few ulps of the coordinates.
+  const auto padded = [](float t) { return t + 1e-3f * t + 1e-3f; };
+  struct Entry {
+    uint32_t node;
+    float t;  ///< where the segment enters the node's box
+  };
+  Entry local[128];
+  std::vector<Entry> deep;
+  Entry* stack = local;
+  if (nodes_[root_].height + 2 > 128) {
+    deep.resize(static_cast<size_t>(nodes_[root_].height) + 2);
+    stack = deep.data();
+  }
+  uint32_t top = 0;
+  float t_root = 0.0f;
+  if (!segment_enters(nodes_[root_].box, origin, inv_dir, padded(reach), t_root)) return;
+  stack[top++] = {root_, t_root};
+  while (top > 0) {
+    const Entry e = stack[--top];
+    if (e.t > padded(reach)) continue;  // the reach shrank since it was pushed
+    const Node& node = nodes_[e.node];
+    if (node.child1 == kNull) {
+      visit(node.body);
+      continue;
+    }
+    float t1 = 0.0f;
+    float t2 = 0.0f;
+    const bool in1 = segment_enters(nodes_[node.child1].box, origin, inv_dir, padded(reach), t1);
+    const bool in2 = segment_enters(nodes_[node.child2].box, origin, inv_dir, padded(reach), t2);
+    // The nearer child is pushed last, so it is walked first.
+    if (in1 && in2) {
+      if (t1 <= t2) {
+        stack[top++] = {node.child2, t2};
+        stack[top++] = {node.child1, t1};
+      } else {
+        stack[top++] = {node.child1, t1};
+        stack[top++] = {node.child2, t2};
+      }
+    } else if (in1) {
+      stack[top++] = {node.child1, t1};
+    } else if (in2) {
+      stack[top++] = {node.child2, t2};
+    }
+  }
 }
 
 template <typename Visit>

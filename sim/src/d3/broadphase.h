@@ -79,6 +79,14 @@ class Broadphase {
     sleeping_tree_.ray_query(origin, dir, max_t, visit);
     awake_tree_.ray_query(origin, dir, max_t, visit);
   }
+  /// For the closest hit (AabbTree::ray_query_nearest): every tree near to
+  /// far, `reach` shortened by visit(body) as it finds hits.
+  template <typename Visit>
+  void ray_query_nearest(Vec3 origin, Vec3 dir, float& reach, Visit&& visit) const {
+    static_tree_.ray_query_nearest(origin, dir, reach, visit);
+    sleeping_tree_.ray_query_nearest(origin, dir, reach, visit);
+    awake_tree_.ray_query_nearest(origin, dir, reach, visit);
+  }
   /// Same, for the bounds the box `start` touches on its way along
   /// `translation`.
   template <typename Visit>

@@ -58,11 +58,28 @@ void cast(const WorldState& state, WorldScratch& scratch, const Ray& ray, Vec3 d
 std::optional<RayHit> World3D::raycast(const Ray& ray, const QueryFilter& filter) const {
   Vec3 dir;
   if (!prepare_ray(ray, dir)) return std::nullopt;
+  d3::prepare_queries(state_, *scratch_);
   std::optional<RayHit> best;
-  // Index order plus a strict comparison: ties go to the lower index.
-  cast(state_, *scratch_, ray, dir, filter, [&](const RayHit& hit) {
-    if (!best || hit.distance < best->distance) best = hit;
-  });
+  // The trees are walked near to far, the segment cut short at the best hit
+  // so far; the nearest hit wins, ties to the lower index, as if every
+  // body the segment reaches were tested.
+  float reach = ray.max_distance;
+  const auto test = [&](uint32_t i) {
+    if (!d3::query_accepts(state_, filter, i)) return;
+    const BodyInfo& info = state_.infos[i];
+    const BodySim& sim = state_.sims[i];
+    float t = 0.0f;
+    Vec3 normal;
+    if (!d3::shape_ops(info.shape.type)
+             .raycast(info.shape, *scratch_->store, sim.position, sim.rotation, ray.origin, dir,
+                      ray.max_distance, t, normal)) {
+      return;
+    }
+    if (best && (t > best->distance || (t == best->distance && i > best->body.index))) return;
+    best = RayHit{BodyId{i, info.generation}, t, ray.origin + dir * t, normal};
+    reach = t;
+  };
+  scratch_->broadphase.ray_query_nearest(ray.origin, dir, reach, test);
   return best;
 }
 

@@ -110,5 +110,94 @@ TEST(Raycast, TiesGoToTheLowerIndexAndInsideHitsAtZero) {
   EXPECT_EQ(hit->body, first);
 }
 
+// The closest-hit walk stops at the best hit so far; it must still pick
+// what testing every body would: the first of raycast_all's sorted hits,
+// over static, sleeping and awake bodies, rotated, touching and stacked
+// shapes (equal distances included), rays from inside and outside.
+TEST(Raycast, ClosestIsTheFirstOfAllHits) {
+  World3D world;
+  test::add_ground(world);
+  test::Rng rng{7};
+  for (int i = 0; i < 300; ++i) {
+    BodyDef def;
+    def.kind = i % 3 == 0 ? BodyKind::kStatic : BodyKind::kDynamic;
+    const float x = std::floor(rng.uniform(-6.0f, 6.0f));
+    const float z = std::floor(rng.uniform(-6.0f, 6.0f));
+    def.position = {x, rng.uniform(0.5f, 4.0f), z};
+    if (i % 4 == 0) def.position = {x, 0.5f, z};  // aligned faces: equal distances
+    def.rotation = i % 2 == 0 ? Quat{} : rng.rotation();
+    def.shape = i % 5 == 0 ? Shape::make_sphere(rng.uniform(0.1f, 0.6f))
+                           : Shape::make_box({rng.uniform(0.1f, 0.6f), rng.uniform(0.1f, 0.6f),
+                                              rng.uniform(0.1f, 0.6f)});
+    ASSERT_TRUE(world.create_body(def).ok());
+  }
+  for (int t = 0; t < 30; ++t) world.step();  // some fall asleep, some move
+  int hits = 0;
+  int ties = 0;
+  for (int r = 0; r < 3000; ++r) {
+    Ray ray;
+    ray.origin = {rng.uniform(-8.0f, 8.0f), rng.uniform(-0.5f, 6.0f), rng.uniform(-8.0f, 8.0f)};
+    if (r % 3 == 0) {  // axis-aligned: parallel slabs, equal distances
+      const int axis = r % 9 / 3;
+      ray.direction = {axis == 0 ? 1.0f : 0.0f, axis == 1 ? -1.0f : 0.0f, axis == 2 ? 1.0f : 0.0f};
+    } else {
+      ray.direction = {rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f),
+                       rng.uniform(-1.0f, 1.0f)};
+    }
+    ray.max_distance = rng.uniform(0.5f, 20.0f);
+    std::vector<RayHit> all;
+    world.raycast_all(ray, {}, all);
+    const auto hit = world.raycast(ray);
+    ASSERT_EQ(hit.has_value(), !all.empty()) << "ray " << r;
+    if (!hit) continue;
+    ++hits;
+    if (all.size() > 1 && all[1].distance == all[0].distance) ++ties;
+    EXPECT_EQ(hit->body, all.front().body) << "ray " << r;
+    EXPECT_EQ(hit->distance, all.front().distance) << "ray " << r;
+    EXPECT_EQ(hit->normal, all.front().normal) << "ray " << r;
+  }
+  EXPECT_GT(hits, 1000);
+  EXPECT_GT(ties, 0);
+}
+
+// Equal distances go to the lower index however the trees hold the bodies:
+// boxes made in every order of their slots, static, kinematic awake and
+// kinematic asleep (kinematic, so overlapping does not push them apart).
+TEST(Raycast, EqualDistancesGoToTheLowerIndexInAnyTree) {
+  for (int round = 0; round < 8; ++round) {
+    World3D world;
+    std::vector<BodyId> ids;
+    for (int i = 0; i < 12; ++i) {
+      BodyDef def;
+      def.kind = (i + round) % 3 == 0 ? BodyKind::kStatic : BodyKind::kKinematic;
+      // Stacked along the ray, every one reaching z = 5 with its near face.
+      def.shape =
+          Shape::make_box({0.5f, 0.5f, 0.5f + 0.1f * static_cast<float>((i * 5 + round) % 12)});
+      def.position = {0.0f, 0.0f, 5.0f + def.shape.half_extents.z};
+      ids.push_back(*world.create_body(def));
+    }
+    // Free some slots and fill them again, so indices and tree order part.
+    for (int k = round % 3; k < 12; k += 3)
+      ASSERT_TRUE(world.destroy_body(ids[static_cast<size_t>(k)]).ok());
+    for (int k = 0; k < 4; ++k) {
+      BodyDef def;
+      def.kind = BodyKind::kKinematic;
+      def.position = {0.0f, 0.0f, 5.5f};
+      ASSERT_TRUE(world.create_body(def).ok());
+    }
+    for (int t = 0; t < round * 10; ++t) world.step();
+    Ray ray;
+    ray.origin = {0.0f, 0.0f, -3.0f};
+    ray.direction = {0.0f, 0.0f, 1.0f};
+    ray.max_distance = 50.0f;
+    std::vector<RayHit> all;
+    world.raycast_all(ray, {}, all);
+    const auto hit = world.raycast(ray);
+    ASSERT_EQ(hit.has_value(), !all.empty()) << "round " << round;
+    ASSERT_FALSE(all.empty()) << "round " << round << ", bodies " << world.body_count();
+    EXPECT_EQ(hit->body, all.front().body) << "round " << round;
+  }
+}
+
 }  // namespace
 }  // namespace rwd::sim
