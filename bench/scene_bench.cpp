@@ -115,12 +115,16 @@ BENCHMARK(BM_SmallBullet)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
 // A world at rest: the sleep scene's pyramid of base N stepped until every
 // body sleeps (untimed), then the steps of the asleep world: what a world
-// costs per step for being there. One iteration = one step.
+// costs per step for being there. With spinning:1, a ball is then set
+// spinning in place on the ground beside the pyramid (about the vertical,
+// which no friction stops): one awake body in a level of sleeping ones,
+// what most of a game's ticks look like. One iteration = one step.
 void asleep_world(benchmark::State& state, Engine& engine) {
   const int size = static_cast<int>(state.range(0));
+  const bool spinning = state.range(1) != 0;
   auto scene = rwd::scenes::make_scene("sleep", size);
   std::string error;
-  engine.reset(scene->world(), scene->body_capacity());
+  engine.reset(scene->world(), scene->body_capacity() + 1);
   if (!scene->build(engine, error)) {
     state.SkipWithError(error.c_str());
     return;
@@ -130,8 +134,20 @@ void asleep_world(benchmark::State& state, Engine& engine) {
     state.SkipWithError("the pyramid did not fall asleep in 10 s");
     return;
   }
+  if (spinning) {
+    rwd::scenes::BodySpec ball;
+    ball.shape = rwd::sim::Shape::make_sphere(0.5f);
+    ball.position = {-5.0f, 0.5f, 5.0f};
+    ball.angular_velocity = {0.0f, 5.0f, 0.0f};
+    rwd::scenes::BodyHandle handle = 0;
+    if (!engine.add_body(ball, handle, error)) {
+      state.SkipWithError(error.c_str());
+      return;
+    }
+    for (int t = 0; t < 10; ++t) engine.step();
+  }
   for (auto _ : state) engine.step();
-  state.counters["bodies"] = scene->body_capacity();
+  state.counters["bodies"] = scene->body_capacity() + (spinning ? 1 : 0);
   state.counters["awake"] = engine.awake_count();
 }
 void BM_AsleepRewind(benchmark::State& state) {
@@ -142,8 +158,14 @@ void BM_AsleepBullet(benchmark::State& state) {
   rwd::bench::BulletEngine engine;
   asleep_world(state, engine);
 }
-BENCHMARK(BM_AsleepRewind)->Arg(10)->Arg(30)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_AsleepBullet)->Arg(10)->Arg(30)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_AsleepRewind)
+    ->ArgNames({"base", "spinning"})
+    ->ArgsProduct({{10, 30}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_AsleepBullet)
+    ->ArgNames({"base", "spinning"})
+    ->ArgsProduct({{10, 30}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
 
 // One whole scene per benchmark: a pyramid runs 600 ticks, a pile 360.
 BENCHMARK(BM_PyramidRewind)
