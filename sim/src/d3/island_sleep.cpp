@@ -64,6 +64,39 @@ void build_islands(const WorldState& state, WorldScratch& scratch) {
   }
 }
 
+// The records this step solved: prepare made a constraint of every
+// touching solid pair with an awake dynamic body (and of no resting pair).
+template <class Fn>
+void for_each_solved_record(const WorldState& state, const WorldScratch& scratch, Fn fn) {
+  for (const ContactConstraint& c : scratch.constraints) fn(state.contacts[c.record]);
+}
+
+// Whether no solved record joins an awake dynamic body to a sleeping one,
+// and no joint is there to: then every island with an awake body holds
+// awake bodies only, and the solved records alone find those islands, the
+// same ones (roots are the lowest index of a set, whatever the order of
+// the unions) as a pass over the whole cache, which a level of sleeping
+// bodies makes long.
+bool awake_islands_closed(const WorldState& state, const WorldScratch& scratch) {
+  if (state.live_joints != 0) return false;
+  bool closed = true;
+  for_each_solved_record(state, scratch, [&](const ContactRecord& r) {
+    if (!links_island(state, r)) return;
+    if (is_active(state.infos[r.index_a]) != is_active(state.infos[r.index_b])) closed = false;
+  });
+  return closed;
+}
+
+// build_islands over the solved records only (awake_islands_closed).
+void build_awake_islands(const WorldState& state, WorldScratch& scratch) {
+  const uint32_t n = static_cast<uint32_t>(state.infos.size());
+  scratch.island_parent.resize(n);
+  for (uint32_t i = 0; i < n; ++i) scratch.island_parent[i] = i;
+  for_each_solved_record(state, scratch, [&](const ContactRecord& r) {
+    if (links_island(state, r)) unite(scratch.island_parent, r.index_a, r.index_b);
+  });
+}
+
 // Whether an acting joint drives its bodies on its own: a motor with a
 // non-zero target speed, or a grab whose anchor is off its target.
 bool joint_drives(const WorldState& state, const JointRecord& j) {
@@ -143,8 +176,12 @@ void wake_touched_islands(WorldState& state, WorldScratch& scratch) {
   // Cheap test first: does any touching contact or joint join an awake
   // mover and a sleeping dynamic body? Usually not, and then no island
   // work is done.
+  // Only a record with an awake body can, and update_contacts evaluated
+  // every one of those this step (the records it carried join two resting
+  // bodies).
   bool needed = false;
-  for (const ContactRecord& r : state.contacts) {
+  for (const uint32_t k : scratch.evaluated_records) {
+    const ContactRecord& r = state.contacts[k];
     if (r.touching == 0 || r.sensor != 0 || !live_record(state, r)) continue;
     if (wakes_other(state.infos[r.index_a], state.infos[r.index_b])) {
       needed = true;
@@ -219,7 +256,12 @@ void update_sleep(WorldState& state, WorldScratch& scratch) {
   scratch.stats.awake_bodies = awake;
   if (!config.enable_sleep || awake == 0) return;
 
-  build_islands(state, scratch);
+  const bool closed = awake_islands_closed(state, scratch);
+  if (closed) {
+    build_awake_islands(state, scratch);
+  } else {
+    build_islands(state, scratch);
+  }
   scratch.island_sleep_time.assign(n, config.time_to_sleep_s);
   auto& parent = scratch.island_parent;
   auto& min_time = scratch.island_sleep_time;
@@ -239,9 +281,17 @@ void update_sleep(WorldState& state, WorldScratch& scratch) {
       min_time[find_root(parent, a)] = 0.0f;
     }
   };
-  for (const ContactRecord& r : state.contacts) {
-    if (r.touching == 0 || r.sensor != 0 || !live_record(state, r)) continue;
+  // A moving kinematic body holds the island of a dynamic one it touches;
+  // with the awake islands closed, only a solved record can join one to an
+  // awake body.
+  const auto hold = [&](const ContactRecord& r) {
+    if (r.touching == 0 || r.sensor != 0 || !live_record(state, r)) return;
     hold_driven(r.index_a, r.index_b);
+  };
+  if (closed) {
+    for_each_solved_record(state, scratch, hold);
+  } else {
+    for (const ContactRecord& r : state.contacts) hold(r);
   }
   for (size_t k = 0; state.live_joints != 0 && k < state.joints.size(); ++k) {
     const JointRecord& j = state.joints[k];

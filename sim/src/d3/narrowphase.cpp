@@ -149,6 +149,7 @@ void update_contacts(WorldState& state, WorldScratch& scratch) {
   // A world at rest (no pairs: nothing awake) whose every record joins two
   // sleeping bodies keeps its cache exactly as it is: no copy, no merge.
   scratch.contacts_unchanged = false;
+  scratch.evaluated_records.clear();
   if (scratch.pairs.empty()) {
     bool resting = true;
     for (const ContactRecord& r : state.contacts) {
@@ -228,9 +229,11 @@ void update_contacts(WorldState& state, WorldScratch& scratch) {
     rec.generation_b = generation_b;
     ContactGeometry& geo = geometry[out.size() - 1];
     if (evaluate(state, scratch, rec, prior, geo)) ++reused;
+    scratch.evaluated_records.push_back(static_cast<uint32_t>(out.size() - 1));
     // Pairs whose bounds overlap but whose shapes are out of reach are not
     // kept: the cache holds only pairs that have (or had) points.
     if (geo.manifold.point_count == 0 && rec.touching == 0) {
+      scratch.evaluated_records.pop_back();
       out.pop_back();
       if (geo.manifold.separating_axis != kNoSeparatingAxis) {
         next_keys.push_back(kp);

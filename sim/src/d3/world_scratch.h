@@ -248,7 +248,11 @@ class WorldScratch {
   std::vector<ContactEvent> events;
   std::vector<uint32_t> event_records;   ///< per event: its record, or kNoRecord (exits)
   std::vector<uint32_t> pushed_records;  ///< records that touch by the solve's push this tick
-  std::vector<float> record_impulse;     ///< per record: the tick's normal impulse, or -1
+  /// Records update_contacts evaluated this step (from this step's pairs,
+  /// so every record with an awake body), ascending; the resting ones it
+  /// carried are not listed.
+  std::vector<uint32_t> evaluated_records;
+  std::vector<float> record_impulse;  ///< per record: the tick's normal impulse, or -1
   std::vector<BodyEvent> body_events;
   // scheduled queries (scheduled_queries.cpp): by pending query, this
   // step's answer; the hits of all of them in the order they ran, each
