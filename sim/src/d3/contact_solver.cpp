@@ -130,7 +130,17 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
   scratch.deep_overlap = false;
   const float deep_limit = -kDeepOverlapSlops * config.linear_slop_m;
   uint32_t points = 0;
-  for (uint32_t k = 0; k < state.contacts.size(); ++k) {
+  // The records with geometry this step, ascending: those update_contacts
+  // evaluated and those the wake refreshed (the rest rest, and a level of
+  // sleeping bodies makes them most of the cache).
+  const std::vector<uint32_t>& evaluated = scratch.evaluated_records;
+  const std::vector<uint32_t>& refreshed = scratch.refreshed_records;
+  size_t e = 0;
+  size_t f = 0;
+  while (e < evaluated.size() || f < refreshed.size()) {
+    const bool take_evaluated =
+        f == refreshed.size() || (e < evaluated.size() && evaluated[e] < refreshed[f]);
+    const uint32_t k = take_evaluated ? evaluated[e++] : refreshed[f++];
     const ContactRecord& rec = state.contacts[k];
     const ContactGeometry& geo = scratch.geometry[k];
     if (geo.valid == 0 || rec.sensor != 0 || rec.point_count == 0) continue;

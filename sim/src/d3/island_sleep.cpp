@@ -237,6 +237,7 @@ void wake_touched_islands(WorldState& state, WorldScratch& scratch) {
     if (scratch.geometry[k].valid != 0 || !live_record(state, r)) continue;
     if (is_active(state.infos[r.index_a]) || is_active(state.infos[r.index_b])) {
       refresh_contact(state, scratch, k);
+      scratch.refreshed_records.push_back(k);
     }
   }
 }

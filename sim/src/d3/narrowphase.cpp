@@ -150,6 +150,7 @@ void update_contacts(WorldState& state, WorldScratch& scratch) {
   // sleeping bodies keeps its cache exactly as it is: no copy, no merge.
   scratch.contacts_unchanged = false;
   scratch.evaluated_records.clear();
+  scratch.refreshed_records.clear();
   if (scratch.pairs.empty()) {
     bool resting = true;
     for (const ContactRecord& r : state.contacts) {

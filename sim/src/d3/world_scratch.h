@@ -252,6 +252,10 @@ class WorldScratch {
   /// so every record with an awake body), ascending; the resting ones it
   /// carried are not listed.
   std::vector<uint32_t> evaluated_records;
+  /// Records wake_touched_islands refreshed this step (carried resting
+  /// records whose bodies it woke), ascending. With evaluated_records,
+  /// every record with geometry this step (ContactGeometry::valid).
+  std::vector<uint32_t> refreshed_records;
   std::vector<float> record_impulse;  ///< per record: the tick's normal impulse, or -1
   std::vector<BodyEvent> body_events;
   // scheduled queries (scheduled_queries.cpp): by pending query, this
