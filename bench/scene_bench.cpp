@@ -17,8 +17,7 @@ namespace {
 
 using rwd::scenes::Engine;
 
-void run_scene_ticks(benchmark::State& state, Engine& engine, const char* name) {
-  const int size = static_cast<int>(state.range(0));
+void run_scene_ticks(benchmark::State& state, Engine& engine, const char* name, int size) {
   std::unique_ptr<rwd::scenes::Scene> scene;
   rwd::Tick tick = 0;
   auto rebuild = [&] {
@@ -42,6 +41,9 @@ void run_scene_ticks(benchmark::State& state, Engine& engine, const char* name) 
   }
   state.counters["bodies"] = scene->body_capacity();
   state.counters["awake"] = engine.awake_count();
+}
+void run_scene_ticks(benchmark::State& state, Engine& engine, const char* name) {
+  run_scene_ticks(state, engine, name, static_cast<int>(state.range(0)));
 }
 
 void BM_PyramidRewind(benchmark::State& state) {
@@ -78,29 +80,7 @@ constexpr int kSmallSizes[] = {5, 30, 100, 10};
 void small_scene(benchmark::State& state, Engine& engine) {
   const auto which = static_cast<size_t>(state.range(0));
   state.SetLabel(kSmallScenes[which]);
-  const int size = kSmallSizes[which];
-  std::unique_ptr<rwd::scenes::Scene> scene;
-  rwd::Tick tick = 0;
-  auto rebuild = [&] {
-    scene = rwd::scenes::make_scene(kSmallScenes[which], size);
-    std::string error;
-    engine.reset(scene->world(), scene->body_capacity());
-    if (!scene->build(engine, error)) state.SkipWithError(error.c_str());
-    tick = 0;
-  };
-  rebuild();
-  for (auto _ : state) {
-    if (tick == scene->ticks()) {
-      state.PauseTiming();
-      rebuild();
-      state.ResumeTiming();
-    }
-    scene->before_step(tick, engine);
-    engine.step();
-    scene->after_step(tick, engine);
-    ++tick;
-  }
-  state.counters["bodies"] = scene->body_capacity();
+  run_scene_ticks(state, engine, kSmallScenes[which], kSmallSizes[which]);
 }
 void BM_SmallRewind(benchmark::State& state) {
   rwd::scenes::RewindEngine engine;

@@ -180,29 +180,8 @@ inline bool segment_enters(const Aabb& box, Vec3 origin, Vec3 inv_dir, float max
 
 // Whether the segment origin + t dir, t in [0, max_t], touches the box.
 inline bool segment_hits(const Aabb& box, Vec3 origin, Vec3 inv_dir, float max_t) {
-  float t_lo = 0.0f;
-  float t_hi = max_t;
-  for (int i = 0; i < 3; ++i) {
-    const float o = component(origin, i);
-    const float lo = component(box.lower, i);
-    const float hi = component(box.upper, i);
-    const float inv = component(inv_dir, i);
-    if (!std::isfinite(inv)) {  // parallel to the slabs
-      if (o < lo || o > hi) return false;
-      continue;
-    }
-    float t0 = (lo - o) * inv;
-    float t1 = (hi - o) * inv;
-    if (t0 > t1) {
-      const float t = t0;
-      t0 = t1;
-      t1 = t;
-    }
-    if (t0 > t_lo) t_lo = t0;
-    if (t1 < t_hi) t_hi = t1;
-    if (t_lo > t_hi) return false;
-  }
-  return true;
+  float entry = 0.0f;
+  return segment_enters(box, origin, inv_dir, max_t, entry);
 }
 
 template <typename Visit>
