@@ -8,7 +8,7 @@
 # Usage: scripts/charts.sh [--quick] [--no-build] [--only 3d|2d|joints]
 #   (default)   full sweep: every scene size at default settings on both
 #               engines, piles up to 8000 boxes, and at each scene's chart
-#               size Rewind's substeps 1-16, relax 0-4, contact_hertz 15-60
+#               size Rewind's substeps 2-16, relax 0-4, contact_hertz 15-60
 #               and Bullet's iterations 5-40, steps per tick 1-4
 #               (2D: every scene, and the substeps/iterations sweep of the
 #               large pyramid and the small pyramids)

@@ -183,6 +183,10 @@ void GameTarget::compare(const game::Simulation& sim, Tick tick, double& positio
 Measurement GameTarget::measure(const SolverSetting& setting) {
   Measurement m;
   const sim::WorldConfig config = setting.applied_to(config_);
+  if (const auto s = sim::World3D::validate_config(config); !s.ok()) {
+    m.error = "refused: " + s.message();
+    return m;
+  }
   const game::MatchSetup setup{play_.players, play_.seed};
   auto windowed = game::Simulation::create(play_.game, setup, config);
   auto free_run = game::Simulation::create(play_.game, setup, config);

@@ -2,6 +2,7 @@
 #include "rewind/tune/scene_target.h"
 
 #include "rewind/scenes/rewind_engine.h"
+#include "rewind/sim/world3d.h"
 
 namespace rwd::tune {
 
@@ -45,8 +46,12 @@ SolverSetting SceneTarget::default_setting() const {
 }
 
 Measurement SceneTarget::measure(const SolverSetting& setting) {
+  const sim::WorldConfig config = setting.applied_to(base_);
+  if (const auto s = sim::World3D::validate_config(config); !s.ok()) {
+    return {0.0, {}, "refused: " + s.message()};
+  }
   std::unique_ptr<scenes::Scene> scene = scenes::make_scene(name_, size_);
-  scenes::RewindEngine engine(setting.applied_to(base_));
+  scenes::RewindEngine engine(config);
   const scenes::SceneResult r = scenes::run_scene(*scene, engine);
   return {r.ms_per_step, r.metrics, r.error};
 }

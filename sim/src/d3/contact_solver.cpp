@@ -5,7 +5,8 @@
 //   for each substep:
 //     integrate velocities (gravity, forces, damping)
 //     warm start (apply last substep's impulses)
-//     solve      (rigid contacts on the real velocities)
+//     solve      (rigid contacts on the real velocities; three passes when
+//                 the substep is longer than 1/180 s, world_config.h)
 //     push-out   (overlaps beyond the slop pushed apart on separate push
 //                 velocities, capped speed: deep ones one at a time from the
 //                 ground up, then the rest in the lanes)
@@ -518,12 +519,13 @@ void solve(WorldState& state, WorldScratch& scratch) {
   const float slop = config.linear_slop_m;
   scratch.pushing = false;
   bool ordered = false;
+  const int32_t passes = contact_solve_passes(config);
   for (int32_t s = 0; s < config.substeps; ++s) {
     integrate_velocities(scratch, h);
     if (joints) warm_start_joints(state, scratch);
     warm_start_batches(scratch);
     if (joints) solve_joints(state, scratch, true);
-    solve_batches(scratch, inv_h);
+    for (int32_t pass = 0; pass < passes; ++pass) solve_batches(scratch, inv_h);
     // The joints again after the contacts, so the velocities the bodies
     // move by hold the joints. A contact sees a limb as a free body: a
     // capsule's long-axis inertia is tiny, so the friction of whatever

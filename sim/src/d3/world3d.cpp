@@ -57,8 +57,21 @@ WorldConfig sanitize(const WorldConfig& c) {
     if (d3::check_config(probe).ok()) out.*field = q.*field;
   };
   keep(&WorldConfig::gravity);
-  keep(&WorldConfig::tick_seconds);
-  keep(&WorldConfig::substeps);
+  // The tick and its substeps together decide the substep's length: both,
+  // or each alone against the other's default.
+  WorldConfig timing = d;
+  timing.tick_seconds = q.tick_seconds;
+  timing.substeps = q.substeps;
+  if (d3::check_config(timing).ok()) {
+    out.tick_seconds = q.tick_seconds;
+    out.substeps = q.substeps;
+  } else {
+    keep(&WorldConfig::tick_seconds);  // with the default substeps
+    timing = d;
+    timing.tick_seconds = out.tick_seconds;
+    timing.substeps = q.substeps;
+    if (d3::check_config(timing).ok()) out.substeps = q.substeps;
+  }
   keep(&WorldConfig::relax_iterations);
   keep(&WorldConfig::contact_hertz);
   keep(&WorldConfig::contact_damping_ratio);

@@ -49,7 +49,9 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///      batch's lanes all of one kind
 ///  11  gyroscopic term turned by the mean of the tick's start and end
 ///      rates, its energy kept through |L|^2 - 2 E I_mid
-inline constexpr uint32_t kSimRevision = 11;
+///  12  substeps longer than 1/180 s solve their contacts in three passes;
+///      substeps longer than 1/120 s are refused
+inline constexpr uint32_t kSimRevision = 12;
 
 /// "rewind-sim r11": the engine identity a replay records.
 inline std::string engine_version() {

@@ -6,16 +6,27 @@
 
 namespace rwd::sim {
 
+/// The longest substep a world accepts, seconds (1/120 s).
+inline constexpr float kMaxSubstepSeconds = 1.0f / 120.0f;
+/// Substeps up to this long (1/180 s) solve their contacts in one pass;
+/// longer ones in kLongSubstepSolvePasses.
+inline constexpr float kOnePassSubstepSeconds = 1.0f / 180.0f;
+inline constexpr int32_t kLongSubstepSolvePasses = 3;
+
 /// Tuning of the 3D world. Part of world state (a restored world steps with
 /// the configuration it was saved with) and of the checksum.
 struct WorldConfig {
   Vec3 gravity{0.0f, -9.81f, 0.0f};   ///< m/s^2
   float tick_seconds = 1.0f / 60.0f;  ///< length of one step(), (0, 0.1]
-  /// TGS-Soft substeps per tick, [1, 64]. Box stacking needs a substep of
-  /// at most 1/180 s (3 at 60 Hz ticks): at 1/120 s (2 at 60 Hz, 4 at 30
-  /// Hz) box pyramids of base 20 and 30 fall apart within 10 s, at 1/60 s
-  /// (1 at 60 Hz) even base 10 and a 20-box stack fail
-  /// (tests/stability/stability3d_known_failures.cpp).
+  /// TGS-Soft substeps per tick, [1, 64], each at most kMaxSubstepSeconds
+  /// long (tick_seconds / substeps; a longer one is refused: at 60 Hz
+  /// ticks, 2 substeps or more). A substep longer than
+  /// kOnePassSubstepSeconds solves the contacts in kLongSubstepSolvePasses
+  /// passes before the move instead of one: with one pass, box pyramids of
+  /// base 20 and 30 fall apart within 10 s at 1/120 s substeps; with
+  /// three they stand (tests/stability/stability3d_substeps.cpp). At 1/60 s
+  /// no pass count tried (up to 10) holds a base-30 pyramid, hence the
+  /// limit.
   int32_t substeps = 4;
   int32_t relax_iterations = 1;  ///< rigid contact passes after each substep's move, [0, 16]
   /// The push-out of overlaps deeper than the slop acts as a spring-damper
