@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#pragma once
 // "joust": each player drives a car (a raycast-wheel vehicle, vehicle3d.h)
 // across a bumpy height-field arena whose edges rise into a bowl. A lance is
 // welded to the left of every car, pointing ahead at riding height, and a
