@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Contact events: a merge of last step's cache and this step's, both sorted
-// by (index_a, index_b). A pair that keeps its indices but changed
+// by (index_a, index_b, part). Events are per body pair: a pair with a
+// compound may hold several records (parts), and touches while any of them
+// does; its event's details come from all of them. A pair that keeps its
+// indices but changed
 // generation (a body destroyed and its slot reused) is two different pairs:
 // the old one exits and the new one enters. Events are built after the
 // solve: a pair the solver pushed apart this tick touches this tick
@@ -19,6 +22,25 @@ namespace {
 
 uint64_t key(const ContactRecord& r) {
   return (static_cast<uint64_t>(r.index_a) << 32) | r.index_b;
+}
+
+// One body pair's records in a cache: [begin, end), parts in a row.
+struct PairSpan {
+  size_t begin = 0;
+  size_t end = 0;
+  bool touching = false;  ///< any part touches
+};
+
+PairSpan pair_at(const std::vector<ContactRecord>& records, size_t begin) {
+  PairSpan p;
+  p.begin = begin;
+  p.end = begin;
+  const uint64_t k = key(records[begin]);
+  while (p.end < records.size() && key(records[p.end]) == k) {
+    p.touching = p.touching || records[p.end].touching != 0;
+    ++p.end;
+  }
+  return p;
 }
 
 ContactEvent make_event(ContactEventType type, const ContactRecord& r) {
@@ -88,16 +110,29 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
   if (scratch.contacts_unchanged) {
     // The cache carried over whole, every pair in it resting: no stays;
     // only those the solve pushed apart first this tick would enter.
+    // A pair enters when every part of it that touches was pushed.
     uint32_t touching = 0;
     size_t pushed = 0;
-    for (uint32_t k = 0; k < state.contacts.size(); ++k) {
-      const ContactRecord& r = state.contacts[k];
-      if (r.touching == 0) continue;
-      ++touching;
-      while (pushed < scratch.pushed_records.size() && scratch.pushed_records[pushed] < k) ++pushed;
-      const bool entered =
-          pushed < scratch.pushed_records.size() && scratch.pushed_records[pushed] == k;
-      if (entered) add(ContactEventType::kEnter, r, k);
+    const std::vector<ContactRecord>& now = state.contacts;
+    for (size_t k = 0; k < now.size();) {
+      const PairSpan p = pair_at(now, k);
+      bool any = false;
+      bool only_pushed = true;
+      for (size_t r = p.begin; r < p.end; ++r) {
+        if (now[r].touching == 0) continue;
+        ++touching;
+        any = true;
+        while (pushed < scratch.pushed_records.size() && scratch.pushed_records[pushed] < r) {
+          ++pushed;
+        }
+        const bool was_pushed =
+            pushed < scratch.pushed_records.size() && scratch.pushed_records[pushed] == r;
+        only_pushed = only_pushed && was_pushed;
+      }
+      if (any && only_pushed) {
+        add(ContactEventType::kEnter, now[p.begin], static_cast<uint32_t>(p.begin));
+      }
+      k = p.end;
     }
     scratch.stats.touching_manifolds = touching;
     return;
@@ -107,36 +142,33 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
   size_t i = 0;
   size_t j = 0;
   uint32_t touching = 0;
+  for (const ContactRecord& r : now) touching += r.touching != 0 ? 1u : 0u;
   while (i < old.size() || j < now.size()) {
+    const PairSpan o = i < old.size() ? pair_at(old, i) : PairSpan{};
+    const PairSpan c = j < now.size() ? pair_at(now, j) : PairSpan{};
     bool take_old = j == now.size() || (i < old.size() && key(old[i]) < key(now[j]));
     bool take_new = i == old.size() || (j < now.size() && key(now[j]) < key(old[i]));
+    const auto at = static_cast<uint32_t>(j);
     if (take_old) {
-      if (old[i].touching != 0) add(ContactEventType::kExit, old[i], kNoRecord);
-      ++i;
+      if (o.touching) add(ContactEventType::kExit, old[i], kNoRecord);
+      i = o.end;
     } else if (take_new) {
-      if (now[j].touching != 0) {
-        add(ContactEventType::kEnter, now[j], static_cast<uint32_t>(j));
-        ++touching;
-      }
-      ++j;
+      if (c.touching) add(ContactEventType::kEnter, now[j], at);
+      j = c.end;
     } else {
-      const ContactRecord& o = old[i];
-      const ContactRecord& c = now[j];
-      bool was = o.touching != 0;
-      bool is = c.touching != 0;
-      const auto at = static_cast<uint32_t>(j);
-      if (same_bodies(o, c)) {
-        if (is && !was) add(ContactEventType::kEnter, c, at);
-        if (is && was && !resting(state, c)) add(ContactEventType::kStay, c, at);
-        if (was && !is) add(ContactEventType::kExit, o, kNoRecord);
+      const bool was = o.touching;
+      const bool is = c.touching;
+      if (same_bodies(old[i], now[j])) {
+        if (is && !was) add(ContactEventType::kEnter, now[j], at);
+        if (is && was && !resting(state, now[j])) add(ContactEventType::kStay, now[j], at);
+        if (was && !is) add(ContactEventType::kExit, old[i], kNoRecord);
       } else {
         // Type order within a key: enter (0) before exit (2).
-        if (is) add(ContactEventType::kEnter, c, at);
-        if (was) add(ContactEventType::kExit, o, kNoRecord);
+        if (is) add(ContactEventType::kEnter, now[j], at);
+        if (was) add(ContactEventType::kExit, old[i], kNoRecord);
       }
-      if (is) ++touching;
-      ++i;
-      ++j;
+      i = o.end;
+      j = c.end;
     }
   }
   scratch.stats.touching_manifolds = touching;
@@ -161,20 +193,35 @@ void fill_event_details(const WorldState& state, WorldScratch& scratch) {
     ContactEvent& event = scratch.events[e];
     const ContactRecord& rec = state.contacts[index];
     if (rec.point_count > 0) {
-      // The manifold as the cache keeps it, on A as A stands now.
+      // The manifolds as the cache keeps them, on A as A stands now: the
+      // deepest point of all the pair's parts, and the impulse of them all.
       const BodySim& a = state.sims[rec.index_a];
+      const PairSpan pair = pair_at(state.contacts, index);
+      const ContactRecord* deepest_rec = &rec;
       uint32_t deepest = 0;
       float impulse = 0.0f;
-      for (uint32_t p = 0; p < rec.point_count; ++p) {
-        if (rec.points[p].separation < rec.points[deepest].separation) deepest = p;
-        impulse += rec.points[p].normal_impulse;
+      float tick_sum = 0.0f;
+      bool solved = false;
+      for (size_t r = pair.begin; r < pair.end; ++r) {
+        const ContactRecord& part = state.contacts[r];
+        for (uint32_t p = 0; p < part.point_count; ++p) {
+          if (part.points[p].separation < deepest_rec->points[deepest].separation) {
+            deepest_rec = &part;
+            deepest = p;
+          }
+          impulse += part.points[p].normal_impulse;
+        }
+        if (tick_impulse[r] >= 0.0f) {
+          tick_sum += tick_impulse[r];
+          solved = true;
+        }
       }
-      const CachedContactPoint& cp = rec.points[deepest];
-      const Vec3 n = rec.frame_normal;
+      const CachedContactPoint& cp = deepest_rec->points[deepest];
+      const Vec3 n = deepest_rec->frame_normal;
       event.normal = rotate(a.rotation, n);
       event.point = a.position + rotate(a.rotation, cp.local_a + n * (0.5f * cp.separation));
       event.depth = cp.separation < 0.0f ? -cp.separation : 0.0f;
-      event.impulse = tick_impulse[index] >= 0.0f ? tick_impulse[index] : impulse * substeps;
+      event.impulse = solved ? tick_sum : impulse * substeps;
       continue;
     }
     // A sensor pair: the overlap as this step's manifold saw it.

@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
-// Narrowphase: one manifold per broadphase pair, merged with last step's
-// contact cache. Both lists are sorted by (index_a, index_b), so matching is
-// a linear merge (no hash map, no search). Points keep their impulses when
-// their feature id reappears (warm starting); new points start at zero.
+// Narrowphase: one manifold per broadphase pair (a solid pair with a
+// compound: one per group of its children's contacts, each a record of its
+// own, ContactRecord::part), merged with last step's contact cache. Both
+// lists are sorted by (index_a, index_b, part), so matching is a linear
+// merge (no hash map, no search). Points keep their impulses when their
+// feature id reappears in any of the pair's records (warm starting); new
+// points start at zero.
 // Contacts whose bodies both sleep are carried over as they are: nothing
 // moved, so their manifold is still valid and costs nothing.
 //
@@ -49,6 +52,60 @@ bool keeps_features(const Shape& shape) {
          shape.type == ShapeType::kMesh || shape.type == ShapeType::kHeightField;
 }
 
+// Fills `rec` from its manifold geo.manifold (friction, touching, points
+// with the impulses of the same feature among the pair's `prior_count`
+// records at `prior`, the manifold's frame in A's frame `axes_a`). Returns
+// `carried`: a carried record keeps its points and frame as they were.
+bool fill_record(const WorldState& state, const Mat3& axes_a, ContactRecord& rec,
+                 ContactGeometry& geo, bool carried, const ContactRecord* prior,
+                 size_t prior_count) {
+  const BodyInfo& ia = state.infos[rec.index_a];
+  const BodyInfo& ib = state.infos[rec.index_b];
+  const Manifold& m = geo.manifold;
+  geo.friction = std::sqrt(ia.material.friction * ib.material.friction);
+  geo.restitution = ia.material.restitution > ib.material.restitution ? ia.material.restitution
+                                                                      : ib.material.restitution;
+  geo.valid = 1;
+  // Touching is geometric and independent of speed: sensors need a real
+  // overlap, solid pairs a point within the configured speculative distance
+  // (the contact the solver is holding apart), as in Box2D.
+  const float limit = rec.sensor != 0 ? 0.0f : state.config.speculative_distance_m;
+  uint8_t touching = 0;
+  for (uint32_t i = 0; i < m.point_count; ++i) {
+    const float separation = m.points[i].separation;
+    if (rec.sensor != 0 ? separation < limit : separation <= limit) touching = 1;
+  }
+  rec.touching = touching;
+  if (carried) return true;
+  rec.point_count = rec.sensor != 0 ? 0 : static_cast<uint8_t>(m.point_count);
+  for (uint32_t i = 0; i < kMaxManifoldPoints; ++i) {
+    CachedContactPoint& point = rec.points[i];
+    point = CachedContactPoint{};
+    if (i >= rec.point_count) continue;
+    point.feature_id = m.points[i].feature_id;
+    const CachedContactPoint* match = nullptr;
+    for (size_t r = 0; r < prior_count && match == nullptr; ++r) {
+      for (uint32_t j = 0; j < prior[r].point_count; ++j) {
+        if (prior[r].points[j].feature_id == point.feature_id) {
+          match = &prior[r].points[j];
+          break;
+        }
+      }
+    }
+    if (match != nullptr) point = *match;
+  }
+  if (rec.point_count > 0) {
+    const BodySim& sa = state.sims[rec.index_a];
+    const BodySim& sb = state.sims[rec.index_b];
+    record_frame(axes_a, relative_pose(sa, axes_a, sb), m, rec);
+  } else {
+    rec.frame_position = {};
+    rec.frame_rotation = {};
+    rec.frame_normal = {};
+  }
+  return false;
+}
+
 // Computes the manifold (or carries `old`'s forward, see the top of the
 // file) and fills `rec` (ids, touching, impulses matched by feature id
 // against `old`, which may be null but is never `rec` itself). Returns true
@@ -84,43 +141,42 @@ bool evaluate(const WorldState& state, WorldScratch& scratch, ContactRecord& rec
       return false;
     }
   }
-  geo.friction = std::sqrt(ia.material.friction * ib.material.friction);
-  geo.restitution = ia.material.restitution > ib.material.restitution ? ia.material.restitution
-                                                                      : ib.material.restitution;
-  geo.valid = 1;
-  // Touching is geometric and independent of speed: sensors need a real
-  // overlap, solid pairs a point within the configured speculative distance
-  // (the contact the solver is holding apart), as in Box2D.
-  const float limit = rec.sensor != 0 ? 0.0f : state.config.speculative_distance_m;
-  uint8_t touching = 0;
-  for (uint32_t i = 0; i < m.point_count; ++i) {
-    const float separation = m.points[i].separation;
-    if (rec.sensor != 0 ? separation < limit : separation <= limit) touching = 1;
-  }
-  rec.touching = touching;
-  if (carried) return true;
-  rec.point_count = rec.sensor != 0 ? 0 : static_cast<uint8_t>(m.point_count);
-  for (uint32_t i = 0; i < kMaxManifoldPoints; ++i) {
-    CachedContactPoint& point = rec.points[i];
-    point = CachedContactPoint{};
-    if (i >= rec.point_count) continue;
-    point.feature_id = m.points[i].feature_id;
-    if (old == nullptr) continue;
-    for (uint32_t j = 0; j < old->point_count; ++j) {
-      if (old->points[j].feature_id == point.feature_id) {
-        point = old->points[j];
-        break;
-      }
+  return fill_record(state, axes_a, rec, geo, carried, old, old != nullptr ? 1 : 0);
+}
+
+// Whether a pair is collided as parts (one record per group of contact
+// normals): a solid pair with a compound on either side.
+bool in_parts(const BodyInfo& ia, const BodyInfo& ib) {
+  return (ia.shape.type == ShapeType::kCompound || ib.shape.type == ShapeType::kCompound) &&
+         ia.sensor == 0 && ib.sensor == 0;
+}
+
+// The parts of a pair in_parts() takes (collide_compound_parts), normals
+// from A to B, anchors filled as collide_shapes fills them. Returns the
+// count.
+uint32_t collide_parts(const WorldState& state, WorldScratch& scratch, uint32_t a, uint32_t b,
+                       Manifold parts[kMaxContactParts]) {
+  const BodyInfo& ia = state.infos[a];
+  const BodyInfo& ib = state.infos[b];
+  const BodySim& sa = state.sims[a];
+  const BodySim& sb = state.sims[b];
+  const ShapePose pa{sa.position, sa.rotation, body_axes(state, scratch, a)};
+  const ShapePose pb{sb.position, sb.rotation, body_axes(state, scratch, b)};
+  const float speculative = pair_speculative(state, a, b);
+  const bool a_leads = ia.shape.type == ShapeType::kCompound;
+  const uint32_t count =
+      a_leads
+          ? collide_compound_parts(ia.shape, pa, ib.shape, pb, speculative, *scratch.store, parts)
+          : collide_compound_parts(ib.shape, pb, ia.shape, pa, speculative, *scratch.store, parts);
+  for (uint32_t k = 0; k < count; ++k) {
+    Manifold& m = parts[k];
+    if (!a_leads) m.normal = -m.normal;
+    for (uint32_t i = 0; i < m.point_count; ++i) {
+      m.points[i].anchor_a = m.points[i].point - pa.position;
+      m.points[i].anchor_b = m.points[i].point - pb.position;
     }
   }
-  if (rec.point_count > 0) {
-    record_frame(axes_a, relative_pose(sa, axes_a, sb), m, rec);
-  } else {
-    rec.frame_position = {};
-    rec.frame_rotation = {};
-    rec.frame_normal = {};
-  }
-  return false;
+  return count;
 }
 
 // Whether last step's separating axis of a box pair (if it had one) still
@@ -195,6 +251,7 @@ void update_contacts(WorldState& state, WorldScratch& scratch) {
     uint64_t ko = j < old.size() ? key(old[j].index_a, old[j].index_b) : ~uint64_t{0};
     if (j < old.size() && (i == pairs.size() || ko < kp)) {
       if (both_resting(state, old[j])) {
+        if (geometry.size() <= out.size()) geometry.resize(out.size() + 1);
         geometry[out.size()].valid = 0;
         out.push_back(old[j]);
       }
@@ -205,12 +262,18 @@ void update_contacts(WorldState& state, WorldScratch& scratch) {
     const uint32_t b = pairs[i].b;
     const uint32_t generation_a = state.infos[a].generation;
     const uint32_t generation_b = state.infos[b].generation;
+    // The pair's records of last step (parts in a row), when its bodies
+    // are the same ones.
     const ContactRecord* prior = nullptr;
+    size_t prior_count = 0;
     if (kp == ko) {
+      size_t end = j + 1;
+      while (end < old.size() && key(old[end].index_a, old[end].index_b) == ko) ++end;
       if (old[j].generation_a == generation_a && old[j].generation_b == generation_b) {
         prior = &old[j];
+        prior_count = end - j;
       }
-      ++j;
+      j = end;
     }
     ++i;
     if (prior == nullptr) {
@@ -222,7 +285,26 @@ void update_contacts(WorldState& state, WorldScratch& scratch) {
         continue;
       }
     }
+    if (in_parts(state.infos[a], state.infos[b])) {
+      Manifold parts[kMaxContactParts];
+      const uint32_t count = collide_parts(state, scratch, a, b, parts);
+      if (geometry.size() < out.size() + count) geometry.resize(out.size() + count);
+      for (uint32_t k = 0; k < count; ++k) {
+        ContactRecord& rec = out.emplace_back();
+        rec.index_a = a;
+        rec.index_b = b;
+        rec.generation_a = generation_a;
+        rec.generation_b = generation_b;
+        rec.part = static_cast<uint8_t>(k);
+        ContactGeometry& geo = geometry[out.size() - 1];
+        geo.manifold = parts[k];
+        fill_record(state, body_axes(state, scratch, a), rec, geo, false, prior, prior_count);
+        scratch.evaluated_records.push_back(static_cast<uint32_t>(out.size() - 1));
+      }
+      continue;
+    }
     // Built in place; dropped again when it is not kept.
+    if (geometry.size() <= out.size()) geometry.resize(out.size() + 1);
     ContactRecord& rec = out.emplace_back();
     rec.index_a = a;
     rec.index_b = b;
@@ -251,7 +333,18 @@ void refresh_contact(WorldState& state, WorldScratch& scratch, uint32_t index) {
   ContactRecord& rec = state.contacts[index];
   const ContactRecord prior = rec;
   ContactGeometry& geo = scratch.geometry[index];
-  evaluate(state, scratch, rec, &prior, geo);
+  if (in_parts(state.infos[rec.index_a], state.infos[rec.index_b])) {
+    // Its own part as the pair stands now (both slept, so nothing moved:
+    // the same groups in the same order).
+    Manifold parts[kMaxContactParts];
+    const uint32_t count = collide_parts(state, scratch, rec.index_a, rec.index_b, parts);
+    geo.manifold = rec.part < count ? parts[rec.part] : Manifold{};
+    if (geo.manifold.point_count > 0) {
+      fill_record(state, body_axes(state, scratch, rec.index_a), rec, geo, false, &prior, 1);
+    }
+  } else {
+    evaluate(state, scratch, rec, &prior, geo);
+  }
   if (geo.manifold.point_count == 0) {
     // Out of reach now. The record stays in this step's cache without
     // points (it ends with an exit event, and the next step drops it).
@@ -262,6 +355,7 @@ void refresh_contact(WorldState& state, WorldScratch& scratch, uint32_t index) {
     rec.index_b = ids.index_b;
     rec.generation_b = ids.generation_b;
     rec.sensor = ids.sensor;
+    rec.part = ids.part;
     geo.valid = 1;
   }
 }

@@ -1,11 +1,16 @@
 // SPDX-License-Identifier: MIT
 // The compound: registered convex children (compound.h) in the body's mass
-// frame. Each child meets the other shape through the collide table; the
-// children's manifolds become one (the body pair has one contact record):
-// the deepest child's normal, the points of every child manifold within 30
-// degrees of it (their separations measured along it), reduced to four as
-// triangle contacts are (manifold_triangles.h). Feature ids mix the child
+// frame. Each child meets the other shape through the collide table, and
+// the children's manifolds are grouped by normal: the deepest child leads
+// the first group, every child within 30 degrees of a group's leader joins
+// it (the first such group), and a child no group takes leads a new one,
+// up to kMaxContactParts (a child beyond them is dropped). Each group is
+// one manifold, the body pair's contact record of that part: the leader's
+// normal, its members' points measured along it, reduced to four as
+// triangle contacts are (manifold_triangles.h). So a table wedged between
+// the floor and a wall keeps both contacts. Feature ids mix the child
 // index into the child's id, so they persist while the same children touch.
+#include <algorithm>
 #include <string>
 
 #include "d3/compound.h"
@@ -108,47 +113,114 @@ ShapeCastOutput sweep(const Shape& s, const GeometryStore& store, Vec3 position,
 
 }  // namespace
 
-void collide_compound(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
-                      float speculative_m, const GeometryStore& store, Manifold& out) {
+uint32_t collide_compound_parts(const Shape& a, const ShapePose& pa, const Shape& b,
+                                const ShapePose& pb, float speculative_m,
+                                const GeometryStore& store, Manifold out[kMaxContactParts]) {
   const Compound& c = compound_of(a, store);
-  Manifold parts[kCompoundMaxChildren];
-  uint32_t deepest = kCompoundMaxChildren;
-  float deepest_sep = 0.0f;
+  // Each child of A against B, or against each child of B when B is a
+  // compound too (every child pair is its own contact: a compound B would
+  // answer a child of A with its deepest group alone). At most
+  // kCompoundMaxChildren child contacts are kept, the deepest (ties to the
+  // earlier pair).
+  const Compound* cb = b.type == ShapeType::kCompound ? &compound_of(b, store) : nullptr;
+  const uint32_t b_count = cb != nullptr ? static_cast<uint32_t>(cb->parts.size()) : 1u;
+  Manifold children[kCompoundMaxChildren];
+  float deepest[kCompoundMaxChildren];
+  uint32_t keys[kCompoundMaxChildren];
+  uint32_t order[kCompoundMaxChildren];
+  uint32_t touching = 0;
+  Manifold contact;
   for (uint32_t i = 0; i < c.parts.size(); ++i) {
-    collide_shapes(c.parts[i].shape, child_pose(pa, c.parts[i]), b, pb, speculative_m, parts[i],
-                   &store);
-    for (uint32_t k = 0; k < parts[i].point_count; ++k) {
-      if (deepest == kCompoundMaxChildren || parts[i].points[k].separation < deepest_sep) {
-        deepest = i;
-        deepest_sep = parts[i].points[k].separation;
+    const ShapePose child_a = child_pose(pa, c.parts[i]);
+    for (uint32_t j = 0; j < b_count; ++j) {
+      if (cb != nullptr) {
+        collide_shapes(c.parts[i].shape, child_a, cb->parts[j].shape, child_pose(pb, cb->parts[j]),
+                       speculative_m, contact, &store);
+      } else {
+        collide_shapes(c.parts[i].shape, child_a, b, pb, speculative_m, contact, &store);
       }
+      if (contact.point_count == 0) continue;
+      float low = contact.points[0].separation;
+      for (uint32_t k = 1; k < contact.point_count; ++k) {
+        if (contact.points[k].separation < low) low = contact.points[k].separation;
+      }
+      uint32_t slot = touching;
+      if (touching == kCompoundMaxChildren) {
+        // Full: the shallowest gives way to a deeper one.
+        slot = 0;
+        for (uint32_t t = 1; t < touching; ++t) {
+          if (deepest[t] >= deepest[slot]) slot = t;
+        }
+        if (!(low < deepest[slot])) continue;
+      } else {
+        ++touching;
+      }
+      children[slot] = contact;
+      deepest[slot] = low;
+      keys[slot] = cb != nullptr ? (i << 27) ^ (j << 23) : (i << 27);
     }
   }
+  for (uint32_t t = 0; t < touching; ++t) order[t] = t;
+  // Deepest child contact first (ties to the lower key): it leads the
+  // first group, as the deepest child's normal led the single manifold.
+  std::sort(order, order + touching, [&](uint32_t x, uint32_t y) {
+    return deepest[x] < deepest[y] || (deepest[x] == deepest[y] && keys[x] < keys[y]);
+  });
+  uint32_t group_of[kCompoundMaxChildren];
+  static_assert(kCompoundMaxChildren <= 16, "child indices take four bits of a feature id");
+  uint32_t groups = 0;
+  for (uint32_t n = 0; n < touching; ++n) {
+    const uint32_t i = order[n];
+    group_of[i] = kMaxContactParts;  // dropped, unless a group takes it
+    for (uint32_t g = 0; g < groups; ++g) {
+      if (dot(children[i].normal, out[g].normal) >= kBlendCos) {
+        group_of[i] = g;
+        break;
+      }
+    }
+    if (group_of[i] == kMaxContactParts && groups < kMaxContactParts) {
+      group_of[i] = groups;
+      out[groups++].normal = children[i].normal;
+    }
+  }
+  // Each group's points, measured along its leader's normal, reduced to
+  // four as triangle contacts are.
+  TrianglePoint points[kCompoundMaxChildren * kMaxManifoldPoints];
+  for (uint32_t g = 0; g < groups; ++g) {
+    Manifold& m = out[g];
+    const Vec3 normal = m.normal;
+    uint32_t n = 0;
+    for (uint32_t t = 0; t < touching; ++t) {
+      const uint32_t i = order[t];
+      if (group_of[i] != g) continue;
+      const float cos = dot(children[i].normal, normal);
+      for (uint32_t k = 0; k < children[i].point_count; ++k) {
+        const ManifoldPoint& p = children[i].points[k];
+        points[n++] = {p.point, p.separation * cos, keys[i] ^ p.feature_id};
+      }
+    }
+    uint32_t chosen[4];
+    const uint32_t kept = reduce_triangle_points(points, n, normal, chosen);
+    m.separating_axis = kNoSeparatingAxis;
+    for (uint32_t k = 0; k < kept; ++k) {
+      ManifoldPoint& mp = m.points[k];
+      mp.point = points[chosen[k]].point;
+      mp.separation = points[chosen[k]].separation;
+      mp.feature_id = points[chosen[k]].feature_id;
+    }
+    m.point_count = kept;
+  }
+  return groups;
+}
+
+void collide_compound(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
+                      float speculative_m, const GeometryStore& store, Manifold& out) {
+  Manifold parts[kMaxContactParts];
   out.point_count = 0;
   out.separating_axis = kNoSeparatingAxis;
   out.normal = {0.0f, 1.0f, 0.0f};
-  if (deepest == kCompoundMaxChildren) return;
-  const Vec3 normal = parts[deepest].normal;
-  TrianglePoint points[kCompoundMaxChildren * kMaxManifoldPoints];
-  uint32_t n = 0;
-  for (uint32_t i = 0; i < c.parts.size(); ++i) {
-    const float cos = dot(parts[i].normal, normal);
-    if (!(cos >= kBlendCos)) continue;
-    for (uint32_t k = 0; k < parts[i].point_count; ++k) {
-      const ManifoldPoint& p = parts[i].points[k];
-      points[n++] = {p.point, p.separation * cos, (i << 27) ^ p.feature_id};
-    }
-  }
-  uint32_t chosen[4];
-  const uint32_t m = reduce_triangle_points(points, n, normal, chosen);
-  out.normal = normal;
-  for (uint32_t i = 0; i < m; ++i) {
-    ManifoldPoint& mp = out.points[i];
-    mp.point = points[chosen[i]].point;
-    mp.separation = points[chosen[i]].separation;
-    mp.feature_id = points[chosen[i]].feature_id;
-  }
-  out.point_count = m;
+  if (collide_compound_parts(a, pa, b, pb, speculative_m, store, parts) == 0) return;
+  out = parts[0];
 }
 
 extern const ShapeOps kCompoundOps{"compound", true,        check,   canonical, extent, volume,

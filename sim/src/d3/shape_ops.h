@@ -18,6 +18,7 @@
 #include "rewind/sim/math.h"
 #include "rewind/sim/shape.h"
 #include "rewind/sim/status.h"
+#include "rewind/sim/world_state.h"
 
 namespace rwd::sim::d3 {
 
@@ -112,8 +113,13 @@ void collide_mesh_convex(const Shape& mesh, const ShapePose& pose, const Shape& 
 void collide_height_field_convex(const Shape& field, const ShapePose& pose, const Shape& shape,
                                  const ShapePose& shape_pose, float speculative_m,
                                  const GeometryStore& store, Manifold& out);
-/// A compound (A) against any shape (B): its children's manifolds merged
-/// into one, normal from A to B (shape_compound.cpp).
+/// A compound (A) against any shape (B): its children's manifolds grouped
+/// by normal into out[0, count), the deepest group first, each normal from
+/// A to B (shape_compound.cpp). Returns count, at most kMaxContactParts.
+uint32_t collide_compound_parts(const Shape& a, const ShapePose& pa, const Shape& b,
+                                const ShapePose& pb, float speculative_m,
+                                const GeometryStore& store, Manifold out[kMaxContactParts]);
+/// The deepest group of collide_compound_parts alone (no points when none).
 void collide_compound(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
                       float speculative_m, const GeometryStore& store, Manifold& out);
 

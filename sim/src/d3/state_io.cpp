@@ -31,8 +31,10 @@ constexpr uint8_t kMagic[4] = {'R', 'W', 'D', '3'};
 // 5: hulls (a geometry id in place of sizes), the digest of the geometry
 // the state refers to, and each body's continuous and contact-events flags.
 // 6: joint slots after the contacts. 7: scheduled queries after the
-// joints; each body's event mask in its contact-events byte.
-constexpr uint32_t kVersion = 8;
+// joints; each body's event mask in its contact-events byte. 8: the free
+// spin's gyroscopic carry (sim revision 11). 9: each contact record's part
+// (a compound pair has one record per group of contact normals).
+constexpr uint32_t kVersion = 9;
 // Starts the scheduled queries in the checksum's stream.
 constexpr uint32_t kQueriesTag = 0x53514451u;  // "QDQS"
 // Bounds the allocation a hostile header can request.
@@ -472,7 +474,7 @@ Status World3D::deserialize(std::span<const uint8_t> bytes) {
     if (st.infos[i].alive == 0) st.free_slots.push_back(i);
   }
   uint32_t contacts = r.u32();
-  if (!r.ok() || contacts > r.remaining() / 19) return corrupt("bad contact count");
+  if (!r.ok() || contacts > r.remaining() / 20) return corrupt("bad contact count");
   st.contacts.resize(contacts);
   for (uint32_t k = 0; k < contacts; ++k) {
     ContactRecord& rec = st.contacts[k];

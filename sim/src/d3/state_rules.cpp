@@ -256,9 +256,30 @@ Status check_contact(const std::vector<BodyInfo>& infos, const ContactRecord& r,
       return invalid("manifold frame out of range or not unit");
     }
   }
-  if (previous != nullptr && (previous->index_a > r.index_a ||
-                              (previous->index_a == r.index_a && previous->index_b >= r.index_b))) {
+  // Sorted by (index_a, index_b), a pair's parts 0, 1, ... in a row, all
+  // of the same bodies, and parts past 0 only for a solid compound pair.
+  const bool same_pair =
+      previous != nullptr && previous->index_a == r.index_a && previous->index_b == r.index_b;
+  if (previous != nullptr && !same_pair &&
+      (previous->index_a > r.index_a ||
+       (previous->index_a == r.index_a && previous->index_b > r.index_b))) {
     return invalid("records out of order");
+  }
+  if (r.part >= kMaxContactParts || (same_pair ? r.part != previous->part + 1 : r.part != 0)) {
+    return invalid("contact parts out of order");
+  }
+  if (same_pair && (previous->generation_a != r.generation_a ||
+                    previous->generation_b != r.generation_b || r.sensor != 0)) {
+    return invalid("contact parts of different bodies");
+  }
+  // (Bodies destroyed since, their slots perhaps reused, are not asked.)
+  const BodyInfo& ia = infos[r.index_a];
+  const BodyInfo& ib = infos[r.index_b];
+  const bool live = ia.alive != 0 && ib.alive != 0 && ia.generation == r.generation_a &&
+                    ib.generation == r.generation_b;
+  if (r.part > 0 && live && ia.shape.type != ShapeType::kCompound &&
+      ib.shape.type != ShapeType::kCompound) {
+    return invalid("contact parts of a pair without a compound");
   }
   return Status::Ok();
 }

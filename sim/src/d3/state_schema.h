@@ -128,6 +128,7 @@ template <class Io, class Record>
   io.flag("touching", r.touching);
   io.flag("sensor", r.sensor);
   io.count("point_count", r.point_count, static_cast<uint8_t>(kMaxManifoldPoints));
+  io.count("part", r.part, static_cast<uint8_t>(kMaxContactParts - 1));
   for (uint32_t p = 0; p < r.point_count; ++p) {
     auto& point = r.points[p];
     io.u32("point.feature_id", point.feature_id);

@@ -4,6 +4,7 @@
 // (and tips when held under its authored origin instead), a table of five
 // boxes standing on its legs, compounds on compounds and on meshes, rays
 // and shape casts, refused children, and snapshots restored bit for bit.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -154,6 +155,51 @@ TEST(CompoundBodies, ATableStandsOnItsLegsAndCarriesAnother) {
   ASSERT_TRUE(cast.has_value());
   EXPECT_NE(cast->body, lower);
   EXPECT_NEAR(cast->distance, 5.0f, 2e-3f);
+}
+
+// A box pressed into the corner of one static compound, a floor and a wall:
+// the pair touches along two directions, and keeps a contact record for
+// each (ContactRecord::part). With one manifold per pair it kept the
+// deeper direction only: the box sank into the wall or the floor in turn
+// and never came to rest. Events stay one per pair.
+TEST(CompoundBodies, ABoxInACompoundCornerKeepsBothContacts) {
+  WorldConfig config;
+  config.gravity = {-4.0f, -9.81f, 0.0f};  // into the wall and the floor
+  World3D world(config);
+  const std::vector<CompoundChild> corner = {
+      {Shape::make_box({2.0f, 0.1f, 1.0f}), {0.0f, -0.1f, 0.0f}, {}},
+      {Shape::make_box({0.1f, 1.0f, 1.0f}), {-2.1f, 1.0f, 0.0f}, {}}};
+  const GeometryId id = *world.geometry().add_compound(corner);
+  const BodyId fixed = add_compound_body(world, id, {}, {}, BodyKind::kStatic);
+  BodyDef def;
+  def.shape = Shape::make_box({0.25f, 0.25f, 0.25f});
+  def.position = {-1.6f, 0.5f, 0.0f};
+  def.material.friction = 0.0f;  // slides into the corner
+  def.event_mask = kEventAll;
+  const BodyId box = *world.create_body(def);
+  int enters = 0;
+  int exits = 0;
+  uint32_t most_manifolds = 0;
+  for (int t = 0; t < 120; ++t) {
+    world.step();
+    most_manifolds = std::max(most_manifolds, world.stats().touching_manifolds);
+    for (const ContactEvent& e : world.events()) {
+      if (e.type == ContactEventType::kEnter) ++enters;
+      if (e.type == ContactEventType::kExit) ++exits;
+      EXPECT_TRUE((e.a == fixed && e.b == box) || (e.a == box && e.b == fixed));
+    }
+  }
+  EXPECT_EQ(most_manifolds, 2u) << "the floor's contact and the wall's";
+  EXPECT_EQ(enters, 1) << "one body pair enters once";
+  EXPECT_EQ(exits, 0);
+  // At rest in the corner: neither face deeper than the slop and a
+  // millimetre (the wall's face is at x = -2.0, the floor's at y = 0).
+  const float slop = world.config().linear_slop_m;
+  const Vec3 p = world.position(box);
+  EXPECT_GT(p.x - 0.25f, -2.0f - slop - 1e-3f);
+  EXPECT_GT(p.y - 0.25f, -slop - 1e-3f);
+  EXPECT_LT(length(world.linear_velocity(box)), 0.01f);
+  test::expect_snapshots_restore(world);
 }
 
 TEST(CompoundBodies, RefusesBadChildren) {

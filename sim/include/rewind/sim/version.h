@@ -50,7 +50,8 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///  11  gyroscopic term turned by the mean of the tick's start and end
 ///      rates, its energy kept through |L|^2 - 2 E I_mid
 ///  12  substeps longer than 1/180 s solve their contacts in three passes;
-///      substeps longer than 1/120 s are refused
+///      substeps longer than 1/120 s are refused; a compound pair keeps a
+///      contact record per group of contact normals (ContactRecord::part)
 inline constexpr uint32_t kSimRevision = 12;
 
 /// "rewind-sim r11": the engine identity a replay records.

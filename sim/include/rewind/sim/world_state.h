@@ -74,6 +74,8 @@ struct BodyMass {
 
 /// Maximum contact points in one manifold.
 inline constexpr uint32_t kMaxManifoldPoints = 4;
+/// Most contact records one body pair has (ContactRecord::part).
+inline constexpr uint32_t kMaxContactParts = 4;
 
 /// The persistent part of one contact point: its feature id, the impulses
 /// it ended the last step with (warm start), and where it was when its
@@ -88,8 +90,9 @@ struct CachedContactPoint {
   float separation = 0.0f;        ///< metres along the normal to B's surface then
 };
 
-/// One pair of bodies whose fat bounds overlapped last step. Records are kept
-/// sorted by (index_a, index_b) with index_a < index_b. Generations make a
+/// One pair of bodies whose fat bounds overlapped last step (or one part of
+/// it, see `part`). Records are kept sorted by (index_a, index_b, part) with
+/// index_a < index_b. Generations make a
 /// record of a destroyed body distinct from one of its slot's next occupant.
 struct ContactRecord {
   uint32_t index_a = 0;
@@ -99,6 +102,11 @@ struct ContactRecord {
   uint8_t touching = 0;  ///< 1: manifold had points (solid) or shapes overlapped (sensor)
   uint8_t sensor = 0;    ///< 1: at least one body is a sensor
   uint8_t point_count = 0;
+  /// Which of the pair's records this is, [0, kMaxContactParts): a solid
+  /// pair with a compound has one per group of its children's contacts
+  /// whose normals lie within 30 degrees of each other, deepest group
+  /// first (parts 0, 1, ... in a row); every other pair has part 0 only.
+  uint8_t part = 0;
   CachedContactPoint points[kMaxManifoldPoints];
   // The frame of the last computed manifold (meaningful when point_count >
   // 0): B's centre and rotation, and the normal, in A's body frame. While B
@@ -200,7 +208,7 @@ struct WorldState {
   std::vector<BodyMass> masses;  ///< one per slot
   /// Dead slot indices, sorted descending so back() is the lowest free slot.
   std::vector<uint32_t> free_slots;
-  /// Contact cache sorted by (index_a, index_b); source of warm starting,
+  /// Contact cache sorted by (index_a, index_b, part); source of warm starting,
   /// contact events (previous touching pairs) and sleeping contacts.
   std::vector<ContactRecord> contacts;
   /// Joint slots, live or dead, by JointId::index; solved in this order.
