@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "d3/state_rules.h"
 #include "rewind/sim/world3d.h"
 #include "sim_test_scenes.h"
 
@@ -239,6 +240,56 @@ TEST(CompoundBodies, SnapshotsRestoreBitForBit) {
   }
   test::step_seconds(world, 0.5f);
   test::expect_snapshots_restore(world);
+}
+
+}  // namespace
+}  // namespace rwd::sim
+
+namespace rwd::sim {
+namespace {
+
+// What a snapshot may hold of a pair's parts (d3::check_contact, which
+// deserialize() runs on every record): parts 0, 1, ... in a row, of one
+// solid pair of bodies, below kMaxContactParts, and past 0 only with a
+// compound.
+TEST(CompoundBodies, SnapshotPartsAreCheckedInOrder) {
+  World3D world;
+  const std::vector<CompoundChild> two = {{Shape::make_box({0.5f, 0.1f, 0.5f}), {}, {}},
+                                          {Shape::make_box({0.1f, 0.5f, 0.5f}), {1.0f, 0, 0}, {}}};
+  const GeometryId id = *world.geometry().add_compound(two);
+  BodyDef compound;
+  compound.kind = BodyKind::kStatic;
+  compound.shape = Shape::make_compound(id);
+  ASSERT_TRUE(world.create_body(compound).ok());  // index 0
+  test::add_box(world, {0.0f, 2.0f, 0.0f});       // index 1
+  test::add_box(world, {3.0f, 2.0f, 0.0f});       // index 2
+  const std::vector<BodyInfo>& infos = world.state().infos;
+  const auto record = [&](uint32_t a, uint32_t b, uint8_t part) {
+    ContactRecord r;
+    r.index_a = a;
+    r.index_b = b;
+    r.generation_a = infos[a].generation;
+    r.generation_b = infos[b].generation;
+    r.part = part;
+    return r;
+  };
+  const ContactRecord p0 = record(0, 1, 0);
+  const ContactRecord p1 = record(0, 1, 1);
+  EXPECT_TRUE(d3::check_contact(infos, p0, nullptr).ok());
+  EXPECT_TRUE(d3::check_contact(infos, p1, &p0).ok());
+  EXPECT_FALSE(d3::check_contact(infos, p1, nullptr).ok()) << "a pair starts at part 0";
+  EXPECT_FALSE(d3::check_contact(infos, record(0, 1, 2), &p0).ok()) << "parts in a row";
+  EXPECT_FALSE(d3::check_contact(infos, p0, &p0).ok()) << "a part twice";
+  EXPECT_FALSE(d3::check_contact(infos, p0, &p1).ok()) << "parts in order";
+  ContactRecord p4 = record(0, 1, 4);
+  ContactRecord p3 = record(0, 1, 3);
+  EXPECT_FALSE(d3::check_contact(infos, p4, &p3).ok()) << "at most kMaxContactParts";
+  ContactRecord sensor = p1;
+  sensor.sensor = 1;
+  EXPECT_FALSE(d3::check_contact(infos, sensor, &p0).ok()) << "a sensor pair has one record";
+  const ContactRecord boxes0 = record(1, 2, 0);
+  EXPECT_TRUE(d3::check_contact(infos, boxes0, &p1).ok());
+  EXPECT_FALSE(d3::check_contact(infos, record(1, 2, 1), &boxes0).ok()) << "no compound";
 }
 
 }  // namespace
