@@ -18,9 +18,13 @@
 // pose moved by t of the translation and turned by t of the rotation, and t
 // grows by the distance to the target over a bound on how fast any point of
 // the body moves (translation plus the turn times its extent), so it can
-// never step through; it stops once within a slop. Against meshes and
-// height fields (no convex proxy) such a body is swept by translation, as
-// the others.
+// never step through; it stops once within a slop (or within half the gap
+// it started with, when that is less: a plank pivoting on a pole it struck
+// last tick). Its angular velocity turns back with it, the same in its own
+// frame. The turn is the one the tick made after the solver's gyroscopic
+// carry (contact_solver.cpp: finalize), so the sweep starts where the body
+// did. Against meshes and height fields (no convex proxy) such a body is
+// swept by translation, as the others.
 //
 // Bodies that do not opt in cost nothing beyond skipping their flag; a
 // world without moving continuous bodies never asks the broadphase for queries.
@@ -90,19 +94,30 @@ float separation(const SweptShape& a, const SweptShape& b) {
 }
 
 // The first fraction of the tick, below `first`, at which the moving body
-// comes within `slop` of `target`, by conservative advancement; `first`
-// when it does not, or when it starts that close (the contacts' business).
+// comes within a target distance of `target`, by conservative advancement;
+// `first` when it does not, or when it starts overlapping (the contacts'
+// business). The target is a slop, or half the gap for a body that starts
+// within a slop: a spinning body already beside a shape (a plank that
+// struck a pole last tick and is pivoting on it) is held off it too, since
+// the contact, anchored where it touched at the start of the tick, does not
+// follow a turn of a fifth of a radian along the face.
 float advance_to_impact(const Shape& shape, const GeometryStore& store, const Motion& m,
                         float extent, const SweptShape& target, float slop, float first,
                         SweptShape& mover) {
   // No point of the body moves faster than this over the tick.
   const float bound = length(m.move) + m.angle * extent;
   float t = 0.0f;
+  float goal = slop;
   for (int iteration = 0; iteration < 32; ++iteration) {
     make_swept_shape(shape, store, m.start + m.move * t, mat3_from_quat(rotation_at(m, t)), mover);
     const float d = separation(mover, target);
-    if (d <= slop) return iteration == 0 ? first : t;
-    t += (d - 0.5f * slop) / bound;
+    if (iteration == 0) {
+      if (d <= 0.0f) return first;
+      goal = std::min(slop, 0.5f * d);
+    }
+    // Within half the goal again of it: stop (never short of the goal).
+    if (d <= 1.5f * goal) return t;
+    t += (d - goal) / bound;
     if (t >= first) return first;
   }
   return t;  // still closing in after every iteration: stop here, short of it
@@ -130,9 +145,9 @@ void continuous_collision(WorldState& state, WorldScratch& scratch) {
     // Turned further than half its thinnest half-width at its extent: the
     // end rotation does not stand for the tick.
     const Aabb local = shape_aabb(info.shape, Vec3{}, Mat3{});
-    const float thinnest = 0.5f * std::min({local.upper.x - local.lower.x,
-                                            local.upper.y - local.lower.y,
-                                            local.upper.z - local.lower.z});
+    const float thinnest =
+        0.5f * std::min({local.upper.x - local.lower.x, local.upper.y - local.lower.y,
+                         local.upper.z - local.lower.z});
     const bool spinning = motion.angle * extent > std::max(slop, 0.5f * thinnest);
     // The contacts hold what moves this little.
     if (distance_sq <= slop * slop && !spinning) continue;
@@ -186,9 +201,13 @@ void continuous_collision(WorldState& state, WorldScratch& scratch) {
     }
     if (first >= 1.0f) continue;
     if (turned_back) {
-      // Advancement stopped within a slop of the impact: the pose there.
+      // Advancement stopped short of the impact: the pose there, with the
+      // angular velocity turned back with the body (the same in the body's
+      // frame), so a body whose inertia differs by axis keeps its energy.
+      const Quat back = normalize(rotation_at(motion, first) * conjugate(sim.rotation));
       sim.position = start + move * first;
       sim.rotation = rotation_at(motion, first);
+      sim.angular_velocity = rotate(back, sim.angular_velocity);
     } else {
       // Back to the impact, and half a slop short of it along the path, so
       // the next tick starts with a speculative contact, not an overlap.
