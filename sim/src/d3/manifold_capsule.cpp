@@ -383,50 +383,42 @@ void collide_box_capsule(const BoxPose& box, const CapsulePose& capsule, float s
     const Vec3 p = seg.point(s);
     const Vec3 q{clampf(p.x, -seg.h[0], seg.h[0]), clampf(p.y, -seg.h[1], seg.h[1]),
                  clampf(p.z, -seg.h[2], seg.h[2])};
-    // Along a face: the segment nearly parallel to the face the nearest
-    // point lies farthest beyond (a coordinate within rounding of a face
-    // plane is on it), and some of it over the face.
+    // Along a face: one coordinate outside (a coordinate within rounding of
+    // a face plane is on it), and the segment nearly parallel to that face.
+    // Along an edge: two outside, and the segment nearly parallel to the
+    // third axis.
     const float len = length(v);
-    int axis = -1;
-    float farthest = 0.0f;
+    int outside = 0;
+    int axis = 0;
+    int along = 0;
     for (int i = 0; i < 3; ++i) {
-      const float excess = std::fabs(component(p, i) - component(q, i));
-      if (excess > on_plane_tolerance(seg, i, len) && excess > farthest) {
-        farthest = excess;
+      if (std::fabs(component(p, i) - component(q, i)) > on_plane_tolerance(seg, i, len)) {
+        ++outside;
         axis = i;
+      } else {
+        along = i;
       }
     }
-    if (axis >= 0 && std::fabs(component(v, axis)) <= kFaceParallelSin * len) {
+    if (outside == 1 && std::fabs(component(v, axis)) <= kFaceParallelSin * len) {
       face_points(seg, axis, component(p, axis) > 0.0f ? 1.0f : -1.0f, r, speculative_m, box, out);
       if (out.point_count > 0) return;
     }
-    // Along an edge: the segment nearly parallel to a box axis, and the
-    // middle of the part of it within the box's extent on that axis beyond
-    // the box on both others. Both points share the normal there, square to
-    // the edge, so neither end leans on the other.
-    for (int k = 0; k < 3; ++k) {
-      float lo = 0.0f;
-      float hi = 0.0f;
-      if (std::fabs(component(v, k)) < kEdgeParallelCos * len || !clip_along(seg, k, lo, hi)) {
-        continue;
+    float lo = 0.0f;
+    float hi = 0.0f;
+    if (outside == 2 && std::fabs(component(v, along)) >= kEdgeParallelCos * len &&
+        clip_along(seg, along, lo, hi)) {
+      // Both points share the normal at the nearest point, square to the
+      // edge (q is on it: its other two coordinates are clamped onto face
+      // planes). Where that point is inside the part beside the edge, the
+      // segment is square to the normal there, so both ends are as far
+      // along it as the nearest point.
+      float off[3] = {p.x - q.x, p.y - q.y, p.z - q.z};
+      off[along] = 0.0f;
+      const Vec3 n = normalize_or_zero(Vec3{off[0], off[1], off[2]});
+      if (length_squared(n) > 0.0f) {
+        edge_points(seg, along, lo, hi, q, n, r, speculative_m, box, out);
+        if (out.point_count > 0) return;
       }
-      const Vec3 mid = seg.point(0.5f * (lo + hi));
-      float edge[3] = {0.0f, 0.0f, 0.0f};
-      float across[3] = {0.0f, 0.0f, 0.0f};
-      bool beside = true;
-      for (int i = 0; i < 3; ++i) {
-        if (i == k) continue;
-        const float x = component(mid, i);
-        edge[i] = x < 0.0f ? -seg.h[i] : seg.h[i];
-        across[i] = x - edge[i];
-        beside = beside && std::fabs(x) - seg.h[i] > on_plane_tolerance(seg, i, len);
-      }
-      if (!beside) break;
-      const Vec3 n{across[0], across[1], across[2]};
-      edge_points(seg, k, lo, hi, Vec3{edge[0], edge[1], edge[2]}, normalize_or_zero(n), r,
-                  speculative_m, box, out);
-      if (out.point_count > 0) return;
-      break;
     }
     const float dist = std::sqrt(dist_sq);
     const Vec3 n_local = (p - q) * (1.0f / dist);
