@@ -465,7 +465,7 @@ void update_sleep_timer(const WorldConfig& config, BodyKind kind, float extent, 
 void finalize(WorldState& state, WorldScratch& scratch, float tick) {
   const WorldConfig& config = state.config;
   for (size_t i = 1; i < scratch.solver_bodies.size(); ++i) {
-    const SolverBody& b = scratch.solver_bodies[i];
+    SolverBody& b = scratch.solver_bodies[i];
     uint32_t index = scratch.solver_body_ids[i];
     BodySim& sim = state.sims[index];
     const BodySim before = sim;
@@ -487,6 +487,10 @@ void finalize(WorldState& state, WorldScratch& scratch, float tick) {
                                                b.angular_velocity, tick);
       sim.angular_velocity = spin.angular_velocity;
       sim.rotation = spin.rotation;
+      // The turn the tick made after the carry's correction: continuous
+      // collision sweeps a body from where it started by this turn (read
+      // by nothing else after the solve).
+      b.delta_rotation = normalize(sim.rotation * conjugate(before.rotation));
     }
     sim.force = {};
     sim.torque = {};

@@ -10,14 +10,17 @@
 //  - box-capsule: the closest points of the segment and the box, exactly
 //    (the squared distance is a quadratic in the segment parameter between
 //    the places where the segment crosses a face plane); two points where
-//    the segment lies along a face, one otherwise. A segment that reaches
-//    into the box is pushed out along the axis of least penetration
-//    (separating axis test over the three face normals and the segment
-//    crossed with the three edge directions).
+//    the segment lies along a face or along an edge (both ends of the part
+//    of it beside the face or the edge, so the push is spread evenly across
+//    the box: a plank struck across its width by a pole does not take the
+//    whole blow at one corner and roll about its long axis), one otherwise.
+//    A segment that reaches into the box is pushed out along the axis of
+//    least penetration (separating axis test over the three face normals
+//    and the segment crossed with the three edge directions).
 // Feature ids: capsule-sphere 0; capsule-capsule 0 (one point), 1 and 2
 // (side by side); box-capsule 0x100 | face << 4 | end (along a face), 0x200
 // | region of the box point (one point outside), 0x300 | axis (reaching in,
-// edge axes).
+// edge axes), 0x400 | edge << 4 | end (along an edge).
 #include <cmath>
 #include <limits>
 
@@ -33,6 +36,9 @@ constexpr float kParallelSin = 0.02f;
 // the face: both its clipped ends become points (those out of reach are
 // dropped), so a capsule lying on a box rests on two points, not one.
 constexpr float kFaceParallelSin = 0.1f;
+// A segment within this (cos of the angle) of a box edge's direction lies
+// along the edge: both its clipped ends become points, as along a face.
+constexpr float kEdgeParallelCos = 0.995f;  // sqrt(1 - kFaceParallelSin^2)
 
 float clampf(float v, float lo, float hi) {
   return v < lo ? lo : (v > hi ? hi : v);
@@ -296,6 +302,66 @@ void face_points(const LocalSegment& seg, int axis, float sign, float radius, fl
   }
 }
 
+// The part [lo, hi] of the segment whose coordinate along `axis` lies
+// within the box (widened by the clip margin); false if it is a point or
+// nothing.
+bool clip_along(const LocalSegment& seg, int axis, float& lo, float& hi) {
+  const float v = seg.v[axis];
+  if (v == 0.0f) return false;
+  const float limit = seg.h[axis] + kClipMargin;
+  lo = (-limit - seg.p0[axis]) / v;
+  hi = (limit - seg.p0[axis]) / v;
+  if (lo > hi) {
+    const float t = lo;
+    lo = hi;
+    hi = t;
+  }
+  lo = clampf(lo, 0.0f, 1.0f);
+  hi = clampf(hi, 0.0f, 1.0f);
+  return hi - lo > 1e-6f;
+}
+
+// Points at the ends [lo, hi] of the part of the segment beside the box
+// edge in direction `axis` whose other two coordinates are those of `edge`
+// (each on a face plane), all sharing the normal `n` (the box's frame). The
+// separation at each end is measured along n from the edge, as for
+// capsules side by side.
+void edge_points(const LocalSegment& seg, int axis, float lo, float hi, Vec3 edge, Vec3 n,
+                 float radius, float speculative_m, const BoxPose& box, Manifold& out) {
+  out.point_count = 0;
+  out.normal = rotate(box.rotation, n);
+  // Which edge: its direction and the sides of the other two axes.
+  uint32_t edge_id = static_cast<uint32_t>(axis) * 4u;
+  uint32_t bit = 1u;
+  for (int i = 0; i < 3; ++i) {
+    if (i == axis) continue;
+    if (component(edge, i) > 0.0f) edge_id |= bit;
+    bit <<= 1;
+  }
+  const float ends[2] = {lo, hi};
+  for (int k = 0; k < 2; ++k) {
+    const Vec3 p = seg.point(ends[k]);
+    float e[3] = {edge.x, edge.y, edge.z};
+    e[axis] = clampf(component(p, axis), -seg.h[axis], seg.h[axis]);
+    const Vec3 on_edge{e[0], e[1], e[2]};
+    const float separation = dot(p - on_edge, n) - radius;
+    if (separation > speculative_m) continue;
+    const Vec3 mid_local = (on_edge + (p - n * radius)) * 0.5f;
+    ManifoldPoint& mp = out.points[out.point_count++];
+    mp.point = box.center + rotate(box.rotation, mid_local);
+    mp.separation = separation;
+    mp.feature_id = 0x400u | (edge_id << 4) | static_cast<uint32_t>(k);
+  }
+}
+
+// A coordinate of the segment's nearest point within this of a face plane
+// lies on it: the nearest point found at a break (where the segment
+// crosses a side plane) lands on either side of that plane by rounding,
+// and a segment along a face must not read as one beyond its edge.
+float on_plane_tolerance(const LocalSegment& seg, int axis, float length_m) {
+  return 1e-5f * (1.0f + seg.h[axis] + length_m);
+}
+
 }  // namespace
 
 void collide_box_capsule(const BoxPose& box, const CapsulePose& capsule, float speculative_m,
@@ -317,20 +383,42 @@ void collide_box_capsule(const BoxPose& box, const CapsulePose& capsule, float s
     const Vec3 p = seg.point(s);
     const Vec3 q{clampf(p.x, -seg.h[0], seg.h[0]), clampf(p.y, -seg.h[1], seg.h[1]),
                  clampf(p.z, -seg.h[2], seg.h[2])};
-    // Along a face: one coordinate outside, and the segment nearly parallel
-    // to that face.
+    // Along a face: one coordinate outside (a coordinate within rounding of
+    // a face plane is on it), and the segment nearly parallel to that face.
+    // Along an edge: two outside, and the segment nearly parallel to the
+    // third axis.
+    const float len = length(v);
     int outside = 0;
     int axis = 0;
+    int along = 0;
     for (int i = 0; i < 3; ++i) {
-      if (component(p, i) != component(q, i)) {
+      if (std::fabs(component(p, i) - component(q, i)) > on_plane_tolerance(seg, i, len)) {
         ++outside;
         axis = i;
+      } else {
+        along = i;
       }
     }
-    const float len = length(v);
     if (outside == 1 && std::fabs(component(v, axis)) <= kFaceParallelSin * len) {
       face_points(seg, axis, component(p, axis) > 0.0f ? 1.0f : -1.0f, r, speculative_m, box, out);
       if (out.point_count > 0) return;
+    }
+    float lo = 0.0f;
+    float hi = 0.0f;
+    if (outside == 2 && std::fabs(component(v, along)) >= kEdgeParallelCos * len &&
+        clip_along(seg, along, lo, hi)) {
+      // Both points share the normal at the nearest point, square to the
+      // edge (q is on it: its other two coordinates are clamped onto face
+      // planes). Where that point is inside the part beside the edge, the
+      // segment is square to the normal there, so both ends are as far
+      // along it as the nearest point.
+      float off[3] = {p.x - q.x, p.y - q.y, p.z - q.z};
+      off[along] = 0.0f;
+      const Vec3 n = normalize_or_zero(Vec3{off[0], off[1], off[2]});
+      if (length_squared(n) > 0.0f) {
+        edge_points(seg, along, lo, hi, q, n, r, speculative_m, box, out);
+        if (out.point_count > 0) return;
+      }
     }
     const float dist = std::sqrt(dist_sq);
     const Vec3 n_local = (p - q) * (1.0f / dist);
@@ -387,9 +475,20 @@ void collide_box_capsule(const BoxPose& box, const CapsulePose& capsule, float s
     if (out.point_count > 0) return;
   }
   // An edge axis (or a face whose clip left nothing): one point, between
-  // the segment and the box's edge (or corner) farthest along the normal.
+  // the segment and the box's edge (or corner) farthest along the normal;
+  // two, at the ends of the part beside the edge, where the segment lies
+  // along the edge.
   const Vec3 n = best_normal;
   const int k = best_axis < 3 ? -1 : best_axis - 3;  // the edge's direction
+  float lo = 0.0f;
+  float hi = 0.0f;
+  if (k >= 0 && std::fabs(component(v, k)) >= kEdgeParallelCos * length(v) &&
+      clip_along(seg, k, lo, hi)) {
+    float edge[3];
+    for (int i = 0; i < 3; ++i) edge[i] = component(n, i) >= 0.0f ? seg.h[i] : -seg.h[i];
+    edge_points(seg, k, lo, hi, Vec3{edge[0], edge[1], edge[2]}, n, r, speculative_m, box, out);
+    if (out.point_count > 0) return;
+  }
   float e0[3];
   float ed[3] = {0.0f, 0.0f, 0.0f};
   for (int i = 0; i < 3; ++i) {

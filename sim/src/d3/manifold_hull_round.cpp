@@ -18,7 +18,11 @@
 //    straddle it (the Minkowski difference's faces, so the test is exact).
 //  - A segment along a face (within kFaceParallelSin of its plane) is
 //    clipped by the face's side planes: two points, so a capsule lying on a
-//    hull rests on both ends, as box-capsule does.
+//    hull rests on both ends, as box-capsule does. A segment along the edge
+//    GJK finds closest (within kEdgeParallelCos of its direction) is
+//    clipped to the edge's length: two points sharing GJK's normal, as
+//    box-capsule does, so a pole beside a plank's edge pushes both ends of
+//    it alike.
 //
 // Feature ids, kind in bits 16-19:
 //   face    (1 << 16) | face << 8 | k   the point lies over hull face `face`
@@ -30,6 +34,8 @@
 //           lying to leaning keeps its lower point's id.
 //   edge    (2 << 16) | v_hi << 8 | v_lo  the closest hull point lies on the
 //           edge between vertices v_lo < v_hi (Hull::vertices indices).
+//           Two points along the edge: k << 20 added, k = 1 at the clipped
+//           end toward the capsule's -axis end and 2 toward its +axis end.
 //   vertex  (3 << 16) | v   the closest hull point is vertex v.
 //   axis    (4 << 16) | e   a segment reaching in, pushed out along the
 //           segment crossed with hull edge e (Hull::edges index).
@@ -56,6 +62,9 @@ constexpr float kFaceLateral = 1e-5f;
 // As box-capsule: a segment within this (sin of the angle) of a face's
 // plane lies along the face and gets two points.
 constexpr float kFaceParallelSin = 0.1f;
+// As box-capsule: a segment within this (cos of the angle) of an edge's
+// direction lies along the edge and gets two points.
+constexpr float kEdgeParallelCos = 0.995f;
 // Side planes are widened by this much when clipping along a face, as for
 // box-capsule, so an end exactly over an edge is kept (metres).
 constexpr float kClipMargin = 0.001f;
@@ -206,6 +215,51 @@ void face_points(const Hull& hull, uint32_t fi, Vec3 p0, Vec3 v, float radius, f
   }
 }
 
+// Points along the hull edge of feature id `edge` (GJK's closest, normal n)
+// for the part of the segment beside it (its projection onto the edge
+// within the edge, widened by the clip margin), when the segment lies along
+// the edge; point_count 0 otherwise.
+void edge_points(const Hull& hull, uint32_t edge, Vec3 p0, Vec3 v, Vec3 n, float radius,
+                 float speculative_m, Vec3 hull_position, const Mat3& hull_axes, Manifold& out) {
+  out.point_count = 0;
+  const Vec3 a = hull.vertices[edge & 0xFFu];
+  const Vec3 ed = hull.vertices[(edge >> 8) & 0xFFu] - a;
+  const float ed_sq = length_squared(ed);
+  const float v_sq = length_squared(v);
+  const float along = dot(v, ed);
+  if (!(ed_sq > 0.0f) || along * along < kEdgeParallelCos * kEdgeParallelCos * ed_sq * v_sq) {
+    return;
+  }
+  // The edge parameter at segment parameter s is t0 + dt s.
+  const float t0 = dot(p0 - a, ed) / ed_sq;
+  const float dt = along / ed_sq;
+  const float margin = kClipMargin / std::sqrt(ed_sq);
+  float lo = (-margin - t0) / dt;
+  float hi = (1.0f + margin - t0) / dt;
+  if (lo > hi) {
+    const float t = lo;
+    lo = hi;
+    hi = t;
+  }
+  lo = lo < 0.0f ? 0.0f : (lo > 1.0f ? 1.0f : lo);
+  hi = hi < 0.0f ? 0.0f : (hi > 1.0f ? 1.0f : hi);
+  if (!(hi - lo > 1e-6f)) return;
+  out.normal = hull_axes * n;
+  const float ends[2] = {lo, hi};
+  for (uint32_t k = 0; k < 2; ++k) {
+    const Vec3 p = p0 + v * ends[k];
+    float t = t0 + dt * ends[k];
+    t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
+    const Vec3 on_edge = a + ed * t;
+    const float separation = dot(p - on_edge, n) - radius;
+    if (separation > speculative_m) continue;
+    ManifoldPoint& mp = out.points[out.point_count++];
+    mp.point = hull_position + hull_axes * ((on_edge + (p - n * radius)) * 0.5f);
+    mp.separation = separation;
+    mp.feature_id = edge | ((k + 1u) << 20);
+  }
+}
+
 // One point on face `fi` from the capsule end nearer its plane.
 void face_end_point(const Hull& hull, uint32_t fi, const Vec3 seg[2], float radius,
                     float speculative_m, Vec3 hull_position, const Mat3& hull_axes, Manifold& out) {
@@ -304,9 +358,16 @@ void collide_hull_capsule(const Hull& hull, Vec3 hull_position, const Mat3& hull
         return;
       }
     }
-    // An edge or a vertex of the hull is closest: one point, GJK's.
-    one_point(hull_position, hull_axes, g.normal, g.point_a, g.point_b, r, g.distance - r,
-              simplex_feature(hull, g.simplex, g.normal), out);
+    // An edge or a vertex of the hull is closest: one point, GJK's; two
+    // where the segment lies along the edge.
+    const uint32_t feature = simplex_feature(hull, g.simplex, g.normal);
+    if ((feature & (0xFu << 16)) == kEdgeKind) {
+      edge_points(hull, feature, seg[0], v, g.normal, r, speculative_m, hull_position, hull_axes,
+                  out);
+      if (out.point_count > 0) return;
+    }
+    one_point(hull_position, hull_axes, g.normal, g.point_a, g.point_b, r, g.distance - r, feature,
+              out);
     return;
   }
 

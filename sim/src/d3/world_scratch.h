@@ -128,6 +128,7 @@ class WorldScratch {
   std::vector<BodyPair> pairs;
   std::vector<uint32_t> query_hits;  ///< one query's candidates
   d3::SweptShape swept;              ///< continuous collision's mover
+  d3::SweptShape swept_target;       ///< what a spinning mover is advanced against
   // body frames (body_storage.h: body_axes)
   /// By body index: the rotation matrix of the body's pose at the start of
   /// this step, valid where axes_step[i] == step_serial. The broadphase

@@ -126,11 +126,15 @@ TEST(ManifoldCapsule, AgainstABoxEdgeAndCorner) {
   // its axis 0.1 + 0.01 from the edge (y = 0.5, x = 0.5) along (1,1)/sqrt2.
   const float d = 0.11f / std::sqrt(2.0f);
   const Quat along_z{det_sin(0.25f * kPi), 0.0f, 0.0f, det_cos(0.25f * kPi)};
+  // Lying along the edge: two points, at the ends of the part beside it
+  // (clipped at z = +-0.5 plus the clip margin), sharing the edge's normal.
   Manifold m = collide(box, {}, {}, cap, {0.5f + d, 0.5f + d, 0.0f}, along_z);
-  ASSERT_EQ(m.point_count, 1u);
+  ASSERT_EQ(m.point_count, 2u);
   EXPECT_NEAR(m.normal.x, std::sqrt(0.5f), 1e-4f);
   EXPECT_NEAR(m.normal.y, std::sqrt(0.5f), 1e-4f);
-  EXPECT_NEAR(m.points[0].separation, 0.01f, 1e-5f);
+  for (uint32_t i = 0; i < 2; ++i) EXPECT_NEAR(m.points[i].separation, 0.01f, 1e-5f);
+  EXPECT_NEAR(m.points[0].point.z + m.points[1].point.z, 0.0f, 1e-5f);
+  EXPECT_NEAR(std::fabs(m.points[0].point.z - m.points[1].point.z), 1.001f, 1e-4f);
   // The end cap beyond a corner: capsule along x, its lower end's centre
   // 0.105 m from the corner (0.5, 0.5, 0.5) along (1,1,1)/sqrt3.
   const float c = 0.105f / std::sqrt(3.0f);
@@ -138,6 +142,42 @@ TEST(ManifoldCapsule, AgainstABoxEdgeAndCorner) {
   ASSERT_EQ(m.point_count, 1u);
   EXPECT_NEAR(m.points[0].separation, 0.005f, 1e-5f);
   EXPECT_NEAR(m.normal.z, std::sqrt(1.0f / 3.0f), 1e-4f);
+}
+
+// A pole standing across a thin plank's face (the plank's height along the
+// pole): two points, one at each end of the part of the pole beside the
+// face, mirror images across the plank, whether the pole is clear of the
+// face, touching it or leaning on it, so the push does not turn the plank
+// about its long axis. (The nearest point of the pole lies where it
+// crosses a side plane of the box, and rounding put it just beyond that
+// plane: the one-point corner case, at one end of the face only.)
+TEST(ManifoldCapsule, APoleAcrossAThinFacePushesItEvenly) {
+  const Shape plank = Shape::make_box({1.0f, 0.05f, 0.02f});
+  const Shape pole = Shape::make_capsule(0.025f, 1.0f);
+  for (const float z : {-0.06f, -0.045f, -0.03f, -0.019f}) {
+    SCOPED_TRACE(z);
+    const Manifold m = collide(plank, {}, {}, pole, {0.647f, 0.0f, z}, {});
+    ASSERT_EQ(m.point_count, 2u);
+    EXPECT_NEAR(m.normal.z, -1.0f, kTol);
+    EXPECT_NEAR(m.points[0].separation, m.points[1].separation, kTol);
+    EXPECT_NEAR(m.points[0].point.y, -m.points[1].point.y, kTol);
+    EXPECT_NEAR(m.points[0].point.x, m.points[1].point.x, kTol);
+  }
+  // Beside the plank's end (beyond x = 1 and the face): along the edge.
+  const Manifold m = collide(plank, {}, {}, pole, {1.03f, 0.0f, -0.04f}, {});
+  ASSERT_EQ(m.point_count, 2u);
+  EXPECT_NEAR(m.points[0].separation, m.points[1].separation, kTol);
+  EXPECT_NEAR(m.points[0].point.y, -m.points[1].point.y, kTol);
+  EXPECT_NEAR(m.normal.x, 0.03f / std::sqrt(0.0013f), 1e-4f);  // (0.03, -0.02) from the edge
+  EXPECT_NEAR(m.normal.z, -0.02f / std::sqrt(0.0013f), 1e-4f);
+  // Leaning toward the face, the pole's nearest point lies beyond the
+  // face's side, by the plank's edge: one point there (the contact really
+  // is at the edge), as hull-capsule gives.
+  const float lean = 0.05f;
+  const Quat leaning{det_sin(0.5f * lean), 0.0f, 0.0f, det_cos(0.5f * lean)};
+  const Manifold l = collide(plank, {}, {}, pole, {0.5f, 0.0f, -0.05f}, leaning);
+  ASSERT_EQ(l.point_count, 1u);
+  EXPECT_NEAR(l.points[0].point.y, 0.05f, 1e-3f);
 }
 
 TEST(ManifoldCapsule, ReachingIntoABoxPushesOutTheShortWay) {
