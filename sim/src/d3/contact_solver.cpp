@@ -6,7 +6,7 @@
 //     integrate velocities (gravity, forces, damping)
 //     warm start (apply last substep's impulses)
 //     solve      (rigid contacts on the real velocities; three passes when
-//                 the substep is longer than 1/180 s, world_config.h)
+//                 the substep is longer than 1/240 s, world_config.h)
 //     push-out   (overlaps beyond the slop pushed apart on separate push
 //                 velocities, capped speed: deep ones one at a time from the
 //                 ground up, then the rest in the lanes)

@@ -8,9 +8,9 @@ namespace rwd::sim {
 
 /// The longest substep a world accepts, seconds (1/120 s).
 inline constexpr float kMaxSubstepSeconds = 1.0f / 120.0f;
-/// Substeps up to this long (1/180 s) solve their contacts in one pass;
-/// longer ones in kLongSubstepSolvePasses.
-inline constexpr float kOnePassSubstepSeconds = 1.0f / 180.0f;
+/// Substeps up to this long (1/240 s: 4 at 60 Hz ticks) solve their
+/// contacts in one pass; longer ones in kLongSubstepSolvePasses.
+inline constexpr float kOnePassSubstepSeconds = 1.0f / 240.0f;
 inline constexpr int32_t kLongSubstepSolvePasses = 3;
 
 /// Tuning of the 3D world. Part of world state (a restored world steps with
@@ -23,10 +23,12 @@ struct WorldConfig {
   /// ticks, 2 substeps or more). A substep longer than
   /// kOnePassSubstepSeconds solves the contacts in kLongSubstepSolvePasses
   /// passes before the move instead of one: with one pass, box pyramids of
-  /// base 20 and 30 fall apart within 10 s at 1/120 s substeps; with
-  /// three they stand (tests/stability/stability3d_substeps.cpp). At 1/60 s
-  /// no pass count tried (up to 10) holds a base-30 pyramid, hence the
-  /// limit.
+  /// base 20 and 30 fall apart within 10 s at 1/120 s substeps and the
+  /// three-level card house falls at 1/180 s; with three they stand
+  /// (tests/stability/stability3d_substeps.cpp). So 2 or 3 substeps of a
+  /// 60 Hz tick are stable but cost about as much as the default 4. At
+  /// 1/60 s no pass count tried (up to 10) holds a base-30 pyramid, hence
+  /// the limit.
   int32_t substeps = 4;
   int32_t relax_iterations = 1;  ///< rigid contact passes after each substep's move, [0, 16]
   /// The push-out of overlaps deeper than the slop acts as a spring-damper
