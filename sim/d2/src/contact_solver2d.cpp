@@ -33,6 +33,83 @@ void apply(SolverBody2D& a, V2 ra, SolverBody2D& b, V2 rb, V2 impulse) {
   b.w += wmul(b.inv_inertia, vcross(rb, impulse));
 }
 
+// One contact's constraint, appended to scratch.constraints.
+void prepare_contact(const World2DState& state, StepScratch2D& scratch, uint32_t ci,
+                     const Softness2D& soft, const Softness2D& static_soft) {
+  const ContactRecord2D& contact = state.contacts[ci];
+  if (contact.flags & kContactSensor) return;
+  if (!is_moving(state.bodies[contact.a]) && !is_moving(state.bodies[contact.b])) return;
+  const BodyRecord2D& body_a = state.bodies[contact.a];
+  const BodyRecord2D& body_b = state.bodies[contact.b];
+  const SolverBody2D& a = scratch.bodies[contact.a];
+  const SolverBody2D& b = scratch.bodies[contact.b];
+  ContactConstraint2D c;
+  c.a = contact.a;
+  c.b = contact.b;
+  c.contact = ci;
+  c.normal = contact.normal;
+  // sqrt(f f) is f: most pairs share a material, and the root is the
+  // costliest operation of the preparation.
+  const Fx fa = body_a.material.friction;
+  const Fx fb = body_b.material.friction;
+  c.friction = fa == fb ? w_from(fa) : wsqrt(wmul(w_from(fa), w_from(fb)));
+  c.restitution = wmax(w_from(body_a.material.restitution), w_from(body_b.material.restitution));
+  c.rolling_resistance =
+      wmax(w_from(body_a.material.rolling_resistance), w_from(body_b.material.rolling_resistance));
+  c.rolling_mass = inverse_or_zero(a.inv_inertia + b.inv_inertia);
+  c.rolling_impulse = contact.rolling_impulse;
+  c.softness = (a.inv_mass == 0 || b.inv_mass == 0) ? static_soft : soft;
+  c.count = contact.count;
+  const V2 n = contact.normal;
+  const V2 t = vperp_cw(n);
+  for (int i = 0; i < contact.count; ++i) {
+    const ContactPoint2D& p = contact.points[i];
+    ContactConstraintPoint2D& cp = c.points[i];
+    cp.ra = p.anchor_a;
+    cp.rb = p.anchor_b;
+    cp.adjusted_separation = p.separation - vdot(cp.rb - cp.ra, n);
+    cp.normal_impulse = p.normal_impulse;
+    cp.tangent_impulse = p.tangent_impulse;
+    const W rna = vcross(cp.ra, n);
+    const W rnb = vcross(cp.rb, n);
+    cp.normal_mass = inverse_or_zero(a.inv_mass + b.inv_mass + wmul(a.inv_inertia, wmul(rna, rna)) +
+                                     wmul(b.inv_inertia, wmul(rnb, rnb)));
+    const W rta = vcross(cp.ra, t);
+    const W rtb = vcross(cp.rb, t);
+    cp.tangent_mass =
+        inverse_or_zero(a.inv_mass + b.inv_mass + wmul(a.inv_inertia, wmul(rta, rta)) +
+                        wmul(b.inv_inertia, wmul(rtb, rtb)));
+    cp.relative_velocity = vdot(n, relative_velocity(a, cp.ra, b, cp.rb));
+  }
+  if (c.count == 2) {
+    const ContactConstraintPoint2D& p1 = c.points[0];
+    const ContactConstraintPoint2D& p2 = c.points[1];
+    const W rn1a = vcross(p1.ra, n);
+    const W rn1b = vcross(p1.rb, n);
+    const W rn2a = vcross(p2.ra, n);
+    const W rn2b = vcross(p2.rb, n);
+    const W m = a.inv_mass + b.inv_mass;
+    c.k11 = m + wmul(a.inv_inertia, wmul(rn1a, rn1a)) + wmul(b.inv_inertia, wmul(rn1b, rn1b));
+    c.k22 = m + wmul(a.inv_inertia, wmul(rn2a, rn2a)) + wmul(b.inv_inertia, wmul(rn2b, rn2b));
+    c.k12 = m + wmul(a.inv_inertia, wmul(rn1a, rn2a)) + wmul(b.inv_inertia, wmul(rn1b, rn2b));
+    // Two points nearly on top of each other make K nearly singular: the
+    // block is used only while k11^2 < 1000 det (one after the other
+    // otherwise), as the sequential rows are then just as good.
+    const W det = wmul(c.k11, c.k22) - wmul(c.k12, c.k12);
+    c.block = det > 0 && wmul(c.k11, c.k11) < 1000 * det;
+  }
+  if (c.rolling_resistance > 0 && c.count > 0) {
+    // The resisting torque is the coefficient times the normal force times
+    // the lever from the centre of mass to the contact.
+    // The lever of the bodies that turn: a static ground's "arm" from its
+    // own origin means nothing.
+    const W lever = wmax(a.inv_inertia > 0 ? vlength(c.points[0].ra) : 0,
+                         b.inv_inertia > 0 ? vlength(c.points[0].rb) : 0);
+    c.rolling_resistance = wmul(c.rolling_resistance, lever);
+  }
+  scratch.constraints.push_back(c);
+}
+
 }  // namespace
 
 void prepare_contacts(const World2DState& state, StepScratch2D& scratch, W h) {
@@ -43,82 +120,35 @@ void prepare_contacts(const World2DState& state, StepScratch2D& scratch, W h) {
   const Softness2D soft = make_softness(hertz, zeta, h);
   const Softness2D static_soft = make_softness(2 * hertz, zeta, h);
 
+  // The order built here is the order every pass solves in. Contacts are
+  // kept by pair (a, b), so one Gauss-Seidel sweep in pair order corrects
+  // each body from its lowest-numbered neighbour to its highest. Bodies are
+  // numbered as they are made, and a structure is usually made in space
+  // order, so every frame of a card house is corrected from the same side
+  // first; with one solve and one relax pass a substep, what that one-sided
+  // sweep leaves in the velocities at an impact (a frame landing on its
+  // feet, a flat card on two apexes) is the same in every frame and racks
+  // the house over. The sweep is split in two interleaved halves instead,
+  // pairs of two even or two odd bodies first, then the mixed ones, each in
+  // pair order. Box2D's card house (5 frames at the base, 2 mm cards) at
+  // default settings, over 99 variants of card thickness and lean: stands
+  // in 98 (was 1), with 6 frames 86 (was 0), mirrored 95 and 99 (was 40
+  // and 1), built top row first 67 and 34 (was 0 and 0); Box2D v3 itself
+  // stands in 90 and 72. The suite's domino row (the ground, then the
+  // dominoes in a row) keeps every body's order, so it falls as before.
+  // Rejected: the mixed pairs first (78 and 24); a hashed order (the last
+  // domino tips 3 to 4 s later and the row is not at rest in 15 s); greedy
+  // graph colouring in pair order (keeps the sweep: 4 and 0) or from the
+  // last pair (the dominoes again); a second relax pass (half as much
+  // solving again, and built top row first still 68 and 41).
   auto& constraints = scratch.constraints;
   constraints.clear();
-  for (uint32_t ci = 0; ci < state.contacts.size(); ++ci) {
-    const ContactRecord2D& contact = state.contacts[ci];
-    if (contact.flags & kContactSensor) continue;
-    if (!is_moving(state.bodies[contact.a]) && !is_moving(state.bodies[contact.b])) continue;
-    const BodyRecord2D& body_a = state.bodies[contact.a];
-    const BodyRecord2D& body_b = state.bodies[contact.b];
-    const SolverBody2D& a = scratch.bodies[contact.a];
-    const SolverBody2D& b = scratch.bodies[contact.b];
-    ContactConstraint2D c;
-    c.a = contact.a;
-    c.b = contact.b;
-    c.contact = ci;
-    c.normal = contact.normal;
-    // sqrt(f f) is f: most pairs share a material, and the root is the
-    // costliest operation of the preparation.
-    const Fx fa = body_a.material.friction;
-    const Fx fb = body_b.material.friction;
-    c.friction = fa == fb ? w_from(fa) : wsqrt(wmul(w_from(fa), w_from(fb)));
-    c.restitution = wmax(w_from(body_a.material.restitution), w_from(body_b.material.restitution));
-    c.rolling_resistance = wmax(w_from(body_a.material.rolling_resistance),
-                                w_from(body_b.material.rolling_resistance));
-    c.rolling_mass = inverse_or_zero(a.inv_inertia + b.inv_inertia);
-    c.rolling_impulse = contact.rolling_impulse;
-    c.softness = (a.inv_mass == 0 || b.inv_mass == 0) ? static_soft : soft;
-    c.count = contact.count;
-    const V2 n = contact.normal;
-    const V2 t = vperp_cw(n);
-    for (int i = 0; i < contact.count; ++i) {
-      const ContactPoint2D& p = contact.points[i];
-      ContactConstraintPoint2D& cp = c.points[i];
-      cp.ra = p.anchor_a;
-      cp.rb = p.anchor_b;
-      cp.adjusted_separation = p.separation - vdot(cp.rb - cp.ra, n);
-      cp.normal_impulse = p.normal_impulse;
-      cp.tangent_impulse = p.tangent_impulse;
-      const W rna = vcross(cp.ra, n);
-      const W rnb = vcross(cp.rb, n);
-      cp.normal_mass =
-          inverse_or_zero(a.inv_mass + b.inv_mass + wmul(a.inv_inertia, wmul(rna, rna)) +
-                          wmul(b.inv_inertia, wmul(rnb, rnb)));
-      const W rta = vcross(cp.ra, t);
-      const W rtb = vcross(cp.rb, t);
-      cp.tangent_mass =
-          inverse_or_zero(a.inv_mass + b.inv_mass + wmul(a.inv_inertia, wmul(rta, rta)) +
-                          wmul(b.inv_inertia, wmul(rtb, rtb)));
-      cp.relative_velocity = vdot(n, relative_velocity(a, cp.ra, b, cp.rb));
+  for (const uint32_t parity : {0u, 1u}) {
+    for (uint32_t ci = 0; ci < state.contacts.size(); ++ci) {
+      const ContactRecord2D& contact = state.contacts[ci];
+      if (((contact.a ^ contact.b) & 1u) != parity) continue;
+      prepare_contact(state, scratch, ci, soft, static_soft);
     }
-    if (c.count == 2) {
-      const ContactConstraintPoint2D& p1 = c.points[0];
-      const ContactConstraintPoint2D& p2 = c.points[1];
-      const W rn1a = vcross(p1.ra, n);
-      const W rn1b = vcross(p1.rb, n);
-      const W rn2a = vcross(p2.ra, n);
-      const W rn2b = vcross(p2.rb, n);
-      const W m = a.inv_mass + b.inv_mass;
-      c.k11 = m + wmul(a.inv_inertia, wmul(rn1a, rn1a)) + wmul(b.inv_inertia, wmul(rn1b, rn1b));
-      c.k22 = m + wmul(a.inv_inertia, wmul(rn2a, rn2a)) + wmul(b.inv_inertia, wmul(rn2b, rn2b));
-      c.k12 = m + wmul(a.inv_inertia, wmul(rn1a, rn2a)) + wmul(b.inv_inertia, wmul(rn1b, rn2b));
-      // Two points nearly on top of each other make K nearly singular: the
-      // block is used only while k11^2 < 1000 det (one after the other
-      // otherwise), as the sequential rows are then just as good.
-      const W det = wmul(c.k11, c.k22) - wmul(c.k12, c.k12);
-      c.block = det > 0 && wmul(c.k11, c.k11) < 1000 * det;
-    }
-    if (c.rolling_resistance > 0 && c.count > 0) {
-      // The resisting torque is the coefficient times the normal force times
-      // the lever from the centre of mass to the contact.
-      // The lever of the bodies that turn: a static ground's "arm" from its
-      // own origin means nothing.
-      const W lever = wmax(a.inv_inertia > 0 ? vlength(c.points[0].ra) : 0,
-                           b.inv_inertia > 0 ? vlength(c.points[0].rb) : 0);
-      c.rolling_resistance = wmul(c.rolling_resistance, lever);
-    }
-    constraints.push_back(c);
   }
 }
 

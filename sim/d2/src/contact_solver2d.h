@@ -12,7 +12,8 @@ namespace rwd::sim2d::detail {
 /// substep of `h` seconds; hertz 0 gives a rigid constraint.
 Softness2D make_softness(W hertz, W zeta, W h);
 
-/// Builds scratch.constraints from the touching contacts.
+/// Builds scratch.constraints from the touching contacts, in the order
+/// every pass solves them.
 void prepare_contacts(const World2DState& state, StepScratch2D& scratch, W h);
 void warm_start_contacts(StepScratch2D& scratch);
 /// One pass over every contact. With `use_bias` overlaps are pushed apart
