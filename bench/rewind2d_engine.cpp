@@ -46,6 +46,11 @@ bool Rewind2DEngine::build(const Scene2D& scene, std::string& error) {
   // Joints share the body capacity (create_joint refuses beyond it).
   config.max_bodies =
       static_cast<uint32_t>(std::max(scene.bodies.size(), scene.joints.size())) + 16;
+  // A setting the world refuses is reported, never run under the defaults.
+  if (const auto s = sim2d::World2D::validate_config(config); !s.ok()) {
+    error = "rewind: " + s.message();
+    return false;
+  }
   world_ = std::make_unique<sim2d::World2D>(config);
   ids_.clear();
   for (const BodyDesc2D& b : scene.bodies) {

@@ -23,6 +23,11 @@ Status invalid(const std::string& message) {
 Status World2D::validate_config(const World2DConfig& c) {
   if (c.tick_hz < 1 || c.tick_hz > 1000) return invalid("tick_hz must be in [1, 1000]");
   if (c.substeps < 1 || c.substeps > 32) return invalid("substeps must be in [1, 32]");
+  if (c.tick_hz * c.substeps < 240) {
+    return invalid(
+        "a substep must be at most 1/240 s (tick_hz * substeps >= 240: at 60 Hz, 4 substeps or "
+        "more); joint grids and box pyramids fall apart with longer substeps");
+  }
   if (c.relax_iterations < 0 || c.relax_iterations > 8) {
     return invalid("relax_iterations must be in [0, 8]");
   }

@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: MIT
+#include <string>
+
 #include "rewind/sim2d/world2d.h"
 #include "world2d_test_scenes.h"
 
@@ -6,6 +8,27 @@ namespace rwd::sim2d {
 namespace {
 
 using testing::add_body;
+
+// A substep longer than 1/240 s is refused (tick_hz * substeps >= 240),
+// and a world made with such a config takes the defaults instead.
+TEST(World2DStep, SubstepsLongerThanA240thOfASecondAreRefused) {
+  const auto config = [](int32_t tick_hz, int32_t substeps) {
+    World2DConfig c;
+    c.tick_hz = tick_hz;
+    c.substeps = substeps;
+    return c;
+  };
+  EXPECT_TRUE(World2D::validate_config(config(60, 4)).ok());
+  EXPECT_TRUE(World2D::validate_config(config(30, 8)).ok());
+  EXPECT_TRUE(World2D::validate_config(config(240, 1)).ok());
+  for (const World2DConfig& c : {config(60, 3), config(60, 1), config(30, 7), config(1, 32)}) {
+    const Status s = World2D::validate_config(c);
+    EXPECT_EQ(s.code(), ErrorCode::kInvalidArgument) << c.tick_hz << " Hz, " << c.substeps;
+    EXPECT_NE(s.message().find("1/240 s"), std::string::npos) << s.message();
+  }
+  const World2D world(config(60, 2));
+  EXPECT_EQ(world.config().substeps, World2DConfig{}.substeps);
+}
 
 TEST(World2DStep, FreeFallMatchesTheSemiImplicitEulerSum) {
   World2D world;  // g = -10, 60 Hz, 4 substeps

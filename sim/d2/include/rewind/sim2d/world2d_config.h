@@ -16,9 +16,14 @@ using namespace rwd::fixed::literals;
 /// with the configuration it was saved with) and of the checksum. Every
 /// value is checked by World2D::validate_config().
 struct World2DConfig {
-  Vec2 gravity{Fx(), -10_fx};    ///< m/s^2
-  int32_t tick_hz = 60;          ///< steps per second, [1, 1000]
-  int32_t substeps = 4;          ///< soft-step substeps per tick, [1, 32]
+  Vec2 gravity{Fx(), -10_fx};  ///< m/s^2
+  int32_t tick_hz = 60;        ///< steps per second, [1, 1000]
+  /// Soft-step substeps per tick, [1, 32], each at most 1/240 s long
+  /// (tick_hz * substeps >= 240, so 4 or more at 60 Hz; fewer are
+  /// refused): at 1/180 s a 40 x 40 grid of revolute joints stretches 5 m
+  /// and at 1/120 s 29 m, where 1/240 s holds it within 3.4 cm, and at 1/60
+  /// s a base-100 box pyramid falls.
+  int32_t substeps = 4;
   int32_t relax_iterations = 1;  ///< rigid contact passes after each substep's move, [0, 8]
   /// Overlaps deeper than the slop are pushed apart by a spring-damper of
   /// this frequency (Hz, (0, 1000]; at most a quarter of the substep rate,
