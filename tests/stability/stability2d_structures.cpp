@@ -12,6 +12,23 @@ namespace {
 
 using namespace scene;  // NOLINT: test brevity
 
+// Steps `world` 600 ticks (10 s at 60 Hz) and returns how far any of
+// `bodies` moved from its start; a save at tick 300, restored, must replay
+// 30 ticks bit for bit.
+double drift_over_ten_seconds(World2D& world, const std::vector<BodyId2D>& bodies) {
+  Drift drift;
+  for (BodyId2D id : bodies) drift.track(world, id);
+  World2DState mid;
+  for (int t = 1; t <= 600; ++t) {
+    world.step();
+    drift.observe(world);
+    if (t == 300) world.save(mid);
+  }
+  world.restore(mid);
+  expect_replays_bit_for_bit(world, 30);
+  return drift.max_move_m();
+}
+
 /// The card house of the 3D catalogue in 2D: `levels` frames wide at the
 /// base, each frame two 2 cm x 1 m cards leaning 25 degrees off vertical
 /// against each other, a flat 1.2 m card bridging neighbouring frames, the
@@ -67,18 +84,9 @@ TEST(Stability2D, CardHouseStandsByFriction) {
   add_ground(world, 0.6_fx);
   const std::vector<BodyId2D> cards = build_card_house(world, 3, 0.6_fx);
   ASSERT_EQ(cards.size(), 15u);
-  Drift drift;
-  for (BodyId2D id : cards) drift.track(world, id);
-  World2DState mid;
-  for (int t = 1; t <= 600; ++t) {
-    world.step();
-    drift.observe(world);
-    if (t == 300) world.save(mid);
-  }
-  report("card_house3 drift_m", drift.max_move_m(), "m", "<=", 0.05);
-  EXPECT_LE(drift.max_move_m(), 0.05);
-  world.restore(mid);
-  expect_replays_bit_for_bit(world, 30);
+  const double moved = drift_over_ten_seconds(world, cards);
+  report("card_house3 drift_m", moved, "m", "<=", 0.05);
+  EXPECT_LE(moved, 0.05);
 
   World2D slippery;
   add_ground(slippery, Fx());
@@ -146,18 +154,9 @@ TEST(Stability2D, Box2DCardHouseStandsByFriction) {
   add_box2d_ground(world, 0.7_fx);
   const std::vector<BodyId2D> cards = build_box2d_card_house(world, 0.7_fx);
   ASSERT_EQ(cards.size(), 40u);
-  Drift drift;
-  for (BodyId2D id : cards) drift.track(world, id);
-  World2DState mid;
-  for (int t = 1; t <= 600; ++t) {
-    world.step();
-    drift.observe(world);
-    if (t == 300) world.save(mid);
-  }
-  report("box2d_card_house drift_m", drift.max_move_m(), "m", "<=", 0.05);
-  EXPECT_LE(drift.max_move_m(), 0.05);
-  world.restore(mid);
-  expect_replays_bit_for_bit(world, 30);
+  const double moved = drift_over_ten_seconds(world, cards);
+  report("box2d_card_house drift_m", moved, "m", "<=", 0.05);
+  EXPECT_LE(moved, 0.05);
 
   World2D slippery;
   add_box2d_ground(slippery, Fx());
@@ -214,18 +213,9 @@ TEST(Stability2D, ArchHoldsWithFrictionAndFallsWithout) {
   add_ground(world, 0.6_fx);
   const std::vector<BodyId2D> stones = build_arch(world, 0.6_fx);
   ASSERT_EQ(stones.size(), 9u);
-  Drift drift;
-  for (BodyId2D id : stones) drift.track(world, id);
-  World2DState mid;
-  for (int t = 1; t <= 600; ++t) {
-    world.step();
-    drift.observe(world);
-    if (t == 300) world.save(mid);
-  }
-  report("arch_mu0.6 max_move_m", drift.max_move_m(), "m", "<=", 0.02);
-  EXPECT_LE(drift.max_move_m(), 0.02);
-  world.restore(mid);
-  expect_replays_bit_for_bit(world, 30);
+  const double moved = drift_over_ten_seconds(world, stones);
+  report("arch_mu0.6 max_move_m", moved, "m", "<=", 0.02);
+  EXPECT_LE(moved, 0.02);
 
   World2D slippery;
   add_ground(slippery, Fx());
