@@ -143,18 +143,27 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
   size_t j = 0;
   uint32_t touching = 0;
   for (const ContactRecord& r : now) touching += r.touching != 0 ? 1u : 0u;
+  // Each side's current pair, found once as its cursor reaches it.
+  PairSpan o = old.empty() ? PairSpan{} : pair_at(old, 0);
+  PairSpan c = now.empty() ? PairSpan{} : pair_at(now, 0);
+  const auto next_old = [&] {
+    i = o.end;
+    if (i < old.size()) o = pair_at(old, i);
+  };
+  const auto next_now = [&] {
+    j = c.end;
+    if (j < now.size()) c = pair_at(now, j);
+  };
   while (i < old.size() || j < now.size()) {
-    const PairSpan o = i < old.size() ? pair_at(old, i) : PairSpan{};
-    const PairSpan c = j < now.size() ? pair_at(now, j) : PairSpan{};
     bool take_old = j == now.size() || (i < old.size() && key(old[i]) < key(now[j]));
     bool take_new = i == old.size() || (j < now.size() && key(now[j]) < key(old[i]));
     const auto at = static_cast<uint32_t>(j);
     if (take_old) {
       if (o.touching) add(ContactEventType::kExit, old[i], kNoRecord);
-      i = o.end;
+      next_old();
     } else if (take_new) {
       if (c.touching) add(ContactEventType::kEnter, now[j], at);
-      j = c.end;
+      next_now();
     } else {
       const bool was = o.touching;
       const bool is = c.touching;
@@ -167,8 +176,8 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
         if (is) add(ContactEventType::kEnter, now[j], at);
         if (was) add(ContactEventType::kExit, old[i], kNoRecord);
       }
-      i = o.end;
-      j = c.end;
+      next_old();
+      next_now();
     }
   }
   scratch.stats.touching_manifolds = touching;
