@@ -81,15 +81,16 @@ void ball_extras(const JointRecord& j, JointConstraint& c, SolverBody& a, Solver
   const bool motor = (j.flags & kJointMotor) != 0;
   if (spring || motor) {
     // Both drive the three relative angular velocities.
-    // Against a tree the base is the tree's factor, which every pass may
-    // find refactored; against the joint's own block it changes only when
-    // the block is refreshed.
+    // Against a tree the base is the tree's factor, which each substep
+    // refactors (the tree keeps the group between refactorizations);
+    // against the joint's own block it changes only when the block is
+    // refreshed.
     ExtraGroup in_tree;
     const bool alone = base.scratch == nullptr;
     if (!alone || !c.orientation_ready) {
       JointRow rows[3];
       orientation_rows(rows);
-      (alone ? c.orientation : in_tree).prepare(base, rows, 3, a, b);
+      (alone ? c.orientation : in_tree).prepare(base, rows, 3, a, b, kKeptAxis);
       c.orientation_ready = alone;
     }
     const ExtraGroup& group = alone ? c.orientation : in_tree;

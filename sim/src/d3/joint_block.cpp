@@ -256,7 +256,7 @@ void solve_block(const RowBlock& block, SolverBody& a, SolverBody& b, const floa
 }
 
 void ExtraGroup::prepare(const ExtraBase& base, const JointRow* rows, int m, const SolverBody& a,
-                         const SolverBody& b) {
+                         const SolverBody& b, int slot) {
   m_ = m;
   tree_ = base.scratch != nullptr;
   for (int k = 0; k < m; ++k) rows_[k] = rows[k];
@@ -264,7 +264,8 @@ void ExtraGroup::prepare(const ExtraBase& base, const JointRow* rows, int m, con
     local_.prepare(*base.block, rows, m, a, b);
     return;
   }
-  prepare_tree_group(*base.scratch, base.tree, base.body_a, base.body_b, rows, m, s_);
+  y_at_ = prepare_tree_group(*base.scratch, base.tree, base.joint, slot, base.body_a, base.body_b,
+                             rows, m, s_);
 }
 
 void ExtraGroup::velocity(const SolverBody& a, const SolverBody& b, float* out) const {
@@ -290,7 +291,7 @@ void ExtraGroup::apply(const ExtraBase& base, SolverBody& a, SolverBody& b,
     return;
   }
   for (int k = 0; k < m_; ++k) apply_row(rows_[k], a, b, delta[k]);
-  apply_tree_compensation(*base.scratch, base.tree, m_, delta);
+  apply_tree_compensation(*base.scratch, base.tree, y_at_, m_, delta);
 }
 
 namespace {
@@ -336,7 +337,7 @@ void solve_extra_row(const ExtraBase& base, SolverBody& a, SolverBody& b, const 
     return;
   }
   ExtraGroup group;
-  group.prepare(base, &row, 1, a, b);
+  group.prepare(base, &row, 1, a, b, slot);
   group.solve(&rhs, &x);
   const float delta = extra_step(t, x, lo, hi, impulse);
   if (delta != 0.0f) group.apply(base, a, b, &delta);

@@ -17,6 +17,7 @@
 // A row's impulse lambda applies -linear lambda and -angular_a lambda to A,
 // +linear lambda and +angular_b lambda to B; its velocity is
 // linear . (v_B - v_A) + angular_b . w_B - angular_a . w_A.
+#include <cstddef>
 #include <cstdint>
 
 #include "d3/joint_math.h"
@@ -160,6 +161,7 @@ struct ExtraBase {
   float* block_impulse = nullptr;   ///< its rows' accumulated impulses
   WorldScratch* scratch = nullptr;  ///< set for a joint in a tree
   uint32_t tree = 0;
+  uint32_t joint = 0;   ///< its joint constraint, for a joint in a tree
   uint32_t body_a = 0;  ///< the joint's solver bodies
   uint32_t body_b = 0;
   /// Set for a joint on its own whose bodies stand where its rows were
@@ -171,8 +173,10 @@ struct ExtraBase {
 /// One to three extra rows solved together against a rigid base.
 class ExtraGroup {
  public:
+  /// `slot` (kKeptAxis or a limit kind) names the group among its joint's,
+  /// for a tree's reuse of it (prepare_tree_group).
   void prepare(const ExtraBase& base, const JointRow* rows, int m, const SolverBody& a,
-               const SolverBody& b);
+               const SolverBody& b, int slot);
   void velocity(const SolverBody& a, const SolverBody& b, float* out) const;
   /// x = S^-1 rhs, S the base's Schur complement for these rows.
   void solve(const float* rhs, float* x) const;
@@ -185,6 +189,7 @@ class ExtraGroup {
   int m_ = 0;
   JointRow rows_[kMaxGroupRows];
   float s_[kMaxGroupRows][kMaxGroupRows] = {};  // against a tree: S^-1
+  size_t y_at_ = 0;                             // and its solved couplings
 };
 
 /// One extra row against its base: drives its velocity to `speed` plus

@@ -12,6 +12,9 @@
 namespace rwd::sim::d3 {
 namespace {
 
+// tree_extra_slot for a slot with no group prepared.
+constexpr uint32_t kNoExtraGroup = 0xFFFFFFFFu;
+
 // A pivot below this share of its diagonal: the row depends on others (or
 // nothing can move along it) and is left out, taking no impulse.
 constexpr float kPivotShare = 1e-3f;
@@ -421,6 +424,7 @@ void build_joint_trees(WorldScratch& s) {
       }
     }
     tree.joint_end = static_cast<uint32_t>(s.tree_joints.size());
+    tree.row_begin = rows;
     for (uint32_t k = tree.joint_begin; k < tree.joint_end; ++k) {
       JointConstraint& c = joints[s.tree_joints[k]];
       const uint32_t m = c.capacity;  // room for its limits too
@@ -430,6 +434,7 @@ void build_joint_trees(WorldScratch& s) {
       c.tree_update = static_cast<uint32_t>(s.tree_arena.size());
       s.tree_arena.resize(s.tree_arena.size() + m * m, 0.0f);
     }
+    tree.row_end = rows;
     s.trees.push_back(tree);
   }
   // A joint solved exactly (in a tree, or alone in its component) needs
@@ -467,6 +472,10 @@ void factor_joint_trees(WorldScratch& s) {
   }
   s.tree_arena.resize(s.tree_factor_base);
   for (const JointTree& tree : s.trees) factor_tree(s, tree);
+  // What the extra rows were prepared against is gone.
+  s.tree_extra_groups.clear();
+  s.tree_extra_used = 0;
+  s.tree_extra_slot.assign(s.joint_constraints.size() * kKeptRows, kNoExtraGroup);
 }
 
 void solve_joint_tree(const std::vector<JointRecord>& records, WorldScratch& s, uint32_t t,
@@ -492,6 +501,7 @@ void solve_joint_tree(const std::vector<JointRecord>& records, WorldScratch& s, 
     base.block_impulse = s.tree_acc.data() + c.tree_row;
     base.scratch = &s;
     base.tree = t;
+    base.joint = s.tree_joints[k];
     base.body_a = c.body_a;
     base.body_b = c.body_b;
     const JointFrames f = joint_frames(c, a, b);

@@ -63,6 +63,22 @@ struct JointTree {
   uint32_t body_end = 0;
   uint32_t joint_begin = 0;  ///< scratch.tree_joints (constraint indices, slot order)
   uint32_t joint_end = 0;
+  uint32_t row_begin = 0;  ///< its rows, [row_begin, row_end) of the tree rows
+  uint32_t row_end = 0;
+};
+
+/// Extra rows of a tree joint prepared against the tree's factors
+/// (prepare_tree_group). What it holds depends only on the rows, the two
+/// bodies' masses and the factors, so the passes between two
+/// factorizations (both passes before a substep's move, the relax passes
+/// after it) that meet the same rows at the same slot reuse it.
+struct TreeExtraGroup {
+  uint32_t body_a = 0;
+  uint32_t body_b = 0;
+  int m = 0;
+  JointRow rows[kMaxGroupRows];
+  float s_inv[kMaxGroupRows][kMaxGroupRows] = {};
+  size_t y_at = 0;  ///< scratch.tree_extra_y: m columns over the tree's rows
 };
 
 inline constexpr uint32_t kNoParent = 0xFFFFFFFFu;
@@ -86,17 +102,23 @@ float tree_row_coupling(const JointRow& r, bool r_on_a, const JointRow& s, bool 
 /// scratch.tree_lambda out).
 void solve_tree(WorldScratch& scratch, const JointTree& tree);
 
-/// Readies one to three extra rows of a joint on solver bodies (a, b) of
-/// tree t to be solved against the whole tree held rigid: each row's
-/// coupling to the tree's rows, solved through the tree's factors (kept in
-/// scratch for apply_tree_compensation), and the inverse of their Schur
-/// complement into s_inv (m x m of a 3 x 3).
-void prepare_tree_group(WorldScratch& scratch, uint32_t t, uint32_t body_a, uint32_t body_b,
-                        const JointRow* rows, int m, float (*s_inv)[3]);
+/// Readies one to three extra rows of joint constraint `joint` on solver
+/// bodies (a, b) of tree t to be solved against the whole tree held
+/// rigid: each row's coupling to the tree's rows, solved through the
+/// tree's factors (kept in scratch.tree_extra_y for
+/// apply_tree_compensation), and the inverse of their Schur complement
+/// into s_inv (m x m of a 3 x 3). Returns where the solved couplings
+/// start. `slot` (kKeptAxis or a limit kind, < kKeptRows) names the group
+/// among the joint's: the same rows at the same slot since the trees were
+/// last factored are not prepared again (TreeExtraGroup).
+size_t prepare_tree_group(WorldScratch& scratch, uint32_t t, uint32_t joint, int slot,
+                          uint32_t body_a, uint32_t body_b, const JointRow* rows, int m,
+                          float (*s_inv)[3]);
 /// Applies to tree t's rows the impulses that hold them where they were
-/// while the prepared rows take delta[k] (and adds them to the tree's
-/// accumulated impulses).
-void apply_tree_compensation(WorldScratch& scratch, uint32_t t, int m, const float* delta);
+/// while the rows prepared at `y_at` take delta[k] (and adds them to the
+/// tree's accumulated impulses).
+void apply_tree_compensation(WorldScratch& scratch, uint32_t t, size_t y_at, int m,
+                             const float* delta);
 
 /// A limit may only push: the held limit rows of tree t whose value in
 /// `total` (by tree row: accumulated impulses, or a projection's

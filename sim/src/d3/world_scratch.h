@@ -193,8 +193,16 @@ class WorldScratch {
   std::vector<float> tree_w;
   std::vector<float> tree_lambda;
   std::vector<float> tree_acc;
-  std::vector<float> tree_extra_c;    ///< extra rows' couplings to a tree, 3 x rows
-  std::vector<float> tree_extra_y;    ///< the same through the tree's factors
+  std::vector<float> tree_extra_c;  ///< extra rows' couplings to a tree, 3 x rows
+  /// The extra groups prepared against the trees' current factors
+  /// (joint_tree_extras.cpp), found by joint and slot through
+  /// tree_extra_slot; emptied whenever the trees are factored.
+  std::vector<d3::TreeExtraGroup> tree_extra_groups;
+  std::vector<uint32_t> tree_extra_slot;  ///< by joint * kKeptRows + slot
+  /// Their rows' couplings through the factors, per group row over its
+  /// tree's rows; tree_extra_used of it in use (it only grows).
+  std::vector<float> tree_extra_y;
+  size_t tree_extra_used = 0;
   std::vector<float> tree_delta;      ///< a pass's impulses or displacements, by row
   std::vector<float> tree_release;    ///< released limits' K^-1 columns, 8 x rows
   std::vector<uint32_t> tree_parent;  ///< union-find over solver bodies
