@@ -42,7 +42,7 @@ constexpr double kTickSeconds = 1.0 / 60.0;
 constexpr const char* kUsage =
     "usage: rewind-joint-bench [--scene NAME]... [--size N] [--ticks N] [--quick] [--list]\n"
     "  Runs each jointed scene (default: pendulum, chain, bridge, grid,\n"
-    "  ragdoll_pile) on Rewind (substeps 2, 4, 8; relax 1) and Bullet 3 (solver\n"
+    "  ragdoll_pile) on Rewind (substeps 4, 8, 16; relax 1) and Bullet 3 (solver\n"
     "  iterations 10, 20, 40), sleeping off in both, in turns of 10 ticks in one\n"
     "  process. --quick runs the defaults only (Rewind 4 substeps, Bullet 10\n"
     "  iterations); --size replaces the scene's size (links, planks, grid side,\n"
@@ -55,7 +55,7 @@ constexpr const char* kUsage =
 
 std::vector<std::unique_ptr<JointEngine>> engines(bool quick) {
   std::vector<std::unique_ptr<JointEngine>> e;
-  for (int substeps : {2, 4, 8}) {
+  for (int substeps : {4, 8, 16}) {
     if (!quick || substeps == 4) e.push_back(rwd::bench::make_rewind_joint_engine(substeps));
   }
   for (int iterations : {10, 20, 40}) {

@@ -78,7 +78,7 @@ std::vector<Setting> sweep_settings(bool full, bool sleep) {
   const int relax = kRewindDefaults.relax_iterations;
   const float hertz = kRewindDefaults.contact_hertz;
   std::vector<Setting> s;
-  const std::vector<int> substeps = full ? std::vector<int>{2, 3, 8, 16} : std::vector<int>{2, 8};
+  const std::vector<int> substeps = full ? std::vector<int>{5, 6, 8, 16} : std::vector<int>{6, 8};
   for (int n : substeps) {
     if (n != sub) s.push_back(rewind_setting(sleep, n, relax, hertz));
   }

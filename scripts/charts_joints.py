@@ -233,7 +233,7 @@ def section(rows, run, rel_out, out_dir):
     sweep = [r for r in rows if not r["default"]]
     if sweep:
         w("### Joint error against cost\n")
-        w("Each point is one setting: Rewind's substeps (s2, s4, s8; relax 1) and Bullet's solver "
+        w("Each point is one setting: Rewind's substeps (s4, s8, s16; relax 1) and Bullet's solver "
           "iterations (i10, i20, i40). The dashed line is the criterion Rewind's tests hold it to "
           "at default settings (`tests/stability/stability3d_joints.cpp`, "
           "`tests/accuracy/accuracy_joints3d.cpp`, `tests/stability/stability3d_ragdolls.cpp`, "

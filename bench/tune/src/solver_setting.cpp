@@ -49,11 +49,11 @@ std::string SolverSetting::label() const {
 }
 
 SettingGrid SettingGrid::standard() {
-  return {{2, 3, 4, 6, 8, 12, 16}, {0, 1, 2, 4}, {15.0f, 30.0f, 60.0f, 120.0f}};
+  return {{4, 5, 6, 8, 12, 16}, {0, 1, 2, 4}, {15.0f, 30.0f, 60.0f, 120.0f}};
 }
 
 SettingGrid SettingGrid::quick() {
-  return {{2, 3, 4}, {0, 1}, {30.0f}};
+  return {{4, 6, 8}, {0, 1}, {30.0f}};
 }
 
 std::vector<SolverSetting> SettingGrid::settings() const {

@@ -169,10 +169,9 @@ void set_rider_tone(sim::World3D& world, const JoustState& state, uint32_t p, bo
 sim::WorldConfig JoustGame::world_config() const {
   sim::WorldConfig config;
   config.tick_seconds = 1.0f / 60.0f;
-  // Two substeps: the joint trees (each car with its lance and rider, the
-  // chain) are solved exactly every pass, so more buy little accuracy here
-  // and each one costs a refactorization of every tree.
-  config.substeps = 2;
+  // Four substeps, the shortest substep a world accepts at 60 Hz ticks
+  // (sim::kMaxSubstepSeconds).
+  config.substeps = 4;
   config.bounds_lower = {-kWorldHalf, -kWorldHalf, -kWorldHalf};
   config.bounds_upper = {kWorldHalf, kWorldHalf, kWorldHalf};
   return config;

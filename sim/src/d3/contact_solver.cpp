@@ -523,13 +523,12 @@ void solve(WorldState& state, WorldScratch& scratch) {
   const float slop = config.linear_slop_m;
   scratch.pushing = false;
   bool ordered = false;
-  const int32_t passes = contact_solve_passes(config);
   for (int32_t s = 0; s < config.substeps; ++s) {
     integrate_velocities(scratch, h);
     if (joints) warm_start_joints(state, scratch);
     warm_start_batches(scratch);
     if (joints) solve_joints(state, scratch, true);
-    for (int32_t pass = 0; pass < passes; ++pass) solve_batches(scratch, inv_h);
+    solve_batches(scratch, inv_h);
     // The joints again after the contacts, so the velocities the bodies
     // move by hold the joints. A contact sees a limb as a free body: a
     // capsule's long-axis inertia is tiny, so the friction of whatever

@@ -86,8 +86,9 @@ Status check_config(const WorldConfig& c) {
   if (c.substeps < 1 || c.substeps > 64) return invalid("substeps must be in [1, 64]");
   if (substep_seconds(c) > kMaxSubstepSeconds * kSubstepTolerance) {
     return invalid(
-        "a substep (tick_seconds / substeps) must be at most 1/120 s: raise substeps (at 60 Hz "
-        "ticks, 2 or more); box stacks fall apart with longer substeps");
+        "a substep (tick_seconds / substeps) must be at most 1/240 s: raise substeps (at 60 Hz "
+        "ticks, 4 or more; at 30 Hz, 8); stacks and joint chains fall apart with longer "
+        "substeps");
   }
   if (c.relax_iterations < 0 || c.relax_iterations > 16) {
     return invalid("relax_iterations must be in [0, 16]");

@@ -35,20 +35,13 @@ inline constexpr float kMaxTorque = 1e12f;
 /// Largest deviation of |q|^2 from 1 in a stored rotation.
 inline constexpr float kRotationTolerance = 1e-3f;
 
-/// Relative slack on the substep limits, so that a 60 Hz tick cut in two
-/// counts as 1/120 s whatever the rounding of either.
+/// Relative slack on the substep limit, so that a 60 Hz tick cut in four
+/// counts as 1/240 s whatever the rounding of either.
 inline constexpr float kSubstepTolerance = 1.0001f;
 /// One substep's length, seconds.
 inline float substep_seconds(const WorldConfig& c) {
   return c.tick_seconds / static_cast<float>(c.substeps);
 }
-/// The contact solve passes each substep runs before its move
-/// (WorldConfig::substeps says why).
-inline int32_t contact_solve_passes(const WorldConfig& c) {
-  return substep_seconds(c) > kOnePassSubstepSeconds * kSubstepTolerance ? kLongSubstepSolvePasses
-                                                                         : 1;
-}
-
 /// Range and finiteness of every config field, bounds included, and the
 /// substep's length.
 Status check_config(const WorldConfig& config);

@@ -49,7 +49,7 @@ class Rng {
 WorldConfig random_config(Rng& rng) {
   WorldConfig c;
   c.gravity = {rng.uniform(-2.0f, 2.0f), -rng.uniform(0.0f, 40.0f), rng.uniform(-2.0f, 2.0f)};
-  c.substeps = 2 + static_cast<int32_t>(rng.below(7));  // a 60 Hz tick needs 2 or more
+  c.substeps = 4 + static_cast<int32_t>(rng.below(7));  // a 60 Hz tick needs 4 or more
   c.relax_iterations = static_cast<int32_t>(rng.below(3));
   c.enable_sleep = rng.chance(0.7f);
   c.contact_hertz = rng.uniform(10.0f, 120.0f);

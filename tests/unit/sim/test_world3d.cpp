@@ -197,32 +197,42 @@ TEST(World3D, InvalidConfigIsReportedAndReplaced) {
   EXPECT_TRUE(World3D::validate_config(WorldConfig{}).ok());
 }
 
-// A substep longer than 1/120 s is refused, whichever of the tick and the
-// substeps makes it so; a 60 Hz tick cut in two is exactly at the limit.
-TEST(World3D, SubstepsLongerThanAHundredTwentiethOfASecondAreRefused) {
+// A substep longer than 1/240 s is refused, whichever of the tick and the
+// substeps makes it so; a 60 Hz tick cut in four is exactly at the limit.
+TEST(World3D, SubstepsLongerThanA240thOfASecondAreRefused) {
   const auto config = [](float tick_seconds, int32_t substeps) {
     WorldConfig c;
     c.tick_seconds = tick_seconds;
     c.substeps = substeps;
     return c;
   };
-  EXPECT_TRUE(World3D::validate_config(config(1.0f / 60.0f, 2)).ok());
-  EXPECT_TRUE(World3D::validate_config(config(1.0f / 30.0f, 4)).ok());
-  EXPECT_TRUE(World3D::validate_config(config(1.0f / 120.0f, 1)).ok());
-  EXPECT_TRUE(World3D::validate_config(config(0.1f, 12)).ok());
-  for (const WorldConfig& c : {config(1.0f / 60.0f, 1), config(1.0f / 30.0f, 3),
-                               config(1.0f / 100.0f, 1), config(0.1f, 11)}) {
+  EXPECT_TRUE(World3D::validate_config(config(1.0f / 60.0f, 4)).ok());
+  EXPECT_TRUE(World3D::validate_config(config(1.0f / 30.0f, 8)).ok());
+  EXPECT_TRUE(World3D::validate_config(config(1.0f / 120.0f, 2)).ok());
+  EXPECT_TRUE(World3D::validate_config(config(1.0f / 240.0f, 1)).ok());
+  EXPECT_TRUE(World3D::validate_config(config(0.1f, 24)).ok());
+  for (const WorldConfig& c :
+       {config(1.0f / 60.0f, 1), config(1.0f / 60.0f, 2), config(1.0f / 60.0f, 3),
+        config(1.0f / 30.0f, 7), config(1.0f / 120.0f, 1), config(1.0f / 200.0f, 1),
+        config(0.1f, 23)}) {
     const Status s = World3D::validate_config(c);
     EXPECT_EQ(s.code(), ErrorCode::kInvalidArgument) << c.tick_seconds << " / " << c.substeps;
-    EXPECT_NE(s.message().find("1/120 s"), std::string::npos) << s.message();
+    EXPECT_NE(s.message().find("1/240 s"), std::string::npos) << s.message();
   }
-  // Repaired as one value: a 30 Hz tick with 4 substeps keeps both, one
-  // with 2 keeps the tick and takes the default substeps.
-  World3D both(config(1.0f / 30.0f, 4));
+  // Repaired as one value: a 30 Hz tick with 8 substeps keeps both, one
+  // with 4 keeps neither (the tick needs more than the default substeps),
+  // a 120 Hz tick with 2 keeps both, a 60 Hz tick with 2 keeps the tick.
+  World3D both(config(1.0f / 30.0f, 8));
   EXPECT_EQ(both.config().tick_seconds, quantize(1.0f / 30.0f));
-  EXPECT_EQ(both.config().substeps, 4);
-  World3D tick_only(config(1.0f / 30.0f, 2));
-  EXPECT_EQ(tick_only.config().tick_seconds, quantize(1.0f / 30.0f));
+  EXPECT_EQ(both.config().substeps, 8);
+  World3D neither(config(1.0f / 30.0f, 4));
+  EXPECT_EQ(neither.config().tick_seconds, quantize(WorldConfig{}.tick_seconds));
+  EXPECT_EQ(neither.config().substeps, WorldConfig{}.substeps);
+  World3D fast(config(1.0f / 120.0f, 2));
+  EXPECT_EQ(fast.config().tick_seconds, quantize(1.0f / 120.0f));
+  EXPECT_EQ(fast.config().substeps, 2);
+  World3D tick_only(config(1.0f / 60.0f, 2));
+  EXPECT_EQ(tick_only.config().tick_seconds, quantize(1.0f / 60.0f));
   EXPECT_EQ(tick_only.config().substeps, WorldConfig{}.substeps);
 }
 

@@ -23,13 +23,13 @@ TEST(SceneTarget, RunsTheCatalogueSceneWithItsOwnCriteria) {
   ASSERT_TRUE(target.ok()) << target.status().message();
   EXPECT_EQ((*target)->size(), 1) << "free_fall's chart size";
   EXPECT_EQ((*target)->default_setting(), SolverSetting::of(sim::WorldConfig{}));
-  const Measurement m = (*target)->measure({2, 0, 30.0f});
+  const Measurement m = (*target)->measure({4, 0, 30.0f});
   EXPECT_TRUE(m.error.empty()) << m.error;
   ASSERT_FALSE(m.metrics.empty());
   EXPECT_GT(m.ms_per_step, 0.0);
-  // One substep of a 60 Hz tick is longer than the world accepts: reported,
-  // never run under a repaired config.
-  const Measurement refused = (*target)->measure({1, 0, 30.0f});
+  // Two substeps of a 60 Hz tick are longer than the world accepts:
+  // reported, never run under a repaired config.
+  const Measurement refused = (*target)->measure({2, 0, 30.0f});
   EXPECT_EQ(refused.error.rfind("refused: ", 0), 0u) << refused.error;
   EXPECT_TRUE(refused.metrics.empty());
 
@@ -62,7 +62,8 @@ TEST(GameTarget, TheReferenceSettingHasNoError) {
   EXPECT_EQ(find(same, "velocity_error_mps")->value, 0.0);
   EXPECT_NEAR(find(same, "diverged_s")->value, 2.0, 1e-6) << "120 ticks at 60 Hz, never left";
 
-  const Measurement coarse = (*target)->measure({2, 0, 30.0f});
+  const Measurement coarse = (*target)->measure({4, 0, 30.0f});
+  ASSERT_TRUE(coarse.error.empty()) << coarse.error;
   EXPECT_GT(find(coarse, "position_error_m")->value, 0.0);
   EXPECT_GT(coarse.ms_per_step, 0.0);
   EXPECT_TRUE(find(coarse, "position_error_m")->limit > 0.0) << "the game budget";

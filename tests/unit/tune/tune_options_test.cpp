@@ -38,7 +38,7 @@ TEST(TuneOptions, SceneGameAndTheirFlags) {
 
   EXPECT_EQ(parse({"--help"})->action, TuneCommand::Action::kHelp);
   EXPECT_EQ(parse({"--list"})->action, TuneCommand::Action::kList);
-  EXPECT_EQ(parse({"--scene", "stack"})->plan.grid.size(), 112u);
+  EXPECT_EQ(parse({"--scene", "stack"})->plan.grid.size(), 96u);
 }
 
 TEST(TuneOptions, UsageErrorsSayWhatIsWrong) {

@@ -15,20 +15,20 @@ namespace rwd::tune {
 namespace {
 
 // Error falls and cost rises with the work per tick; substeps cost more than
-// relax passes, so (2, 1) is cheaper than (4, 0).
+// relax passes, so (4, 1) is cheaper than (8, 0). Its default is (8, 1).
 class FakeTarget final : public TuneTarget {
  public:
   std::string kind() const override { return "scene"; }
   std::string name() const override { return "fake"; }
   int size() const override { return 1; }
   std::string description() const override { return "fake target"; }
-  SolverSetting default_setting() const override { return {4, 1, 30.0f}; }
+  SolverSetting default_setting() const override { return {8, 1, 30.0f}; }
   Tick ticks() const override { return 10; }
   Measurement measure(const SolverSetting& s) override {
     ++calls;
     Measurement m;
     m.ms_per_step = 0.01 * s.substeps + 0.003 * s.relax_iterations;
-    const double error = 1.0 / s.work();
+    const double error = 2.0 / s.work();
     m.metrics = {{"err_m", "m", error, Metric::Bound::kAtMost, limit, "error"},
                  {"kept", "", 1.0, Metric::Bound::kAtLeast, 1.0, "always 1"}};
     return m;
@@ -47,8 +47,8 @@ SweepPlan quick_plan() {
 
 TEST(SettingGrid, StandardGridHasCheapAndFineSettingsCheapestFirst) {
   const std::vector<SolverSetting> grid = SettingGrid::standard().settings();
-  EXPECT_EQ(grid.size(), 112u);
-  EXPECT_EQ(grid.front(), (SolverSetting{2, 0, 15.0f}));
+  EXPECT_EQ(grid.size(), 96u);
+  EXPECT_EQ(grid.front(), (SolverSetting{4, 0, 15.0f}));
   EXPECT_EQ(grid.back(), (SolverSetting{16, 4, 120.0f}));
   for (size_t i = 1; i < grid.size(); ++i) EXPECT_LE(grid[i - 1].work(), grid[i].work());
   EXPECT_NE(std::find(grid.begin(), grid.end(), SolverSetting::of(sim::WorldConfig{})), grid.end())
@@ -113,15 +113,15 @@ TEST(Tuner, PicksTheCheapestSettingThatMeetsTheBudget) {
   const SweepPlan plan = quick_plan();
   auto result = tune(target, plan, nullptr);
   ASSERT_TRUE(result.ok()) << result.status().message();
-  // Passing (error <= 0.3): (2,1) 0.25, (4,0) 0.25, (3,1) 0.167, (4,1) 0.125.
+  // Passing (error <= 0.3): (4,1) 0.25, (8,0) 0.25, (6,1) 0.167, (8,1) 0.125.
   EXPECT_EQ(result->passing, 4u);
   ASSERT_TRUE(result->pick.has_value());
   const SettingRun& pick = result->runs[*result->pick];
-  EXPECT_EQ(pick.setting, (SolverSetting{2, 1, 30.0f}));
+  EXPECT_EQ(pick.setting, (SolverSetting{4, 1, 30.0f}));
   EXPECT_TRUE(pick.pass);
   EXPECT_EQ(pick.ms_samples.size(), 3u) << "finalists are timed `repeats` times";
   EXPECT_TRUE(result->default_setting().is_default);
-  EXPECT_EQ(result->default_setting().setting, (SolverSetting{4, 1, 30.0f}));
+  EXPECT_EQ(result->default_setting().setting, (SolverSetting{8, 1, 30.0f}));
   EXPECT_EQ(result->default_setting().ms_samples.size(), 3u);
   EXPECT_EQ(result->runs.size(), 6u) << "the default is part of the quick grid";
   EXPECT_TRUE(result->repeatable);
@@ -129,9 +129,9 @@ TEST(Tuner, PicksTheCheapestSettingThatMeetsTheBudget) {
 
   std::ostringstream text;
   print_text(target, plan, *result, text);
-  EXPECT_NE(text.str().find("pick:     substeps=2 relax=1 hertz=30"), std::string::npos)
+  EXPECT_NE(text.str().find("pick:     substeps=4 relax=1 hertz=30"), std::string::npos)
       << text.str();
-  EXPECT_NE(text.str().find("set in WorldConfig: substeps = 2, relax_iterations = 1"),
+  EXPECT_NE(text.str().find("set in WorldConfig: substeps = 4, relax_iterations = 1"),
             std::string::npos);
 }
 
@@ -142,7 +142,7 @@ TEST(Tuner, UserBudgetsReplaceTheTargetsLimits) {
   auto result = tune(target, plan, nullptr);
   ASSERT_TRUE(result.ok());
   ASSERT_TRUE(result->pick.has_value());
-  EXPECT_EQ(result->runs[*result->pick].setting, (SolverSetting{3, 1, 30.0f}));
+  EXPECT_EQ(result->runs[*result->pick].setting, (SolverSetting{6, 1, 30.0f}));
   EXPECT_DOUBLE_EQ(result->runs[*result->pick].metrics[0].limit, 0.2);
 
   std::ostringstream csv;
@@ -158,7 +158,7 @@ TEST(Tuner, NothingPassesNamesTheClosestSetting) {
   ASSERT_TRUE(result.ok());
   EXPECT_FALSE(result->pick.has_value());
   ASSERT_TRUE(result->closest.has_value());
-  EXPECT_EQ(result->runs[*result->closest].setting, (SolverSetting{4, 1, 30.0f}));
+  EXPECT_EQ(result->runs[*result->closest].setting, (SolverSetting{8, 1, 30.0f}));
   EXPECT_EQ(exit_code(*result), kExitNonePasses);
   std::ostringstream json;
   print_json(target, quick_plan(), *result, json);

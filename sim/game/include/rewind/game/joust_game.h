@@ -71,7 +71,7 @@ struct JoustState {
 class JoustGame final : public GameWithState<sim::World3D, JoustState> {
  public:
   std::string_view name() const override { return "joust"; }
-  uint32_t rules_version() const override { return 1; }
+  uint32_t rules_version() const override { return 2; }
   sim::WorldConfig world_config() const override;
 
   /// Seats player p's rider on its car now (the ragdoll posed sitting on
