@@ -8,13 +8,13 @@
 # Usage: scripts/charts.sh [--quick] [--no-build] [--only 3d|2d|joints]
 #   (default)   full sweep: every scene size at default settings on both
 #               engines, piles up to 8000 boxes, and at each scene's chart
-#               size Rewind's substeps 2-16, relax 0-4, contact_hertz 15-60
+#               size Rewind's substeps 4-16, relax 0-4, contact_hertz 15-60
 #               and Bullet's iterations 5-40, steps per tick 1-4
 #               (2D: every scene, and the substeps/iterations sweep of the
 #               large pyramid and the small pyramids)
 #               (joints: the pendulum, chain, bridge and grid at Rewind's
-#               substeps 2/4/8 and Bullet's iterations 10/20/40)
-#   --quick     piles up to 2000 boxes, substeps 2/4/8 and iterations 5/10/20
+#               substeps 4/8/16 and Bullet's iterations 10/20/40)
+#   --quick     piles up to 2000 boxes, substeps 4/6/8 and iterations 5/10/20
 #               (2D: 60 timed ticks a scene instead of 180-600; joints: the
 #               default settings only)
 #   --no-build  use the binaries already in build/bench
