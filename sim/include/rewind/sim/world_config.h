@@ -22,9 +22,10 @@ struct WorldConfig {
   /// base 20 and 30 fall apart within 10 s and the three-level card house
   /// falls at 1/180 s; three passes hold those, but the 30 x 30 joint grid
   /// still opens by 0.99 m (2.16 m with one pass; 0.04 m at 1/240 s), a
-  /// 1:100 mass ratio sinks 10.5 mm and a bounce overshoots its apex by 8%.
-  /// Three passes also cost what the fourth substep does, so nothing is
-  /// saved (tests/stability/stability3d_substeps.cpp).
+  /// 1:100 mass ratio sinks 10.5 mm and a bounce falls 8% short of its
+  /// apex. Three passes also cost what the fourth substep does, so nothing
+  /// is saved (tests/stability/stability3d_substeps.cpp holds the accepted
+  /// lengths; docs/BENCHMARKS.md the joint sweep).
   int32_t substeps = 4;
   int32_t relax_iterations = 1;  ///< rigid contact passes after each substep's move, [0, 16]
   /// The push-out of overlaps deeper than the slop acts as a spring-damper
