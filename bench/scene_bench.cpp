@@ -70,12 +70,13 @@ void BM_PileBullet(benchmark::State& state) {
 // Small worlds, where a step's fixed cost is most of it: a box sliding to
 // a stop (2 bodies, 121 ticks at size 5), a box sliding down a 30-degree
 // slope (2 bodies, 120 ticks), a heavy box on a light one (3 bodies, 600
-// ticks), ten boxes created half inside each other (11 bodies, 180 ticks).
+// ticks), ten boxes created half inside each other (11 bodies, 180 ticks),
+// the crates sample match with 8 players (30 bodies, 600 ticks).
 // Default settings, sleep on, as a game runs them; a rollback server
 // re-simulates worlds like these many times a tick. The scene name is the
 // first argument's label.
-constexpr const char* kSmallScenes[] = {"slide", "incline_slip", "mass_ratio", "overlap"};
-constexpr int kSmallSizes[] = {5, 30, 100, 10};
+constexpr const char* kSmallScenes[] = {"slide", "incline_slip", "mass_ratio", "overlap", "crates"};
+constexpr int kSmallSizes[] = {5, 30, 100, 10, 8};
 
 void small_scene(benchmark::State& state, Engine& engine) {
   const auto which = static_cast<size_t>(state.range(0));
@@ -90,8 +91,60 @@ void BM_SmallBullet(benchmark::State& state) {
   rwd::bench::BulletEngine engine;
   small_scene(state, engine);
 }
-BENCHMARK(BM_SmallRewind)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_SmallBullet)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SmallRewind)->DenseRange(0, 4)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SmallBullet)->DenseRange(0, 4)->Unit(benchmark::kMicrosecond);
+
+// A step's fixed cost: what a world pays per step whatever it holds, so
+// what a rollback server pays again for each re-simulated tick of a small
+// match. Sleep is off (nothing may leave the step's work by sleeping), and
+// the bodies: 0, a static floor alone; 1, the floor and a box spinning in
+// the air without gravity (a body, no contact); 2, the floor and a box
+// resting on it (one four-point manifold); 3, the floor and a sphere
+// resting on it (one point). One iteration = one step.
+void fixed_cost(benchmark::State& state, Engine& engine) {
+  const int which = static_cast<int>(state.range(0));
+  constexpr const char* kLabels[] = {"floor", "spinning box", "resting box", "resting sphere"};
+  state.SetLabel(kLabels[which]);
+  rwd::scenes::WorldSpec world;
+  if (which == 1) world.gravity = {};
+  engine.reset(world, 2);
+  std::string error;
+  rwd::scenes::BodySpec floor;
+  floor.kind = rwd::sim::BodyKind::kStatic;
+  floor.shape = rwd::sim::Shape::make_box({20.0f, 0.5f, 20.0f});
+  floor.position = {0.0f, -0.5f, 0.0f};
+  rwd::scenes::BodyHandle handle = 0;
+  bool ok = engine.add_body(floor, handle, error);
+  if (ok && which > 0) {
+    rwd::scenes::BodySpec body;
+    body.shape = which == 3 ? rwd::sim::Shape::make_sphere(0.5f)
+                            : rwd::sim::Shape::make_box({0.5f, 0.5f, 0.5f});
+    body.position = {0.0f, which == 1 ? 5.0f : 0.5f, 0.0f};
+    if (which == 1) body.angular_velocity = {0.3f, 1.0f, 0.2f};
+    ok = engine.add_body(body, handle, error);
+  }
+  if (!ok) {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  for (int t = 0; t < 60; ++t) engine.step();
+  for (auto _ : state) engine.step();
+  state.counters["awake"] = engine.awake_count();
+}
+void BM_FixedCostRewind(benchmark::State& state) {
+  rwd::sim::WorldConfig config;
+  config.enable_sleep = false;
+  rwd::scenes::RewindEngine engine(config);
+  fixed_cost(state, engine);
+}
+void BM_FixedCostBullet(benchmark::State& state) {
+  rwd::bench::BulletSettings settings;
+  settings.sleep = false;
+  rwd::bench::BulletEngine engine(settings);
+  fixed_cost(state, engine);
+}
+BENCHMARK(BM_FixedCostRewind)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_FixedCostBullet)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
 // A world at rest: the sleep scene's pyramid of base N stepped until every
 // body sleeps (untimed), then the steps of the asleep world: what a world

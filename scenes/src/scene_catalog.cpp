@@ -149,6 +149,12 @@ const std::vector<SceneEntry>& scene_catalog() {
        make_overlap},
       {"kick", "stack of N boxes, the top one kicked at 1 m/s after 1 s", {5}, 5, make_kick},
       {"far_stack", "5-box stack N m from the origin, 20 s", {1000, 10000}, 10000, make_far_stack},
+      {"crates",
+       "the crates sample match with N players: a closed arena, a tower of 16 crates, N balls "
+       "steered by scripted sticks, 10 s",
+       {2, 8, 32},
+       8,
+       make_crates},
       {"sleep",
        "pyramid of base N until every body sleeps, then asleep, 10 s",
        {10, 20, 30},

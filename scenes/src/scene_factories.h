@@ -35,5 +35,6 @@ std::unique_ptr<Scene> make_compound_pile(int count);
 std::unique_ptr<Scene> make_mesh_pile(int count);
 std::unique_ptr<Scene> make_field_boxes(int count);
 std::unique_ptr<Scene> make_overlap(int count);
+std::unique_ptr<Scene> make_crates(int players);
 
 }  // namespace rwd::scenes

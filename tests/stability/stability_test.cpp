@@ -56,8 +56,11 @@ INSTANTIATE_TEST_SUITE_P(
         Criterion{"hull_stack", 5, "penetration_mm"}, Criterion{"hull_stack", 10, "drift_m"},
         Criterion{"hull_stack", 10, "penetration_mm"}, Criterion{"log_cabin", 3, "drift_m"},
         Criterion{"log_cabin", 3, "penetration_mm"}, Criterion{"log_cabin", 6, "drift_m"},
-        Criterion{"log_cabin", 6, "penetration_mm"}, Criterion{"sleep", 10, "sleep_s"},
-        Criterion{"sleep", 20, "sleep_s"}, Criterion{"sleep", 30, "sleep_s"}),
+        Criterion{"log_cabin", 6, "penetration_mm"}, Criterion{"crates", 2, "escaped"},
+        Criterion{"crates", 8, "escaped"}, Criterion{"crates", 8, "max_speed_mps"},
+        Criterion{"crates", 32, "escaped"}, Criterion{"crates", 32, "max_speed_mps"},
+        Criterion{"sleep", 10, "sleep_s"}, Criterion{"sleep", 20, "sleep_s"},
+        Criterion{"sleep", 30, "sleep_s"}),
     criterion_name);
 
 }  // namespace

@@ -133,14 +133,21 @@ void warm_start_lanes(const A& acc, std::vector<SolverBody>& bodies) {
 // A point's Jacobian angular parts (anchor x normal, both sides) and the
 // normal velocity of b relative to a there.
 template <class A>
-typename A::F normal_velocity(const A& acc, const ContactBatch::Point& bp,
-                              const V3<typename A::F>& n, const LaneBodies<typename A::F>& a,
-                              const LaneBodies<typename A::F>& b, V3<typename A::F>& rn_a,
-                              V3<typename A::F>& rn_b) {
+[[gnu::always_inline]] inline typename A::F normal_velocity(
+    const A& acc, const ContactBatch::Point& bp, const V3<typename A::F>& n,
+    const LaneBodies<typename A::F>& a, const LaneBodies<typename A::F>& b, V3<typename A::F>& rn_a,
+    V3<typename A::F>& rn_b) {
   rn_a = cross3(ld3(acc, bp.anchor_a), n);
   rn_b = cross3(ld3(acc, bp.anchor_b), n);
   return dot3(b.v - a.v, n) + dot3(rn_b, b.w) - dot3(rn_a, a.w);
 }
+
+// Sweeps over a manifold's normal block: one for a bound of one point, as
+// a lone point is solved by the first sweep and the later ones would only
+// move it by rounding (they run with a gain of zero for lone points in
+// batches of more, so a lane's result does not depend on its batch).
+template <uint32_t N>
+inline constexpr int kBlockSweeps = N == 1 ? 1 : kManifoldSweeps;
 
 // One projected Gauss-Seidel step at point p of a manifold's normal
 // system (sweep_normal_block).
@@ -172,7 +179,7 @@ void sweep_normal_block(const A& acc, const ContactBatch& batch,
                         const typename A::F (&later_gain)[kMaxManifoldPoints],
                         typename A::F (&residual)[kMaxManifoldPoints],
                         typename A::F (&total)[kMaxManifoldPoints]) {
-  for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
+  for (int sweep = 0; sweep < kBlockSweeps<N>; ++sweep) {
     for (uint32_t p = 0; p < N; ++p) {
       sweep_step<N>(acc, batch, p, sweep == 0 ? first_gain[p] : later_gain[p], residual, total);
     }
@@ -198,6 +205,7 @@ struct SolveLanes {
   V3<F> n;
   F residual[kMaxManifoldPoints];
   F step[kMaxManifoldPoints];
+  F later_step[kMaxManifoldPoints];  ///< step, or 0 for a lone point
   F total[kMaxManifoldPoints];
   F start[kMaxManifoldPoints];
 };
@@ -224,6 +232,9 @@ template <uint32_t N, class A>
     s.total[p] = acc.ld(bp.normal_impulse);
     s.start[p] = s.total[p];
   }
+  // A lone point's later sweeps have no gain (kBlockSweeps).
+  const auto several = acc.ld(batch.point_count) > A::splat(1.0f);
+  for (uint32_t p = 0; p < N; ++p) s.later_step[p] = select(several, s.step[p], zero);
 }
 
 template <uint32_t N, class A>
@@ -299,9 +310,7 @@ void solve_lanes(const A& acc, std::vector<SolverBody>& bodies, float inv_h) {
   SolveLanes<A> s;
   begin_solve<N>(acc, bodies, inv_h, s);
   const ContactBatch& batch = acc.first();
-  for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
-    for (uint32_t p = 0; p < N; ++p) sweep_step<N>(acc, batch, p, s.step[p], s.residual, s.total);
-  }
+  sweep_normal_block<N>(acc, batch, s.step, s.later_step, s.residual, s.total);
   finish_solve<N>(acc, bodies, s);
 }
 
@@ -317,10 +326,12 @@ void solve_lanes_pair(const A& first, const A& second, std::vector<SolverBody>& 
   begin_solve<N>(second, bodies, inv_h, s2);
   const ContactBatch& batch1 = first.first();
   const ContactBatch& batch2 = second.first();
-  for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
+  for (int sweep = 0; sweep < kBlockSweeps<N>; ++sweep) {
     for (uint32_t p = 0; p < N; ++p) {
-      sweep_step<N>(first, batch1, p, s1.step[p], s1.residual, s1.total);
-      sweep_step<N>(second, batch2, p, s2.step[p], s2.residual, s2.total);
+      sweep_step<N>(first, batch1, p, sweep == 0 ? s1.step[p] : s1.later_step[p], s1.residual,
+                    s1.total);
+      sweep_step<N>(second, batch2, p, sweep == 0 ? s2.step[p] : s2.later_step[p], s2.residual,
+                    s2.total);
     }
   }
   finish_solve<N>(first, bodies, s1);
@@ -429,7 +440,8 @@ void for_point_bound(const ContactBatch& batch, Fn&& fn) {
 
 // q rotating v, per lane, as rotate() in math.h.
 template <class A>
-V3<typename A::F> rotate_lanes(const typename A::F (&q)[4], const V3<typename A::F>& v) {
+[[gnu::always_inline]] inline V3<typename A::F> rotate_lanes(const typename A::F (&q)[4],
+                                                             const V3<typename A::F>& v) {
   using F = typename A::F;
   const V3<F> u{q[0], q[1], q[2]};
   const V3<F> uv = cross3(u, v);
