@@ -1,22 +1,28 @@
 // SPDX-License-Identifier: MIT
 // rewind-rays2d: closest-hit raycasts per second in the large pyramid
-// (5,050 boxes, settled for a second), Rewind's 2D lane against Box2D 2.4
-// on the same rays in the same process, the engines taking turns in blocks
-// so a shared machine's load falls on both. Prints CSV:
+// (5,050 boxes, as built), Rewind's 2D lane against Box2D 2.4 and, when
+// built with it (REWIND_BOX2D3_DIR), Box2D v3 on the same rays in the same
+// process, the engines taking turns in blocks so a shared machine's load
+// falls on all alike. Prints CSV:
 //   engine,settings,rays,rays_per_s,hits,agree_pct
-// agree_pct is the share of rays both engines answer alike: both miss, or
-// both hit within 1 cm of each other along the ray (Box2D's boxes carry a
-// 1 cm skin, so its hits come up to 1 cm early).
+// agree_pct is the share of rays a peer and Rewind answer alike (Rewind's
+// row: Rewind and Box2D 2.4): both miss, or both hit within 1 cm of each
+// other along the ray (Box2D 2.4's boxes carry a 1 cm skin, so its hits
+// come up to 1 cm early).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "box2d_engine.h"
 #include "rewind2d_engine.h"
 #include "scene2d.h"
+#ifdef REWIND_HAVE_BOX2D3
+#include "box2d3_engine.h"
+#endif
 
 namespace {
 
@@ -54,51 +60,59 @@ int main(int argc, char** argv) {
   }
   rwd::bench::Scene2D scene;
   rwd::bench::make_scene2d("large_pyramid", 100, scene);
-  rwd::bench::Rewind2DEngine rewind(4, 1);
-  rwd::bench::Box2DEngine box2d(8, 3);
-  Engine2D* engines[2] = {&rewind, &box2d};
-  for (Engine2D* e : engines) {
+  // Rewind first and Box2D 2.4 second: agree_pct compares against them.
+  std::vector<std::unique_ptr<Engine2D>> engines;
+  engines.push_back(std::make_unique<rwd::bench::Rewind2DEngine>(4, 1));
+  engines.push_back(std::make_unique<rwd::bench::Box2DEngine>(8, 3));
+#ifdef REWIND_HAVE_BOX2D3
+  engines.push_back(std::make_unique<rwd::bench::Box2D3Engine>(4));
+#endif
+  const size_t n = engines.size();
+  for (const auto& e : engines) {
     std::string error;
     if (!e->build(scene, error)) {
       std::fprintf(stderr, "rewind-rays2d: %s\n", error.c_str());
       return 1;
     }
-    // Not stepped: both engines answer for the same poses (the settled
+    // Not stepped: every engine answers for the same poses (the settled
     // pyramids would differ by the engines' own sag).
-    (void)e;
   }
   const std::vector<Ray> rays = make_rays(count);
-  std::vector<double> seconds(2, 0.0);
-  std::vector<int> hits(2, 0);
-  std::vector<double> fraction(2 * rays.size(), -1.0);
+  std::vector<double> seconds(n, 0.0);
+  std::vector<int> hits(n, 0);
+  std::vector<double> fraction(n * rays.size(), -1.0);  // ray i, engine k at n * i + k
   const size_t block = 1000;
   for (size_t start = 0; start < rays.size(); start += block) {
     const size_t end = std::min(rays.size(), start + block);
-    for (int k = 0; k < 2; ++k) {
+    for (size_t k = 0; k < n; ++k) {
       const auto t0 = std::chrono::steady_clock::now();
       for (size_t i = start; i < end; ++i) {
         double f = 0.0;
         if (engines[k]->raycast(rays[i].x0, rays[i].y0, rays[i].x1, rays[i].y1, f)) {
-          fraction[2 * i + static_cast<size_t>(k)] = f;
-          ++hits[static_cast<size_t>(k)];
+          fraction[n * i + k] = f;
+          ++hits[k];
         }
       }
-      seconds[static_cast<size_t>(k)] +=
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      seconds[k] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
   }
-  int agree = 0;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    const double a = fraction[2 * i];
-    const double b = fraction[2 * i + 1];
-    const double length = std::hypot(rays[i].x1 - rays[i].x0, rays[i].y1 - rays[i].y0);
-    if ((a < 0 && b < 0) || (a >= 0 && b >= 0 && std::fabs(a - b) * length <= 0.0101)) ++agree;
-  }
+  // Rays engines j and k answer alike.
+  auto agree = [&](size_t j, size_t k) {
+    int alike = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const double a = fraction[n * i + j];
+      const double b = fraction[n * i + k];
+      const double length = std::hypot(rays[i].x1 - rays[i].x0, rays[i].y1 - rays[i].y0);
+      if ((a < 0 && b < 0) || (a >= 0 && b >= 0 && std::fabs(a - b) * length <= 0.0101)) ++alike;
+    }
+    return alike;
+  };
   std::printf("engine,settings,rays,rays_per_s,hits,agree_pct\n");
-  for (int k = 0; k < 2; ++k) {
+  for (size_t k = 0; k < n; ++k) {
+    const int alike = agree(0, k == 0 ? 1 : k);
     std::printf("%s,%s,%d,%.0f,%d,%.2f\n", engines[k]->name().c_str(),
-                engines[k]->settings().c_str(), count, count / seconds[static_cast<size_t>(k)],
-                hits[static_cast<size_t>(k)], 100.0 * agree / count);
+                engines[k]->settings().c_str(), count, count / seconds[k], hits[k],
+                100.0 * alike / count);
   }
   return 0;
 }

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// rewind-scene2d-sweep: runs the 2D scenes on Rewind's 2D lane and Box2D
-// 2.4 in one process (taking turns in blocks of ticks) and prints one CSV
-// row per (scene, engine setting) on stdout, progress on stderr.
+// rewind-scene2d-sweep: runs the 2D scenes on Rewind's 2D lane, Box2D 2.4
+// and, when built with it (REWIND_BOX2D3_DIR), Box2D v3 in one process
+// (taking turns in blocks of ticks) and prints one CSV row per (scene,
+// engine setting) on stdout, progress on stderr.
 // scripts/charts2d.py turns the rows into charts and the 2D section of
 // docs/BENCHMARKS.md.
 #include <cstdio>
@@ -13,6 +14,9 @@
 
 #include "box2d_engine.h"
 #include "rewind2d_engine.h"
+#ifdef REWIND_HAVE_BOX2D3
+#include "box2d3_engine.h"
+#endif
 #include "run2d.h"
 #include "scene2d.h"
 
@@ -25,20 +29,28 @@ using rwd::bench::Scene2D;
 
 constexpr const char* kUsage =
     "usage: rewind-scene2d-sweep [--scene NAME]... [--size N] [--ticks N] [--sweep]\n"
-    "                            [--engine rewind|box2d|both] [--list]\n"
+    "                            [--engine rewind|box2d|box2d3|both] [--list]\n"
     "  Runs each 2D scene (default: all) on Rewind (4 substeps, relax 1) and Box2D 2.4\n"
     "  (8/3 and 4/2 velocity/position iterations; 8/3 also without continuous\n"
-    "  collision), sleeping off in both. --sweep adds\n"
-    "  Rewind substeps 6, 8, 16 (fewer than 4 at 60 Hz are refused) and Box2D\n"
-    "  velocity iterations 2, 16 (position 3) for\n"
+    "  collision), and Box2D v3 (4 substeps) when built with it\n"
+    "  (-DREWIND_BOX2D3_DIR=...), sleeping off in all. --sweep adds\n"
+    "  Rewind substeps 6, 8, 16 (fewer than 4 at 60 Hz are refused), Box2D 2.4\n"
+    "  velocity iterations 2, 16 (position 3) and Box2D v3 substeps 2, 8 for\n"
     "  the error-against-cost charts. --size replaces the scene's size, --ticks its\n"
-    "  timed ticks. --engine runs one engine alone (for profiling). Prints CSV on stdout, progress "
-    "on stderr. Exit 0 on success, 1 if\n"
+    "  timed ticks. --engine runs one engine alone (for profiling; both: every\n"
+    "  engine built in). Prints CSV on stdout, progress on stderr. Exit 0 on success, 1 if\n"
     "  an engine refused a scene, 2 on bad usage.\n";
+
+#ifdef REWIND_HAVE_BOX2D3
+constexpr bool kHaveBox2D3 = true;
+#else
+constexpr bool kHaveBox2D3 = false;
+#endif
 
 std::vector<std::unique_ptr<Engine2D>> engines(bool sweep, const std::string& which) {
   std::vector<std::unique_ptr<Engine2D>> e;
-  const bool rewind = which != "box2d", box2d = which != "rewind";
+  const bool rewind = which == "rewind" || which == "both";
+  const bool box2d = which == "box2d" || which == "both";
   for (int substeps : {4, 6, 8, 16}) {
     if (rewind && (sweep || substeps == 4)) {
       e.push_back(std::make_unique<Rewind2DEngine>(substeps, 1));
@@ -52,6 +64,13 @@ std::vector<std::unique_ptr<Engine2D>> engines(bool sweep, const std::string& wh
     // Without Box2D's continuous collision: how much of its step that is.
     e.push_back(std::make_unique<Box2DEngine>(8, 3, false));
   }
+#ifdef REWIND_HAVE_BOX2D3
+  for (int substeps : {2, 4, 8}) {
+    if ((which == "box2d3" || which == "both") && (sweep || substeps == 4)) {
+      e.push_back(std::make_unique<rwd::bench::Box2D3Engine>(substeps));
+    }
+  }
+#endif
   return e;
 }
 
@@ -86,7 +105,14 @@ int main(int argc, char** argv) {
       ticks = std::atoi(argv[++i]);
     } else if (std::strcmp(a, "--engine") == 0 && i + 1 < argc) {
       which = argv[++i];
-      if (which != "rewind" && which != "box2d" && which != "both") {
+      if (which == "box2d3" && !kHaveBox2D3) {
+        std::fputs(
+            "rewind-scene2d-sweep: built without Box2D v3: configure with "
+            "-DREWIND_BOX2D3_DIR=<Box2D v3 source tree>\n",
+            stderr);
+        return 2;
+      }
+      if (which != "rewind" && which != "box2d" && which != "box2d3" && which != "both") {
         std::fputs(kUsage, stderr);
         return 2;
       }

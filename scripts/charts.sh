@@ -6,6 +6,7 @@
 # writes the charts and docs/BENCHMARKS.md from that one run.
 #
 # Usage: scripts/charts.sh [--quick] [--no-build] [--only 3d|2d|joints]
+#                          [--box2d3 DIR]
 #   (default)   full sweep: every scene size at default settings on both
 #               engines, piles up to 8000 boxes, and at each scene's chart
 #               size Rewind's substeps 4-16, relax 0-4, contact_hertz 15-60
@@ -24,6 +25,9 @@
 #               scripts/charts2d.py replaces the 2D section of the document
 #   --only joints  the 3D joints part alone: rewind-joint-bench, then
 #               scripts/charts_joints.py replaces the "3D joints" section
+#   --box2d3 DIR  also Box2D v3 in the 2D part, built from the source tree
+#               DIR (v3.1; default: $REWIND_BOX2D3_DIR; never
+#               fetched): cmake --preset bench -DREWIND_BOX2D3_DIR=DIR
 #
 # Steps: scripts/setup.sh (only installs what is missing), cmake --preset bench,
 # build rewind-scene-sweep and rewind-scene2d-sweep, run them (progress on
@@ -40,6 +44,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 mode=full
 build=1
 only=all
+box2d3=${REWIND_BOX2D3_DIR:-}
 usage() { sed -n '4,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"; }
 while (($#)); do
   case "$1" in
@@ -49,6 +54,9 @@ while (($#)); do
       [[ ${2:-} == 3d || ${2:-} == 2d || ${2:-} == joints ]] ||
         { echo "charts: --only takes 3d, 2d or joints" >&2; usage >&2; exit 2; }
       only=$2; shift 2 ;;
+    --box2d3)
+      [[ -n ${2:-} ]] || { echo "charts: --box2d3 takes a directory" >&2; usage >&2; exit 2; }
+      box2d3=$2; shift 2 ;;
     -h|--help) usage; exit 0 ;;
     *) echo "charts: unknown option '$1'" >&2; usage >&2; exit 2 ;;
   esac
@@ -60,6 +68,20 @@ run3d=1 run2d=1 runjoints=1
 
 step() { echo "==> $*" >&2; }
 
+# Box2D v3 is an optional peer of the 2D part. Without it the cache entry is
+# cleared, so that an earlier --box2d3 configure does not linger.
+box2d3_args=(-DREWIND_BOX2D3_DIR=)
+box2d3_version=
+if [[ -n $box2d3 ]]; then
+  [[ -f $box2d3/include/box2d/box2d.h && -f $box2d3/src/world.c ]] ||
+    { echo "charts: --box2d3 '$box2d3' is not a Box2D v3 source tree" >&2; exit 2; }
+  box2d3=$(cd "$box2d3" && pwd)
+  box2d3_args=(-DREWIND_BOX2D3_DIR="$box2d3")
+  # "VERSION 3.1.1" in the project() call of its CMakeLists.txt.
+  box2d3_version=$(sed -n 's/^[[:space:]]*VERSION[[:space:]]\{1,\}\([0-9][0-9.]*\)[[:space:]]*$/\1/p' \
+    "$box2d3/CMakeLists.txt" | head -n 1)
+fi
+
 targets=()
 ((run3d)) && targets+=(rewind-scene-sweep)
 ((run2d)) && targets+=(rewind-scene2d-sweep rewind-rays2d)
@@ -68,7 +90,7 @@ if ((build)); then
   step "system packages"
   bash scripts/setup.sh >&2
   step "configure + build (preset bench, ${targets[*]})"
-  cmake --preset bench >/dev/null
+  cmake --preset bench "${box2d3_args[@]}" >/dev/null
   cmake --build --preset bench -j2 --target "${targets[@]}" >&2
 fi
 
@@ -120,7 +142,7 @@ if ((run2d)); then
   start=$(date +%s)
   ticks=()
   [[ $mode == quick ]] && ticks=(--ticks 60)
-  step "2D sweep ($mode): large pyramid, pyramids, tumbler, joint grid on Rewind and Box2D 2.4"
+  step "2D sweep ($mode): large pyramid, pyramids, tumbler, joint grid on Rewind and Box2D 2.4${box2d3:+ and Box2D v3}"
   "$sweep2d" --sweep --scene large_pyramid "${ticks[@]}" >"$out/2d_sweep.csv"
   "$sweep2d" --sweep --scene pyramids "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
   "$sweep2d" --scene tumbler "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
@@ -130,6 +152,8 @@ if ((run2d)); then
   build/bench/bin/rewind-rays2d "$rays" >"$out/2d_rays.csv"
   printf 'mode=%s\ndate=%s\nseconds=%s\n' "$mode" "$(date -u +%F)" \
     "$(( $(date +%s) - start ))" >"$out/2d_run.txt"
+  # Its version names it in the document (the CSV says only "box2d3").
+  [[ -n $box2d3_version ]] && printf 'box2d3=v%s\n' "$box2d3_version" >>"$out/2d_run.txt"
 fi
 
 if ((runjoints)); then
