@@ -112,6 +112,7 @@ int32_t World2D::QueryCache::build_range(uint32_t first, uint32_t count) {
   const int32_t right = build_range(first + count / 2, count - count / 2);
   nodes_[static_cast<size_t>(id)].left = left;
   nodes_[static_cast<size_t>(id)].right = right;
+  nodes_[static_cast<size_t>(id)].split_y = by_x ? 0 : 1;
   return id;
 }
 

@@ -17,6 +17,15 @@ TEST(FixedIntegerSqrt, IsExactFloorForEveryWidth) {
   EXPECT_EQ(isqrt64(0), 0u);
   EXPECT_EQ(isqrt64(UINT64_MAX), 4294967295u);
   EXPECT_EQ(isqrt128(~U128{0}), static_cast<U128>(UINT64_MAX));
+  // Each side of a power of four, and where isqrt128 hands over to isqrt64.
+  for (uint64_t n : {1u, 2u, 3u, 4u, 5u, 15u, 16u, 17u}) {
+    EXPECT_EQ(isqrt64(n), n < 4 ? 1u : (n < 9 ? 2u : (n < 16 ? 3u : 4u))) << n;
+  }
+  EXPECT_EQ(isqrt128(U128{1} << 64), U128{1} << 32);
+  EXPECT_EQ(isqrt128((U128{1} << 64) - 1), (U128{1} << 32) - 1);
+  EXPECT_EQ(isqrt128((U128{1} << 64) + 1), U128{1} << 32);
+  EXPECT_EQ(isqrt128(U128{1} << 126), U128{1} << 63);
+  EXPECT_EQ(isqrt128((U128{1} << 126) - 1), (U128{1} << 63) - 1);
   SplitMix64 rng{21};
   for (int i = 0; i < 100000; ++i) {
     const uint64_t n = rng.next() >> rng.below(64);
