@@ -73,6 +73,11 @@ class AabbTree {
   /// (ties to the lower id) gets what visiting every leaf would give.
   template <typename Visit>
   void ray_query_nearest(Vec3 origin, Vec3 dir, float& reach, Visit&& visit) const;
+  /// The same for the box `start` moving along `translation` (reach a
+  /// fraction of it, as sweep_query tests its boxes): for the closest hit
+  /// of a shape cast.
+  template <typename Visit>
+  void sweep_query_nearest(const Aabb& start, Vec3 translation, float& reach, Visit&& visit) const;
 
   /// Calls visit(body) for every leaf whose box the box `start` touches
   /// somewhere on its way along `translation` (the segment of its centre
@@ -81,6 +86,14 @@ class AabbTree {
   template <typename Visit>
   void sweep_query(const Aabb& start, Vec3 translation, Visit&& visit) const;
 
+ private:
+  // The near-to-far walk of ray_query_nearest and sweep_query_nearest: the
+  // segment origin + t / inv_dir against every box grown by `grow` (zero
+  // for a ray, which then sees the boxes exactly).
+  template <bool kGrow, typename Visit>
+  void nearest_walk(Vec3 origin, Vec3 inv_dir, Vec3 grow, float& reach, Visit&& visit) const;
+
+ public:
   uint32_t leaf_count() const { return leaves_; }
   /// Longest root-to-leaf path (0 for one leaf, -1 when empty).
   int32_t height() const { return root_ == kNull ? -1 : nodes_[root_].height; }
@@ -190,13 +203,21 @@ void AabbTree::ray_query(Vec3 origin, Vec3 dir, float max_t, Visit&& visit) cons
   walk([&](const Aabb& node) { return segment_hits(node, origin, inv_dir, max_t); }, visit);
 }
 
-template <typename Visit>
-void AabbTree::ray_query_nearest(Vec3 origin, Vec3 dir, float& reach, Visit&& visit) const {
+template <bool kGrow, typename Visit>
+void AabbTree::nearest_walk(Vec3 origin, Vec3 inv_dir, Vec3 grow, float& reach,
+                            Visit&& visit) const {
   if (root_ == kNull) return;
-  const Vec3 inv_dir{1.0f / dir.x, 1.0f / dir.y, 1.0f / dir.z};
   // The skip margin: a thousandth of the reach and a millimetre, where the
   // box test's rounding is a few ulps of the coordinates.
   const auto padded = [](float t) { return t + 1e-3f * t + 1e-3f; };
+  const auto enters = [&](const Aabb& box, float& t) {
+    if constexpr (kGrow) {
+      return segment_enters({box.lower - grow, box.upper + grow}, origin, inv_dir, padded(reach),
+                            t);
+    } else {
+      return segment_enters(box, origin, inv_dir, padded(reach), t);
+    }
+  };
   struct Entry {
     uint32_t node;
     float t;  ///< where the segment enters the node's box
@@ -210,7 +231,7 @@ void AabbTree::ray_query_nearest(Vec3 origin, Vec3 dir, float& reach, Visit&& vi
   }
   uint32_t top = 0;
   float t_root = 0.0f;
-  if (!segment_enters(nodes_[root_].box, origin, inv_dir, padded(reach), t_root)) return;
+  if (!enters(nodes_[root_].box, t_root)) return;
   stack[top++] = {root_, t_root};
   while (top > 0) {
     const Entry e = stack[--top];
@@ -222,8 +243,8 @@ void AabbTree::ray_query_nearest(Vec3 origin, Vec3 dir, float& reach, Visit&& vi
     }
     float t1 = 0.0f;
     float t2 = 0.0f;
-    const bool in1 = segment_enters(nodes_[node.child1].box, origin, inv_dir, padded(reach), t1);
-    const bool in2 = segment_enters(nodes_[node.child2].box, origin, inv_dir, padded(reach), t2);
+    const bool in1 = enters(nodes_[node.child1].box, t1);
+    const bool in2 = enters(nodes_[node.child2].box, t2);
     // The nearer child is pushed last, so it is walked first.
     if (in1 && in2) {
       if (t1 <= t2) {
@@ -239,6 +260,23 @@ void AabbTree::ray_query_nearest(Vec3 origin, Vec3 dir, float& reach, Visit&& vi
       stack[top++] = {node.child2, t2};
     }
   }
+}
+
+template <typename Visit>
+void AabbTree::ray_query_nearest(Vec3 origin, Vec3 dir, float& reach, Visit&& visit) const {
+  const Vec3 inv_dir{1.0f / dir.x, 1.0f / dir.y, 1.0f / dir.z};
+  nearest_walk<false>(origin, inv_dir, {}, reach, visit);
+}
+
+template <typename Visit>
+void AabbTree::sweep_query_nearest(const Aabb& start, Vec3 translation, float& reach,
+                                   Visit&& visit) const {
+  // As sweep_query: the start box's centre against every box grown by its
+  // half size.
+  const Vec3 center = (start.lower + start.upper) * 0.5f;
+  const Vec3 half = (start.upper - start.lower) * 0.5f;
+  const Vec3 inv_dir{1.0f / translation.x, 1.0f / translation.y, 1.0f / translation.z};
+  nearest_walk<true>(center, inv_dir, half, reach, visit);
 }
 
 template <typename Visit>

@@ -95,6 +95,15 @@ class Broadphase {
     sleeping_tree_.sweep_query(start, translation, visit);
     awake_tree_.sweep_query(start, translation, visit);
   }
+  /// For the closest hit of a sweep (AabbTree::sweep_query_nearest):
+  /// every tree near to far, `reach` (a fraction of `translation`)
+  /// shortened by visit(body) as it finds hits.
+  template <typename Visit>
+  void sweep_query_nearest(const Aabb& start, Vec3 translation, float& reach, Visit&& visit) const {
+    static_tree_.sweep_query_nearest(start, translation, reach, visit);
+    sleeping_tree_.sweep_query_nearest(start, translation, reach, visit);
+    awake_tree_.sweep_query_nearest(start, translation, reach, visit);
+  }
 
   /// For tests: the trees' leaf counts (static, sleeping, awake queries).
   uint32_t static_leaves() const { return static_tree_.leaf_count(); }

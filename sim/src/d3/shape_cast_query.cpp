@@ -3,8 +3,8 @@
 // bodies. The swept shape is convex or a compound (swept_shape.h). The
 // broadphase (broadphase.h) gives the bodies whose bounds the shape's
 // bounds meet on the way; each is swept exactly by conservative
-// advancement on GJK (gjk.h), in index order, so ties go to the lower
-// index whatever the trees' shapes.
+// advancement on GJK (gjk.h), and ties go to the lower index whatever the
+// trees' shapes: all hits in index order, the closest near to far.
 #include <algorithm>
 #include <cmath>
 
@@ -100,9 +100,30 @@ Status World3D::shape_cast(const Shape& shape, Vec3 position, Quat rotation, Vec
   if (Status s = prepare_cast(*geometry_, shape, position, rotation, translation, c); !s.ok()) {
     return s;
   }
-  sweep(state_, *scratch_, c, filter, [&out](const ShapeCastHit& hit) {
-    if (!out || nearer(hit, *out)) out = hit;
-  });
+  d3::prepare_queries(state_, *scratch_);
+  // The trees are walked near to far and each body is swept no further
+  // than the best hit so far (a sweep's answer does not depend on how far
+  // it may go, only whether it gets there; an equal fraction still
+  // counts): the nearest hit wins, ties to the lower index, as if every
+  // body on the way were swept in index order (shape_cast_all).
+  float reach = 1.0f;
+  float best_fraction = 1.0f;
+  const auto test = [&](uint32_t i) {
+    if (!d3::query_accepts(state_, filter, i)) return;
+    const BodyInfo& info = state_.infos[i];
+    const BodySim& sim = state_.sims[i];
+    const d3::ShapeCastOutput hit =
+        d3::sweep_against(info.shape, *scratch_->store, sim.position, mat3_from_quat(sim.rotation),
+                          c.swept, c.translation, best_fraction);
+    if (!hit.hit) return;
+    const ShapeCastHit found{BodyId{i, info.generation}, hit.fraction * c.length, hit.point,
+                             hit.normal};
+    if (out && !nearer(found, *out)) return;
+    out = found;
+    best_fraction = hit.fraction;
+    reach = hit.fraction;
+  };
+  scratch_->broadphase.sweep_query_nearest(c.start_bounds, c.translation, reach, test);
   return Status::Ok();
 }
 

@@ -260,6 +260,16 @@ TEST(ShapeCast, TreesFindWhatABruteForceSweepFinds) {
     std::sort(found.begin(), found.end(), [](BodyId l, BodyId r) { return l.index < r.index; });
     EXPECT_EQ(found, expected) << "query " << q;
     for (size_t i = 1; i < hits.size(); ++i) EXPECT_LE(hits[i - 1].distance, hits[i].distance);
+    // The closest cast (near to far, each body swept no further than the
+    // best so far) gives the first of all hits, bit for bit.
+    std::optional<ShapeCastHit> nearest;
+    ASSERT_TRUE(world.shape_cast(shape, from, rotation, move, {}, nearest).ok());
+    ASSERT_EQ(nearest.has_value(), !hits.empty()) << "query " << q;
+    if (!nearest) continue;
+    EXPECT_EQ(nearest->body, hits.front().body) << "query " << q;
+    EXPECT_EQ(nearest->distance, hits.front().distance) << "query " << q;
+    EXPECT_EQ(nearest->point, hits.front().point) << "query " << q;
+    EXPECT_EQ(nearest->normal, hits.front().normal) << "query " << q;
   }
 }
 
