@@ -37,6 +37,8 @@ inline bool contains(const Aabb& outer, const Aabb& inner) {
          inner.upper.y <= outer.upper.y && inner.upper.z <= outer.upper.z;
 }
 
+struct SegmentSlabs;
+
 class AabbTree {
  public:
   static constexpr uint32_t kNull = 0xFFFFFFFFu;
@@ -88,10 +90,10 @@ class AabbTree {
 
  private:
   // The near-to-far walk of ray_query_nearest and sweep_query_nearest: the
-  // segment origin + t / inv_dir against every box grown by `grow` (zero
-  // for a ray, which then sees the boxes exactly).
+  // segment against every box grown by `grow` (zero for a ray, which then
+  // sees the boxes exactly).
   template <bool kGrow, typename Visit>
-  void nearest_walk(Vec3 origin, Vec3 inv_dir, Vec3 grow, float& reach, Visit&& visit) const;
+  void nearest_walk(const SegmentSlabs& slabs, Vec3 grow, float& reach, Visit&& visit) const;
 
  public:
   uint32_t leaf_count() const { return leaves_; }
@@ -162,49 +164,62 @@ void AabbTree::query(const Aabb& box, Visit&& visit) const {
   walk([&box](const Aabb& node) { return overlaps(node, box); }, visit);
 }
 
-// Whether the segment origin + t dir, t in [0, max_t], touches the box,
-// and from which t (entry; 0 when the origin is inside).
-inline bool segment_enters(const Aabb& box, Vec3 origin, Vec3 inv_dir, float max_t, float& entry) {
-  float t_lo = 0.0f;
-  float t_hi = max_t;
-  for (int i = 0; i < 3; ++i) {
-    const float o = component(origin, i);
-    const float lo = component(box.lower, i);
-    const float hi = component(box.upper, i);
-    const float inv = component(inv_dir, i);
-    if (!std::isfinite(inv)) {  // parallel to the slabs
-      if (o < lo || o > hi) return false;
-      continue;
-    }
-    float t0 = (lo - o) * inv;
-    float t1 = (hi - o) * inv;
-    if (t0 > t1) {
-      const float t = t0;
-      t0 = t1;
-      t1 = t;
-    }
-    if (t0 > t_lo) t_lo = t0;
-    if (t1 < t_hi) t_hi = t1;
-    if (t_lo > t_hi) return false;
-  }
-  entry = t_lo;
-  return true;
-}
+// The segment origin + t dir against boxes, set up once per query: the
+// reciprocal direction, and which axes the segment runs parallel to (their
+// slab test is whether the origin lies between the planes; none, in most
+// queries, which then take no branch per axis).
+struct SegmentSlabs {
+  Vec3 origin;
+  Vec3 inv_dir;
+  bool parallel[3] = {false, false, false};
+  bool any_parallel = false;
 
-// Whether the segment origin + t dir, t in [0, max_t], touches the box.
-inline bool segment_hits(const Aabb& box, Vec3 origin, Vec3 inv_dir, float max_t) {
-  float entry = 0.0f;
-  return segment_enters(box, origin, inv_dir, max_t, entry);
-}
+  SegmentSlabs(Vec3 from, Vec3 dir)
+      : origin(from), inv_dir{1.0f / dir.x, 1.0f / dir.y, 1.0f / dir.z} {
+    for (int i = 0; i < 3; ++i) {
+      parallel[i] = !std::isfinite(component(inv_dir, i));
+      any_parallel = any_parallel || parallel[i];
+    }
+  }
+
+  // Whether the segment, t in [0, max_t], touches the box, and from which t
+  // (entry; 0 when the origin is inside). Each axis narrows [t_lo, t_hi]
+  // by its slab; max and min are exact, so the order of the axes and of
+  // the comparisons changes neither answer.
+  bool enters(const Aabb& box, float max_t, float& entry) const {
+    float t_lo = 0.0f;
+    float t_hi = max_t;
+    for (int i = 0; i < 3; ++i) {
+      const float o = component(origin, i);
+      const float lo = component(box.lower, i);
+      const float hi = component(box.upper, i);
+      if (any_parallel && parallel[i]) {
+        if (o < lo || o > hi) return false;
+        continue;
+      }
+      const float inv = component(inv_dir, i);
+      const float t0 = (lo - o) * inv;
+      const float t1 = (hi - o) * inv;
+      t_lo = std::max(t_lo, std::min(t0, t1));
+      t_hi = std::min(t_hi, std::max(t0, t1));
+    }
+    entry = t_lo;
+    return t_lo <= t_hi;
+  }
+  bool hits(const Aabb& box, float max_t) const {
+    float entry = 0.0f;
+    return enters(box, max_t, entry);
+  }
+};
 
 template <typename Visit>
 void AabbTree::ray_query(Vec3 origin, Vec3 dir, float max_t, Visit&& visit) const {
-  const Vec3 inv_dir{1.0f / dir.x, 1.0f / dir.y, 1.0f / dir.z};
-  walk([&](const Aabb& node) { return segment_hits(node, origin, inv_dir, max_t); }, visit);
+  const SegmentSlabs slabs(origin, dir);
+  walk([&](const Aabb& node) { return slabs.hits(node, max_t); }, visit);
 }
 
 template <bool kGrow, typename Visit>
-void AabbTree::nearest_walk(Vec3 origin, Vec3 inv_dir, Vec3 grow, float& reach,
+void AabbTree::nearest_walk(const SegmentSlabs& slabs, Vec3 grow, float& reach,
                             Visit&& visit) const {
   if (root_ == kNull) return;
   // The skip margin: a thousandth of the reach and a millimetre, where the
@@ -212,10 +227,9 @@ void AabbTree::nearest_walk(Vec3 origin, Vec3 inv_dir, Vec3 grow, float& reach,
   const auto padded = [](float t) { return t + 1e-3f * t + 1e-3f; };
   const auto enters = [&](const Aabb& box, float& t) {
     if constexpr (kGrow) {
-      return segment_enters({box.lower - grow, box.upper + grow}, origin, inv_dir, padded(reach),
-                            t);
+      return slabs.enters({box.lower - grow, box.upper + grow}, padded(reach), t);
     } else {
-      return segment_enters(box, origin, inv_dir, padded(reach), t);
+      return slabs.enters(box, padded(reach), t);
     }
   };
   struct Entry {
@@ -264,8 +278,7 @@ void AabbTree::nearest_walk(Vec3 origin, Vec3 inv_dir, Vec3 grow, float& reach,
 
 template <typename Visit>
 void AabbTree::ray_query_nearest(Vec3 origin, Vec3 dir, float& reach, Visit&& visit) const {
-  const Vec3 inv_dir{1.0f / dir.x, 1.0f / dir.y, 1.0f / dir.z};
-  nearest_walk<false>(origin, inv_dir, {}, reach, visit);
+  nearest_walk<false>(SegmentSlabs(origin, dir), {}, reach, visit);
 }
 
 template <typename Visit>
@@ -275,18 +288,17 @@ void AabbTree::sweep_query_nearest(const Aabb& start, Vec3 translation, float& r
   // half size.
   const Vec3 center = (start.lower + start.upper) * 0.5f;
   const Vec3 half = (start.upper - start.lower) * 0.5f;
-  const Vec3 inv_dir{1.0f / translation.x, 1.0f / translation.y, 1.0f / translation.z};
-  nearest_walk<true>(center, inv_dir, half, reach, visit);
+  nearest_walk<true>(SegmentSlabs(center, translation), half, reach, visit);
 }
 
 template <typename Visit>
 void AabbTree::sweep_query(const Aabb& start, Vec3 translation, Visit&& visit) const {
   const Vec3 center = (start.lower + start.upper) * 0.5f;
   const Vec3 half = (start.upper - start.lower) * 0.5f;
-  const Vec3 inv_dir{1.0f / translation.x, 1.0f / translation.y, 1.0f / translation.z};
+  const SegmentSlabs slabs(center, translation);
   walk(
       [&](const Aabb& node) {
-        return segment_hits({node.lower - half, node.upper + half}, center, inv_dir, 1.0f);
+        return slabs.hits({node.lower - half, node.upper + half}, 1.0f);
       },
       visit);
 }
