@@ -143,11 +143,13 @@ struct JoltGeometry {
 };
 
 struct JoltEngine::World {
+  explicit World(JPH::uint temp_bytes) : temp(temp_bytes) {}
+
   BroadPhaseLayers layers;
   ObjectVsBroadPhase object_vs_broad_phase;
   ObjectPairs object_pairs;
   JPH::PhysicsSystem system;
-  JPH::TempAllocatorImplWithMallocFallback temp{32u * 1024u * 1024u};
+  JPH::TempAllocatorImplWithMallocFallback temp;
   JPH::JobSystemSingleThreaded jobs{JPH::cMaxPhysicsJobs};
   std::vector<JoltGeometry> geometry;
   std::vector<JPH::BodyID> bodies;
@@ -184,14 +186,18 @@ std::string JoltEngine::settings() const {
 }
 
 void JoltEngine::reset(const scenes::WorldSpec& world, uint32_t body_capacity) {
+  // Room for every pair and contact a dense pile makes, 16 a body (Jolt
+  // drops contacts beyond these, and says so from Update). Sized to the
+  // scene: Jolt takes a buffer for every possible contact from its temp
+  // allocator each step, and one larger than the allocator's block goes to
+  // malloc, mmap and munmap every step. 1 KiB a contact covers the contact
+  // buffer and the step's other scratch data.
+  const JPH::uint bodies = std::max<JPH::uint>(body_capacity, 16);
+  const JPH::uint pairs = std::max<JPH::uint>(1024, 16 * bodies);
   world_.reset();
-  world_ = std::make_unique<World>();
+  world_ = std::make_unique<World>(4u * 1024u * 1024u + 1024u * pairs);
   world_->spec = world;
   world_->step_s = world.tick_seconds / static_cast<float>(settings_.collision_steps);
-  // Room for every pair and contact a dense pile makes (Jolt drops
-  // contacts beyond these, and says so from Update).
-  const JPH::uint bodies = std::max<JPH::uint>(body_capacity, 16);
-  const JPH::uint pairs = std::max<JPH::uint>(65536, 32 * bodies);
   world_->system.Init(bodies, 0, pairs, pairs, world_->layers, world_->object_vs_broad_phase,
                       world_->object_pairs);
   world_->bodies.reserve(body_capacity);
