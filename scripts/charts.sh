@@ -5,7 +5,7 @@
 # scenes, and Rewind's 2D lane against Box2D 2.4 on the 2D scenes, and
 # writes the charts and docs/BENCHMARKS.md from that one run.
 #
-# Usage: scripts/charts.sh [--quick] [--no-build] [--only 3d|2d|joints]
+# Usage: scripts/charts.sh [--quick] [--no-build] [--only 3d|2d|joints] [--jolt DIR]
 #   (default)   full sweep: every scene size at default settings on both
 #               engines, piles up to 8000 boxes, and at each scene's chart
 #               size Rewind's substeps 4-16, relax 0-4, contact_hertz 15-60
@@ -24,6 +24,10 @@
 #               scripts/charts2d.py replaces the 2D section of the document
 #   --only joints  the 3D joints part alone: rewind-joint-bench, then
 #               scripts/charts_joints.py replaces the "3D joints" section
+#   --jolt DIR  also run the 3D scenes on Jolt Physics, built from the Jolt
+#               source tree DIR (optional, never fetched; the environment
+#               variable REWIND_JOLT_DIR does the same): the 3D tables and
+#               charts gain Jolt beside Bullet
 #
 # Steps: scripts/setup.sh (only installs what is missing), cmake --preset bench,
 # build rewind-scene-sweep and rewind-scene2d-sweep, run them (progress on
@@ -40,6 +44,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 mode=full
 build=1
 only=all
+jolt=${REWIND_JOLT_DIR:-}
 usage() { sed -n '4,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"; }
 while (($#)); do
   case "$1" in
@@ -49,10 +54,18 @@ while (($#)); do
       [[ ${2:-} == 3d || ${2:-} == 2d || ${2:-} == joints ]] ||
         { echo "charts: --only takes 3d, 2d or joints" >&2; usage >&2; exit 2; }
       only=$2; shift 2 ;;
+    --jolt)
+      [[ -n ${2:-} ]] || { echo "charts: --jolt takes a Jolt Physics source tree" >&2; exit 2; }
+      jolt=$2; shift 2 ;;
     -h|--help) usage; exit 0 ;;
     *) echo "charts: unknown option '$1'" >&2; usage >&2; exit 2 ;;
   esac
 done
+if [[ -n $jolt ]]; then
+  [[ -f $jolt/Build/CMakeLists.txt ]] ||
+    { echo "charts: $jolt is not a Jolt Physics source tree (no Build/CMakeLists.txt)" >&2; exit 2; }
+  jolt=$(cd "$jolt" && pwd)
+fi
 run3d=1 run2d=1 runjoints=1
 [[ $only == 2d ]] && run3d=0 && runjoints=0
 [[ $only == 3d ]] && run2d=0 && runjoints=0
@@ -68,7 +81,9 @@ if ((build)); then
   step "system packages"
   bash scripts/setup.sh >&2
   step "configure + build (preset bench, ${targets[*]})"
-  cmake --preset bench >/dev/null
+  jolt_cache=()
+  [[ -n $jolt ]] && jolt_cache=(-DREWIND_JOLT_DIR="$jolt")
+  cmake --preset bench "${jolt_cache[@]}" >/dev/null
   cmake --build --preset bench -j2 --target "${targets[@]}" >&2
 fi
 
@@ -84,24 +99,28 @@ if ((run3d)); then
     ! -name '2d_*' ! -name 'joints3d*' -delete
   start=$(date +%s)
 
-  step "sweep ($mode): every scene, both engines"
-  "$sweep" --mode "$mode" >"$out/sweep.csv"
+  # both: Rewind and Bullet; all: Jolt too (the binary refuses it when
+  # built without Jolt).
+  engines=(--engine both)
+  [[ -n $jolt ]] && engines=(--engine all)
+  step "sweep ($mode): every scene, ${engines[1]} engines"
+  "$sweep" --mode "$mode" "${engines[@]}" >"$out/sweep.csv"
 
   pyramid_sizes=(--size 10 --size 20 --size 30)
   [[ $mode == full ]] && pyramid_sizes+=(--size 40)
   pile_sizes=(--size 250 --size 500 --size 1000 --size 2000)
   [[ $mode == full ]] && pile_sizes+=(--size 4000 --size 8000)
   step "stacks, pyramids, card houses, log cabins, hull stacks and piles with every body awake (the solver without sleeping)"
-  "$sweep" --mode defaults --no-sleep --scene pyramid "${pyramid_sizes[@]}" >"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene stack | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene card_house | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene log_cabin | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene hull_stack | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene mixed_pile | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene convex_pile | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene mesh_pile | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene field_boxes | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene pile "${pile_sizes[@]}" | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene pyramid "${pyramid_sizes[@]}" >"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene stack | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene card_house | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene log_cabin | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene hull_stack | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene mixed_pile | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene convex_pile | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene mesh_pile | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene field_boxes | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene pile "${pile_sizes[@]}" | tail -n +2 >>"$out/awake.csv"
 
   "$sweep" --list >"$out/catalog.txt"
   seconds=$(( $(date +%s) - start ))
