@@ -33,10 +33,10 @@
 // would run the same jobs on the same thread, through its queue.
 #include "jolt_engine.h"
 
-// Jolt.h first: it sets up the configuration the other headers rely on.
-#include <Jolt/Jolt.h>
+// Jolt.h (through jolt_setup.h) first: it sets up the configuration the
+// other Jolt headers rely on.
+#include "jolt_setup.h"
 
-#include <Jolt/Core/Factory.h>
 #include <Jolt/Core/JobSystemSingleThreaded.h>
 #include <Jolt/Core/TempAllocator.h>
 #include <Jolt/Physics/Body/BodyCreationSettings.h>
@@ -49,17 +49,20 @@
 #include <Jolt/Physics/Collision/Shape/StaticCompoundShape.h>
 #include <Jolt/Physics/PhysicsSettings.h>
 #include <Jolt/Physics/PhysicsSystem.h>
-#include <Jolt/RegisterTypes.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <mutex>
 #include <sstream>
 #include <vector>
 
 namespace rwd::bench {
 
+using jolt_setup::BroadPhaseLayers;
+using jolt_setup::kMovingLayer;
+using jolt_setup::kStaticLayer;
+using jolt_setup::ObjectPairs;
+using jolt_setup::ObjectVsBroadPhase;
 using scenes::BodyHandle;
 using scenes::BodySpec;
 using scenes::Quat;
@@ -77,50 +80,6 @@ JPH::Quat jq(Quat q) {
   const Quat n = sim::normalize(q);
   return {n.x, n.y, n.z, n.w};
 }
-
-// Jolt's process-wide set-up: its allocator hooks, the factory and the
-// collision dispatch tables, once.
-void init_jolt_once() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    JPH::RegisterDefaultAllocator();
-    JPH::Factory::sInstance = new JPH::Factory();
-    JPH::RegisterTypes();
-  });
-}
-
-// Two object layers: static bodies never test against each other.
-constexpr JPH::ObjectLayer kStaticLayer = 0;
-constexpr JPH::ObjectLayer kMovingLayer = 1;
-const JPH::BroadPhaseLayer kStaticBroadPhase(0);
-const JPH::BroadPhaseLayer kMovingBroadPhase(1);
-
-class BroadPhaseLayers final : public JPH::BroadPhaseLayerInterface {
- public:
-  JPH::uint GetNumBroadPhaseLayers() const override { return 2; }
-  JPH::BroadPhaseLayer GetBroadPhaseLayer(JPH::ObjectLayer layer) const override {
-    return layer == kStaticLayer ? kStaticBroadPhase : kMovingBroadPhase;
-  }
-#if defined(JPH_EXTERNAL_PROFILE) || defined(JPH_PROFILE_ENABLED)
-  const char* GetBroadPhaseLayerName(JPH::BroadPhaseLayer layer) const override {
-    return layer == kStaticBroadPhase ? "static" : "moving";
-  }
-#endif
-};
-
-class ObjectVsBroadPhase final : public JPH::ObjectVsBroadPhaseLayerFilter {
- public:
-  bool ShouldCollide(JPH::ObjectLayer object, JPH::BroadPhaseLayer broad) const override {
-    return object == kMovingLayer || broad == kMovingBroadPhase;
-  }
-};
-
-class ObjectPairs final : public JPH::ObjectLayerPairFilter {
- public:
-  bool ShouldCollide(JPH::ObjectLayer a, JPH::ObjectLayer b) const override {
-    return a == kMovingLayer || b == kMovingLayer;
-  }
-};
 
 // Jolt's convex radius, no larger than a thin box can carry.
 float box_radius(Vec3 half) {
@@ -172,7 +131,7 @@ struct JoltEngine::World {
 };
 
 JoltEngine::JoltEngine(const JoltSettings& settings) : settings_(settings) {
-  init_jolt_once();
+  jolt_setup::init_once();
 }
 JoltEngine::~JoltEngine() = default;
 
