@@ -39,6 +39,7 @@
 # of the failing step.
 set -euo pipefail
 
+caller_dir=$PWD  # a relative --jolt DIR is the caller's
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 mode=full
@@ -62,6 +63,7 @@ while (($#)); do
   esac
 done
 if [[ -n $jolt ]]; then
+  [[ $jolt == /* ]] || jolt=$caller_dir/$jolt
   [[ -f $jolt/Build/CMakeLists.txt ]] ||
     { echo "charts: $jolt is not a Jolt Physics source tree (no Build/CMakeLists.txt)" >&2; exit 2; }
   jolt=$(cd "$jolt" && pwd)
