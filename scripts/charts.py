@@ -307,14 +307,16 @@ def main():
                                   " --jolt DIR" if jolt else "",
                                   datetime.date.today().isoformat(), args.seconds))
     w("Machine: %s. Every figure on this page comes from that one run, so the "
-      "ratios compare the two engines under the same load; the machines are "
-      "shared and noisy, so compare figures within one run only.\n" % machine())
-    w("Both engines run each scene of `scenes/` (the `rewind_scenes` library) "
+      "ratios compare the %s engines under the same load; the machines are "
+      "shared and noisy, so compare figures within one run only.\n"
+      % (machine(), "three" if jolt else "two"))
+    w("%s engines run each scene of `scenes/` (the `rewind_scenes` library) "
       "through the same `Engine` interface: the same bodies, masses, friction, "
       "restitution and damping, 60 Hz ticks, one thread. Rewind's adapter is in "
-      "`scenes/`, Bullet's only in `bench/`. ms/step is the wall time of the "
+      "`scenes/`, %s only in `bench/`. ms/step is the wall time of the "
       "engine's step alone, averaged over the whole scene (sleeping bodies "
-      "included, as in a game), unless a table says every body is awake.\n")
+      "included, as in a game), unless a table says every body is awake.\n"
+      % ("All three" if jolt else "Both", "Bullet's and Jolt's" if jolt else "Bullet's"))
     if jolt:
         w("Jolt Physics (3D) runs the same scenes through its own adapter (`bench/jolt_engine.cpp`, "
           "built from a Jolt source tree given to `charts.sh --jolt`), at its default settings "
