@@ -45,6 +45,14 @@
 // what a Bullet game with a large static level sets; by default Bullet
 // recomputes every static box's bounds every step and moves each one back
 // into the broadphase's dynamic tree.
+//
+// Built with Jolt (REWIND_JOLT_DIR), the same families run on Jolt Physics
+// too: the level's boxes as Rewind kept them in a PhysicsSystem at Jolt's
+// defaults (jolt_query_level.h: CastRay, CastRay with an all-hits
+// collector, CastShape, CollideShape), and the step families through the
+// scene adapter (jolt_engine.h) with the same materials. Jolt's answers are
+// checked against Rewind's like Bullet's, but a family below 99% agreement
+// skips its Jolt benchmarks instead of stopping the run.
 #include <benchmark/benchmark.h>
 #include <btBulletDynamicsCommon.h>
 
@@ -62,6 +70,10 @@
 #include "rewind/sim/world3d.h"
 
 #include "query_level.h"
+#ifdef REWIND_HAVE_JOLT
+#include "jolt_engine.h"
+#include "jolt_query_level.h"
+#endif
 
 namespace {
 
@@ -318,6 +330,170 @@ void overlap_bullet(benchmark::State& state) {
   finish(state, found, l.agree_overlap);
 }
 
+#ifdef REWIND_HAVE_JOLT
+// --- Jolt ---------------------------------------------------------------------
+
+using rwd::bench::JoltLevelBox;
+using rwd::bench::JoltLevelHit;
+using rwd::bench::JoltQueryLevel;
+
+struct JoltLevel {
+  std::unique_ptr<JoltQueryLevel> jolt;
+  double agree_closest = 0.0;
+  double agree_all = 0.0;
+  double agree_sphere = 0.0;
+  double agree_box = 0.0;
+  double agree_overlap = 0.0;
+};
+
+// Agreement with Rewind, in percent, printed like Bullet's.
+double report_jolt(const char* family, const Tally& t) {
+  const double agree = 100.0 * static_cast<double>(t.accepted) / kQueries;
+  std::fprintf(stderr,
+               "query_bench: jolt %-16s %4d/%d same as Rewind (hit or miss, body, distance "
+               "within 1 cm); largest distance difference on the same body %.1f mm%s\n",
+               family, t.accepted, kQueries, static_cast<double>(t.largest_m) * 1000.0,
+               agree < kMinAgreement * 100.0 ? "; its Jolt benchmarks are skipped" : "");
+  return agree;
+}
+
+std::optional<Hit> as_hit(const std::optional<JoltLevelHit>& h) {
+  if (!h) return std::nullopt;
+  return Hit{h->box, h->distance};
+}
+
+void check_jolt_agreement(Level& level, JoltLevel& j) {
+  Tally closest;
+  for (const Ray& r : level.rays) {
+    closest.accepted +=
+        strictly_same(rewind_closest(level, r),
+                      as_hit(j.jolt->closest(r.origin, r.direction, kRayLength)), closest);
+  }
+  j.agree_closest = report_jolt("Raycast/closest", closest);
+
+  Tally all;
+  std::vector<rwd::sim::RayHit> rewind_hits;
+  std::vector<JoltLevelHit> jolt_hits;
+  const auto by_box = [](const Hit& l, const Hit& h) { return l.box < h.box; };
+  for (const Ray& r : level.rays) {
+    rewind_all(level, r, rewind_hits);
+    j.jolt->all(r.origin, r.direction, kRayLength, jolt_hits);
+    std::vector<Hit> x;
+    std::vector<Hit> y;
+    for (const auto& h : rewind_hits) x.push_back({level.box_of_index[h.body.index], h.distance});
+    for (const auto& h : jolt_hits) y.push_back({h.box, h.distance});
+    std::sort(x.begin(), x.end(), by_box);
+    std::sort(y.begin(), y.end(), by_box);
+    bool same = x.size() == y.size();
+    for (size_t i = 0; same && i < x.size(); ++i) same = strictly_same(x[i], y[i], all);
+    all.accepted += same;
+  }
+  j.agree_all = report_jolt("Raycast/all", all);
+
+  const auto sweeps = [&](const char* family, const Shape& shape, const std::vector<Sweep>& list) {
+    Tally t;
+    for (const Sweep& s : list) {
+      t.accepted +=
+          strictly_same(rewind_sweep(level, shape, s),
+                        as_hit(j.jolt->cast(shape, s.origin, s.rotation, s.translation)), t);
+    }
+    return report_jolt(family, t);
+  };
+  j.agree_sphere = sweeps("ShapeCast/sphere", level.cast_sphere, level.sphere_sweeps);
+  j.agree_box = sweeps("ShapeCast/box", level.cast_box, level.box_sweeps);
+
+  Tally overlap;
+  std::vector<BodyId> ids;
+  std::vector<int> boxes;
+  for (const Vec3& c : level.overlap_centres) {
+    rewind_overlap(level, c, ids);
+    j.jolt->overlap(c, kOverlapRadius, boxes);
+    std::vector<int> x;
+    for (BodyId id : ids) x.push_back(level.box_of_index[id.index]);
+    std::sort(x.begin(), x.end());
+    std::sort(boxes.begin(), boxes.end());
+    overlap.accepted += x == boxes;
+  }
+  j.agree_overlap = report_jolt("Overlap/sphere", overlap);
+}
+
+// The level's boxes as Rewind kept them (quantized on creation).
+std::vector<JoltLevelBox> kept_boxes(const World3D& world, const std::vector<BodyId>& body_of_box) {
+  std::vector<JoltLevelBox> boxes;
+  for (BodyId id : body_of_box) {
+    boxes.push_back({world.position(id), world.rotation(id), world.shape(id)->half_extents});
+  }
+  return boxes;
+}
+
+JoltLevel& jolt_level() {
+  static std::unique_ptr<JoltLevel> instance = [] {
+    Level& l = level();
+    auto j = std::make_unique<JoltLevel>();
+    j->jolt = std::make_unique<JoltQueryLevel>(kept_boxes(l.rewind, l.body_of_box));
+    check_jolt_agreement(l, *j);
+    return j;
+  }();
+  return *instance;
+}
+
+// False (and the benchmark skipped) when Jolt answers a family differently.
+bool jolt_agrees(benchmark::State& state, double agree_pct) {
+  if (agree_pct >= kMinAgreement * 100.0) return true;
+  state.SkipWithError("Jolt disagrees with Rewind on this family (see stderr)");
+  return false;
+}
+
+void raycast_closest_jolt(benchmark::State& state) {
+  JoltLevel& j = jolt_level();
+  if (!jolt_agrees(state, j.agree_closest)) return;
+  const Level& l = level();
+  size_t found = 0;
+  for (auto _ : state) {
+    for (const Ray& r : l.rays)
+      found += j.jolt->closest(r.origin, r.direction, kRayLength).has_value();
+  }
+  finish(state, found, j.agree_closest);
+}
+void raycast_all_jolt(benchmark::State& state) {
+  JoltLevel& j = jolt_level();
+  if (!jolt_agrees(state, j.agree_all)) return;
+  const Level& l = level();
+  std::vector<JoltLevelHit> out;
+  size_t found = 0;
+  for (auto _ : state) {
+    for (const Ray& r : l.rays) found += j.jolt->all(r.origin, r.direction, kRayLength, out);
+  }
+  finish(state, found, j.agree_all);
+}
+void shape_cast_jolt(benchmark::State& state, bool box) {
+  JoltLevel& j = jolt_level();
+  const double agree = box ? j.agree_box : j.agree_sphere;
+  if (!jolt_agrees(state, agree)) return;
+  const Level& l = level();
+  const Shape& shape = box ? l.cast_box : l.cast_sphere;
+  const std::vector<Sweep>& sweeps = box ? l.box_sweeps : l.sphere_sweeps;
+  size_t found = 0;
+  for (auto _ : state) {
+    for (const Sweep& s : sweeps) {
+      found += j.jolt->cast(shape, s.origin, s.rotation, s.translation).has_value();
+    }
+  }
+  finish(state, found, agree);
+}
+void overlap_jolt(benchmark::State& state) {
+  JoltLevel& j = jolt_level();
+  if (!jolt_agrees(state, j.agree_overlap)) return;
+  const Level& l = level();
+  std::vector<int> out;
+  size_t found = 0;
+  for (auto _ : state) {
+    for (const Vec3& c : l.overlap_centres) found += j.jolt->overlap(c, kOverlapRadius, out);
+  }
+  finish(state, found, j.agree_overlap);
+}
+#endif
+
 // --- step benchmarks ------------------------------------------------------------
 
 struct Dropped {
@@ -416,6 +592,61 @@ void step_bullet(benchmark::State& state, bool with_level) {
   state.counters["contacts_at_end"] = contacts;
 }
 
+#ifdef REWIND_HAVE_JOLT
+// The same drop on Jolt through the scene adapter: Jolt's defaults, with
+// BulletWorld's materials (friction 0.6, restitution 0, angular damping
+// 0.05 /s, density 1000 kg/m^3) and the same quantized start state.
+void step_jolt(benchmark::State& state, bool with_level) {
+  using rwd::scenes::BodySpec;
+  rwd::bench::JoltEngine engine;
+  engine.reset(rwd::scenes::WorldSpec{}, kLevelBoxes + kDynamicBodies + 1);
+  std::string error;
+  rwd::scenes::BodyHandle handle = 0;
+  const auto add = [&](const Shape& shape, BodyKind kind, Vec3 position, Quat rotation,
+                       Vec3 velocity, Vec3 spin) {
+    BodySpec b;
+    b.kind = kind;
+    b.shape = shape;
+    b.position = position;
+    b.rotation = rotation;
+    b.linear_velocity = velocity;
+    b.angular_velocity = spin;
+    b.angular_damping = 0.05f;
+    return engine.add_body(b, handle, error);
+  };
+  bool ok = add(Shape::make_box(kGroundHalf), BodyKind::kStatic, kGroundCentre, Quat{}, {}, {});
+  if (with_level) {
+    World3D rewind(level_config());
+    const LevelIds ids = add_level(rewind, nullptr, 0.0f);
+    for (const JoltLevelBox& b : kept_boxes(rewind, ids.body_of_box)) {
+      ok = ok &&
+           add(Shape::make_box(b.half_extents), BodyKind::kStatic, b.position, b.rotation, {}, {});
+    }
+  }
+  World3D source(level_config());
+  for (const Dropped& d : dropped_bodies()) {
+    BodyDef def;
+    def.shape = d.shape;
+    def.position = d.position;
+    def.rotation = d.rotation;
+    def.linear_velocity = d.velocity;
+    def.angular_velocity = d.spin;
+    const auto id = source.create_body(def);
+    ok = ok && id.ok() &&
+         add(*source.shape(*id), BodyKind::kDynamic, source.position(*id), source.rotation(*id),
+             source.linear_velocity(*id), source.angular_velocity(*id));
+  }
+  if (!ok) {
+    state.SkipWithError("a body was refused");
+    return;
+  }
+  for (int t = 0; t < kWarmupTicks; ++t) engine.step();
+  for (auto _ : state) engine.step();
+  state.counters["bodies"] = static_cast<double>(handle + 1);
+  state.counters["awake_at_end"] = engine.awake_count();
+}
+#endif
+
 void register_all() {
   using benchmark::RegisterBenchmark;
   for (auto* b : {
@@ -432,6 +663,17 @@ void register_all() {
        }) {
     b->Unit(benchmark::kMicrosecond);  // per iteration of 1,000 queries
   }
+#ifdef REWIND_HAVE_JOLT
+  for (auto* b : {
+           RegisterBenchmark("Raycast/closest/Jolt", raycast_closest_jolt),
+           RegisterBenchmark("Raycast/all/Jolt", raycast_all_jolt),
+           RegisterBenchmark("ShapeCast/sphere/Jolt", shape_cast_jolt, false),
+           RegisterBenchmark("ShapeCast/box/Jolt", shape_cast_jolt, true),
+           RegisterBenchmark("Overlap/sphere/Jolt", overlap_jolt),
+       }) {
+    b->Unit(benchmark::kMicrosecond);
+  }
+#endif
   // One iteration is one tick, and every run times the same 240 ticks of the
   // same drop (ticks 60-300), so the fall, the first touches and the landings
   // weigh the same in both engines' averages.
@@ -443,6 +685,14 @@ void register_all() {
        }) {
     b->Iterations(kTimedTicks)->Unit(benchmark::kMillisecond);
   }
+#ifdef REWIND_HAVE_JOLT
+  for (auto* b : {
+           RegisterBenchmark("Step/level/Jolt", step_jolt, true),
+           RegisterBenchmark("Step/ground/Jolt", step_jolt, false),
+       }) {
+    b->Iterations(kTimedTicks)->Unit(benchmark::kMillisecond);
+  }
+#endif
 }
 
 }  // namespace

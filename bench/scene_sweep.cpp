@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
-// rewind-scene-sweep: runs the scene catalogue on Rewind and Bullet over a
-// grid of solver settings and prints one CSV row per (run, metric) on
-// stdout, with progress on stderr. scripts/charts.sh turns the rows into
-// charts and docs/BENCHMARKS.md.
+// rewind-scene-sweep: runs the scene catalogue on Rewind and Bullet (and
+// Jolt, when built with it: REWIND_JOLT_DIR) over a grid of solver
+// settings and prints one CSV row per (run, metric) on stdout, with
+// progress on stderr. scripts/charts.sh turns the rows into charts and
+// docs/BENCHMARKS.md.
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -13,6 +14,9 @@
 #include <vector>
 
 #include "bullet_engine.h"
+#ifdef REWIND_HAVE_JOLT
+#include "jolt_engine.h"
+#endif
 #include "rewind/scenes/rewind_engine.h"
 #include "rewind/scenes/scene.h"
 #include "rewind/tune/csv.h"
@@ -30,16 +34,24 @@ using rwd::tune::csv_quoted;
 using rwd::tune::SolverSetting;
 
 constexpr const char* kUsage =
-    "usage: rewind-scene-sweep [--mode defaults|quick|full] [--engine rewind|bullet|both]\n"
+    "usage: rewind-scene-sweep [--mode defaults|quick|full]\n"
+    "                          [--engine rewind|bullet|both|jolt|all]\n"
     "                          [--scene NAME]... [--size N]... [--no-sleep] [--list]\n"
     "  Runs every scene of the catalogue (or the --scene ones) at its sizes (or\n"
-    "  the --size ones) on both engines at their default settings; quick and\n"
-    "  full also sweep the solver settings at each scene's chart size. quick\n"
-    "  skips scenes of more than 2100 bodies (piles over 2000 boxes) and\n"
-    "  sweeps fewer settings.\n"
+    "  the --size ones) on Rewind and Bullet (both, the default) at their\n"
+    "  default settings; quick and full also sweep the solver settings at each\n"
+    "  scene's chart size. quick skips scenes of more than 2100 bodies (piles\n"
+    "  over 2000 boxes) and sweeps fewer settings. jolt and all (Rewind,\n"
+    "  Bullet and Jolt) need a build configured with -DREWIND_JOLT_DIR=...\n"
     "  Prints CSV on stdout, progress on stderr. Exit 0 on success (failing\n"
     "  criteria are data, not errors), 2 on bad usage. --no-sleep keeps every\n"
-    "  body awake in both engines (the cost of the solver itself).\n";
+    "  body awake in every engine (the cost of the solver itself).\n";
+
+#ifdef REWIND_HAVE_JOLT
+constexpr bool kHaveJolt = true;
+#else
+constexpr bool kHaveJolt = false;
+#endif
 
 struct Setting {
   std::string engine;
@@ -62,6 +74,19 @@ Setting bullet_setting(bool sleep, int iterations, int substeps) {
   const bool is_default = iterations == d.iterations && substeps == d.substeps;
   return {"bullet", is_default, [s] { return std::make_unique<BulletEngine>(s); }};
 }
+
+#ifdef REWIND_HAVE_JOLT
+Setting jolt_setting(bool sleep, int velocity_iterations, int collision_steps) {
+  const rwd::bench::JoltSettings d;
+  rwd::bench::JoltSettings s;
+  s.sleep = sleep;
+  s.velocity_iterations = velocity_iterations;
+  s.collision_steps = collision_steps;
+  const bool is_default =
+      velocity_iterations == d.velocity_iterations && collision_steps == d.collision_steps;
+  return {"jolt", is_default, [s] { return std::make_unique<rwd::bench::JoltEngine>(s); }};
+}
+#endif
 
 // Rewind's defaults, the centre of every sweep.
 const rwd::sim::WorldConfig kRewindDefaults{};
@@ -93,6 +118,13 @@ std::vector<Setting> sweep_settings(bool full, bool sleep) {
   if (full) {
     for (int n : {2, 4}) s.push_back(bullet_setting(sleep, 10, n));
   }
+#ifdef REWIND_HAVE_JOLT
+  // Jolt like Bullet: velocity iterations, then collision steps per tick.
+  for (int it : iterations) s.push_back(jolt_setting(sleep, it, 1));
+  if (full) {
+    for (int n : {2, 4}) s.push_back(jolt_setting(sleep, 10, n));
+  }
+#endif
   return s;
 }
 
@@ -166,8 +198,16 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rewind-scene-sweep: --mode must be defaults, quick or full\n");
     return 2;
   }
-  if (engines != "rewind" && engines != "bullet" && engines != "both") {
-    std::fprintf(stderr, "rewind-scene-sweep: --engine must be rewind, bullet or both\n");
+  if (engines != "rewind" && engines != "bullet" && engines != "both" && engines != "jolt" &&
+      engines != "all") {
+    std::fprintf(stderr,
+                 "rewind-scene-sweep: --engine must be rewind, bullet, both, jolt or all\n");
+    return 2;
+  }
+  if (!kHaveJolt && (engines == "jolt" || engines == "all")) {
+    std::fprintf(stderr,
+                 "rewind-scene-sweep: built without Jolt: configure with "
+                 "-DREWIND_JOLT_DIR=<Jolt source tree> (cmake --preset bench)\n");
     return 2;
   }
   for (const auto& n : scene_names) {
@@ -185,10 +225,16 @@ int main(int argc, char** argv) {
     Setting setting;
   };
   std::vector<Job> jobs;
-  const std::vector<Setting> defaults = {rewind_default(sleep), bullet_setting(sleep, 10, 1)};
+  std::vector<Setting> defaults = {rewind_default(sleep), bullet_setting(sleep, 10, 1)};
+#ifdef REWIND_HAVE_JOLT
+  defaults.push_back(jolt_setting(sleep, 10, 1));
+#endif
   const std::vector<Setting> swept =
       mode == "defaults" ? std::vector<Setting>{} : sweep_settings(mode == "full", sleep);
-  auto engine_wanted = [&](const Setting& s) { return engines == "both" || engines == s.engine; };
+  // both: Rewind and Bullet, the peers every build has; all: every engine built in.
+  auto engine_wanted = [&](const Setting& s) {
+    return engines == "all" || (engines == "both" && s.engine != "jolt") || engines == s.engine;
+  };
   for (const SceneEntry& e : rwd::scenes::scene_catalog()) {
     if (!wanted(scene_names, e.name)) continue;
     const std::vector<int>& scene_sizes = sizes.empty() ? e.sizes : sizes;

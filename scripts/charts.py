@@ -19,6 +19,10 @@ import sys
 from collections import OrderedDict
 
 NEVER = 1e8  # metric values at or above this mean "never happened"
+# Every engine the sweep may hold rows of; Jolt's rows exist only when the
+# run was given a Jolt source tree (charts.sh --jolt).
+ENGINES = ("rewind", "bullet", "jolt")
+COLOURS = {"rewind": "#1f77b4", "bullet": "#d62728", "jolt": "#2ca02c"}
 
 
 def read_rows(path):
@@ -79,7 +83,7 @@ def error_chart(out_dir, scene, size, metric, rows):
     finite = [r["val"] for r in rows if r["val"] < NEVER]
     cap = max(finite + [limit]) * 1.5 if finite else limit * 2 or 1.0
     with open(data_path, "w") as f:
-        for engine in ("rewind", "bullet"):
+        for engine in ENGINES:
             pts = [r for r in rows if r["engine"] == engine]
             if not pts:
                 continue
@@ -88,7 +92,9 @@ def error_chart(out_dir, scene, size, metric, rows):
             for r in sorted(pts, key=lambda r: r["ms"]):
                 v = r["val"] if r["val"] < NEVER else cap
                 label = r["settings"].replace("substeps=", "s").replace("iterations=", "i")
-                label = label.replace("relax=", "r").replace("hertz=", "hz").replace(" ", ",")
+                label = label.replace("relax=", "r").replace("hertz=", "hz")
+                label = label.replace("velocity_iterations=", "v").replace("position_iterations=", "p")
+                label = label.replace("collision_steps=", "c").replace(" ", ",")
                 if r["is_default"]:
                     label += " (default)"
                 f.write("%g %g %s\n" % (r["ms"], v, quote(label)))
@@ -98,12 +104,11 @@ def error_chart(out_dir, scene, size, metric, rows):
     positive = [v for v in finite if v > 0]
     logy = positive and len(positive) == len(finite) and max(positive) / min(positive) > 100
     plots = []
-    colours = {"rewind": "#1f77b4", "bullet": "#d62728"}
     for engine, idx in engines.items():
         plots.append("%s index %d using 1:2 with points pt 7 ps 0.9 lc rgb %s title %s"
-                     % (quote(data_path), idx, quote(colours[engine]), quote(engine)))
+                     % (quote(data_path), idx, quote(COLOURS[engine]), quote(engine)))
         plots.append("%s index %d using 1:2:3 with labels offset 0.6,0.5 left font ',8' "
-                     "tc rgb %s notitle" % (quote(data_path), idx, quote(colours[engine])))
+                     "tc rgb %s notitle" % (quote(data_path), idx, quote(COLOURS[engine])))
     plots.append("%g with lines dt 2 lc rgb 'gray40' title 'limit'" % limit)
     gnuplot("\n".join([
         "set terminal svg size 720,440 dynamic noenhanced font 'sans,11' background rgb 'white'",
@@ -123,8 +128,9 @@ def error_chart(out_dir, scene, size, metric, rows):
 def cost_chart(out_dir, name, title, rows):
     """ms/step against body count, both engines, log-log."""
     data_path = os.path.join(out_dir, name + ".dat")
+    engines = ["rewind", "bullet"] + (["jolt"] if any(r["engine"] == "jolt" for r in rows) else [])
     with open(data_path, "w") as f:
-        for engine in ("rewind", "bullet"):
+        for engine in engines:
             f.write("# %s\n" % engine)
             for r in sorted((r for r in rows if r["engine"] == engine), key=lambda r: r["bodies"]):
                 f.write("%d %g\n" % (r["bodies"], r["ms"]))
@@ -139,10 +145,9 @@ def cost_chart(out_dir, name, title, rows):
         "set logscale xy",
         "set grid",
         "set key top left",
-        "plot %s index 0 using 1:2 with linespoints pt 7 lc rgb '#1f77b4' title 'rewind', \\"
-        % quote(data_path),
-        "  %s index 1 using 1:2 with linespoints pt 7 lc rgb '#d62728' title 'bullet'"
-        % quote(data_path),
+        "plot " + ", \\\n  ".join(
+            "%s index %d using 1:2 with linespoints pt 7 lc rgb '%s' title '%s'"
+            % (quote(data_path), i, COLOURS[e], e) for i, e in enumerate(engines)),
     ]) + "\n")
     return os.path.basename(svg)
 
@@ -181,6 +186,23 @@ MAPPING = """\
 | step | `substeps` TGS-Soft substeps per tick, relax iterations per substep | `substeps` calls of `stepSimulation(h, 0)` (exactly one internal step of h each), `iterations` solver iterations |
 | gyroscopic term | none | Bullet's default `BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY` |
 | world bounds | the scene's region (bodies leaving it are disabled) | none; a body outside the scene's region counts as lost |
+"""
+
+
+JOLT_MAPPING = """\
+| Scene value | Jolt Physics 5 (single precision, `PhysicsSystem`, `JobSystemSingleThreaded`: 1 thread) |
+|---|---|
+| friction, restitution combine | Jolt's own rules, the same as Rewind's: geometric mean and maximum |
+| restitution threshold | `mMinVelocityForRestitution` = 1 m/s (Jolt's default) |
+| damping rate c (1/s) | Jolt scales v by (1 − c′ h) per step: c′ = (1 − e^(−c h)) / h |
+| sleeping | a body sleeps when its bounding-sphere points move slower than `mPointVelocitySleepThreshold` = 0.05 m/s (Jolt's default 0.03) for `mTimeBeforeSleep` = 0.5 s; kinematic bodies never sleep |
+| mass, inertia | density × the shape's volume; Jolt's inertia of the shape scaled to that mass |
+| shapes | `BoxShape` (convex radius 0.05 m inside the half extents, half the smallest half extent for boxes thinner than 20 cm), `SphereShape`, `CapsuleShape`, `ConvexHullShape` of the hull's points, `StaticCompoundShape` of the children as placed, `MeshShape`, `HeightFieldShape` (square: a rows × cols field is padded with holes; Jolt's default 8-bit samples) |
+| penetration recovery | Jolt's defaults: 2 position iterations, Baumgarte 0.2, slop 2 cm, speculative contacts from 2 cm |
+| fast bodies | bodies a scene marks `continuous` get `EMotionQuality::LinearCast` |
+| step | one `PhysicsSystem::Update(h, collision_steps)` per tick; 10 velocity, 2 position iterations |
+| rolling resistance, gyroscopic term | none (Jolt's default: `mApplyGyroscopicForce` off) |
+| world bounds | none; a body outside the scene's region counts as lost |
 """
 
 
@@ -255,27 +277,50 @@ def main():
                                   "(60 Hz, 1 thread, default settings)",
                                   shape_piles["convex_pile"])
 
-    def ratios(rs):
-        return OrderedDict((k, e["rewind"] / e["bullet"]) for k, e in by_size(rs).items()
-                           if "rewind" in e and "bullet" in e)
+    def ratios(rs, peer="bullet"):
+        return OrderedDict((k, e["rewind"] / e[peer]) for k, e in by_size(rs).items()
+                           if "rewind" in e and peer in e)
+
+    # Jolt joins every table and chart when the run has its rows; without
+    # them the page is the Rewind-and-Bullet one.
+    jolt = any(r["engine"] == "jolt" for r in rows + awake_rows)
+
+    def jolt_cells(e, rewind_ms):
+        """The 'Jolt ms/step | Rewind / Jolt |' cells, or '' for a run without Jolt."""
+        if not jolt:
+            return ""
+        if "jolt" not in e:
+            return " – | – |"
+        return " %.2f | %.2f |" % (e["jolt"], rewind_ms / e["jolt"])
+
+    jolt_head = " Jolt ms/step | Rewind / Jolt |" if jolt else ""
+    jolt_rule = "---:|---:|" if jolt else ""
 
     d = []
     w = d.append
     w("<!-- SPDX-License-Identifier: MIT -->")
     w("<!-- Generated by scripts/charts.sh; edits are overwritten. -->")
-    w("# Speed against accuracy: Rewind and Bullet on the same scenes\n")
-    w("Generated by `bash scripts/charts.sh%s` on %s in %.0f s (sweep and charts; "
+    w("# Speed against accuracy: Rewind and %s on the same scenes\n"
+      % ("its peers" if jolt else "Bullet"))
+    w("Generated by `bash scripts/charts.sh%s%s` on %s in %.0f s (sweep and charts; "
       "building not counted)." % (" --quick" if args.mode == "quick" else "",
+                                  " --jolt DIR" if jolt else "",
                                   datetime.date.today().isoformat(), args.seconds))
     w("Machine: %s. Every figure on this page comes from that one run, so the "
-      "ratios compare the two engines under the same load; the machines are "
-      "shared and noisy, so compare figures within one run only.\n" % machine())
-    w("Both engines run each scene of `scenes/` (the `rewind_scenes` library) "
+      "ratios compare the %s engines under the same load; the machines are "
+      "shared and noisy, so compare figures within one run only.\n"
+      % (machine(), "three" if jolt else "two"))
+    w("%s engines run each scene of `scenes/` (the `rewind_scenes` library) "
       "through the same `Engine` interface: the same bodies, masses, friction, "
       "restitution and damping, 60 Hz ticks, one thread. Rewind's adapter is in "
-      "`scenes/`, Bullet's only in `bench/`. ms/step is the wall time of the "
+      "`scenes/`, %s only in `bench/`. ms/step is the wall time of the "
       "engine's step alone, averaged over the whole scene (sleeping bodies "
-      "included, as in a game), unless a table says every body is awake.\n")
+      "included, as in a game), unless a table says every body is awake.\n"
+      % ("All three" if jolt else "Both", "Bullet's and Jolt's" if jolt else "Bullet's"))
+    if jolt:
+        w("Jolt Physics (3D) runs the same scenes through its own adapter (`bench/jolt_engine.cpp`, "
+          "built from a Jolt source tree given to `charts.sh --jolt`), at its default settings "
+          "with one thread; its columns stand beside Bullet's.\n")
     w("Rewind's 2D lane against Box2D 2.4 has [its own section](#2d-lane-rewind-and-box2d-24-on-"
       "the-same-scenes) at the end of this page.\n")
     w("![pile cost](%s/%s)\n" % (rel_out, main_chart))
@@ -285,34 +330,47 @@ def main():
           "%.2f–%.2f (bases %s), piles %.2f–%.2f (%s boxes).\n"
           % (min(pr.values()), max(pr.values()), ", ".join(str(k) for k in pr),
              min(pl.values()), max(pl.values()), ", ".join(str(k) for k in pl)))
+    pj, lj = ratios(pyramid, "jolt"), ratios(pile_awake, "jolt")
+    if pj and lj:
+        w("**Every body awake, Rewind ms/step ÷ Jolt ms/step in this run:** pyramids "
+          "%.2f–%.2f (bases %s), piles %.2f–%.2f (%s boxes).\n"
+          % (min(pj.values()), max(pj.values()), ", ".join(str(k) for k in pj),
+             min(lj.values()), max(lj.values()), ", ".join(str(k) for k in lj)))
     for scene, rs in shape_piles.items():
         rr = ratios(rs)
         if rr:
             w("**%s, every body awake, Rewind ÷ Bullet:** %.2f–%.2f (%s bodies).\n"
               % (scene, min(rr.values()), max(rr.values()), ", ".join(str(k) for k in rr)))
+        rj = ratios(rs, "jolt")
+        if rj:
+            w("**%s, every body awake, Rewind ÷ Jolt:** %.2f–%.2f (%s bodies).\n"
+              % (scene, min(rj.values()), max(rj.values()), ", ".join(str(k) for k in rj)))
 
     w("## Cost\n")
     w("### Pile of boxes poured into a bin (default settings, sleeping on)\n")
-    w("| boxes | Rewind ms/step | Bullet ms/step | Rewind / Bullet |")
-    w("|---:|---:|---:|---:|")
+    w("| boxes | Rewind ms/step | Bullet ms/step | Rewind / Bullet |" + jolt_head)
+    w("|---:|---:|---:|---:|" + jolt_rule)
     for size, e in by_size(pile).items():
         if "rewind" in e and "bullet" in e:
-            w("| %d | %.2f | %.2f | %.2f |" % (size, e["rewind"], e["bullet"], e["rewind"] / e["bullet"]))
+            w("| %d | %.2f | %.2f | %.2f |" % (size, e["rewind"], e["bullet"], e["rewind"] / e["bullet"])
+              + jolt_cells(e, e["rewind"]))
     w("")
     w("### Pyramid, every body kept awake (default settings otherwise)\n")
     w("![pyramid cost](%s/%s)\n" % (rel_out, pyramid_chart))
-    w("| base | boxes | Rewind ms/step | Bullet ms/step | Rewind / Bullet |")
-    w("|---:|---:|---:|---:|---:|")
+    w("| base | boxes | Rewind ms/step | Bullet ms/step | Rewind / Bullet |" + jolt_head)
+    w("|---:|---:|---:|---:|---:|" + jolt_rule)
     for size, e in by_size(pyramid, None).items():
         if "rewind" in e and "bullet" in e:
             rw, bt = e["rewind"]["ms"], e["bullet"]["ms"]
-            w("| %d | %d | %.2f | %.2f | %.2f |" % (size, e["rewind"]["bodies"] - 1, rw, bt, rw / bt))
+            w("| %d | %d | %.2f | %.2f | %.2f |" % (size, e["rewind"]["bodies"] - 1, rw, bt, rw / bt)
+              + jolt_cells({k: v["ms"] for k, v in e.items()}, rw))
     w("")
 
     w("### Pile of boxes, every body kept awake (default settings otherwise)\n")
     w("![pile cost awake](%s/%s)\n" % (rel_out, pile_awake_chart))
-    w("| boxes | Rewind ms/step | Bullet ms/step | Rewind / Bullet | Rewind µs per box | growth |")
-    w("|---:|---:|---:|---:|---:|---:|")
+    w("| boxes | Rewind ms/step | Bullet ms/step | Rewind / Bullet | Rewind µs per box | growth |"
+      + jolt_head)
+    w("|---:|---:|---:|---:|---:|---:|" + jolt_rule)
     previous = None
     for size, e in by_size(pile_awake).items():
         if "rewind" in e and "bullet" in e:
@@ -322,7 +380,8 @@ def main():
                 growth = "%.2f" % (math.log(e["rewind"] / previous[1]) / math.log(size / previous[0]))
             w("| %d | %.2f | %.2f | %.2f | %.2f | %s |" % (size, e["rewind"], e["bullet"],
                                                         e["rewind"] / e["bullet"],
-                                                        1000.0 * e["rewind"] / size, growth))
+                                                        1000.0 * e["rewind"] / size, growth)
+              + jolt_cells(e, e["rewind"]))
             previous = (size, e["rewind"])
     w("")
     w("*growth* is the local exponent k of cost ∝ boxes^k from the row above (1 is linear). "
@@ -349,19 +408,21 @@ def main():
               "stretched icosahedron (12 corners) and a hexagonal prism (12 corners, 8 faces)%s.\n"
               % ("; the floor is a bumpy triangle mesh (0.5 m cells)" if scene == "mesh_pile"
                  else ""))
-        w("| bodies | Rewind ms/step | Bullet ms/step | Rewind / Bullet |")
-        w("|---:|---:|---:|---:|")
+        w("| bodies | Rewind ms/step | Bullet ms/step | Rewind / Bullet |" + jolt_head)
+        w("|---:|---:|---:|---:|" + jolt_rule)
         for size, e in by_size(rs).items():
             if "rewind" in e and "bullet" in e:
                 w("| %d | %.2f | %.2f | %.2f |" % (size, e["rewind"], e["bullet"],
-                                                  e["rewind"] / e["bullet"]))
+                                                  e["rewind"] / e["bullet"])
+                  + jolt_cells(e, e["rewind"]))
         w("")
 
     w("### Every body awake: what stands without sleeping\n")
     w("The same default settings with sleeping off in both engines: a structure "
       "that stands only because it fell asleep shows here.\n")
-    w("| scene | size | criterion | Rewind | Bullet |")
-    w("|---|---:|---|---:|---:|")
+    awake_engines = ("rewind", "bullet", "jolt") if jolt else ("rewind", "bullet")
+    w("| scene | size | criterion | Rewind | Bullet |" + (" Jolt |" if jolt else ""))
+    w("|---|---:|---|---:|---:|" + ("---:|" if jolt else ""))
     keyed = OrderedDict()
     for r in awake_rows:
         if r["metric"] != "error":
@@ -369,15 +430,21 @@ def main():
     for (scene, size, metric), e in keyed.items():
         ref = e.get("rewind") or e.get("bullet")
         cells = ["%s %s" % (fmt(e[x]["val"], e[x]["unit"]), "✔" if e[x]["ok"] else "✘")
-                 if x in e else "–" for x in ("rewind", "bullet")]
-        w("| %s | %d | %s | %s | %s |" % (scene, size, criterion_text(ref), cells[0], cells[1]))
+                 if x in e else "–" for x in awake_engines]
+        w("| %s | %d | %s | %s |" % (scene, size, criterion_text(ref), " | ".join(cells)))
     w("")
 
     w("## Every scene at default settings\n")
     w("Rewind: `WorldConfig{}` (4 substeps, 1 relax iteration, contact_hertz 30). "
-      "Bullet: 10 solver iterations, 1 step per tick. ✔ meets the criterion, ✘ does not.\n")
-    w("| scene | size | criterion | Rewind | Bullet | Rewind ms/step | Bullet ms/step |")
-    w("|---|---:|---|---:|---:|---:|---:|")
+      "Bullet: 10 solver iterations, 1 step per tick.%s ✔ meets the criterion, ✘ does not.\n"
+      % (" Jolt: 10 velocity and 2 position iterations, 1 collision step per tick." if jolt else ""))
+    if jolt:
+        w("| scene | size | criterion | Rewind | Bullet | Jolt | Rewind ms/step | Bullet ms/step "
+          "| Jolt ms/step |")
+        w("|---|---:|---|---:|---:|---:|---:|---:|---:|")
+    else:
+        w("| scene | size | criterion | Rewind | Bullet | Rewind ms/step | Bullet ms/step |")
+        w("|---|---:|---|---:|---:|---:|---:|")
     defaults = [r for r in rows if r["is_default"] and r["metric"] != "error"]
     keyed = OrderedDict()
     for r in defaults:
@@ -393,8 +460,13 @@ def main():
             r = e.get(engine)
             return "%.3f" % r["ms"] if r else "–"
 
-        w("| %s | %d | %s | %s | %s | %s | %s |" % (scene, size, criterion_text(ref), cell("rewind"),
-                                                 cell("bullet"), ms("rewind"), ms("bullet")))
+        if jolt:
+            w("| %s | %d | %s | %s | %s | %s | %s | %s | %s |"
+              % (scene, size, criterion_text(ref), cell("rewind"), cell("bullet"), cell("jolt"),
+                 ms("rewind"), ms("bullet"), ms("jolt")))
+        else:
+            w("| %s | %d | %s | %s | %s | %s | %s |" % (scene, size, criterion_text(ref), cell("rewind"),
+                                                     cell("bullet"), ms("rewind"), ms("bullet")))
     errors = [r for r in rows if r["metric"] == "error"]
     for r in errors:
         w("\n%s %d on %s could not be built." % (r["scene"], r["size"], r["engine"]))
@@ -419,11 +491,12 @@ def main():
     w("## Error against cost, per scene\n")
     w("Each point is one setting: Rewind sweeps `substeps` (s), `relax_iterations` "
       "(r) and `contact_hertz` (hz); Bullet sweeps solver iterations (i) and "
-      "steps per tick (s). The dashed line is the criterion's limit. "
+      "steps per tick (s)%s. The dashed line is the criterion's limit. "
       "Values that never happened (a stack that never rests) or could not be "
       "measured (the overlaps of a stack that fell) are drawn at the top of the "
       "chart. ms/step is averaged over the whole scene with sleeping on, so a "
-      "setting that lets a scene fall asleep is cheap there.\n")
+      "setting that lets a scene fall asleep is cheap there.\n"
+      % ("; Jolt sweeps velocity iterations (v) and collision steps per tick (c)" if jolt else ""))
     for scene, size, metric, svg in charts:
         w("### %s %d: %s\n" % (scene, size, metric))
         w("![%s %d %s](%s/%s)\n" % (scene, size, metric, rel_out, svg))
@@ -436,10 +509,14 @@ def main():
     w("")
     w("## Parameter mapping\n")
     w(MAPPING)
+    if jolt:
+        w(JOLT_MAPPING)
     w("## Reproducing\n")
     w("```")
     w("bash scripts/charts.sh            # full sweep (default)")
     w("bash scripts/charts.sh --quick    # fewer settings, piles up to 2000 boxes")
+    if jolt:
+        w("bash scripts/charts.sh --jolt DIR # Jolt too: DIR is a Jolt Physics source tree")
     w("build/bench/bin/rewind-scene-sweep --help")
     w("build/bench/bin/rewind_scene_bench   # Google Benchmark: pyramids and piles, both engines")
     w("build/bench/bin/rewind-tune --scene stack --size 10   # cheapest Rewind settings within a scene's criteria")

@@ -6,7 +6,7 @@
 # writes the charts and docs/BENCHMARKS.md from that one run.
 #
 # Usage: scripts/charts.sh [--quick] [--no-build] [--only 3d|2d|joints]
-#                          [--box2d3 DIR]
+#                          [--jolt DIR] [--box2d3 DIR]
 #   (default)   full sweep: every scene size at default settings on both
 #               engines, piles up to 8000 boxes, and at each scene's chart
 #               size Rewind's substeps 4-16, relax 0-4, contact_hertz 15-60
@@ -25,6 +25,10 @@
 #               scripts/charts2d.py replaces the 2D section of the document
 #   --only joints  the 3D joints part alone: rewind-joint-bench, then
 #               scripts/charts_joints.py replaces the "3D joints" section
+#   --jolt DIR  also run the 3D scenes on Jolt Physics, built from the Jolt
+#               source tree DIR (optional, never fetched; the environment
+#               variable REWIND_JOLT_DIR does the same): the 3D tables and
+#               charts gain Jolt beside Bullet
 #   --box2d3 DIR  also Box2D v3 in the 2D part, built from the source tree
 #               DIR (v3.1; default: $REWIND_BOX2D3_DIR; never
 #               fetched): cmake --preset bench -DREWIND_BOX2D3_DIR=DIR
@@ -39,11 +43,13 @@
 # of the failing step.
 set -euo pipefail
 
+caller_dir=$PWD  # a relative --jolt or --box2d3 DIR is the caller's
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 mode=full
 build=1
 only=all
+jolt=${REWIND_JOLT_DIR:-}
 box2d3=${REWIND_BOX2D3_DIR:-}
 usage() { sed -n '4,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"; }
 while (($#)); do
@@ -54,6 +60,9 @@ while (($#)); do
       [[ ${2:-} == 3d || ${2:-} == 2d || ${2:-} == joints ]] ||
         { echo "charts: --only takes 3d, 2d or joints" >&2; usage >&2; exit 2; }
       only=$2; shift 2 ;;
+    --jolt)
+      [[ -n ${2:-} ]] || { echo "charts: --jolt takes a Jolt Physics source tree" >&2; exit 2; }
+      jolt=$2; shift 2 ;;
     --box2d3)
       [[ -n ${2:-} ]] || { echo "charts: --box2d3 takes a directory" >&2; usage >&2; exit 2; }
       box2d3=$2; shift 2 ;;
@@ -61,6 +70,12 @@ while (($#)); do
     *) echo "charts: unknown option '$1'" >&2; usage >&2; exit 2 ;;
   esac
 done
+if [[ -n $jolt ]]; then
+  [[ $jolt == /* ]] || jolt=$caller_dir/$jolt
+  [[ -f $jolt/Build/CMakeLists.txt ]] ||
+    { echo "charts: $jolt is not a Jolt Physics source tree (no Build/CMakeLists.txt)" >&2; exit 2; }
+  jolt=$(cd "$jolt" && pwd)
+fi
 run3d=1 run2d=1 runjoints=1
 [[ $only == 2d ]] && run3d=0 && runjoints=0
 [[ $only == 3d ]] && run2d=0 && runjoints=0
@@ -73,6 +88,7 @@ step() { echo "==> $*" >&2; }
 box2d3_args=(-DREWIND_BOX2D3_DIR=)
 box2d3_version=
 if [[ -n $box2d3 ]]; then
+  [[ $box2d3 == /* ]] || box2d3=$caller_dir/$box2d3
   [[ -f $box2d3/include/box2d/box2d.h && -f $box2d3/src/world.c ]] ||
     { echo "charts: --box2d3 '$box2d3' is not a Box2D v3 source tree" >&2; exit 2; }
   box2d3=$(cd "$box2d3" && pwd)
@@ -90,7 +106,11 @@ if ((build)); then
   step "system packages"
   bash scripts/setup.sh >&2
   step "configure + build (preset bench, ${targets[*]})"
-  cmake --preset bench "${box2d3_args[@]}" >/dev/null
+  # Without a peer its cache entry is cleared, so that an earlier --jolt or
+  # --box2d3 configure does not linger.
+  jolt_cache=(-DREWIND_JOLT_DIR=)
+  [[ -n $jolt ]] && jolt_cache=(-DREWIND_JOLT_DIR="$jolt")
+  cmake --preset bench "${jolt_cache[@]}" "${box2d3_args[@]}" >/dev/null
   cmake --build --preset bench -j2 --target "${targets[@]}" >&2
 fi
 
@@ -106,24 +126,28 @@ if ((run3d)); then
     ! -name '2d_*' ! -name 'joints3d*' -delete
   start=$(date +%s)
 
-  step "sweep ($mode): every scene, both engines"
-  "$sweep" --mode "$mode" >"$out/sweep.csv"
+  # both: Rewind and Bullet; all: Jolt too (the binary refuses it when
+  # built without Jolt).
+  engines=(--engine both)
+  [[ -n $jolt ]] && engines=(--engine all)
+  step "sweep ($mode): every scene, ${engines[1]} engines"
+  "$sweep" --mode "$mode" "${engines[@]}" >"$out/sweep.csv"
 
   pyramid_sizes=(--size 10 --size 20 --size 30)
   [[ $mode == full ]] && pyramid_sizes+=(--size 40)
   pile_sizes=(--size 250 --size 500 --size 1000 --size 2000)
   [[ $mode == full ]] && pile_sizes+=(--size 4000 --size 8000)
   step "stacks, pyramids, card houses, log cabins, hull stacks and piles with every body awake (the solver without sleeping)"
-  "$sweep" --mode defaults --no-sleep --scene pyramid "${pyramid_sizes[@]}" >"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene stack | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene card_house | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene log_cabin | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene hull_stack | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene mixed_pile | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene convex_pile | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene mesh_pile | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene field_boxes | tail -n +2 >>"$out/awake.csv"
-  "$sweep" --mode defaults --no-sleep --scene pile "${pile_sizes[@]}" | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene pyramid "${pyramid_sizes[@]}" >"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene stack | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene card_house | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene log_cabin | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene hull_stack | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene mixed_pile | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene convex_pile | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene mesh_pile | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene field_boxes | tail -n +2 >>"$out/awake.csv"
+  "$sweep" --mode defaults "${engines[@]}" --no-sleep --scene pile "${pile_sizes[@]}" | tail -n +2 >>"$out/awake.csv"
 
   "$sweep" --list >"$out/catalog.txt"
   seconds=$(( $(date +%s) - start ))

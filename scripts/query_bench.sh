@@ -4,7 +4,8 @@
 # Measures Rewind's scene queries and stepping in a 10,000-box static level
 # against Bullet's in the same process (bench/query_bench.cpp), writes the
 # Google Benchmark JSON to docs/charts/query_bench.json and prints the
-# Rewind/Bullet time ratio of each family.
+# Rewind/Bullet time ratio of each family (and Jolt's time and the
+# Rewind/Jolt ratio when build/bench was configured with REWIND_JOLT_DIR).
 #
 # Usage: scripts/query_bench.sh [--no-build] [--min-time SECONDS]
 #   --no-build        use the binary already in build/bench
@@ -78,8 +79,10 @@ def per_op(b, key):
     ms = b[key] * SCALE[b["time_unit"]]
     return (ms, "us/query") if "items_per_second" in b else (ms, "ms/step")
 
+# Jolt's columns only when the binary was built with it (REWIND_JOLT_DIR).
+jolt = any("Jolt" in e for e in runs.values())
 print(f"{'family':<18}{'Rewind':>10}{'Bullet':>10}  {'unit':<9}{'ratio':>7}{'cpu ratio':>11}"
-      f"{'agree %':>9}")
+      f"{'agree %':>9}" + (f"{'Jolt':>10}{'R/Jolt':>8}{'agree %':>9}" if jolt else ""))
 for family in order:
     r, b = runs[family].get("Rewind"), runs[family].get("Bullet")
     if r is None or b is None:
@@ -88,6 +91,15 @@ for family in order:
     rc, bc = per_op(r, "cpu_time")[0], per_op(b, "cpu_time")[0]
     agree = r.get("agree_pct")
     agree_text = f"{agree:>9.1f}" if agree is not None else f"{'-':>9}"
+    jolt_text = ""
+    j = runs[family].get("Jolt")
+    if jolt and j is not None and "error_occurred" not in j:
+        jt = per_op(j, "real_time")[0]
+        jolt_text = f"{jt:>10.3f}{rt / jt:>8.2f}"
+        ja = j.get("agree_pct")
+        jolt_text += f"{ja:>9.1f}" if ja is not None else f"{'-':>9}"
+    elif jolt:
+        jolt_text = f"{'-':>10}{'-':>8}{'-':>9}"
     print(f"{family:<18}{rt:>10.3f}{bt_:>10.3f}  {unit:<9}{rt / bt_:>7.2f}{rc / bc:>11.2f}"
-          f"{agree_text}")
+          f"{agree_text}" + jolt_text)
 EOF
