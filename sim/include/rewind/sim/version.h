@@ -55,7 +55,9 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///  13  substeps longer than 1/240 s are refused (joint chains and the
 ///      catalogue's accuracy scenes fail at 1/120 s); every substep solves
 ///      its contacts in one pass
-inline constexpr uint32_t kSimRevision = 13;
+///  14  a triangle's overlapping edge or vertex contact whose normal points
+///      past the neighbour's face across a convex fold takes that face
+inline constexpr uint32_t kSimRevision = 14;
 
 /// "rewind-sim r11": the engine identity a replay records.
 inline std::string engine_version() {
