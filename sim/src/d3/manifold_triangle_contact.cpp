@@ -307,14 +307,20 @@ void segment_sat(const ShapeCore& core, const TriangleRef& tri, Vec3 side, Vec3&
   p_tri = p_core + normal * overlap;
 }
 
-// Whether p lies over the triangle: inside its prism along the normal.
-bool over_triangle(const TriangleRef& tri, Vec3 p) {
-  for (uint32_t k = 0; k < 3; ++k) {
-    const Vec3 a = tri.p[k];
-    const Vec3 b = tri.p[(k + 1) % 3];
-    if (dot(cross(b - a, p - a), tri.normal) < 0.0f) return false;
+// Bit i set: core point i lies over the triangle (inside its prism along
+// the normal).
+uint64_t over_triangle(const ShapeCore& core, const TriangleRef& tri) {
+  Vec3 inward[3];  // in the plane, square to edge k, toward the inside
+  for (uint32_t k = 0; k < 3; ++k) inward[k] = cross(tri.normal, tri.p[(k + 1) % 3] - tri.p[k]);
+  uint64_t over = 0;
+  for (uint32_t i = 0; i < core.count; ++i) {
+    bool inside = true;
+    for (uint32_t k = 0; k < 3; ++k) {
+      inside = inside && dot(core.points[i] - tri.p[k], inward[k]) >= 0.0f;
+    }
+    if (inside) over |= uint64_t{1} << i;
   }
-  return true;
+  return over;
 }
 
 // The active-edge bits seen from `side` (the face normal toward the shape):
@@ -364,6 +370,8 @@ void clamp_to_folds(const ShapeCore& core, const TriangleRef& tri, Vec3 side, ui
     corner = tri.p[k];
   }
   const uint32_t bits = side_bits(tri, side);
+  uint64_t over = 0;  // over_triangle's, found at the first fold that needs it
+  bool over_known = false;
   bool found = false;
   float best = 0.0f;
   Vec3 best_normal;
@@ -393,10 +401,14 @@ void clamp_to_folds(const ShapeCore& core, const TriangleRef& tri, Vec3 side, ui
       if (!(under_n > 0.0f) || !(under_t > 0.0f)) return 0.0f;
       return lift > 0.0f ? std::fmin(under_n, under_t / lift) : under_n;
     };
+    if (!over_known) {
+      over = over_triangle(core, tri);
+      over_known = true;
+    }
     Vec3 witness = p_shape;
     float depth = push(p_shape, 0.0f);
     for (uint32_t k = 0; k < core.count; ++k) {
-      if (!over_triangle(tri, core.points[k])) continue;
+      if ((over & (uint64_t{1} << k)) == 0) continue;
       const float d = push(core.points[k], core.radius);
       if (d > depth) {
         depth = d;
