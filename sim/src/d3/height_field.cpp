@@ -30,48 +30,62 @@ Vec3 unit_normal(const Vec3 p[3]) {
   return normalize_or_zero(triangle_cross(p[0], p[1], p[2]));
 }
 
-// Active bits of edge e of triangle `id` (corners p, unit normal n) whose
-// neighbour across the edge is triangle `other` of cell (r, c) (or none
-// when outside the grid or a hole): boundary bits, or the classification
-// against the neighbour's far corner `far_corner` (its corner index).
-uint8_t edge_bits(const HeightField& hf, const Vec3 p[3], Vec3 n, uint32_t e, int64_t r, int64_t c,
-                  uint32_t half, uint32_t far_corner) {
-  const uint32_t cells_r = hf.rows - 1;
-  const uint32_t cells_c = hf.cols - 1;
-  if (r < 0 || c < 0 || r >= cells_r || c >= cells_c) return kBoundaryEdgeBits;
-  const uint32_t cell = static_cast<uint32_t>(r) * cells_c + static_cast<uint32_t>(c);
-  if (height_field_is_hole(hf, cell)) return kBoundaryEdgeBits;
-  Vec3 q[3];
-  height_field_corners(hf, cell * 2 + half, q);
-  return classify_shared_edge(n, unit_normal(q), p[e], q[far_corner]);
+// kAcross[half][e]: the neighbour across edge e of a triangle of cell
+// (r, c): its cell's offset, its half, the index of its corner off the
+// edge, and that corner's sample offset from (r, c). Half 0 (p00, p01,
+// p11): the left edge to cell (r, c - 1) half 1 (far corner its p00,
+// index 0); the top edge to (r + 1, c) half 1 (far corner p11, index 1);
+// the diagonal to this cell's half 1 (far corner p10, index 2). Half 1
+// (p00, p11, p10): the diagonal to half 0 (far corner p01, index 1); the
+// right edge to (r, c + 1) half 0 (far corner p11, index 2); the bottom
+// edge to (r - 1, c) half 0 (far corner p00, index 0).
+struct Across {
+  int32_t dr;
+  int32_t dc;
+  uint32_t half;
+  uint32_t far_corner;
+  int32_t far_dr;
+  int32_t far_dc;
+};
+constexpr Across kAcross[2][3] = {{{0, -1, 1, 0, 0, -1}, {1, 0, 1, 1, 2, 1}, {0, 0, 1, 2, 0, 1}},
+                                  {{0, 0, 0, 1, 1, 0}, {0, 1, 0, 2, 1, 2}, {-1, 0, 0, 0, -1, 0}}};
+
+// The id of the triangle across edge e of triangle `id`; false when the
+// edge borders the field or a hole.
+bool neighbour_across(const HeightField& hf, uint32_t id, uint32_t e, uint32_t& other) {
+  const uint32_t cell = id >> 1;
+  const Across& a = kAcross[id & 1][e];
+  const int64_t r = static_cast<int64_t>(cell / (hf.cols - 1)) + a.dr;
+  const int64_t c = static_cast<int64_t>(cell % (hf.cols - 1)) + a.dc;
+  if (r < 0 || c < 0 || r >= static_cast<int64_t>(hf.rows) - 1 ||
+      c >= static_cast<int64_t>(hf.cols) - 1) {
+    return false;
+  }
+  const uint32_t n = static_cast<uint32_t>(r) * (hf.cols - 1) + static_cast<uint32_t>(c);
+  if (height_field_is_hole(hf, n)) return false;
+  other = n * 2 + a.half;
+  return true;
 }
 
 // The active-edge bits of triangle `id` (not in a hole) from its
-// neighbours.
+// neighbours: boundary bits, or the classification against the
+// neighbour's far corner.
 uint8_t active_edges_of(const HeightField& hf, uint32_t id) {
   Vec3 p[3];
   height_field_corners(hf, id, p);
   const Vec3 n = unit_normal(p);
-  const uint32_t cell = id >> 1;
-  const int64_t r = cell / (hf.cols - 1);
-  const int64_t c = cell % (hf.cols - 1);
-  uint8_t bits[3];
-  if ((id & 1) == 0) {
-    // (p00, p01, p11): left edge to cell (r, c - 1) half 1 (far corner its
-    // p00, index 0); top edge to (r + 1, c) half 1 (far corner p11, index
-    // 1); the diagonal to this cell's half 1 (far corner p10, index 2).
-    bits[0] = edge_bits(hf, p, n, 0, r, c - 1, 1, 0);
-    bits[1] = edge_bits(hf, p, n, 1, r + 1, c, 1, 1);
-    bits[2] = edge_bits(hf, p, n, 2, r, c, 1, 2);
-  } else {
-    // (p00, p11, p10): the diagonal to half 0 (far corner p01, index 1);
-    // right edge to (r, c + 1) half 0 (far corner p11, index 2); bottom
-    // edge to (r - 1, c) half 0 (far corner p00, index 0).
-    bits[0] = edge_bits(hf, p, n, 0, r, c, 0, 1);
-    bits[1] = edge_bits(hf, p, n, 1, r, c + 1, 0, 2);
-    bits[2] = edge_bits(hf, p, n, 2, r - 1, c, 0, 0);
+  uint8_t bits = 0;
+  for (uint32_t e = 0; e < 3; ++e) {
+    uint32_t other = 0;
+    uint8_t b = kBoundaryEdgeBits;
+    if (neighbour_across(hf, id, e, other)) {
+      Vec3 q[3];
+      height_field_corners(hf, other, q);
+      b = classify_shared_edge(n, unit_normal(q), p[e], q[kAcross[id & 1][e].far_corner]);
+    }
+    bits = static_cast<uint8_t>(bits | (b << e));
   }
-  return static_cast<uint8_t>(bits[0] | (bits[1] << 1) | (bits[2] << 2));
+  return bits;
 }
 
 }  // namespace
@@ -158,6 +172,17 @@ TriangleRef height_field_triangle(const HeightField& hf, uint32_t id) {
   height_field_corners(hf, id, t.p);
   t.normal = unit_normal(t.p);
   t.active_edges = static_cast<uint8_t>(hf.edge_bits[id >> 1] >> (8 * (id & 1)));
+  // A fold has a neighbour (the bits were classified against it), so its
+  // far corner is a sample inside the grid.
+  const uint32_t cell = id >> 1;
+  const uint32_t r = cell / (hf.cols - 1);
+  const uint32_t c = cell % (hf.cols - 1);
+  for (uint32_t e = 0; e < 3; ++e) {
+    if (!edge_is_fold(t.active_edges, e)) continue;
+    const Across& a = kAcross[id & 1][e];
+    t.across[e] = height_field_point(hf, static_cast<uint32_t>(static_cast<int32_t>(r) + a.far_dr),
+                                     static_cast<uint32_t>(static_cast<int32_t>(c) + a.far_dc));
+  }
   return t;
 }
 

@@ -26,9 +26,13 @@
 // edges without catching); if the shape's outline then does not reach over
 // the triangle, the triangle gives nothing, since the neighbour across the
 // inactive feature (flat or concave, so under the shape) has the contact.
-// Other edge and vertex contacts give one point. One-sided: a shape whose
-// core centroid is behind the triangle's plane is ignored, and one reaching
-// through from the front is pushed out along the face normal.
+// Other edge and vertex contacts give one point; an overlapping one whose
+// normal points past the face of the neighbour across a convex fold there
+// (TriangleRef::across) takes that face's normal instead, at the depth
+// that lifts the shape out of both faces (EPA against the one triangle
+// would let a corner just past the fold out sideways). One-sided: a shape
+// whose core centroid is behind the triangle's plane is ignored, and one
+// reaching through from the front is pushed out along the face normal.
 //
 // Reduction to one manifold: the normal of the deepest triangle contact
 // (ties to the lower triangle id), blended with those of the contacts

@@ -37,6 +37,9 @@ inline constexpr uint32_t kMeshLeafSize = 4;
 /// leaves of 4 need 20 levels); sizes the query stacks.
 inline constexpr uint32_t kMeshMaxDepth = 24;
 
+/// MeshTriangle::across of an edge that is not a fold.
+inline constexpr uint32_t kNoVertex = 0xffffffffu;
+
 struct MeshTriangle {
   uint32_t v[3];  ///< vertex indices, counter-clockwise about the normal
   Vec3 normal;    ///< unit
@@ -44,6 +47,9 @@ struct MeshTriangle {
   /// edge and may give edge contacts seen from the front; bit 3 + e: the
   /// same seen from the back (boundary or concave). See triangle.h.
   uint8_t active_edges = 0;
+  /// across[e]: the vertex of the neighbour across edge e off the edge
+  /// when the edge is a fold (TriangleRef::across), else kNoVertex.
+  uint32_t across[3] = {kNoVertex, kNoVertex, kNoVertex};
 };
 
 /// A node of the flat tree. Leaf: count > 0 triangles at

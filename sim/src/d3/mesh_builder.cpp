@@ -70,6 +70,7 @@ void compute_active_edges(TriangleMesh& mesh) {
         const uint32_t opposite = other.v[(other_key.edge + 2) % 3];
         bits = classify_shared_edge(tri.normal, other.normal, mesh.vertices[tri.v[e]],
                                     mesh.vertices[opposite]);
+        if (bits != 0) tri.across[e] = opposite;
       }
       tri.active_edges = static_cast<uint8_t>(tri.active_edges | (bits << e));
     }
@@ -95,6 +96,9 @@ TriangleRef mesh_triangle(const TriangleMesh& mesh, uint32_t triangle) {
   r.p[2] = mesh.vertices[t.v[2]];
   r.normal = t.normal;
   r.active_edges = t.active_edges;
+  for (uint32_t e = 0; e < 3; ++e) {
+    if (t.across[e] != kNoVertex) r.across[e] = mesh.vertices[t.across[e]];
+  }
   r.id = triangle;
   return r;
 }

@@ -33,6 +33,12 @@ struct TriangleRef {
   Vec3 p[3];    ///< corners in the source's local frame, counter-clockwise about normal
   Vec3 normal;  ///< unit face normal, (p1 - p0) x (p2 - p0) normalized
   uint8_t active_edges = 0;  ///< kFrontEdgesMask bits and back bits (see above)
+  /// across[e]: the corner of the neighbour across edge e that lies off
+  /// the edge, set for an edge active one way only (a convex or concave
+  /// fold, see above); zero for flat and boundary edges. With it the
+  /// narrowphase knows the neighbour's face at a fold
+  /// (manifold_triangle_contact.cpp).
+  Vec3 across[3];
   /// Stable id: the mesh's triangle index, or cell * 2 + half for a height
   /// field. Contact feature ids and ties are built from it, so it must be
   /// unique within one call and below 2^27 (see manifold_triangles.h).
@@ -65,6 +71,13 @@ inline uint8_t classify_shared_edge(Vec3 n1, Vec3 n2, Vec3 p, Vec3 opposite) {
   if (!folded) return 0;
   const bool convex = dot(n1, opposite - p) < 0.0f;
   return convex ? 0x01 : 0x08;
+}
+
+/// Whether edge e of a triangle with these active-edge bits is a fold
+/// (convex or concave): active from one side only. A boundary edge is
+/// active from both, a flat one from neither.
+inline bool edge_is_fold(uint8_t active_edges, uint32_t e) {
+  return ((active_edges >> e) & 1u) != ((active_edges >> (kBackEdgesShift + e)) & 1u);
 }
 
 /// Barycentric slack of ray_triangle, so a ray through a shared edge or

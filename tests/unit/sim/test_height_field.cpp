@@ -62,7 +62,7 @@ HeightField bumpy(uint32_t n, Vec3 scale, bool with_holes, uint64_t seed) {
 
 TEST(HeightField, TrianglesMatchEquivalentMesh) {
   // The mesh of the same grid (no holes): same corners, normals, and the
-  // same active edges computed the mesh's way.
+  // same active edges and neighbours' corners computed the mesh's way.
   const uint32_t n = 9;
   const HeightField hf = bumpy(n, {0.5f, 0.3f, 0.7f}, false, 5);
   std::vector<Vec3> v;
@@ -84,6 +84,7 @@ TEST(HeightField, TrianglesMatchEquivalentMesh) {
     for (int k = 0; k < 3; ++k) EXPECT_EQ(a.p[k], b.p[k]);
     EXPECT_EQ(a.normal, b.normal);
     EXPECT_EQ(a.active_edges, b.active_edges) << id;
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(a.across[k], b.across[k]) << id;
     EXPECT_GT(a.normal.y, 0.0f);
   }
 }

@@ -57,6 +57,9 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///      its contacts in one pass
 ///  14  a manifold's lone point runs one sweep of the normal block (the
 ///      later ones only moved it by rounding)
+///      later ones only moved it by rounding); a triangle's overlapping edge
+///      or vertex contact whose normal points past the neighbour's face
+///      across a convex fold takes that face
 inline constexpr uint32_t kSimRevision = 14;
 
 /// "rewind-sim r11": the engine identity a replay records.
