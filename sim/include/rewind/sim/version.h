@@ -56,7 +56,6 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///      catalogue's accuracy scenes fail at 1/120 s); every substep solves
 ///      its contacts in one pass
 ///  14  a manifold's lone point runs one sweep of the normal block (the
-///      later ones only moved it by rounding)
 ///      later ones only moved it by rounding); a triangle's overlapping edge
 ///      or vertex contact whose normal points past the neighbour's face
 ///      across a convex fold takes that face
