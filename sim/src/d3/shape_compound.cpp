@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <string>
 
+#include "d3/aabb_tree.h"
+#include "d3/body_storage.h"
 #include "d3/compound.h"
 #include "d3/manifold.h"
 #include "d3/manifold_triangles.h"
@@ -130,15 +132,29 @@ uint32_t collide_compound_parts(const Shape& a, const ShapePose& pa, const Shape
   uint32_t order[kCompoundMaxChildren];
   uint32_t touching = 0;
   Manifold contact;
+  // Each side's children where they stand, once, with their bounds grown by
+  // the speculative distance: a child pair whose grown bounds miss is not
+  // collided, as the broadphase does not pair bodies whose grown bounds
+  // miss (find_pairs.cpp), so a compound's far children cost nothing.
+  ShapePose poses_b[kCompoundMaxChildren];
+  Aabb bounds_b[kCompoundMaxChildren];
+  const auto grown = [speculative_m](Aabb box) {
+    box.lower -= Vec3{speculative_m, speculative_m, speculative_m};
+    box.upper += Vec3{speculative_m, speculative_m, speculative_m};
+    return box;
+  };
+  for (uint32_t j = 0; j < b_count; ++j) {
+    poses_b[j] = cb != nullptr ? child_pose(pb, cb->parts[j]) : pb;
+    const Shape& shape_b = cb != nullptr ? cb->parts[j].shape : b;
+    bounds_b[j] = grown(shape_aabb(shape_b, poses_b[j].position, poses_b[j].axes));
+  }
   for (uint32_t i = 0; i < c.parts.size(); ++i) {
     const ShapePose child_a = child_pose(pa, c.parts[i]);
+    const Aabb bounds_a = grown(shape_aabb(c.parts[i].shape, child_a.position, child_a.axes));
     for (uint32_t j = 0; j < b_count; ++j) {
-      if (cb != nullptr) {
-        collide_shapes(c.parts[i].shape, child_a, cb->parts[j].shape, child_pose(pb, cb->parts[j]),
-                       speculative_m, contact, &store);
-      } else {
-        collide_shapes(c.parts[i].shape, child_a, b, pb, speculative_m, contact, &store);
-      }
+      if (!overlaps(bounds_a, bounds_b[j])) continue;
+      collide_shapes(c.parts[i].shape, child_a, cb != nullptr ? cb->parts[j].shape : b, poses_b[j],
+                     speculative_m, contact, &store);
       if (contact.point_count == 0) continue;
       float low = contact.points[0].separation;
       for (uint32_t k = 1; k < contact.point_count; ++k) {
