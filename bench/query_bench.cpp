@@ -496,29 +496,23 @@ void overlap_jolt(benchmark::State& state) {
 
 // --- step benchmarks ------------------------------------------------------------
 
-struct Dropped {
-  Shape shape;
-  Vec3 position;
-  Quat rotation;
-  Vec3 velocity;
-  Vec3 spin;
-};
-
 // Half boxes, half spheres over the middle 300 m x 300 m, just above the
 // level's top, drifting slowly.
-std::vector<Dropped> dropped_bodies() {
+std::vector<BodyDef> dropped_bodies() {
   SplitMix64 rng{0xD809ull};
-  std::vector<Dropped> out(kDynamicBodies);
+  std::vector<BodyDef> out(kDynamicBodies);
   for (size_t i = 0; i < out.size(); ++i) {
-    Dropped& d = out[i];
+    BodyDef& d = out[i];
     d.shape = i % 2 == 0 ? Shape::make_box({rng.uniform(0.2f, 0.5f), rng.uniform(0.2f, 0.5f),
                                             rng.uniform(0.2f, 0.5f)})
                          : Shape::make_sphere(rng.uniform(0.2f, 0.5f));
     d.position = {rng.uniform(-150.0f, 150.0f), rng.uniform(45.0f, 60.0f),
                   rng.uniform(-150.0f, 150.0f)};
     d.rotation = rng.rotation();
-    d.velocity = {rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 0.0f), rng.uniform(-1.0f, 1.0f)};
-    d.spin = {rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f)};
+    d.linear_velocity = {rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 0.0f),
+                         rng.uniform(-1.0f, 1.0f)};
+    d.angular_velocity = {rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f),
+                          rng.uniform(-1.0f, 1.0f)};
   }
   return out;
 }
@@ -535,13 +529,7 @@ void step_rewind(benchmark::State& state, bool with_level) {
   ground.position = kGroundCentre;
   bool ok = world.create_body(ground).ok();
   if (with_level) add_level(world, nullptr, 0.0f);
-  for (const Dropped& d : dropped_bodies()) {
-    BodyDef def;
-    def.shape = d.shape;
-    def.position = d.position;
-    def.rotation = d.rotation;
-    def.linear_velocity = d.velocity;
-    def.angular_velocity = d.spin;
+  for (const BodyDef& def : dropped_bodies()) {
     ok = ok && world.create_body(def).ok();
   }
   if (!ok) {
@@ -564,13 +552,7 @@ void step_bullet(benchmark::State& state, bool with_level) {
   }
   // The same quantized start state Rewind gets.
   World3D source(level_config());
-  for (const Dropped& d : dropped_bodies()) {
-    BodyDef def;
-    def.shape = d.shape;
-    def.position = d.position;
-    def.rotation = d.rotation;
-    def.linear_velocity = d.velocity;
-    def.angular_velocity = d.spin;
+  for (const BodyDef& def : dropped_bodies()) {
     const auto id = source.create_body(def);
     if (!id.ok()) {
       state.SkipWithError("a body was refused");
@@ -624,13 +606,7 @@ void step_jolt(benchmark::State& state, bool with_level) {
     }
   }
   World3D source(level_config());
-  for (const Dropped& d : dropped_bodies()) {
-    BodyDef def;
-    def.shape = d.shape;
-    def.position = d.position;
-    def.rotation = d.rotation;
-    def.linear_velocity = d.velocity;
-    def.angular_velocity = d.spin;
+  for (const BodyDef& def : dropped_bodies()) {
     const auto id = source.create_body(def);
     ok = ok && id.ok() &&
          add(*source.shape(*id), BodyKind::kDynamic, source.position(*id), source.rotation(*id),
