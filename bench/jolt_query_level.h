@@ -12,6 +12,7 @@
 
 #include "rewind/sim/math.h"
 #include "rewind/sim/shape.h"
+#include "rewind/sim/world3d.h"
 
 namespace rwd::bench {
 
@@ -21,6 +22,17 @@ struct JoltLevelBox {
   sim::Quat rotation;
   sim::Vec3 half_extents;
 };
+
+/// The level's boxes as Rewind kept them (quantized on creation), in the
+/// order of `body_of_box`.
+inline std::vector<JoltLevelBox> kept_boxes(const sim::World3D& world,
+                                            const std::vector<sim::BodyId>& body_of_box) {
+  std::vector<JoltLevelBox> boxes;
+  for (sim::BodyId id : body_of_box) {
+    boxes.push_back({world.position(id), world.rotation(id), world.shape(id)->half_extents});
+  }
+  return boxes;
+}
 
 /// A query's answer: the level box's number (its place in the boxes given)
 /// and metres along the ray or sweep.

@@ -106,21 +106,19 @@ Status World3D::shape_cast(const Shape& shape, Vec3 position, Quat rotation, Vec
   // it may go, only whether it gets there; an equal fraction still
   // counts): the nearest hit wins, ties to the lower index, as if every
   // body on the way were swept in index order (shape_cast_all).
-  float reach = 1.0f;
-  float best_fraction = 1.0f;
+  float reach = 1.0f;  // a fraction of the translation
   const auto test = [&](uint32_t i) {
     if (!d3::query_accepts(state_, filter, i)) return;
     const BodyInfo& info = state_.infos[i];
     const BodySim& sim = state_.sims[i];
     const d3::ShapeCastOutput hit =
         d3::sweep_against(info.shape, *scratch_->store, sim.position, mat3_from_quat(sim.rotation),
-                          c.swept, c.translation, best_fraction);
+                          c.swept, c.translation, reach);
     if (!hit.hit) return;
     const ShapeCastHit found{BodyId{i, info.generation}, hit.fraction * c.length, hit.point,
                              hit.normal};
     if (out && !nearer(found, *out)) return;
     out = found;
-    best_fraction = hit.fraction;
     reach = hit.fraction;
   };
   scratch_->broadphase.sweep_query_nearest(c.start_bounds, c.translation, reach, test);
