@@ -23,19 +23,23 @@ double to_double(Fx v) {
 
 }  // namespace
 
-Rewind2DEngine::Rewind2DEngine(int substeps, int relax_iterations) {
+Rewind2DEngine::Rewind2DEngine(int substeps, int relax_iterations, uint32_t threads) {
   config_.substeps = substeps;
   config_.relax_iterations = relax_iterations;
+  if (threads > 1) pool_ = std::make_unique<sim::ThreadPool>(threads);
 }
 
 std::string Rewind2DEngine::settings() const {
-  return "substeps=" + std::to_string(config_.substeps) +
-         " relax=" + std::to_string(config_.relax_iterations);
+  std::string s = "substeps=" + std::to_string(config_.substeps) +
+                  " relax=" + std::to_string(config_.relax_iterations);
+  if (pool_ != nullptr) s += " threads=" + std::to_string(pool_->threads());
+  return s;
 }
 
 bool Rewind2DEngine::is_default() const {
   const sim2d::World2DConfig d;
-  return config_.substeps == d.substeps && config_.relax_iterations == d.relax_iterations;
+  return config_.substeps == d.substeps && config_.relax_iterations == d.relax_iterations &&
+         pool_ == nullptr;
 }
 
 bool Rewind2DEngine::build(const Scene2D& scene, std::string& error) {
@@ -52,6 +56,7 @@ bool Rewind2DEngine::build(const Scene2D& scene, std::string& error) {
     return false;
   }
   world_ = std::make_unique<sim2d::World2D>(config);
+  world_->set_thread_pool(pool_.get());
   ids_.clear();
   for (const BodyDesc2D& b : scene.bodies) {
     auto shape = sim2d::make_box(milli(b.hx), milli(b.hy), Vec2{milli(b.cx), milli(b.cy)}, Fx());

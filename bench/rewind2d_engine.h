@@ -5,14 +5,17 @@
 #include <vector>
 
 #include "engine2d.h"
+#include "rewind/sim/thread_pool.h"
 #include "rewind/sim2d/world2d.h"
 
 namespace rwd::bench {
 
 class Rewind2DEngine final : public Engine2D {
  public:
-  /// Substeps and relax iterations of World2DConfig; the rest stays default.
-  Rewind2DEngine(int substeps, int relax_iterations);
+  /// Substeps and relax iterations of World2DConfig; the rest stays
+  /// default. With `threads` above 1 the world collides its pairs on a pool
+  /// of that many threads (World2D::set_thread_pool: the same results).
+  Rewind2DEngine(int substeps, int relax_iterations, uint32_t threads = 1);
 
   std::string name() const override { return "rewind"; }
   std::string settings() const override;
@@ -24,6 +27,7 @@ class Rewind2DEngine final : public Engine2D {
 
  private:
   sim2d::World2DConfig config_;
+  std::unique_ptr<sim::ThreadPool> pool_;  // null: one thread; outlives world_
   std::unique_ptr<sim2d::World2D> world_;
   std::vector<sim2d::BodyId2D> ids_;
 };

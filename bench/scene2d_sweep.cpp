@@ -29,7 +29,7 @@ using rwd::bench::Scene2D;
 
 constexpr const char* kUsage =
     "usage: rewind-scene2d-sweep [--scene NAME]... [--size N] [--ticks N] [--sweep]\n"
-    "                            [--engine rewind|box2d|box2d3|both] [--list]\n"
+    "                            [--engine rewind|box2d|box2d3|both] [--threads N] [--list]\n"
     "  Runs each 2D scene (default: all) on Rewind (4 substeps, relax 1) and Box2D 2.4\n"
     "  (8/3 and 4/2 velocity/position iterations; 8/3 also without continuous\n"
     "  collision), and Box2D v3 (4 substeps) when built with it\n"
@@ -38,7 +38,9 @@ constexpr const char* kUsage =
     "  velocity iterations 2, 16 (position 3) and Box2D v3 substeps 2, 8 for\n"
     "  the error-against-cost charts. --size replaces the scene's size, --ticks its\n"
     "  timed ticks. --engine runs one engine alone (for profiling; both: every\n"
-    "  engine built in). Prints CSV on stdout, progress on stderr. Exit 0 on success, 1 if\n"
+    "  engine built in). --threads N (2-31) also runs Rewind's defaults with its\n"
+    "  pairs collided on N threads (settings \"... threads=N\": the same results).\n"
+    "  Prints CSV on stdout, progress on stderr. Exit 0 on success, 1 if\n"
     "  an engine refused a scene, 2 on bad usage.\n";
 
 #ifdef REWIND_HAVE_BOX2D3
@@ -47,7 +49,8 @@ constexpr bool kHaveBox2D3 = true;
 constexpr bool kHaveBox2D3 = false;
 #endif
 
-std::vector<std::unique_ptr<Engine2D>> engines(bool sweep, const std::string& which) {
+std::vector<std::unique_ptr<Engine2D>> engines(bool sweep, const std::string& which,
+                                               uint32_t threads) {
   std::vector<std::unique_ptr<Engine2D>> e;
   const bool rewind = which == "rewind" || which == "both";
   const bool box2d = which == "box2d" || which == "both";
@@ -56,6 +59,7 @@ std::vector<std::unique_ptr<Engine2D>> engines(bool sweep, const std::string& wh
       e.push_back(std::make_unique<Rewind2DEngine>(substeps, 1));
     }
   }
+  if (rewind && threads > 1) e.push_back(std::make_unique<Rewind2DEngine>(4, 1, threads));
   for (int velocity : {2, 4, 8, 16}) {
     if (box2d && (sweep || velocity == 8)) e.push_back(std::make_unique<Box2DEngine>(velocity, 3));
   }
@@ -95,6 +99,7 @@ int main(int argc, char** argv) {
   int ticks = 0;
   bool sweep = false;
   std::string which = "both";
+  uint32_t threads = 1;
   for (int i = 1; i < argc; ++i) {
     const char* a = argv[i];
     if (std::strcmp(a, "--scene") == 0 && i + 1 < argc) {
@@ -116,6 +121,15 @@ int main(int argc, char** argv) {
         std::fputs(kUsage, stderr);
         return 2;
       }
+    } else if (std::strcmp(a, "--threads") == 0 && i + 1 < argc) {
+      const char* v = argv[++i];
+      char* end = nullptr;
+      const long n = std::strtol(v, &end, 10);
+      if (end == v || *end != '\0' || n < 2 || n > 31) {
+        std::fprintf(stderr, "rewind-scene2d-sweep: --threads must be 2 to 31, not '%s'\n", v);
+        return 2;
+      }
+      threads = static_cast<uint32_t>(n);
     } else if (std::strcmp(a, "--sweep") == 0) {
       sweep = true;
     } else if (std::strcmp(a, "--list") == 0) {
@@ -145,7 +159,7 @@ int main(int argc, char** argv) {
     if (ticks > 0) scene.timed_ticks = ticks;
     std::fprintf(stderr, "scene2d: %s %d (%zu bodies, %d + %d ticks)\n", name.c_str(), scene.size,
                  scene.bodies.size(), scene.warmup_ticks, scene.timed_ticks);
-    const auto e = engines(sweep, which);
+    const auto e = engines(sweep, which, threads);
     const auto results = rwd::bench::run_lockstep(scene, e);
     for (size_t k = 0; k < e.size(); ++k) {
       const auto& r = results[k];

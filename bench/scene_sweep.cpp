@@ -36,7 +36,8 @@ using rwd::tune::SolverSetting;
 constexpr const char* kUsage =
     "usage: rewind-scene-sweep [--mode defaults|quick|full]\n"
     "                          [--engine rewind|bullet|both|jolt|all]\n"
-    "                          [--scene NAME]... [--size N]... [--no-sleep] [--list]\n"
+    "                          [--scene NAME]... [--size N]... [--no-sleep]\n"
+    "                          [--threads N] [--list]\n"
     "  Runs every scene of the catalogue (or the --scene ones) at its sizes (or\n"
     "  the --size ones) on Rewind and Bullet (both, the default) at their\n"
     "  default settings; quick and full also sweep the solver settings at each\n"
@@ -45,7 +46,9 @@ constexpr const char* kUsage =
     "  Bullet and Jolt) need a build configured with -DREWIND_JOLT_DIR=...\n"
     "  Prints CSV on stdout, progress on stderr. Exit 0 on success (failing\n"
     "  criteria are data, not errors), 2 on bad usage. --no-sleep keeps every\n"
-    "  body awake in every engine (the cost of the solver itself).\n";
+    "  body awake in every engine (the cost of the solver itself). --threads N\n"
+    "  (2-31) also runs Rewind's defaults stepping on N threads (settings\n"
+    "  \"... threads=N\"; the same results, so only the time differs).\n";
 
 #ifdef REWIND_HAVE_JOLT
 constexpr bool kHaveJolt = true;
@@ -59,13 +62,14 @@ struct Setting {
   std::function<std::unique_ptr<Engine>()> make;
 };
 
-Setting rewind_setting(bool sleep, int substeps, int relax, float hertz) {
+Setting rewind_setting(bool sleep, int substeps, int relax, float hertz, uint32_t threads = 1) {
   rwd::sim::WorldConfig c;
   c.enable_sleep = sleep;
   const SolverSetting s{substeps, relax, hertz};
-  const bool is_default = s == SolverSetting::of(c);
+  const bool is_default = s == SolverSetting::of(c) && threads == 1;
   c = s.applied_to(c);
-  return {"rewind", is_default, [c] { return std::make_unique<RewindEngine>(c); }};
+  return {"rewind", is_default,
+          [c, threads] { return std::make_unique<RewindEngine>(c, threads); }};
 }
 
 Setting bullet_setting(bool sleep, int iterations, int substeps) {
@@ -91,9 +95,9 @@ Setting jolt_setting(bool sleep, int velocity_iterations, int collision_steps) {
 // Rewind's defaults, the centre of every sweep.
 const rwd::sim::WorldConfig kRewindDefaults{};
 
-Setting rewind_default(bool sleep) {
+Setting rewind_default(bool sleep, uint32_t threads = 1) {
   return rewind_setting(sleep, kRewindDefaults.substeps, kRewindDefaults.relax_iterations,
-                        kRewindDefaults.contact_hertz);
+                        kRewindDefaults.contact_hertz, threads);
 }
 
 // The non-default settings swept at each scene's chart size: one knob at a
@@ -161,6 +165,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> scene_names;
   std::vector<int> sizes;
   bool sleep = true;
+  int threads = 1;
   for (int i = 1; i < argc; ++i) {
     std::string_view a = argv[i];
     auto value = [&]() -> const char* {
@@ -180,6 +185,15 @@ int main(int argc, char** argv) {
       sizes.push_back(std::atoi(value()));
     } else if (a == "--no-sleep") {
       sleep = false;
+    } else if (a == "--threads") {
+      const char* v = value();
+      char* end = nullptr;
+      const long n = std::strtol(v, &end, 10);
+      if (end == v || *end != '\0' || n < 2 || n > 31) {
+        std::fprintf(stderr, "rewind-scene-sweep: --threads must be 2 to 31, not '%s'\n", v);
+        return 2;
+      }
+      threads = static_cast<int>(n);
     } else if (a == "--list") {
       for (const SceneEntry& e : rwd::scenes::scene_catalog()) {
         std::printf("%.*s: %.*s\n", static_cast<int>(e.name.size()), e.name.data(),
@@ -226,6 +240,7 @@ int main(int argc, char** argv) {
   };
   std::vector<Job> jobs;
   std::vector<Setting> defaults = {rewind_default(sleep), bullet_setting(sleep, 10, 1)};
+  if (threads > 1) defaults.push_back(rewind_default(sleep, static_cast<uint32_t>(threads)));
 #ifdef REWIND_HAVE_JOLT
   defaults.push_back(jolt_setting(sleep, 10, 1));
 #endif

@@ -9,13 +9,16 @@
 
 namespace rwd::scenes {
 
-RewindEngine::RewindEngine(const sim::WorldConfig& config) : config_(config) {}
+RewindEngine::RewindEngine(const sim::WorldConfig& config, uint32_t threads) : config_(config) {
+  if (threads > 1) pool_ = std::make_unique<sim::ThreadPool>(threads);
+}
 
 std::string RewindEngine::settings() const {
   std::ostringstream out;
   out << "substeps=" << config_.substeps << " relax=" << config_.relax_iterations
       << " hertz=" << config_.contact_hertz;
   if (!config_.enable_sleep) out << " sleep=off";
+  if (pool_ != nullptr) out << " threads=" << pool_->threads();
   return out.str();
 }
 
@@ -27,6 +30,7 @@ void RewindEngine::reset(const WorldSpec& world, uint32_t body_capacity) {
   config.bounds_upper = world.bounds_upper;
   config.max_bodies = std::max(config.max_bodies, body_capacity);
   world_ = std::make_unique<sim::World3D>(config);
+  world_->set_thread_pool(pool_.get());
   ids_.clear();
 }
 

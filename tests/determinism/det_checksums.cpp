@@ -45,6 +45,7 @@
 #include <cstring>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "golden_digest.h"
@@ -52,6 +53,7 @@
 #include "lane2d_scene.h"
 #include "rewind/game/player_input.h"
 #include "rewind/game/simulation.h"
+#include "rewind/sim/thread_pool.h"
 #include "rewind/sim/world3d.h"
 
 namespace {
@@ -247,9 +249,12 @@ bool run_edge_scene(Tick ticks) {
 // fall asleep, are kicked awake and pile up again (resting contacts carry
 // their manifolds forward in between). Every 30 ticks a restore
 // must re-step bit for bit. Returns false (after saying why) otherwise.
-bool run_heap_scene(Tick ticks) {
+// The heap scene on `pool` (null: the stepping thread alone), its lines
+// appended to `out`: the same lines on any number of threads.
+bool run_heap_scene(Tick ticks, rwd::sim::ThreadPool* pool, std::string& out) {
   namespace sim = rwd::sim;
   sim::World3D world;
+  world.set_thread_pool(pool);
   sim::GeometryId wedge;
   sim::GeometryId gem;
   add_hulls(world.geometry(), wedge, gem);
@@ -364,9 +369,11 @@ bool run_heap_scene(Tick ticks) {
       events.add_f32(e.depth);
       events.add_f32(e.impulse);
     }
-    std::printf("heap %d %016" PRIx64 " %u %u %016" PRIx64 "\n", static_cast<int>(t),
-                world.checksum(), world.stats().contact_points, world.stats().reused_manifolds,
-                events.digest());
+    char line[128];
+    std::snprintf(line, sizeof line, "heap %d %016" PRIx64 " %u %u %016" PRIx64 "\n",
+                  static_cast<int>(t), world.checksum(), world.stats().contact_points,
+                  world.stats().reused_manifolds, events.digest());
+    out += line;
   }
   return true;
 }
@@ -457,7 +464,22 @@ int main(int argc, char** argv) {
 
   std::printf("fixed %016" PRIx64 "\n", rwd::fixed::golden_digest());
   if (!run_edge_scene(300)) return 3;
-  if (!run_heap_scene(400)) return 3;
+  {
+    // The heap alone, then on three threads (the narrowphase's pairs cut
+    // across them): the lines must be the same.
+    std::string alone;
+    if (!run_heap_scene(400, nullptr, alone)) return 3;
+    std::fputs(alone.c_str(), stdout);
+    rwd::sim::ThreadPool pool(3);
+    std::string threaded;
+    if (!run_heap_scene(400, &pool, threaded)) return 3;
+    if (threaded != alone) {
+      std::printf("THREADS-MISMATCH heap\n");
+      std::fprintf(stderr, "det_checksums: the heap stepped on %u threads differs from one\n",
+                   pool.threads());
+      return 3;
+    }
+  }
 
   // The 2D lane's engine scene: every shape, joint and query.
   if (!rwd::determinism::run_lane2d_scene(300)) return 3;

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "manifold2.h"
+#include "rewind/sim/thread_pool.h"
 #include "rewind/sim2d/contact_event2d.h"
 #include "rewind/sim2d/world2d_state.h"
 #include "shape_bounds2d.h"
@@ -92,7 +94,12 @@ struct SweepEntry2D {
 class StepScratch2D {
  public:
   std::vector<SweepEntry2D> sweep;
-  std::vector<uint64_t> pairs;       ///< (a << 32) | b, a < b, sorted
+  std::vector<uint64_t> pairs;  ///< (a << 32) | b, a < b, sorted
+  /// pairs[k]'s manifold this step (update_contacts2d.cpp).
+  std::vector<Manifold2> manifolds;
+  /// The threads the narrowphase cuts its pairs across
+  /// (World2D::set_thread_pool); null: the stepping thread. Not owned.
+  sim::ThreadPool* pool = nullptr;
   std::vector<SolverBody2D> bodies;  ///< by body index
   std::vector<ContactConstraint2D> constraints;
   std::vector<JointConstraint2D> joints;

@@ -37,6 +37,30 @@ void carry_if_frozen(const World2DState& state, const ContactRecord2D& old,
   contacts.push_back(old);
 }
 
+// Pairs per range when the shapes are collided on the step's threads.
+constexpr uint32_t kPairGrain = 32;
+
+// Every pair's manifold into scratch.manifolds, on the step's threads when
+// it has them: each range writes only its own pairs' manifolds, so the cut
+// never changes a result.
+void collide_pairs(const World2DState& state, StepScratch2D& scratch, W speculative) {
+  const uint32_t count = static_cast<uint32_t>(scratch.pairs.size());
+  scratch.manifolds.resize(count);
+  const auto collide_range = [&](uint32_t begin, uint32_t end) {
+    for (uint32_t k = begin; k < end; ++k) {
+      const BodyRecord2D& body_a = state.bodies[static_cast<uint32_t>(scratch.pairs[k] >> 32)];
+      const BodyRecord2D& body_b = state.bodies[static_cast<uint32_t>(scratch.pairs[k])];
+      collide(body_a.shape, origin_transform(body_a), body_b.shape, origin_transform(body_b),
+              speculative, scratch.manifolds[k]);
+    }
+  };
+  if (scratch.pool != nullptr) {
+    scratch.pool->parallel_for(count, kPairGrain, collide_range);
+  } else {
+    collide_range(0, count);
+  }
+}
+
 }  // namespace
 
 void update_contacts(World2DState& state, StepScratch2D& scratch) {
@@ -46,15 +70,16 @@ void update_contacts(World2DState& state, StepScratch2D& scratch) {
   auto& contacts = scratch.next_contacts;
   contacts.clear();
   size_t old_index = 0;
-  Manifold2 manifold;
-  for (const uint64_t key : scratch.pairs) {
+  collide_pairs(state, scratch, speculative);
+  for (size_t k = 0; k < scratch.pairs.size(); ++k) {
+    const uint64_t key = scratch.pairs[k];
     const uint32_t a = static_cast<uint32_t>(key >> 32);
     const uint32_t b = static_cast<uint32_t>(key);
     const BodyRecord2D& body_a = state.bodies[a];
     const BodyRecord2D& body_b = state.bodies[b];
     const Xf xa = origin_transform(body_a);
     const Xf xb = origin_transform(body_b);
-    collide(body_a.shape, xa, body_b.shape, xb, speculative, manifold);
+    const Manifold2& manifold = scratch.manifolds[k];
     if (manifold.count == 0) continue;
 
     ContactRecord2D contact;

@@ -392,6 +392,10 @@ Status World2D::set_enabled(BodyId2D id, bool enabled) {
 const StepStats2D& World2D::stats() const {
   return stats_;
 }
+void World2D::set_thread_pool(sim::ThreadPool* pool) {
+  scratch_->pool = pool;
+}
+
 const World2DConfig& World2D::config() const {
   return state_.config;
 }

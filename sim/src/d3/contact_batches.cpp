@@ -6,8 +6,10 @@
 #include "d3/contact_batches.h"
 
 #include <algorithm>
+#include <atomic>
 
 #include "d3/contact_lanes.h"
+#include "d3/step_threads.h"
 #include "d3/world_scratch.h"
 
 namespace rwd::sim::d3 {
@@ -284,28 +286,49 @@ void push_full(ContactBatch& b, std::vector<SolverBody>& bodies, const PushSetti
 }
 #endif
 
-// Runs a pass on every batch in order: `one` on each lane of a batch of
-// one or two constraints (the overflow's batches, which hold one each,
-// among them), else `full` (eight AVX lanes) where the processor has AVX,
-// else `half` on each half that holds a constraint.
+// Batches per range when a colour is cut across the step's threads: enough
+// work (256 constraints) to outweigh moving their bodies between cores.
+constexpr uint32_t kBatchGrain = 32;
+
+// Calls fn(first, last) on ranges of batches that cover each colour in
+// turn, a colour's ranges at the same time on the step's threads (they
+// share no movable body, so how the colour is cut changes nothing), then
+// the overflow's batches, in order, on this thread.
+template <class Fn>
+void for_colors(WorldScratch& scratch, Fn fn) {
+  for (uint32_t col = 0; col < kColorCount; ++col) {
+    const uint32_t begin = scratch.batch_start[col];
+    const uint32_t end = scratch.batch_start[col + 1];
+    for_ranges(scratch, end - begin, kBatchGrain,
+               [&](uint32_t first, uint32_t last) { fn(begin + first, begin + last); });
+  }
+  fn(scratch.batch_start[kColorCount], scratch.batch_start[kColorCount + 1]);
+}
+
+// Runs a pass on every batch, colour by colour (for_colors): `one` on each
+// lane of a batch of one or two constraints (the overflow's batches, which
+// hold one each, among them), else `full` (eight AVX lanes) where the
+// processor has AVX, else `half` on each half that holds a constraint.
 template <class One, class Full, class Half>
 void for_batches(WorldScratch& scratch, One one, Full full, Half half) {
   std::vector<ContactBatch>& batches = scratch.batches;
   const bool eight = use_eight_lanes();
   const uint32_t colored_end = scratch.batch_start[kColorCount];
-  for (uint32_t k = 0; k < batches.size(); ++k) {
-    ContactBatch& b = batches[k];
-    if (one_lane(b)) {
-      for_each_lane(b, one);
-      continue;
+  for_colors(scratch, [&](uint32_t first, uint32_t last) {
+    for (uint32_t k = first; k < last; ++k) {
+      ContactBatch& b = batches[k];
+      if (one_lane(b)) {
+        for_each_lane(b, one);
+        continue;
+      }
+      if (eight && k < colored_end) {
+        full(b);
+        continue;
+      }
+      half(HalfBatch{&b, 0});
+      if (b.constraint[kLanes] != kNoConstraint) half(HalfBatch{&b, kLanes});
     }
-    if (eight && k < colored_end) {
-      full(b);
-      continue;
-    }
-    half(HalfBatch{&b, 0});
-    if (b.constraint[kLanes] != kNoConstraint) half(HalfBatch{&b, kLanes});
-  }
+  });
 }
 
 }  // namespace
@@ -397,35 +420,35 @@ void solve_pass(WorldScratch& scratch, float inv_h, Each each) {
   std::vector<SolverBody>& bodies = scratch.solver_bodies;
   const bool eight = use_eight_lanes();
   const uint32_t colored_end = scratch.batch_start[kColorCount];
-  uint32_t color = 0;
-  for (uint32_t k = 0; k < batches.size(); ++k) {
-    ContactBatch& b = batches[k];
-    if (one_lane(b)) {
-      each(b);
-      for_each_lane(b, [&](const OneLane& l) { solve_one(l, bodies, inv_h); });
-      continue;
-    }
-    if (eight && k < colored_end) {
-      while (scratch.batch_start[color + 1] <= k) ++color;
-      const bool pair = k + 1 < scratch.batch_start[color + 1] &&
-                        batches[k + 1].point_bound == b.point_bound && !one_lane(batches[k + 1]);
-      each(b);
-      if (!pair) {
-        solve_full(b, bodies, inv_h);
+  for_colors(scratch, [&](uint32_t first, uint32_t last) {
+    for (uint32_t k = first; k < last; ++k) {
+      ContactBatch& b = batches[k];
+      if (one_lane(b)) {
+        each(b);
+        for_each_lane(b, [&](const OneLane& l) { solve_one(l, bodies, inv_h); });
         continue;
       }
-      each(batches[k + 1]);
-      solve_full_pair(b, batches[k + 1], bodies, inv_h);
-      ++k;
-      continue;
+      if (eight && k < colored_end) {
+        const bool pair = k + 1 < last && batches[k + 1].point_bound == b.point_bound &&
+                          !one_lane(batches[k + 1]);
+        each(b);
+        if (!pair) {
+          solve_full(b, bodies, inv_h);
+          continue;
+        }
+        each(batches[k + 1]);
+        solve_full_pair(b, batches[k + 1], bodies, inv_h);
+        ++k;
+        continue;
+      }
+      each(b);
+      if (b.constraint[kLanes] != kNoConstraint) {
+        solve_halves(b, bodies, inv_h);
+      } else {
+        solve_half(HalfBatch{&b, 0}, bodies, inv_h);
+      }
     }
-    each(b);
-    if (b.constraint[kLanes] != kNoConstraint) {
-      solve_halves(b, bodies, inv_h);
-    } else {
-      solve_half(HalfBatch{&b, 0}, bodies, inv_h);
-    }
-  }
+  });
 }
 
 }  // namespace
@@ -456,8 +479,16 @@ void copy_back_separations(WorldScratch& scratch, float slop, ContactBatch& batc
         }
       },
       first, count);
-  if (overlapping) scratch.overlapping = true;
-  if (deep) scratch.deep_overlap = true;
+  // Batches of a colour run at the same time on the step's threads. A flag
+  // already set is only read: the scratch's line with it holds the vectors
+  // every batch reads, and a write from each thread would pass that line
+  // back and forth between the cores.
+  const auto raise = [](bool& flag) {
+    std::atomic_ref<bool> shared(flag);
+    if (!shared.load(std::memory_order_relaxed)) shared.store(true, std::memory_order_relaxed);
+  };
+  if (overlapping) raise(scratch.overlapping);
+  if (deep) raise(scratch.deep_overlap);
   // The first lanes start the batch's flag, an upper half adds to it.
   if (first == 0) batch.overlapping = 0;
   if (overlapping) batch.overlapping = 1;
@@ -535,7 +566,9 @@ void separation_pass(WorldScratch& scratch, float slop, bool relax, float inv_h)
   if (relax) {
     solve_pass(scratch, inv_h, separations);
   } else {
-    for (ContactBatch& b : scratch.batches) separations(b);
+    for_colors(scratch, [&](uint32_t first, uint32_t last) {
+      for (uint32_t k = first; k < last; ++k) separations(scratch.batches[k]);
+    });
   }
 }
 

@@ -44,6 +44,7 @@
 #include "d3/body_storage.h"
 #include "d3/pipeline.h"
 #include "d3/state_rules.h"
+#include "d3/step_threads.h"
 #include "rewind/sim/det_math.h"
 
 namespace rwd::sim::d3 {
@@ -196,10 +197,23 @@ void reset_immovable_push(WorldScratch& scratch) {
   immovable.pushed = 0.0f;
 }
 
+// Solver bodies per range when the integration is cut across the step's
+// threads.
+constexpr uint32_t kBodyGrain = 512;
+
+// Calls fn(body) for every solver body but the shared immovable one, on
+// the step's threads (each body is its own).
+template <class Fn>
+void for_solver_bodies(WorldScratch& scratch, Fn fn) {
+  const uint32_t count = static_cast<uint32_t>(scratch.solver_bodies.size()) - 1;
+  for_ranges(scratch, count, kBodyGrain, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t i = begin + 1; i <= end; ++i) fn(scratch.solver_bodies[i]);
+  });
+}
+
 void integrate_velocities(WorldScratch& scratch, float h) {
-  for (size_t i = 1; i < scratch.solver_bodies.size(); ++i) {
-    SolverBody& b = scratch.solver_bodies[i];
-    if (b.inv_mass == 0.0f) continue;  // kinematic: keeps its set velocity
+  for_solver_bodies(scratch, [h](SolverBody& b) {
+    if (b.inv_mass == 0.0f) return;  // kinematic: keeps its set velocity
     Vec3 v = b.linear_velocity * b.linear_damping_factor + b.linear_acceleration * h;
     Vec3 w = b.angular_velocity * b.angular_damping_factor;
     if (b.torqued) w += b.angular_acceleration * h;
@@ -209,13 +223,12 @@ void integrate_velocities(WorldScratch& scratch, float h) {
     }
     b.linear_velocity = v;
     b.angular_velocity = w;
-  }
+  });
 }
 
 void integrate_positions(WorldScratch& scratch, float h) {
   const float max_w = kMaxRotationPerSubstep / h;
-  for (size_t i = 1; i < scratch.solver_bodies.size(); ++i) {
-    SolverBody& b = scratch.solver_bodies[i];
+  for_solver_bodies(scratch, [h, max_w](SolverBody& b) {
     Vec3 w = b.angular_velocity;
     float w_sq = length_squared(w);
     if (w_sq > max_w * max_w) {
@@ -231,7 +244,7 @@ void integrate_positions(WorldScratch& scratch, float h) {
     }
     b.delta_position += v * h;
     b.delta_rotation = integrate_rotation(b.delta_rotation, w, h);
-  }
+  });
 }
 
 // Projected Gauss-Seidel sweeps over one manifold's normal system with the

@@ -22,6 +22,7 @@
 #include "d3/body_storage.h"
 #include "d3/manifold_reuse.h"
 #include "d3/pipeline.h"
+#include "d3/step_threads.h"
 
 namespace rwd::sim::d3 {
 namespace {
@@ -199,6 +200,177 @@ bool both_resting(const WorldState& state, const ContactRecord& r) {
          b.generation == r.generation_b && !is_active(a) && !is_active(b);
 }
 
+// pair_plan entries: the kind in the top two bits, an index below.
+constexpr uint32_t kPlanJob = 0u << 30;
+constexpr uint32_t kPlanKeepOld = 1u << 30;
+constexpr uint32_t kPlanStillSeparated = 2u << 30;
+constexpr uint32_t kPlanKind = 3u << 30;
+// Pair jobs per range when the narrowphase is cut across the step's
+// threads.
+constexpr uint32_t kPairGrain = 32;
+
+// Walks this step's pairs beside last step's records (both sorted by key)
+// and plans the step's cache in that order (scratch.pair_plan): records of
+// two resting bodies kept as they are, box pairs last step's axis still
+// separates skipped, every other pair a job. Computes the frames of the
+// jobs' bodies, so the jobs only read them.
+void plan_pairs(const WorldState& state, WorldScratch& scratch) {
+  const std::vector<ContactRecord>& old = scratch.other_contacts;
+  const std::vector<BodyPair>& pairs = scratch.pairs;
+  const std::vector<uint64_t>& sep_keys = scratch.separated_keys;
+  std::vector<PairJob>& jobs = scratch.pair_jobs;
+  std::vector<uint32_t>& plan = scratch.pair_plan;
+  jobs.clear();
+  plan.clear();
+  uint32_t slots = 0;
+  size_t i = 0;
+  size_t j = 0;
+  size_t s = 0;
+  while (i < pairs.size() || j < old.size()) {
+    const uint64_t kp = i < pairs.size() ? key(pairs[i].a, pairs[i].b) : ~uint64_t{0};
+    const uint64_t ko = j < old.size() ? key(old[j].index_a, old[j].index_b) : ~uint64_t{0};
+    if (j < old.size() && (i == pairs.size() || ko < kp)) {
+      if (both_resting(state, old[j])) plan.push_back(kPlanKeepOld | static_cast<uint32_t>(j));
+      ++j;
+      continue;
+    }
+    PairJob job;
+    job.a = pairs[i].a;
+    job.b = pairs[i].b;
+    bool has_prior = false;
+    if (kp == ko) {
+      size_t last = j + 1;
+      while (last < old.size() && key(old[last].index_a, old[last].index_b) == ko) ++last;
+      if (old[j].generation_a == state.infos[job.a].generation &&
+          old[j].generation_b == state.infos[job.b].generation) {
+        has_prior = true;
+        job.prior = static_cast<uint32_t>(j);
+        job.prior_count = static_cast<uint32_t>(last - j);
+      }
+      j = last;
+    }
+    ++i;
+    if (!has_prior) {
+      while (s < sep_keys.size() && sep_keys[s] < kp) ++s;
+      if (s < sep_keys.size() && sep_keys[s] == kp &&
+          still_separated(state, scratch, job.a, job.b, scratch.separated_axes[s])) {
+        plan.push_back(kPlanStillSeparated | static_cast<uint32_t>(s));
+        continue;
+      }
+    }
+    body_axes(state, scratch, job.a);
+    body_axes(state, scratch, job.b);
+    job.parts = in_parts(state.infos[job.a], state.infos[job.b]) ? 1 : 0;
+    job.slot = slots;
+    slots += job.parts != 0 ? kMaxContactParts : 1;
+    plan.push_back(kPlanJob | static_cast<uint32_t>(jobs.size()));
+    jobs.push_back(job);
+  }
+  if (scratch.job_records.size() < slots) scratch.job_records.resize(slots);
+  if (scratch.job_geometry.size() < slots) scratch.job_geometry.resize(slots);
+}
+
+// Collides one planned pair into its result slots: its records (ids,
+// touching, impulses matched by feature id against last step's records)
+// and manifolds, job.count of them (0: dropped), job.carried when its
+// manifold was carried forward. Reads the state, the frames plan_pairs
+// computed and last step's records; writes only the job and its slots.
+void collide_job(const WorldState& state, WorldScratch& scratch, PairJob& job) {
+  const ContactRecord* prior = job.prior_count > 0 ? &scratch.other_contacts[job.prior] : nullptr;
+  ContactRecord* records = &scratch.job_records[job.slot];
+  ContactGeometry* geometry = &scratch.job_geometry[job.slot];
+  const uint32_t generation_a = state.infos[job.a].generation;
+  const uint32_t generation_b = state.infos[job.b].generation;
+  if (job.parts != 0) {
+    Manifold parts[kMaxContactParts];
+    const uint32_t count = collide_parts(state, scratch, job.a, job.b, parts);
+    for (uint32_t k = 0; k < count; ++k) {
+      ContactRecord& rec = records[k];
+      rec = ContactRecord{};
+      rec.index_a = job.a;
+      rec.index_b = job.b;
+      rec.generation_a = generation_a;
+      rec.generation_b = generation_b;
+      rec.part = static_cast<uint8_t>(k);
+      geometry[k].manifold = parts[k];
+      fill_record(state, body_axes(state, scratch, job.a), rec, geometry[k], false, prior,
+                  job.prior_count);
+    }
+    job.count = static_cast<uint8_t>(count);
+    job.carried = 0;
+    return;
+  }
+  ContactRecord& rec = records[0];
+  rec = ContactRecord{};
+  rec.index_a = job.a;
+  rec.index_b = job.b;
+  rec.generation_a = generation_a;
+  rec.generation_b = generation_b;
+  job.carried = evaluate(state, scratch, rec, prior, geometry[0]) ? 1 : 0;
+  // Pairs whose bounds overlap but whose shapes are out of reach are not
+  // kept: the cache holds only pairs that have (or had) points.
+  job.count = geometry[0].manifold.point_count == 0 && rec.touching == 0 ? 0 : 1;
+}
+
+// The planned jobs, on the step's threads: each writes only its own job
+// and slots, so the cut never changes a result.
+void collide_jobs(const WorldState& state, WorldScratch& scratch) {
+  std::vector<PairJob>& jobs = scratch.pair_jobs;
+  for_ranges(scratch, static_cast<uint32_t>(jobs.size()), kPairGrain,
+             [&](uint32_t begin, uint32_t end) {
+               for (uint32_t k = begin; k < end; ++k) collide_job(state, scratch, jobs[k]);
+             });
+}
+
+// Builds the step's cache (state.contacts, scratch.geometry beside it) and
+// next step's separated pairs from the plan, in pair order.
+void gather_pairs(WorldState& state, WorldScratch& scratch) {
+  const std::vector<ContactRecord>& old = scratch.other_contacts;
+  std::vector<ContactRecord>& out = state.contacts;
+  out.clear();
+  // geometry[k] belongs to out[k]. Its slots are kept from step to step
+  // (only grown here); a kept record of two resting bodies costs one byte.
+  std::vector<ContactGeometry>& geometry = scratch.geometry;
+  const size_t bound = old.size() + scratch.job_records.size();
+  if (geometry.size() < bound) geometry.resize(bound);
+  std::vector<uint64_t>& next_keys = scratch.next_separated_keys;
+  std::vector<uint8_t>& next_axes = scratch.next_separated_axes;
+  next_keys.clear();
+  next_axes.clear();
+  uint32_t reused = 0;
+  for (const uint32_t entry : scratch.pair_plan) {
+    const uint32_t index = entry & ~kPlanKind;
+    if ((entry & kPlanKind) == kPlanKeepOld) {
+      geometry[out.size()].valid = 0;
+      out.push_back(old[index]);
+      continue;
+    }
+    if ((entry & kPlanKind) == kPlanStillSeparated) {
+      next_keys.push_back(scratch.separated_keys[index]);
+      next_axes.push_back(scratch.separated_axes[index]);
+      continue;
+    }
+    const PairJob& job = scratch.pair_jobs[index];
+    reused += job.carried;
+    if (job.count == 0 && job.parts == 0) {
+      const uint8_t axis = scratch.job_geometry[job.slot].manifold.separating_axis;
+      if (axis != kNoSeparatingAxis) {
+        next_keys.push_back(key(job.a, job.b));
+        next_axes.push_back(axis);
+      }
+      continue;
+    }
+    for (uint32_t k = 0; k < job.count; ++k) {
+      geometry[out.size()] = scratch.job_geometry[job.slot + k];
+      out.push_back(scratch.job_records[job.slot + k]);
+      scratch.evaluated_records.push_back(static_cast<uint32_t>(out.size() - 1));
+    }
+  }
+  scratch.separated_keys.swap(next_keys);
+  scratch.separated_axes.swap(next_axes);
+  scratch.stats.reused_manifolds = reused;
+}
+
 }  // namespace
 
 void update_contacts(WorldState& state, WorldScratch& scratch) {
@@ -228,105 +400,9 @@ void update_contacts(WorldState& state, WorldScratch& scratch) {
   }
   std::vector<ContactRecord>& old = scratch.other_contacts;
   old.swap(state.contacts);  // old = last step's cache; state.contacts is rebuilt
-  std::vector<ContactRecord>& out = state.contacts;
-  out.clear();
-  const std::vector<BodyPair>& pairs = scratch.pairs;
-  // geometry[k] belongs to out[k]. Its slots are kept from step to step and
-  // written in place (only grown here), so a carried record costs one byte
-  // and an evaluated one no copy.
-  std::vector<ContactGeometry>& geometry = scratch.geometry;
-  if (geometry.size() < old.size() + pairs.size()) geometry.resize(old.size() + pairs.size());
-  size_t i = 0;
-  size_t j = 0;
-  uint32_t reused = 0;
-  // Last step's separated pairs, walked alongside the sorted pairs.
-  const std::vector<uint64_t>& sep_keys = scratch.separated_keys;
-  size_t s = 0;
-  std::vector<uint64_t>& next_keys = scratch.next_separated_keys;
-  std::vector<uint8_t>& next_axes = scratch.next_separated_axes;
-  next_keys.clear();
-  next_axes.clear();
-  while (i < pairs.size() || j < old.size()) {
-    uint64_t kp = i < pairs.size() ? key(pairs[i].a, pairs[i].b) : ~uint64_t{0};
-    uint64_t ko = j < old.size() ? key(old[j].index_a, old[j].index_b) : ~uint64_t{0};
-    if (j < old.size() && (i == pairs.size() || ko < kp)) {
-      if (both_resting(state, old[j])) {
-        if (geometry.size() <= out.size()) geometry.resize(out.size() + 1);
-        geometry[out.size()].valid = 0;
-        out.push_back(old[j]);
-      }
-      ++j;
-      continue;
-    }
-    const uint32_t a = pairs[i].a;
-    const uint32_t b = pairs[i].b;
-    const uint32_t generation_a = state.infos[a].generation;
-    const uint32_t generation_b = state.infos[b].generation;
-    // The pair's records of last step (parts in a row), when its bodies
-    // are the same ones.
-    const ContactRecord* prior = nullptr;
-    size_t prior_count = 0;
-    if (kp == ko) {
-      size_t end = j + 1;
-      while (end < old.size() && key(old[end].index_a, old[end].index_b) == ko) ++end;
-      if (old[j].generation_a == generation_a && old[j].generation_b == generation_b) {
-        prior = &old[j];
-        prior_count = end - j;
-      }
-      j = end;
-    }
-    ++i;
-    if (prior == nullptr) {
-      while (s < sep_keys.size() && sep_keys[s] < kp) ++s;
-      if (s < sep_keys.size() && sep_keys[s] == kp &&
-          still_separated(state, scratch, a, b, scratch.separated_axes[s])) {
-        next_keys.push_back(kp);
-        next_axes.push_back(scratch.separated_axes[s]);
-        continue;
-      }
-    }
-    if (in_parts(state.infos[a], state.infos[b])) {
-      Manifold parts[kMaxContactParts];
-      const uint32_t count = collide_parts(state, scratch, a, b, parts);
-      if (geometry.size() < out.size() + count) geometry.resize(out.size() + count);
-      for (uint32_t k = 0; k < count; ++k) {
-        ContactRecord& rec = out.emplace_back();
-        rec.index_a = a;
-        rec.index_b = b;
-        rec.generation_a = generation_a;
-        rec.generation_b = generation_b;
-        rec.part = static_cast<uint8_t>(k);
-        ContactGeometry& geo = geometry[out.size() - 1];
-        geo.manifold = parts[k];
-        fill_record(state, body_axes(state, scratch, a), rec, geo, false, prior, prior_count);
-        scratch.evaluated_records.push_back(static_cast<uint32_t>(out.size() - 1));
-      }
-      continue;
-    }
-    // Built in place; dropped again when it is not kept.
-    if (geometry.size() <= out.size()) geometry.resize(out.size() + 1);
-    ContactRecord& rec = out.emplace_back();
-    rec.index_a = a;
-    rec.index_b = b;
-    rec.generation_a = generation_a;
-    rec.generation_b = generation_b;
-    ContactGeometry& geo = geometry[out.size() - 1];
-    if (evaluate(state, scratch, rec, prior, geo)) ++reused;
-    scratch.evaluated_records.push_back(static_cast<uint32_t>(out.size() - 1));
-    // Pairs whose bounds overlap but whose shapes are out of reach are not
-    // kept: the cache holds only pairs that have (or had) points.
-    if (geo.manifold.point_count == 0 && rec.touching == 0) {
-      scratch.evaluated_records.pop_back();
-      out.pop_back();
-      if (geo.manifold.separating_axis != kNoSeparatingAxis) {
-        next_keys.push_back(kp);
-        next_axes.push_back(geo.manifold.separating_axis);
-      }
-    }
-  }
-  scratch.separated_keys.swap(next_keys);
-  scratch.separated_axes.swap(next_axes);
-  scratch.stats.reused_manifolds = reused;
+  plan_pairs(state, scratch);
+  collide_jobs(state, scratch);
+  gather_pairs(state, scratch);
 }
 
 void refresh_contact(WorldState& state, WorldScratch& scratch, uint32_t index) {

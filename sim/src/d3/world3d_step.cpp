@@ -96,6 +96,10 @@ void World3D::set_stage_timing(bool on) {
   scratch_->stage_timing = on;
 }
 
+void World3D::set_thread_pool(ThreadPool* pool) {
+  scratch_->pool = pool;
+}
+
 std::span<const ContactEvent> World3D::events() const {
   return scratch_->events;
 }

@@ -21,6 +21,7 @@
 #include "d3/swept_shape.h"
 #include "rewind/sim/body_event.h"
 #include "rewind/sim/contact_event.h"
+#include "rewind/sim/thread_pool.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim::d3 {
@@ -37,6 +38,22 @@ struct ContactGeometry {
   float friction;
   float restitution;
   uint8_t valid;
+};
+
+/// One pair the narrowphase collides this step (narrowphase.cpp): planned
+/// in pair order, collided on the step's threads into its own result
+/// slots, then gathered into the contact cache in pair order again.
+struct PairJob {
+  uint32_t a = 0;
+  uint32_t b = 0;
+  /// Last step's records of the pair in other_contacts (prior_count in a
+  /// row), when its bodies are the same ones.
+  uint32_t prior = 0;
+  uint32_t prior_count = 0;
+  uint32_t slot = 0;    ///< first of its result slots (kMaxContactParts for parts)
+  uint8_t parts = 0;    ///< 1: collided as parts (a compound on a side)
+  uint8_t count = 0;    ///< records it produced (0: the pair is dropped)
+  uint8_t carried = 0;  ///< 1: its manifold was carried forward
 };
 
 /// How hard overlaps are pushed out: the separating speed per metre of
@@ -110,6 +127,10 @@ class WorldScratch {
   /// that collide shapes read. Not owned: World3D keeps it alive, and its
   /// entries never change, so this is not state either.
   const GeometryStore* store = nullptr;
+  /// The threads the step cuts its independent work across
+  /// (World3D::set_thread_pool; step_threads.h); null: the stepping thread
+  /// alone. Not owned.
+  ThreadPool* pool = nullptr;
   /// Counts edits of the world (mark_world_edited), so derived facts about
   /// its bodies can be recomputed only after one.
   uint64_t edit_serial = 1;
@@ -154,6 +175,14 @@ class WorldScratch {
   std::vector<uint64_t> next_separated_keys;
   std::vector<uint8_t> next_separated_axes;
   std::vector<ContactGeometry> geometry;
+  /// The step's pairs to collide, and their results (PairJob::slot).
+  std::vector<d3::PairJob> pair_jobs;
+  std::vector<ContactRecord> job_records;
+  std::vector<ContactGeometry> job_geometry;
+  /// The narrowphase's output in pair order: each entry is a record kept
+  /// from other_contacts (kKeepOld), a pair a cached axis still separates
+  /// (kStillSeparated, its index in separated_keys) or a pair job.
+  std::vector<uint32_t> pair_plan;
   // solver
   std::vector<uint32_t> solver_index;  ///< by body index; 0 = immovable
   std::vector<uint32_t> solver_body_ids;

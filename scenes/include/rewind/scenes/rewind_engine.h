@@ -5,16 +5,18 @@
 #include <vector>
 
 #include "rewind/scenes/engine.h"
+#include "rewind/sim/thread_pool.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::scenes {
 
 /// Runs scenes on Rewind with the solver settings of `config`; each scene
 /// supplies gravity, tick length and world bounds, and max_bodies grows to
-/// fit the scene.
+/// fit the scene. With `threads` above 1 the worlds step on a pool of that
+/// many threads (World3D::set_thread_pool: the same results, sooner).
 class RewindEngine final : public Engine {
  public:
-  explicit RewindEngine(const sim::WorldConfig& config = {});
+  explicit RewindEngine(const sim::WorldConfig& config = {}, uint32_t threads = 1);
 
   std::string name() const override { return "rewind"; }
   std::string settings() const override;
@@ -42,6 +44,7 @@ class RewindEngine final : public Engine {
 
  private:
   sim::WorldConfig config_;
+  std::unique_ptr<sim::ThreadPool> pool_;  // null: one thread; outlives world_
   std::unique_ptr<sim::World3D> world_;
   std::vector<sim::BodyId> ids_;
 };

@@ -48,6 +48,7 @@ struct StepStats {
 };
 
 class WorldScratch;  // per-step working memory; not state
+class ThreadPool;    // rewind/sim/thread_pool.h
 
 class World3D {
  public:
@@ -246,6 +247,15 @@ class World3D {
   /// Measures each stage's wall time into stats().times (off by default:
   /// a world that does not ask never reads the clock). Not state.
   void set_stage_timing(bool on);
+  /// Lets step() cut its independent work (the narrowphase's pairs, the
+  /// bodies' integration, each colour of contact batches) across `pool`'s
+  /// threads; null (the default) steps on the calling thread alone. The
+  /// result is the same bit for bit for any pool and none: the threads
+  /// change how long a step takes, never what it computes. Small worlds
+  /// gain nothing (each piece of work must be worth a trip to the pool);
+  /// worlds of hundreds of bodies do. Not state: a restored or moved world
+  /// keeps its pool. The pool must outlive the world or be replaced first.
+  void set_thread_pool(ThreadPool* pool);
   const WorldConfig& config() const;
   /// Number of steps taken since creation.
   uint64_t step_count() const;

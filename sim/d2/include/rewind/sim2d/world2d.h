@@ -30,6 +30,7 @@ namespace rwd::sim {
 // step checkable for floating point (test sim2d_no_float).
 class StateHasher;
 struct BodyField;
+class ThreadPool;  // rewind/sim/thread_pool.h
 }  // namespace rwd::sim
 
 namespace rwd::sim2d {
@@ -171,6 +172,12 @@ class World2D {
   /// state: restore() clears them.
   std::span<const ContactEvent2D> events() const;
   const StepStats2D& stats() const;
+  /// Lets step() collide its pairs on `pool`'s threads; null (the
+  /// default) steps on the calling thread alone. The result is the same
+  /// bit for bit for any pool and none (each pair's manifold is its own;
+  /// the solver's sweep stays in one order on the stepping thread). Not
+  /// state. The pool must outlive the world or be replaced first.
+  void set_thread_pool(sim::ThreadPool* pool);
   const World2DConfig& config() const;
   uint64_t step_count() const;
 
