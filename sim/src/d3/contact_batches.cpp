@@ -293,16 +293,23 @@ constexpr uint32_t kBatchGrain = 32;
 // Calls fn(first, last) on ranges of batches that cover each colour in
 // turn, a colour's ranges at the same time on the step's threads (they
 // share no movable body, so how the colour is cut changes nothing), then
-// the overflow's batches, in order, on this thread.
+// the overflow's batches, in order, on this thread. Without threads, one
+// call over every batch (they are stored colour by colour): a small
+// world's passes cost no walk over the colours.
 template <class Fn>
 void for_colors(WorldScratch& scratch, Fn fn) {
+  const uint32_t all = scratch.batch_start[kColorCount + 1];
+  if (scratch.pool == nullptr || all == 0) {
+    if (all > 0) fn(0, all);
+    return;
+  }
   for (uint32_t col = 0; col < kColorCount; ++col) {
     const uint32_t begin = scratch.batch_start[col];
     const uint32_t end = scratch.batch_start[col + 1];
     for_ranges(scratch, end - begin, kBatchGrain,
                [&](uint32_t first, uint32_t last) { fn(begin + first, begin + last); });
   }
-  fn(scratch.batch_start[kColorCount], scratch.batch_start[kColorCount + 1]);
+  fn(scratch.batch_start[kColorCount], all);
 }
 
 // Runs a pass on every batch, colour by colour (for_colors): `one` on each
@@ -421,6 +428,7 @@ void solve_pass(WorldScratch& scratch, float inv_h, Each each) {
   const bool eight = use_eight_lanes();
   const uint32_t colored_end = scratch.batch_start[kColorCount];
   for_colors(scratch, [&](uint32_t first, uint32_t last) {
+    uint32_t color = 0;
     for (uint32_t k = first; k < last; ++k) {
       ContactBatch& b = batches[k];
       if (one_lane(b)) {
@@ -429,8 +437,11 @@ void solve_pass(WorldScratch& scratch, float inv_h, Each each) {
         continue;
       }
       if (eight && k < colored_end) {
-        const bool pair = k + 1 < last && batches[k + 1].point_bound == b.point_bound &&
-                          !one_lane(batches[k + 1]);
+        // Pairs never span two colours (nor two ranges of one).
+        while (scratch.batch_start[color + 1] <= k) ++color;
+        const uint32_t end = std::min(last, scratch.batch_start[color + 1]);
+        const bool pair =
+            k + 1 < end && batches[k + 1].point_bound == b.point_bound && !one_lane(batches[k + 1]);
         each(b);
         if (!pair) {
           solve_full(b, bodies, inv_h);
