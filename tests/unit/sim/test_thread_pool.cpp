@@ -196,6 +196,38 @@ TEST(ThreadedStep, EveryTickTheSameOnOneTwoFourAndEightThreads) {
   }
 }
 
+TEST(ThreadedStep, APileLargeEnoughToCutTheSolversColoursStepsTheSame) {
+  // 2,500 boxes packed in a bin: the first colours hold hundreds of
+  // constraints, so every solver pass cuts them across the threads, and
+  // the integration cuts the bodies (the mixed pile above is too small for
+  // either).
+  const auto run = [](ThreadPool* pool) {
+    WorldConfig config;
+    config.max_bodies = 4000;
+    config.enable_sleep = false;
+    World3D world(config);
+    test::add_ground(world);
+    for (int i = 0; i < 2500; ++i) {
+      const float x = -6.0f + 0.52f * static_cast<float>(i % 25);
+      const float z = -6.0f + 0.52f * static_cast<float>((i / 25) % 25);
+      const float y = 0.26f + 0.53f * static_cast<float>(i / 625);
+      test::add_box(world, {x, y, z}, {0.25f, 0.25f, 0.25f});
+    }
+    world.set_thread_pool(pool);
+    std::vector<uint64_t> sums;
+    for (int t = 0; t < 40; ++t) {
+      world.step();
+      sums.push_back(world.checksum());
+    }
+    return sums;
+  };
+  const std::vector<uint64_t> alone = run(nullptr);
+  for (uint32_t threads : {2u, 4u}) {
+    ThreadPool pool(threads);
+    EXPECT_EQ(run(&pool), alone) << threads << " threads";
+  }
+}
+
 TEST(ThreadedStep, OnePoolServesWorldsSteppedInTurn) {
   // Two worlds on one thread share a pool, stepped alternately: each steps
   // as it would alone.
