@@ -45,7 +45,8 @@ class ThreadPool {
   /// when it is free (the caller is thread 0), so a pass that cuts the same
   /// data the same way as the pass before finds it in the same core's
   /// cache. When that makes a single range, it runs on the caller alone
-  /// and no worker is woken. fn must write only what its own range owns.
+  /// and no worker is woken. fn must write only what its own range owns,
+  /// and must not call parallel_for on the same pool.
   template <class Fn>
   void parallel_for(uint32_t count, uint32_t grain, Fn&& fn) {
     if (grain == 0) grain = 1;
