@@ -286,32 +286,6 @@ void push_full(ContactBatch& b, std::vector<SolverBody>& bodies, const PushSetti
 }
 #endif
 
-// Batches per range when a colour is cut across the step's threads: enough
-// work (256 constraints) to outweigh moving their bodies between cores.
-constexpr uint32_t kBatchGrain = 32;
-
-// Calls fn(first, last) on ranges of batches that cover each colour in
-// turn, a colour's ranges at the same time on the step's threads (they
-// share no movable body, so how the colour is cut changes nothing), then
-// the overflow's batches, in order, on this thread. Without threads, one
-// call over every batch (they are stored colour by colour): a small
-// world's passes cost no walk over the colours.
-template <class Fn>
-void for_colors(WorldScratch& scratch, Fn fn) {
-  const uint32_t all = scratch.batch_start[kColorCount + 1];
-  if (scratch.pool == nullptr || all == 0) {
-    if (all > 0) fn(0, all);
-    return;
-  }
-  for (uint32_t col = 0; col < kColorCount; ++col) {
-    const uint32_t begin = scratch.batch_start[col];
-    const uint32_t end = scratch.batch_start[col + 1];
-    for_ranges(scratch, end - begin, kBatchGrain,
-               [&](uint32_t first, uint32_t last) { fn(begin + first, begin + last); });
-  }
-  fn(scratch.batch_start[kColorCount], all);
-}
-
 // Runs a pass on every batch, colour by colour (for_colors): `one` on each
 // lane of a batch of one or two constraints (the overflow's batches, which
 // hold one each, among them), else `full` (eight AVX lanes) where the
