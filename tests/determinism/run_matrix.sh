@@ -23,37 +23,43 @@
 #                  with --wasm (it takes several minutes to compile)
 #
 # Usage: run_matrix.sh [--source DIR] [--ticks N] [--jobs N] [--wasm]
-#                      [--builds NAMES] BUILD_DIR
+#                      [--builds NAMES] [--compile-only] BUILD_DIR
 #   --source DIR  repository root (default: two levels above this script)
 #   --ticks N     ticks to simulate (default 600)
 #   --jobs N      parallel compile jobs (default 2, at most 2)
 #   --wasm        add the WebAssembly build
 #   --builds NAMES  only these builds (comma-separated), besides the
 #                 reference gcc-O0 that every other is compared with
+#   --compile-only  compile the builds and stop (scripts/test.sh compiles
+#                 the matrix this way while the real-time tests leave the
+#                 CPU idle, so the matrix test then finds its objects built)
 #   BUILD_DIR     where objects, binaries and outputs go (reused between runs:
-#                 objects are rebuilt only when a source or header changed)
+#                 objects are rebuilt only when a source or header changed;
+#                 runs on one directory take turns, through a lock in it)
 #
 # Exit codes: 0 every build printed identical checksums; 1 a build differs,
 # failed to compile or failed to run; 2 bad usage or a missing toolchain.
 set -euo pipefail
 
-script_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-source_dir=$(cd "$script_dir/../.." && pwd)
+script_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd -P)
+source_dir=$(cd "$script_dir/../.." && pwd -P)
 ticks=600
 jobs=2
 build_dir=""
 wasm=0
 only=""
+compile_only=0
 
 usage() { sed -n '4,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"; }
 
 while (($#)); do
   case "$1" in
-    --source) source_dir=$(cd "${2:?--source needs a directory}" && pwd); shift 2 ;;
+    --source) source_dir=$(cd "${2:?--source needs a directory}" && pwd -P); shift 2 ;;
     --ticks) ticks=${2:?--ticks needs a number}; shift 2 ;;
     --jobs) jobs=${2:?--jobs needs a number}; shift 2 ;;
     --wasm) wasm=1; shift ;;
     --builds) only=${2:?--builds needs a list of build names}; shift 2 ;;
+    --compile-only) compile_only=1; shift ;;
     -h|--help) usage; exit 0 ;;
     -*) echo "run_matrix: unknown option '$1'" >&2; usage >&2; exit 2 ;;
     *) [[ -z $build_dir ]] || { echo "run_matrix: one BUILD_DIR only" >&2; exit 2; }
@@ -79,6 +85,7 @@ need clang++ clang
 need aarch64-linux-gnu-g++ g++-aarch64-linux-gnu
 need qemu-aarch64 qemu-user
 need ninja ninja-build
+need flock util-linux
 if ((wasm)); then
   need em++ emscripten
   need node nodejs
@@ -111,7 +118,11 @@ sources=("$det_source" "$lane2d_source" "$joints3d_source" "${sim_sources[@]/#/$
   "${fixed_sources[@]/#/$source_dir/}" "${sim2d_sources[@]/#/$source_dir/}")
 
 mkdir -p "$build_dir"
-build_dir=$(cd "$build_dir" && pwd)
+build_dir=$(cd "$build_dir" && pwd -P)
+# One run at a time per directory: two ninjas on one build directory would
+# corrupt its logs, and a run must not compare another run's outputs.
+exec 9>"$build_dir/.run_matrix.lock"
+flock 9
 
 # The cross compiler does not search /usr/include (it holds the host's
 # headers), so xxhash.h -- used header-only -- is offered through a directory
@@ -211,6 +222,10 @@ if ! ninja -C "$build_dir" -j "$jobs"; then
   exit 1
 fi
 t_compiled=$SECONDS
+if ((compile_only)); then
+  echo "run_matrix: compiled in $((t_compiled - t_start))s (--compile-only: nothing run)"
+  exit 0
+fi
 
 # --- run: every build, at most 2 at a time -----------------------------------
 run_one() {  # run_one NAME RUNNER
