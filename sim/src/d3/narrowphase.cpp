@@ -18,6 +18,7 @@
 //    skipped (scratch.separated_keys): it has no points either way, so
 //    this one never changes a result.
 #include <cmath>
+#include <optional>
 
 #include "d3/body_storage.h"
 #include "d3/manifold_reuse.h"
@@ -152,11 +153,33 @@ bool in_parts(const BodyInfo& ia, const BodyInfo& ib) {
          ia.sensor == 0 && ib.sensor == 0;
 }
 
+// Places body i's children for this step (a compound), once.
+void place_body_children(const WorldState& state, WorldScratch& scratch, uint32_t i) {
+  if (state.infos[i].shape.type != ShapeType::kCompound) return;
+  if (scratch.children_step.size() < state.infos.size()) {
+    scratch.children_at.resize(state.infos.size());
+    scratch.children_step.resize(state.infos.size(), 0);
+  }
+  if (scratch.children_step[i] == scratch.step_serial) return;
+  const BodySim& sim = state.sims[i];
+  const ShapePose pose{sim.position, sim.rotation, body_axes(state, scratch, i)};
+  const uint32_t at = static_cast<uint32_t>(scratch.child_frames.size());
+  scratch.child_frames.resize(at + kCompoundMaxChildren);
+  place_children(state.infos[i].shape, pose, *scratch.store, &scratch.child_frames[at]);
+  scratch.children_at[i] = at;
+  scratch.children_step[i] = scratch.step_serial;
+}
+
+// The children plan_pairs placed for compound body i.
+const ChildFrame* body_children(const WorldScratch& scratch, uint32_t i) {
+  return &scratch.child_frames[scratch.children_at[i]];
+}
+
 // The parts of a pair in_parts() takes (collide_compound_parts), normals
 // from A to B, anchors filled as collide_shapes fills them. Returns the
 // count.
 uint32_t collide_parts(const WorldState& state, WorldScratch& scratch, uint32_t a, uint32_t b,
-                       Manifold parts[kMaxContactParts]) {
+                       CompoundWork& work, Manifold parts[kMaxContactParts]) {
   const BodyInfo& ia = state.infos[a];
   const BodyInfo& ib = state.infos[b];
   const BodySim& sa = state.sims[a];
@@ -165,10 +188,13 @@ uint32_t collide_parts(const WorldState& state, WorldScratch& scratch, uint32_t 
   const ShapePose pb{sb.position, sb.rotation, body_axes(state, scratch, b)};
   const float speculative = pair_speculative(state, a, b);
   const bool a_leads = ia.shape.type == ShapeType::kCompound;
+  const bool both = a_leads && ib.shape.type == ShapeType::kCompound;
   const uint32_t count =
-      a_leads
-          ? collide_compound_parts(ia.shape, pa, ib.shape, pb, speculative, *scratch.store, parts)
-          : collide_compound_parts(ib.shape, pb, ia.shape, pa, speculative, *scratch.store, parts);
+      a_leads ? collide_compound_parts(ia.shape, body_children(scratch, a), ib.shape, pb,
+                                       both ? body_children(scratch, b) : nullptr, speculative,
+                                       *scratch.store, work, parts)
+              : collide_compound_parts(ib.shape, body_children(scratch, b), ia.shape, pa, nullptr,
+                                       speculative, *scratch.store, work, parts);
   for (uint32_t k = 0; k < count; ++k) {
     Manifold& m = parts[k];
     if (!a_leads) m.normal = -m.normal;
@@ -213,7 +239,8 @@ constexpr uint32_t kPairGrain = 32;
 // and plans the step's cache in that order (scratch.pair_plan): records of
 // two resting bodies kept as they are, box pairs last step's axis still
 // separates skipped, every other pair a job. Computes the frames of the
-// jobs' bodies, so the jobs only read them.
+// jobs' bodies (and places their compounds' children), so the jobs only
+// read them.
 void plan_pairs(const WorldState& state, WorldScratch& scratch) {
   const std::vector<ContactRecord>& old = scratch.other_contacts;
   const std::vector<BodyPair>& pairs = scratch.pairs;
@@ -222,6 +249,7 @@ void plan_pairs(const WorldState& state, WorldScratch& scratch) {
   std::vector<uint32_t>& plan = scratch.pair_plan;
   jobs.clear();
   plan.clear();
+  scratch.child_frames.clear();  // every step places its compounds anew
   uint32_t slots = 0;
   size_t i = 0;
   size_t j = 0;
@@ -261,6 +289,10 @@ void plan_pairs(const WorldState& state, WorldScratch& scratch) {
     body_axes(state, scratch, job.a);
     body_axes(state, scratch, job.b);
     job.parts = in_parts(state.infos[job.a], state.infos[job.b]) ? 1 : 0;
+    if (job.parts != 0) {
+      place_body_children(state, scratch, job.a);
+      place_body_children(state, scratch, job.b);
+    }
     job.slot = slots;
     slots += job.parts != 0 ? kMaxContactParts : 1;
     plan.push_back(kPlanJob | static_cast<uint32_t>(jobs.size()));
@@ -275,7 +307,8 @@ void plan_pairs(const WorldState& state, WorldScratch& scratch) {
 // and manifolds, job.count of them (0: dropped), job.carried when its
 // manifold was carried forward. Reads the state, the frames plan_pairs
 // computed and last step's records; writes only the job and its slots.
-void collide_job(const WorldState& state, WorldScratch& scratch, PairJob& job) {
+void collide_job(const WorldState& state, WorldScratch& scratch, PairJob& job,
+                 std::optional<CompoundWork>& work) {
   const ContactRecord* prior = job.prior_count > 0 ? &scratch.other_contacts[job.prior] : nullptr;
   ContactRecord* records = &scratch.job_records[job.slot];
   ContactGeometry* geometry = &scratch.job_geometry[job.slot];
@@ -283,7 +316,8 @@ void collide_job(const WorldState& state, WorldScratch& scratch, PairJob& job) {
   const uint32_t generation_b = state.infos[job.b].generation;
   if (job.parts != 0) {
     Manifold parts[kMaxContactParts];
-    const uint32_t count = collide_parts(state, scratch, job.a, job.b, parts);
+    if (!work) work.emplace();
+    const uint32_t count = collide_parts(state, scratch, job.a, job.b, *work, parts);
     for (uint32_t k = 0; k < count; ++k) {
       ContactRecord& rec = records[k];
       rec = ContactRecord{};
@@ -318,7 +352,8 @@ void collide_jobs(const WorldState& state, WorldScratch& scratch) {
   std::vector<PairJob>& jobs = scratch.pair_jobs;
   for_ranges(scratch, static_cast<uint32_t>(jobs.size()), kPairGrain,
              [&](uint32_t begin, uint32_t end) {
-               for (uint32_t k = begin; k < end; ++k) collide_job(state, scratch, jobs[k]);
+               std::optional<CompoundWork> work;  // made at the range's first compound
+               for (uint32_t k = begin; k < end; ++k) collide_job(state, scratch, jobs[k], work);
              });
 }
 
@@ -413,7 +448,10 @@ void refresh_contact(WorldState& state, WorldScratch& scratch, uint32_t index) {
     // Its own part as the pair stands now (both slept, so nothing moved:
     // the same groups in the same order).
     Manifold parts[kMaxContactParts];
-    const uint32_t count = collide_parts(state, scratch, rec.index_a, rec.index_b, parts);
+    place_body_children(state, scratch, rec.index_a);
+    place_body_children(state, scratch, rec.index_b);
+    CompoundWork work;
+    const uint32_t count = collide_parts(state, scratch, rec.index_a, rec.index_b, work, parts);
     geo.manifold = rec.part < count ? parts[rec.part] : Manifold{};
     if (geo.manifold.point_count > 0) {
       fill_record(state, body_axes(state, scratch, rec.index_a), rec, geo, false, &prior, 1);

@@ -16,6 +16,7 @@
 #include "d3/aabb_tree.h"
 #include "d3/body_storage.h"
 #include "d3/compound.h"
+#include "d3/compound_contact.h"
 #include "d3/manifold.h"
 #include "d3/manifold_triangles.h"
 #include "d3/shape_ops.h"
@@ -115,9 +116,19 @@ ShapeCastOutput sweep(const Shape& s, const GeometryStore& store, Vec3 position,
 
 }  // namespace
 
-uint32_t collide_compound_parts(const Shape& a, const ShapePose& pa, const Shape& b,
-                                const ShapePose& pb, float speculative_m,
-                                const GeometryStore& store, Manifold out[kMaxContactParts]) {
+void place_children(const Shape& s, const ShapePose& pose, const GeometryStore& store,
+                    ChildFrame frames[kCompoundMaxChildren]) {
+  const Compound& c = compound_of(s, store);
+  for (uint32_t i = 0; i < c.parts.size(); ++i) {
+    frames[i].pose = child_pose(pose, c.parts[i]);
+    frames[i].bounds = shape_aabb(c.parts[i].shape, frames[i].pose.position, frames[i].pose.axes);
+  }
+}
+
+uint32_t collide_compound_parts(const Shape& a, const ChildFrame* frames_a, const Shape& b,
+                                const ShapePose& pb, const ChildFrame* frames_b,
+                                float speculative_m, const GeometryStore& store, CompoundWork& work,
+                                Manifold out[kMaxContactParts]) {
   const Compound& c = compound_of(a, store);
   // Each child of A against B, or against each child of B when B is a
   // compound too (every child pair is its own contact: a compound B would
@@ -126,35 +137,34 @@ uint32_t collide_compound_parts(const Shape& a, const ShapePose& pa, const Shape
   // earlier pair).
   const Compound* cb = b.type == ShapeType::kCompound ? &compound_of(b, store) : nullptr;
   const uint32_t b_count = cb != nullptr ? static_cast<uint32_t>(cb->parts.size()) : 1u;
-  Manifold children[kCompoundMaxChildren];
-  float deepest[kCompoundMaxChildren];
-  uint32_t keys[kCompoundMaxChildren];
-  uint32_t order[kCompoundMaxChildren];
+  Manifold* children = work.children;
+  float* deepest = work.deepest;
+  uint32_t* keys = work.keys;
+  uint32_t* order = work.order;
   uint32_t touching = 0;
   Manifold contact;
-  // Each side's children where they stand, once, with their bounds grown by
-  // the speculative distance: a child pair whose grown bounds miss is not
-  // collided, as the broadphase does not pair bodies whose grown bounds
-  // miss (find_pairs.cpp), so a compound's far children cost nothing.
-  ShapePose poses_b[kCompoundMaxChildren];
-  Aabb bounds_b[kCompoundMaxChildren];
+  // Each side's children with their bounds grown by the speculative
+  // distance: a child pair whose grown bounds miss is not collided, as the
+  // broadphase does not pair bodies whose grown bounds miss
+  // (find_pairs.cpp), so a compound's far children cost nothing.
   const auto grown = [speculative_m](Aabb box) {
     box.lower -= Vec3{speculative_m, speculative_m, speculative_m};
     box.upper += Vec3{speculative_m, speculative_m, speculative_m};
     return box;
   };
-  for (uint32_t j = 0; j < b_count; ++j) {
-    poses_b[j] = cb != nullptr ? child_pose(pb, cb->parts[j]) : pb;
-    const Shape& shape_b = cb != nullptr ? cb->parts[j].shape : b;
-    bounds_b[j] = grown(shape_aabb(shape_b, poses_b[j].position, poses_b[j].axes));
+  Aabb* bounds_b = work.grown_b;
+  if (cb != nullptr) {
+    for (uint32_t j = 0; j < b_count; ++j) bounds_b[j] = grown(frames_b[j].bounds);
+  } else {
+    bounds_b[0] = grown(shape_aabb(b, pb.position, pb.axes));
   }
   for (uint32_t i = 0; i < c.parts.size(); ++i) {
-    const ShapePose child_a = child_pose(pa, c.parts[i]);
-    const Aabb bounds_a = grown(shape_aabb(c.parts[i].shape, child_a.position, child_a.axes));
+    const ShapePose& child_a = frames_a[i].pose;
+    const Aabb bounds_a = grown(frames_a[i].bounds);
     for (uint32_t j = 0; j < b_count; ++j) {
       if (!overlaps(bounds_a, bounds_b[j])) continue;
-      collide_shapes(c.parts[i].shape, child_a, cb != nullptr ? cb->parts[j].shape : b, poses_b[j],
-                     speculative_m, contact, &store);
+      collide_shapes(c.parts[i].shape, child_a, cb != nullptr ? cb->parts[j].shape : b,
+                     cb != nullptr ? frames_b[j].pose : pb, speculative_m, contact, &store);
       if (contact.point_count == 0) continue;
       float low = contact.points[0].separation;
       for (uint32_t k = 1; k < contact.point_count; ++k) {
@@ -182,7 +192,7 @@ uint32_t collide_compound_parts(const Shape& a, const ShapePose& pa, const Shape
   std::sort(order, order + touching, [&](uint32_t x, uint32_t y) {
     return deepest[x] < deepest[y] || (deepest[x] == deepest[y] && keys[x] < keys[y]);
   });
-  uint32_t group_of[kCompoundMaxChildren];
+  uint32_t* group_of = work.group_of;
   static_assert(kCompoundMaxChildren <= 16, "child indices take four bits of a feature id");
   uint32_t groups = 0;
   for (uint32_t n = 0; n < touching; ++n) {
@@ -201,7 +211,7 @@ uint32_t collide_compound_parts(const Shape& a, const ShapePose& pa, const Shape
   }
   // Each group's points, measured along its leader's normal, reduced to
   // four as triangle contacts are.
-  TrianglePoint points[kCompoundMaxChildren * kMaxManifoldPoints];
+  TrianglePoint* points = work.points;
   for (uint32_t g = 0; g < groups; ++g) {
     Manifold& m = out[g];
     const Vec3 normal = m.normal;
@@ -235,7 +245,14 @@ void collide_compound(const Shape& a, const ShapePose& pa, const Shape& b, const
   out.point_count = 0;
   out.separating_axis = kNoSeparatingAxis;
   out.normal = {0.0f, 1.0f, 0.0f};
-  if (collide_compound_parts(a, pa, b, pb, speculative_m, store, parts) == 0) return;
+  CompoundWork work;
+  place_children(a, pa, store, work.frames_a);
+  const bool b_compound = b.type == ShapeType::kCompound;
+  if (b_compound) place_children(b, pb, store, work.frames_b);
+  if (collide_compound_parts(a, work.frames_a, b, pb, b_compound ? work.frames_b : nullptr,
+                             speculative_m, store, work, parts) == 0) {
+    return;
+  }
   out = parts[0];
 }
 

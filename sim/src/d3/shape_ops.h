@@ -113,13 +113,8 @@ void collide_mesh_convex(const Shape& mesh, const ShapePose& pose, const Shape& 
 void collide_height_field_convex(const Shape& field, const ShapePose& pose, const Shape& shape,
                                  const ShapePose& shape_pose, float speculative_m,
                                  const GeometryStore& store, Manifold& out);
-/// A compound (A) against any shape (B): its children's manifolds grouped
-/// by normal into out[0, count), the deepest group first, each normal from
-/// A to B (shape_compound.cpp). Returns count, at most kMaxContactParts.
-uint32_t collide_compound_parts(const Shape& a, const ShapePose& pa, const Shape& b,
-                                const ShapePose& pb, float speculative_m,
-                                const GeometryStore& store, Manifold out[kMaxContactParts]);
-/// The deepest group of collide_compound_parts alone (no points when none).
+/// A compound (A) against any shape (B): the deepest group of its
+/// children's contacts (compound_contact.h) alone (no points when none).
 void collide_compound(const Shape& a, const ShapePose& pa, const Shape& b, const ShapePose& pb,
                       float speculative_m, const GeometryStore& store, Manifold& out);
 

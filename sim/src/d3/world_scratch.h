@@ -11,6 +11,7 @@
 
 #include "d3/aabb_tree.h"
 #include "d3/broadphase.h"
+#include "d3/compound_contact.h"
 #include "d3/contact_batches.h"
 #include "d3/joint_angular_batches.h"
 #include "d3/joint_point_batches.h"
@@ -162,6 +163,12 @@ class WorldScratch {
   /// this step's.
   uint64_t step_serial = 0;
   // narrowphase
+  /// By body index: where a compound's children stand this step,
+  /// child_frames[children_at[i]] on, valid where children_step[i] ==
+  /// step_serial (plan_pairs places them for its jobs' compounds).
+  std::vector<uint32_t> children_at;
+  std::vector<uint64_t> children_step;
+  std::vector<d3::ChildFrame> child_frames;
   std::vector<ContactRecord> other_contacts;  ///< last step's cache after the swap
   /// This step kept last step's cache as it was (everything asleep), so
   /// other_contacts was not refreshed and every record continues.
