@@ -99,19 +99,22 @@ double secure_host_us(uint32_t players, bool wall_paced = false) {
   return t[t.size() / 2] * 1e6;
 }
 
-// Live secure 8-player matches on one server thread (bench/live_load.h):
-// the server thread's CPU per match and tick over a 10 s window, whether
-// every match kept its tick rate (sustained: every tick due ran, at most
-// 1% late or dropped), and the matches one core would hold at that cost.
+// Live secure 8-player matches on one or two server threads
+// (bench/live_load.h): the server threads' CPU per match and tick over a
+// 10 s window, whether every match kept its tick rate (sustained: every
+// tick due ran, at most 1% late or dropped), and the matches one core would
+// hold at that cost.
 // Beside it, in the same run, the socket-less host work of the same match
 // (a secure headless match, median per tick), and the ratio of the two.
 void BM_LiveMatches(benchmark::State& state) {
   const auto matches = static_cast<uint32_t>(state.range(0));
+  const auto threads = static_cast<uint32_t>(state.range(1));
   constexpr uint32_t kPlayers = 8;
   for (auto _ : state) {
     rwd::bench::LiveLoadConfig config;
     config.matches = matches;
     config.players = kPlayers;
+    config.threads = threads;
     auto load = rwd::bench::LiveLoad::start(config);
     if (!load.ok()) {
       state.SkipWithError(load.status().message().c_str());
@@ -163,11 +166,14 @@ void BM_HostTickPaced(benchmark::State& state) {
 }
 
 BENCHMARK(BM_LiveMatches)
-    ->ArgName("matches")
-    ->Arg(1)
-    ->Arg(25)
-    ->Arg(50)
-    ->Arg(100)
+    ->ArgNames({"matches", "threads"})
+    ->Args({1, 1})
+    ->Args({25, 1})
+    ->Args({50, 1})
+    ->Args({100, 1})
+    ->Args({25, 2})
+    ->Args({50, 2})
+    ->Args({100, 2})
     ->UseManualTime()
     ->Iterations(1)
     ->Unit(benchmark::kMicrosecond);

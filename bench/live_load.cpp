@@ -27,6 +27,12 @@ using Clock = std::chrono::steady_clock;
 
 #if defined(__linux__)
 
+double process_cpu_seconds() {
+  timespec t{};
+  if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) != 0) return 0.0;
+  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) / 1e9;
+}
+
 double thread_cpu_seconds(pthread_t thread) {
   clockid_t clock = 0;
   timespec t{};
@@ -235,7 +241,7 @@ Result<std::unique_ptr<LiveLoad>> LiveLoad::start(const LiveLoadConfig& config) 
   server_config.port = 0;
   server_config.matches = config.matches;
   server_config.max_matches = std::max(1u, config.matches);
-  server_config.threads = 1;
+  server_config.threads = config.threads;
   server_config.server_key = net::generate_key();
   auto server = server::Server::create(server_config);
   if (!server.ok()) return server.status();
@@ -301,12 +307,17 @@ bool LiveLoad::wait_running(std::chrono::seconds timeout) {
 
 LiveLoadReport LiveLoad::measure(double seconds) {
   const Impl::Totals before = impl_->totals();
-  const double server0 = thread_cpu_seconds(impl_->server_thread.native_handle());
+  // The server's own threads are not ours to name, so its CPU is the
+  // process's less the peers' thread's and this one's (which reads the
+  // totals and sleeps).
+  const double process0 = process_cpu_seconds();
+  const double self0 = thread_cpu_seconds(pthread_self());
   const double peers0 = thread_cpu_seconds(impl_->peers_thread.native_handle());
   const auto t0 = Clock::now();
   std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
   const Impl::Totals after = impl_->totals();
-  const double server1 = thread_cpu_seconds(impl_->server_thread.native_handle());
+  const double process1 = process_cpu_seconds();
+  const double self1 = thread_cpu_seconds(pthread_self());
   const double peers1 = thread_cpu_seconds(impl_->peers_thread.native_handle());
   const auto t1 = Clock::now();
 
@@ -319,7 +330,7 @@ LiveLoadReport LiveLoad::measure(double seconds) {
   r.late = after.late - before.late;
   r.missed = after.missed - before.missed;
   r.bytes_out = after.bytes_out - before.bytes_out;
-  r.server_cpu_s = server1 - server0;
+  r.server_cpu_s = std::max(0.0, (process1 - process0) - (peers1 - peers0) - (self1 - self0));
   r.peers_cpu_s = peers1 - peers0;
   uint64_t total = 0;
   for (size_t b = 0; b < after.lateness.size(); ++b) {

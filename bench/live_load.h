@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // Live secure matches on loopback, all in this process: a real Server
-// hosting N matches of P players on one thread (the process's own match
+// hosting N matches of P players on T threads (the process's own match
 // loop: sockets, timers, gateway, host), and N x P scripted secure peers
 // (tests/support/scripted_peer.h) on a thread of their own, which speak
 // the real protocol but simulate nothing, so a hundred matches need a
@@ -10,9 +10,10 @@
 // the server sees N x P clients while the peers cost one system call per
 // batch. Linux only (the peers' socket); elsewhere start() says so.
 //
-// What it measures is the server thread's CPU time (its own thread clock)
-// over a window, against the ticks its matches ran, started late or
-// dropped in that window.
+// What it measures is the server threads' CPU time over a window (the
+// process's CPU clock less the peers' thread's and the measuring
+// thread's), against the ticks its matches ran, started late or dropped in
+// that window.
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -26,6 +27,9 @@ struct LiveLoadConfig {
   uint32_t matches = 1;
   uint32_t players = 8;
   uint32_t tick_rate_hz = 60;
+  /// The server's threads (ServerConfig::threads), the matches spread
+  /// across them; 1 to 64.
+  uint32_t threads = 1;
   std::string game = "crates";
 };
 
@@ -38,7 +42,7 @@ struct LiveLoadReport {
   uint64_t late = 0;            ///< ticks that started a period or more late
   uint64_t missed = 0;          ///< ticks dropped
   double lateness_p99_s = 0.0;  ///< upper bound of the bucket holding the 99th percentile
-  double server_cpu_s = 0.0;    ///< the server thread's CPU time
+  double server_cpu_s = 0.0;    ///< the server threads' CPU time, summed
   double peers_cpu_s = 0.0;     ///< the peers thread's
   uint64_t bytes_out = 0;       ///< sent by the server's matches in the window
 
@@ -46,7 +50,7 @@ struct LiveLoadReport {
   double server_us_per_match_tick() const {
     return ticks == 0 ? 0.0 : server_cpu_s / static_cast<double>(ticks) * 1e6;
   }
-  /// Share of a core the server thread used.
+  /// Cores' worth the server threads used (up to their count).
   double server_core_share() const { return seconds > 0 ? server_cpu_s / seconds : 0.0; }
   /// Every tick due ran, none more than 1% late or dropped.
   bool sustained() const {

@@ -5,7 +5,7 @@
 # scenes, and Rewind's 2D lane against Box2D 2.4 on the 2D scenes, and
 # writes the charts and docs/BENCHMARKS.md from that one run.
 #
-# Usage: scripts/charts.sh [--quick] [--no-build] [--only 3d|2d|joints]
+# Usage: scripts/charts.sh [--quick] [--no-build] [--only 3d|2d|joints|threads]
 #                          [--jolt DIR] [--box2d3 DIR]
 #   (default)   full sweep: every scene size at default settings on both
 #               engines, piles up to 8000 boxes, and at each scene's chart
@@ -25,6 +25,9 @@
 #               scripts/charts2d.py replaces the 2D section of the document
 #   --only joints  the 3D joints part alone: rewind-joint-bench, then
 #               scripts/charts_joints.py replaces the "3D joints" section
+#   --only threads  the threads part alone: scripts/threads_bench.sh, the
+#               large scenes of both lanes on 1 and 2 threads (about 4
+#               minutes; docs/THREADS.md and the "Threads" section)
 #   --jolt DIR  also run the 3D scenes on Jolt Physics, built from the Jolt
 #               source tree DIR (optional, never fetched; the environment
 #               variable REWIND_JOLT_DIR does the same): the 3D tables and
@@ -39,6 +42,7 @@
 # docs/BENCHMARKS.md, and scripts/charts2d.py docs/charts/2d_* and the 2D
 # section of docs/BENCHMARKS.md, and rewind-joint-bench with
 # scripts/charts_joints.py docs/charts/joints3d_* and the "3D joints"
+# section, and scripts/threads_bench.sh docs/THREADS.md and the "Threads"
 # section. Exit codes: 0 done; 2 bad usage; otherwise the status
 # of the failing step.
 set -euo pipefail
@@ -57,8 +61,8 @@ while (($#)); do
     --quick) mode=quick; shift ;;
     --no-build) build=0; shift ;;
     --only)
-      [[ ${2:-} == 3d || ${2:-} == 2d || ${2:-} == joints ]] ||
-        { echo "charts: --only takes 3d, 2d or joints" >&2; usage >&2; exit 2; }
+      [[ ${2:-} == 3d || ${2:-} == 2d || ${2:-} == joints || ${2:-} == threads ]] ||
+        { echo "charts: --only takes 3d, 2d, joints or threads" >&2; usage >&2; exit 2; }
       only=$2; shift 2 ;;
     --jolt)
       [[ -n ${2:-} ]] || { echo "charts: --jolt takes a Jolt Physics source tree" >&2; exit 2; }
@@ -76,10 +80,11 @@ if [[ -n $jolt ]]; then
     { echo "charts: $jolt is not a Jolt Physics source tree (no Build/CMakeLists.txt)" >&2; exit 2; }
   jolt=$(cd "$jolt" && pwd)
 fi
-run3d=1 run2d=1 runjoints=1
-[[ $only == 2d ]] && run3d=0 && runjoints=0
-[[ $only == 3d ]] && run2d=0 && runjoints=0
-[[ $only == joints ]] && run3d=0 && run2d=0
+run3d=1 run2d=1 runjoints=1 runthreads=1
+[[ $only == 2d ]] && run3d=0 && runjoints=0 && runthreads=0
+[[ $only == 3d ]] && run2d=0 && runjoints=0 && runthreads=0
+[[ $only == joints ]] && run3d=0 && run2d=0 && runthreads=0
+[[ $only == threads ]] && run3d=0 && run2d=0 && runjoints=0
 
 step() { echo "==> $*" >&2; }
 
@@ -102,6 +107,7 @@ targets=()
 ((run3d)) && targets+=(rewind-scene-sweep)
 ((run2d)) && targets+=(rewind-scene2d-sweep rewind-rays2d)
 ((runjoints)) && targets+=(rewind-joint-bench)
+((runthreads)) && targets+=(rewind-scene-sweep rewind-scene2d-sweep)
 if ((build)); then
   step "system packages"
   bash scripts/setup.sh >&2
@@ -123,7 +129,7 @@ if ((run3d)); then
   # The 3D files only: the 2D ones (2d_*) and the joints ones (joints3d*)
   # belong to the parts below.
   find "$out" -maxdepth 1 -type f \( -name '*.csv' -o -name '*.dat' -o -name '*.svg' \) \
-    ! -name '2d_*' ! -name 'joints3d*' -delete
+    ! -name '2d_*' ! -name 'joints3d*' ! -name 'threads*' -delete
   start=$(date +%s)
 
   # both: Rewind and Bullet; all: Jolt too (the binary refuses it when
@@ -191,6 +197,11 @@ if ((runjoints)); then
     "$(( $(date +%s) - start ))" >"$out/joints3d_run.txt"
 fi
 
+if ((runthreads)); then
+  step "threads: the large scenes of both lanes on 1 and 2 threads"
+  bash scripts/threads_bench.sh --no-build >/dev/null
+fi
+
 # The 2D section: from this run's CSV, or from the stored one after a 3D-only
 # run rewrote the document.
 if [[ -f $out/2d_sweep.csv && -f $out/2d_run.txt ]]; then
@@ -204,5 +215,12 @@ if [[ -f $out/joints3d.csv && -f $out/joints3d_run.txt ]]; then
   step "3D joints charts and the 3D joints section of $doc"
   python3 scripts/charts_joints.py --csv "$out/joints3d.csv" --run "$out/joints3d_run.txt" \
     --out "$out" --doc "$doc"
+fi
+# The Threads section: from this run's CSVs, or from the stored ones after
+# another part rewrote the document.
+if [[ -f $out/threads3d.csv && -f $out/threads2d.csv ]]; then
+  step "the Threads section of $doc"
+  python3 scripts/charts_threads.py --csv3d "$out/threads3d.csv" --csv2d "$out/threads2d.csv" \
+    --threads-doc docs/THREADS.md --doc "$doc"
 fi
 step "done: $doc, $out/"
