@@ -152,6 +152,28 @@ def cost_chart(out_dir, name, title, rows):
     return os.path.basename(svg)
 
 
+def splice_section(doc_path, text, begin, end, before=None):
+    """Writes `text` (a section that starts with the marker `begin` and ends
+    with `end`) into the document: in place of an earlier one, else just
+    before the first line holding `before` (when given and present), else
+    at the end."""
+    old = ""
+    if os.path.exists(doc_path):
+        with open(doc_path) as f:
+            old = f.read()
+    if begin in old and end in old:
+        head, rest = old.split(begin, 1)
+        tail = rest.split(end, 1)[1].lstrip("\n")
+        new = head + text + ("\n" + tail if tail else "")
+    elif before is not None and before in old:
+        head, tail = old.split(before, 1)
+        new = head + text + "\n" + before + tail
+    else:
+        new = old.rstrip("\n") + ("\n\n" if old else "") + text
+    with open(doc_path, "w") as f:
+        f.write(new)
+
+
 def machine():
     model = "unknown CPU"
     try:

@@ -20,7 +20,7 @@ from collections import OrderedDict
 
 sys.dont_write_bytecode = True  # no scripts/__pycache__ from the import below
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from charts import gnuplot, machine, quote  # noqa: E402  (shared with the 3D charts)
+from charts import gnuplot, machine, quote, splice_section  # noqa: E402  (shared with the 3D charts)
 
 BEGIN = "<!-- 2d:begin (scripts/charts2d.py) -->"
 END = "<!-- 2d:end -->"
@@ -348,22 +348,6 @@ def section(rows, run, rel_out, out_dir, rays=None):
     return "\n".join(d) + "\n"
 
 
-def splice(doc_path, text):
-    """Replaces the section between the markers, or appends it."""
-    old = ""
-    if os.path.exists(doc_path):
-        with open(doc_path) as f:
-            old = f.read()
-    if BEGIN in old and END in old:
-        head, rest = old.split(BEGIN, 1)
-        tail = rest.split(END, 1)[1].lstrip("\n")
-        new = head + text + ("\n" + tail if tail else "")
-    else:
-        new = old.rstrip("\n") + ("\n\n" if old else "") + text
-    with open(doc_path, "w") as f:
-        f.write(new)
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--csv", required=True, help="rewind-scene2d-sweep output")
@@ -381,7 +365,7 @@ def main():
     if args.rays and os.path.exists(args.rays):
         with open(args.rays) as f:
             rays = list(csv.DictReader(f))
-    splice(args.doc, section(rows, run, rel_out, args.out, rays))
+    splice_section(args.doc, section(rows, run, rel_out, args.out, rays), BEGIN, END)
     print("charts2d: wrote the 2D section of %s" % args.doc, file=sys.stderr)
 
 

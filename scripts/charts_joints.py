@@ -20,7 +20,7 @@ from collections import OrderedDict
 
 sys.dont_write_bytecode = True  # no scripts/__pycache__ from the import below
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from charts import gnuplot, machine, quote  # noqa: E402  (shared with the 3D charts)
+from charts import gnuplot, machine, quote, splice_section  # noqa: E402  (shared with the 3D charts)
 
 BEGIN = "<!-- joints3d:begin (scripts/charts_joints.py) -->"
 END = "<!-- joints3d:end -->"
@@ -276,26 +276,6 @@ def section(rows, run, rel_out, out_dir):
     return "\n".join(d) + "\n"
 
 
-def splice(doc_path, text):
-    """Replaces the section between the markers, or puts it before the 2D
-    section (or at the end)."""
-    old = ""
-    if os.path.exists(doc_path):
-        with open(doc_path) as f:
-            old = f.read()
-    if BEGIN in old and END in old:
-        head, rest = old.split(BEGIN, 1)
-        tail = rest.split(END, 1)[1].lstrip("\n")
-        new = head + text + ("\n" + tail if tail else "")
-    elif "<!-- 2d:begin" in old:
-        head, tail = old.split("<!-- 2d:begin", 1)
-        new = head + text + "\n<!-- 2d:begin" + tail
-    else:
-        new = old.rstrip("\n") + ("\n\n" if old else "") + text
-    with open(doc_path, "w") as f:
-        f.write(new)
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--csv", required=True, help="rewind-joint-bench output")
@@ -308,7 +288,9 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     doc_dir = os.path.dirname(os.path.abspath(args.doc))
     rel_out = os.path.relpath(os.path.abspath(args.out), doc_dir)
-    splice(args.doc, section(rows, run, rel_out, args.out))
+    # Before the 2D section when there is no joints section yet.
+    splice_section(args.doc, section(rows, run, rel_out, args.out), BEGIN, END,
+                   before="<!-- 2d:begin")
     print("charts_joints: wrote the 3D joints section of %s" % args.doc, file=sys.stderr)
 
 

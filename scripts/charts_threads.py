@@ -17,6 +17,11 @@ import argparse
 import csv
 import os
 import platform
+import sys
+
+sys.dont_write_bytecode = True  # no scripts/__pycache__ from the import below
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from charts import splice_section  # noqa: E402  (shared with the other chart scripts)
 
 BEGIN = "<!-- threads:begin (scripts/charts_threads.py) -->"
 END = "<!-- threads:end -->"
@@ -75,22 +80,6 @@ def intro(threads):
     ]
 
 
-def splice(doc_path, text):
-    """Replaces the section between the markers, or appends it."""
-    old = ""
-    if os.path.exists(doc_path):
-        with open(doc_path) as f:
-            old = f.read()
-    if BEGIN in old and END in old:
-        head, rest = old.split(BEGIN, 1)
-        tail = rest.split(END, 1)[1].lstrip("\n")
-        new = head + text + ("\n" + tail if tail else "")
-    else:
-        new = old.rstrip("\n") + ("\n\n" if old else "") + text
-    with open(doc_path, "w") as f:
-        f.write(new)
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--csv3d", required=True)
@@ -109,7 +98,7 @@ def main():
         section = [BEGIN, "## Threads", "",
                    "From `scripts/threads_bench.sh` (also `docs/THREADS.md`).", ""]
         section += intro(threads) + tables_text(t3, t2, threads, "###") + [END]
-        splice(args.doc, "\n".join(section) + "\n")
+        splice_section(args.doc, "\n".join(section) + "\n", BEGIN, END)
 
 
 if __name__ == "__main__":
