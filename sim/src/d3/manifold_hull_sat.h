@@ -16,7 +16,9 @@ namespace rwd::sim::d3 {
 
 /// Read-only view of a hull's geometry, laid out as Hull lays it out (mass
 /// frame, CCW face loops, edges listed once with their left and right
-/// faces). The arrays must outlive the view. A view beyond the hull limits
+/// faces). The faces enclose a solid (no flat views): the edge test's
+/// bounds take the origin to be inside when every face plane's offset is
+/// at least zero. The arrays must outlive the view. A view beyond the hull limits
 /// (more than kHullMaxVertices vertices, 124 faces or 186 edges) or without
 /// vertices or faces collides with nothing.
 struct HullView {
