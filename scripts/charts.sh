@@ -17,7 +17,7 @@
 #               substeps 4/8/16 and Bullet's iterations 10/20/40)
 #   --quick     piles up to 2000 boxes, substeps 4/6/8 and iterations 5/10/20
 #               (2D: 60 timed ticks a scene instead of 180-600; joints: the
-#               default settings only)
+#               default settings only; no threads part unless --only threads)
 #   --no-build  use the binaries already in build/bench
 #   --only 3d   the 3D part alone (the 2D and joints sections are rebuilt
 #               from the stored docs/charts/2d_sweep.csv and joints3d.csv)
@@ -85,6 +85,9 @@ run3d=1 run2d=1 runjoints=1 runthreads=1
 [[ $only == 3d ]] && run2d=0 && runjoints=0 && runthreads=0
 [[ $only == joints ]] && run3d=0 && run2d=0 && runthreads=0
 [[ $only == threads ]] && run3d=0 && run2d=0 && runjoints=0
+# --quick keeps to seconds: the threads part (minutes) runs only when asked
+# for, and its section is rebuilt from the stored CSVs.
+[[ $mode == quick && $only != threads ]] && runthreads=0
 
 step() { echo "==> $*" >&2; }
 
