@@ -34,9 +34,27 @@ struct Softness2D {
   W impulse_scale = 0;
 };
 
+/// One contact point as the solver sees it. Everything a pass reads is a
+/// scalar fixed at the step's start, so a pass does no division and no
+/// vector rotation: velocities along the normal and tangent are sums of
+/// four products, and the separation is tracked through the bodies' moves
+/// and turns as a sum of six.
 struct ContactConstraintPoint2D {
-  V2 ra;  ///< anchors from each centre of mass at the step's start
-  V2 rb;
+  // The anchors (from each centre of mass at the step's start) as lever
+  // arms: r x n turns a spin into speed along the normal, r x t along the
+  // tangent, and r . n with r x n gives how far a turn (c, s) moves the
+  // anchor along the normal (c r.n + s r x n).
+  W rn_a = 0;
+  W rn_b = 0;
+  W rt_a = 0;
+  W rt_b = 0;
+  W rd_a = 0;
+  W rd_b = 0;
+  // Spin gained per unit of impulse: inverse inertia times the lever.
+  W spin_n_a = 0;
+  W spin_n_b = 0;
+  W spin_t_a = 0;
+  W spin_t_b = 0;
   W adjusted_separation = 0;  ///< separation minus (rb - ra) . normal
   W normal_mass = 0;
   W tangent_mass = 0;
@@ -50,21 +68,29 @@ struct ContactConstraint2D {
   uint32_t a = 0;
   uint32_t b = 0;
   uint32_t contact = 0;  ///< index into the state's contacts
+  int count = 0;
+  bool block = false;  ///< both normal rows solved together (see k11..)
   V2 normal;
+  // An impulse P along the normal changes A's velocity by -P move_a and
+  // B's by P move_b (n / m each); along the tangent, by their quarter turns.
+  V2 move_a;
+  V2 move_b;
   W friction = 0;
   W restitution = 0;
   W rolling_resistance = 0;
   W rolling_mass = 0;
   W rolling_impulse = 0;
   Softness2D softness;
-  int count = 0;
   ContactConstraintPoint2D points[2];
-  /// Two-point manifolds: the normal rows' effective-mass matrix, and
-  /// whether it is well enough conditioned to solve both points together.
+  /// Two-point manifolds: the normal rows' effective-mass matrix K and,
+  /// when it is well enough conditioned to solve both points together
+  /// (block), its inverse.
   W k11 = 0;
   W k12 = 0;
   W k22 = 0;
-  bool block = false;
+  W inv_k11 = 0;
+  W inv_k12 = 0;
+  W inv_k22 = 0;
 };
 
 /// What every joint type needs during one step, fixed at its start.

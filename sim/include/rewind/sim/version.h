@@ -59,7 +59,11 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///      later ones only moved it by rounding); a triangle's overlapping edge
 ///      or vertex contact whose normal points past the neighbour's face
 ///      across a convex fold takes that face
-inline constexpr uint32_t kSimRevision = 14;
+///  15  2D contacts solved from levers fixed at the step's start (speeds
+///      along the normal and tangent as one-rounding sums of products, the
+///      separation tracked through r . n and r x n) and the normal block
+///      from K's inverse, with no division in a pass
+inline constexpr uint32_t kSimRevision = 15;
 
 /// "rewind-sim r11": the engine identity a replay records.
 inline std::string engine_version() {
