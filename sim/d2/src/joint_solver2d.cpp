@@ -84,8 +84,16 @@ void prepare_joints(World2DState& state, StepScratch2D& scratch, W h) {
     c.frame_a = rotate(body_a.rotation, j.local_anchor_a - body_a.local_center);
     c.frame_b = rotate(body_b.rotation, j.local_anchor_b - body_b.local_center);
     c.delta_center = body_b.center - body_a.center;
-    c.delta_angle =
-        unwind(angle_of(rinv_mul(body_a.rotation, body_b.rotation)) - j.reference_angle);
+    // The angle (an arctangent, the dearest part of the preparation) only
+    // for the joints that hold or limit one.
+    const bool needs_angle =
+        j.type == JointType2D::kWeld || j.type == JointType2D::kPrismatic ||
+        j.type == JointType2D::kWheel ||
+        (j.type == JointType2D::kRevolute && (j.flags & (kJointSpring | kJointLimit)));
+    if (needs_angle) {
+      c.delta_angle =
+          unwind(angle_of(rinv_mul(body_a.rotation, body_b.rotation)) - j.reference_angle);
+    }
     c.axis_a = rotate(body_a.rotation, j.local_axis_a);
     const W k = a.inv_inertia + b.inv_inertia;
     c.angular_mass = k > 0 ? winv(k) : 0;

@@ -11,6 +11,7 @@
 // cap, so no sum or product here leaves the int64 range in a valid state;
 // narrowing a 128-bit product to int64 is modular in C++20 in any case.
 #include <cstdint>
+#include <type_traits>
 
 #include "rewind/fixed/fx.h"
 #include "rewind/fixed/vec2.h"
@@ -60,8 +61,25 @@ constexpr W wmul_sub(W a, W b, W c, W d) {
 }
 /// a / b truncated toward zero; zero when b is zero (callers that can meet
 /// a zero divisor test for it first; this rule only keeps the step total).
+/// On x86-64 a quotient that fits in 64 bits (|a| < |b| 2^31, nearly every
+/// one) takes the processor's 128-by-64-bit division, which truncates
+/// toward zero as the 128-bit division does: the same quotient, in a
+/// fraction of the time of the library's 128-by-128 routine.
 constexpr W wdiv(W a, W b) {
-  return b == 0 ? 0 : static_cast<W>((static_cast<I128>(a) << kWFrac) / b);
+  if (b == 0) return 0;
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+  if (!std::is_constant_evaluated()) {
+    const uint64_t ua = a < 0 ? 0 - static_cast<uint64_t>(a) : static_cast<uint64_t>(a);
+    const uint64_t ub = b < 0 ? 0 - static_cast<uint64_t>(b) : static_cast<uint64_t>(b);
+    if ((ua >> (63 - kWFrac)) < ub) {
+      int64_t high = a >> (64 - kWFrac);
+      int64_t low = static_cast<int64_t>(static_cast<uint64_t>(a) << kWFrac);
+      __asm__("idivq %[d]" : "+a"(low), "+d"(high) : [d] "r"(b) : "cc");
+      return low;
+    }
+  }
+#endif
+  return static_cast<W>((static_cast<I128>(a) << kWFrac) / b);
 }
 /// 1 / b truncated; zero when b is zero.
 constexpr W winv(W b) {
