@@ -1,4 +1,11 @@
 // SPDX-License-Identifier: MIT
+// The broadphase: a bounding-box tree over this step's bodies, built by
+// median splits, walked against itself. A sweep along one axis met every
+// body sharing its column or row (a pyramid's rows, a grid's columns: a
+// hundred candidates a body); the tree meets only boxes that overlap.
+// The pairs it finds are exactly the overlapping ones, whatever shape the
+// tree takes, and they are sorted at the end, so the result depends on the
+// state alone.
 #include <algorithm>
 
 #include "body_math2d.h"
@@ -8,29 +15,141 @@ namespace rwd::sim2d::detail {
 
 namespace {
 
+// Bodies per leaf: small enough that a leaf's boxes mostly overlap its
+// neighbours', large enough that the tree stays shallow.
+constexpr uint32_t kLeafSize = 4;
+
 bool layers_agree(const BodyRecord2D& a, const BodyRecord2D& b) {
   return (a.layer & b.mask) != 0 && (b.layer & a.mask) != 0;
+}
+
+Box2W merge(const Box2W& a, const Box2W& b) {
+  return {vmin(a.lower, b.lower), vmax(a.upper, b.upper)};
+}
+
+// Node `node` over items [first, first + count): a leaf, or split at the
+// median box centre along the longer side of the centres' spread. Ties go
+// by body index, so the split is one total order's.
+void build(StepScratch2D& scratch, uint32_t node, uint32_t first, uint32_t count) {
+  auto& items = scratch.sweep;
+  Box2W box = items[first].box;
+  V2 lo = items[first].box.lower + items[first].box.upper;
+  V2 hi = lo;
+  for (uint32_t i = first + 1; i < first + count; ++i) {
+    box = merge(box, items[i].box);
+    const V2 c = items[i].box.lower + items[i].box.upper;
+    lo = vmin(lo, c);
+    hi = vmax(hi, c);
+  }
+  scratch.tree[node].box = box;
+  if (count <= kLeafSize) {
+    scratch.tree[node].first = first;
+    scratch.tree[node].count = count;
+    return;
+  }
+  const bool along_y = (hi.y - lo.y) > (hi.x - lo.x);
+  const uint32_t half = count / 2;
+  const auto begin = items.begin() + first;
+  std::nth_element(
+      begin, begin + half, begin + count, [along_y](const SweepEntry2D& a, const SweepEntry2D& b) {
+        const W ca = along_y ? a.box.lower.y + a.box.upper.y : a.box.lower.x + a.box.upper.x;
+        const W cb = along_y ? b.box.lower.y + b.box.upper.y : b.box.lower.x + b.box.upper.x;
+        return ca != cb ? ca < cb : a.index < b.index;
+      });
+  const uint32_t left = static_cast<uint32_t>(scratch.tree.size());
+  scratch.tree.resize(left + 2);
+  scratch.tree[node].first = left;
+  scratch.tree[node].count = 0;
+  build(scratch, left, first, half);
+  build(scratch, left + 1, first + half, count - half);
+}
+
+class PairCollector {
+ public:
+  PairCollector(const World2DState& state, StepScratch2D& scratch)
+      : state_(state), items_(scratch.sweep), pairs_(scratch.pairs) {}
+
+  void test(const SweepEntry2D& a, const SweepEntry2D& b) {
+    if (!a.moves && !b.moves) return;
+    if (!overlaps(a.box, b.box)) return;
+    if (!layers_agree(state_.bodies[a.index], state_.bodies[b.index])) return;
+    const uint32_t lo = std::min(a.index, b.index);
+    const uint32_t hi = std::max(a.index, b.index);
+    pairs_.push_back((uint64_t{lo} << 32) | hi);
+  }
+  void within(const TreeNode2D& leaf) {
+    for (uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
+      for (uint32_t j = i + 1; j < leaf.first + leaf.count; ++j) test(items_[i], items_[j]);
+    }
+  }
+  void across(const TreeNode2D& x, const TreeNode2D& y) {
+    for (uint32_t i = x.first; i < x.first + x.count; ++i) {
+      for (uint32_t j = y.first; j < y.first + y.count; ++j) test(items_[i], items_[j]);
+    }
+  }
+
+ private:
+  const World2DState& state_;
+  const std::vector<SweepEntry2D>& items_;
+  std::vector<uint64_t>& pairs_;
+};
+
+// Every overlapping pair of items under the root: a node against itself
+// visits its children against themselves and each other; two nodes whose
+// boxes overlap visit their children's pairs.
+void walk(const World2DState& state, StepScratch2D& scratch) {
+  const auto& tree = scratch.tree;
+  auto& stack = scratch.tree_stack;
+  PairCollector collect(state, scratch);
+  stack.clear();
+  stack.push_back({0, 0});
+  while (!stack.empty()) {
+    const auto [x, y] = stack.back();
+    stack.pop_back();
+    const TreeNode2D& nx = tree[x];
+    const TreeNode2D& ny = tree[y];
+    if (x == y) {
+      if (nx.count > 0) {
+        collect.within(nx);
+      } else {
+        stack.push_back({nx.first, nx.first});
+        stack.push_back({nx.first + 1, nx.first + 1});
+        stack.push_back({nx.first, nx.first + 1});
+      }
+      continue;
+    }
+    if (!overlaps(nx.box, ny.box)) continue;
+    if (nx.count > 0 && ny.count > 0) {
+      collect.across(nx, ny);
+    } else if (nx.count > 0) {
+      stack.push_back({x, ny.first});
+      stack.push_back({x, ny.first + 1});
+    } else if (ny.count > 0) {
+      stack.push_back({nx.first, y});
+      stack.push_back({nx.first + 1, y});
+    } else {
+      stack.push_back({nx.first, ny.first});
+      stack.push_back({nx.first, ny.first + 1});
+      stack.push_back({nx.first + 1, ny.first});
+      stack.push_back({nx.first + 1, ny.first + 1});
+    }
+  }
 }
 
 }  // namespace
 
 void find_pairs(const World2DState& state, StepScratch2D& scratch) {
   const W margin = w_from(state.config.speculative_distance) / 2;
-  auto& sweep = scratch.sweep;
-  sweep.clear();
+  auto& items = scratch.sweep;
+  items.clear();
   for (uint32_t i = 0; i < state.bodies.size(); ++i) {
     const BodyRecord2D& body = state.bodies[i];
     if (!(body.flags & kBodyLive) || !(body.flags & kBodyEnabled)) continue;
     Box2W box = shape_bounds(body.shape, origin_transform(body));
     box.lower -= V2{margin, margin};
     box.upper += V2{margin, margin};
-    sweep.push_back({box, i, is_moving(body)});
+    items.push_back({box, i, is_moving(body)});
   }
-  // (lower x, index) is unique per body, so the order, and with it every
-  // later order, depends on the state alone.
-  std::sort(sweep.begin(), sweep.end(), [](const SweepEntry2D& a, const SweepEntry2D& b) {
-    return a.box.lower.x != b.box.lower.x ? a.box.lower.x < b.box.lower.x : a.index < b.index;
-  });
 
   // Joined bodies that must not collide (collide_connected off).
   auto& joined = scratch.joined_pairs;
@@ -41,23 +160,24 @@ void find_pairs(const World2DState& state, StepScratch2D& scratch) {
   }
   std::sort(joined.begin(), joined.end());
 
+  scratch.pairs.clear();
+  scratch.tree.clear();
+  if (items.size() < 2) return;
+  scratch.tree.resize(1);
+  build(scratch, 0, 0, static_cast<uint32_t>(items.size()));
+  walk(state, scratch);
   auto& pairs = scratch.pairs;
-  pairs.clear();
-  for (size_t i = 0; i < sweep.size(); ++i) {
-    const SweepEntry2D& a = sweep[i];
-    for (size_t j = i + 1; j < sweep.size() && sweep[j].box.lower.x <= a.box.upper.x; ++j) {
-      const SweepEntry2D& b = sweep[j];
-      if (!a.moves && !b.moves) continue;
-      if (a.box.lower.y > b.box.upper.y || b.box.lower.y > a.box.upper.y) continue;
-      if (!layers_agree(state.bodies[a.index], state.bodies[b.index])) continue;
-      const uint32_t lo = std::min(a.index, b.index);
-      const uint32_t hi = std::max(a.index, b.index);
-      const uint64_t key = (uint64_t{lo} << 32) | hi;
-      if (!joined.empty() && std::binary_search(joined.begin(), joined.end(), key)) continue;
-      pairs.push_back(key);
-    }
-  }
   std::sort(pairs.begin(), pairs.end());
+  // Less the joined pairs: both lists sorted, one merge.
+  if (joined.empty()) return;
+  size_t kept = 0;
+  size_t j = 0;
+  for (const uint64_t key : pairs) {
+    while (j < joined.size() && joined[j] < key) ++j;
+    if (j < joined.size() && joined[j] == key) continue;
+    pairs[kept++] = key;
+  }
+  pairs.resize(kept);
 }
 
 }  // namespace rwd::sim2d::detail

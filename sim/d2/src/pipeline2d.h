@@ -6,9 +6,9 @@
 
 namespace rwd::sim2d::detail {
 
-/// Sort and sweep over the bodies' bounds (grown by half the speculative
-/// distance): scratch.pairs gets every pair with a dynamic body whose
-/// layers agree, sorted by (a, b).
+/// A bounding-box tree over the bodies' bounds (grown by half the
+/// speculative distance), walked against itself: scratch.pairs gets every
+/// overlapping pair with a moving body whose layers agree, sorted by (a, b).
 void find_pairs(const World2DState& state, StepScratch2D& scratch);
 
 /// Rebuilds state.contacts from scratch.pairs: a manifold per pair, each

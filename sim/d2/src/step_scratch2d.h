@@ -4,6 +4,7 @@
 // never saved, restored or hashed. Kept between steps only so its buffers
 // stop allocating once they have grown.
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "manifold2.h"
@@ -110,17 +111,28 @@ struct JointConstraint2D {
   Softness2D angular_spring;  ///< weld's angular part, grab's spin damping
 };
 
-/// Bounds of one body for the sweep.
+/// Bounds of one body for the broadphase.
 struct SweepEntry2D {
   Box2W box;
   uint32_t index = 0;
-  bool moves = false;  ///< dynamic (only pairs with a dynamic body matter)
+  bool moves = false;  ///< moving this step (only pairs with one matter)
+};
+
+/// A node of the broadphase's tree: a leaf over `count` entries from
+/// `first`, or (count 0) an inner node whose children are nodes `first`
+/// and `first + 1`.
+struct TreeNode2D {
+  Box2W box;
+  uint32_t first = 0;
+  uint32_t count = 0;
 };
 
 class StepScratch2D {
  public:
-  std::vector<SweepEntry2D> sweep;
-  std::vector<uint64_t> pairs;  ///< (a << 32) | b, a < b, sorted
+  std::vector<SweepEntry2D> sweep;  ///< the broadphase's bodies (the tree's items)
+  std::vector<TreeNode2D> tree;
+  std::vector<std::pair<uint32_t, uint32_t>> tree_stack;  ///< node pairs left to walk
+  std::vector<uint64_t> pairs;                            ///< (a << 32) | b, a < b, sorted
   /// pairs[k]'s manifold this step (update_contacts2d.cpp).
   std::vector<Manifold2> manifolds;
   /// The threads the narrowphase cuts its pairs across
