@@ -5,6 +5,15 @@
 
 namespace rwd::sim2d::detail {
 
+void prepare_revolute(JointConstraint2D& c, const SolverBody2D& a, const SolverBody2D& b) {
+  const PointMass2D k = point_mass(a, b, {c.frame_a, c.frame_b});
+  const W det = wmul(k.k11, k.k22) - wmul(k.k12, k.k12);
+  if (det == 0) return;  // nothing can move the point: every row's impulse is zero
+  c.point_inv_k11 = wdiv(k.k22, det);
+  c.point_inv_k12 = wdiv(-k.k12, det);
+  c.point_inv_k22 = wdiv(k.k11, det);
+}
+
 void warm_start_revolute(const JointRecord2D& j, const JointConstraint2D& c, SolverBody2D& a,
                          SolverBody2D& b) {
   const Anchors2D r = current_anchors(c, a, b);
@@ -47,8 +56,9 @@ void solve_revolute(JointRecord2D& j, const JointConstraint2D& c, SolverBody2D& 
     mass_scale = c.soft.mass_scale;
     impulse_scale = c.soft.impulse_scale;
   }
-  const PointMass2D k = point_mass(a, b, r);
-  const V2 x = solve22(k.k11, k.k12, k.k22, cdot + bias);
+  const V2 e = cdot + bias;
+  const V2 x = {wmul_add(c.point_inv_k11, e.x, c.point_inv_k12, e.y),
+                wmul_add(c.point_inv_k12, e.x, c.point_inv_k22, e.y)};
   const V2 impulse = -vscale(mass_scale, x) - vscale(impulse_scale, j.linear_impulse);
   j.linear_impulse += impulse;
   apply_linear(a, b, r, impulse);

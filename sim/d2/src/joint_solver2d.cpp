@@ -121,6 +121,7 @@ void prepare_joints(World2DState& state, StepScratch2D& scratch, W h) {
         c.angular_mass = b.inv_inertia > 0 ? winv(b.inv_inertia) : 0;
         break;
       case JointType2D::kRevolute:
+        prepare_revolute(c, a, b);
         break;
     }
     out.push_back(c);

@@ -29,6 +29,7 @@ void warm_start_distance(const JointRecord2D& j, const JointConstraint2D& c, Sol
                          SolverBody2D& b);
 void solve_distance(JointRecord2D& j, const JointConstraint2D& c, SolverBody2D& a, SolverBody2D& b,
                     const JointPass2D& pass);
+void prepare_revolute(JointConstraint2D& c, const SolverBody2D& a, const SolverBody2D& b);
 void warm_start_revolute(const JointRecord2D& j, const JointConstraint2D& c, SolverBody2D& a,
                          SolverBody2D& b);
 void solve_revolute(JointRecord2D& j, const JointConstraint2D& c, SolverBody2D& a, SolverBody2D& b,

@@ -109,6 +109,13 @@ struct JointConstraint2D {
   Softness2D soft;            ///< the push-out of rigid parts
   Softness2D spring;          ///< springs (distance, prismatic, wheel, grab; weld's linear part)
   Softness2D angular_spring;  ///< weld's angular part, grab's spin damping
+  /// Revolute: the inverse of the point's effective-mass matrix at the
+  /// step's anchors, [inv_k11 inv_k12; inv_k12 inv_k22]. The bodies turn
+  /// little within a step, so every pass uses it (no division in a pass);
+  /// the anchors themselves still turn with the bodies.
+  W point_inv_k11 = 0;
+  W point_inv_k12 = 0;
+  W point_inv_k22 = 0;
 };
 
 /// Bounds of one body for the broadphase.
