@@ -136,11 +136,54 @@ void walk(const World2DState& state, StepScratch2D& scratch) {
   }
 }
 
-}  // namespace
+// Refits between rebuilds: boxes that moved loosen the tree a little each
+// step; a rebuild every so often keeps it tight.
+constexpr uint32_t kMaxRefits = 16;
 
-void find_pairs(const World2DState& state, StepScratch2D& scratch) {
+// Brings the tree over this step's bounds. When the same bodies are in it
+// as last step, their boxes are replaced in place and every node's box is
+// refitted from its children (O(n)); otherwise, or after kMaxRefits
+// refits, it is rebuilt. The tree only narrows which boxes are compared,
+// so which of the two happens never changes a pair.
+void update_tree(const World2DState& state, StepScratch2D& scratch) {
   const W margin = w_from(state.config.speculative_distance) / 2;
   auto& items = scratch.sweep;
+  auto& slot = scratch.item_of_body;
+  bool same = scratch.tree_refits < kMaxRefits && !scratch.tree.empty() &&
+              slot.size() == state.bodies.size();
+  uint32_t live = 0;
+  for (uint32_t i = 0; i < state.bodies.size() && same; ++i) {
+    const BodyRecord2D& body = state.bodies[i];
+    if (!(body.flags & kBodyLive) || !(body.flags & kBodyEnabled)) continue;
+    const uint32_t k = slot[i];
+    if (k >= items.size() || items[k].index != i) {
+      same = false;
+      break;
+    }
+    Box2W box = shape_bounds(body.shape, origin_transform(body));
+    box.lower -= V2{margin, margin};
+    box.upper += V2{margin, margin};
+    items[k] = {box, i, is_moving(body)};
+    ++live;
+  }
+  if (same && live == items.size()) {
+    auto& tree = scratch.tree;
+    for (size_t n = tree.size(); n-- > 0;) {  // children come after parents
+      TreeNode2D& node = tree[n];
+      if (node.count > 0) {
+        Box2W box = items[node.first].box;
+        for (uint32_t i = node.first + 1; i < node.first + node.count; ++i) {
+          box = merge(box, items[i].box);
+        }
+        node.box = box;
+      } else {
+        node.box = merge(tree[node.first].box, tree[node.first + 1].box);
+      }
+    }
+    ++scratch.tree_refits;
+    return;
+  }
+
   items.clear();
   for (uint32_t i = 0; i < state.bodies.size(); ++i) {
     const BodyRecord2D& body = state.bodies[i];
@@ -150,6 +193,19 @@ void find_pairs(const World2DState& state, StepScratch2D& scratch) {
     box.upper += V2{margin, margin};
     items.push_back({box, i, is_moving(body)});
   }
+  scratch.tree.clear();
+  scratch.tree_refits = 0;
+  slot.assign(state.bodies.size(), UINT32_MAX);
+  if (items.empty()) return;
+  scratch.tree.resize(1);
+  build(scratch, 0, 0, static_cast<uint32_t>(items.size()));
+  for (uint32_t k = 0; k < items.size(); ++k) slot[items[k].index] = k;
+}
+
+}  // namespace
+
+void find_pairs(const World2DState& state, StepScratch2D& scratch) {
+  update_tree(state, scratch);
 
   // Joined bodies that must not collide (collide_connected off).
   auto& joined = scratch.joined_pairs;
@@ -161,10 +217,7 @@ void find_pairs(const World2DState& state, StepScratch2D& scratch) {
   std::sort(joined.begin(), joined.end());
 
   scratch.pairs.clear();
-  scratch.tree.clear();
-  if (items.size() < 2) return;
-  scratch.tree.resize(1);
-  build(scratch, 0, 0, static_cast<uint32_t>(items.size()));
+  if (scratch.sweep.size() < 2) return;
   walk(state, scratch);
   auto& pairs = scratch.pairs;
   std::sort(pairs.begin(), pairs.end());
