@@ -58,7 +58,33 @@ W reach(const Shape2D& s) {
   return r + w_from(s.radius);
 }
 
+// Bodies farther apart on either axis than both reaches plus the
+// speculative distance cannot touch. Leaving early also keeps the pair
+// routines' squared distances inside the W range for any input.
+bool beyond_reach(W reach_a, const Xf& xa, W reach_b, const Xf& xb, W speculative) {
+  const W limit = reach_a + reach_b + speculative;
+  const V2 d = xb.p - xa.p;
+  return wabs(d.x) > limit || wabs(d.y) > limit;
+}
+
 }  // namespace
+
+bool widens(const Shape2D& s) {
+  return (s.type == ShapeType2D::kPolygon || s.type == ShapeType2D::kCapsule) && s.count > 0 &&
+         s.count <= kMaxPolygonVertices;
+}
+
+void widen(const Shape2D& s, WideShape2& out) {
+  out.poly = to_wpoly(s);
+  out.reach = reach(s);
+}
+
+void collide_wide(const WideShape2& a, const Xf& xa, const WideShape2& b, const Xf& xb,
+                  W speculative, Manifold2& out) {
+  out = {};
+  if (beyond_reach(a.reach, xa, b.reach, xb, speculative)) return;
+  collide_wpolys(a.poly, xa, b.poly, xb, speculative, out);
+}
 
 void collide(const Shape2D& a, const Xf& xa, const Shape2D& b, const Xf& xb, W speculative,
              Manifold2& out) {
@@ -70,12 +96,7 @@ void collide(const Shape2D& a, const Xf& xa, const Shape2D& b, const Xf& xb, W s
   // routines index vertices by count, so it is refused here.
   if (a.count == 0 || b.count == 0) return;
   if (a.count > kMaxPolygonVertices || b.count > kMaxPolygonVertices) return;
-  // Bodies farther apart on either axis than both reaches plus the
-  // speculative distance cannot touch. Leaving early also keeps the pair
-  // routines' squared distances inside the W range for any input.
-  const W limit = reach(a) + reach(b) + speculative;
-  const V2 d = xb.p - xa.p;
-  if (wabs(d.x) > limit || wabs(d.y) > limit) return;
+  if (beyond_reach(reach(a), xa, reach(b), xb, speculative)) return;
 
   const PairEntry& e = kPairs[ta][tb];
   if (!e.reversed) {

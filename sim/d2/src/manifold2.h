@@ -35,6 +35,32 @@ struct Manifold2 {
   int count = 0;
 };
 
+/// A convex polygon in W, possibly rounded: a polygon shape, or a capsule or
+/// segment as a two-vertex polygon whose two normals face opposite ways.
+struct WPoly {
+  V2 vertices[kMaxPolygonVertices];
+  V2 normals[kMaxPolygonVertices];
+  W radius = 0;
+  int count = 0;
+};
+
+/// A shape widened once for every pair it meets in a step: its polygon in W
+/// and its reach (an upper bound of its distance from the body origin).
+/// Only polygons and capsules are widened: every pair of the two is
+/// collided as two polygons.
+struct WideShape2 {
+  WPoly poly;
+  W reach = 0;
+};
+/// Whether `s` is a shape collide_wide() takes (a polygon or a capsule).
+bool widens(const Shape2D& s);
+/// `s` (widens(s)) as collide_wide() reads it.
+void widen(const Shape2D& s, WideShape2& out);
+/// collide() for two widened shapes: the same manifold, without widening
+/// either shape again.
+void collide_wide(const WideShape2& a, const Xf& xa, const WideShape2& b, const Xf& xb,
+                  W speculative, Manifold2& out);
+
 /// The manifold of shape `a` on a body at `xa` (the body origin's
 /// transform) against shape `b` at `xb`, keeping points whose separation is
 /// below `speculative` (m, > 0). `out` is overwritten; count 0 means apart.

@@ -30,15 +30,6 @@ constexpr uint16_t make_id(int vertex_a, int vertex_b) {
   return static_cast<uint16_t>(((vertex_a & 0xFF) << 8) | (vertex_b & 0xFF));
 }
 
-/// A convex polygon in W, possibly rounded: a polygon shape, or a capsule or
-/// segment as a two-vertex polygon whose two normals face opposite ways.
-struct WPoly {
-  V2 vertices[kMaxPolygonVertices];
-  V2 normals[kMaxPolygonVertices];
-  W radius = 0;
-  int count = 0;
-};
-
 /// A stored unit normal (within an Fx ulp of unit length) brought to unit
 /// length in W with one Newton step, as renormalize() does for rotations.
 V2 unit_normal_from(Vec2 n);

@@ -144,6 +144,10 @@ class StepScratch2D {
   std::vector<uint64_t> pairs;                            ///< (a << 32) | b, a < b, sorted
   /// pairs[k]'s manifold this step (update_contacts2d.cpp).
   std::vector<Manifold2> manifolds;
+  /// The shapes of this step's pairs' polygon and capsule bodies widened to
+  /// W (by body index; where widened[i] is 0 the entry is stale and unread).
+  std::vector<WideShape2> wide_shapes;
+  std::vector<uint8_t> widened;
   /// The threads the narrowphase cuts its pairs across
   /// (World2D::set_thread_pool); null: the stepping thread. Not owned.
   sim::ThreadPool* pool = nullptr;

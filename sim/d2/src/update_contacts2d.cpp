@@ -46,12 +46,33 @@ constexpr uint32_t kPairGrain = 32;
 void collide_pairs(const World2DState& state, StepScratch2D& scratch, W speculative) {
   const uint32_t count = static_cast<uint32_t>(scratch.pairs.size());
   scratch.manifolds.resize(count);
+  // Polygons and capsules are widened to W once per body, not once per
+  // pair: a box in a stack meets four or more neighbours.
+  // Only the bodies in a pair: a sleeping heap's bodies are in none.
+  auto& wide = scratch.wide_shapes;
+  auto& widened = scratch.widened;
+  wide.resize(state.bodies.size());
+  widened.assign(state.bodies.size(), 0);
+  for (const uint64_t key : scratch.pairs) {
+    for (const uint32_t i : {static_cast<uint32_t>(key >> 32), static_cast<uint32_t>(key)}) {
+      if (widened[i] || !widens(state.bodies[i].shape)) continue;
+      widen(state.bodies[i].shape, wide[i]);
+      widened[i] = 1;
+    }
+  }
   const auto collide_range = [&](uint32_t begin, uint32_t end) {
     for (uint32_t k = begin; k < end; ++k) {
-      const BodyRecord2D& body_a = state.bodies[static_cast<uint32_t>(scratch.pairs[k] >> 32)];
-      const BodyRecord2D& body_b = state.bodies[static_cast<uint32_t>(scratch.pairs[k])];
-      collide(body_a.shape, origin_transform(body_a), body_b.shape, origin_transform(body_b),
-              speculative, scratch.manifolds[k]);
+      const uint32_t a = static_cast<uint32_t>(scratch.pairs[k] >> 32);
+      const uint32_t b = static_cast<uint32_t>(scratch.pairs[k]);
+      const BodyRecord2D& body_a = state.bodies[a];
+      const BodyRecord2D& body_b = state.bodies[b];
+      if (widens(body_a.shape) && widens(body_b.shape)) {
+        collide_wide(wide[a], origin_transform(body_a), wide[b], origin_transform(body_b),
+                     speculative, scratch.manifolds[k]);
+      } else {
+        collide(body_a.shape, origin_transform(body_a), body_b.shape, origin_transform(body_b),
+                speculative, scratch.manifolds[k]);
+      }
     }
   };
   if (scratch.pool != nullptr) {
