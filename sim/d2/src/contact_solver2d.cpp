@@ -85,7 +85,7 @@ void prepare_contact(const World2DState& state, StepScratch2D& scratch, uint32_t
   const BodyRecord2D& body_b = state.bodies[contact.b];
   const SolverBody2D& a = scratch.bodies[contact.a];
   const SolverBody2D& b = scratch.bodies[contact.b];
-  ContactConstraint2D c;
+  ContactConstraint2D& c = scratch.constraints.emplace_back();
   c.a = contact.a;
   c.b = contact.b;
   c.contact = ci;
@@ -125,8 +125,12 @@ void prepare_contact(const World2DState& state, StepScratch2D& scratch, uint32_t
     cp.adjusted_separation = p.separation - (cp.rd_b - cp.rd_a);
     cp.normal_impulse = p.normal_impulse;
     cp.tangent_impulse = p.tangent_impulse;
-    cp.normal_mass = inverse_or_zero(m + wmul(a.inv_inertia, wmul(cp.rn_a, cp.rn_a)) +
-                                     wmul(b.inv_inertia, wmul(cp.rn_b, cp.rn_b)));
+    // The normal row's effective mass; for two points, K's diagonal.
+    const W k = m + wmul(a.inv_inertia, wmul(cp.rn_a, cp.rn_a)) +
+                wmul(b.inv_inertia, wmul(cp.rn_b, cp.rn_b));
+    if (i == 0) c.k11 = k;
+    if (i == 1) c.k22 = k;
+    cp.normal_mass = inverse_or_zero(k);
     cp.tangent_mass = inverse_or_zero(m + wmul(a.inv_inertia, wmul(cp.rt_a, cp.rt_a)) +
                                       wmul(b.inv_inertia, wmul(cp.rt_b, cp.rt_b)));
     cp.relative_velocity = vdot(n, relative_velocity(a, ra, b, rb));
@@ -134,10 +138,6 @@ void prepare_contact(const World2DState& state, StepScratch2D& scratch, uint32_t
   if (c.count == 2) {
     const ContactConstraintPoint2D& p1 = c.points[0];
     const ContactConstraintPoint2D& p2 = c.points[1];
-    c.k11 = m + wmul(a.inv_inertia, wmul(p1.rn_a, p1.rn_a)) +
-            wmul(b.inv_inertia, wmul(p1.rn_b, p1.rn_b));
-    c.k22 = m + wmul(a.inv_inertia, wmul(p2.rn_a, p2.rn_a)) +
-            wmul(b.inv_inertia, wmul(p2.rn_b, p2.rn_b));
     c.k12 = m + wmul(a.inv_inertia, wmul(p1.rn_a, p2.rn_a)) +
             wmul(b.inv_inertia, wmul(p1.rn_b, p2.rn_b));
     // Two points nearly on top of each other make K nearly singular: the
@@ -161,7 +161,6 @@ void prepare_contact(const World2DState& state, StepScratch2D& scratch, uint32_t
                          b.inv_inertia > 0 ? vlength(p.anchor_b) : 0);
     c.rolling_resistance = wmul(c.rolling_resistance, lever);
   }
-  scratch.constraints.push_back(c);
 }
 
 }  // namespace
