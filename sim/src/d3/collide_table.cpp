@@ -179,8 +179,8 @@ void collide_shapes(const Shape& shape_a, const ShapePose& pose_a, const Shape& 
   if (e.reversed) {
     e.fn(shape_b, pose_b, shape_a, pose_a, speculative_m, store, out);
     out.normal = -out.normal;  // the routine's normal ran from B to A
-    // A separating axis named in the routine's order means nothing here.
-    out.separating_axis = kNoSeparatingAxis;
+    // separating_axis stays in the routine's order: shapes_still_separated
+    // tests it in that order too.
   } else {
     e.fn(shape_a, pose_a, shape_b, pose_b, speculative_m, store, out);
   }
@@ -188,6 +188,33 @@ void collide_shapes(const Shape& shape_a, const ShapePose& pose_a, const Shape& 
     out.points[i].anchor_a = out.points[i].point - pose_a.position;
     out.points[i].anchor_b = out.points[i].point - pose_b.position;
   }
+}
+
+bool shapes_still_separated(const Shape& shape_a, const ShapePose& pose_a, const Shape& shape_b,
+                            const ShapePose& pose_b, uint8_t axis, float speculative_m,
+                            const GeometryStore* store) {
+  if (axis == kNoSeparatingAxis) return false;
+  const Entry& e =
+      kTable.at[static_cast<uint32_t>(shape_a.type)][static_cast<uint32_t>(shape_b.type)];
+  // The routine's own A and B.
+  const Shape& a = e.reversed ? shape_b : shape_a;
+  const Shape& b = e.reversed ? shape_a : shape_b;
+  const ShapePose& pa = e.reversed ? pose_b : pose_a;
+  const ShapePose& pb = e.reversed ? pose_a : pose_b;
+  if (a.type == ShapeType::kBox && b.type == ShapeType::kBox) {
+    return box_axis_separates(pa.position, pa.axes, a.half_extents, pb.position, pb.axes,
+                              b.half_extents, axis, speculative_m);
+  }
+  if (b.type != ShapeType::kHull || store == nullptr) return false;
+  const HullView hb = hull_view(hull_of(b, store));
+  if (a.type == ShapeType::kBox) {
+    const BoxHull box = make_box_hull(a.half_extents);
+    return hull_axis_separates(box.view(), pa.position, pa.axes, hb, pb.position, pb.axes, axis,
+                               speculative_m);
+  }
+  if (a.type != ShapeType::kHull) return false;
+  return hull_axis_separates(hull_view(hull_of(a, store)), pa.position, pa.axes, hb, pb.position,
+                             pb.axes, axis, speculative_m);
 }
 
 }  // namespace rwd::sim::d3

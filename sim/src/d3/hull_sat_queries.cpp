@@ -48,13 +48,7 @@ FaceQuery query_faces(const HullView& hull, const Vec3* other, uint32_t other_co
                       float speculative_m) {
   FaceQuery best;
   for (uint32_t f = 0; f < hull.face_count; ++f) {
-    const Vec3 n = hull.faces[f].normal;
-    float deepest = dot(n, other[0]);
-    for (uint32_t v = 1; v < other_count; ++v) {
-      const float d = dot(n, other[v]);
-      if (d < deepest) deepest = d;
-    }
-    const float sep = deepest - hull.faces[f].offset;
+    const float sep = face_separation(hull, f, other, other_count);
     if (sep > best.separation) {
       best.separation = sep;
       best.face = f;

@@ -30,6 +30,19 @@ struct EdgeQuery {
   Vec3 axis;  // unit, A's frame, from A to B
 };
 
+/// How far `other`'s vertices (other_count >= 1, in hull's frame) lie
+/// outside face f of `hull`: the least height over the face's plane.
+inline float face_separation(const HullView& hull, uint32_t f, const Vec3* other,
+                             uint32_t other_count) {
+  const Vec3 n = hull.faces[f].normal;
+  float deepest = dot(n, other[0]);
+  for (uint32_t v = 1; v < other_count; ++v) {
+    const float d = dot(n, other[v]);
+    if (d < deepest) deepest = d;
+  }
+  return deepest - hull.faces[f].offset;
+}
+
 /// The faces of `hull` against `other`'s vertices (other_count of them) in
 /// hull's frame: the largest separation and its face (ties to the lower
 /// index). Stops at a face that separates by more than speculative_m.

@@ -43,9 +43,12 @@ inline constexpr uint8_t kNoSeparatingAxis = 0xFF;
 struct Manifold {
   Vec3 normal;  ///< unit, from A to B
   uint32_t point_count = 0;
-  /// collide_boxes: the axis that put the boxes farther apart than the
-  /// speculative distance (0-2 A's faces, 3-5 B's, 6 + 3i + j the edge
-  /// pair a_i x b_j), so the next step can try it first.
+  /// The axis that put the shapes farther apart than the speculative
+  /// distance, so the next step can try it first (shapes_still_separated):
+  /// collide_boxes names 0-2 A's faces, 3-5 B's, 6 + 3i + j the edge pair
+  /// a_i x b_j; collide_hulls (hull and box-hull pairs) a face (see
+  /// kHullFaceAxisB). Named in the order of the routine the collide table
+  /// runs for the pair.
   uint8_t separating_axis = kNoSeparatingAxis;
   ManifoldPoint points[kMaxManifoldPoints];
 };
@@ -116,5 +119,13 @@ void collide_shapes(const Shape& shape_a, const ShapePose& pose_a, const Shape& 
 void collide_shapes(const Shape& shape_a, Vec3 position_a, Quat rotation_a, const Shape& shape_b,
                     Vec3 position_b, Quat rotation_b, float speculative_m, Manifold& out,
                     const GeometryStore* store = nullptr);
+
+/// Whether `axis` (a Manifold::separating_axis collide_shapes gave for this
+/// pair of shapes, in this order) alone still puts them farther apart than
+/// speculative_m, computed bit for bit as collide_shapes computes it: then
+/// collide_shapes would find no points. False for an axis it cannot test.
+bool shapes_still_separated(const Shape& shape_a, const ShapePose& pose_a, const Shape& shape_b,
+                            const ShapePose& pose_b, uint8_t axis, float speculative_m,
+                            const GeometryStore* store);
 
 }  // namespace rwd::sim::d3

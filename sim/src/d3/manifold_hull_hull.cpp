@@ -434,14 +434,21 @@ void collide_hulls(const HullView& a, Vec3 position_a, const Mat3& axes_a, const
   const Transform b_to_a = relative(position_a, axes_a, position_b, axes_b);
   const Transform a_to_b = relative(position_b, axes_b, position_a, axes_a);
   Vec3 b_in_a[kHullMaxVertices];
-  Vec3 a_in_b[kHullMaxVertices];
   for (uint32_t v = 0; v < b.vertex_count; ++v) b_in_a[v] = b_to_a.r * b.vertices[v] + b_to_a.t;
-  for (uint32_t v = 0; v < a.vertex_count; ++v) a_in_b[v] = a_to_b.r * a.vertices[v] + a_to_b.t;
-
+  // Most pairs the broadphase hands over are apart, and one of A's faces
+  // shows it: A's vertices in B's frame only once none has.
   const FaceQuery face_a = query_faces(a, b_in_a, b.vertex_count, speculative_m);
-  if (face_a.separation > speculative_m) return;
+  if (face_a.separation > speculative_m) {
+    out.separating_axis = static_cast<uint8_t>(face_a.face);
+    return;
+  }
+  Vec3 a_in_b[kHullMaxVertices];
+  for (uint32_t v = 0; v < a.vertex_count; ++v) a_in_b[v] = a_to_b.r * a.vertices[v] + a_to_b.t;
   const FaceQuery face_b = query_faces(b, a_in_b, a.vertex_count, speculative_m);
-  if (face_b.separation > speculative_m) return;
+  if (face_b.separation > speculative_m) {
+    out.separating_axis = static_cast<uint8_t>(kHullFaceAxisB + face_b.face);
+    return;
+  }
 
   const bool use_b = face_b.separation > face_a.separation + kFaceTolerance;
   const float face_sep =
@@ -464,6 +471,25 @@ void collide_hulls(const HullView& a, Vec3 position_a, const Mat3& axes_a, const
     face_contact(a, face_a.face, b, b_in_a, a_to_b.r, false, position_a, axes_a, speculative_m,
                  out);
   }
+}
+
+bool hull_axis_separates(const HullView& a, Vec3 position_a, const Mat3& axes_a, const HullView& b,
+                         Vec3 position_b, const Mat3& axes_b, uint8_t axis, float speculative_m) {
+  if (!view_fits(a) || !view_fits(b)) return false;
+  // The face's hull, the other, and the other's vertices in the face's
+  // frame, each computed as collide_hulls computes them.
+  const bool of_a = axis < kHullFaceAxisB;
+  const HullView& hull = of_a ? a : b;
+  const HullView& other = of_a ? b : a;
+  const uint32_t face = of_a ? axis : axis - kHullFaceAxisB;
+  if (face >= hull.face_count) return false;
+  const Transform to_hull = of_a ? relative(position_a, axes_a, position_b, axes_b)
+                                 : relative(position_b, axes_b, position_a, axes_a);
+  Vec3 in_hull[kHullMaxVertices];
+  for (uint32_t v = 0; v < other.vertex_count; ++v) {
+    in_hull[v] = to_hull.r * other.vertices[v] + to_hull.t;
+  }
+  return face_separation(hull, face, in_hull, other.vertex_count) > speculative_m;
 }
 
 void collide_hulls(const Hull& a, Vec3 position_a, const Mat3& axes_a, const Hull& b,

@@ -21,6 +21,10 @@ namespace rwd::sim::d3 {
 /// at least zero. The arrays must outlive the view. A view beyond the hull limits
 /// (more than kHullMaxVertices vertices, 124 faces or 186 edges) or without
 /// vertices or faces collides with nothing.
+/// Manifold::separating_axis of a hull pair: A's faces from 0, B's from
+/// here (hulls have at most 124 faces).
+inline constexpr uint8_t kHullFaceAxisB = 128;
+
 struct HullView {
   const Vec3* vertices = nullptr;
   uint32_t vertex_count = 0;
@@ -59,12 +63,20 @@ BoxHull make_box_hull(Vec3 half_extents);
 
 /// Hull A against hull B, each with a world pose (centre = the hull's
 /// mass-frame origin, axes = rotation matrix of its mass frame). Normal from
-/// A to B. Manifold::separating_axis is always kNoSeparatingAxis (hull
-/// features do not fit its numbering).
+/// A to B. When a face puts the hulls farther apart than speculative_m,
+/// Manifold::separating_axis names it: A's face f as f, B's face f as
+/// kHullFaceAxisB + f (an edge pair that separates is not named).
 void collide_hulls(const HullView& a, Vec3 position_a, const Mat3& axes_a, const HullView& b,
                    Vec3 position_b, const Mat3& axes_b, float speculative_m, Manifold& out);
 void collide_hulls(const Hull& a, Vec3 position_a, const Mat3& axes_a, const Hull& b,
                    Vec3 position_b, const Mat3& axes_b, float speculative_m, Manifold& out);
+
+/// Whether `axis` (a face, as collide_hulls names it in separating_axis)
+/// alone puts the hulls farther apart than speculative_m, computed bit for
+/// bit as collide_hulls computes that face: when it does, collide_hulls
+/// finds no points either, so a caller may skip it.
+bool hull_axis_separates(const HullView& a, Vec3 position_a, const Mat3& axes_a, const HullView& b,
+                         Vec3 position_b, const Mat3& axes_b, uint8_t axis, float speculative_m);
 
 /// Box A (centre, rotation matrix, half extents) against hull B: the box is
 /// made a BoxHull on the stack and the pair runs collide_hulls. Normal from

@@ -14,9 +14,10 @@
 //    each other (manifold_reuse.h): resting and settling contacts, most of
 //    a pile or a stack, cost a few quaternion products instead of a SAT and
 //    a clip;
-//  - a box pair that last step's separating axis still keeps apart is
-//    skipped (scratch.separated_keys): it has no points either way, so
-//    this one never changes a result.
+//  - a box or hull pair that last step's separating axis (a face or, for
+//    boxes, an edge pair) still keeps apart is skipped
+//    (scratch.separated_keys): it has no points either way, so this one
+//    never changes a result.
 #include <cmath>
 #include <optional>
 
@@ -206,17 +207,17 @@ uint32_t collide_parts(const WorldState& state, WorldScratch& scratch, uint32_t 
   return count;
 }
 
-// Whether last step's separating axis of a box pair (if it had one) still
-// separates it: then the pair has no points and needs no manifold.
+// Whether last step's separating axis of a pair (if it had one: box and
+// hull pairs) still separates it: then the pair has no points and needs no
+// manifold.
 bool still_separated(const WorldState& state, WorldScratch& scratch, uint32_t a, uint32_t b,
                      uint8_t axis) {
-  const BodyInfo& ia = state.infos[a];
-  const BodyInfo& ib = state.infos[b];
-  if (ia.shape.type != ShapeType::kBox || ib.shape.type != ShapeType::kBox) return false;
-  return box_axis_separates(state.sims[a].position, body_axes(state, scratch, a),
-                            ia.shape.half_extents, state.sims[b].position,
-                            body_axes(state, scratch, b), ib.shape.half_extents, axis,
-                            pair_speculative(state, a, b));
+  const BodySim& sa = state.sims[a];
+  const BodySim& sb = state.sims[b];
+  return shapes_still_separated(
+      state.infos[a].shape, {sa.position, sa.rotation, body_axes(state, scratch, a)},
+      state.infos[b].shape, {sb.position, sb.rotation, body_axes(state, scratch, b)}, axis,
+      pair_speculative(state, a, b), scratch.store);
 }
 
 bool both_resting(const WorldState& state, const ContactRecord& r) {
@@ -237,8 +238,8 @@ constexpr uint32_t kPairGrain = 32;
 
 // Walks this step's pairs beside last step's records (both sorted by key)
 // and plans the step's cache in that order (scratch.pair_plan): records of
-// two resting bodies kept as they are, box pairs last step's axis still
-// separates skipped, every other pair a job. Computes the frames of the
+// two resting bodies kept as they are, box and hull pairs last step's axis
+// still separates skipped, every other pair a job. Computes the frames of the
 // jobs' bodies (and places their compounds' children), so the jobs only
 // read them.
 void plan_pairs(const WorldState& state, WorldScratch& scratch) {

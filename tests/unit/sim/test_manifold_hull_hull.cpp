@@ -67,7 +67,10 @@ TEST(ManifoldHullHull, BoxesAsHullsMatchCollideBoxes) {
     Manifold got;
     collide_hulls(a, c.ca, ra, b, c.cb, rb, kSpec, got);
     expect_same_contact(got, want, c.tol);
-    EXPECT_EQ(got.separating_axis, kNoSeparatingAxis);
+    // A pair that touches names no separating face.
+    if (got.point_count > 0) {
+      EXPECT_EQ(got.separating_axis, kNoSeparatingAxis);
+    }
     EXPECT_EQ(is_edge_contact(got), is_edge_contact(want));
     // Box A through collide_box_hull: the same data, so the same bits.
     Manifold via_box;
