@@ -12,9 +12,14 @@ namespace rwd::sim2d::detail {
 
 namespace {
 
-void load_bodies(const World2DState& state, StepScratch2D& scratch) {
+// Each moving body's solver state, and what a substep's integration adds
+// to it: the same every substep of a step, so worked out once here from the
+// body record instead of read from it every substep.
+void load_bodies(const World2DState& state, StepScratch2D& scratch, W h) {
+  const V2 gravity = v_from(state.config.gravity);
   scratch.bodies.resize(state.bodies.size());
-  for (size_t i = 0; i < state.bodies.size(); ++i) {
+  scratch.moving.clear();
+  for (uint32_t i = 0; i < state.bodies.size(); ++i) {
     const BodyRecord2D& body = state.bodies[i];
     SolverBody2D& sb = scratch.bodies[i];
     sb = {};
@@ -24,33 +29,40 @@ void load_bodies(const World2DState& state, StepScratch2D& scratch) {
     sb.w = body.angular_velocity;
     sb.inv_mass = body.inv_mass;
     sb.inv_inertia = body.inv_inertia;
+    BodyMotion2D m;
+    m.body = i;
+    // Gravity, forces and damping, for dynamic bodies. Damping divides by
+    // (1 + h c), which never reverses a velocity however large c.
+    m.dynamic = body.kind == BodyKind2D::kDynamic;
+    if (m.dynamic) {
+      const W g = w_from(body.gravity_scale);
+      m.dv = vmul_add(vscale(wmul(h, g), gravity), wmul(h, body.inv_mass), body.force);
+      m.dw = wmul(wmul(h, body.inv_inertia), body.torque);
+      if (body.linear_damping > Fx()) {
+        m.linear_keep = winv(kWOne + wmul(h, w_from(body.linear_damping)));
+      }
+      if (body.angular_damping > Fx()) {
+        m.angular_keep = winv(kWOne + wmul(h, w_from(body.angular_damping)));
+      }
+    }
+    scratch.moving.push_back(m);
   }
 }
 
-// Gravity, forces and damping for one substep of dynamic bodies. Damping
-// divides by (1 + h c), which never reverses a velocity however large c.
+// Gravity, forces and damping for one substep of dynamic bodies.
 void integrate_velocities(const World2DState& state, StepScratch2D& scratch, W h) {
-  const V2 gravity = v_from(state.config.gravity);
-  for (size_t i = 0; i < state.bodies.size(); ++i) {
-    const BodyRecord2D& body = state.bodies[i];
-    if (body.kind != BodyKind2D::kDynamic || !is_moving(body)) continue;
-    SolverBody2D& sb = scratch.bodies[i];
-    const W g = w_from(body.gravity_scale);
-    V2 dv = vscale(wmul(h, g), gravity);
-    dv = vmul_add(dv, wmul(h, body.inv_mass), body.force);
+  // At most a quarter turn per substep: beyond that the rotation update
+  // (first order, renormalized) loses its meaning.
+  const W max_w = wmul(kWPi / 4, winv(h));
+  for (const BodyMotion2D& m : scratch.moving) {
+    if (!m.dynamic) continue;
+    SolverBody2D& sb = scratch.bodies[m.body];
     V2 v = sb.v;
     W w = sb.w;
-    if (body.linear_damping > Fx()) {
-      v = vscale(winv(kWOne + wmul(h, w_from(body.linear_damping))), v);
-    }
-    if (body.angular_damping > Fx()) {
-      w = wmul(winv(kWOne + wmul(h, w_from(body.angular_damping))), w);
-    }
-    sb.v = clamp_speed(v + dv, state.config);
-    // At most a quarter turn per substep: beyond that the rotation update
-    // (first order, renormalized) loses its meaning.
-    const W max_w = wmul(kWPi / 4, winv(h));
-    sb.w = wclamp(w + wmul(wmul(h, body.inv_inertia), body.torque), -max_w, max_w);
+    if (m.linear_keep != kWOne) v = vscale(m.linear_keep, v);
+    if (m.angular_keep != kWOne) w = wmul(m.angular_keep, w);
+    sb.v = clamp_speed(v + m.dv, state.config);
+    sb.w = wclamp(w + m.dw, -max_w, max_w);
   }
 }
 
@@ -59,10 +71,8 @@ void integrate_velocities(const World2DState& state, StepScratch2D& scratch, W h
 // cap is what keeps every sum inside the integer range.
 void integrate_positions(const World2DState& state, StepScratch2D& scratch, W h) {
   const W max_w = wmul(kWPi / 4, winv(h));
-  for (size_t i = 0; i < state.bodies.size(); ++i) {
-    const BodyRecord2D& body = state.bodies[i];
-    if (!is_moving(body)) continue;
-    SolverBody2D& sb = scratch.bodies[i];
+  for (const BodyMotion2D& m : scratch.moving) {
+    SolverBody2D& sb = scratch.bodies[m.body];
     sb.v = clamp_speed(sb.v, state.config);
     sb.w = wclamp(sb.w, -max_w, max_w);
     sb.dp += vscale(h, sb.v);
@@ -96,7 +106,7 @@ void solve_step(World2DState& state, StepScratch2D& scratch, StepStats2D& stats)
   const W inv_h = w_int(int64_t{config.tick_hz} * substeps);
   const W push_max = w_from(config.contact_push_max);
 
-  load_bodies(state, scratch);
+  load_bodies(state, scratch, h);
   prepare_joints(state, scratch, h);
   prepare_contacts(state, scratch, h);
   const JointPass2D biased{h, inv_h, true};

@@ -26,6 +26,17 @@ struct SolverBody2D {
   W inv_inertia = 0;
 };
 
+/// A moving body's integration over one substep, the same every substep of
+/// a step (solve_step2d.cpp).
+struct BodyMotion2D {
+  uint32_t body = 0;
+  bool dynamic = false;    ///< gravity, forces and damping apply
+  V2 dv;                   ///< velocity gained: gravity and force
+  W dw = 0;                ///< angular velocity gained: torque
+  W linear_keep = kWOne;   ///< velocity kept through damping
+  W angular_keep = kWOne;  ///< angular velocity kept through damping
+};
+
 /// A spring-damper softening of a rigid constraint (soft step): the
 /// fraction of the position error fed back per second, and how much of
 /// the rigid impulse and of the accumulated impulse the solve applies.
@@ -152,6 +163,7 @@ class StepScratch2D {
   /// (World2D::set_thread_pool); null: the stepping thread. Not owned.
   sim::ThreadPool* pool = nullptr;
   std::vector<SolverBody2D> bodies;  ///< by body index
+  std::vector<BodyMotion2D> moving;  ///< the bodies that move this step, by index
   std::vector<ContactConstraint2D> constraints;
   std::vector<JointConstraint2D> joints;
   /// (a << 32) | b of joined pairs that must not collide, sorted.
