@@ -136,6 +136,28 @@ void walk(const World2DState& state, StepScratch2D& scratch) {
   }
 }
 
+// Sorts the walk's pairs (lo << 32 | hi, lo < hi < body_count) by key.
+// Many pairs: a counting sort by hi, then a stable one by lo, each one pass
+// over the pairs and one over the bodies; few: a comparison sort. Either
+// gives the one sorted order.
+void sort_pairs(std::vector<uint64_t>& pairs, uint32_t body_count, StepScratch2D& scratch) {
+  if (pairs.size() < 256 || pairs.size() < body_count / 4) {
+    std::sort(pairs.begin(), pairs.end());
+    return;
+  }
+  auto& counts = scratch.sort_counts;
+  auto& other = scratch.sort_buffer;
+  other.resize(pairs.size());
+  const auto pass = [&](const std::vector<uint64_t>& from, std::vector<uint64_t>& to, int shift) {
+    counts.assign(body_count + 1, 0);
+    for (const uint64_t key : from) ++counts[((key >> shift) & 0xFFFFFFFFu) + 1];
+    for (uint32_t i = 0; i < body_count; ++i) counts[i + 1] += counts[i];
+    for (const uint64_t key : from) to[counts[(key >> shift) & 0xFFFFFFFFu]++] = key;
+  };
+  pass(pairs, other, 0);   // by hi
+  pass(other, pairs, 32);  // by lo, keeping hi's order
+}
+
 // Refits between rebuilds: boxes that moved loosen the tree a little each
 // step; a rebuild every so often keeps it tight.
 constexpr uint32_t kMaxRefits = 16;
@@ -220,7 +242,7 @@ void find_pairs(const World2DState& state, StepScratch2D& scratch) {
   if (scratch.sweep.size() < 2) return;
   walk(state, scratch);
   auto& pairs = scratch.pairs;
-  std::sort(pairs.begin(), pairs.end());
+  sort_pairs(pairs, static_cast<uint32_t>(state.bodies.size()), scratch);
   // Less the joined pairs: both lists sorted, one merge.
   if (joined.empty()) return;
   size_t kept = 0;

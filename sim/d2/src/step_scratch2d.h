@@ -151,6 +151,8 @@ class StepScratch2D {
   std::vector<TreeNode2D> tree;
   std::vector<uint32_t> item_of_body;  ///< each body's entry in sweep (UINT32_MAX: none)
   uint32_t tree_refits = 0;            ///< steps the tree was refitted since it was built
+  std::vector<uint32_t> sort_counts;   ///< the pair sort's buckets
+  std::vector<uint64_t> sort_buffer;   ///< the pair sort's other half
   std::vector<std::pair<uint32_t, uint32_t>> tree_stack;  ///< node pairs left to walk
   std::vector<uint64_t> pairs;                            ///< (a << 32) | b, a < b, sorted
   /// pairs[k]'s manifold this step (update_contacts2d.cpp).
