@@ -31,7 +31,7 @@ Box2W merge(const Box2W& a, const Box2W& b) {
 // median box centre along the longer side of the centres' spread. Ties go
 // by body index, so the split is one total order's.
 void build(StepScratch2D& scratch, uint32_t node, uint32_t first, uint32_t count) {
-  auto& items = scratch.sweep;
+  auto& items = scratch.broadphase_items;
   Box2W box = items[first].box;
   V2 lo = items[first].box.lower + items[first].box.upper;
   V2 hi = lo;
@@ -51,7 +51,8 @@ void build(StepScratch2D& scratch, uint32_t node, uint32_t first, uint32_t count
   const uint32_t half = count / 2;
   const auto begin = items.begin() + first;
   std::nth_element(
-      begin, begin + half, begin + count, [along_y](const SweepEntry2D& a, const SweepEntry2D& b) {
+      begin, begin + half, begin + count,
+      [along_y](const BroadphaseItem2D& a, const BroadphaseItem2D& b) {
         const W ca = along_y ? a.box.lower.y + a.box.upper.y : a.box.lower.x + a.box.upper.x;
         const W cb = along_y ? b.box.lower.y + b.box.upper.y : b.box.lower.x + b.box.upper.x;
         return ca != cb ? ca < cb : a.index < b.index;
@@ -67,9 +68,9 @@ void build(StepScratch2D& scratch, uint32_t node, uint32_t first, uint32_t count
 class PairCollector {
  public:
   PairCollector(const World2DState& state, StepScratch2D& scratch)
-      : state_(state), items_(scratch.sweep), pairs_(scratch.pairs) {}
+      : state_(state), items_(scratch.broadphase_items), pairs_(scratch.pairs) {}
 
-  void test(const SweepEntry2D& a, const SweepEntry2D& b) {
+  void test(const BroadphaseItem2D& a, const BroadphaseItem2D& b) {
     if (!a.moves && !b.moves) return;
     if (!overlaps(a.box, b.box)) return;
     if (!layers_agree(state_.bodies[a.index], state_.bodies[b.index])) return;
@@ -90,7 +91,7 @@ class PairCollector {
 
  private:
   const World2DState& state_;
-  const std::vector<SweepEntry2D>& items_;
+  const std::vector<BroadphaseItem2D>& items_;
   std::vector<uint64_t>& pairs_;
 };
 
@@ -158,6 +159,15 @@ void sort_pairs(std::vector<uint64_t>& pairs, uint32_t body_count, StepScratch2D
   pass(other, pairs, 32);  // by lo, keeping hi's order
 }
 
+// Body i's entry: its bounds grown by half the speculative distance, and
+// whether it moves this step.
+BroadphaseItem2D item_of(const BodyRecord2D& body, uint32_t i, W margin) {
+  Box2W box = shape_bounds(body.shape, origin_transform(body));
+  box.lower -= V2{margin, margin};
+  box.upper += V2{margin, margin};
+  return {box, i, is_moving(body)};
+}
+
 // Refits between rebuilds: boxes that moved loosen the tree a little each
 // step; a rebuild every so often keeps it tight.
 constexpr uint32_t kMaxRefits = 16;
@@ -169,7 +179,7 @@ constexpr uint32_t kMaxRefits = 16;
 // so which of the two happens never changes a pair.
 void update_tree(const World2DState& state, StepScratch2D& scratch) {
   const W margin = w_from(state.config.speculative_distance) / 2;
-  auto& items = scratch.sweep;
+  auto& items = scratch.broadphase_items;
   auto& slot = scratch.item_of_body;
   bool same = scratch.tree_refits < kMaxRefits && !scratch.tree.empty() &&
               slot.size() == state.bodies.size();
@@ -182,10 +192,7 @@ void update_tree(const World2DState& state, StepScratch2D& scratch) {
       same = false;
       break;
     }
-    Box2W box = shape_bounds(body.shape, origin_transform(body));
-    box.lower -= V2{margin, margin};
-    box.upper += V2{margin, margin};
-    items[k] = {box, i, is_moving(body)};
+    items[k] = item_of(body, i, margin);
     ++live;
   }
   if (same && live == items.size()) {
@@ -210,10 +217,7 @@ void update_tree(const World2DState& state, StepScratch2D& scratch) {
   for (uint32_t i = 0; i < state.bodies.size(); ++i) {
     const BodyRecord2D& body = state.bodies[i];
     if (!(body.flags & kBodyLive) || !(body.flags & kBodyEnabled)) continue;
-    Box2W box = shape_bounds(body.shape, origin_transform(body));
-    box.lower -= V2{margin, margin};
-    box.upper += V2{margin, margin};
-    items.push_back({box, i, is_moving(body)});
+    items.push_back(item_of(body, i, margin));
   }
   scratch.tree.clear();
   scratch.tree_refits = 0;
@@ -239,7 +243,7 @@ void find_pairs(const World2DState& state, StepScratch2D& scratch) {
   std::sort(joined.begin(), joined.end());
 
   scratch.pairs.clear();
-  if (scratch.sweep.size() < 2) return;
+  if (scratch.broadphase_items.size() < 2) return;
   walk(state, scratch);
   auto& pairs = scratch.pairs;
   sort_pairs(pairs, static_cast<uint32_t>(state.bodies.size()), scratch);

@@ -130,7 +130,7 @@ struct JointConstraint2D {
 };
 
 /// Bounds of one body for the broadphase.
-struct SweepEntry2D {
+struct BroadphaseItem2D {
   Box2W box;
   uint32_t index = 0;
   bool moves = false;  ///< moving this step (only pairs with one matter)
@@ -147,9 +147,9 @@ struct TreeNode2D {
 
 class StepScratch2D {
  public:
-  std::vector<SweepEntry2D> sweep;  ///< the broadphase's bodies (the tree's items)
+  std::vector<BroadphaseItem2D> broadphase_items;  ///< the tree's items
   std::vector<TreeNode2D> tree;
-  std::vector<uint32_t> item_of_body;  ///< each body's entry in sweep (UINT32_MAX: none)
+  std::vector<uint32_t> item_of_body;  ///< each body's item (UINT32_MAX: none)
   uint32_t tree_refits = 0;            ///< steps the tree was refitted since it was built
   std::vector<uint32_t> sort_counts;   ///< the pair sort's buckets
   std::vector<uint64_t> sort_buffer;   ///< the pair sort's other half

@@ -47,8 +47,8 @@ void collide_pairs(const World2DState& state, StepScratch2D& scratch, W speculat
   const uint32_t count = static_cast<uint32_t>(scratch.pairs.size());
   scratch.manifolds.resize(count);
   // Polygons and capsules are widened to W once per body, not once per
-  // pair: a box in a stack meets four or more neighbours.
-  // Only the bodies in a pair: a sleeping heap's bodies are in none.
+  // pair (a box in a stack meets four or more neighbours), and only the
+  // bodies in a pair (a sleeping heap's are in none).
   auto& wide = scratch.wide_shapes;
   auto& widened = scratch.widened;
   wide.resize(state.bodies.size());

@@ -90,6 +90,11 @@ Transform relative(Vec3 p_to, const Mat3& r_to, Vec3 p_from, const Mat3& r_from)
           mul_transpose(r_to, p_from - p_to)};
 }
 
+// The hull's vertices moved by xf, into out (vertex_count of them).
+void move_vertices(const HullView& hull, const Transform& xf, Vec3* out) {
+  for (uint32_t v = 0; v < hull.vertex_count; ++v) out[v] = xf.r * hull.vertices[v] + xf.t;
+}
+
 bool view_fits(const HullView& h) {
   return h.vertex_count > 0 && h.vertex_count <= kHullMaxVertices && h.face_count > 0 &&
          h.face_count <= kMaxFaces && h.edge_count <= kMaxEdges;
@@ -432,9 +437,8 @@ void collide_hulls(const HullView& a, Vec3 position_a, const Mat3& axes_a, const
   out.separating_axis = kNoSeparatingAxis;
   if (!view_fits(a) || !view_fits(b)) return;
   const Transform b_to_a = relative(position_a, axes_a, position_b, axes_b);
-  const Transform a_to_b = relative(position_b, axes_b, position_a, axes_a);
   Vec3 b_in_a[kHullMaxVertices];
-  for (uint32_t v = 0; v < b.vertex_count; ++v) b_in_a[v] = b_to_a.r * b.vertices[v] + b_to_a.t;
+  move_vertices(b, b_to_a, b_in_a);
   // Most pairs the broadphase hands over are apart, and one of A's faces
   // shows it: A's vertices in B's frame only once none has.
   const FaceQuery face_a = query_faces(a, b_in_a, b.vertex_count, speculative_m);
@@ -442,8 +446,9 @@ void collide_hulls(const HullView& a, Vec3 position_a, const Mat3& axes_a, const
     out.separating_axis = static_cast<uint8_t>(face_a.face);
     return;
   }
+  const Transform a_to_b = relative(position_b, axes_b, position_a, axes_a);
   Vec3 a_in_b[kHullMaxVertices];
-  for (uint32_t v = 0; v < a.vertex_count; ++v) a_in_b[v] = a_to_b.r * a.vertices[v] + a_to_b.t;
+  move_vertices(a, a_to_b, a_in_b);
   const FaceQuery face_b = query_faces(b, a_in_b, a.vertex_count, speculative_m);
   if (face_b.separation > speculative_m) {
     out.separating_axis = static_cast<uint8_t>(kHullFaceAxisB + face_b.face);
@@ -486,9 +491,7 @@ bool hull_axis_separates(const HullView& a, Vec3 position_a, const Mat3& axes_a,
   const Transform to_hull = of_a ? relative(position_a, axes_a, position_b, axes_b)
                                  : relative(position_b, axes_b, position_a, axes_a);
   Vec3 in_hull[kHullMaxVertices];
-  for (uint32_t v = 0; v < other.vertex_count; ++v) {
-    in_hull[v] = to_hull.r * other.vertices[v] + to_hull.t;
-  }
+  move_vertices(other, to_hull, in_hull);
   return face_separation(hull, face, in_hull, other.vertex_count) > speculative_m;
 }
 
