@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 
 #include "d3/contact_lanes.h"
 #include "d3/step_threads.h"
@@ -20,6 +21,7 @@ namespace {
 struct HalfBatch {
   using F = FloatW;
   static constexpr int kWidth = kLanes;
+  static constexpr bool kSettles = false;
   ContactBatch* batch;
   int base;  ///< 0 or kLanes
   static F splat(float x) { return d3::splat(x); }
@@ -89,6 +91,8 @@ inline Float1 select(Mask1 m, Float1 a, Float1 b) {
 struct OneLane {
   using F = Float1;
   static constexpr int kWidth = 1;
+  static constexpr bool kSettles = true;
+  static uint32_t bits(F v) { return std::bit_cast<uint32_t>(v.v); }
   ContactBatch* batch;
   int lane;
   static F splat(float x) { return {x}; }

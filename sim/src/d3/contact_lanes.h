@@ -10,6 +10,8 @@
 // An access type A says where the lanes come from:
 //   A::F                  the lane type (+ - * /, < >, select, sqrt by ADL)
 //   A::kWidth             lanes
+//   A::kSettles           the normal block's sweeps stop once one changes
+//                         nothing (then A::bits(v): a lane's float's bits)
 //   A::splat(x)           x in every lane
 //   A::from(p), A::to(p)  kWidth contiguous floats
 //   acc.ld(field)         the access's lanes of a [kBatchLanes] field
@@ -167,12 +169,40 @@ template <uint32_t N, class A>
   }
 }
 
+// Whether a sweep that started from `total_before` and `residual_before`
+// left both exactly as they were (bit for bit), with no impulse of -0. Every
+// later sweep then repeats it exactly and changes nothing either, so the
+// sweeps can stop: a sweep step moves an impulse by -gain * residual, and
+// with every impulse unchanged each change was +0 (x - x), which leaves
+// every residual's bits as they were unless a residual was -0 (the check
+// sees that). The later sweeps' gains differ from the first's only for a
+// lone point, whose later gain is 0: an impulse x less 0 * residual (+0 or
+// -0) is x for every x but -0, which the check excludes. Only the one-lane
+// access (a small world's batches) looks, where the test is a few scalar
+// compares against a sweep's N * N products; the wide lanes run every sweep
+// (all their lanes would have to settle at once).
+template <uint32_t N, class A>
+[[gnu::always_inline]] inline bool sweep_settled(
+    const typename A::F (&total_before)[kMaxManifoldPoints],
+    const typename A::F (&residual_before)[kMaxManifoldPoints],
+    const typename A::F (&residual)[kMaxManifoldPoints],
+    const typename A::F (&total)[kMaxManifoldPoints]) {
+  bool settled = true;
+  for (uint32_t p = 0; p < N; ++p) {
+    const uint32_t t = A::bits(total[p]);
+    settled = settled && t == A::bits(total_before[p]) && t != 0x80000000u &&
+              A::bits(residual[p]) == A::bits(residual_before[p]);
+  }
+  return settled;
+}
+
 // Projected Gauss-Seidel sweeps over each lane's manifold normal system
 // with the bodies held: impulse total[p] (accumulated, >= 0) moves so the
 // normal velocity residual[p] reaches zero, the first sweep scaled by
 // first_gain[p] and the later ones by later_gain[p]. The residual is kept up
 // to date column by column, so no body is touched; the caller applies the
-// change once.
+// change once. The one-lane access stops once a sweep changes nothing
+// (sweep_settled), with the same result.
 template <uint32_t N, class A>
 void sweep_normal_block(const A& acc, const ContactBatch& batch,
                         const typename A::F (&first_gain)[kMaxManifoldPoints],
@@ -180,8 +210,21 @@ void sweep_normal_block(const A& acc, const ContactBatch& batch,
                         typename A::F (&residual)[kMaxManifoldPoints],
                         typename A::F (&total)[kMaxManifoldPoints]) {
   for (int sweep = 0; sweep < kBlockSweeps<N>; ++sweep) {
-    for (uint32_t p = 0; p < N; ++p) {
-      sweep_step<N>(acc, batch, p, sweep == 0 ? first_gain[p] : later_gain[p], residual, total);
+    if constexpr (A::kSettles && kBlockSweeps < N >> 1) {
+      typename A::F total_before[kMaxManifoldPoints];
+      typename A::F residual_before[kMaxManifoldPoints];
+      for (uint32_t p = 0; p < N; ++p) {
+        total_before[p] = total[p];
+        residual_before[p] = residual[p];
+      }
+      for (uint32_t p = 0; p < N; ++p) {
+        sweep_step<N>(acc, batch, p, sweep == 0 ? first_gain[p] : later_gain[p], residual, total);
+      }
+      if (sweep_settled<N, A>(total_before, residual_before, residual, total)) return;
+    } else {
+      for (uint32_t p = 0; p < N; ++p) {
+        sweep_step<N>(acc, batch, p, sweep == 0 ? first_gain[p] : later_gain[p], residual, total);
+      }
     }
   }
 }

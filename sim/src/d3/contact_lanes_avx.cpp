@@ -65,6 +65,7 @@ inline FloatW8 select(MaskW8 m, FloatW8 a, FloatW8 b) {
 struct FullBatch {
   using F = FloatW8;
   static constexpr int kWidth = kBatchLanes;
+  static constexpr bool kSettles = false;
   ContactBatch* batch;
   static F splat(float x) { return {_mm256_set1_ps(x)}; }
   static F from(const float* p) { return {_mm256_loadu_ps(p)}; }
