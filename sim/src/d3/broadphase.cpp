@@ -90,8 +90,11 @@ void Broadphase::rebuild_trees(const WorldState& state) {
       build_bodies_.push_back(i);
       build_boxes_.push_back(exact_bounds(state, i));
     }
-    AabbTree& tree = statics ? static_tree_ : sleeping_tree_;
-    tree.build(build_boxes_, build_bodies_, build_proxies_);
+    if (statics) {
+      static_tree_.build(build_boxes_, build_bodies_);
+    } else {
+      sleeping_tree_.build(build_boxes_, build_bodies_, build_proxies_);
+    }
   }
   sleeping_proxy_.assign(n, AabbTree::kNull);
   for (size_t k = 0; k < build_bodies_.size(); ++k) {
@@ -308,7 +311,7 @@ void Broadphase::prepare_queries(const WorldState& state, uint64_t pose_serial) 
     build_bodies_.push_back(i);
     build_boxes_.push_back(exact_bounds(state, i));
   }
-  awake_tree_.build(build_boxes_, build_bodies_, build_proxies_);
+  awake_tree_.build(build_boxes_, build_bodies_);
   query_serial_ = pose_serial;
 }
 

@@ -9,11 +9,11 @@
 //     so the sweep reads memory in sequence;
 //   - sleeping bodies live in an AABB tree they enter when they fall asleep
 //     and leave when they wake;
-//   - static bodies live in a tree built in bulk and rebuilt only when the
-//     world is edited;
-//   - for queries, the awake bodies also get a tree over their exact
-//     bounds, built the first time a query needs it after they moved, so a
-//     world nobody queries never pays for it.
+//   - static bodies live in a four-wide tree (wide_box_tree.h) built in
+//     bulk and rebuilt only when the world is edited;
+//   - for queries, the awake bodies also get a four-wide tree over their
+//     exact bounds, built the first time a query needs it after they
+//     moved, so a world nobody queries never pays for it.
 // Resting and static geometry costs nothing per step, and a query through
 // a level of 10,000 static boxes walks a tree instead of a list.
 //
@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "d3/aabb_tree.h"
+#include "d3/wide_box_tree.h"
 #include "rewind/sim/world_state.h"
 
 namespace rwd::sim::d3 {
@@ -121,9 +122,9 @@ class Broadphase {
   void sort_pairs(std::vector<BodyPair>& pairs, uint32_t body_count);
 
   // trees of exact bounds
-  AabbTree static_tree_;
+  WideBoxTree static_tree_;
   AabbTree sleeping_tree_;
-  AabbTree awake_tree_;                   ///< queries only
+  WideBoxTree awake_tree_;                ///< queries only
   std::vector<uint32_t> sleeping_proxy_;  ///< by body index; AabbTree::kNull if none
   bool edited_ = true;
   uint64_t query_serial_ = kNoSerial;   ///< pose serial the awake tree was built at

@@ -1,0 +1,247 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// A four-wide bounding volume hierarchy, built in bulk, for boxes that
+// change rarely or all at once: the broadphase's static bodies and the
+// awake bodies' query tree. Each node keeps its up to four children's
+// boxes side by side, so four lanes (wide_float.h) test a box, a ray or a
+// sweep against all of them at once, and a walk passes about half as many
+// levels as in a binary tree. Queries through a level of static geometry
+// spend nearly all their time walking, so this is where they get faster.
+//
+// It answers the bulk questions of AabbTree with the same tests, lane by
+// lane and operation by operation (SegmentSlabs, overlaps), so a leaf is
+// visited by exactly the rule it is there: the set of leaves a box, ray or
+// sweep query visits is the same, and a nearest-first walk visits every
+// leaf whose box the segment enters within the reach. Only the order of
+// the visits differs, which no caller depends on. Like AabbTree, it is
+// working memory: nothing that reaches the state depends on its shape.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "d3/aabb_tree.h"
+#include "d3/wide_float.h"
+
+namespace rwd::sim::d3 {
+
+class WideBoxTree {
+ public:
+  /// Removes every leaf; capacity is kept.
+  void clear();
+
+  /// Replaces the tree by one built top-down over `boxes[i]` for
+  /// `bodies[i]` (bodies below 2^31; same length).
+  void build(std::span<const Aabb> boxes, std::span<const uint32_t> bodies);
+
+  uint32_t leaf_count() const { return leaves_; }
+
+  /// Calls visit(body) for every leaf whose box overlaps `box` (in tree
+  /// order, which callers must not depend on).
+  template <typename Visit>
+  void query(const Aabb& box, Visit&& visit) const;
+
+  /// Calls visit(body) for every leaf whose box the segment origin +
+  /// t * dir, 0 <= t <= max_t, touches (SegmentSlabs::hits).
+  template <typename Visit>
+  void ray_query(Vec3 origin, Vec3 dir, float max_t, Visit&& visit) const;
+
+  /// Calls visit(body) for every leaf whose box the box `start` touches on
+  /// its way along `translation` (as AabbTree::sweep_query).
+  template <typename Visit>
+  void sweep_query(const Aabb& start, Vec3 translation, Visit&& visit) const;
+
+  /// For the closest hit, as AabbTree::ray_query_nearest: nearer children
+  /// first, every node the segment enters only past the padded `reach`
+  /// skipped, `reach` shortened by visit(body) as it finds hits.
+  template <typename Visit>
+  void ray_query_nearest(Vec3 origin, Vec3 dir, float& reach, Visit&& visit) const;
+  /// The same for a box moving along `translation`, as
+  /// AabbTree::sweep_query_nearest.
+  template <typename Visit>
+  void sweep_query_nearest(const Aabb& start, Vec3 translation, float& reach, Visit&& visit) const;
+
+  /// Every leaf appears once, every node has one to four children, and an
+  /// inner child's box bounds the boxes of its own children; for tests.
+  bool valid() const;
+
+ private:
+  static constexpr uint32_t kNull = 0xFFFFFFFFu;
+  /// A child that is a leaf: this bit and the body.
+  static constexpr uint32_t kLeaf = 0x80000000u;
+  /// Median splits halve each range twice per level, so a tree of 2^31
+  /// leaves is 16 levels deep, and a depth-first walk holds at most three
+  /// siblings per level plus four.
+  static constexpr uint32_t kStackSize = 16 * 3 + 8;
+
+  struct alignas(64) Node {
+    float lower[3][kLanes];  ///< [axis][child]
+    float upper[3][kLanes];
+    uint32_t child[kLanes];  ///< a node's index, or kLeaf | body
+    uint32_t count = 0;      ///< children used, from the first
+  };
+
+  struct Entry {
+    uint32_t child;  ///< as Node::child
+    float t;         ///< where the segment enters the child's box
+  };
+
+  uint32_t build_range(uint32_t* items, uint32_t count, Aabb& bounds);
+  bool valid_node(uint32_t node, const Aabb& bounds, std::vector<uint32_t>& seen) const;
+
+  // Bit k set for each child k of `node` whose box overlaps `box`.
+  static uint32_t overlap_bits(const Node& node, const Aabb& box);
+  // Bit k set for each child k of `node` whose box, grown by `grow` when
+  // kGrow, the segment enters within max_t; entry[k] is where.
+  template <bool kGrow>
+  static uint32_t enter_bits(const Node& node, const SegmentSlabs& slabs, Vec3 grow, float max_t,
+                             float (&entry)[kLanes]);
+
+  template <typename Accept, typename Visit>
+  void walk(Accept&& accept, Visit&& visit) const;
+  template <bool kGrow, typename Visit>
+  void nearest_walk(const SegmentSlabs& slabs, Vec3 grow, float& reach, Visit&& visit) const;
+
+  std::vector<Node> nodes_;
+  std::vector<uint32_t> build_items_;
+  std::vector<Aabb> build_boxes_;
+  std::vector<uint32_t> build_bodies_;
+  uint32_t root_ = kNull;
+  uint32_t leaves_ = 0;
+};
+
+inline uint32_t WideBoxTree::overlap_bits(const Node& node, const Aabb& box) {
+  // overlaps(child, box), lane by lane.
+  const MaskW hit =
+      (splat(box.upper.x) >= load(node.lower[0])) & (load(node.upper[0]) >= splat(box.lower.x)) &
+      (splat(box.upper.y) >= load(node.lower[1])) & (load(node.upper[1]) >= splat(box.lower.y)) &
+      (splat(box.upper.z) >= load(node.lower[2])) & (load(node.upper[2]) >= splat(box.lower.z));
+  return lane_bits(hit) & ((1u << node.count) - 1u);
+}
+
+template <bool kGrow>
+inline uint32_t WideBoxTree::enter_bits(const Node& node, const SegmentSlabs& slabs, Vec3 grow,
+                                        float max_t, float (&entry)[kLanes]) {
+  // SegmentSlabs::enters, lane by lane: std::min(a, b) is b < a ? b : a and
+  // std::max(a, b) is a < b ? b : a, so the selects below give the same
+  // floats. An axis the segment runs parallel to fails a lane whose box it
+  // passes outside by dropping t_hi below t_lo (which never falls below 0).
+  FloatW t_lo = splat(0.0f);
+  FloatW t_hi = splat(max_t);
+  for (int i = 0; i < 3; ++i) {
+    FloatW lo = load(node.lower[i]);
+    FloatW hi = load(node.upper[i]);
+    if constexpr (kGrow) {
+      lo = lo - splat(component(grow, i));
+      hi = hi + splat(component(grow, i));
+    }
+    const FloatW o = splat(component(slabs.origin, i));
+    if (slabs.any_parallel && slabs.parallel[i]) {
+      t_hi = select((o < lo) | (o > hi), splat(-1.0f), t_hi);
+      continue;
+    }
+    const FloatW inv = splat(component(slabs.inv_dir, i));
+    const FloatW t0 = (lo - o) * inv;
+    const FloatW t1 = (hi - o) * inv;
+    const FloatW near = select(t1 < t0, t1, t0);
+    const FloatW far = select(t0 < t1, t1, t0);
+    t_lo = select(t_lo < near, near, t_lo);
+    t_hi = select(far < t_hi, far, t_hi);
+  }
+  store(entry, t_lo);
+  return lane_bits(t_hi >= t_lo) & ((1u << node.count) - 1u);
+}
+
+template <typename Accept, typename Visit>
+void WideBoxTree::walk(Accept&& accept, Visit&& visit) const {
+  if (root_ == kNull) return;
+  uint32_t stack[kStackSize];
+  uint32_t top = 0;
+  stack[top++] = root_;
+  while (top > 0) {
+    const Node& node = nodes_[stack[--top]];
+    uint32_t bits = accept(node);
+    while (bits != 0) {
+      const uint32_t child = node.child[__builtin_ctz(bits)];
+      bits &= bits - 1u;
+      if (child & kLeaf) {
+        visit(child & ~kLeaf);
+      } else {
+        stack[top++] = child;
+      }
+    }
+  }
+}
+
+template <typename Visit>
+void WideBoxTree::query(const Aabb& box, Visit&& visit) const {
+  walk([&box](const Node& node) { return overlap_bits(node, box); }, visit);
+}
+
+template <typename Visit>
+void WideBoxTree::ray_query(Vec3 origin, Vec3 dir, float max_t, Visit&& visit) const {
+  const SegmentSlabs slabs(origin, dir);
+  float entry[kLanes];
+  walk([&](const Node& node) { return enter_bits<false>(node, slabs, {}, max_t, entry); }, visit);
+}
+
+template <typename Visit>
+void WideBoxTree::sweep_query(const Aabb& start, Vec3 translation, Visit&& visit) const {
+  const Vec3 center = (start.lower + start.upper) * 0.5f;
+  const Vec3 half = (start.upper - start.lower) * 0.5f;
+  const SegmentSlabs slabs(center, translation);
+  float entry[kLanes];
+  walk([&](const Node& node) { return enter_bits<true>(node, slabs, half, 1.0f, entry); }, visit);
+}
+
+template <bool kGrow, typename Visit>
+void WideBoxTree::nearest_walk(const SegmentSlabs& slabs, Vec3 grow, float& reach,
+                               Visit&& visit) const {
+  if (root_ == kNull) return;
+  // The skip margin of AabbTree::nearest_walk.
+  const auto padded = [](float t) { return t + 1e-3f * t + 1e-3f; };
+  Entry stack[kStackSize];
+  uint32_t top = 0;
+  stack[top++] = {root_, 0.0f};
+  while (top > 0) {
+    const Entry e = stack[--top];
+    if (e.t > padded(reach)) continue;  // the reach shrank since it was pushed
+    if (e.child & kLeaf) {
+      visit(e.child & ~kLeaf);
+      continue;
+    }
+    const Node& node = nodes_[e.child];
+    float entry[kLanes];
+    uint32_t bits = enter_bits<kGrow>(node, slabs, grow, padded(reach), entry);
+    // The children entered, farthest first onto the stack, so the nearest
+    // is walked first.
+    Entry found[kLanes];
+    uint32_t count = 0;
+    while (bits != 0) {
+      const uint32_t k = static_cast<uint32_t>(__builtin_ctz(bits));
+      bits &= bits - 1u;
+      Entry next{node.child[k], entry[k]};
+      uint32_t slot = count++;
+      while (slot > 0 && found[slot - 1].t < next.t) {
+        found[slot] = found[slot - 1];
+        --slot;
+      }
+      found[slot] = next;
+    }
+    for (uint32_t k = 0; k < count; ++k) stack[top++] = found[k];
+  }
+}
+
+template <typename Visit>
+void WideBoxTree::ray_query_nearest(Vec3 origin, Vec3 dir, float& reach, Visit&& visit) const {
+  nearest_walk<false>(SegmentSlabs(origin, dir), {}, reach, visit);
+}
+
+template <typename Visit>
+void WideBoxTree::sweep_query_nearest(const Aabb& start, Vec3 translation, float& reach,
+                                      Visit&& visit) const {
+  const Vec3 center = (start.lower + start.upper) * 0.5f;
+  const Vec3 half = (start.upper - start.lower) * 0.5f;
+  nearest_walk<true>(SegmentSlabs(center, translation), half, reach, visit);
+}
+
+}  // namespace rwd::sim::d3
