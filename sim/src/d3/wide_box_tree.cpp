@@ -19,6 +19,12 @@ Aabb merge(const Aabb& a, const Aabb& b) {
            std::max(a.upper.z, b.upper.z)}};
 }
 
+// Half a box's surface area.
+float half_area(const Aabb& box) {
+  const Vec3 d = box.upper - box.lower;
+  return d.x * d.y + d.y * d.z + d.z * d.x;
+}
+
 }  // namespace
 
 void WideBoxTree::clear() {
@@ -39,39 +45,93 @@ void WideBoxTree::build(std::span<const Aabb> boxes, std::span<const uint32_t> b
   nodes_.reserve(count / 3 + 2);
   leaves_ = count;
   Aabb bounds;
-  root_ = build_range(build_items_.data(), count, bounds);
+  root_ = build_range(build_items_.data(), count, 0, bounds);
 }
 
-// A node over items[0, count), count >= 1. Four or fewer become its leaves;
-// more are cut at the median of their centres along the widest axis of
-// those centres (ties by body, so the cut is a function of the input), and
-// each half again along its own widest axis, into four children.
-uint32_t WideBoxTree::build_range(uint32_t* items, uint32_t count, Aabb& bounds) {
-  const auto split = [this](uint32_t* first, uint32_t n) {
-    float lo[3];
-    float hi[3];
+// Cuts items[0, n), n >= 2, in two and returns the size of the first part
+// (1 to n - 1). The cut is the one of kBins - 1 planes across the spread of
+// the centres, on any axis, that least costs a ray walking the two parts
+// (the surface area heuristic: each part's area times its leaves), so
+// parts hug the geometry and a ray passes few boxes. With `median`, or
+// where every centre coincides on every axis, it is at the median of the
+// centres along their widest spread. A function of the input alone (ties
+// by body).
+uint32_t WideBoxTree::split(uint32_t* items, uint32_t n, bool median) {
+  constexpr int kBins = 12;
+  float lo[3];
+  float hi[3];
+  for (int axis = 0; axis < 3; ++axis) lo[axis] = hi[axis] = centre(build_boxes_[items[0]], axis);
+  for (uint32_t i = 1; i < n; ++i) {
     for (int axis = 0; axis < 3; ++axis) {
-      lo[axis] = hi[axis] = centre(build_boxes_[first[0]], axis);
+      const float c = centre(build_boxes_[items[i]], axis);
+      lo[axis] = std::min(lo[axis], c);
+      hi[axis] = std::max(hi[axis], c);
     }
-    for (uint32_t i = 1; i < n; ++i) {
-      for (int axis = 0; axis < 3; ++axis) {
-        const float c = centre(build_boxes_[first[i]], axis);
-        lo[axis] = std::min(lo[axis], c);
-        hi[axis] = std::max(hi[axis], c);
+  }
+  const auto bin_of = [&](uint32_t item, int axis, float scale) {
+    const float c = centre(build_boxes_[item], axis);
+    return std::min(kBins - 1, static_cast<int>((c - lo[axis]) * scale));
+  };
+  int best_axis = -1;
+  int best_plane = 0;
+  float best_cost = std::numeric_limits<float>::infinity();
+  for (int axis = 0; axis < 3 && !median; ++axis) {
+    const float extent = hi[axis] - lo[axis];
+    if (!(extent > 0.0f)) continue;
+    const float scale = static_cast<float>(kBins) / extent;
+    uint32_t counts[kBins] = {};
+    Aabb boxes[kBins];
+    for (uint32_t i = 0; i < n; ++i) {
+      const int b = bin_of(items[i], axis, scale);
+      boxes[b] =
+          counts[b]++ == 0 ? build_boxes_[items[i]] : merge(boxes[b], build_boxes_[items[i]]);
+    }
+    // Areas and counts left of each plane, then right of it.
+    float left_cost[kBins - 1];
+    Aabb left;
+    uint32_t left_count = 0;
+    for (int b = 0; b < kBins - 1; ++b) {
+      if (counts[b] != 0) left = left_count == 0 ? boxes[b] : merge(left, boxes[b]);
+      left_count += counts[b];
+      left_cost[b] = left_count == 0 ? -1.0f : half_area(left) * static_cast<float>(left_count);
+    }
+    Aabb right;
+    uint32_t right_count = 0;
+    for (int b = kBins - 1; b > 0; --b) {
+      if (counts[b] != 0) right = right_count == 0 ? boxes[b] : merge(right, boxes[b]);
+      right_count += counts[b];
+      if (right_count == 0 || left_cost[b - 1] < 0.0f) continue;
+      const float cost = left_cost[b - 1] + half_area(right) * static_cast<float>(right_count);
+      if (cost < best_cost) {
+        best_cost = cost;
+        best_axis = axis;
+        best_plane = b;
       }
     }
+  }
+  if (best_axis < 0) {
+    // The median of the centres along their widest spread.
     int axis = 0;
     if (hi[1] - lo[1] > hi[axis] - lo[axis]) axis = 1;
     if (hi[2] - lo[2] > hi[axis] - lo[axis]) axis = 2;
     const uint32_t half = n / 2;
-    std::nth_element(first, first + half, first + n, [&](uint32_t l, uint32_t r) {
+    std::nth_element(items, items + half, items + n, [&](uint32_t l, uint32_t r) {
       const float cl = centre(build_boxes_[l], axis);
       const float cr = centre(build_boxes_[r], axis);
       return cl < cr || (cl == cr && build_bodies_[l] < build_bodies_[r]);
     });
     return half;
-  };
+  }
+  const float scale = static_cast<float>(kBins) / (hi[best_axis] - lo[best_axis]);
+  uint32_t* middle = std::partition(
+      items, items + n, [&](uint32_t item) { return bin_of(item, best_axis, scale) < best_plane; });
+  return static_cast<uint32_t>(middle - items);
+}
 
+// A node over items[0, count), count >= 1. Four or fewer become its leaves;
+// more are cut in two (split) and each part in two again, into four
+// children.
+uint32_t WideBoxTree::build_range(uint32_t* items, uint32_t count, uint32_t depth, Aabb& bounds) {
   uint32_t* group[kLanes];
   uint32_t size[kLanes];
   uint32_t groups = 0;
@@ -82,18 +142,24 @@ uint32_t WideBoxTree::build_range(uint32_t* items, uint32_t count, Aabb& bounds)
     }
     groups = count;
   } else {
-    const uint32_t half = split(items, count);
-    const uint32_t first_quarter = split(items, half);
-    const uint32_t third_quarter = split(items + half, count - half);
+    // Two cuts and a cut of each part: four children. A part of one leaf
+    // is not cut again, and past kCostDepth levels the cuts are medians
+    // (balanced), so the depth stays under kMaxDepth.
+    const bool median = depth >= kCostDepth;
     group[0] = items;
-    size[0] = first_quarter;
-    group[1] = items + first_quarter;
-    size[1] = half - first_quarter;
-    group[2] = items + half;
-    size[2] = third_quarter;
-    group[3] = items + half + third_quarter;
-    size[3] = count - half - third_quarter;
-    groups = kLanes;
+    size[0] = count;
+    groups = 1;
+    for (uint32_t round = 0; round < 2; ++round) {
+      const uint32_t parts = groups;
+      for (uint32_t k = 0; k < parts; ++k) {
+        if (size[k] < 2) continue;
+        const uint32_t first = split(group[k], size[k], median);
+        group[groups] = group[k] + first;
+        size[groups] = size[k] - first;
+        size[k] = first;
+        ++groups;
+      }
+    }
   }
 
   const uint32_t index = static_cast<uint32_t>(nodes_.size());
@@ -106,7 +172,7 @@ uint32_t WideBoxTree::build_range(uint32_t* items, uint32_t count, Aabb& bounds)
       boxes[k] = build_boxes_[group[k][0]];
     } else {
       // nodes_ may grow here: the node is written after.
-      children[k] = build_range(group[k], size[k], boxes[k]);
+      children[k] = build_range(group[k], size[k], depth + 1, boxes[k]);
     }
   }
   Node& node = nodes_[index];
@@ -130,15 +196,15 @@ bool WideBoxTree::valid() const {
   std::vector<uint32_t> seen;
   const float inf = std::numeric_limits<float>::infinity();
   const Aabb everything{{-inf, -inf, -inf}, {inf, inf, inf}};
-  if (!valid_node(root_, everything, seen)) return false;
+  if (!valid_node(root_, everything, 0, seen)) return false;
   if (seen.size() != leaves_) return false;
   std::sort(seen.begin(), seen.end());
   return std::adjacent_find(seen.begin(), seen.end()) == seen.end();
 }
 
-bool WideBoxTree::valid_node(uint32_t index, const Aabb& bounds,
+bool WideBoxTree::valid_node(uint32_t index, const Aabb& bounds, uint32_t depth,
                              std::vector<uint32_t>& seen) const {
-  if (index >= nodes_.size()) return false;
+  if (index >= nodes_.size() || depth > kMaxDepth) return false;
   const Node& node = nodes_[index];
   if (node.count == 0 || node.count > kLanes) return false;
   for (uint32_t k = 0; k < node.count; ++k) {
@@ -148,7 +214,7 @@ bool WideBoxTree::valid_node(uint32_t index, const Aabb& bounds,
     const uint32_t child = node.child[k];
     if (child & kLeaf) {
       seen.push_back(child & ~kLeaf);
-    } else if (child <= index || !valid_node(child, box, seen)) {
+    } else if (child <= index || !valid_node(child, box, depth + 1, seen)) {
       return false;
     }
   }

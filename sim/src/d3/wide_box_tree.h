@@ -60,18 +60,22 @@ class WideBoxTree {
   template <typename Visit>
   void sweep_query_nearest(const Aabb& start, Vec3 translation, float& reach, Visit&& visit) const;
 
-  /// Every leaf appears once, every node has one to four children, and an
-  /// inner child's box bounds the boxes of its own children; for tests.
+  /// Every leaf appears once, every node has one to four children, an
+  /// inner child's box bounds the boxes of its own children, and no path
+  /// is longer than the walks' stacks allow; for tests.
   bool valid() const;
 
  private:
   static constexpr uint32_t kNull = 0xFFFFFFFFu;
   /// A child that is a leaf: this bit and the body.
   static constexpr uint32_t kLeaf = 0x80000000u;
-  /// Median splits halve each range twice per level, so a tree of 2^31
-  /// leaves is 16 levels deep, and a depth-first walk holds at most three
-  /// siblings per level plus four.
-  static constexpr uint32_t kStackSize = 16 * 3 + 8;
+  /// Levels cut by the surface area heuristic, which may cut unevenly;
+  /// below them cuts are at medians, which quarter a range per level, so
+  /// a tree of up to 2^31 leaves is at most kMaxDepth levels deep, and a
+  /// depth-first walk holds at most three siblings per level plus four.
+  static constexpr uint32_t kCostDepth = 24;
+  static constexpr uint32_t kMaxDepth = kCostDepth + 16;
+  static constexpr uint32_t kStackSize = (kMaxDepth + 1) * 3 + 4;
 
   struct alignas(64) Node {
     float lower[3][kLanes];  ///< [axis][child]
@@ -85,8 +89,10 @@ class WideBoxTree {
     float t;         ///< where the segment enters the child's box
   };
 
-  uint32_t build_range(uint32_t* items, uint32_t count, Aabb& bounds);
-  bool valid_node(uint32_t node, const Aabb& bounds, std::vector<uint32_t>& seen) const;
+  uint32_t split(uint32_t* items, uint32_t n, bool median);
+  uint32_t build_range(uint32_t* items, uint32_t count, uint32_t depth, Aabb& bounds);
+  bool valid_node(uint32_t node, const Aabb& bounds, uint32_t depth,
+                  std::vector<uint32_t>& seen) const;
 
   // Bit k set for each child k of `node` whose box overlaps `box`.
   static uint32_t overlap_bits(const Node& node, const Aabb& box);

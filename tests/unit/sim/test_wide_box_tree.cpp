@@ -84,6 +84,29 @@ TEST(WideBoxTree, BuildsValidTreesOfAnySize) {
   EXPECT_EQ(tree.leaf_count(), 0u);
 }
 
+TEST(WideBoxTree, LopsidedAndCoincidentBoxesStayWithinTheWalksDepth) {
+  // Boxes ever farther apart along a line (each cut by area leaves one box
+  // on its own) and boxes all in one place (no plane separates them).
+  std::vector<Aabb> line;
+  std::vector<Aabb> heap;
+  std::vector<uint32_t> bodies;
+  float x = 0.0f;
+  for (uint32_t i = 0; i < 3000; ++i) {
+    line.push_back({{x, 0.0f, 0.0f}, {x + 0.5f, 0.5f, 0.5f}});
+    heap.push_back({{1.0f, 1.0f, 1.0f}, {2.0f, 2.0f, 2.0f}});
+    bodies.push_back(i);
+    x = x * 1.01f + 1.0f;
+  }
+  for (const auto* boxes : {&line, &heap}) {
+    WideBoxTree tree;
+    tree.build(*boxes, bodies);
+    EXPECT_TRUE(tree.valid());
+    const Aabb probe = (*boxes)[1234];
+    const auto found = visited([&](auto v) { tree.query(probe, v); });
+    EXPECT_TRUE(std::binary_search(found.begin(), found.end(), 1234u));
+  }
+}
+
 TEST(WideBoxTree, BoxRayAndSweepQueriesVisitWhatTheBinaryTreeVisits) {
   Lcg rng;
   Trees trees(rng, 3000);
