@@ -59,9 +59,11 @@ bool Rewind2DEngine::build(const Scene2D& scene, std::string& error) {
   world_->set_thread_pool(pool_.get());
   ids_.clear();
   for (const BodyDesc2D& b : scene.bodies) {
-    auto shape = sim2d::make_box(milli(b.hx), milli(b.hy), Vec2{milli(b.cx), milli(b.cy)}, Fx());
+    const Vec2 centre{milli(b.cx), milli(b.cy)};
+    auto shape = b.radius > 0 ? sim2d::make_circle(milli(b.radius), centre)
+                              : sim2d::make_box(milli(b.hx), milli(b.hy), centre, Fx());
     if (!shape.ok()) {
-      error = "rewind: box refused";
+      error = std::string("rewind: ") + (b.radius > 0 ? "circle" : "box") + " refused";
       return false;
     }
     sim2d::BodyDef2D def;
