@@ -62,6 +62,65 @@ TEST(Stability2D, ChainHoldsABallAHundredTimesHeavierThanALink) {
   expect_replays_bit_for_bit(world, 60);
 }
 
+// Box2D's joint grid: 100 x 100 circles (radius 0.4 m, 0.5 kg) 1 m apart,
+// each pinned to its upper and left neighbours at the midpoint, hanging
+// from the seven middle circles of the top row, at default settings. The
+// grid falls and swings on those seven; the joints beside them carry up to
+// 18 kN on 0.5 kg links, so the soft joints there open most at the bottom
+// of each swing. Criterion: over 5 s no joint opens by more than 1 m (a
+// grid's pitch; measured 0.44 m at the worst swing) and nothing moves
+// faster than 25 m/s (measured 10 m/s). With the joints solved in the order
+// they were made, the links beside the anchors spun up within 1.7 s and
+// the grid came apart (joints 500 m open, links at 100 m/s).
+TEST(Stability2D, HundredByHundredJointGridHangsTogether) {
+  constexpr int kSide = 100;
+  World2DConfig config;
+  config.max_bodies = 2 * kSide * kSide + 16;  // joints share the capacity
+  World2D world(config);
+  std::vector<BodyId2D> grid;
+  for (int k = 0; k < kSide; ++k) {
+    for (int i = 0; i < kSide; ++i) {
+      const bool anchor = i == 0 && k >= kSide / 2 - 3 && k <= kSide / 2 + 3;
+      grid.push_back(add(world, def(make_circle(0.4_fx), {Fx(k), Fx(-i)}, Fx(),
+                                    anchor ? BodyKind2D::kStatic : BodyKind2D::kDynamic)));
+    }
+  }
+  struct Pin {
+    BodyId2D a;
+    BodyId2D b;
+  };
+  std::vector<Pin> pins;
+  const auto at = [&](int k, int i) { return grid[static_cast<size_t>(k * kSide + i)]; };
+  for (int k = 0; k < kSide; ++k) {
+    for (int i = 0; i < kSide; ++i) {
+      if (i > 0) {
+        ASSERT_TRUE(
+            world.create_joint(revolute(at(k, i - 1), at(k, i), {Fx(k), Fx(-i) + 0.5_fx})).ok());
+        pins.push_back({at(k, i - 1), at(k, i)});
+      }
+      if (k > 0) {  // the anchors side by side too, as Box2D's grid
+        ASSERT_TRUE(
+            world.create_joint(revolute(at(k - 1, i), at(k, i), {Fx(k) - 0.5_fx, Fx(-i)})).ok());
+        pins.push_back({at(k - 1, i), at(k, i)});
+      }
+    }
+  }
+  double widest = 0.0;
+  double fastest = 0.0;
+  for (int t = 0; t < 5 * kTicksPerSecond; ++t) {
+    world.step();
+    if (t % 10 != 9) continue;
+    for (const Pin& p : pins) {
+      widest = std::max(widest, d(fixed::length(world.position(p.b) - world.position(p.a))) - 1.0);
+    }
+    for (const BodyId2D b : grid) fastest = std::max(fastest, speed(world, b));
+  }
+  report("joint_grid widest_opening_m", widest, "m", "<=", 1.0);
+  report("joint_grid fastest_mps", fastest, "m/s", "<=", 25.0);
+  EXPECT_LE(widest, 1.0);
+  EXPECT_LE(fastest, 25.0);
+}
+
 // A rope bridge: 30 planks (1 m, revolute-pinned end to end, a little
 // angular damping as rope and wood have) hung with slack between two pins
 // 29.07 m apart (the planks start in a shallow V), with 10 boxes dropped

@@ -54,6 +54,61 @@ W unwind(W angle) {
   return angle;
 }
 
+// Colours of the joint order, as the contact solvers' colouring in 3D.
+constexpr uint32_t kJointColors = 24;
+
+// Reorders the joints colour by colour: each joint, in state order, takes
+// the first colour in which neither of its bodies that the joint moves
+// already has a joint (kJointColors when every colour has one; those last,
+// in state order), and the pass runs colour 0's joints, then colour 1's.
+// A colour's joints share no moving body, so within it the order changes
+// nothing, and across them every body meets its joints spread over the
+// pass rather than in the order they were made. That order matters for
+// stiff lattices: in a 100 x 100 grid of revolute joints (made column by
+// column) hanging from seven anchors, the joints near the anchors carry
+// 15 kN on 0.5 kg links, and solved in creation order the links there spun
+// up within 1.7 s and threw the grid apart (98 x 98 and larger); coloured,
+// as Box2D v3 orders its joints, the 100 x 100 grid holds.
+void order_by_color(StepScratch2D& scratch) {
+  auto& joints = scratch.joints;
+  if (joints.size() < 2) return;
+  const size_t words = (scratch.bodies.size() + 63) / 64;
+  auto& bits = scratch.joint_color_bits;
+  bits.assign(words * kJointColors, 0);
+  auto& color = scratch.joint_color;
+  color.resize(joints.size());
+  uint32_t count[kJointColors + 1] = {};
+  for (size_t k = 0; k < joints.size(); ++k) {
+    const JointConstraint2D& c = joints[k];
+    const SolverBody2D& a = scratch.bodies[c.a];
+    const SolverBody2D& b = scratch.bodies[c.b];
+    const bool moves_a = a.inv_mass != 0 || a.inv_inertia != 0;
+    const bool moves_b = b.inv_mass != 0 || b.inv_inertia != 0;
+    uint32_t col = 0;
+    for (; col < kJointColors; ++col) {
+      uint64_t* run = bits.data() + col * words;
+      const bool used_a = moves_a && ((run[c.a / 64] >> (c.a % 64)) & 1u) != 0;
+      const bool used_b = moves_b && ((run[c.b / 64] >> (c.b % 64)) & 1u) != 0;
+      if (used_a || used_b) continue;
+      if (moves_a) run[c.a / 64] |= uint64_t{1} << (c.a % 64);
+      if (moves_b) run[c.b / 64] |= uint64_t{1} << (c.b % 64);
+      break;
+    }
+    color[k] = col;
+    ++count[col];
+  }
+  uint32_t start[kJointColors + 1];
+  uint32_t at = 0;
+  for (uint32_t col = 0; col <= kJointColors; ++col) {
+    start[col] = at;
+    at += count[col];
+  }
+  auto& sorted = scratch.joint_spare;
+  sorted.resize(joints.size());
+  for (size_t k = 0; k < joints.size(); ++k) sorted[start[color[k]]++] = joints[k];
+  joints.swap(sorted);
+}
+
 }  // namespace
 
 void prepare_joints(World2DState& state, StepScratch2D& scratch, W h) {
@@ -126,6 +181,7 @@ void prepare_joints(World2DState& state, StepScratch2D& scratch, W h) {
     }
     out.push_back(c);
   }
+  order_by_color(scratch);
 }
 
 void warm_start_joints(World2DState& state, StepScratch2D& scratch) {

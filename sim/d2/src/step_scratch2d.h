@@ -167,7 +167,10 @@ class StepScratch2D {
   std::vector<SolverBody2D> bodies;  ///< by body index
   std::vector<BodyMotion2D> moving;  ///< the bodies that move this step, by index
   std::vector<ContactConstraint2D> constraints;
-  std::vector<JointConstraint2D> joints;
+  std::vector<JointConstraint2D> joints;  ///< in solve order: colour by colour
+  std::vector<JointConstraint2D> joint_spare;
+  std::vector<uint32_t> joint_color;       ///< a joint's colour, by position
+  std::vector<uint64_t> joint_color_bits;  ///< per colour, one bit per body
   /// (a << 32) | b of joined pairs that must not collide, sorted.
   std::vector<uint64_t> joined_pairs;
   /// The contacts being built; swapped with the state's, so both buffers

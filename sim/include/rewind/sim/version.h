@@ -63,7 +63,9 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///      along the normal and tangent as one-rounding sums of products, the
 ///      separation tracked through r . n and r x n) and the normal block
 ///      from K's inverse, with no division in a pass
-inline constexpr uint32_t kSimRevision = 15;
+///  16  2D joints solved colour by colour (each joint, in state order, in
+///      the first of 24 colours where neither body it moves has one)
+inline constexpr uint32_t kSimRevision = 16;
 
 /// "rewind-sim r11": the engine identity a replay records.
 inline std::string engine_version() {
