@@ -44,7 +44,7 @@ bool Box2D3Engine::build(const Scene2D& scene, std::string& /*error*/) {
   world_.reset();  // the old world goes before the new one is made
   world_ = std::make_unique<World>();
   b2WorldDef world_def = b2DefaultWorldDef();
-  world_def.gravity = b2Vec2{0.0f, -10.0f};
+  world_def.gravity = b2Vec2{0.0f, milli(scene.gravity)};
   // Every body stays awake, as in the other adapters, so that all engines
   // do the same work. workerCount stays at its default: one thread, no task
   // system. Continuous collision stays on (Box2D's default).
@@ -63,13 +63,19 @@ bool Box2D3Engine::build(const Scene2D& scene, std::string& /*error*/) {
                  : b.kind == Kind2D::kKinematic ? b2_kinematicBody
                                                 : b2_dynamicBody;
       def.position = b2Vec2{milli(b.x), milli(b.y)};
+      def.linearVelocity = b2Vec2{milli(b.vx), milli(b.vy)};
       def.angularVelocity = milli(b.angular_velocity);
-      def.enableSleep = false;
+      // A body made asleep must allow sleep to start so (Box2D v3 puts the
+      // others in the awake set); the world's sleeping stays off, so once
+      // woken it never sleeps again, as in the other adapters.
+      def.isAwake = b.awake;
+      def.enableSleep = !b.awake;
       body = b2CreateBody(world_->id, &def);
       if (b.group >= 0) groups[b.group] = body;
     }
     b2ShapeDef shape = b2DefaultShapeDef();
-    shape.density = b.kind == Kind2D::kDynamic ? milli(scene.density) : 0.0f;
+    shape.density =
+        b.kind == Kind2D::kDynamic ? milli(b.density > 0 ? b.density : scene.density) : 0.0f;
     shape.material.friction = milli(scene.friction);
     shape.material.restitution = 0.0f;
     const b2Vec2 centre{milli(b.cx), milli(b.cy)};

@@ -28,7 +28,7 @@ std::string Box2DEngine::settings() const {
 
 bool Box2DEngine::build(const Scene2D& scene, std::string& /*error*/) {
   bodies_.clear();
-  world_ = std::make_unique<b2World>(b2Vec2(0.0f, -10.0f));
+  world_ = std::make_unique<b2World>(b2Vec2(0.0f, milli(scene.gravity)));
   // Both engines keep every body awake (the Rewind adapter turns its
   // sleeping off too), so they do the same work.
   world_->SetAllowSleeping(false);
@@ -46,8 +46,11 @@ bool Box2DEngine::build(const Scene2D& scene, std::string& /*error*/) {
                  : b.kind == Kind2D::kKinematic ? b2_kinematicBody
                                                 : b2_dynamicBody;
       def.position.Set(milli(b.x), milli(b.y));
+      def.linearVelocity.Set(milli(b.vx), milli(b.vy));
       def.angularVelocity = milli(b.angular_velocity);
       def.allowSleep = false;
+      // A body made asleep stays so until a contact or joint wakes it.
+      def.awake = b.awake;
       body = world_->CreateBody(&def);
       if (b.group >= 0) groups[b.group] = body;
     }
@@ -58,7 +61,8 @@ bool Box2DEngine::build(const Scene2D& scene, std::string& /*error*/) {
     circle.m_p.Set(milli(b.cx), milli(b.cy));
     b2FixtureDef fixture;
     fixture.shape = b.radius > 0 ? static_cast<const b2Shape*>(&circle) : &box;
-    fixture.density = b.kind == Kind2D::kDynamic ? milli(scene.density) : 0.0f;
+    fixture.density =
+        b.kind == Kind2D::kDynamic ? milli(b.density > 0 ? b.density : scene.density) : 0.0f;
     fixture.friction = milli(scene.friction);
     fixture.restitution = 0.0f;
     body->CreateFixture(&fixture);

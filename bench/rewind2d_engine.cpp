@@ -47,6 +47,7 @@ bool Rewind2DEngine::build(const Scene2D& scene, std::string& error) {
   config.tick_hz = 60;
   // Every body kept awake in both engines, so they do the same work.
   config.enable_sleep = false;
+  config.gravity = Vec2{Fx(), milli(scene.gravity)};
   // Joints share the body capacity (create_joint refuses beyond it).
   config.max_bodies =
       static_cast<uint32_t>(std::max(scene.bodies.size(), scene.joints.size())) + 16;
@@ -72,8 +73,10 @@ bool Rewind2DEngine::build(const Scene2D& scene, std::string& error) {
                                               : sim2d::BodyKind2D::kDynamic;
     def.shape = *shape;
     def.position = Vec2{milli(b.x), milli(b.y)};
+    def.linear_velocity = Vec2{milli(b.vx), milli(b.vy)};
     def.angular_velocity = milli(b.angular_velocity);
-    def.density = milli(scene.density);
+    def.density = milli(b.density > 0 ? b.density : scene.density);
+    def.awake = b.awake;
     def.material.friction = milli(scene.friction);
     def.material.restitution = Fx();
     auto id = world_->create_body(def);

@@ -18,7 +18,7 @@ void measure(const Scene2D& scene, const Engine2D& engine, const std::vector<Pos
   for (uint32_t top : scene.tops) {
     r.top_drift_m = std::max(r.top_drift_m, distance(engine.pose(top), start[top]));
   }
-  if (!scene.tops.empty()) {
+  if (scene.report_displacement) {
     for (uint32_t i = 0; i < scene.bodies.size(); ++i) {
       if (scene.bodies[i].kind != Kind2D::kDynamic) continue;
       r.max_displacement_m = std::max(r.max_displacement_m, distance(engine.pose(i), start[i]));

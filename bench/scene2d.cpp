@@ -44,6 +44,7 @@ Scene2D make_pyramid2d(int base) {
   s.timed_ticks = 300;
   add_ground(s, std::max(40, base) * 1000);
   s.tops.push_back(add_pyramid(s, base, 0));
+  s.report_displacement = true;
   return s;
 }
 
@@ -51,6 +52,7 @@ Scene2D make_pyramids2d(int count, int base) {
   Scene2D s;
   s.name = "pyramids";
   s.size = count;
+  s.report_displacement = true;
   s.warmup_ticks = 60;
   s.timed_ticks = 300;
   // Two metres between neighbouring bases.
@@ -134,9 +136,38 @@ Scene2D make_joint_grid2d(int n) {
   return s;
 }
 
+Scene2D make_smash2d(int columns) {
+  Scene2D s;
+  s.name = "smash";
+  s.size = columns;
+  s.warmup_ticks = 0;
+  s.timed_ticks = 300;  // the blow lands at 0.65 s; the wall breaks up by 5 s
+  s.gravity = 0;
+  s.report_displacement = true;
+  BodyDesc2D ram;
+  ram.hx = ram.hy = 4000;
+  ram.x = -20000;
+  ram.vx = 40000;
+  ram.density = 8000;
+  s.bodies.push_back(ram);
+  constexpr int kRows = 80;
+  constexpr int32_t kPitch = 400;
+  for (int i = 0; i < columns; ++i) {
+    for (int j = 0; j < kRows; ++j) {
+      BodyDesc2D b;
+      b.hx = b.hy = kPitch / 2;
+      b.x = i * kPitch + 30000;
+      b.y = (2 * j - kRows) * kPitch / 2;
+      b.awake = false;
+      s.bodies.push_back(b);
+    }
+  }
+  return s;
+}
+
 const std::vector<std::string>& scene2d_names() {
   static const std::vector<std::string> names = {"large_pyramid", "pyramids", "tumbler",
-                                                 "joint_grid"};
+                                                 "joint_grid", "smash"};
   return names;
 }
 
@@ -149,6 +180,8 @@ bool make_scene2d(const std::string& name, int size, Scene2D& out) {
     out = make_tumbler2d(size > 0 ? size : 800);
   } else if (name == "joint_grid") {
     out = make_joint_grid2d(size > 0 ? size : 100);
+  } else if (name == "smash") {
+    out = make_smash2d(size > 0 ? size : 120);
   } else {
     return false;
   }

@@ -22,7 +22,10 @@ struct BodyDesc2D {
   int32_t hx = 500, hy = 500;    ///< half extents, mm
   int32_t cx = 0, cy = 0;        ///< shape centre in the body frame, mm
   int32_t x = 0, y = 0;          ///< body origin, mm
+  int32_t vx = 0, vy = 0;        ///< linear velocity, mm/s
   int32_t angular_velocity = 0;  ///< mrad/s
+  int32_t density = 0;           ///< kg/m^2 x 1000; 0: the scene's
+  bool awake = true;             ///< false: a dynamic body starts asleep
   /// Bodies with the same group >= 0 (same origin and velocity) become one
   /// Box2D body with one fixture each; Rewind has one shape per body.
   int32_t group = -1;
@@ -37,16 +40,20 @@ struct RevoluteDesc2D {
 
 struct Scene2D {
   std::string name;
-  int size = 0;            ///< the scene's size knob (base, pyramids, boxes, grid side)
-  int warmup_ticks = 0;    ///< stepped before the timing starts
-  int timed_ticks = 0;     ///< stepped and timed
-  int32_t density = 1000;  ///< kg/m^2 x 1000, every dynamic body
-  int32_t friction = 600;  ///< x 1000, every body
+  int size = 0;              ///< the scene's size knob (base, pyramids, boxes, grid side)
+  int warmup_ticks = 0;      ///< stepped before the timing starts
+  int timed_ticks = 0;       ///< stepped and timed
+  int32_t density = 1000;    ///< kg/m^2 x 1000, every dynamic body
+  int32_t friction = 600;    ///< x 1000, every body
+  int32_t gravity = -10000;  ///< mm/s^2 along y
   std::vector<BodyDesc2D> bodies;
   std::vector<RevoluteDesc2D> joints;
   /// Pyramids: the index of each pyramid's top box (its drift is the
   /// accuracy figure). Empty for other scenes.
   std::vector<uint32_t> tops;
+  /// The farthest any dynamic body ends from its start is reported
+  /// (pyramids: whether they stood; smash: how far the wall was thrown).
+  bool report_displacement = false;
   /// Tumbler: the inner half extent of the container (mm) and the index of
   /// one of its walls, whose angle turns body positions into its frame.
   int32_t container_half = 0;
@@ -65,8 +72,13 @@ Scene2D make_tumbler2d(int count);
 /// upper and left neighbours by revolute joints at the midpoint, hanging
 /// from the 7 middle circles of the top row (static).
 Scene2D make_joint_grid2d(int n);
+/// Box2D's smash: no gravity, a heavy box (half size 4 m, density 8,
+/// 40 m/s) flying into a wall of `columns` x 80 boxes (half size 0.2 m,
+/// touching) that start asleep and wake as the blow reaches them.
+Scene2D make_smash2d(int columns);
 /// The scenes by name ("large_pyramid", "pyramids", "tumbler",
-/// "joint_grid") at their benchmark sizes; size 0 picks the default size.
+/// "joint_grid", "smash") at their benchmark sizes; size 0 picks the
+/// default size.
 bool make_scene2d(const std::string& name, int size, Scene2D& out);
 /// The scene names make_scene2d() knows, in report order.
 const std::vector<std::string>& scene2d_names();

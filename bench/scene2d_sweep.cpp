@@ -87,6 +87,10 @@ const char* describe(const std::string& name) {
     return "an N x N grid of circles (radius 0.4 m, 1 m apart) joined to their neighbours by "
            "revolute joints, hanging from 7 static circles of the top row";
   }
+  if (name == "smash") {
+    return "no gravity: a 4 m box at 40 m/s into a wall of N x 80 boxes of half size 0.2 m "
+           "that start asleep";
+  }
   return "a hollow 20 m box (4 walls, 1 m thick) turning at 0.05 pi rad/s about its centre, "
          "filled at once with N boxes of half size 0.125 m";
 }
