@@ -234,13 +234,21 @@ void find_pairs(const World2DState& state, StepScratch2D& scratch) {
   update_tree(state, scratch);
 
   // Joined bodies that must not collide (collide_connected off).
-  auto& joined = scratch.joined_pairs;
-  joined.clear();
+  // The joined pairs in joint order; sorted again only when they changed
+  // since last step (a joint made, destroyed or broken), which in a world
+  // of many joints is the rare step.
+  auto& listed = scratch.joined_listed;
+  listed.clear();
   for (const JointRecord2D& j : state.joints) {
     if (!(j.flags & kJointLive) || (j.flags & (kJointBroken | kJointCollideConnected))) continue;
-    joined.push_back((uint64_t{std::min(j.a, j.b)} << 32) | std::max(j.a, j.b));
+    listed.push_back((uint64_t{std::min(j.a, j.b)} << 32) | std::max(j.a, j.b));
   }
-  std::sort(joined.begin(), joined.end());
+  auto& joined = scratch.joined_pairs;
+  if (listed != scratch.joined_listed_before) {
+    joined = listed;
+    std::sort(joined.begin(), joined.end());
+    scratch.joined_listed_before.swap(listed);
+  }
 
   scratch.pairs.clear();
   if (scratch.broadphase_items.size() < 2) return;

@@ -173,6 +173,10 @@ class StepScratch2D {
   std::vector<uint64_t> joint_color_bits;  ///< per colour, one bit per body
   /// (a << 32) | b of joined pairs that must not collide, sorted.
   std::vector<uint64_t> joined_pairs;
+  /// The joined pairs in joint order, this step's and the one joined_pairs
+  /// was sorted from.
+  std::vector<uint64_t> joined_listed;
+  std::vector<uint64_t> joined_listed_before;
   /// The contacts being built; swapped with the state's, so both buffers
   /// are reused.
   std::vector<ContactRecord2D> next_contacts;
