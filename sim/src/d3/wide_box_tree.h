@@ -127,10 +127,13 @@ inline uint32_t WideBoxTree::overlap_bits(const Node& node, const Aabb& box) {
 template <bool kGrow>
 inline uint32_t WideBoxTree::enter_bits(const Node& node, const SegmentSlabs& slabs, Vec3 grow,
                                         float max_t, float (&entry)[kLanes]) {
-  // SegmentSlabs::enters, lane by lane: std::min(a, b) is b < a ? b : a and
-  // std::max(a, b) is a < b ? b : a, so the selects below give the same
-  // floats. An axis the segment runs parallel to fails a lane whose box it
-  // passes outside by dropping t_hi below t_lo (which never falls below 0).
+  // SegmentSlabs::enters, lane by lane. No value here is NaN: an axis the
+  // segment is not parallel to has a finite reciprocal, and box and
+  // origin are finite, so each t is finite or infinite; the min and max
+  // instructions then give std::min's and std::max's floats on every
+  // target, but for the sign of a zero, which no comparison sees. An axis the segment runs parallel
+  // to fails a lane whose box it passes outside by dropping t_hi below t_lo (which never falls
+  // below 0).
   FloatW t_lo = splat(0.0f);
   FloatW t_hi = splat(max_t);
   for (int i = 0; i < 3; ++i) {
@@ -148,10 +151,8 @@ inline uint32_t WideBoxTree::enter_bits(const Node& node, const SegmentSlabs& sl
     const FloatW inv = splat(component(slabs.inv_dir, i));
     const FloatW t0 = (lo - o) * inv;
     const FloatW t1 = (hi - o) * inv;
-    const FloatW near = select(t1 < t0, t1, t0);
-    const FloatW far = select(t0 < t1, t1, t0);
-    t_lo = select(t_lo < near, near, t_lo);
-    t_hi = select(far < t_hi, far, t_hi);
+    t_lo = max_no_nan(t_lo, min_no_nan(t0, t1));
+    t_hi = min_no_nan(t_hi, max_no_nan(t0, t1));
   }
   store(entry, t_lo);
   return lane_bits(t_hi >= t_lo) & ((1u << node.count) - 1u);

@@ -73,6 +73,16 @@ inline MaskW operator>(FloatW a, FloatW b) {
 inline FloatW select(MaskW m, FloatW a, FloatW b) {
   return {_mm_or_ps(_mm_and_ps(m.v, a.v), _mm_andnot_ps(m.v, b.v))};
 }
+/// The lesser and the greater of a and b, lane by lane, for lanes that are
+/// never NaN: only there do the instructions of every target agree, and
+/// even then not on which of +0 and -0 is the lesser, so only for values
+/// that are compared, never kept.
+inline FloatW min_no_nan(FloatW a, FloatW b) {
+  return {_mm_min_ps(a.v, b.v)};
+}
+inline FloatW max_no_nan(FloatW a, FloatW b) {
+  return {_mm_max_ps(a.v, b.v)};
+}
 inline MaskW operator>=(FloatW a, FloatW b) {
   return {_mm_cmpge_ps(a.v, b.v)};
 }
@@ -130,6 +140,12 @@ inline MaskW operator>(FloatW a, FloatW b) {
 }
 inline FloatW select(MaskW m, FloatW a, FloatW b) {
   return {vbslq_f32(m.v, a.v, b.v)};
+}
+inline FloatW min_no_nan(FloatW a, FloatW b) {
+  return {vminq_f32(a.v, b.v)};
+}
+inline FloatW max_no_nan(FloatW a, FloatW b) {
+  return {vmaxq_f32(a.v, b.v)};
 }
 inline MaskW operator>=(FloatW a, FloatW b) {
   return {vcgeq_f32(a.v, b.v)};
@@ -201,6 +217,12 @@ inline FloatW select(MaskW m, FloatW a, FloatW b) {
   FloatW r;
   for (int i = 0; i < kLanes; ++i) r.v[i] = m.v[i] ? a.v[i] : b.v[i];
   return r;
+}
+inline FloatW min_no_nan(FloatW a, FloatW b) {
+  return select(b < a, b, a);
+}
+inline FloatW max_no_nan(FloatW a, FloatW b) {
+  return select(a < b, b, a);
 }
 inline MaskW operator>=(FloatW a, FloatW b) {
   MaskW m;
