@@ -10,36 +10,6 @@
 #include <algorithm>
 
 namespace rwd::sim::d3 {
-namespace {
-
-Aabb merge(const Aabb& a, const Aabb& b) {
-  return {{std::min(a.lower.x, b.lower.x), std::min(a.lower.y, b.lower.y),
-           std::min(a.lower.z, b.lower.z)},
-          {std::max(a.upper.x, b.upper.x), std::max(a.upper.y, b.upper.y),
-           std::max(a.upper.z, b.upper.z)}};
-}
-
-// Half the surface area: the cost of a box in the surface-area heuristic
-// (the chance that a random query ray or box meets it).
-float area(const Aabb& a) {
-  const float x = a.upper.x - a.lower.x;
-  const float y = a.upper.y - a.lower.y;
-  const float z = a.upper.z - a.lower.z;
-  return x * y + y * z + z * x;
-}
-
-float centre(const Aabb& a, int axis) {
-  switch (axis) {
-    case 0:
-      return a.lower.x + a.upper.x;
-    case 1:
-      return a.lower.y + a.upper.y;
-    default:
-      return a.lower.z + a.upper.z;
-  }
-}
-
-}  // namespace
 
 void AabbTree::clear() {
   nodes_.clear();
@@ -91,8 +61,8 @@ void AabbTree::insert_leaf(uint32_t leaf) {
   uint32_t index = root_;
   while (nodes_[index].child1 != kNull) {
     const Node& node = nodes_[index];
-    const float node_area = area(node.box);
-    const float combined = area(merge(node.box, box));
+    const float node_area = half_area(node.box);
+    const float combined = half_area(merge(node.box, box));
     // Making a new parent of this node and the leaf costs the combined box;
     // going further down costs every box above the growth it takes.
     const float here = combined;
@@ -101,8 +71,8 @@ void AabbTree::insert_leaf(uint32_t leaf) {
     const uint32_t children[2] = {node.child1, node.child2};
     for (int c = 0; c < 2; ++c) {
       const Node& child = nodes_[children[c]];
-      const float grown = area(merge(child.box, box));
-      down[c] = (child.child1 == kNull ? grown : grown - area(child.box)) + inherited;
+      const float grown = half_area(merge(child.box, box));
+      down[c] = (child.child1 == kNull ? grown : grown - half_area(child.box)) + inherited;
     }
     if (here < down[0] && here < down[1]) break;
     index = down[0] <= down[1] ? children[0] : children[1];

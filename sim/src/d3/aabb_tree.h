@@ -12,6 +12,7 @@
 // edits, so nothing that reaches the state may depend on it: callers use it
 // to find candidates and then decide on exact boxes, and sort what they
 // keep (broadphase.cpp).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -29,6 +30,28 @@ struct Aabb {
 inline bool overlaps(const Aabb& a, const Aabb& b) {
   return a.lower.x <= b.upper.x && b.lower.x <= a.upper.x && a.lower.y <= b.upper.y &&
          b.lower.y <= a.upper.y && a.lower.z <= b.upper.z && b.lower.z <= a.upper.z;
+}
+
+/// The smallest box holding both.
+inline Aabb merge(const Aabb& a, const Aabb& b) {
+  return {{std::min(a.lower.x, b.lower.x), std::min(a.lower.y, b.lower.y),
+           std::min(a.lower.z, b.lower.z)},
+          {std::max(a.upper.x, b.upper.x), std::max(a.upper.y, b.upper.y),
+           std::max(a.upper.z, b.upper.z)}};
+}
+
+/// Half the surface area: the cost of a box in the surface area heuristic
+/// (the chance that a random query ray or box meets it).
+inline float half_area(const Aabb& a) {
+  const float x = a.upper.x - a.lower.x;
+  const float y = a.upper.y - a.lower.y;
+  const float z = a.upper.z - a.lower.z;
+  return x * y + y * z + z * x;
+}
+
+/// The box's centre along `axis` (0, 1, 2).
+inline float centre(const Aabb& box, int axis) {
+  return (component(box.lower, axis) + component(box.upper, axis)) * 0.5f;
 }
 
 inline bool contains(const Aabb& outer, const Aabb& inner) {

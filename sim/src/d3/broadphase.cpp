@@ -311,7 +311,7 @@ void Broadphase::prepare_queries(const WorldState& state, uint64_t pose_serial) 
     build_bodies_.push_back(i);
     build_boxes_.push_back(exact_bounds(state, i));
   }
-  awake_tree_.build(build_boxes_, build_bodies_);
+  awake_tree_.build(build_boxes_, build_bodies_, WideBoxTree::Cuts::kAtMedians);
   query_serial_ = pose_serial;
 }
 

@@ -3,29 +3,10 @@
 #include "d3/wide_box_tree.h"
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 
 namespace rwd::sim::d3 {
-namespace {
-
-float centre(const Aabb& box, int axis) {
-  return (component(box.lower, axis) + component(box.upper, axis)) * 0.5f;
-}
-
-Aabb merge(const Aabb& a, const Aabb& b) {
-  return {{std::min(a.lower.x, b.lower.x), std::min(a.lower.y, b.lower.y),
-           std::min(a.lower.z, b.lower.z)},
-          {std::max(a.upper.x, b.upper.x), std::max(a.upper.y, b.upper.y),
-           std::max(a.upper.z, b.upper.z)}};
-}
-
-// Half a box's surface area.
-float half_area(const Aabb& box) {
-  const Vec3 d = box.upper - box.lower;
-  return d.x * d.y + d.y * d.z + d.z * d.x;
-}
-
-}  // namespace
 
 void WideBoxTree::clear() {
   nodes_.clear();
@@ -33,7 +14,14 @@ void WideBoxTree::clear() {
   leaves_ = 0;
 }
 
-void WideBoxTree::build(std::span<const Aabb> boxes, std::span<const uint32_t> bodies) {
+void WideBoxTree::build(std::span<const Aabb> boxes, std::span<const uint32_t> bodies, Cuts cuts) {
+  // The same boxes for the same bodies, bit for bit, build the same tree:
+  // a restored world whose static bodies did not change keeps theirs.
+  const auto same_bits = [](const auto& kept, const auto& given) {
+    return kept.size() == given.size() &&
+           (given.empty() || std::memcmp(kept.data(), given.data(), given.size_bytes()) == 0);
+  };
+  if (root_ != kNull && same_bits(build_boxes_, boxes) && same_bits(build_bodies_, bodies)) return;
   clear();
   const uint32_t count = static_cast<uint32_t>(boxes.size());
   if (count == 0) return;
@@ -45,17 +33,17 @@ void WideBoxTree::build(std::span<const Aabb> boxes, std::span<const uint32_t> b
   nodes_.reserve(count / 3 + 2);
   leaves_ = count;
   Aabb bounds;
-  root_ = build_range(build_items_.data(), count, 0, bounds);
+  root_ = build_range(build_items_.data(), count, 0, cuts, bounds);
 }
 
 // Cuts items[0, n), n >= 2, in two and returns the size of the first part
-// (1 to n - 1). The cut is the one of kBins - 1 planes across the spread of
-// the centres, on any axis, that least costs a ray walking the two parts
-// (the surface area heuristic: each part's area times its leaves), so
-// parts hug the geometry and a ray passes few boxes. With `median`, or
-// where every centre coincides on every axis, it is at the median of the
-// centres along their widest spread. A function of the input alone (ties
-// by body).
+// (1 to n - 1). The cut is the one of kBins - 1 planes across the widest
+// spread of the centres (trying the other axes too doubled the build) that
+// least costs a ray walking the two parts (the surface area heuristic:
+// each part's area times its leaves), so parts hug the geometry and a ray
+// passes few boxes. With `median`, or where every centre coincides, it is
+// at the median of the centres along that spread. A function of the input
+// alone (ties by body).
 uint32_t WideBoxTree::split(uint32_t* items, uint32_t n, bool median) {
   constexpr int kBins = 12;
   float lo[3];
@@ -68,21 +56,21 @@ uint32_t WideBoxTree::split(uint32_t* items, uint32_t n, bool median) {
       hi[axis] = std::max(hi[axis], c);
     }
   }
-  const auto bin_of = [&](uint32_t item, int axis, float scale) {
+  int axis = 0;
+  if (hi[1] - lo[1] > hi[axis] - lo[axis]) axis = 1;
+  if (hi[2] - lo[2] > hi[axis] - lo[axis]) axis = 2;
+  const float extent = hi[axis] - lo[axis];
+  const float scale = static_cast<float>(kBins) / extent;
+  const auto bin_of = [&](uint32_t item) {
     const float c = centre(build_boxes_[item], axis);
     return std::min(kBins - 1, static_cast<int>((c - lo[axis]) * scale));
   };
-  int best_axis = -1;
-  int best_plane = 0;
-  float best_cost = std::numeric_limits<float>::infinity();
-  for (int axis = 0; axis < 3 && !median; ++axis) {
-    const float extent = hi[axis] - lo[axis];
-    if (!(extent > 0.0f)) continue;
-    const float scale = static_cast<float>(kBins) / extent;
+  int best_plane = 0;  // none: every bin to the left of plane b is [0, b)
+  if (!median && extent > 0.0f) {
     uint32_t counts[kBins] = {};
     Aabb boxes[kBins];
     for (uint32_t i = 0; i < n; ++i) {
-      const int b = bin_of(items[i], axis, scale);
+      const int b = bin_of(items[i]);
       boxes[b] =
           counts[b]++ == 0 ? build_boxes_[items[i]] : merge(boxes[b], build_boxes_[items[i]]);
     }
@@ -97,6 +85,7 @@ uint32_t WideBoxTree::split(uint32_t* items, uint32_t n, bool median) {
     }
     Aabb right;
     uint32_t right_count = 0;
+    float best_cost = std::numeric_limits<float>::infinity();
     for (int b = kBins - 1; b > 0; --b) {
       if (counts[b] != 0) right = right_count == 0 ? boxes[b] : merge(right, boxes[b]);
       right_count += counts[b];
@@ -104,16 +93,12 @@ uint32_t WideBoxTree::split(uint32_t* items, uint32_t n, bool median) {
       const float cost = left_cost[b - 1] + half_area(right) * static_cast<float>(right_count);
       if (cost < best_cost) {
         best_cost = cost;
-        best_axis = axis;
         best_plane = b;
       }
     }
   }
-  if (best_axis < 0) {
+  if (best_plane == 0) {
     // The median of the centres along their widest spread.
-    int axis = 0;
-    if (hi[1] - lo[1] > hi[axis] - lo[axis]) axis = 1;
-    if (hi[2] - lo[2] > hi[axis] - lo[axis]) axis = 2;
     const uint32_t half = n / 2;
     std::nth_element(items, items + half, items + n, [&](uint32_t l, uint32_t r) {
       const float cl = centre(build_boxes_[l], axis);
@@ -122,16 +107,16 @@ uint32_t WideBoxTree::split(uint32_t* items, uint32_t n, bool median) {
     });
     return half;
   }
-  const float scale = static_cast<float>(kBins) / (hi[best_axis] - lo[best_axis]);
-  uint32_t* middle = std::partition(
-      items, items + n, [&](uint32_t item) { return bin_of(item, best_axis, scale) < best_plane; });
+  uint32_t* middle =
+      std::partition(items, items + n, [&](uint32_t item) { return bin_of(item) < best_plane; });
   return static_cast<uint32_t>(middle - items);
 }
 
 // A node over items[0, count), count >= 1. Four or fewer become its leaves;
 // more are cut in two (split) and each part in two again, into four
 // children.
-uint32_t WideBoxTree::build_range(uint32_t* items, uint32_t count, uint32_t depth, Aabb& bounds) {
+uint32_t WideBoxTree::build_range(uint32_t* items, uint32_t count, uint32_t depth, Cuts cuts,
+                                  Aabb& bounds) {
   uint32_t* group[kLanes];
   uint32_t size[kLanes];
   uint32_t groups = 0;
@@ -145,7 +130,7 @@ uint32_t WideBoxTree::build_range(uint32_t* items, uint32_t count, uint32_t dept
     // Two cuts and a cut of each part: four children. A part of one leaf
     // is not cut again, and past kCostDepth levels the cuts are medians
     // (balanced), so the depth stays under kMaxDepth.
-    const bool median = depth >= kCostDepth;
+    const bool median = cuts == Cuts::kAtMedians || depth >= kCostDepth;
     group[0] = items;
     size[0] = count;
     groups = 1;
@@ -172,7 +157,7 @@ uint32_t WideBoxTree::build_range(uint32_t* items, uint32_t count, uint32_t dept
       boxes[k] = build_boxes_[group[k][0]];
     } else {
       // nodes_ may grow here: the node is written after.
-      children[k] = build_range(group[k], size[k], depth + 1, boxes[k]);
+      children[k] = build_range(group[k], size[k], depth + 1, cuts, boxes[k]);
     }
   }
   Node& node = nodes_[index];

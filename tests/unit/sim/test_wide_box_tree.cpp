@@ -5,6 +5,8 @@
 // face; a nearest-first walk that shortens its reach finds what testing
 // every leaf finds.
 #include <algorithm>
+#include <cmath>
+#include <span>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -82,6 +84,48 @@ TEST(WideBoxTree, BuildsValidTreesOfAnySize) {
   EXPECT_TRUE(tree.valid());
   tree.clear();
   EXPECT_EQ(tree.leaf_count(), 0u);
+}
+
+TEST(WideBoxTree, ABuildOfTheSameBoxesKeepsTheTreeAndAnyChangeRebuildsIt) {
+  Lcg rng;
+  std::vector<Aabb> boxes;
+  std::vector<uint32_t> bodies;
+  for (uint32_t i = 0; i < 500; ++i) {
+    boxes.push_back(rng.box(20.0f, 1.0f));
+    bodies.push_back(i);
+  }
+  for (const auto cuts : {WideBoxTree::Cuts::kByArea, WideBoxTree::Cuts::kAtMedians}) {
+    WideBoxTree tree;
+    tree.build(boxes, bodies, cuts);
+    const Aabb probe = boxes[77];
+    const auto before = visited([&](auto v) { tree.query(probe, v); });
+    tree.build(boxes, bodies, cuts);  // the same input: kept
+    EXPECT_TRUE(tree.valid());
+    EXPECT_EQ(visited([&](auto v) { tree.query(probe, v); }), before);
+    // Box 77 moved 100 m along x: found there, no longer where it was.
+    std::vector<Aabb> moved = boxes;
+    moved[77].lower = moved[77].lower + Vec3{100.0f, 0.0f, 0.0f};
+    moved[77].upper = moved[77].upper + Vec3{100.0f, 0.0f, 0.0f};
+    tree.build(moved, bodies, cuts);
+    const auto there = visited([&](auto v) { tree.query(moved[77], v); });
+    EXPECT_TRUE(std::binary_search(there.begin(), there.end(), 77u));
+    const auto gone = visited([&](auto v) { tree.query(probe, v); });
+    EXPECT_FALSE(std::binary_search(gone.begin(), gone.end(), 77u));
+    // Then its upper x one ulp lower: a probe touching only that face (at
+    // the old coordinate) no longer finds it, so a change of one ulp rebuilds.
+    const Aabb face{{moved[77].upper.x, moved[77].lower.y, moved[77].lower.z}, moved[77].upper};
+    const auto touching = visited([&](auto v) { tree.query(face, v); });
+    EXPECT_TRUE(std::binary_search(touching.begin(), touching.end(), 77u));
+    moved[77].upper.x = std::nextafter(moved[77].upper.x, 0.0f);
+    tree.build(moved, bodies, cuts);
+    EXPECT_TRUE(tree.valid());
+    const auto apart = visited([&](auto v) { tree.query(face, v); });
+    EXPECT_FALSE(std::binary_search(apart.begin(), apart.end(), 77u));
+    // Fewer bodies: rebuilt, the missing one gone.
+    tree.build(std::span(boxes).first(400), std::span(bodies).first(400), cuts);
+    EXPECT_EQ(tree.leaf_count(), 400u);
+    EXPECT_TRUE(tree.valid());
+  }
 }
 
 TEST(WideBoxTree, LopsidedAndCoincidentBoxesStayWithinTheWalksDepth) {
