@@ -6,6 +6,7 @@
 #include "contact_solver2d.h"
 #include "joint_math2d.h"
 #include "rewind/fixed/trig.h"
+#include "rewind/sim/detail/take_color.h"
 
 namespace rwd::sim2d::detail {
 
@@ -54,7 +55,7 @@ W unwind(W angle) {
   return angle;
 }
 
-// Colours of the joint order, as the contact solvers' colouring in 3D.
+// Colours of the joint order, as the 3D solver's (take_color.h).
 constexpr uint32_t kJointColors = 24;
 
 // Reorders the joints colour by colour: each joint, in state order, takes
@@ -84,16 +85,8 @@ void order_by_color(StepScratch2D& scratch) {
     const SolverBody2D& b = scratch.bodies[c.b];
     const bool moves_a = a.inv_mass != 0 || a.inv_inertia != 0;
     const bool moves_b = b.inv_mass != 0 || b.inv_inertia != 0;
-    uint32_t col = 0;
-    for (; col < kJointColors; ++col) {
-      uint64_t* run = bits.data() + col * words;
-      const bool used_a = moves_a && ((run[c.a / 64] >> (c.a % 64)) & 1u) != 0;
-      const bool used_b = moves_b && ((run[c.b / 64] >> (c.b % 64)) & 1u) != 0;
-      if (used_a || used_b) continue;
-      if (moves_a) run[c.a / 64] |= uint64_t{1} << (c.a % 64);
-      if (moves_b) run[c.b / 64] |= uint64_t{1} << (c.b % 64);
-      break;
-    }
+    const uint32_t col =
+        sim::detail::take_color(bits.data(), words, kJointColors, c.a, moves_a, c.b, moves_b);
     color[k] = col;
     ++count[col];
   }

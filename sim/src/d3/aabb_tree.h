@@ -235,6 +235,16 @@ struct SegmentSlabs {
   }
 };
 
+// A box `start` moving along `translation`, as the sweep queries test it:
+// the segment of its centre against every box grown by its half size.
+struct SweptBox {
+  SweptBox(const Aabb& start, Vec3 translation)
+      : slabs((start.lower + start.upper) * 0.5f, translation),
+        half((start.upper - start.lower) * 0.5f) {}
+  SegmentSlabs slabs;
+  Vec3 half;
+};
+
 template <typename Visit>
 void AabbTree::ray_query(Vec3 origin, Vec3 dir, float max_t, Visit&& visit) const {
   const SegmentSlabs slabs(origin, dir);
@@ -307,21 +317,16 @@ void AabbTree::ray_query_nearest(Vec3 origin, Vec3 dir, float& reach, Visit&& vi
 template <typename Visit>
 void AabbTree::sweep_query_nearest(const Aabb& start, Vec3 translation, float& reach,
                                    Visit&& visit) const {
-  // As sweep_query: the start box's centre against every box grown by its
-  // half size.
-  const Vec3 center = (start.lower + start.upper) * 0.5f;
-  const Vec3 half = (start.upper - start.lower) * 0.5f;
-  nearest_walk<true>(SegmentSlabs(center, translation), half, reach, visit);
+  const SweptBox swept(start, translation);
+  nearest_walk<true>(swept.slabs, swept.half, reach, visit);
 }
 
 template <typename Visit>
 void AabbTree::sweep_query(const Aabb& start, Vec3 translation, Visit&& visit) const {
-  const Vec3 center = (start.lower + start.upper) * 0.5f;
-  const Vec3 half = (start.upper - start.lower) * 0.5f;
-  const SegmentSlabs slabs(center, translation);
+  const SweptBox swept(start, translation);
   walk(
       [&](const Aabb& node) {
-        return slabs.hits({node.lower - half, node.upper + half}, 1.0f);
+        return swept.slabs.hits({node.lower - swept.half, node.upper + swept.half}, 1.0f);
       },
       visit);
 }

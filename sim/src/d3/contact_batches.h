@@ -15,6 +15,7 @@
 #include <cstdint>
 
 #include "d3/wide_float.h"
+#include "rewind/sim/detail/take_color.h"
 #include "rewind/sim/world_state.h"
 
 namespace rwd::sim {
@@ -27,20 +28,11 @@ inline constexpr uint32_t kColorCount = 24;
 
 /// The first colour in which neither solver body a nor b (each only if it
 /// can move) is taken yet, marking them taken in it; kColorCount when every
-/// colour has one of them. `bits` holds kColorCount runs of `words` words,
-/// one bit per solver body.
+/// colour has one of them (rewind/sim/detail/take_color.h). `bits` holds
+/// kColorCount runs of `words` words, one bit per solver body.
 inline uint32_t take_color(uint64_t* bits, size_t words, uint32_t a, bool movable_a, uint32_t b,
                            bool movable_b) {
-  for (uint32_t col = 0; col < kColorCount; ++col) {
-    uint64_t* run = bits + col * words;
-    const bool used_a = movable_a && (run[a / 64] >> (a % 64) & 1u) != 0;
-    const bool used_b = movable_b && (run[b / 64] >> (b % 64) & 1u) != 0;
-    if (used_a || used_b) continue;
-    if (movable_a) run[a / 64] |= uint64_t{1} << (a % 64);
-    if (movable_b) run[b / 64] |= uint64_t{1} << (b % 64);
-    return col;
-  }
-  return kColorCount;
+  return detail::take_color(bits, words, kColorCount, a, movable_a, b, movable_b);
 }
 /// Gauss-Seidel sweeps over a manifold's normal system per pass: enough for
 /// four points on a face to agree (one sweep is the usual sequential

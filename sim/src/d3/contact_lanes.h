@@ -209,22 +209,23 @@ void sweep_normal_block(const A& acc, const ContactBatch& batch,
                         const typename A::F (&later_gain)[kMaxManifoldPoints],
                         typename A::F (&residual)[kMaxManifoldPoints],
                         typename A::F (&total)[kMaxManifoldPoints]) {
+  // Whether this access looks for a settled sweep (a lone point's one
+  // sweep has nothing after it to skip).
+  constexpr bool kLooks = A::kSettles && (kBlockSweeps<N>) > 1;
   for (int sweep = 0; sweep < kBlockSweeps<N>; ++sweep) {
-    if constexpr (A::kSettles && kBlockSweeps < N >> 1) {
-      typename A::F total_before[kMaxManifoldPoints];
-      typename A::F residual_before[kMaxManifoldPoints];
+    typename A::F total_before[kMaxManifoldPoints];
+    typename A::F residual_before[kMaxManifoldPoints];
+    if constexpr (kLooks) {
       for (uint32_t p = 0; p < N; ++p) {
         total_before[p] = total[p];
         residual_before[p] = residual[p];
       }
-      for (uint32_t p = 0; p < N; ++p) {
-        sweep_step<N>(acc, batch, p, sweep == 0 ? first_gain[p] : later_gain[p], residual, total);
-      }
+    }
+    for (uint32_t p = 0; p < N; ++p) {
+      sweep_step<N>(acc, batch, p, sweep == 0 ? first_gain[p] : later_gain[p], residual, total);
+    }
+    if constexpr (kLooks) {
       if (sweep_settled<N, A>(total_before, residual_before, residual, total)) return;
-    } else {
-      for (uint32_t p = 0; p < N; ++p) {
-        sweep_step<N>(acc, batch, p, sweep == 0 ? first_gain[p] : later_gain[p], residual, total);
-      }
     }
   }
 }

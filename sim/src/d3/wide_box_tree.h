@@ -34,8 +34,8 @@ class WideBoxTree {
     /// By the surface area heuristic: trees that walk fastest, for boxes
     /// that are built rarely and queried often (static bodies).
     kByArea,
-    /// At medians: a build about 1.6 times faster, for trees rebuilt as
-    /// often as they are queried (the awake bodies, every step).
+    /// At medians: a build about 1.5 times faster, for trees rebuilt as
+    /// often as they are queried (the awake bodies, after every step).
     kAtMedians,
   };
 
@@ -82,10 +82,10 @@ class WideBoxTree {
   /// A child that is a leaf: this bit and the body.
   static constexpr uint32_t kLeaf = 0x80000000u;
   /// Levels cut by the surface area heuristic (Cuts::kByArea), which may
-  /// cut unevenly;
-  /// below them cuts are at medians, which quarter a range per level, so
-  /// a tree of up to 2^31 leaves is at most kMaxDepth levels deep, and a
-  /// depth-first walk holds at most three siblings per level plus four.
+  /// cut unevenly; below them cuts are at medians, which quarter a range
+  /// per level, so a tree of up to 2^31 leaves is at most kMaxDepth levels
+  /// deep, and a depth-first walk holds at most three siblings per level
+  /// plus four.
   static constexpr uint32_t kCostDepth = 24;
   static constexpr uint32_t kMaxDepth = kCostDepth + 16;
   static constexpr uint32_t kStackSize = (kMaxDepth + 1) * 3 + 4;
@@ -141,12 +141,12 @@ template <bool kGrow>
 inline uint32_t WideBoxTree::enter_bits(const Node& node, const SegmentSlabs& slabs, Vec3 grow,
                                         float max_t, float (&entry)[kLanes]) {
   // SegmentSlabs::enters, lane by lane. No value here is NaN: an axis the
-  // segment is not parallel to has a finite reciprocal, and box and
-  // origin are finite, so each t is finite or infinite; the min and max
+  // segment is not parallel to has a finite reciprocal, and box and origin
+  // are finite, so each t is finite or infinite; the min and max
   // instructions then give std::min's and std::max's floats on every
-  // target, but for the sign of a zero, which no comparison sees. An axis the segment runs parallel
-  // to fails a lane whose box it passes outside by dropping t_hi below t_lo (which never falls
-  // below 0).
+  // target, but for the sign of a zero, which no comparison sees. An axis
+  // the segment runs parallel to fails a lane whose box it passes outside
+  // by dropping t_hi below t_lo (which never falls below 0).
   FloatW t_lo = splat(0.0f);
   FloatW t_hi = splat(max_t);
   for (int i = 0; i < 3; ++i) {
@@ -206,11 +206,13 @@ void WideBoxTree::ray_query(Vec3 origin, Vec3 dir, float max_t, Visit&& visit) c
 
 template <typename Visit>
 void WideBoxTree::sweep_query(const Aabb& start, Vec3 translation, Visit&& visit) const {
-  const Vec3 center = (start.lower + start.upper) * 0.5f;
-  const Vec3 half = (start.upper - start.lower) * 0.5f;
-  const SegmentSlabs slabs(center, translation);
+  const SweptBox swept(start, translation);
   float entry[kLanes];
-  walk([&](const Node& node) { return enter_bits<true>(node, slabs, half, 1.0f, entry); }, visit);
+  walk(
+      [&](const Node& node) {
+        return enter_bits<true>(node, swept.slabs, swept.half, 1.0f, entry);
+      },
+      visit);
 }
 
 template <bool kGrow, typename Visit>
@@ -259,9 +261,8 @@ void WideBoxTree::ray_query_nearest(Vec3 origin, Vec3 dir, float& reach, Visit&&
 template <typename Visit>
 void WideBoxTree::sweep_query_nearest(const Aabb& start, Vec3 translation, float& reach,
                                       Visit&& visit) const {
-  const Vec3 center = (start.lower + start.upper) * 0.5f;
-  const Vec3 half = (start.upper - start.lower) * 0.5f;
-  nearest_walk<true>(SegmentSlabs(center, translation), half, reach, visit);
+  const SweptBox swept(start, translation);
+  nearest_walk<true>(swept.slabs, swept.half, reach, visit);
 }
 
 }  // namespace rwd::sim::d3
