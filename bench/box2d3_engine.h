@@ -23,8 +23,11 @@ class Box2D3Engine final : public Engine2D {
   std::string settings() const override;
   bool is_default() const override { return substeps_ == 4; }
   bool build(const Scene2D& scene, std::string& error) override;
+  bool add_wave(const Scene2D& scene, uint32_t wave, std::string& error) override;
+  void remove_wave(uint32_t wave) override;
   void step() override;
   Pose2D pose(uint32_t index) const override;
+  Pose2D wave_pose(uint32_t wave, uint32_t index) const override;
   bool raycast(double x0, double y0, double x1, double y1, double& fraction) const override;
 
  private:

@@ -26,8 +26,19 @@ std::string Box2DEngine::settings() const {
          (continuous_ ? "" : " continuous=0");
 }
 
-bool Box2DEngine::build(const Scene2D& scene, std::string& /*error*/) {
+bool Box2DEngine::build(const Scene2D& scene, std::string& error) {
   bodies_.clear();
+  world_.reset();
+  if (scene.joint_springs || !scene.waves.empty()) {
+    error = "box2d: Box2D 2.4.1's revolute joints have no spring (scene " + scene.name + ")";
+    return false;
+  }
+  for (const BodyDesc2D& b : scene.bodies) {
+    if (b.radius > 0 && b.capsule_y0 != b.capsule_y1) {
+      error = "box2d: Box2D 2.4.1 has no capsule (scene " + scene.name + ")";
+      return false;
+    }
+  }
   world_ = std::make_unique<b2World>(b2Vec2(0.0f, milli(scene.gravity)));
   // Both engines keep every body awake (the Rewind adapter turns its
   // sleeping off too), so they do the same work.
@@ -48,6 +59,7 @@ bool Box2DEngine::build(const Scene2D& scene, std::string& /*error*/) {
       def.position.Set(milli(b.x), milli(b.y));
       def.linearVelocity.Set(milli(b.vx), milli(b.vy));
       def.angularVelocity = milli(b.angular_velocity);
+      def.linearDamping = milli(b.linear_damping);
       def.allowSleep = false;
       // A body made asleep stays so until a contact or joint wakes it.
       def.awake = b.awake;
@@ -63,7 +75,9 @@ bool Box2DEngine::build(const Scene2D& scene, std::string& /*error*/) {
     fixture.shape = b.radius > 0 ? static_cast<const b2Shape*>(&circle) : &box;
     fixture.density =
         b.kind == Kind2D::kDynamic ? milli(b.density > 0 ? b.density : scene.density) : 0.0f;
-    fixture.friction = milli(scene.friction);
+    fixture.friction = milli(b.friction >= 0 ? b.friction : scene.friction);
+    fixture.filter.categoryBits = static_cast<uint16>(b.layer);
+    fixture.filter.maskBits = static_cast<uint16>(b.mask);
     fixture.restitution = 0.0f;
     body->CreateFixture(&fixture);
     bodies_.push_back(body);
@@ -74,6 +88,11 @@ bool Box2DEngine::build(const Scene2D& scene, std::string& /*error*/) {
     world_->CreateJoint(&def);
   }
   return true;
+}
+
+bool Box2DEngine::add_wave(const Scene2D& scene, uint32_t /*wave*/, std::string& error) {
+  error = "box2d: scene " + scene.name + " refused at build";
+  return false;
 }
 
 void Box2DEngine::step() {

@@ -24,9 +24,15 @@ class Box2DEngine final : public Engine2D {
   std::string name() const override { return "box2d"; }
   std::string settings() const override;
   bool is_default() const override { return velocity_ == 8 && position_ == 3 && continuous_; }
+  /// Refuses scenes with joint springs or capsules (Box2D 2.4.1 has
+  /// neither), and so those with waves (only the rain has them).
   bool build(const Scene2D& scene, std::string& error) override;
+  bool add_wave(const Scene2D& scene, uint32_t wave, std::string& error) override;
+  void remove_wave(uint32_t /*wave*/) override {}
   void step() override;
   Pose2D pose(uint32_t index) const override;
+  /// Never called: build() refuses every scene with waves.
+  Pose2D wave_pose(uint32_t /*wave*/, uint32_t /*index*/) const override { return {}; }
   bool raycast(double x0, double y0, double x1, double y1, double& fraction) const override;
 
  private:

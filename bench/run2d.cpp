@@ -13,8 +13,30 @@ double distance(const Pose2D& a, const Pose2D& b) {
   return std::hypot(a.x - b.x, a.y - b.y);
 }
 
+// Where a pose puts a point given in the world at `made` (the body's
+// pose when the joint was made).
+void carry(const Pose2D& made, const Pose2D& now, double x, double y, double& ox, double& oy) {
+  const double lx0 = x - made.x, ly0 = y - made.y;
+  const double c0 = std::cos(made.angle), s0 = std::sin(made.angle);
+  const double lx = c0 * lx0 + s0 * ly0, ly = -s0 * lx0 + c0 * ly0;
+  const double c = std::cos(now.angle), s = std::sin(now.angle);
+  ox = now.x + c * lx - s * ly;
+  oy = now.y + s * lx + c * ly;
+}
+
+// A joint's opening: the distance between its anchor as body a carries it
+// and as body b carries it (0 for a joint that holds).
+double opening(const RevoluteDesc2D& j, const Pose2D& made_a, const Pose2D& made_b,
+               const Pose2D& now_a, const Pose2D& now_b) {
+  double ax = 0, ay = 0, bx = 0, by = 0;
+  carry(made_a, now_a, j.x / 1000.0, j.y / 1000.0, ax, ay);
+  carry(made_b, now_b, j.x / 1000.0, j.y / 1000.0, bx, by);
+  return std::hypot(ax - bx, ay - by);
+}
+
+// `ticks`: how many ticks ran (the waves before them were added).
 void measure(const Scene2D& scene, const Engine2D& engine, const std::vector<Pose2D>& start,
-             Run2DResult& r) {
+             int ticks, Run2DResult& r) {
   for (uint32_t top : scene.tops) {
     r.top_drift_m = std::max(r.top_drift_m, distance(engine.pose(top), start[top]));
   }
@@ -25,9 +47,30 @@ void measure(const Scene2D& scene, const Engine2D& engine, const std::vector<Pos
     }
   }
   for (const RevoluteDesc2D& j : scene.joints) {
-    const double rest = distance(start[j.a], start[j.b]);
-    r.max_stretch_m =
-        std::max(r.max_stretch_m, distance(engine.pose(j.a), engine.pose(j.b)) - rest);
+    r.max_opening_m = std::max(
+        r.max_opening_m, opening(j, start[j.a], start[j.b], engine.pose(j.a), engine.pose(j.b)));
+  }
+  // The waves still in the world: their joints' opening, and their bodies
+  // that fell below the scene (y < -1 m: through the lowest floor).
+  std::vector<bool> live(scene.waves.size(), false);
+  for (uint32_t w = 0; w < scene.waves.size() && scene.waves[w].tick < ticks; ++w) {
+    live[w] = true;
+    for (uint32_t gone : scene.waves[w].removes) live[gone] = false;
+  }
+  for (uint32_t w = 0; w < scene.waves.size(); ++w) {
+    if (!live[w]) continue;
+    const Wave2D& wave = scene.waves[w];
+    auto made = [&wave](uint32_t i) {
+      return Pose2D{wave.bodies[i].x / 1000.0, wave.bodies[i].y / 1000.0, 0.0};
+    };
+    for (const RevoluteDesc2D& j : wave.joints) {
+      r.max_opening_m = std::max(
+          r.max_opening_m,
+          opening(j, made(j.a), made(j.b), engine.wave_pose(w, j.a), engine.wave_pose(w, j.b)));
+    }
+    for (uint32_t i = 0; i < wave.bodies.size(); ++i) {
+      if (wave.bodies[i].kind == Kind2D::kDynamic && engine.wave_pose(w, i).y < -1.0) ++r.escaped;
+    }
   }
   if (scene.container_wall >= 0) {
     // Into the container's frame: about its pivot, by the wall's angle.
@@ -57,6 +100,7 @@ std::vector<Run2DResult> run_lockstep(const Scene2D& scene,
     for (uint32_t i = 0; i < scene.bodies.size(); ++i) start[e].push_back(engines[e]->pose(i));
   }
   std::vector<double> seconds(n, 0.0);
+  std::vector<uint32_t> next_wave(n, 0);
   const int total = scene.warmup_ticks + scene.timed_ticks;
   for (int tick = 0; tick < total; tick += kBlockTicks) {
     const int block = std::min(kBlockTicks, total - tick);
@@ -65,6 +109,14 @@ std::vector<Run2DResult> run_lockstep(const Scene2D& scene,
       for (int k = 0; k < block; ++k) {
         const bool timed = tick + k >= scene.warmup_ticks;
         const auto t0 = Clock::now();
+        // A wave's removals and additions count as the tick's work, as in
+        // Box2D's rain benchmark.
+        uint32_t& w = next_wave[e];
+        for (; w < scene.waves.size() && scene.waves[w].tick <= tick + k; ++w) {
+          for (uint32_t r : scene.waves[w].removes) engines[e]->remove_wave(r);
+          if (!engines[e]->add_wave(scene, w, results[e].error)) break;
+        }
+        if (!results[e].error.empty()) break;
         engines[e]->step();
         if (timed) seconds[e] += std::chrono::duration<double>(Clock::now() - t0).count();
         if (timed) {  // outside the timing: poses of the few top boxes
@@ -79,7 +131,8 @@ std::vector<Run2DResult> run_lockstep(const Scene2D& scene,
   for (size_t e = 0; e < n; ++e) {
     if (!results[e].error.empty()) continue;
     results[e].ms_per_step = 1000.0 * seconds[e] / std::max(1, scene.timed_ticks);
-    measure(scene, *engines[e], start[e], results[e]);
+    measure(scene, *engines[e], start[e], total, results[e]);
+    results[e].checksum = engines[e]->checksum();
   }
   return results;
 }

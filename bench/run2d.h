@@ -24,13 +24,15 @@ struct Run2DResult {
   double top_peak_m = 0;
   /// Pyramids: the largest distance (m) of any dynamic box from its start.
   double max_displacement_m = 0;
-  /// Joint grid: the largest stretch (m) of a joint at the end: how much
-  /// farther apart two joined bodies are than they started (a revolute
-  /// joint at their midpoint holds them at most that far apart).
-  double max_stretch_m = 0;
-  /// Tumbler: dynamic boxes whose centre left the container.
+  /// Joint grid and rain: the widest opening (m) of a joint at the end:
+  /// the distance between its anchor as each of its two bodies carries it
+  /// (0 for a joint that holds).
+  double max_opening_m = 0;
+  /// Tumbler: dynamic boxes whose centre left the container; rain: ragdoll
+  /// parts below the lowest floor (y < -1 m) at the end.
   int escaped = 0;
-  std::string error;  ///< non-empty: the engine refused the scene
+  uint64_t checksum = 0;  ///< Engine2D::checksum() at the end
+  std::string error;      ///< non-empty: the engine refused the scene
 };
 
 /// Ticks each engine takes before the next one steps.

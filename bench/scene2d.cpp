@@ -2,6 +2,7 @@
 #include "scene2d.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace rwd::bench {
 
@@ -165,9 +166,116 @@ Scene2D make_smash2d(int columns) {
   return s;
 }
 
+namespace {
+
+// One bone of Box2D v3's ragdoll (its shared/human.c at scale 1): a
+// vertical capsule and, for all but the hip, the revolute joint to its
+// parent. Lengths in mm, angles in mrad, torque scale in thousandths.
+struct Bone2D {
+  int parent;  // index into kBones; -1: the hip
+  int32_t y;   // body origin above the ragdoll's feet
+  int32_t capsule_y0, capsule_y1, radius;
+  int32_t linear_damping;  // 1/s x 1000
+  int32_t pivot_y;         // the joint's world point above the feet
+  int32_t reference, lower, upper;
+  int32_t friction_scale;  // x 1000 of the ragdoll's joint friction
+};
+
+constexpr Bone2D kBones[] = {
+    {-1, 950, -20, 20, 95, 0, 0, 0, 0, 0, 0},                  // hip
+    {0, 1200, -135, 135, 90, 0, 1000, 0, -785, 0, 500},        // torso
+    {1, 1475, -38, 39, 75, 100, 1400, 0, -942, 314, 250},      // head
+    {0, 775, -125, 125, 60, 0, 900, 0, -157, 1257, 1000},      // upper left leg
+    {3, 475, -155, 125, 45, 0, 625, 0, -1571, -63, 500},       // lower left leg
+    {0, 775, -125, 125, 60, 0, 900, 0, -157, 1257, 1000},      // upper right leg
+    {5, 475, -155, 125, 45, 0, 625, 0, -1571, -63, 500},       // lower right leg
+    {1, 1225, -125, 125, 35, 0, 1350, 0, -314, 2513, 500},     // upper left arm
+    {7, 975, -125, 125, 30, 100, 1100, 785, -628, 942, 100},   // lower left arm
+    {1, 1225, -125, 125, 35, 0, 1350, 0, -314, 2513, 500},     // upper right arm
+    {9, 975, -125, 125, 30, 100, 1100, 785, -628, 942, 100}};  // lower right arm
+
+constexpr int kRainRows = 5;
+constexpr int kRainGroupSize = 5;
+constexpr int32_t kRainCell = 500;        // mm: the floor boxes' size
+constexpr int32_t kRainRowPitch = 45000;  // mm between floor rows
+
+// Adds one ragdoll standing at (x, y) to `w`. `human` (0..4, its place in
+// the group) picks its layer: Box2D's human gives every part of ragdoll
+// number k the group index -k, so ragdolls of the same number never touch
+// (nor do parts of one ragdoll) and all of them touch the floor (layer 1).
+void add_ragdoll(Wave2D& w, int32_t x, int32_t y, int human) {
+  const uint32_t first = static_cast<uint32_t>(w.bodies.size());
+  const uint32_t layer = 2u << human;
+  for (const Bone2D& bone : kBones) {
+    BodyDesc2D b;
+    b.radius = bone.radius;
+    b.capsule_y0 = bone.capsule_y0;
+    b.capsule_y1 = bone.capsule_y1;
+    b.x = x;
+    b.y = y + bone.y;
+    b.friction = 200;
+    b.linear_damping = bone.linear_damping;
+    b.layer = layer;
+    b.mask = 1u | (0x3Eu & ~layer);
+    w.bodies.push_back(b);
+    if (bone.parent < 0) continue;
+    RevoluteDesc2D j;
+    j.a = first + static_cast<uint32_t>(bone.parent);
+    j.b = static_cast<uint32_t>(w.bodies.size() - 1);
+    j.x = x;
+    j.y = y + bone.pivot_y;
+    j.reference = bone.reference;
+    j.limit = true;
+    j.lower = bone.lower;
+    j.upper = bone.upper;
+    j.friction_torque = 50 * bone.friction_scale / 1000;  // 0.05 N m at scale 1
+    j.hertz = 5000;
+    j.damping_ratio = 500;
+    w.joints.push_back(j);
+  }
+}
+
+}  // namespace
+
+Scene2D make_rain2d(int columns) {
+  Scene2D s;
+  s.name = "rain";
+  s.size = columns;
+  s.warmup_ticks = 0;
+  s.timed_ticks = 1000;  // as Box2D v3's benchmark: 40 columns land by tick 320
+  s.joint_springs = true;
+  const int cells = columns * 25 / 2;  // 500 at 40 columns, as Box2D's
+  const int32_t span = cells * kRainCell;
+  for (int row = 0; row < kRainRows; ++row) {
+    for (int j = 0; j <= cells; ++j) {
+      BodyDesc2D b;
+      b.kind = Kind2D::kStatic;
+      b.hx = b.hy = kRainCell / 2;
+      b.cx = -span / 2 + j * kRainCell;
+      b.cy = row * kRainRowPitch;
+      b.group = 0;  // one Box2D body of many boxes, as Box2D's floor
+      s.bodies.push_back(b);
+    }
+  }
+  const int32_t pitch = span / columns;
+  for (int k = 0; 8 * k < s.timed_ticks; ++k) {
+    Wave2D w;
+    w.tick = 8 * k;
+    if (k >= columns) w.removes.push_back(static_cast<uint32_t>(k - columns));
+    const int column = k % columns;
+    for (int row = 0; row < kRainRows; ++row) {
+      int32_t x = -span / 2 + pitch * column + pitch / 2;
+      const int32_t y = 40000 + row * kRainRowPitch;
+      for (int human = 0; human < kRainGroupSize; ++human, x += 500) add_ragdoll(w, x, y, human);
+    }
+    s.waves.push_back(std::move(w));
+  }
+  return s;
+}
+
 const std::vector<std::string>& scene2d_names() {
   static const std::vector<std::string> names = {"large_pyramid", "pyramids", "tumbler",
-                                                 "joint_grid", "smash"};
+                                                 "joint_grid",    "smash",    "rain"};
   return names;
 }
 
@@ -182,6 +290,8 @@ bool make_scene2d(const std::string& name, int size, Scene2D& out) {
     out = make_joint_grid2d(size > 0 ? size : 100);
   } else if (name == "smash") {
     out = make_smash2d(size > 0 ? size : 120);
+  } else if (name == "rain") {
+    out = make_rain2d(size > 0 ? size : 40);
   } else {
     return false;
   }

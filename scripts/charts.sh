@@ -175,12 +175,13 @@ if ((run2d)); then
   start=$(date +%s)
   ticks=()
   [[ $mode == quick ]] && ticks=(--ticks 60)
-  step "2D sweep ($mode): large pyramid, pyramids, tumbler, joint grid, smash on Rewind and Box2D 2.4${box2d3:+ and Box2D v3}"
+  step "2D sweep ($mode): large pyramid, pyramids, tumbler, joint grid, smash, rain on Rewind and Box2D 2.4${box2d3:+ and Box2D v3}"
   "$sweep2d" --sweep --scene large_pyramid "${ticks[@]}" >"$out/2d_sweep.csv"
   "$sweep2d" --sweep --scene pyramids "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
   "$sweep2d" --scene tumbler "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
   "$sweep2d" --scene joint_grid "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
   "$sweep2d" --scene smash "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
+  "$sweep2d" --scene rain "${ticks[@]}" | tail -n +2 >>"$out/2d_sweep.csv"
   rays=100000
   [[ $mode == quick ]] && rays=20000
   build/bench/bin/rewind-rays2d "$rays" >"$out/2d_rays.csv"

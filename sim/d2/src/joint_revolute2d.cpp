@@ -21,11 +21,18 @@ void warm_start_revolute(const JointRecord2D& j, const JointConstraint2D& c, Sol
   apply_angular(a, b, j.spring_impulse + j.motor_impulse + j.lower_impulse - j.upper_impulse);
 }
 
-void solve_revolute(JointRecord2D& j, const JointConstraint2D& c, SolverBody2D& a, SolverBody2D& b,
+void solve_revolute(JointRecord2D& j, JointConstraint2D& c, SolverBody2D& a, SolverBody2D& b,
                     const JointPass2D& pass) {
   const bool turns = c.angular_mass > 0;
+  // The angle moves only when positions do, between passes: the spring and
+  // the limits share one evaluation, and passes between the same two
+  // position integrations share it too.
+  if (turns && (j.flags & (kJointSpring | kJointLimit)) && c.angle_positions != pass.positions) {
+    c.angle = joint_angle(c, a, b);
+    c.angle_positions = pass.positions;
+  }
+  const W angle = c.angle;
   if ((j.flags & kJointSpring) && turns) {
-    const W angle = joint_angle(c, a, b);
     const W impulse = -wmul(wmul(c.angular_mass, c.spring.mass_scale),
                             b.w - a.w + wmul(c.spring.bias_rate, angle)) -
                       wmul(c.spring.impulse_scale, j.spring_impulse);
@@ -41,25 +48,25 @@ void solve_revolute(JointRecord2D& j, const JointConstraint2D& c, SolverBody2D& 
     apply_angular(a, b, applied);
   }
   if ((j.flags & kJointLimit) && turns) {
-    const W angle = joint_angle(c, a, b);
     solve_angle_limit(angle - j.lower, kWOne, j.lower_impulse, c.angular_mass, c.soft, a, b, pass);
     solve_angle_limit(j.upper - angle, -kWOne, j.upper_impulse, c.angular_mass, c.soft, a, b, pass);
   }
   // The point, last: it matters most.
   const Anchors2D r = current_anchors(c, a, b);
   const V2 cdot = anchor_velocity(a, b, r);
-  V2 bias;
-  W mass_scale = kWOne;
-  W impulse_scale = 0;
-  if (pass.use_bias) {
-    bias = vscale(c.soft.bias_rate, anchor_separation(c, a, b, r));
-    mass_scale = c.soft.mass_scale;
-    impulse_scale = c.soft.impulse_scale;
+  if (!pass.use_bias) {
+    // Relaxing: mass scale one (the product by kWOne is exact), no bias and
+    // no impulse term.
+    const V2 impulse = -V2{wmul_add(c.point_inv_k11, cdot.x, c.point_inv_k12, cdot.y),
+                           wmul_add(c.point_inv_k12, cdot.x, c.point_inv_k22, cdot.y)};
+    j.linear_impulse += impulse;
+    apply_linear(a, b, r, impulse);
+    return;
   }
-  const V2 e = cdot + bias;
+  const V2 e = cdot + vscale(c.soft.bias_rate, anchor_separation(c, a, b, r));
   const V2 x = {wmul_add(c.point_inv_k11, e.x, c.point_inv_k12, e.y),
                 wmul_add(c.point_inv_k12, e.x, c.point_inv_k22, e.y)};
-  const V2 impulse = -vscale(mass_scale, x) - vscale(impulse_scale, j.linear_impulse);
+  const V2 impulse = -vscale(c.soft.mass_scale, x) - vscale(c.soft.impulse_scale, j.linear_impulse);
   j.linear_impulse += impulse;
   apply_linear(a, b, r, impulse);
 }

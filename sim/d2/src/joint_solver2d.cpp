@@ -30,14 +30,22 @@ PointMass2D point_mass(const SolverBody2D& a, const SolverBody2D& b, const Ancho
 
 W solve_angle_limit(W c, W sign, W& accumulated, W axial_mass, const Softness2D& soft,
                     SolverBody2D& a, SolverBody2D& b, const JointPass2D& pass) {
-  const BiasTerms2D t = one_sided_bias(c, soft, pass);
   const W cdot = wmul(sign, b.w - a.w);
-  const W impulse =
-      -wmul(wmul(axial_mass, t.mass_scale), cdot + t.bias) - wmul(t.impulse_scale, accumulated);
+  W impulse;
+  if (c > 0) {
+    // Speculative, as one_sided_bias() gives it: mass scale one (the
+    // product by kWOne is exact) and no impulse term.
+    impulse = -wmul(axial_mass, cdot + wmul(c, pass.inv_h));
+  } else {
+    const BiasTerms2D t = one_sided_bias(c, soft, pass);
+    impulse =
+        -wmul(wmul(axial_mass, t.mass_scale), cdot + t.bias) - wmul(t.impulse_scale, accumulated);
+  }
   const W next = wmax(accumulated + impulse, 0);
   const W applied = next - accumulated;
   accumulated = next;
-  apply_angular(a, b, wmul(sign, applied));
+  // Far from the limit nothing is applied (most rows, most passes).
+  if (applied != 0) apply_angular(a, b, wmul(sign, applied));
   return applied;
 }
 
@@ -204,7 +212,7 @@ void warm_start_joints(World2DState& state, StepScratch2D& scratch) {
 }
 
 void solve_joints(World2DState& state, StepScratch2D& scratch, const JointPass2D& pass) {
-  for (const JointConstraint2D& c : scratch.joints) {
+  for (JointConstraint2D& c : scratch.joints) {
     JointRecord2D& j = state.joints[c.joint];
     SolverBody2D& a = scratch.bodies[c.a];
     SolverBody2D& b = scratch.bodies[c.b];

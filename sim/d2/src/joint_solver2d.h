@@ -14,6 +14,9 @@ struct JointPass2D {
   W h = 0;
   W inv_h = 0;
   bool use_bias = true;
+  /// Position integrations so far in this step: a pass with the same
+  /// count sees the same rotations (solve_step2d.cpp).
+  uint32_t positions = 0;
 };
 
 void prepare_joints(World2DState& state, StepScratch2D& scratch, W h);
@@ -32,7 +35,7 @@ void solve_distance(JointRecord2D& j, const JointConstraint2D& c, SolverBody2D& 
 void prepare_revolute(JointConstraint2D& c, const SolverBody2D& a, const SolverBody2D& b);
 void warm_start_revolute(const JointRecord2D& j, const JointConstraint2D& c, SolverBody2D& a,
                          SolverBody2D& b);
-void solve_revolute(JointRecord2D& j, const JointConstraint2D& c, SolverBody2D& a, SolverBody2D& b,
+void solve_revolute(JointRecord2D& j, JointConstraint2D& c, SolverBody2D& a, SolverBody2D& b,
                     const JointPass2D& pass);
 void prepare_slider(const JointRecord2D& j, JointConstraint2D& c, const SolverBody2D& a,
                     const SolverBody2D& b);

@@ -109,17 +109,19 @@ void solve_step(World2DState& state, StepScratch2D& scratch, StepStats2D& stats)
   load_bodies(state, scratch, h);
   prepare_joints(state, scratch, h);
   prepare_contacts(state, scratch, h);
-  const JointPass2D biased{h, inv_h, true};
-  const JointPass2D relax{h, inv_h, false};
+  JointPass2D biased{h, inv_h, true};
+  JointPass2D relax{h, inv_h, false};
   // Joints before contacts in every stage: contacts, solved last, win
   // where the two disagree, so joined bodies do not sink into the ground.
   for (int i = 0; i < substeps; ++i) {
     integrate_velocities(state, scratch, h);
     warm_start_joints(state, scratch);
     warm_start_contacts(scratch);
+    biased.positions = static_cast<uint32_t>(i);
     solve_joints(state, scratch, biased);
     solve_contacts(scratch, inv_h, push_max, true);
     integrate_positions(state, scratch, h);
+    relax.positions = static_cast<uint32_t>(i) + 1;
     for (int r = 0; r < config.relax_iterations; ++r) {
       solve_joints(state, scratch, relax);
       solve_contacts(scratch, inv_h, push_max, false);

@@ -127,6 +127,12 @@ struct JointConstraint2D {
   W point_inv_k11 = 0;
   W point_inv_k12 = 0;
   W point_inv_k22 = 0;
+  /// Revolute: joint_angle() as the pass numbered `angle_positions` saw it
+  /// (JointPass2D::positions). A relax pass and the next substep's solve
+  /// see the same rotations; the CORDIC behind the angle is the costliest
+  /// part of a revolute row, so the second one reuses it.
+  W angle = 0;
+  uint32_t angle_positions = UINT32_MAX;
 };
 
 /// Bounds of one body for the broadphase.

@@ -50,6 +50,9 @@ Status check_def(const JointDef2D& def) {
   if (spring && !in_range(def.damping_ratio, Fx(), 100_fx)) {
     return invalid("damping_ratio must be in [0, 100]");
   }
+  if (def.reference_angle < -Fx::pi() || Fx::pi() < def.reference_angle) {
+    return invalid("reference_angle must be in [-pi, pi]");
+  }
   if (def.enable_limit && def.upper < def.lower) return invalid("upper must not be below lower");
   if (def.enable_motor && def.max_motor < Fx()) return invalid("max_motor must be >= 0");
   if (def.break_impulse < Fx()) return invalid("break_impulse must be >= 0 (0: never breaks)");
@@ -112,7 +115,7 @@ Result<JointId2D> World2D::create_joint(const JointDef2D& def) {
   j.local_anchor_a = inv_transform_point(xa, v_from(def.anchor_a));
   j.local_anchor_b = inv_transform_point(xb, v_from(def.anchor_b));
   j.local_axis_a = inv_rotate(xa.q, vnormalize(v_from(def.axis)).unit);
-  j.reference_angle = angle_of(rinv_mul(xa.q, xb.q));
+  j.reference_angle = angle_of(rinv_mul(xa.q, xb.q)) + w_from(def.reference_angle);
   j.length = w_from(def.length);
   j.min_length = w_from(def.min_length);
   j.max_length = def.max_length == Fx() ? j.length : w_from(def.max_length);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/fixed/trig.h"
 
+#include <bit>
 #include <cstdint>
 
 #include "rewind/fixed/wide_int.h"
@@ -44,6 +45,13 @@ constexpr int64_t asr(int64_t v, int shift) {
   return v >> shift;
 }
 
+// v when `mask` is 0, -v when it is -1 (all bits set): CORDIC's choice of
+// direction without a branch, which the loops would mispredict about half
+// the time. |v| stays far below 2^63 here.
+constexpr int64_t negate_if(int64_t v, int64_t mask) {
+  return (v ^ mask) - mask;
+}
+
 }  // namespace
 
 SinCos sin_cos(Fx radians) {
@@ -63,15 +71,10 @@ SinCos sin_cos(Fx radians) {
   for (int i = 0; i < kIterations; ++i) {
     const int64_t dx = asr(y, i);
     const int64_t dy = asr(x, i);
-    if (z >= 0) {
-      x -= dx;
-      y += dy;
-      z -= kAtanTable[i];
-    } else {
-      x += dx;
-      y -= dy;
-      z += kAtanTable[i];
-    }
+    const int64_t m = asr(z, 63);  // z >= 0: turn toward it by atan 2^-i
+    x -= negate_if(dx, m);
+    y += negate_if(dy, m);
+    z -= negate_if(kAtanTable[i], m);
   }
   Fx c = Fx::from_raw(saturate_i32(shift_round(x, 14)));
   const Fx s = Fx::from_raw(saturate_i32(shift_round(y, 14)));
@@ -94,29 +97,25 @@ int64_t cordic_angle_q30(int64_t vy, int64_t vx) {
     vx = -vx;
     vy = -vy;
   }
-  uint64_t big = magnitude(vx) > magnitude(vy) ? magnitude(vx) : magnitude(vy);
-  while (big >= (uint64_t{1} << 41)) {
-    vx = asr(vx, 1);
-    vy = asr(vy, 1);
-    big >>= 1;
+  const uint64_t big = magnitude(vx) > magnitude(vy) ? magnitude(vx) : magnitude(vy);
+  // Into [2^40, 2^41): one shift either way (arithmetic right shifts
+  // compose, so one shift by n equals n shifts by 1).
+  const int width = std::bit_width(big);
+  if (width > 41) {
+    vx = asr(vx, width - 41);
+    vy = asr(vy, width - 41);
+  } else {
+    vx *= int64_t{1} << (41 - width);
+    vy *= int64_t{1} << (41 - width);
   }
-  int shift = 0;
-  while ((big << shift) < (uint64_t{1} << 40)) ++shift;
-  vx *= int64_t{1} << shift;
-  vy *= int64_t{1} << shift;
   int64_t z = 0;  // Q2.30
   for (int i = 0; i < kIterations; ++i) {
     const int64_t dx = asr(vy, i);
     const int64_t dy = asr(vx, i);
-    if (vy >= 0) {
-      vx += dx;
-      vy -= dy;
-      z += kAtanTable[i];
-    } else {
-      vx -= dx;
-      vy += dy;
-      z -= kAtanTable[i];
-    }
+    const int64_t m = asr(vy, 63);  // vy >= 0: turn down by atan 2^-i
+    vx += negate_if(dx, m);
+    vy -= negate_if(dy, m);
+    z += negate_if(kAtanTable[i], m);
   }
   return z + offset;
 }

@@ -119,6 +119,48 @@ TEST(World2DJoints, RevoluteLimitAndMotor) {
   EXPECT_NEAR(to_double(world.angle(arm)), -0.5, 0.01);
 }
 
+TEST(World2DJoints, ReferenceAngleMovesTheSpringsRestAndTheLimits) {
+  // A hinged arm without gravity, its spring's rest 0.6 rad from the pose at
+  // creation: the spring turns it there. A second arm whose limits [-0.2,
+  // 0.3] are counted from a reference of 0.5 starts at -0.5 on the joint's
+  // scale; a motor turns it down against the lower limit, which holds it
+  // 0.3 rad from where it started.
+  World2DConfig config;
+  config.gravity = {};
+  World2D world(config);
+  const BodyId2D ground = add_body(world, BodyKind2D::kStatic, make_circle(0.1_fx), {});
+  const BodyId2D sprung =
+      add_body(world, BodyKind2D::kDynamic, make_box(1_fx, 0.1_fx), {1_fx, Fx()});
+  JointDef2D spring = joint_at(JointType2D::kRevolute, ground, sprung, {});
+  spring.enable_spring = true;
+  spring.hertz = 2_fx;
+  spring.damping_ratio = 1_fx;
+  spring.reference_angle = 0.6_fx;
+  ASSERT_TRUE(world.create_joint(spring).ok());
+  const BodyId2D limited =
+      add_body(world, BodyKind2D::kDynamic, make_box(1_fx, 0.1_fx), {1_fx, 5_fx});
+  const BodyId2D pin = add_body(world, BodyKind2D::kStatic, make_circle(0.1_fx), {Fx(), 5_fx});
+  JointDef2D limit = joint_at(JointType2D::kRevolute, pin, limited, {Fx(), 5_fx});
+  limit.enable_limit = true;
+  limit.lower = -0.2_fx;
+  limit.upper = 0.3_fx;
+  limit.reference_angle = 0.5_fx;
+  limit.enable_motor = true;
+  limit.motor_speed = -1_fx;
+  limit.max_motor = 5_fx;
+  ASSERT_TRUE(world.create_joint(limit).ok());
+  for (int t = 0; t < 180; ++t) world.step();
+  EXPECT_NEAR(to_double(world.angle(sprung)), 0.6, 0.01);
+  EXPECT_NEAR(to_double(world.angle(limited)), 0.3, 0.01);
+
+  // Outside [-pi, pi] it is refused and nothing changes.
+  const uint32_t joints = world.joint_count();
+  JointDef2D bad = spring;
+  bad.reference_angle = Fx::pi() + Fx::epsilon();
+  EXPECT_FALSE(world.create_joint(bad).ok());
+  EXPECT_EQ(world.joint_count(), joints);
+}
+
 TEST(World2DJoints, PrismaticSlidesOnlyAlongItsAxisWithinLimits) {
   World2D world;  // gravity pulls down; the axis is diagonal
   const BodyId2D ground = add_body(world, BodyKind2D::kStatic, make_circle(0.1_fx), {});

@@ -63,7 +63,14 @@ struct JointDef2D {
   Fx min_length;
   Fx max_length;
 
-  /// Revolute: angle limits (rad, relative to the angle at creation);
+  /// Revolute, prismatic and weld: the angle of B relative to A (rad, in
+  /// [-pi, pi]) the joint holds as zero, counted from their angle at
+  /// creation: a spring pulls toward it and limits count from it, so the
+  /// joint angle at creation is minus this (Box2D's referenceAngle, for
+  /// bodies created at the same angle). 0: the pose at creation.
+  Fx reference_angle;
+
+  /// Revolute: angle limits (rad, relative to the reference angle);
   /// prismatic and wheel: translation limits (m, along the axis).
   bool enable_limit = false;
   Fx lower;
