@@ -35,13 +35,16 @@ void build(StepScratch2D& scratch, uint32_t node, uint32_t first, uint32_t count
   Box2W box = items[first].box;
   V2 lo = items[first].box.lower + items[first].box.upper;
   V2 hi = lo;
+  bool moves = items[first].moves;
   for (uint32_t i = first + 1; i < first + count; ++i) {
     box = merge(box, items[i].box);
     const V2 c = items[i].box.lower + items[i].box.upper;
     lo = vmin(lo, c);
     hi = vmax(hi, c);
+    moves = moves || items[i].moves;
   }
   scratch.tree[node].box = box;
+  scratch.tree[node].moves = moves;
   if (count <= kLeafSize) {
     scratch.tree[node].first = first;
     scratch.tree[node].count = count;
@@ -109,6 +112,8 @@ void walk(const World2DState& state, StepScratch2D& scratch) {
     stack.pop_back();
     const TreeNode2D& nx = tree[x];
     const TreeNode2D& ny = tree[y];
+    // Only pairs with a moving body are kept (PairCollector::test).
+    if (!nx.moves && !ny.moves) continue;
     if (x == y) {
       if (nx.count > 0) {
         collect.within(nx);
@@ -201,12 +206,16 @@ void update_tree(const World2DState& state, StepScratch2D& scratch) {
       TreeNode2D& node = tree[n];
       if (node.count > 0) {
         Box2W box = items[node.first].box;
+        bool moves = items[node.first].moves;
         for (uint32_t i = node.first + 1; i < node.first + node.count; ++i) {
           box = merge(box, items[i].box);
+          moves = moves || items[i].moves;
         }
         node.box = box;
+        node.moves = moves;
       } else {
         node.box = merge(tree[node.first].box, tree[node.first + 1].box);
+        node.moves = tree[node.first].moves || tree[node.first + 1].moves;
       }
     }
     ++scratch.tree_refits;

@@ -149,6 +149,9 @@ struct TreeNode2D {
   Box2W box;
   uint32_t first = 0;
   uint32_t count = 0;
+  /// Some body under it moves this step: pairs of two nodes without one
+  /// (a level's static boxes) are never walked.
+  bool moves = false;
 };
 
 class StepScratch2D {
