@@ -131,7 +131,14 @@ void Broadphase::update_sleeping_tree(const WorldState& state) {
 
 void Broadphase::update(const WorldState& state, std::span<const uint32_t> awake,
                         std::span<const Aabb> bounds) {
-  update_sleeping_tree(state);
+  const bool same_awake =
+      !edited_ && tree_awake_valid_ &&
+      std::equal(awake.begin(), awake.end(), tree_awake_.begin(), tree_awake_.end());
+  if (!same_awake) {
+    update_sleeping_tree(state);
+    tree_awake_.assign(awake.begin(), awake.end());
+    tree_awake_valid_ = true;
+  }
   sort_sweep(state, awake, bounds, spread_axis(awake, bounds));
 }
 
@@ -259,6 +266,15 @@ void Broadphase::find_pairs(const WorldState& state, std::span<const Aabb> bound
 // body has a handful of neighbours) and std::sort past that (the ground
 // under a pile). Pairs are unique, so the order is the one sort order.
 void Broadphase::sort_pairs(std::vector<BodyPair>& pairs, uint32_t body_count) {
+  // A few pairs among many bodies (a few awake in a sleeping level): a
+  // comparison sort, not a pass over every body. Either gives the one
+  // (a, b) order (no pair appears twice).
+  if (pairs.size() * 8 < body_count) {
+    std::sort(pairs.begin(), pairs.end(), [](const BodyPair& l, const BodyPair& r) {
+      return l.a != r.a ? l.a < r.a : l.b < r.b;
+    });
+    return;
+  }
   std::vector<BodyPair>& sorted = pair_spare_;
   std::vector<uint32_t>& start = pair_start_;
   start.assign(static_cast<size_t>(body_count) + 1, 0);
@@ -300,6 +316,9 @@ void Broadphase::sort_pairs(std::vector<BodyPair>& pairs, uint32_t body_count) {
 void Broadphase::prepare_queries(const WorldState& state, uint64_t pose_serial) {
   if (query_serial_ == pose_serial && !edited_) return;
   update_sleeping_tree(state);
+  // Brought up to date with bodies woken or put to sleep since the last
+  // step: update() cannot tell from the awake list alone any more.
+  tree_awake_valid_ = false;
   build_bodies_.clear();
   build_boxes_.clear();
   for (uint32_t i = 0; i < state.infos.size(); ++i) {

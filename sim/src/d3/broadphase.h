@@ -127,6 +127,12 @@ class Broadphase {
   WideBoxTree awake_tree_;                ///< queries only
   std::vector<uint32_t> sleeping_proxy_;  ///< by body index; AabbTree::kNull if none
   bool edited_ = true;
+  /// The awake bodies the sleeping tree was last brought up to date with
+  /// in update(): while they and the world stay the same, so do the
+  /// sleeping bodies (every movable simulated body that is not awake), and
+  /// the tree needs no pass over the bodies.
+  std::vector<uint32_t> tree_awake_;
+  bool tree_awake_valid_ = false;
   uint64_t query_serial_ = kNoSerial;   ///< pose serial the awake tree was built at
   std::vector<uint32_t> build_bodies_;  ///< bulk-build input
   std::vector<Aabb> build_boxes_;

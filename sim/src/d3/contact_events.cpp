@@ -31,7 +31,21 @@ struct PairSpan {
   bool touching = false;  ///< any part touches
 };
 
-PairSpan pair_at(const std::vector<ContactRecord>& records, size_t begin) {
+// A cache's records as one list in cache order: a whole vector, or the
+// records at some of its positions (the steady path's view; a pair's parts
+// are all in it or all out).
+struct CacheView {
+  const std::vector<ContactRecord>& records;
+  const std::vector<uint32_t>* at = nullptr;  ///< null: every record
+  size_t size() const { return at != nullptr ? at->size() : records.size(); }
+  const ContactRecord& operator[](size_t k) const {
+    return at != nullptr ? records[(*at)[k]] : records[k];
+  }
+  uint32_t position(size_t k) const { return at != nullptr ? (*at)[k] : static_cast<uint32_t>(k); }
+};
+
+template <class Records>
+PairSpan pair_at(const Records& records, size_t begin) {
   PairSpan p;
   p.begin = begin;
   p.end = begin;
@@ -135,17 +149,25 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
       k = p.end;
     }
     scratch.stats.touching_manifolds = touching;
+    scratch.last_touching = touching;
     return;
   }
-  const std::vector<ContactRecord>& old = scratch.other_contacts;
-  const std::vector<ContactRecord>& now = state.contacts;
+  // A step that wrote its records in place changed those alone: the rest
+  // rest, unchanged, and report nothing, so only the two views are merged.
+  const bool in_place = scratch.contacts_in_place;
+  const CacheView old{scratch.other_contacts};
+  const CacheView now{state.contacts, in_place ? &scratch.steady_view : nullptr};
+  uint32_t touching = 0;
+  for (size_t k = 0; k < now.size(); ++k) touching += now[k].touching != 0 ? 1u : 0u;
+  if (in_place) {
+    for (size_t k = 0; k < old.size(); ++k) touching -= old[k].touching != 0 ? 1u : 0u;
+    touching += scratch.last_touching;
+  }
   size_t i = 0;
   size_t j = 0;
-  uint32_t touching = 0;
-  for (const ContactRecord& r : now) touching += r.touching != 0 ? 1u : 0u;
   // Each side's current pair, found once as its cursor reaches it.
-  PairSpan o = old.empty() ? PairSpan{} : pair_at(old, 0);
-  PairSpan c = now.empty() ? PairSpan{} : pair_at(now, 0);
+  PairSpan o = old.size() == 0 ? PairSpan{} : pair_at(old, 0);
+  PairSpan c = now.size() == 0 ? PairSpan{} : pair_at(now, 0);
   const auto next_old = [&] {
     i = o.end;
     if (i < old.size()) o = pair_at(old, i);
@@ -157,7 +179,7 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
   while (i < old.size() || j < now.size()) {
     bool take_old = j == now.size() || (i < old.size() && key(old[i]) < key(now[j]));
     bool take_new = i == old.size() || (j < now.size() && key(now[j]) < key(old[i]));
-    const auto at = static_cast<uint32_t>(j);
+    const uint32_t at = j < now.size() ? now.position(j) : 0;
     if (take_old) {
       if (o.touching) add(ContactEventType::kExit, old[i], kNoRecord);
       next_old();
@@ -181,6 +203,7 @@ void build_events(const WorldState& state, WorldScratch& scratch) {
     }
   }
   scratch.stats.touching_manifolds = touching;
+  scratch.last_touching = touching;
 }
 
 void fill_event_details(const WorldState& state, WorldScratch& scratch) {

@@ -85,7 +85,12 @@ void prepare(WorldState& state, WorldScratch& scratch, float h) {
   immovable.angular_damping_factor = 1.0f;
   scratch.solver_bodies.push_back(immovable);
   scratch.solver_body_ids.push_back(0);
-  for (uint32_t i = 0; i < n; ++i) {
+  // The awake bodies in ascending index: the broadphase's list, unless the
+  // wake added some since (then a pass over every body).
+  const bool listed = !scratch.woke_bodies;
+  const uint32_t count = listed ? static_cast<uint32_t>(scratch.active.size()) : n;
+  for (uint32_t k = 0; k < count; ++k) {
+    const uint32_t i = listed ? scratch.active[k] : k;
     const BodyInfo& info = state.infos[i];
     if (!is_active(info)) continue;
     const BodySim& sim = state.sims[i];

@@ -52,6 +52,7 @@ void find_pairs(const WorldState& state, WorldScratch& scratch) {
   const uint32_t n = static_cast<uint32_t>(state.infos.size());
   scratch.aabbs.resize(n);
   scratch.active.clear();
+  scratch.woke_bodies = false;
   const float tick = state.config.tick_seconds;
   const float speculative = state.config.speculative_distance_m;
   for (uint32_t i = 0; i < n; ++i) {

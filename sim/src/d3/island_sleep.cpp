@@ -7,6 +7,7 @@
 // islands (Box2D v3 style) were rejected for the first cut: recomputing is
 // simpler to keep exact under rollback, and costs one pass over the contacts.
 #include "d3/body_storage.h"
+#include "d3/contact_cache_steady.h"
 #include "d3/pipeline.h"
 
 namespace rwd::sim::d3 {
@@ -231,6 +232,10 @@ void wake_touched_islands(WorldState& state, WorldScratch& scratch) {
     woke = true;
   }
   if (!woke) return;
+  scratch.woke_bodies = true;
+  // The refresh changes records the steady path left out of its view: the
+  // events then compare the whole caches.
+  unfold_steady(state, scratch);
   // Contacts carried over while both sides slept have no geometry yet.
   for (uint32_t k = 0; k < state.contacts.size(); ++k) {
     const ContactRecord& r = state.contacts[k];

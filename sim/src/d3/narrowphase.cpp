@@ -22,6 +22,7 @@
 #include <optional>
 
 #include "d3/body_storage.h"
+#include "d3/contact_cache_steady.h"
 #include "d3/manifold_reuse.h"
 #include "d3/pipeline.h"
 #include "d3/step_threads.h"
@@ -358,15 +359,16 @@ void collide_jobs(const WorldState& state, WorldScratch& scratch) {
              });
 }
 
-// Builds the step's cache (state.contacts, scratch.geometry beside it) and
-// next step's separated pairs from the plan, in pair order.
-void gather_pairs(WorldState& state, WorldScratch& scratch) {
+// Builds the step's cache (`out`, `geometry` beside it: state.contacts and
+// scratch.geometry, or the steady cache's share of them) and next step's
+// separated pairs from the plan, in pair order; evaluated_records index
+// `out`.
+void gather_pairs(WorldScratch& scratch, std::vector<ContactRecord>& out,
+                  std::vector<ContactGeometry>& geometry) {
   const std::vector<ContactRecord>& old = scratch.other_contacts;
-  std::vector<ContactRecord>& out = state.contacts;
   out.clear();
   // geometry[k] belongs to out[k]. Its slots are kept from step to step
   // (only grown here); a kept record of two resting bodies costs one byte.
-  std::vector<ContactGeometry>& geometry = scratch.geometry;
   const size_t bound = old.size() + scratch.job_records.size();
   if (geometry.size() < bound) geometry.resize(bound);
   std::vector<uint64_t>& next_keys = scratch.next_separated_keys;
@@ -413,6 +415,7 @@ void update_contacts(WorldState& state, WorldScratch& scratch) {
   // A world at rest (no pairs: nothing awake) whose every record joins two
   // sleeping bodies keeps its cache exactly as it is: no copy, no merge.
   scratch.contacts_unchanged = false;
+  scratch.contacts_in_place = false;
   scratch.evaluated_records.clear();
   scratch.refreshed_records.clear();
   if (scratch.pairs.empty()) {
@@ -431,14 +434,26 @@ void update_contacts(WorldState& state, WorldScratch& scratch) {
       for (size_t k = 0; k < state.contacts.size(); ++k) scratch.geometry[k].valid = 0;
       scratch.separated_keys.clear();
       scratch.separated_axes.clear();
+      scratch.steady_serial = 0;
       return;
     }
   }
-  std::vector<ContactRecord>& old = scratch.other_contacts;
-  old.swap(state.contacts);  // old = last step's cache; state.contacts is rebuilt
-  plan_pairs(state, scratch);
-  collide_jobs(state, scratch);
-  gather_pairs(state, scratch);
+  if (steady_cache_usable(state, scratch)) {
+    // Last step's evaluated records stand in for its whole cache: the rest
+    // rest, and the full merge would carry them as they are.
+    steady_old_records(state, scratch);
+    plan_pairs(state, scratch);
+    collide_jobs(state, scratch);
+    gather_pairs(scratch, scratch.steady_new, scratch.steady_geometry);
+    place_steady_records(state, scratch);
+  } else {
+    std::vector<ContactRecord>& old = scratch.other_contacts;
+    old.swap(state.contacts);  // old = last step's cache; state.contacts is rebuilt
+    plan_pairs(state, scratch);
+    collide_jobs(state, scratch);
+    gather_pairs(scratch, state.contacts, scratch.geometry);
+  }
+  remember_steady(scratch);
 }
 
 void refresh_contact(WorldState& state, WorldScratch& scratch, uint32_t index) {

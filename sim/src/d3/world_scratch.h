@@ -144,6 +144,8 @@ class WorldScratch {
   /// the speculative distance and its reach this tick.
   std::vector<Aabb> aabbs;
   std::vector<uint32_t> active;  ///< awake movable bodies, ascending
+  /// wake_touched_islands woke bodies this step: `active` lacks them.
+  bool woke_bodies = false;
   /// Pairs, sweep and trees; the queries and continuous collision use it
   /// too (prepare_queries first).
   d3::Broadphase broadphase;
@@ -182,6 +184,28 @@ class WorldScratch {
   std::vector<uint64_t> next_separated_keys;
   std::vector<uint8_t> next_separated_axes;
   std::vector<ContactGeometry> geometry;
+  /// The steady cache (contact_cache_steady.cpp): while no body wakes and
+  /// the world is not edited, the records the last step did not carry (it
+  /// evaluated them: every record with an awake body) are the only ones
+  /// this step can change, so it collides against those alone and, when
+  /// its records come out with the same keys, writes them back where they
+  /// were: a few awake bodies in a level of sleeping ones cost what they
+  /// touch, not the whole cache.
+  /// steady_serial: edit_serial when the last narrowphase left the cache
+  /// (0: unusable); steady_active: that step's awake bodies; steady_records:
+  /// the positions of the records it evaluated, ascending.
+  uint64_t steady_serial = 0;
+  std::vector<uint32_t> steady_active;
+  std::vector<uint32_t> steady_records;
+  /// This step wrote its records in place (other_contacts then holds only
+  /// last step's versions of them, at positions steady_view, ascending).
+  bool contacts_in_place = false;
+  std::vector<uint32_t> steady_view;
+  std::vector<ContactRecord> steady_new;  ///< this step's records of those pairs
+  std::vector<ContactGeometry> steady_geometry;
+  std::vector<uint32_t> steady_placed;  ///< where a merge put each of steady_new
+  /// The touching records of the cache after the last step's events.
+  uint32_t last_touching = 0;
   /// The step's pairs to collide, and their results (PairJob::slot).
   std::vector<d3::PairJob> pair_jobs;
   std::vector<ContactRecord> job_records;

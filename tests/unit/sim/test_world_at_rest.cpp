@@ -160,6 +160,21 @@ TEST(WorldAtRest, MovingOrSwitchingABodyEndsTheRest) {
   });
 }
 
+TEST(WorldAtRest, AFewAwakeBodiesAmongSleepingOnesStepAsTheFullMergeWould) {
+  // The steady contact cache collides only the records of awake bodies
+  // while no body wakes; here the ball rolls into the sleeping pyramid and
+  // wakes it, the lone box hops (its ground pair goes and comes back), a
+  // new box lands beside it, and everything falls asleep again. Every tick
+  // must equal the world restored before the step (a full merge).
+  expect_skipping_is_stepping(
+      [](World3D& world, BodyId ball, BodyId lone) {
+        ASSERT_TRUE(world.set_linear_velocity(ball, {3.0f, 0.0f, 0.0f}).ok());
+        ASSERT_TRUE(world.set_linear_velocity(lone, {0.0f, 3.0f, 0.0f}).ok());
+        add_box(world, {7.5f, 2.0f, 0.0f});
+      },
+      600);
+}
+
 TEST(WorldAtRest, AJointWakesItsBodies) {
   expect_skipping_is_stepping([](World3D& world, BodyId ball, BodyId lone) {
     JointDef def;
