@@ -15,6 +15,9 @@ std::tuple<uint32_t, uint32_t, uint8_t> order_key(const ContactRecord& r) {
 
 bool steady_cache_usable(const WorldState& state, const WorldScratch& scratch) {
   if (scratch.steady_serial == 0 || scratch.steady_serial != scratch.edit_serial) return false;
+  // Worth it only when most of the cache rests: the path copies the
+  // evaluated records twice, where the full merge swaps the whole cache.
+  if (scratch.steady_records.size() * 4 > state.contacts.size()) return false;
   if (!scratch.steady_records.empty() && scratch.steady_records.back() >= state.contacts.size()) {
     return false;
   }

@@ -10,10 +10,10 @@
 
 namespace rwd::sim::d3 {
 
-/// Whether this step may take the steady path: the cache is the one the
-/// last narrowphase left (no edit of the world since), and every body awake
-/// now was awake then, so every record it carried still joins two resting
-/// bodies.
+/// Whether this step takes the steady path: at most a quarter of the cache
+/// was evaluated last step, the cache is the one the last narrowphase left
+/// (no edit of the world since), and every body awake now was awake then,
+/// so every record it carried still joins two resting bodies.
 bool steady_cache_usable(const WorldState& state, const WorldScratch& scratch);
 /// Copies the records the last step evaluated into scratch.other_contacts
 /// (their positions in scratch.steady_view): the plan's "last step's cache".
