@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <cstddef>
+#include <cstring>
 
 #include "d3/contact_lanes.h"
 #include "d3/step_threads.h"
@@ -142,6 +144,16 @@ void color(WorldScratch& scratch) {
     scratch.color_of[k] =
         take_color(scratch.color_bits.data(), words, c.body_a, movable_a, c.body_b, movable_b);
   }
+}
+
+// Zeroes what the passes of a batch of `bound` points read: every field
+// but the points from `bound` on.
+void clear_batch(ContactBatch& batch, uint32_t bound) {
+  auto* bytes = reinterpret_cast<unsigned char*>(&batch);
+  const size_t points = offsetof(ContactBatch, points);
+  const size_t coupling = offsetof(ContactBatch, coupling);
+  std::memset(bytes, 0, points + bound * sizeof(ContactBatch::Point));
+  std::memset(bytes + coupling, 0, sizeof(ContactBatch) - coupling);
 }
 
 // Packs constraint `index` into a lane: ids, axes, anchors and impulses.
@@ -353,10 +365,16 @@ void build_batches(WorldScratch& scratch) {
     const uint32_t end = scratch.color_start[col + 1];
     const uint32_t per_batch = col == kColorCount ? 1 : kBatchLanes;
     for (uint32_t first = begin; first < end; first += per_batch) {
-      // Value-initialised: an empty lane, and the points past a manifold's
-      // count, are all zeros (prepare_lanes keeps what it derives for them
-      // at zero too).
+      // Zeroed where the passes read: an empty lane, and the points past a
+      // manifold's count, are all zeros (prepare_lanes keeps what it
+      // derives for them at zero too); points past the batch's bound are
+      // never read.
+      uint32_t bound = 1;
+      for (uint32_t at = first; at < std::min(first + per_batch, end); ++at) {
+        bound = std::max(bound, scratch.constraints[scratch.colored[at]].point_count);
+      }
       ContactBatch& batch = scratch.batches.emplace_back();
+      clear_batch(batch, bound);
       batch.point_bound = 1;
       batch.lanes_used = static_cast<uint8_t>(std::min(per_batch, end - first));
       for (uint32_t lane = 0; lane < kBatchLanes; ++lane) {

@@ -54,6 +54,10 @@ inline constexpr int kBatchLanes = 2 * kLanes;
 /// [point][lane]. Points past a manifold's count (and empty lanes) have
 /// zero masses and couplings, so the same arithmetic leaves them at zero.
 struct alignas(32) ContactBatch {
+  /// Left uninitialised: build_batches zeroes only the parts a batch of its
+  /// point bound uses (clear_batch), half a batch or less for one-point
+  /// manifolds, which small worlds step many times a tick.
+  ContactBatch() {}  // NOLINT(modernize-use-equals-default): = default would zero it
   uint32_t constraint[kBatchLanes];  ///< index into scratch.constraints, or kNoConstraint
   uint32_t body_a[kBatchLanes];      ///< solver body (0, the immovable body, for empty lanes)
   uint32_t body_b[kBatchLanes];
