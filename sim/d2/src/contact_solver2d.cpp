@@ -271,8 +271,11 @@ bool solve_normal_block(ContactConstraint2D& c, SolverBody2D& a, SolverBody2D& b
   const W ms = t1.mass_scale;
   // The relaxed accumulated impulses, and the rows' residuals times the
   // mass scale: q = ms (v + bias) - K a.
-  const W a1 = p1.normal_impulse - wmul(t1.impulse_scale, p1.normal_impulse);
-  const W a2 = p2.normal_impulse - wmul(t2.impulse_scale, p2.normal_impulse);
+  // Outside the soft push-out the impulse scale is zero (both rows agree).
+  const W a1 =
+      t1.soft ? p1.normal_impulse - wmul(t1.impulse_scale, p1.normal_impulse) : p1.normal_impulse;
+  const W a2 =
+      t2.soft ? p2.normal_impulse - wmul(t2.impulse_scale, p2.normal_impulse) : p2.normal_impulse;
   const W r1 = normal_speed(c, p1, a, b) + t1.bias;
   const W r2 = normal_speed(c, p2, a, b) + t2.bias;
   const W q1 = wdot3(ms, r1, -c.k11, a1, -c.k12, a2);
@@ -332,8 +335,11 @@ void solve_contacts(StepScratch2D& scratch, W inv_h, W push_max, bool use_bias) 
         ContactConstraintPoint2D& cp = c.points[i];
         const NormalTerms2D& t = terms[i];
         const W vn = normal_speed(c, cp, a, b);
-        const W impulse = -wmul(wmul(cp.normal_mass, t.mass_scale), vn + t.bias) -
-                          wmul(t.impulse_scale, cp.normal_impulse);
+        // Outside the soft push-out the mass scale is one and the impulse
+        // scale zero (normal_terms), whose products are exact: skipped.
+        const W impulse = t.soft ? -wmul(wmul(cp.normal_mass, t.mass_scale), vn + t.bias) -
+                                       wmul(t.impulse_scale, cp.normal_impulse)
+                                 : -wmul(cp.normal_mass, vn + t.bias);
         const W accumulated = wmax(cp.normal_impulse + impulse, 0);
         const W applied = accumulated - cp.normal_impulse;
         cp.normal_impulse = accumulated;
