@@ -2,13 +2,16 @@
 // Shape casts: a shape swept along a straight line against the world's
 // bodies. The swept shape is convex or a compound (swept_shape.h). The
 // broadphase (broadphase.h) gives the bodies whose bounds the shape's
-// bounds meet on the way; each is swept exactly by conservative
-// advancement on GJK (gjk.h), and ties go to the lower index whatever the
-// trees' shapes: all hits in index order, the closest near to far.
+// bounds meet on the way; each is swept in closed form where the pair has
+// one (a sphere or a box against a sphere or a box: cast_exact.h), else by
+// conservative advancement on GJK (gjk.h), and ties go to the lower index
+// whatever the trees' shapes: all hits in index order, the closest near to
+// far.
 #include <algorithm>
 #include <cmath>
 
 #include "d3/body_storage.h"
+#include "d3/cast_exact.h"
 #include "d3/gjk.h"
 #include "d3/mass_frame.h"
 #include "d3/pipeline.h"
@@ -64,6 +67,21 @@ Status prepare_cast(const GeometryStore& store, const Shape& shape, Vec3 positio
   return Status::Ok();
 }
 
+// The first touch of the cast against body i, no later than max_fraction.
+d3::ShapeCastOutput sweep_body(const WorldState& state, const GeometryStore& store,
+                               const CastSetup& c, uint32_t i, float max_fraction) {
+  const BodyInfo& info = state.infos[i];
+  const BodySim& sim = state.sims[i];
+  const Mat3 axes = mat3_from_quat(sim.rotation);
+  d3::ShapeCastOutput hit;
+  if (c.swept.count == 1 && d3::cast_exact(info.shape, sim.position, axes, c.shape,
+                                           c.swept.parts[0], c.translation, max_fraction, hit)) {
+    return hit;
+  }
+  return d3::sweep_against(info.shape, store, sim.position, axes, c.swept, c.translation,
+                           max_fraction);
+}
+
 // Calls visit(hit) for every body the sweep touches, in index order.
 template <class Visit>
 void sweep(const WorldState& state, WorldScratch& scratch, const CastSetup& c,
@@ -78,10 +96,7 @@ void sweep(const WorldState& state, WorldScratch& scratch, const CastSetup& c,
   std::sort(candidates.begin(), candidates.end());
   for (const uint32_t i : candidates) {
     const BodyInfo& info = state.infos[i];
-    const BodySim& sim = state.sims[i];
-    const d3::ShapeCastOutput hit =
-        d3::sweep_against(info.shape, *scratch.store, sim.position, mat3_from_quat(sim.rotation),
-                          c.swept, c.translation, 1.0f);
+    const d3::ShapeCastOutput hit = sweep_body(state, *scratch.store, c, i, 1.0f);
     if (!hit.hit) continue;
     visit(ShapeCastHit{BodyId{i, info.generation}, hit.fraction * c.length, hit.point, hit.normal});
   }
@@ -110,10 +125,7 @@ Status World3D::shape_cast(const Shape& shape, Vec3 position, Quat rotation, Vec
   const auto test = [&](uint32_t i) {
     if (!d3::query_accepts(state_, filter, i)) return;
     const BodyInfo& info = state_.infos[i];
-    const BodySim& sim = state_.sims[i];
-    const d3::ShapeCastOutput hit =
-        d3::sweep_against(info.shape, *scratch_->store, sim.position, mat3_from_quat(sim.rotation),
-                          c.swept, c.translation, reach);
+    const d3::ShapeCastOutput hit = sweep_body(state_, *scratch_->store, c, i, reach);
     if (!hit.hit) return;
     const ShapeCastHit found{BodyId{i, info.generation}, hit.fraction * c.length, hit.point,
                              hit.normal};

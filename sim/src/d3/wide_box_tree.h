@@ -97,11 +97,6 @@ class WideBoxTree {
     uint32_t count = 0;      ///< children used, from the first
   };
 
-  struct Entry {
-    uint32_t child;  ///< as Node::child
-    float t;         ///< where the segment enters the child's box
-  };
-
   uint32_t split(uint32_t* items, uint32_t n, bool median);
   uint32_t build_range(uint32_t* items, uint32_t count, uint32_t depth, Cuts cuts, Aabb& bounds);
   bool valid_node(uint32_t node, const Aabb& bounds, uint32_t depth,
@@ -221,35 +216,48 @@ void WideBoxTree::nearest_walk(const SegmentSlabs& slabs, Vec3 grow, float& reac
   if (root_ == kNull) return;
   // The skip margin of AabbTree::nearest_walk.
   const auto padded = [](float t) { return t + 1e-3f * t + 1e-3f; };
-  Entry stack[kStackSize];
+  // Each entry is a child (as Node::child) and where the segment enters
+  // its box, kept in two arrays so that each field is written and read
+  // alone: a pair written as two 4-byte stores and read back as one 8-byte
+  // load cannot be forwarded from the store buffer and stalls every pop.
+  uint32_t stack_child[kStackSize];
+  float stack_t[kStackSize];
   uint32_t top = 0;
-  stack[top++] = {root_, 0.0f};
+  stack_child[top] = root_;
+  stack_t[top++] = 0.0f;
   while (top > 0) {
-    const Entry e = stack[--top];
-    if (e.t > padded(reach)) continue;  // the reach shrank since it was pushed
-    if (e.child & kLeaf) {
-      visit(e.child & ~kLeaf);
+    --top;
+    const uint32_t child = stack_child[top];
+    if (stack_t[top] > padded(reach)) continue;  // the reach shrank since it was pushed
+    if (child & kLeaf) {
+      visit(child & ~kLeaf);
       continue;
     }
-    const Node& node = nodes_[e.child];
+    const Node& node = nodes_[child];
     float entry[kLanes];
     uint32_t bits = enter_bits<kGrow>(node, slabs, grow, padded(reach), entry);
     // The children entered, farthest first onto the stack, so the nearest
     // is walked first.
-    Entry found[kLanes];
+    uint32_t found_child[kLanes];
+    float found_t[kLanes];
     uint32_t count = 0;
     while (bits != 0) {
       const uint32_t k = static_cast<uint32_t>(__builtin_ctz(bits));
       bits &= bits - 1u;
-      Entry next{node.child[k], entry[k]};
+      const float t = entry[k];
       uint32_t slot = count++;
-      while (slot > 0 && found[slot - 1].t < next.t) {
-        found[slot] = found[slot - 1];
+      while (slot > 0 && found_t[slot - 1] < t) {
+        found_child[slot] = found_child[slot - 1];
+        found_t[slot] = found_t[slot - 1];
         --slot;
       }
-      found[slot] = next;
+      found_child[slot] = node.child[k];
+      found_t[slot] = t;
     }
-    for (uint32_t k = 0; k < count; ++k) stack[top++] = found[k];
+    for (uint32_t k = 0; k < count; ++k) {
+      stack_child[top] = found_child[k];
+      stack_t[top++] = found_t[k];
+    }
   }
 }
 

@@ -65,7 +65,9 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///      from K's inverse, with no division in a pass
 ///  16  2D joints solved colour by colour (each joint, in state order, in
 ///      the first of 24 colours where neither body it moves has one)
-inline constexpr uint32_t kSimRevision = 16;
+///  17  shape queries sweep a sphere or a box against a sphere or a box in
+///      closed form (the true first touch; conservative advancement before)
+inline constexpr uint32_t kSimRevision = 17;
 
 /// "rewind-sim r11": the engine identity a replay records.
 inline std::string engine_version() {
