@@ -44,6 +44,7 @@
 #include "d3/body_storage.h"
 #include "d3/integrate_bodies.h"
 #include "d3/pipeline.h"
+#include "d3/shape_ops.h"
 #include "d3/state_rules.h"
 #include "rewind/sim/det_math.h"
 
@@ -387,6 +388,21 @@ void store_impulses(WorldState& state, const WorldScratch& scratch) {
   }
 }
 
+// How far from an axis through the centre of mass along `u` (unit, body
+// frame) the box of half sizes `half` about that centre reaches: the
+// largest |p|^2 - (p.u)^2 over the box, a convex function of p, so taken at
+// a corner, where it is |half|^2 less the smallest (p.u)^2 of the corners
+// (one of four sign patterns; the other four are their negatives).
+float reach_from_axis(Vec3 half, Vec3 u) {
+  const float a = half.x * u.x;
+  const float b = half.y * u.y;
+  const float c = half.z * u.z;
+  const float along = std::fmin(std::fmin(std::fabs(a + b + c), std::fabs(a + b - c)),
+                                std::fmin(std::fabs(a - b + c), std::fabs(-a + b + c)));
+  const float sq = length_squared(half) - along * along;
+  return sq > 0.0f ? std::sqrt(sq) : 0.0f;
+}
+
 // Sleep timer. A dynamic body rests through each stretch of half
 // time_to_sleep_s in which no point of it strays further than
 // sleep_threshold_mps times the stretch from where the stretch began (its
@@ -399,22 +415,37 @@ void store_impulses(WorldState& state, const WorldScratch& scratch) {
 // while one that goes somewhere does not; two stretches to sleep keep a
 // small pendulum's turning point (slow, but not for long) from passing
 // for rest. Kinematic bodies rest only when not driven at all.
-void update_sleep_timer(const WorldConfig& config, BodyKind kind, float extent, const SolverBody& b,
-                        float tick, BodySim& sim) {
+//
+// A point's move is bounded by the centre's plus the chord the turn sweeps
+// at the point's distance from the turn's axis, 2 sin(angle / 2) times
+// that distance; the distance is bounded by the extent, and, when that
+// bound alone calls the body moving, by the reach of its mass-frame bounds
+// from the turn's actual axis: a dumbbell rolling slowly about
+// its long axis moves its surface by its bells' radius per radian, not by
+// its length.
+void update_sleep_timer(const WorldConfig& config, BodyKind kind, float extent, const Shape& shape,
+                        const SolverBody& b, float tick, BodySim& sim) {
   const float before = sim.sleep_time;
   if (kind != BodyKind::kDynamic) {
     const bool still = b.linear_velocity == Vec3{} && b.angular_velocity == Vec3{};
     sim.sleep_time = still ? sim.sleep_time + tick : 0.0f;
   } else {
-    const float half = 0.5f * config.time_to_sleep_s;
-    const float stretch = half > tick ? half : tick;
-    // Every surface point moved by at most the centre's displacement plus
-    // the chord the turn sweeps at the extent: 2 sin(angle / 2) extent,
-    // and sin(angle / 2) is the length of the turn's vector part.
+    const float half_time = 0.5f * config.time_to_sleep_s;
+    const float stretch = half_time > tick ? half_time : tick;
+    const float limit = config.sleep_threshold_mps * stretch;
+    // sin(angle / 2) is the length of the turn's vector part, whose
+    // direction is the turn's axis in the body frame.
     const Quat turn = conjugate(sim.sleep_rotation) * sim.rotation;
-    const float strayed = length(sim.position - sim.sleep_position) +
-                          2.0f * extent * length(Vec3{turn.x, turn.y, turn.z});
-    if (strayed <= config.sleep_threshold_mps * stretch) {
+    const Vec3 spin{turn.x, turn.y, turn.z};
+    const float moved = length(sim.position - sim.sleep_position);
+    const float sin_half = length(spin);
+    float strayed = moved + 2.0f * extent * sin_half;
+    if (strayed > limit && sin_half > 0.0f) {
+      const Vec3 half = shape_ops(shape.type).half_bounds(shape, Mat3{});
+      const float reach = reach_from_axis(half, spin * (1.0f / sin_half));
+      if (reach < extent) strayed = moved + 2.0f * reach * sin_half;
+    }
+    if (strayed <= limit) {
       sim.sleep_time += tick;
       if (std::floor(sim.sleep_time / stretch) == std::floor(before / stretch)) return;
     } else {
@@ -463,7 +494,8 @@ void finalize(WorldState& state, WorldScratch& scratch, float tick) {
           {BodyEventType::kLeftBounds, {index, state.infos[index].generation}, sim.position});
       continue;
     }
-    update_sleep_timer(config, state.infos[index].kind, state.masses[index].extent, b, tick, sim);
+    update_sleep_timer(config, state.infos[index].kind, state.masses[index].extent,
+                       state.infos[index].shape, b, tick, sim);
   }
 }
 

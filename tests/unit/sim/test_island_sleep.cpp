@@ -64,6 +64,23 @@ TEST(IslandSleep, ABodySleepsWhenSlowerThanTheThresholdOnAverage) {
   }
 }
 
+// A rod turning slowly about its own long axis moves its surface by its
+// thickness per radian, not by its length: at 0.3 rad/s no point of it
+// goes faster than 0.03 m/s and it comes to rest, while the same turn
+// about a cross axis sweeps its ends at 0.18 m/s and keeps it awake.
+TEST(IslandSleep, ARodTurningSlowlyAboutItsLongAxisRests) {
+  for (const bool long_axis : {true, false}) {
+    WorldConfig config;
+    config.gravity = {};
+    World3D world(config);
+    const BodyId rod = add_box(world, {0.0f, 5.0f, 0.0f}, {0.6f, 0.05f, 0.05f});
+    const Vec3 spin = long_axis ? Vec3{0.3f, 0.0f, 0.0f} : Vec3{0.0f, 0.3f, 0.0f};
+    ASSERT_TRUE(world.set_angular_velocity(rod, spin).ok());
+    step_seconds(world, 3.0f);
+    EXPECT_EQ(world.is_awake(rod), !long_axis) << (long_axis ? "long axis" : "cross axis");
+  }
+}
+
 // A small pendulum passes through a slow turning point every half swing;
 // it never counts as resting, as two stretches of half time_to_sleep_s
 // each span no more than one of them.

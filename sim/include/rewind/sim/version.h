@@ -67,7 +67,10 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///      the first of 24 colours where neither body it moves has one)
 ///  17  shape queries sweep a sphere or a box against a sphere or a box in
 ///      closed form (the true first touch; conservative advancement before)
-inline constexpr uint32_t kSimRevision = 17;
+///  18  a turning body's rest is measured by how far its mass-frame bounds
+///      reach from the turn's axis (a dumbbell rolling about its long axis
+///      comes to rest by its bells' radius, not by its length)
+inline constexpr uint32_t kSimRevision = 18;
 
 /// "rewind-sim r11": the engine identity a replay records.
 inline std::string engine_version() {
