@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Rewind and Bullet stepping the same catalogue scenes in the same process.
+// Rewind and Bullet stepping the same catalogue scenes in the same process,
+// and Jolt Physics beside them in the small-world, fixed-cost and asleep
+// families when the build has it (-DREWIND_JOLT_DIR=..., bench/jolt_engine).
 // Each benchmark runs whole scenes (one iteration = one tick; a finished
 // scene is rebuilt outside the timing), so a pile is measured over its fall
 // and its settling alike. Pyramids keep every body awake (the solver's cost,
@@ -10,6 +12,9 @@
 #include <string>
 
 #include "bullet_engine.h"
+#ifdef REWIND_HAVE_JOLT
+#include "jolt_engine.h"
+#endif
 #include "rewind/scenes/rewind_engine.h"
 #include "rewind/scenes/scene.h"
 
@@ -93,6 +98,13 @@ void BM_SmallBullet(benchmark::State& state) {
 }
 BENCHMARK(BM_SmallRewind)->DenseRange(0, 4)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_SmallBullet)->DenseRange(0, 4)->Unit(benchmark::kMicrosecond);
+#ifdef REWIND_HAVE_JOLT
+void BM_SmallJolt(benchmark::State& state) {
+  rwd::bench::JoltEngine engine;
+  small_scene(state, engine);
+}
+BENCHMARK(BM_SmallJolt)->DenseRange(0, 4)->Unit(benchmark::kMicrosecond);
+#endif
 
 // A step's fixed cost: what a world pays per step whatever it holds, so
 // what a rollback server pays again for each re-simulated tick of a small
@@ -145,6 +157,15 @@ void BM_FixedCostBullet(benchmark::State& state) {
 }
 BENCHMARK(BM_FixedCostRewind)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FixedCostBullet)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+#ifdef REWIND_HAVE_JOLT
+void BM_FixedCostJolt(benchmark::State& state) {
+  rwd::bench::JoltSettings settings;
+  settings.sleep = false;
+  rwd::bench::JoltEngine engine(settings);
+  fixed_cost(state, engine);
+}
+BENCHMARK(BM_FixedCostJolt)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+#endif
 
 // A world at rest: the sleep scene's pyramid of base N stepped until every
 // body sleeps (untimed), then the steps of the asleep world: what a world
@@ -199,6 +220,16 @@ BENCHMARK(BM_AsleepBullet)
     ->ArgNames({"base", "spinning"})
     ->ArgsProduct({{10, 30}, {0, 1}})
     ->Unit(benchmark::kMicrosecond);
+#ifdef REWIND_HAVE_JOLT
+void BM_AsleepJolt(benchmark::State& state) {
+  rwd::bench::JoltEngine engine;
+  asleep_world(state, engine);
+}
+BENCHMARK(BM_AsleepJolt)
+    ->ArgNames({"base", "spinning"})
+    ->ArgsProduct({{10, 30}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+#endif
 
 // One whole scene per benchmark: a pyramid runs 600 ticks, a pile 360.
 BENCHMARK(BM_PyramidRewind)
