@@ -92,6 +92,37 @@ void drop_contacts_of(World2DState& state, uint32_t index) {
   contacts.resize(kept);
 }
 
+void drop_contacts_of(World2DState& state, const std::vector<uint32_t>& turn_of, uint32_t turns) {
+  auto& contacts = state.contacts;
+  // The exits as destroying the bodies one by one would leave them: each
+  // contact goes with the first of its bodies to go (its turn), and each
+  // turn's exits in contact order; so a counting sort by turn.
+  std::vector<uint32_t> per_turn(static_cast<size_t>(turns) + 1, 0);
+  std::vector<std::pair<uint32_t, PendingExit2D>> exits;
+  size_t kept = 0;
+  for (size_t i = 0; i < contacts.size(); ++i) {
+    const ContactRecord2D& c = contacts[i];
+    const uint32_t turn = std::min(turn_of[c.a], turn_of[c.b]);
+    if (turn == UINT32_MAX) {
+      contacts[kept++] = c;
+      continue;
+    }
+    wake(state.bodies[turn_of[c.a] == turn ? c.b : c.a]);
+    if (c.flags & kContactTouching) {
+      exits.push_back({turn,
+                       {c.a, state.bodies[c.a].generation, c.b, state.bodies[c.b].generation,
+                        static_cast<uint8_t>(((c.flags & kContactSensor) ? 1 : 0) |
+                                             ((c.flags & kContactTrigger) ? 2 : 0))}});
+      ++per_turn[turn + 1];
+    }
+  }
+  contacts.resize(kept);
+  for (uint32_t t = 0; t < turns; ++t) per_turn[t + 1] += per_turn[t];
+  const size_t first = state.pending_exits.size();
+  state.pending_exits.resize(first + exits.size());
+  for (const auto& [turn, exit] : exits) state.pending_exits[first + per_turn[turn]++] = exit;
+}
+
 void begin_events(World2DState& state, std::vector<ContactEvent2D>& events) {
   events.clear();
   for (const PendingExit2D& p : state.pending_exits) {

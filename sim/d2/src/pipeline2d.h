@@ -24,6 +24,10 @@ void collect_events(const World2DState& state, const std::vector<ContactRecord2D
 /// Removes every contact of body `index`; the touching ones become pending
 /// exits, reported by the next step.
 void drop_contacts_of(World2DState& state, uint32_t index);
+/// Removes the contacts of every body whose turn_of[body] is below `turns`
+/// (UINT32_MAX for the others) exactly as drop_contacts_of for each of them
+/// in turn order would, in one pass.
+void drop_contacts_of(World2DState& state, const std::vector<uint32_t>& turn_of, uint32_t turns);
 
 /// This step's events: the pending exits, then the contacts' enter, stay
 /// and exit events, ordered by (a, b); clears the pending exits.

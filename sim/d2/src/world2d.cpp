@@ -154,6 +154,43 @@ Status World2D::destroy_body(BodyId2D id) {
   return Status::Ok();
 }
 
+Status World2D::destroy_bodies(std::span<const BodyId2D> ids) {
+  // Each body's turn in the list; checked whole before anything changes.
+  std::vector<uint32_t> turn_of(state_.bodies.size(), UINT32_MAX);
+  for (uint32_t k = 0; k < ids.size(); ++k) {
+    const BodyId2D id = ids[k];
+    if (!is_valid(id)) {
+      return Status::Error(ErrorCode::kNotFound,
+                           "no such body (entry " + std::to_string(k) + "); nothing destroyed");
+    }
+    if (turn_of[id.index] != UINT32_MAX) {
+      return Status::Error(
+          ErrorCode::kInvalidArgument,
+          "a body listed twice (entry " + std::to_string(k) + "); nothing destroyed");
+    }
+    turn_of[id.index] = k;
+  }
+  const auto turns = static_cast<uint32_t>(ids.size());
+  drop_contacts_of(state_, turn_of, turns);
+  for (JointRecord2D& j : state_.joints) {
+    if (!(j.flags & kJointLive) || (turn_of[j.a] == UINT32_MAX && turn_of[j.b] == UINT32_MAX)) {
+      continue;
+    }
+    JointRecord2D freed_joint;
+    freed_joint.generation = j.generation;
+    j = freed_joint;
+    --state_.live_joints;
+  }
+  for (const BodyId2D id : ids) {
+    BodyRecord2D freed;
+    freed.generation = id.generation;
+    state_.bodies[id.index] = freed;
+  }
+  state_.live_bodies -= turns;
+  body_edits_ += turns;
+  return Status::Ok();
+}
+
 bool World2D::is_valid(BodyId2D id) const {
   return id.generation != 0 && id.index < state_.bodies.size() &&
          (state_.bodies[id.index].flags & kBodyLive) &&

@@ -77,6 +77,12 @@ class World2D {
   Result<BodyId2D> create_body(const BodyDef2D& def);
   /// Destroys a body and its contacts; kNotFound for unknown or stale ids.
   Status destroy_body(BodyId2D id);
+  /// Destroys every listed body, with their contacts and joints, in one
+  /// pass over the world's contacts and joints (destroy_body makes one per
+  /// body): the same state, bit for bit, as destroy_body on each in list
+  /// order. kNotFound for an unknown or stale id and kInvalidArgument for
+  /// one listed twice, naming the entry, and then nothing is destroyed.
+  Status destroy_bodies(std::span<const BodyId2D> ids);
   bool is_valid(BodyId2D id) const;
   uint32_t body_count() const;
   /// Live body ids in ascending index order; `out` is replaced.
