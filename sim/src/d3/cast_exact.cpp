@@ -25,16 +25,19 @@ void set_component(Vec3& v, int i, float value) {
 }
 
 // The first t in [0, t_max] at which o + t d is within r of q (the ray
-// starts farther than r from it).
+// starts farther than r from it). From the point of closest approach, not
+// as the roots of |o + t d - q|^2 = r^2: with the ray starting far away
+// that difference of large squares loses the centimetres a long cast needs.
 bool ray_ball(Vec3 o, Vec3 d, Vec3 q, float r, float t_max, float& t) {
   const Vec3 m = o - q;
-  const float b = dot(m, d);
-  const float c = dot(m, m) - r * r;
-  if (b >= 0.0f) return false;  // moving away (or not at all)
-  const float a = dot(d, d);
-  const float disc = b * b - a * c;
-  if (disc < 0.0f) return false;
-  t = (-b - std::sqrt(disc)) / a;
+  const float dd = dot(d, d);
+  if (!(dd > 0.0f)) return false;
+  const float closest_t = -dot(m, d) / dd;
+  if (closest_t < 0.0f) return false;  // moving away
+  const Vec3 closest = m + d * closest_t;
+  const float miss_sq = r * r - dot(closest, closest);
+  if (miss_sq < 0.0f) return false;
+  t = closest_t - std::sqrt(miss_sq / dd);
   if (t < 0.0f) t = 0.0f;
   return t <= t_max;
 }
@@ -42,7 +45,9 @@ bool ray_ball(Vec3 o, Vec3 d, Vec3 q, float r, float t_max, float& t) {
 // The first t in [0, t_max] at which o + t d is within r of the box edge
 // through `corner` along axis k (its other two coordinates are corner's;
 // along k it runs from -h_k to h_k): the edge's cylinder, else the ball of
-// the end the ray meets the cylinder beyond. The ray starts outside.
+// the end the ray meets the cylinder beyond. The ray starts near the box
+// (callers start it where it enters the box's slabs grown by r), outside
+// the rounded box or on it.
 bool ray_edge(Vec3 o, Vec3 d, Vec3 corner, int k, Vec3 h, float r, float t_max, float& t) {
   const int i = (k + 1) % 3;
   const int j = (k + 2) % 3;
@@ -50,24 +55,30 @@ bool ray_edge(Vec3 o, Vec3 d, Vec3 corner, int k, Vec3 h, float r, float t_max, 
   const float uy = component(o, j) - component(corner, j);
   const float vx = component(d, i);
   const float vy = component(d, j);
-  const float a = vx * vx + vy * vy;
-  const float b = ux * vx + uy * vy;
-  const float c = ux * ux + uy * uy - r * r;
-  float s = 0.0f;  // where along the edge the cylinder is met
-  if (c <= 0.0f) {
-    // Already within the cylinder, so beyond one end of the edge.
-    s = component(o, k);
+  const bool within = ux * ux + uy * uy <= r * r;
+  float s = component(o, k);  // where along the edge the cylinder is met
+  if (within) {
+    // Already within the cylinder: touching now if within the edge's
+    // length (an entry point on the rounded edge, up to rounding), else
+    // beyond one end of it.
     t = 0.0f;
   } else {
-    if (b >= 0.0f) return false;  // moving away from the edge's line
-    const float disc = b * b - a * c;
-    if (disc < 0.0f) return false;
-    t = (-b - std::sqrt(disc)) / a;
+    // The closest approach to the edge's line, as in ray_ball.
+    const float vv = vx * vx + vy * vy;
+    if (!(vv > 0.0f)) return false;
+    const float closest_t = -(ux * vx + uy * vy) / vv;
+    if (closest_t < 0.0f) return false;  // moving away from the line
+    const float cx = ux + vx * closest_t;
+    const float cy = uy + vy * closest_t;
+    const float miss_sq = r * r - (cx * cx + cy * cy);
+    if (miss_sq < 0.0f) return false;
+    t = closest_t - std::sqrt(miss_sq / vv);
+    if (t < 0.0f) t = 0.0f;
     if (t > t_max) return false;
-    s = component(o, k) + t * component(d, k);
+    s += t * component(d, k);
   }
   const float hk = component(h, k);
-  if (s >= -hk && s <= hk && c > 0.0f) return true;
+  if (s >= -hk && s <= hk) return true;
   Vec3 end = corner;
   set_component(end, k, s < 0.0f ? -hk : hk);
   return ray_ball(o, d, end, r, t_max, t);
@@ -131,18 +142,21 @@ Cast ball_at_box(Vec3 o, Vec3 d, Vec3 h, float r, float t_max, float& t, Vec3& n
     point = clamp_to_box(p - normal * r, h);
     return Cast::kHit;
   }
+  // The edges' cylinders and the corners' balls, from the entry point (near
+  // the box, so their quadratics keep their precision on a long cast).
   bool found = false;
-  t = t_max;
+  float after = t_max - t_lo;
   for (int k = 0; k < 3; ++k) {
     if (outside == 2 && k != inside_axis) continue;
     float tk = 0.0f;
-    if (ray_edge(o, d, corner, k, h, r, t, tk) && (!found || tk < t)) {
-      t = tk;
+    if (ray_edge(p, d, corner, k, h, r, after, tk) && (!found || tk < after)) {
+      after = tk;
       found = true;
     }
   }
   if (!found) return Cast::kMiss;
-  const Vec3 at = o + d * t;
+  t = t_lo + after;
+  const Vec3 at = p + d * after;
   point = clamp_to_box(at, h);
   normal = normalize_or_zero(at - point);
   return Cast::kHit;
