@@ -173,15 +173,22 @@ void WideBoxTree::walk(Accept&& accept, Visit&& visit) const {
   uint32_t top = 0;
   stack[top++] = root_;
   while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    uint32_t bits = accept(node);
-    while (bits != 0) {
-      const uint32_t child = node.child[__builtin_ctz(bits)];
-      bits &= bits - 1u;
-      if (child & kLeaf) {
-        visit(child & ~kLeaf);
-      } else {
-        stack[top++] = child;
+    uint32_t index = stack[--top];
+    // The last inner child found is walked next without a trip through the
+    // stack: the order is the stack's, one store and load fewer a node.
+    while (index != kNull) {
+      const Node& node = nodes_[index];
+      uint32_t bits = accept(node);
+      index = kNull;
+      while (bits != 0) {
+        const uint32_t child = node.child[__builtin_ctz(bits)];
+        bits &= bits - 1u;
+        if (child & kLeaf) {
+          visit(child & ~kLeaf);
+          continue;
+        }
+        if (index != kNull) stack[top++] = index;
+        index = child;
       }
     }
   }
@@ -227,36 +234,41 @@ void WideBoxTree::nearest_walk(const SegmentSlabs& slabs, Vec3 grow, float& reac
   stack_t[top++] = 0.0f;
   while (top > 0) {
     --top;
-    const uint32_t child = stack_child[top];
+    uint32_t child = stack_child[top];
     if (stack_t[top] > padded(reach)) continue;  // the reach shrank since it was pushed
-    if (child & kLeaf) {
-      visit(child & ~kLeaf);
-      continue;
-    }
-    const Node& node = nodes_[child];
-    float entry[kLanes];
-    uint32_t bits = enter_bits<kGrow>(node, slabs, grow, padded(reach), entry);
-    // The children entered, farthest first onto the stack, so the nearest
-    // is walked first.
-    uint32_t found_child[kLanes];
-    float found_t[kLanes];
-    uint32_t count = 0;
-    while (bits != 0) {
-      const uint32_t k = static_cast<uint32_t>(__builtin_ctz(bits));
-      bits &= bits - 1u;
-      const float t = entry[k];
-      uint32_t slot = count++;
-      while (slot > 0 && found_t[slot - 1] < t) {
-        found_child[slot] = found_child[slot - 1];
-        found_t[slot] = found_t[slot - 1];
-        --slot;
+    // Down the nearest child without a trip through the stack (the reach
+    // cannot have shrunk between its test and now); the others wait there.
+    for (;;) {
+      if (child & kLeaf) {
+        visit(child & ~kLeaf);
+        break;
       }
-      found_child[slot] = node.child[k];
-      found_t[slot] = t;
-    }
-    for (uint32_t k = 0; k < count; ++k) {
-      stack_child[top] = found_child[k];
-      stack_t[top++] = found_t[k];
+      const Node& node = nodes_[child];
+      float entry[kLanes];
+      uint32_t bits = enter_bits<kGrow>(node, slabs, grow, padded(reach), entry);
+      // The children entered, farthest first.
+      uint32_t found_child[kLanes];
+      float found_t[kLanes];
+      uint32_t count = 0;
+      while (bits != 0) {
+        const uint32_t k = static_cast<uint32_t>(__builtin_ctz(bits));
+        bits &= bits - 1u;
+        const float t = entry[k];
+        uint32_t slot = count++;
+        while (slot > 0 && found_t[slot - 1] < t) {
+          found_child[slot] = found_child[slot - 1];
+          found_t[slot] = found_t[slot - 1];
+          --slot;
+        }
+        found_child[slot] = node.child[k];
+        found_t[slot] = t;
+      }
+      if (count == 0) break;
+      for (uint32_t k = 0; k + 1 < count; ++k) {
+        stack_child[top] = found_child[k];
+        stack_t[top++] = found_t[k];
+      }
+      child = found_child[count - 1];
     }
   }
 }
