@@ -28,8 +28,9 @@ namespace {
 constexpr float kMaxCastLength = 1e5f;
 
 struct CastSetup {
+  explicit CastSetup(d3::SweptShape& room) : swept(room) {}
   Shape shape;
-  d3::SweptShape swept;
+  d3::SweptShape& swept;  ///< the world's scratch room (WorldScratch::cast_shape)
   Vec3 translation;
   float length = 0.0f;
   d3::Aabb start_bounds;
@@ -111,7 +112,7 @@ bool nearer(const ShapeCastHit& l, const ShapeCastHit& r) {
 Status World3D::shape_cast(const Shape& shape, Vec3 position, Quat rotation, Vec3 translation,
                            const QueryFilter& filter, std::optional<ShapeCastHit>& out) const {
   out.reset();
-  CastSetup c;
+  CastSetup c(scratch_->cast_shape);
   if (Status s = prepare_cast(*geometry_, shape, position, rotation, translation, c); !s.ok()) {
     return s;
   }
@@ -140,7 +141,7 @@ Status World3D::shape_cast(const Shape& shape, Vec3 position, Quat rotation, Vec
 Status World3D::shape_cast_all(const Shape& shape, Vec3 position, Quat rotation, Vec3 translation,
                                const QueryFilter& filter, std::vector<ShapeCastHit>& out) const {
   out.clear();
-  CastSetup c;
+  CastSetup c(scratch_->cast_shape);
   if (Status s = prepare_cast(*geometry_, shape, position, rotation, translation, c); !s.ok()) {
     return s;
   }

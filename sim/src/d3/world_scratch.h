@@ -153,6 +153,9 @@ class WorldScratch {
   std::vector<uint32_t> query_hits;  ///< one query's candidates
   d3::SweptShape swept;              ///< continuous collision's mover
   d3::SweptShape swept_target;       ///< what a spinning mover is advanced against
+  /// A shape query's swept shape: kept here, not made per query, as its
+  /// room for a compound's children is 2.5 KB to construct.
+  d3::SweptShape cast_shape;
   // body frames (body_storage.h: body_axes)
   /// By body index: the rotation matrix of the body's pose at the start of
   /// this step, valid where axes_step[i] == step_serial. The broadphase
