@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "d3/slab_interval.h"
+
 namespace rwd::sim::d3 {
 namespace {
 
@@ -103,13 +105,9 @@ Cast ball_at_box(Vec3 o, Vec3 d, Vec3 h, float r, float t_max, float& t, Vec3& n
       if (oi < -e || oi > e) return Cast::kMiss;
       continue;
     }
-    float t0 = (-e - oi) / di;
-    float t1 = (e - oi) / di;
-    if (t0 > t1) {
-      const float swap = t0;
-      t0 = t1;
-      t1 = swap;
-    }
+    float t0 = 0.0f;
+    float t1 = 0.0f;
+    slab_interval(oi, di, e, t0, t1);
     if (t0 > t_lo) {
       t_lo = t0;
       entered = i;
@@ -286,13 +284,9 @@ Vec3 box_touch_point(Vec3 ha, Vec3 c, const Mat3& r, Vec3 hb, Vec3 n, int kind, 
       const float beta = component(b_cols[m], k);
       const float hm = component(hb, m);
       if (beta > 1e-6f || beta < -1e-6f) {
-        float l0 = (-hm - alpha) / beta;
-        float l1 = (hm - alpha) / beta;
-        if (l0 > l1) {
-          const float swap = l0;
-          l0 = l1;
-          l1 = swap;
-        }
+        float l0 = 0.0f;
+        float l1 = 0.0f;
+        slab_interval(alpha, beta, hm, l0, l1);
         if (l0 > lo) lo = l0;
         if (l1 < hi) hi = l1;
       }
@@ -359,13 +353,9 @@ bool box_box(Vec3 pa, const Mat3& axes_a, Vec3 ha, Vec3 pb, const Mat3& axes_b, 
           }
           continue;
         }
-        float t0 = (-extent - s0) / v;
-        float t1 = (extent - s0) / v;
-        if (t0 > t1) {
-          const float swap = t0;
-          t0 = t1;
-          t1 = swap;
-        }
+        float t0 = 0.0f;
+        float t1 = 0.0f;
+        slab_interval(s0, v, extent, t0, t1);
         if (t1 < t_exit) t_exit = t1;
         if (t0 > t_enter) t_enter = t0;
         // Apart on this axis for the whole sweep: most candidates a query's

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "d3/shape_ops.h"
+#include "d3/slab_interval.h"
 #include "d3/state_rules.h"
 
 namespace rwd::sim::d3 {
@@ -132,13 +133,9 @@ ShapeCastOutput sweep(const Shape& s, const GeometryStore& store, Vec3 position,
       if (oi < -hi || oi > hi) return {};
       continue;
     }
-    float t0 = (-hi - oi) / di;
-    float t1 = (hi - oi) / di;
-    if (t0 > t1) {
-      const float t = t0;
-      t0 = t1;
-      t1 = t;
-    }
+    float t0 = 0.0f;
+    float t1 = 0.0f;
+    slab_interval(oi, di, hi, t0, t1);
     if (t0 > t_lo) t_lo = t0;
     if (t1 < t_hi) t_hi = t1;
     if (t_lo > t_hi) return {};

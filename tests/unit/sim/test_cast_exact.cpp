@@ -40,6 +40,14 @@ float gap_at(const Posed& target, const Posed& swept, Vec3 translation, float t,
   return cores - target.proxy.radius - moved.radius;
 }
 
+// A box of half sizes in [lo, hi) or a ball of radius in [lo, hi).
+Shape random_shape(test::Rng& rng, bool box, float lo, float hi) {
+  if (!box) return Shape::make_sphere(rng.uniform(lo, hi));
+  const float x = rng.uniform(lo, hi);
+  const float y = rng.uniform(lo, hi);
+  return Shape::make_box({x, y, rng.uniform(lo, hi)});
+}
+
 ShapeCastOutput exact(const Posed& target, const Posed& swept, Vec3 translation, bool& handled) {
   ShapeCastOutput out;
   handled = cast_exact(target.shape, target.proxy.position, target.proxy.axes, swept.shape,
@@ -139,14 +147,8 @@ TEST(CastExact, RandomSweepsTouchWhereTheySayAndAgreeWithAdvancement) {
   for (int n = 0; n < 4000; ++n) {
     const bool target_box = n % 2 == 0;
     const bool swept_box = (n / 2) % 2 == 0;
-    const Shape target_shape =
-        target_box ? Shape::make_box({rng.uniform(0.1f, 2.0f), rng.uniform(0.1f, 2.0f),
-                                      rng.uniform(0.1f, 2.0f)})
-                   : Shape::make_sphere(rng.uniform(0.1f, 1.5f));
-    const Shape swept_shape =
-        swept_box ? Shape::make_box({rng.uniform(0.05f, 1.0f), rng.uniform(0.05f, 1.0f),
-                                     rng.uniform(0.05f, 1.0f)})
-                  : Shape::make_sphere(rng.uniform(0.05f, 1.0f));
+    const Shape target_shape = random_shape(rng, target_box, 0.1f, target_box ? 2.0f : 1.5f);
+    const Shape swept_shape = random_shape(rng, swept_box, 0.05f, 1.0f);
     Posed target;
     const Vec3 at{rng.uniform(-50.0f, 50.0f), rng.uniform(-50.0f, 50.0f),
                   rng.uniform(-50.0f, 50.0f)};
@@ -211,14 +213,8 @@ TEST(CastExact, LongSweepsFarFromTheOriginTouchWhereTheySay) {
   for (int n = 0; n < 40000; ++n) {
     const bool target_box = n % 2 == 0;
     const bool swept_box = (n / 2) % 2 == 0;
-    const Shape target_shape =
-        target_box ? Shape::make_box({rng.uniform(0.05f, 5.0f), rng.uniform(0.05f, 5.0f),
-                                      rng.uniform(0.05f, 5.0f)})
-                   : Shape::make_sphere(rng.uniform(0.05f, 5.0f));
-    const Shape swept_shape =
-        swept_box ? Shape::make_box({rng.uniform(0.02f, 3.0f), rng.uniform(0.02f, 3.0f),
-                                     rng.uniform(0.02f, 3.0f)})
-                  : Shape::make_sphere(rng.uniform(0.02f, 3.0f));
+    const Shape target_shape = random_shape(rng, target_box, 0.05f, 5.0f);
+    const Shape swept_shape = random_shape(rng, swept_box, 0.02f, 3.0f);
     Posed target;
     const Vec3 at{rng.uniform(-3000.0f, 3000.0f), rng.uniform(-3000.0f, 3000.0f),
                   rng.uniform(-3000.0f, 3000.0f)};
