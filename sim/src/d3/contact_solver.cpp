@@ -440,7 +440,9 @@ void update_sleep_timer(const WorldConfig& config, BodyKind kind, float extent, 
     const float moved = length(sim.position - sim.sleep_position);
     const float sin_half = length(spin);
     float strayed = moved + 2.0f * extent * sin_half;
-    if (strayed > limit && sin_half > 0.0f) {
+    // Only a body whose centre stayed within the limit can be saved by a
+    // tighter bound on its turn (most moving bodies are not).
+    if (strayed > limit && moved <= limit && sin_half > 0.0f) {
       const Vec3 half = shape_ops(shape.type).half_bounds(shape, Mat3{});
       const float reach = reach_from_axis(half, spin * (1.0f / sin_half));
       if (reach < extent) strayed = moved + 2.0f * reach * sin_half;
