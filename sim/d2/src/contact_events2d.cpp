@@ -30,6 +30,13 @@ ContactEvent2D make_event(const World2DState& state, const ContactRecord2D& c,
   return e;
 }
 
+// The exit a touching contact reports when one of its bodies goes away.
+PendingExit2D exit_of(const World2DState& state, const ContactRecord2D& c) {
+  return {c.a, state.bodies[c.a].generation, c.b, state.bodies[c.b].generation,
+          static_cast<uint8_t>(((c.flags & kContactSensor) ? 1 : 0) |
+                               ((c.flags & kContactTrigger) ? 2 : 0))};
+}
+
 }  // namespace
 
 void collect_events(const World2DState& state, const std::vector<ContactRecord2D>& next,
@@ -82,12 +89,7 @@ void drop_contacts_of(World2DState& state, uint32_t index) {
     }
     // What rested on the body that went away wakes and falls.
     wake(state.bodies[c.a == index ? c.b : c.a]);
-    if (c.flags & kContactTouching) {
-      state.pending_exits.push_back({c.a, state.bodies[c.a].generation, c.b,
-                                     state.bodies[c.b].generation,
-                                     static_cast<uint8_t>(((c.flags & kContactSensor) ? 1 : 0) |
-                                                          ((c.flags & kContactTrigger) ? 2 : 0))});
-    }
+    if (c.flags & kContactTouching) state.pending_exits.push_back(exit_of(state, c));
   }
   contacts.resize(kept);
 }
@@ -109,10 +111,7 @@ void drop_contacts_of(World2DState& state, const std::vector<uint32_t>& turn_of,
     }
     wake(state.bodies[turn_of[c.a] == turn ? c.b : c.a]);
     if (c.flags & kContactTouching) {
-      exits.push_back({turn,
-                       {c.a, state.bodies[c.a].generation, c.b, state.bodies[c.b].generation,
-                        static_cast<uint8_t>(((c.flags & kContactSensor) ? 1 : 0) |
-                                             ((c.flags & kContactTrigger) ? 2 : 0))}});
+      exits.push_back({turn, exit_of(state, c)});
       ++per_turn[turn + 1];
     }
   }

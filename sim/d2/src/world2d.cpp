@@ -68,6 +68,27 @@ Status check_def(const BodyDef2D& def, const World2DConfig& config) {
   return Status::Ok();
 }
 
+// Frees every live joint `lost(joint)` says lost a body; a freed slot keeps
+// its generation, so old handles stay stale.
+template <class Lost>
+void free_joints(World2DState& state, Lost lost) {
+  for (JointRecord2D& j : state.joints) {
+    if (!(j.flags & kJointLive) || !lost(j)) continue;
+    JointRecord2D freed;
+    freed.generation = j.generation;
+    j = freed;
+    --state.live_joints;
+  }
+}
+
+// Frees body slot `id` the same way.
+void free_body(World2DState& state, BodyId2D id) {
+  BodyRecord2D freed;
+  freed.generation = id.generation;
+  state.bodies[id.index] = freed;
+  --state.live_bodies;
+}
+
 }  // namespace
 
 World2D::World2D(const World2DConfig& config) : scratch_(std::make_unique<StepScratch2D>()) {
@@ -139,17 +160,8 @@ Result<BodyId2D> World2D::create_body(const BodyDef2D& def) {
 Status World2D::destroy_body(BodyId2D id) {
   if (!is_valid(id)) return Status::Error(ErrorCode::kNotFound, "no such body");
   drop_contacts_of(state_, id.index);
-  for (JointRecord2D& j : state_.joints) {
-    if (!(j.flags & kJointLive) || (j.a != id.index && j.b != id.index)) continue;
-    JointRecord2D freed_joint;
-    freed_joint.generation = j.generation;
-    j = freed_joint;
-    --state_.live_joints;
-  }
-  BodyRecord2D freed;
-  freed.generation = id.generation;
-  state_.bodies[id.index] = freed;
-  --state_.live_bodies;
+  free_joints(state_, [&](const JointRecord2D& j) { return j.a == id.index || j.b == id.index; });
+  free_body(state_, id);
   ++body_edits_;
   return Status::Ok();
 }
@@ -172,21 +184,10 @@ Status World2D::destroy_bodies(std::span<const BodyId2D> ids) {
   }
   const auto turns = static_cast<uint32_t>(ids.size());
   drop_contacts_of(state_, turn_of, turns);
-  for (JointRecord2D& j : state_.joints) {
-    if (!(j.flags & kJointLive) || (turn_of[j.a] == UINT32_MAX && turn_of[j.b] == UINT32_MAX)) {
-      continue;
-    }
-    JointRecord2D freed_joint;
-    freed_joint.generation = j.generation;
-    j = freed_joint;
-    --state_.live_joints;
-  }
-  for (const BodyId2D id : ids) {
-    BodyRecord2D freed;
-    freed.generation = id.generation;
-    state_.bodies[id.index] = freed;
-  }
-  state_.live_bodies -= turns;
+  free_joints(state_, [&](const JointRecord2D& j) {
+    return turn_of[j.a] != UINT32_MAX || turn_of[j.b] != UINT32_MAX;
+  });
+  for (const BodyId2D id : ids) free_body(state_, id);
   body_edits_ += turns;
   return Status::Ok();
 }
