@@ -234,35 +234,70 @@ void for_batches(WorldScratch& scratch, One one, Full full, Half half) {
 
 }  // namespace
 
-void build_batches(WorldScratch& scratch) {
-  color(scratch);
+namespace {
+
+// Constraints by colour and, within a colour, by point count, most first,
+// stable (constraint order within a bucket), into scratch.colored, with
+// each colour's first position in scratch.color_start; the overflow last,
+// in constraint order (its constraints share bodies, so their order
+// matters). Order within a colour never changes a result.
+constexpr uint32_t kSizes = kMaxManifoldPoints;
+constexpr uint32_t kBuckets = kColorCount * kSizes + 1;
+// Up to this many constraints are sorted by insertion: a small world's
+// few contacts would otherwise pay for a table of every bucket, zeroed
+// and summed each step.
+constexpr uint32_t kInsertionSortMax = 16;
+
+void sort_by_color(WorldScratch& scratch) {
   const uint32_t count = static_cast<uint32_t>(scratch.constraints.size());
-  // Constraints by colour and, within a colour, by point count, most first
-  // (a counting sort, stable: constraint order within a bucket), so batches
-  // mostly hold manifolds of one size; the overflow last, in constraint
-  // order (its constraints share bodies, so their order matters). Order
-  // within a colour never changes a result.
-  constexpr uint32_t kSizes = kMaxManifoldPoints;
-  constexpr uint32_t kBuckets = kColorCount * kSizes + 1;
   const auto bucket_of = [&](uint32_t k) {
     const uint32_t col = scratch.color_of[k];
     if (col == kColorCount) return kBuckets - 1;
     return col * kSizes + (kSizes - scratch.constraints[k].point_count);
   };
+  scratch.color_start.resize(kColorCount + 2);
+  scratch.colored.resize(count);
+  if (count <= kInsertionSortMax) {
+    uint32_t keys[kInsertionSortMax];
+    for (uint32_t k = 0; k < count; ++k) {
+      const uint32_t key = bucket_of(k);
+      uint32_t at = k;
+      for (; at > 0 && keys[at - 1] > key; --at) {
+        keys[at] = keys[at - 1];
+        scratch.colored[at] = scratch.colored[at - 1];
+      }
+      keys[at] = key;
+      scratch.colored[at] = k;
+    }
+    // Colour col starts at the first key of bucket col * kSizes or later;
+    // the overflow's bucket is kColorCount * kSizes.
+    uint32_t at = 0;
+    for (uint32_t col = 0; col <= kColorCount; ++col) {
+      while (at < count && keys[at] < col * kSizes) ++at;
+      scratch.color_start[col] = at;
+    }
+    scratch.color_start[kColorCount + 1] = count;
+    return;
+  }
   std::vector<uint32_t>& fill = scratch.color_fill;
   fill.assign(kBuckets + 1, 0);
   for (uint32_t k = 0; k < count; ++k) ++fill[bucket_of(k) + 1];
   for (uint32_t b = 0; b < kBuckets; ++b) fill[b + 1] += fill[b];
-  scratch.color_start.resize(kColorCount + 2);
   for (uint32_t col = 0; col < kColorCount; ++col) scratch.color_start[col] = fill[col * kSizes];
   scratch.color_start[kColorCount] = fill[kBuckets - 1];
   scratch.color_start[kColorCount + 1] = count;
-  scratch.colored.resize(count);
   for (uint32_t k = 0; k < count; ++k) scratch.colored[fill[bucket_of(k)]++] = k;
+}
+
+}  // namespace
+
+void build_batches(WorldScratch& scratch) {
+  color(scratch);
+  sort_by_color(scratch);
 
   // Batches of eight within a colour; overflow constraints one per batch.
   scratch.batches.clear();
-  scratch.batch_start.assign(kColorCount + 2, 0);
+  scratch.batch_start.resize(kColorCount + 2);  // every entry is set below
   for (uint32_t col = 0; col <= kColorCount; ++col) {
     scratch.batch_start[col] = static_cast<uint32_t>(scratch.batches.size());
     const uint32_t begin = scratch.color_start[col];
