@@ -264,41 +264,48 @@ void plan_pairs(const WorldState& state, WorldScratch& scratch) {
       ++j;
       continue;
     }
-    PairJob job;
-    job.a = pairs[i].a;
-    job.b = pairs[i].b;
-    bool has_prior = false;
+    const uint32_t a = pairs[i].a;
+    const uint32_t b = pairs[i].b;
+    uint32_t prior = 0;
+    uint32_t prior_count = 0;
     if (kp == ko) {
       size_t last = j + 1;
       while (last < old.size() && key(old[last].index_a, old[last].index_b) == ko) ++last;
-      if (old[j].generation_a == state.infos[job.a].generation &&
-          old[j].generation_b == state.infos[job.b].generation) {
-        has_prior = true;
-        job.prior = static_cast<uint32_t>(j);
-        job.prior_count = static_cast<uint32_t>(last - j);
+      if (old[j].generation_a == state.infos[a].generation &&
+          old[j].generation_b == state.infos[b].generation) {
+        prior = static_cast<uint32_t>(j);
+        prior_count = static_cast<uint32_t>(last - j);
       }
       j = last;
     }
     ++i;
-    if (!has_prior) {
+    if (prior_count == 0) {
       while (s < sep_keys.size() && sep_keys[s] < kp) ++s;
       if (s < sep_keys.size() && sep_keys[s] == kp &&
-          still_separated(state, scratch, job.a, job.b, scratch.separated_axes[s])) {
+          still_separated(state, scratch, a, b, scratch.separated_axes[s])) {
         plan.push_back(kPlanStillSeparated | static_cast<uint32_t>(s));
         continue;
       }
     }
-    body_axes(state, scratch, job.a);
-    body_axes(state, scratch, job.b);
-    job.parts = in_parts(state.infos[job.a], state.infos[job.b]) ? 1 : 0;
-    if (job.parts != 0) {
-      place_body_children(state, scratch, job.a);
-      place_body_children(state, scratch, job.b);
+    body_axes(state, scratch, a);
+    body_axes(state, scratch, b);
+    const bool parts = in_parts(state.infos[a], state.infos[b]);
+    if (parts) {
+      place_body_children(state, scratch, a);
+      place_body_children(state, scratch, b);
     }
-    job.slot = slots;
-    slots += job.parts != 0 ? kMaxContactParts : 1;
     plan.push_back(kPlanJob | static_cast<uint32_t>(jobs.size()));
-    jobs.push_back(job);
+    // Written in place: a job put together on the stack and copied in is
+    // stored a field at a time and read back as a vector, a load no store
+    // can forward, which stalled every pair.
+    PairJob& job = jobs.emplace_back();
+    job.a = a;
+    job.b = b;
+    job.prior = prior;
+    job.prior_count = prior_count;
+    job.slot = slots;
+    job.parts = parts ? 1 : 0;
+    slots += parts ? kMaxContactParts : 1;
   }
   if (scratch.job_records.size() < slots) scratch.job_records.resize(slots);
   if (scratch.job_geometry.size() < slots) scratch.job_geometry.resize(slots);
