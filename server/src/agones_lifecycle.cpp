@@ -166,8 +166,12 @@ int run_agones_match(const ServerConfig& base, const AgonesSdk& sdk,
       sdk, std::chrono::duration_cast<std::chrono::milliseconds>(seconds(options.health_period_s)),
       [load] { return load->unhealthy_reason(Clock::now()); });
   auto finish = [&](int exit_status, const std::string& why) {
-    send_shutdown(sdk, why);
+    // The pings end before Shutdown is sent: stopped after it, a ping
+    // already on its way (or one whose period came up between the two)
+    // reached the sidecar after Shutdown, a health report for a
+    // GameServer that is going away.
     pinger.stop();
+    send_shutdown(sdk, why);
     write_log(LogLevel::kInfo, "agones: " + std::to_string(pinger.sent()) + " health pings, " +
                                    std::to_string(pinger.failed()) + " failed, " +
                                    std::to_string(pinger.withheld()) + " withheld");
