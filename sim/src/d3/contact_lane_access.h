@@ -10,10 +10,6 @@
 #include <cmath>
 #include <cstdint>
 
-#if defined(__SSE2__)
-#include <immintrin.h>
-#endif
-
 #include "d3/contact_batches.h"
 #include "d3/wide_float.h"
 
@@ -104,13 +100,18 @@ struct OneLane {
   static void to(float* p, F v) { p[0] = v.v; }
   F ld(const float (&field)[kBatchLanes]) const { return {field[lane]}; }
   void st(float (&field)[kBatchLanes], F v) const { field[lane] = v.v; }
+  uint32_t body_a(int) const { return batch->body_a[lane]; }
+  uint32_t body_b(int) const { return batch->body_b[lane]; }
+  bool movable_a(int) const { return batch->movable_a[lane] != 0; }
+  bool movable_b(int) const { return batch->movable_b[lane] != 0; }
+  ContactBatch& first() const { return *batch; }
   // A row moves as two 4-float vectors built and taken apart in registers.
   // Left to itself the compiler merges the eight scalar stores of a row
   // into vector stores by way of the stack: eight 4-byte stores there, then
   // a 16-byte load of them that no store can forward, a stall of a dozen
   // cycles in each pass of each small world's contact.
   static void gather_rows(const float* const (&rows)[1], F (&out)[8]) {
-#if defined(__SSE2__)
+#if defined(REWIND_LANES_SSE2)
     const __m128 lo = _mm_loadu_ps(rows[0]);
     const __m128 hi = _mm_loadu_ps(rows[0] + 4);
     out[0] = {_mm_cvtss_f32(lo)};
@@ -126,27 +127,12 @@ struct OneLane {
 #endif
   }
   static void scatter_rows(const F (&in)[8], float* const (&rows)[1]) {
-#if defined(__SSE2__)
+#if defined(REWIND_LANES_SSE2)
     _mm_storeu_ps(rows[0], _mm_setr_ps(in[0].v, in[1].v, in[2].v, in[3].v));
     _mm_storeu_ps(rows[0] + 4, _mm_setr_ps(in[4].v, in[5].v, in[6].v, in[7].v));
 #else
     for (int k = 0; k < 8; ++k) rows[0][k] = in[k].v;
 #endif
-  }
-  uint32_t body_a(int) const {
-    return batch->body_a[lane];
-  }
-  uint32_t body_b(int) const {
-    return batch->body_b[lane];
-  }
-  bool movable_a(int) const {
-    return batch->movable_a[lane] != 0;
-  }
-  bool movable_b(int) const {
-    return batch->movable_b[lane] != 0;
-  }
-  ContactBatch& first() const {
-    return *batch;
   }
 };
 
