@@ -3,6 +3,7 @@
 // against triangles. Conventions and limits: manifold_triangles.h.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "d3/manifold_triangles.h"
 
@@ -135,6 +136,20 @@ uint32_t reduce_triangle_points(const TrianglePoint* points, uint32_t count, Vec
     }
     return found;
   };
+  // Points that touch (separation <= 0) hold the body up; speculative
+  // ones only catch it as it comes down. Choices 2 to 4 are made among the
+  // touching points first and fall back to every point only when none of
+  // those spreads the patch enough. Chosen by spread alone, a box tilted
+  // across a terrain fold kept its two lifted corners and only two of the
+  // three corners it stood on: resting on a line, it rocked about it, the
+  // deepest of the near-tied supports changing the line each way, and
+  // never came to rest.
+  auto pick_touching_first = [&](auto&& score, float floor, uint32_t& out) {
+    const auto touching = [&](uint32_t i) {
+      return points[i].separation <= 0.0f ? score(i) : -std::numeric_limits<float>::infinity();
+    };
+    return pick(touching, floor, out) || pick(score, floor, out);
+  };
   uint32_t c = 0;
   // 1. The deepest; near-ties to the one farthest from the centroid (a
   //    corner of the patch rather than a point inside it).
@@ -147,8 +162,8 @@ uint32_t reduce_triangle_points(const TrianglePoint* points, uint32_t count, Vec
       -0.5f, chosen[c]);
   const Vec3 p0 = points[chosen[c++]].point;
   // 2. The farthest from it.
-  if (!pick([&](uint32_t i) { return length_squared(planar(p0, points[i].point)); },
-            kMinSpread * kMinSpread, chosen[c])) {
+  if (!pick_touching_first([&](uint32_t i) { return length_squared(planar(p0, points[i].point)); },
+                           kMinSpread * kMinSpread, chosen[c])) {
     return c;
   }
   const Vec3 p1 = points[chosen[c++]].point;
@@ -156,8 +171,8 @@ uint32_t reduce_triangle_points(const TrianglePoint* points, uint32_t count, Vec
   auto area = [&](Vec3 a, Vec3 b, Vec3 q) { return dot(cross(b - a, q - a), normal); };
   // Twice the area over the base: the distance from the line times |p1 - p0|.
   const float base = length(planar(p0, p1));
-  if (!pick([&](uint32_t i) { return std::fabs(area(p0, p1, points[i].point)); }, kMinSpread * base,
-            chosen[c])) {
+  if (!pick_touching_first([&](uint32_t i) { return std::fabs(area(p0, p1, points[i].point)); },
+                           kMinSpread * base, chosen[c])) {
     return c;
   }
   const Vec3 p2 = points[chosen[c++]].point;
@@ -171,7 +186,7 @@ uint32_t reduce_triangle_points(const TrianglePoint* points, uint32_t count, Vec
     const float a20 = -wind * area(p2, p0, q);
     return std::fmax(a01, std::fmax(a12, a20));
   };
-  if (pick(added, kMinSpread * base, chosen[c])) ++c;
+  if (pick_touching_first(added, kMinSpread * base, chosen[c])) ++c;
   return c;
 }
 

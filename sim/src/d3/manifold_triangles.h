@@ -42,7 +42,9 @@
 // it; then at most four: the deepest (near-ties, within kDepthTie,
 // to the one farthest from the points' centroid), the farthest from it, the
 // one making the largest triangle with those two, and the one that adds the
-// most area to that triangle. Every choice is a total order on (value,
+// most area to that triangle, the last three among the points that touch
+// (separation <= 0) before the speculative ones, so a body keeps the points
+// it stands on. Every choice is a total order on (value,
 // feature id), so below the cap (see Limits) the result does not depend on
 // the order the triangles arrive in.
 //

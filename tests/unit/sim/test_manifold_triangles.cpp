@@ -393,6 +393,29 @@ TEST(ManifoldTriangles, DeterministicAndOrderFree) {
   EXPECT_GT(touching, 50);
 }
 
+// A box tilted across a terrain fold: it stands on three points (two
+// opposite corners of its base and where the base crosses the fold), its
+// other two corners lifted a few millimetres. The four points kept must
+// include all three it stands on: with only two (the two lifted corners
+// taking the other slots) it rests on a line, rocks about it and never
+// comes to rest.
+TEST(ManifoldTriangles, ReductionKeepsThePointsABodyStandsOn) {
+  const TrianglePoint points[] = {
+      {{5.2f, 0.0f, 2.8f}, -0.0045f, 1},  // corner, touching
+      {{4.8f, 0.0f, 2.4f}, -0.0040f, 2},  // opposite corner, touching
+      {{5.2f, 0.0f, 2.7f}, -0.0060f, 3},  // the base's edge over the fold, deepest
+      {{4.8f, 0.0f, 2.8f}, 0.0060f, 4},   // lifted corner
+      {{5.2f, 0.0f, 2.4f}, 0.0100f, 5},   // lifted corner
+      {{5.0f, 0.0f, 2.6f}, 0.0070f, 6},   // inside the base, lifted
+  };
+  uint32_t chosen[4];
+  const uint32_t n = reduce_triangle_points(points, 6, {0.0f, 1.0f, 0.0f}, chosen);
+  ASSERT_EQ(n, 4u);
+  int touching = 0;
+  for (uint32_t k = 0; k < n; ++k) touching += points[chosen[k]].separation <= 0.0f ? 1 : 0;
+  EXPECT_EQ(touching, 3);
+}
+
 TEST(ManifoldTriangles, FeatureIdsPersistWhileResting) {
   const auto g = make_grid(10, 1.0f, {-5, 0, -5}, [](float, float) { return 0.0f; });
   const TriangleMesh mesh = test::build_ok(g);
