@@ -133,7 +133,7 @@ void prepare_joints(World2DState& state, StepScratch2D& scratch, W h) {
     if (body_a.kind != BodyKind2D::kDynamic && body_b.kind != BodyKind2D::kDynamic) continue;
     const SolverBody2D& a = scratch.bodies[j.a];
     const SolverBody2D& b = scratch.bodies[j.b];
-    JointConstraint2D c;
+    JointConstraint2D& c = out.emplace_back();
     c.joint = ji;
     c.a = j.a;
     c.b = j.b;
@@ -151,8 +151,13 @@ void prepare_joints(World2DState& state, StepScratch2D& scratch, W h) {
           unwind(angle_of(rinv_mul(body_a.rotation, body_b.rotation)) - j.reference_angle);
     }
     c.axis_a = rotate(body_a.rotation, j.local_axis_a);
+    // The rows about the angle need the angular mass (a division per joint
+    // and step); a distance joint and a bare revolute have none.
+    const bool plain = j.type == JointType2D::kDistance ||
+                       (j.type == JointType2D::kRevolute &&
+                        !(j.flags & (kJointSpring | kJointMotor | kJointLimit)));
     const W k = a.inv_inertia + b.inv_inertia;
-    c.angular_mass = k > 0 ? winv(k) : 0;
+    c.angular_mass = !plain && k > 0 ? winv(k) : 0;
     c.soft = joint_soft;
     c.spring = (j.flags & kJointSpring) ? make_softness(j.hertz, j.damping_ratio, h) : Softness2D{};
     switch (j.type) {
@@ -180,7 +185,6 @@ void prepare_joints(World2DState& state, StepScratch2D& scratch, W h) {
         prepare_revolute(c, a, b);
         break;
     }
-    out.push_back(c);
   }
   order_by_color(scratch);
 }
