@@ -70,9 +70,9 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///  18  a turning body's rest is measured by how far its mass-frame bounds
 ///      reach from the turn's axis (a dumbbell rolling about its long axis
 ///      comes to rest by its bells' radius, not by its length)
-///  19  a mesh or height-field manifold keeps the points a body stands on
-///      (touching, separation <= 0) before speculative ones when it
-///      reduces to four points
+///  19  a mesh, height-field or compound manifold keeps the points a body
+///      stands on (touching, separation <= 0) before speculative ones when
+///      it reduces to four points
 inline constexpr uint32_t kSimRevision = 19;
 
 /// "rewind-sim r11": the engine identity a replay records.
