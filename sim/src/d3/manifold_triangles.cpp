@@ -141,7 +141,7 @@ uint32_t reduce_triangle_points(const TrianglePoint* points, uint32_t count, Vec
   // touching points first and fall back to every point only when none of
   // those spreads the patch enough. Chosen by spread alone, a box tilted
   // across a terrain fold kept its two lifted corners and only two of the
-  // three corners it stood on: resting on a line, it rocked about it, the
+  // three points it stood on: resting on a line, it rocked about it, the
   // deepest of the near-tied supports changing the line each way, and
   // never came to rest.
   auto pick_touching_first = [&](auto&& score, float floor, uint32_t& out) {
