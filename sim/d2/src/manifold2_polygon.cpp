@@ -22,6 +22,17 @@ struct EdgeSeparation {
   W separation = INT64_MIN;
 };
 
+// n . d for a unit normal n. A normal along an axis (every face of a box
+// in the box's own frame, which the first shape of a pair is in) gives the
+// component of d or its negative: vdot's product by 2^32 plus the half
+// rounds back to exactly that, so the shortcut changes no bit and spares
+// the polygon test most of its 128-bit products.
+W normal_dot(V2 n, V2 d) {
+  if (n.y == 0 && (n.x == kWOne || n.x == -kWOne)) return n.x > 0 ? d.x : -d.x;
+  if (n.x == 0 && (n.y == kWOne || n.y == -kWOne)) return n.y > 0 ? d.y : -d.y;
+  return vdot(n, d);
+}
+
 // The face of p1 with the largest separation from p2 (the deepest vertex of
 // p2 measured against each face of p1); ties keep the lowest index.
 EdgeSeparation find_max_separation(const WPoly& p1, const WPoly& p2) {
@@ -29,7 +40,7 @@ EdgeSeparation find_max_separation(const WPoly& p1, const WPoly& p2) {
   for (int i = 0; i < p1.count; ++i) {
     W si = INT64_MAX;
     for (int j = 0; j < p2.count; ++j) {
-      si = wmin(si, vdot(p1.normals[i], p2.vertices[j] - p1.vertices[i]));
+      si = wmin(si, normal_dot(p1.normals[i], p2.vertices[j] - p1.vertices[i]));
     }
     if (si > best.separation) best = {i, si};
   }
@@ -41,7 +52,7 @@ int incident_edge(const WPoly& p, V2 direction) {
   int edge = 0;
   W min_dot = INT64_MAX;
   for (int i = 0; i < p.count; ++i) {
-    const W d = vdot(direction, p.normals[i]);
+    const W d = normal_dot(direction, p.normals[i]);
     if (d < min_dot) {
       min_dot = d;
       edge = i;
@@ -128,11 +139,11 @@ void clip(const WPoly& ref, const WPoly& inc, int ref_edge, int inc_edge, bool f
   const V2 tangent = vperp(normal);
 
   const W lower1 = 0;
-  const W upper1 = vdot(v12 - v11, tangent);
+  const W upper1 = normal_dot(tangent, v12 - v11);
   // Both outlines run counter-clockwise, so the incident face runs against
   // the tangent: v21 is its upper end.
-  const W upper2 = vdot(v21 - v11, tangent);
-  const W lower2 = vdot(v22 - v11, tangent);
+  const W upper2 = normal_dot(tangent, v21 - v11);
+  const W lower2 = normal_dot(tangent, v22 - v11);
   const W span = upper2 - lower2;
 
   V2 v_lower = v22;
@@ -140,8 +151,8 @@ void clip(const WPoly& ref, const WPoly& inc, int ref_edge, int inc_edge, bool f
   V2 v_upper = v21;
   if (upper2 > upper1 && span > 0) v_upper = lerp_ratio(v22, v21, upper1 - lower2, span);
 
-  const W sep_lower = vdot(v_lower - v11, normal);
-  const W sep_upper = vdot(v_upper - v11, normal);
+  const W sep_lower = normal_dot(normal, v_lower - v11);
+  const W sep_upper = normal_dot(normal, v_upper - v11);
   // Midway between the surfaces: the reference surface lies ref.radius out
   // along the normal, the incident one inc.radius back.
   v_lower = vmul_add(v_lower, (ref.radius - inc.radius - sep_lower) / 2, normal);
