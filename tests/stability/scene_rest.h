@@ -25,8 +25,9 @@ inline int ticks_until_asleep(const char* name, int size, int max_ticks, uint32_
   RewindEngine engine;
   engine.reset(scene->world(), scene->body_capacity());
   std::string error;
-  EXPECT_TRUE(scene->build(engine, error)) << error;
-  if (!error.empty()) return -1;
+  const bool built = scene->build(engine, error);
+  EXPECT_TRUE(built) << error;
+  if (!built) return -1;
   for (int t = 1; t <= max_ticks; ++t) {
     engine.step();
     if (engine.awake_count() == 0) return t;

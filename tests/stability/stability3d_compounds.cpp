@@ -16,8 +16,12 @@ namespace {
 TEST(Stability3DCompounds, CompoundPileFallsAsleepWithin20Seconds) {
   uint32_t awake = 0;
   const int asleep_at = ticks_until_asleep("compound_pile", 200, 1200, awake);
-  std::printf("[ measured ] compound_pile 200: every body asleep at %.2f s (limit 20 s)\n",
-              asleep_at / 60.0);
+  if (asleep_at > 0) {
+    std::printf("[ measured ] compound_pile 200: every body asleep at %.2f s (limit 20 s)\n",
+                asleep_at / 60.0);
+  } else {
+    std::printf("[ measured ] compound_pile 200: %u bodies still awake at 20 s\n", awake);
+  }
   EXPECT_GT(asleep_at, 0) << awake << " bodies still awake at 20 s";
 }
 
