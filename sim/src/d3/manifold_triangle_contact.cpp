@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// One triangle against a convex shape's core: the raw contact (GJK, EPA or
-// a segment SAT), the internal-edge fix, and face clipping. Conventions are
+// One triangle against a convex shape's core: the raw contact (a box's
+// separating axes, GJK, EPA or a segment SAT), the internal-edge fix, and
+// face clipping. Conventions are
 // manifold_triangles.h's. Everything here works in the source's frame, on
 // fixed arrays.
 #include <algorithm>
@@ -472,8 +473,12 @@ Vec3 fix_internal_edge(const TriangleRef& tri, Vec3 side, Vec3 normal, bool& rep
 
 }  // namespace triangle_detail
 
-ShapeCore make_shape_core(const ConvexProxy& shape) {
+ShapeCore make_shape_core(const ConvexProxy& shape, const Vec3* box_half) {
   ShapeCore core;
+  if (box_half != nullptr) {
+    core.box = true;
+    core.box_frame = {shape.position, {shape.axes.c0, shape.axes.c1, shape.axes.c2}, *box_half};
+  }
   core.proxy = &shape;
   core.count = shape.count < kProxyMaxPoints ? shape.count : kProxyMaxPoints;
   core.radius = shape.radius;
@@ -513,7 +518,17 @@ bool collide_convex_triangle(const ShapeCore& core, const TriangleRef& tri, bool
   tri_proxy.points = tri.p;
   tri_proxy.count = 3;
   GjkOutput g;
-  if (core.count <= 2) {
+  BoxTriangleFeatures box;
+  // (A triangle without a normal, which no source builds, is left to GJK.)
+  const bool by_axes = core.box && !(tri.normal == Vec3{});
+  if (by_axes) {
+    box = box_triangle_features(core.box_frame, tri, speculative_m);
+    g.overlap = box.overlap;
+    g.distance = box.separation;
+    g.normal = box.normal;
+    g.point_a = box.on_triangle;
+    g.point_b = box.on_box;
+  } else if (core.count <= 2) {
     const CoreTriangleClosest c = closest_core_triangle(core.points, core.count, tri.p, tri.normal);
     g.overlap = c.overlap;
     g.distance = c.distance;
@@ -542,6 +557,12 @@ bool collide_convex_triangle(const ShapeCore& core, const TriangleRef& tri, bool
     normal = g.normal;
     p_tri = g.point_a;
     p_shape = g.point_b - normal * core.radius;
+  } else if (by_axes) {
+    // The least depth over the separating axes, EPA's answer for a box.
+    normal = box.separation < 0.0f ? box.normal : side;  // only touching: no axis of its own
+    p_tri = box.on_triangle;
+    p_shape = box.on_box;
+    sep = box.separation;
   } else if (core.count >= 3) {
     const EpaOutput e = epa_penetration(tri_proxy, *core.proxy, g.simplex);
     normal = e.depth > 0.0f ? e.normal : side;  // a flat difference: no EPA normal

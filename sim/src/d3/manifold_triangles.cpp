@@ -191,8 +191,10 @@ uint32_t reduce_triangle_points(const TrianglePoint* points, uint32_t count, Vec
 }
 
 TriangleManifoldBuilder::TriangleManifoldBuilder(const ConvexProxy& shape, bool one_sided,
-                                                 float speculative_m)
-    : core_(make_shape_core(shape)), one_sided_(one_sided), speculative_m_(speculative_m) {}
+                                                 float speculative_m, const Vec3* box_half)
+    : core_(make_shape_core(shape, box_half)),
+      one_sided_(one_sided),
+      speculative_m_(speculative_m) {}
 
 void TriangleManifoldBuilder::add(const TriangleRef& tri) {
   TriangleContact c;
@@ -302,8 +304,9 @@ void TriangleManifoldBuilder::finish(Manifold& out) const {
 }
 
 void collide_convex_triangles(const ConvexProxy& shape, std::span<const TriangleRef> triangles,
-                              bool one_sided, float speculative_m, Manifold& out) {
-  TriangleManifoldBuilder builder(shape, one_sided, speculative_m);
+                              bool one_sided, float speculative_m, Manifold& out,
+                              const Vec3* box_half) {
+  TriangleManifoldBuilder builder(shape, one_sided, speculative_m, box_half);
   for (const TriangleRef& t : triangles) builder.add(t);
   builder.finish(out);
 }

@@ -13,19 +13,18 @@
 // negative when overlapping and each point lies midway between the
 // surfaces, as in manifold.h; anchors are left zero (the caller fills them).
 //
-// Per triangle (manifold_triangle_contact.cpp): GJK between the triangle and
-// the shape's core when they are apart, EPA (cores of three or more points)
-// or a separating-axis test (a point or segment core) when the cores
-// overlap. A contact within kFaceSnapCos of the face normal is a face
-// contact: the shape's lowest face (its core points within kFaceSlab of the
-// deepest, as a convex outline) is clipped against the triangle, so a box
-// resting on a triangle gets its corners, a capsule its two ends. A contact
-// whose triangle feature (the triangle's support along the normal) is an
-// inactive edge, or a vertex whose two edges are inactive, is made a face
-// contact too (the internal-edge fix: bodies slide over flat and concave
-// edges without catching); if the shape's outline then does not reach over
-// the triangle, the triangle gives nothing, since the neighbour across the
-// inactive feature (flat or concave, so under the shape) has the contact.
+// Per triangle (manifold_triangle_contact.cpp): a box by separating axes
+// (box_triangle.h); other shapes by GJK between the triangle and the
+// shape's core when they are apart (closed form for a point or segment
+// core), EPA (cores of three or more points) or a separating-axis test (a
+// point or segment core) when the cores overlap. A contact within kFaceSnapCos of the face normal
+// is a face contact: the shape's lowest face (its core points within kFaceSlab of the deepest, as a
+// convex outline) is clipped against the triangle, so a box resting on a triangle gets its corners,
+// a capsule its two ends. A contact whose triangle feature (the triangle's support along the
+// normal) is an inactive edge, or a vertex whose two edges are inactive, is made a face contact too
+// (the internal-edge fix: bodies slide over flat and concave edges without catching); if the
+// shape's outline then does not reach over the triangle, the triangle gives nothing, since the
+// neighbour across the inactive feature (flat or concave, so under the shape) has the contact.
 // Other edge and vertex contacts give one point; an overlapping one whose
 // normal points past the face of the neighbour across a convex fold there
 // (TriangleRef::across) takes that face's normal instead, at the depth
@@ -75,6 +74,7 @@
 #include <cstdint>
 #include <span>
 
+#include "d3/box_triangle.h"
 #include "d3/gjk.h"
 #include "d3/manifold.h"
 #include "d3/triangle.h"
@@ -122,8 +122,14 @@ struct ShapeCore {
   uint32_t count = 0;
   float radius = 0.0f;
   Vec3 centroid;
+  /// A box meets each triangle by separating axes (box_triangle.h), not
+  /// GJK and EPA; `box_frame` is then its pose and half extents.
+  bool box = false;
+  BoxFrame box_frame;
 };
-ShapeCore make_shape_core(const ConvexProxy& shape);
+/// `box_half`: the half extents when the shape is a box (its proxy's
+/// corners), else null.
+ShapeCore make_shape_core(const ConvexProxy& shape, const Vec3* box_half = nullptr);
 
 /// One triangle's contact with the shape (points beyond speculative_m
 /// dropped); false when there is none.
@@ -134,7 +140,9 @@ bool collide_convex_triangle(const ShapeCore& core, const TriangleRef& tri, bool
 /// ids unique), then finish(). Holds its scratch (about 20 KB) inline.
 class TriangleManifoldBuilder {
  public:
-  TriangleManifoldBuilder(const ConvexProxy& shape, bool one_sided, float speculative_m);
+  /// `box_half` as for make_shape_core.
+  TriangleManifoldBuilder(const ConvexProxy& shape, bool one_sided, float speculative_m,
+                          const Vec3* box_half = nullptr);
   void add(const TriangleRef& tri);
   void finish(Manifold& out) const;
 
@@ -149,7 +157,8 @@ class TriangleManifoldBuilder {
 /// The shape (pose in the triangles' frame) against the triangles: one
 /// manifold, at most four points (conventions above).
 void collide_convex_triangles(const ConvexProxy& shape, std::span<const TriangleRef> triangles,
-                              bool one_sided, float speculative_m, Manifold& out);
+                              bool one_sided, float speculative_m, Manifold& out,
+                              const Vec3* box_half = nullptr);
 
 /// Up to four of the `count` points (indices into them), chosen as the
 /// reduction above describes along `normal`; returns how many.

@@ -115,7 +115,8 @@ void collide_source_convex(const SourceFrame& f, bool one_sided, Query&& query, 
   Aabb box = shape_aabb(shape, proxy.position, proxy.axes);
   const Vec3 reach{speculative_m, speculative_m, speculative_m};
   box = {box.lower - reach, box.upper + reach};
-  TriangleManifoldBuilder builder(proxy, one_sided, speculative_m);
+  TriangleManifoldBuilder builder(proxy, one_sided, speculative_m,
+                                  shape.type == ShapeType::kBox ? &shape.half_extents : nullptr);
   query(box, [&builder](const TriangleRef& tri) { builder.add(tri); });
   builder.finish(out);
   out.separating_axis = kNoSeparatingAxis;

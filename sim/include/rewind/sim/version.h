@@ -73,7 +73,10 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///  19  a mesh, height-field or compound manifold keeps the points a body
 ///      stands on (touching, separation <= 0) before speculative ones when
 ///      it reduces to four points
-inline constexpr uint32_t kSimRevision = 19;
+///  20  a box meets a mesh's or a height field's triangles by separating
+///      axes (the triangle's normal preferred, then the box's faces, then
+///      edge pairs) instead of GJK and EPA
+inline constexpr uint32_t kSimRevision = 20;
 
 /// "rewind-sim r11": the engine identity a replay records.
 inline std::string engine_version() {
