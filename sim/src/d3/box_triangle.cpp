@@ -17,6 +17,15 @@ namespace {
 // nothing the face axes do not.
 constexpr float kParallelSin = 1e-5f;
 
+// The larger and the smaller of two finite values, as plain compares
+// (std::fmax and std::fmin are calls into the maths library here).
+float larger(float a, float b) {
+  return a < b ? b : a;
+}
+float smaller(float a, float b) {
+  return b < a ? b : a;
+}
+
 // The gap along one axis (box frame) and the way the box lies from the
 // triangle.
 struct AxisGap {
@@ -24,18 +33,18 @@ struct AxisGap {
   Vec3 dir;          ///< unit, from the triangle toward the box (box frame)
 };
 
-// The gap along axis u (box frame) of length `len`: the box on u's side of
-// the triangle q[0..3) or on the other, whichever leaves the larger gap
-// (ties to u's side).
-AxisGap gap_along(Vec3 half, const Vec3 q[3], Vec3 u, float len) {
+// The gap along axis u (box frame), times u's length: the box on u's side
+// of the triangle q[0..3) or on the other, whichever leaves the larger gap
+// (ties to u's side); `flip` says it was the other.
+float scaled_gap(Vec3 half, const Vec3 q[3], Vec3 u, bool& flip) {
   const float r = half.x * std::fabs(u.x) + half.y * std::fabs(u.y) + half.z * std::fabs(u.z);
   const float d0 = dot(q[0], u);
   const float d1 = dot(q[1], u);
   const float d2 = dot(q[2], u);
-  const float above = -r - std::fmax(d0, std::fmax(d1, d2));
-  const float below = std::fmin(d0, std::fmin(d1, d2)) - r;
-  const float inv = 1.0f / len;
-  return below > above ? AxisGap{below * inv, u * -inv} : AxisGap{above * inv, u * inv};
+  const float above = -r - larger(d0, larger(d1, d2));
+  const float below = smaller(d0, smaller(d1, d2)) - r;
+  flip = below > above;
+  return flip ? below : above;
 }
 
 // The gap along box axis k: the triangle's extent along it against the
@@ -45,8 +54,8 @@ AxisGap gap_along_axis(Vec3 half, const Vec3 q[3], int k) {
   const float d1 = component(q[1], k);
   const float d2 = component(q[2], k);
   const float h = component(half, k);
-  const float above = -h - std::fmax(d0, std::fmax(d1, d2));
-  const float below = std::fmin(d0, std::fmin(d1, d2)) - h;
+  const float above = -h - larger(d0, larger(d1, d2));
+  const float below = smaller(d0, smaller(d1, d2)) - h;
   Vec3 u;
   (k == 0 ? u.x : (k == 1 ? u.y : u.z)) = below > above ? -1.0f : 1.0f;
   return {below > above ? below : above, u};
@@ -98,7 +107,10 @@ BoxTriangleFeatures box_triangle_features(const BoxFrame& box, const TriangleRef
   };
 
   // The face axes: the triangle's normal first, then the box's faces.
-  const AxisGap face_n = gap_along(half, q, to_box(tri.normal), 1.0f);
+  const Vec3 n = to_box(tri.normal);
+  bool n_flip = false;
+  const float n_gap = scaled_gap(half, q, n, n_flip);
+  const AxisGap face_n{n_gap, n_flip ? -n : n};
   if (face_n.gap > reach) return apart(face_n);
   AxisGap face_b = gap_along_axis(half, q, 0);
   for (int k = 1; k < 3; ++k) {
@@ -122,20 +134,26 @@ BoxTriangleFeatures box_triangle_features(const BoxFrame& box, const TriangleRef
           k == 0 ? Vec3{0.0f, -e.z, e.y} : (k == 1 ? Vec3{e.z, 0.0f, -e.x} : Vec3{-e.y, e.x, 0.0f});
       const float c_len = length(c);
       if (!(c_len > kParallelSin * e_len)) continue;
-      const AxisGap g = gap_along(half, q, c, c_len);
+      // Only an axis beyond the reach (which ends the search) or one that
+      // beats the face and every edge so far is divided out.
+      bool flip = false;
+      const float scaled = scaled_gap(half, q, c, flip);
+      const float beat = edge_k < 0 ? face.gap + kBoxTriangleAxisSlack : edge.gap;
+      if (!(scaled > reach * c_len) && !(scaled > beat * c_len)) continue;
+      const float inv = 1.0f / c_len;
+      const AxisGap g{scaled * inv, c * (flip ? -inv : inv)};
       if (g.gap > reach) return apart(g);
-      if (edge_k < 0 || g.gap > edge.gap) {
-        edge = g;
-        edge_k = k;
-        edge_j = j;
-      }
+      if (!(g.gap > beat)) continue;
+      edge = g;
+      edge_k = k;
+      edge_j = j;
     }
   }
 
   Vec3 on_box;
   Vec3 on_tri;
   AxisGap best = face;
-  if (edge_k >= 0 && edge.gap > face.gap + kBoxTriangleAxisSlack) {
+  if (edge_k >= 0) {  // it beat the face by the slack
     // The box edge along axis edge_k that leads toward the triangle, and
     // triangle edge edge_j: their closest points.
     best = edge;
@@ -158,9 +176,9 @@ BoxTriangleFeatures box_triangle_features(const BoxFrame& box, const TriangleRef
     // when the corner lies over it, else on its rim); overlapping, the
     // corner pushed out to the face.
     on_tri = highest_corner(q, face.dir);
-    on_box = face.gap > 0.0f ? Vec3{std::fmax(-half.x, std::fmin(half.x, on_tri.x)),
-                                    std::fmax(-half.y, std::fmin(half.y, on_tri.y)),
-                                    std::fmax(-half.z, std::fmin(half.z, on_tri.z))}
+    on_box = face.gap > 0.0f ? Vec3{larger(-half.x, smaller(half.x, on_tri.x)),
+                                    larger(-half.y, smaller(half.y, on_tri.y)),
+                                    larger(-half.z, smaller(half.z, on_tri.z))}
                              : on_tri + face.dir * face.gap;
   }
   out.overlap = !(best.gap > 0.0f);

@@ -151,7 +151,12 @@ class TriangleManifoldBuilder {
   bool one_sided_;
   float speculative_m_;
   uint32_t count_ = 0;
-  TriangleContact contacts_[kMaxContactTriangles];
+  // Left unset when a builder is made (a union member is constructed only
+  // when asked): only the first count_ are ever read, and zeroing all of
+  // them, about 20 KB, cost a pair on a height field more than a triangle.
+  union {
+    TriangleContact contacts_[kMaxContactTriangles];
+  };
 };
 
 /// The shape (pose in the triangles' frame) against the triangles: one
