@@ -14,10 +14,9 @@
 //
 // Face axes are preferred over edge axes, and the triangle's normal over
 // the box's faces, unless the other gains more than kBoxTriangleAxisSlack:
-// a box coming down on a triangle, tilted, is then met face to face (its
-// lowest face clipped against the triangle, every corner over it) rather
-// than at the one feature GJK finds nearest, which can be a fold the box
-// pivots on while its far corners drop through the neighbouring triangle.
+// a box resting flat on a triangle (its face and the triangle's normal a
+// hair apart) is met through the triangle's face, its lowest face clipped
+// against it, the same way every step.
 #include "d3/triangle.h"
 #include "rewind/sim/math.h"
 
@@ -38,8 +37,8 @@ struct BoxTriangleFeatures {
   bool overlap = false;     ///< the box and the triangle touch or overlap
   float separation = 0.0f;  ///< the gap along normal (> 0), or minus the depth
   Vec3 normal;              ///< unit, from the triangle toward the box
-  Vec3 on_triangle;         ///< witness on the triangle
-  Vec3 on_box;              ///< witness on the box (on_triangle + normal * separation)
+  Vec3 on_triangle;         ///< witness on the triangle (its plane, for the normal's axis)
+  Vec3 on_box;              ///< witness on the box, at least the gap from on_triangle
 };
 
 /// The box against the triangle p[0..3) with unit normal tri.normal. An
