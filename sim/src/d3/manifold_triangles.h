@@ -209,6 +209,15 @@ namespace triangle_detail {
 /// side `side` (the face normal toward the shape), then `side`.
 Vec3 fix_internal_edge(const TriangleRef& tri, Vec3 side, Vec3 normal, bool& replaced,
                        uint32_t& code);
+/// The face contact along `side` (unit face normal toward the shape): the
+/// shape's lowest core points as an outline clipped to the triangle
+/// (manifold_triangle_face.cpp). When the outline misses the triangle,
+/// `slack` keeps its deepest point lying within a hair (1e-5 of the edge's
+/// length) of the triangle (a shape exactly over a shared edge or vertex,
+/// which rounding may put outside every triangle there). Returns whether
+/// any point is within speculative_m.
+bool face_contact(const ShapeCore& core, const TriangleRef& tri, Vec3 side, bool slack,
+                  float speculative_m, TriangleContact& out);
 }  // namespace triangle_detail
 
 }  // namespace rwd::sim::d3
