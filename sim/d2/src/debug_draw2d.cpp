@@ -262,6 +262,23 @@ void debug_draw(const World2D& world, const DebugDrawOptions& options, DebugDraw
   if (o.joints) draw_joints(s, o, out);
 }
 
+sim::WorldViewStats view_stats(const World2D& world) {
+  const World2DState& s = world.state();
+  sim::WorldViewStats v;
+  for (const BodyRecord2D& b : s.bodies) {
+    if ((b.flags & kBodyLive) == 0) continue;
+    ++v.bodies;
+    v.awake_bodies += (b.flags & kBodyAwake) != 0 ? 1u : 0u;
+  }
+  for (const ContactRecord2D& rec : s.contacts) {
+    if ((rec.flags & kContactTouching) == 0) continue;
+    ++v.touching_pairs;
+    v.contact_points += (rec.flags & kContactSensor) == 0 ? rec.count : 0u;
+  }
+  for (const JointRecord2D& j : s.joints) v.joints += (j.flags & kJointLive) != 0 ? 1u : 0u;
+  return v;
+}
+
 void draw_shape(const Shape2D& shape, Vec2 position, Fx angle, Fx z, DrawColor color,
                 const DebugDrawOptions& options, DebugDrawBuffers& out) {
   if (!validate_shape(shape).ok()) return;

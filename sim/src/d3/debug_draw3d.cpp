@@ -110,6 +110,26 @@ void debug_draw(const World3D& world, const DebugDrawOptions& options, DebugDraw
   if (o.joints) draw_joints(s, o, out);
 }
 
+WorldViewStats view_stats(const World3D& world) {
+  const WorldState& s = world.state();
+  WorldViewStats v;
+  for (const BodyInfo& info : s.infos) {
+    v.bodies += info.alive;
+    v.awake_bodies += info.alive != 0 && info.awake != 0 ? 1u : 0u;
+  }
+  const ContactRecord* counted = nullptr;  // a compound pair has a record per part: once each
+  for (const ContactRecord& rec : s.contacts) {
+    if (rec.touching == 0) continue;
+    if (counted == nullptr || counted->index_a != rec.index_a || counted->index_b != rec.index_b) {
+      ++v.touching_pairs;
+      counted = &rec;
+    }
+    v.contact_points += rec.sensor == 0 ? rec.point_count : 0u;
+  }
+  for (const JointRecord& j : s.joints) v.joints += j.alive;
+  return v;
+}
+
 void draw_shape(const GeometryStore& store, const Shape& shape, Vec3 position, Quat rotation,
                 DrawColor color, const DebugDrawOptions& options, DebugDrawBuffers& out) {
   if (!is_finite(position) || !is_finite(rotation) || length_squared(rotation) == 0.0f) return;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -146,6 +147,52 @@ TEST(WorldLane, ADrillPerturbsTheLastDynamicBodyTheSameWayEachTime) {
   EXPECT_EQ(a->checksum(), b->checksum());
   EXPECT_NEAR(world.position(last).x, before.x + 0.001f, 1e-4f);
   EXPECT_NEAR(world.position(last).z, before.z, 1e-4f);  // set_transform() quantizes
+}
+
+TEST(WorldLane, DrawsAndCountsItsWorldForAViewerOfEitherLane) {
+  for (std::string_view name : builtin_game_names()) {
+    auto made = Simulation::create(name, {2, 3});
+    ASSERT_TRUE(made.ok()) << name;
+    Simulation& sim = **made;
+    for (Tick t = 0; t < 60; ++t) sim.step(steer(2, t));
+    const uint64_t before = sim.checksum();
+    sim::DebugDrawBuffers out;
+    sim.lane().debug_draw({}, out);
+    EXPECT_EQ(sim.checksum(), before) << name;
+    EXPECT_GT(out.lines.size(), 8u) << name;
+    const sim::WorldViewStats stats = sim.lane().view_stats();
+    std::vector<sim::BodyField> fields;
+    sim.dump_bodies(fields);
+    // The dump names every live body's fields; its distinct indices are the
+    // live bodies.
+    std::vector<uint32_t> bodies;
+    for (const sim::BodyField& f : fields) {
+      if (bodies.empty() || bodies.back() != f.body_index) bodies.push_back(f.body_index);
+    }
+    EXPECT_EQ(stats.bodies, bodies.size()) << name;
+    EXPECT_LE(stats.awake_bodies, stats.bodies) << name;
+    if (name != "arena") {  // top-down: nothing stands on anything
+      EXPECT_GT(stats.touching_pairs, 0u) << name;
+      EXPECT_GT(out.points.size(), 0u) << name;
+    }
+    EXPECT_GE(stats.contact_points, stats.touching_pairs) << name;
+    // A joint, a contact point and a body each drew: a highlighted body
+    // changes its outline's colour only.
+    const uint32_t highlight[] = {bodies.back()};
+    sim::DebugDrawOptions lit;
+    lit.highlight_bodies = highlight;
+    sim::DebugDrawBuffers marked;
+    sim.lane().debug_draw(lit, marked);
+    ASSERT_EQ(marked.lines.size(), out.lines.size()) << name;
+    size_t recoloured = 0;
+    for (size_t i = 0; i < out.lines.size(); ++i) {
+      recoloured += marked.lines[i].color != out.lines[i].color ? 1u : 0u;
+      if (marked.lines[i].color != out.lines[i].color) {
+        EXPECT_EQ(marked.lines[i].color, lit.colors.highlight) << name;
+      }
+    }
+    EXPECT_GT(recoloured, 0u) << name;
+  }
 }
 
 }  // namespace

@@ -106,6 +106,16 @@ struct DebugDrawOptions {
   DrawColors colors;
 };
 
+/// What a viewer shows of a world beside its drawing: counts as of the last
+/// step (a viewer adds its own step time).
+struct WorldViewStats {
+  uint32_t bodies = 0;          ///< live bodies, static ones included
+  uint32_t awake_bodies = 0;    ///< simulated in the last step
+  uint32_t touching_pairs = 0;  ///< body pairs in contact (solid or sensor)
+  uint32_t contact_points = 0;  ///< manifold points of the solid ones
+  uint32_t joints = 0;          ///< live joints, broken ones included
+};
+
 /// Clamps options to their ranges (circle_segments to [8, 64], non-finite
 /// or non-positive lengths to their defaults): a draw never refuses.
 inline DebugDrawOptions sanitized(DebugDrawOptions o) {

@@ -22,6 +22,9 @@ class World3D;
 /// once and pass `static_shapes = false` after. Reads the world only.
 void debug_draw(const World3D& world, const DebugDrawOptions& options, DebugDrawBuffers& out);
 
+/// The world's counts for a viewer (bodies, awake, contacts, joints).
+WorldViewStats view_stats(const World3D& world);
+
 /// Appends `shape` placed at `position` (m) and `rotation` as a body of it
 /// would be placed (its authored frame), in `color`: lines, and triangles
 /// when options.solid_shapes. Its hull, mesh, height field or compound is

@@ -29,6 +29,9 @@ class World2D;
 void debug_draw(const World2D& world, const sim::DebugDrawOptions& options,
                 sim::DebugDrawBuffers& out);
 
+/// The world's counts for a viewer (bodies, awake, contacts, joints).
+sim::WorldViewStats view_stats(const World2D& world);
+
 /// Appends `shape` with its body origin at `position` (m) turned by
 /// `angle` (rad), at draw depth `z`, in `color`.
 void draw_shape(const Shape2D& shape, fixed::Vec2 position, fixed::Fx angle, fixed::Fx z,

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "rewind/sim/body_field.h"
+#include "rewind/sim/debug_draw.h"
 #include "rewind/sim/state_hasher.h"
 #include "rewind/sim/status.h"
 
@@ -56,6 +57,13 @@ class Lane {
   virtual void serialize(std::vector<uint8_t>& out) const = 0;
   /// Replaces the state from serialize()'s bytes; kCorrupt leaves it intact.
   virtual Status deserialize(std::span<const uint8_t> bytes) = 0;
+
+  /// Appends the world's debug draw to `out` (rewind/sim/debug_draw.h):
+  /// for viewers, never part of the state.
+  virtual void debug_draw(const sim::DebugDrawOptions& options,
+                          sim::DebugDrawBuffers& out) const = 0;
+  /// The world's counts for a viewer (bodies, awake, contacts, joints).
+  virtual sim::WorldViewStats view_stats() const = 0;
 
   /// Test hook for desync drills: changes the state slightly, the way a
   /// real non-determinism would, and the same way for the same state.

@@ -3,15 +3,34 @@
 // Lane adapter for a concrete world type. `World` provides: a constructor
 // from its config, step(), config(), state(), save(State&), restore(const
 // State&), hash(StateHasher&), static hash_state(const State&, StateHasher&),
-// dump_fields(), serialize(), deserialize() and perturb_for_drill(). The
-// adapter adds one virtual call per operation and nothing per body.
+// dump_fields(), serialize(), deserialize() and perturb_for_drill(); and
+// free functions debug_draw(const World&, options, buffers) and
+// view_stats(const World&), found by argument-dependent lookup (both
+// lanes' are included here). The adapter adds one virtual call per
+// operation and nothing per body.
 #include <memory>
 #include <type_traits>
 #include <utility>
 
 #include "rewind/game/lane.h"
+#include "rewind/sim/debug_draw3d.h"
+#include "rewind/sim2d/debug_draw2d.h"
 
 namespace rwd::game {
+
+namespace lane_detail {
+// The world's own free functions, by argument-dependent lookup; inside
+// WorldLane its members of the same names would hide them.
+template <class World>
+void draw_world(const World& world, const sim::DebugDrawOptions& options,
+                sim::DebugDrawBuffers& out) {
+  debug_draw(world, options, out);
+}
+template <class World>
+sim::WorldViewStats stats_of(const World& world) {
+  return view_stats(world);
+}
+}  // namespace lane_detail
 
 template <class World>
 class WorldLane final : public Lane {
@@ -50,6 +69,10 @@ class WorldLane final : public Lane {
   void dump_fields(std::vector<sim::BodyField>& out) const override { world_.dump_fields(out); }
   void serialize(std::vector<uint8_t>& out) const override { world_.serialize(out); }
   Status deserialize(std::span<const uint8_t> bytes) override { return world_.deserialize(bytes); }
+  void debug_draw(const sim::DebugDrawOptions& options, sim::DebugDrawBuffers& out) const override {
+    lane_detail::draw_world(world_, options, out);
+  }
+  sim::WorldViewStats view_stats() const override { return lane_detail::stats_of(world_); }
   bool perturb_for_drill() override { return world_.perturb_for_drill(); }
 
  private:
