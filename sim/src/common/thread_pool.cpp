@@ -133,6 +133,12 @@ struct ThreadPool::Shared {
 
 ThreadPool::ThreadPool(uint32_t threads)
     : threads_(std::clamp<uint32_t>(threads, 1, kMaxThreads)), shared_(std::make_unique<Shared>()) {
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+  // WebAssembly without pthreads has no threads to start, and there a
+  // failing std::thread aborts (exceptions are off): the caller alone runs
+  // everything, as a pool of one would.
+  threads_ = 1;
+#endif
   shared_->workers.reserve(threads_ - 1);
   for (uint32_t i = 1; i < threads_; ++i) {
     try {

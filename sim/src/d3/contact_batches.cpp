@@ -428,10 +428,11 @@ void copy_back_separations(WorldScratch& scratch, float slop, ContactBatch& batc
   // Batches of a colour run at the same time on the step's threads. A flag
   // already set is only read: the scratch's line with it holds the vectors
   // every batch reads, and a write from each thread would pass that line
-  // back and forth between the cores.
+  // back and forth between the cores. (The compiler's atomic builtins
+  // rather than std::atomic_ref, which Emscripten's standard library does
+  // not have yet.)
   const auto raise = [](bool& flag) {
-    std::atomic_ref<bool> shared(flag);
-    if (!shared.load(std::memory_order_relaxed)) shared.store(true, std::memory_order_relaxed);
+    if (!__atomic_load_n(&flag, __ATOMIC_RELAXED)) __atomic_store_n(&flag, true, __ATOMIC_RELAXED);
   };
   if (overlapping) raise(scratch.overlapping);
   if (deep) raise(scratch.deep_overlap);

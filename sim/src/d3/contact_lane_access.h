@@ -9,6 +9,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "d3/contact_batches.h"
 #include "d3/wide_float.h"
@@ -92,7 +93,13 @@ struct OneLane {
   using F = Float1;
   static constexpr int kWidth = 1;
   static constexpr bool kSettles = true;
-  static uint32_t bits(F v) { return std::bit_cast<uint32_t>(v.v); }
+  // memcpy rather than std::bit_cast, which Emscripten's standard library
+  // does not have yet.
+  static uint32_t bits(F v) {
+    uint32_t b = 0;
+    std::memcpy(&b, &v.v, sizeof b);
+    return b;
+  }
   ContactBatch* batch;
   int lane;
   static F splat(float x) { return {x}; }

@@ -1,0 +1,151 @@
+// SPDX-License-Identifier: MIT
+// The replay player: re-simulation gives the recorded checksum at every
+// tick, a seek anywhere (back through its snapshots or forward) lands on
+// the state a straight run reaches, a forged checksum is found at its
+// tick, and a desync report names the bodies that differ.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "rewind/game/simulation.h"
+#include "rewind/viewer/replay_player.h"
+
+namespace rwd::viewer {
+namespace {
+
+/// A match of `game` played with inputs that change every few ticks,
+/// recorded as the server would: inputs and the checksum after each tick.
+ViewBundle played(const std::string& game_name, uint32_t players, Tick ticks) {
+  ViewBundle b;
+  b.game = game_name;
+  b.setup.player_count = players;
+  b.setup.seed = 11;
+  auto sim = game::Simulation::create(game_name, b.setup);
+  EXPECT_TRUE(sim.ok());
+  std::vector<game::PlayerInput> inputs(players);
+  for (Tick t = 0; t < ticks; ++t) {
+    for (uint32_t p = 0; p < players; ++p) {
+      inputs[p].axis_x = static_cast<int16_t>(((t / 13 + static_cast<Tick>(p)) % 3 - 1) * 1000);
+      inputs[p].axis_y = static_cast<int16_t>(((t / 29 + static_cast<Tick>(p)) % 3 - 1) * 700);
+      inputs[p].buttons = (t + static_cast<Tick>(p)) % 40 == 0 ? 1u : 0u;
+    }
+    (*sim)->step(inputs);
+    b.inputs.insert(b.inputs.end(), inputs.begin(), inputs.end());
+    b.checksums.push_back((*sim)->checksum());
+    b.substituted_masks.push_back(0);
+  }
+  return b;
+}
+
+TEST(ReplayPlayer, EveryTickOfEveryGameMatchesItsRecord) {
+  for (const char* name : {"crates", "arena", "joust"}) {
+    auto player = ReplayPlayer::create(played(name, 3, 150), 40);
+    ASSERT_TRUE(player.ok()) << name << ": " << player.status().message();
+    ReplayPlayer& p = **player;
+    EXPECT_EQ(p.position(), 0);
+    EXPECT_FALSE(p.recorded_checksum().has_value());
+    EXPECT_EQ(p.check(0), TickCheck::kUnchecked);
+    while (p.step()) {
+      ASSERT_EQ(p.checksum(), *p.recorded_checksum()) << name << " at " << p.position();
+    }
+    EXPECT_EQ(p.position(), 150);
+    EXPECT_FALSE(p.first_mismatch().has_value());
+    EXPECT_EQ(p.check(150), TickCheck::kMatch);
+    EXPECT_EQ(p.check(151), TickCheck::kUnchecked);
+  }
+}
+
+TEST(ReplayPlayer, SeekingAnywhereLandsOnTheStraightRunsState) {
+  const ViewBundle bundle = played("crates", 2, 200);
+  auto player = ReplayPlayer::create(bundle, 32);
+  ASSERT_TRUE(player.ok());
+  ReplayPlayer& p = **player;
+  for (Tick target : {Tick{170}, Tick{3}, Tick{64}, Tick{65}, Tick{0}, Tick{199}, Tick{1},
+                      Tick{500}, Tick{-4}, Tick{128}, Tick{127}}) {
+    p.seek(target);
+    const Tick expect = std::clamp(target, Tick{0}, Tick{200});
+    ASSERT_EQ(p.position(), expect);
+    if (expect > 0) {
+      EXPECT_EQ(p.checksum(), bundle.checksums[static_cast<size_t>(expect) - 1]) << target;
+    } else {
+      auto fresh = game::Simulation::create("crates", bundle.setup);
+      EXPECT_EQ(p.checksum(), (*fresh)->checksum());
+    }
+  }
+}
+
+TEST(ReplayPlayer, AForgedChecksumIsFoundAtItsTick) {
+  ViewBundle bundle = played("joust", 2, 120);
+  bundle.checksums[76] ^= 1;  // position 77
+  bundle.checksums[100] ^= 1;
+  auto player = ReplayPlayer::create(bundle);
+  ASSERT_TRUE(player.ok());
+  ReplayPlayer& p = **player;
+  p.seek(120);
+  ASSERT_TRUE(p.first_mismatch().has_value());
+  EXPECT_EQ(*p.first_mismatch(), 77);
+  EXPECT_EQ(p.check(76), TickCheck::kMatch);
+  EXPECT_EQ(p.check(77), TickCheck::kMismatch);
+  EXPECT_EQ(p.check(78), TickCheck::kMatch);
+  EXPECT_EQ(p.check(101), TickCheck::kMismatch);
+}
+
+TEST(ReplayPlayer, DrawsItsWorld) {
+  auto player = ReplayPlayer::create(played("crates", 2, 30));
+  ASSERT_TRUE(player.ok());
+  (*player)->seek(30);
+  sim::DebugDrawBuffers out;
+  (*player)->draw({}, out);
+  EXPECT_FALSE(out.lines.empty());
+  EXPECT_GT((*player)->stats().bodies, 2u);
+}
+
+TEST(ReplayPlayer, ADesyncReportNamesTheBodiesThatDiffer) {
+  ViewBundle bundle = played("crates", 2, 120);
+  // The client's state after tick 80, one body nudged as a desync would.
+  auto client = game::Simulation::create("crates", bundle.setup);
+  for (Tick t = 0; t <= 80; ++t) {
+    (*client)->step(
+        std::span<const game::PlayerInput>(bundle.inputs).subspan(static_cast<size_t>(t) * 2, 2));
+  }
+  ASSERT_TRUE((*client)->lane().perturb_for_drill());
+  ViewDesync d;
+  d.tick = 80;
+  d.player = 1;
+  d.headline = "player 1 desync at tick 80";
+  (*client)->serialize(d.client_state);
+  bundle.desync = d;
+  auto player = ReplayPlayer::create(bundle);
+  ASSERT_TRUE(player.ok());
+  auto view = (*player)->open_desync();
+  ASSERT_TRUE(view.ok()) << view.status().message();
+  EXPECT_EQ(view->position, 81);
+  EXPECT_EQ((*player)->position(), 81);
+  EXPECT_EQ(view->replay_checksum, bundle.checksums[80]);
+  EXPECT_NE(view->client_checksum, view->replay_checksum);
+  ASSERT_FALSE(view->differences.empty());
+  ASSERT_EQ(view->bodies.size(), 1u);  // the drill nudges one body
+  for (const sim::FieldDifference& f : view->differences) {
+    EXPECT_EQ(f.body_index, view->bodies[0]);
+    EXPECT_NE(f.expected, f.actual);
+  }
+
+  bundle.desync->client_state.resize(10);
+  auto broken = ReplayPlayer::create(bundle);
+  auto refused = (*broken)->open_desync();
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), ErrorCode::kCorrupt);
+  EXPECT_EQ((*broken)->position(), 0);  // nothing moved
+}
+
+TEST(ReplayPlayer, AnUnknownGameIsRefused) {
+  ViewBundle bundle = played("crates", 2, 5);
+  bundle.game = "chess";
+  auto player = ReplayPlayer::create(bundle);
+  ASSERT_FALSE(player.ok());
+  EXPECT_EQ(player.status().code(), ErrorCode::kInvalidArgument);
+}
+
+}  // namespace
+}  // namespace rwd::viewer

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Plays a match from a view bundle by re-simulating it: forward tick by
+// tick, or to any position through snapshots the player keeps as it first
+// passes them (one every `keyframe_every` ticks), checking each tick's
+// checksum against the recorded one. The same code runs natively and in
+// the browser (WebAssembly), so the checksums a viewer shows are the
+// engine's own.
+//
+// Positions count ticks simulated: position 0 is the match's initial
+// state, position p the state after ticks 0 .. p-1, whose recorded
+// checksum is the bundle's checksums[p - 1].
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "rewind/game/simulation.h"
+#include "rewind/sim/body_field.h"
+#include "rewind/sim/debug_draw.h"
+#include "rewind/sim/status.h"
+#include "rewind/viewer/view_bundle.h"
+
+namespace rwd::viewer {
+
+/// How position p's re-simulated checksum compared with the recording.
+enum class TickCheck : uint8_t {
+  kUnchecked = 0,  ///< not simulated yet (or position 0, which has no record)
+  kMatch = 1,
+  kMismatch = 2,
+};
+
+/// A desync report laid over the replay: the client's state against the
+/// re-simulated one after the reported tick.
+struct DesyncView {
+  Tick position = 0;  ///< the report's tick + 1: the state it holds
+  uint64_t client_checksum = 0;
+  uint64_t replay_checksum = 0;
+  /// Re-simulated ("expected") against the client's ("actual") fields.
+  std::vector<sim::FieldDifference> differences;
+  std::vector<uint32_t> bodies;  ///< the body indices named above, ascending, once each
+};
+
+class ReplayPlayer {
+ public:
+  /// A player at position 0. kInvalidArgument for an unknown game or a
+  /// setup the game refuses; `keyframe_every` is clamped to [1, 3600].
+  static Result<std::unique_ptr<ReplayPlayer>> create(ViewBundle bundle,
+                                                      uint32_t keyframe_every = 60);
+
+  const ViewBundle& bundle() const { return bundle_; }
+  Tick position() const { return sim_->tick(); }
+  /// The last position: the number of recorded ticks.
+  Tick length() const { return static_cast<Tick>(bundle_.tick_count()); }
+
+  /// Simulates the next tick with its recorded inputs and checks it.
+  /// False, changing nothing, at the end.
+  bool step();
+  /// Moves to `position` (clamped to [0, length()]): from the nearest kept
+  /// snapshot at or before it, or from the current position when that is
+  /// nearer, stepping the rest.
+  void seek(Tick position);
+
+  /// The state's checksum now, and the recorded one (none at position 0).
+  uint64_t checksum() const { return sim_->checksum(); }
+  std::optional<uint64_t> recorded_checksum() const;
+  /// The check of `position` (kUnchecked outside [1, length()]).
+  TickCheck check(Tick position) const;
+  /// The first simulated position whose checksum differed from the record.
+  std::optional<Tick> first_mismatch() const { return first_mismatch_; }
+
+  void draw(const sim::DebugDrawOptions& options, sim::DebugDrawBuffers& out) const {
+    sim_->lane().debug_draw(options, out);
+  }
+  sim::WorldViewStats stats() const { return sim_->lane().view_stats(); }
+  const game::Simulation& simulation() const { return *sim_; }
+
+  /// Seeks to the bundle's desync (its tick + 1) and compares the client's
+  /// state there with the re-simulated one. kNotFound without a desync in
+  /// the bundle, kCorrupt when the client's state does not load.
+  Result<DesyncView> open_desync();
+
+ private:
+  ReplayPlayer(ViewBundle bundle, std::unique_ptr<game::Simulation> sim, uint32_t keyframe_every);
+  void keep_keyframe();
+
+  ViewBundle bundle_;
+  std::unique_ptr<game::Simulation> sim_;
+  uint32_t keyframe_every_;
+  /// keyframes_[k]: the state at position k * keyframe_every_, once passed.
+  std::vector<std::optional<game::SimSnapshot>> keyframes_;
+  std::vector<TickCheck> checks_;  ///< by position
+  std::optional<Tick> first_mismatch_;
+};
+
+}  // namespace rwd::viewer

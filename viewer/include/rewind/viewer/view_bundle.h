@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// What a viewer needs to replay a match, in one flat little-endian file
+// that a browser loads whole: the game, its setup, every final tick's
+// inputs and recorded checksum, the players' names and, for a desync, the
+// client's state after the tick it reported. Native tools write it from a
+// replay file (rewind/replay/replay_view.h); the viewer, native or
+// WebAssembly, reads it with no protobuf and re-simulates from it.
+//
+// Layout (version 1), every integer little-endian, strings and byte runs
+// as a u32 length and that many bytes:
+//   "RWDVIEW1"  u32 version
+//   str game  u32 player_count  u64 seed  u32 tick_rate_hz
+//   u8 identity_matches  str identity_note
+//   u32 name_count  str name...               (0 or player_count names)
+//   u32 tick_count  per tick: u64 checksum  u64 substituted_mask
+//                             player_count x (i16 axis_x  i16 axis_y  u32 buttons)
+//   u8 has_desync  [i32 tick  u32 player  str headline  bytes client_state]
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "rewind/game/game.h"
+#include "rewind/game/player_input.h"
+#include "rewind/sim/status.h"
+#include "rewind/sim/tick.h"
+
+namespace rwd::viewer {
+
+inline constexpr uint32_t kViewBundleVersion = 1;
+/// Bounds a reader enforces (a bundle is untrusted input).
+inline constexpr uint32_t kViewMaxTicks = 1u << 24;        ///< 77 hours at 60 Hz
+inline constexpr uint32_t kViewMaxString = 256;            ///< bytes, names and notes
+inline constexpr uint32_t kViewMaxHeadline = 4096;         ///< bytes
+inline constexpr uint32_t kViewMaxStateBytes = 64u << 20;  ///< a client's state
+
+/// A client's desync report as the viewer shows it: the final tick whose
+/// checksums differed and the client's whole state after that tick
+/// (Simulation::serialize bytes, the server's desync_p*_t*_r*.bin).
+struct ViewDesync {
+  Tick tick = 0;
+  uint32_t player = 0;
+  std::string headline;
+  std::vector<uint8_t> client_state;
+};
+
+struct ViewBundle {
+  std::string game;  ///< a built-in game's name ("crates", "arena", "joust")
+  game::MatchSetup setup;
+  uint32_t tick_rate_hz = 60;
+  /// Whether the recording engine, rules and world config are this
+  /// build's; when not, `identity_note` says what differs and re-simulated
+  /// checksums are not expected to match.
+  bool identity_matches = true;
+  std::string identity_note;
+  std::vector<std::string> player_names;  ///< empty, or one per player
+  /// Tick t's inputs are inputs[t * player_count .. + player_count).
+  std::vector<game::PlayerInput> inputs;
+  std::vector<uint64_t> checksums;          ///< recorded, after each tick
+  std::vector<uint64_t> substituted_masks;  ///< bit p: player p's input was substituted
+  std::optional<ViewDesync> desync;
+
+  uint32_t tick_count() const { return static_cast<uint32_t>(checksums.size()); }
+};
+
+/// Writes `bundle` (which must be consistent: sizes as documented above,
+/// strings within bounds; kInvalidArgument otherwise, `out` untouched).
+Status encode_view_bundle(const ViewBundle& bundle, std::vector<uint8_t>& out);
+/// Reads a bundle. kCorrupt names the offset and the field that is wrong
+/// (bad magic, a newer version, a length past the end or its bound, an
+/// input out of range, bytes left over).
+Result<ViewBundle> decode_view_bundle(std::span<const uint8_t> bytes);
+
+}  // namespace rwd::viewer

@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: MIT
+#include "rewind/viewer/replay_player.h"
+
+#include <algorithm>
+#include <span>
+#include <utility>
+
+namespace rwd::viewer {
+
+Result<std::unique_ptr<ReplayPlayer>> ReplayPlayer::create(ViewBundle bundle,
+                                                           uint32_t keyframe_every) {
+  auto sim = game::Simulation::create(bundle.game, bundle.setup);
+  if (!sim.ok()) return sim.status();
+  keyframe_every = std::clamp(keyframe_every, 1u, 3600u);
+  return std::unique_ptr<ReplayPlayer>(
+      new ReplayPlayer(std::move(bundle), std::move(*sim), keyframe_every));
+}
+
+ReplayPlayer::ReplayPlayer(ViewBundle bundle, std::unique_ptr<game::Simulation> sim,
+                           uint32_t keyframe_every)
+    : bundle_(std::move(bundle)), sim_(std::move(sim)), keyframe_every_(keyframe_every) {
+  keyframes_.resize(bundle_.tick_count() / keyframe_every_ + 1);
+  checks_.assign(bundle_.tick_count() + 1, TickCheck::kUnchecked);
+  keep_keyframe();
+}
+
+void ReplayPlayer::keep_keyframe() {
+  const Tick p = position();
+  if (p % static_cast<Tick>(keyframe_every_) != 0) return;
+  std::optional<game::SimSnapshot>& slot = keyframes_[static_cast<size_t>(p) / keyframe_every_];
+  if (slot) return;
+  slot.emplace();
+  sim_->save(*slot);
+}
+
+bool ReplayPlayer::step() {
+  const Tick p = position();
+  if (p >= length()) return false;
+  const uint32_t players = bundle_.setup.player_count;
+  sim_->step(std::span<const game::PlayerInput>(bundle_.inputs)
+                 .subspan(static_cast<size_t>(p) * players, players));
+  const bool match = sim_->checksum() == bundle_.checksums[static_cast<size_t>(p)];
+  checks_[static_cast<size_t>(p) + 1] = match ? TickCheck::kMatch : TickCheck::kMismatch;
+  if (!match && (!first_mismatch_ || *first_mismatch_ > p + 1)) first_mismatch_ = p + 1;
+  keep_keyframe();
+  return true;
+}
+
+void ReplayPlayer::seek(Tick target) {
+  target = std::clamp(target, Tick{0}, length());
+  const Tick now = position();
+  if (target == now) return;
+  // The nearest kept snapshot at or before the target; the present
+  // position wins when it is nearer (a short scrub forward).
+  Tick from = now <= target ? now : -1;
+  for (Tick k = target / static_cast<Tick>(keyframe_every_); k >= 0; --k) {
+    const Tick at = k * static_cast<Tick>(keyframe_every_);
+    if (at <= from) break;
+    if (keyframes_[static_cast<size_t>(k)]) {
+      sim_->restore(*keyframes_[static_cast<size_t>(k)]);
+      from = at;
+      break;
+    }
+  }
+  while (position() < target && step()) {
+  }
+}
+
+std::optional<uint64_t> ReplayPlayer::recorded_checksum() const {
+  const Tick p = position();
+  if (p <= 0) return std::nullopt;
+  return bundle_.checksums[static_cast<size_t>(p) - 1];
+}
+
+TickCheck ReplayPlayer::check(Tick p) const {
+  if (p < 1 || p > length()) return TickCheck::kUnchecked;
+  return checks_[static_cast<size_t>(p)];
+}
+
+Result<DesyncView> ReplayPlayer::open_desync() {
+  if (!bundle_.desync) return Status::Error(ErrorCode::kNotFound, "the bundle holds no desync");
+  const ViewDesync& d = *bundle_.desync;
+  if (d.tick + 1 > length()) {
+    return Status::Error(ErrorCode::kNotFound, "the desync's tick " + std::to_string(d.tick) +
+                                                   " is past the replay's " +
+                                                   std::to_string(length()) + " ticks");
+  }
+  auto client = game::Simulation::create(bundle_.game, bundle_.setup);
+  if (!client.ok()) return client.status();
+  if (Status s = (*client)->deserialize(d.client_state); !s.ok()) {
+    return Status::Error(ErrorCode::kCorrupt, "the client's state does not load: " + s.message());
+  }
+  seek(d.tick + 1);
+  DesyncView view;
+  view.position = position();
+  view.client_checksum = (*client)->checksum();
+  view.replay_checksum = checksum();
+  std::vector<sim::BodyField> expected;
+  std::vector<sim::BodyField> actual;
+  sim_->dump_bodies(expected);
+  (*client)->dump_bodies(actual);
+  view.differences = sim::diff_body_fields(expected, actual);
+  for (const sim::FieldDifference& f : view.differences) view.bodies.push_back(f.body_index);
+  std::sort(view.bodies.begin(), view.bodies.end());
+  view.bodies.erase(std::unique(view.bodies.begin(), view.bodies.end()), view.bodies.end());
+  return view;
+}
+
+}  // namespace rwd::viewer
