@@ -8,10 +8,13 @@
 # touched (update + install) only when something is missing. Non-interactive.
 # Run as root, or as a user with sudo.
 #
-# Usage: scripts/setup.sh [--check] [--wasm]
+# Usage: scripts/setup.sh [--check] [--wasm] [--viewer]
 #   --check   only report what is missing; exit 1 if anything is
 #   --wasm    also the WebAssembly toolchain (emscripten, node) for the
 #             WebAssembly determinism check (scripts/test.sh --label wasm)
+#   --viewer  also what the browser viewer and its tests need: emscripten and
+#             node to build it, Chromium to test it headless, and npm (Debian's,
+#             only when no npm is on the PATH) for the tests' puppeteer-core
 # Exit codes: 0 everything present (or installed now); 1 packages missing and
 # they could not be installed (not root and no usable sudo, or apt failed).
 set -euo pipefail
@@ -39,6 +42,10 @@ while (($#)); do
   case "$1" in
     --check) check_only=1 ;;
     --wasm) packages+=(emscripten nodejs) ;;
+    --viewer)
+      packages+=(emscripten nodejs chromium)
+      command -v npm >/dev/null 2>&1 || packages+=(npm)
+      ;;
     -h|--help) sed -n '4,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"; exit 0 ;;
     *) echo "setup: unknown option '$1' (try --help)" >&2; exit 1 ;;
   esac

@@ -2,9 +2,9 @@
 # SPDX-License-Identifier: MIT
 #
 # Builds Rewind and runs every test (unit, integration, determinism matrix,
-# long, container) but the ones labelled `extended`: the five-minute
-# real-time long match, left out so the run stays inside 30 minutes on 2
-# cores (--label extended runs it).
+# long, container, the browser viewer in headless Chromium) but the ones
+# labelled `extended`: the five-minute real-time long match, left out so the
+# run stays inside 30 minutes on 2 cores (--label extended runs it).
 #
 # Usage: scripts/test.sh [--debug] [--label LABEL]
 #   --debug        use the ASan + UBSan preset (build/debug) instead of release
@@ -45,11 +45,13 @@ step() { echo; echo "==> $*"; }
 wasm=OFF
 [[ $label != wasm ]] || wasm=ON
 step "system packages"
-if [[ $wasm == ON ]]; then bash scripts/setup.sh --wasm; else bash scripts/setup.sh; fi
+if [[ $wasm == ON ]]; then bash scripts/setup.sh --wasm --viewer; else bash scripts/setup.sh --viewer; fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
 step "configure + build (preset $preset, -j$jobs)"
-cmake --preset "$preset" -DREWIND_TEST_WASM=$wasm
+# The viewer's WebAssembly build is a test fixture (viewer_build), so it
+# compiles while the real-time tests leave the CPU idle.
+cmake --preset "$preset" -DREWIND_TEST_WASM=$wasm -DREWIND_BUILD_VIEWER=ON
 cmake --build --preset "$preset" -j"$jobs"
 
 ctest_args=(--preset "$preset" --output-on-failure -j2 --no-tests=error)

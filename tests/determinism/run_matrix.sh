@@ -19,15 +19,22 @@
 #   gcc-O3-native  g++ -O3 -march=native
 #   clang-O3       clang++ -O3
 #   aarch64-O3     aarch64-linux-gnu-g++ -O3 -static, run under qemu-aarch64
-#   wasm-O3        em++ -O3 (Emscripten): WebAssembly, run under node; only
-#                  with --wasm (it takes several minutes to compile)
+#   wasm-O0, wasm-O3, wasm-O3-simd128
+#                  em++ (Emscripten) -O0, -O3, and -O3 with WebAssembly SIMD
+#                  (-msimd128 -msse2: the SSE2 lanes as wasm SIMD); run under
+#                  node; only with --wasm (each takes minutes to compile);
+#                  with --chromium each also in headless Chromium
+#                  (wasm-O0-chromium, ...: the same file in a browser page)
 #
-# Usage: run_matrix.sh [--source DIR] [--ticks N] [--jobs N] [--wasm]
+# Usage: run_matrix.sh [--source DIR] [--ticks N] [--jobs N] [--wasm] [--chromium DIR]
 #                      [--builds NAMES] [--compile-only] BUILD_DIR
 #   --source DIR  repository root (default: two levels above this script)
 #   --ticks N     ticks to simulate (default 600)
 #   --jobs N      parallel compile jobs (default 2, at most 2)
-#   --wasm        add the WebAssembly build
+#   --wasm        add the WebAssembly builds
+#   --chromium DIR  also run every WebAssembly build in headless Chromium
+#                 (DIR holds tests/browser's run_in_chromium.mjs and its
+#                 node_modules: the build's tests/browser after browser_npm)
 #   --builds NAMES  only these builds (comma-separated), besides the
 #                 reference gcc-O0 that every other is compared with
 #   --compile-only  compile the builds and stop (scripts/test.sh compiles
@@ -47,6 +54,7 @@ ticks=600
 jobs=2
 build_dir=""
 wasm=0
+chromium_dir=""
 only=""
 compile_only=0
 
@@ -58,6 +66,7 @@ while (($#)); do
     --ticks) ticks=${2:?--ticks needs a number}; shift 2 ;;
     --jobs) jobs=${2:?--jobs needs a number}; shift 2 ;;
     --wasm) wasm=1; shift ;;
+    --chromium) chromium_dir=$(cd "${2:?--chromium needs a directory}" && pwd -P); shift 2 ;;
     --builds) only=${2:?--builds needs a list of build names}; shift 2 ;;
     --compile-only) compile_only=1; shift ;;
     -h|--help) usage; exit 0 ;;
@@ -162,7 +171,16 @@ builds=(
 # WebAssembly: one JavaScript file for node with the module inside it (a
 # separate .wasm would be fetched, which node does not do for a path);
 # memory grows as the worlds do.
-((wasm)) && builds+=("wasm-O3|em++|-O3|-sALLOW_MEMORY_GROWTH=1 -sTOTAL_STACK=8MB -sENVIRONMENT=node -sSINGLE_FILE=1|node")
+# Three builds: unoptimized, optimized, and optimized with WebAssembly's
+# 128-bit SIMD, where -msse2 makes the solver's SSE2 lanes compile to wasm
+# SIMD instructions (Emscripten's SSE headers): a third instruction set
+# for the lanes, which must not change a result either.
+# Built for the web and node alike, so --chromium runs the same file in a
+# browser.
+wasm_link="-sALLOW_MEMORY_GROWTH=1 -sTOTAL_STACK=8MB -sENVIRONMENT=web,node -sSINGLE_FILE=1"
+((wasm)) && builds+=("wasm-O0|em++|-O0|$wasm_link|node"
+                     "wasm-O3|em++|-O3|$wasm_link|node"
+                     "wasm-O3-simd128|em++|-O3 -msimd128 -msse2|$wasm_link|node")
 if [[ -n $only ]]; then
   kept=()
   for entry in "${builds[@]}"; do
@@ -171,9 +189,17 @@ if [[ -n $only ]]; then
   done
   for name in ${only//,/ }; do
     printf '%s\n' "${kept[@]}" | grep -q "^$name|" || {
-      echo "run_matrix: unknown build '$name' in --builds (wasm-O3 needs --wasm)" >&2; exit 2; }
+      echo "run_matrix: unknown build '$name' in --builds (wasm-* builds need --wasm)" >&2; exit 2; }
   done
   builds=("${kept[@]}")
+fi
+# --chromium: each WebAssembly build runs a second time, in headless
+# Chromium (an entry that compiles nothing and runs that build's file).
+if [[ -n $chromium_dir ]]; then
+  for entry in "${builds[@]}"; do
+    IFS='|' read -r name cxx flags ldflags _runner <<<"$entry"
+    if [[ $name == wasm-* ]]; then builds+=("$name-chromium|$cxx|$flags|$ldflags|chromium|$name"); fi
+  done
 fi
 
 # --- compile: one generated ninja file; it reuses objects whose inputs are
@@ -184,7 +210,8 @@ ninja_file="$build_dir/build.ninja"
   echo "ninja_required_version = 1.10"
   echo "common = $common_flags"
   for entry in "${builds[@]}"; do
-    IFS='|' read -r name cxx flags ldflags _runner <<<"$entry"
+    IFS='|' read -r name cxx flags ldflags _runner of <<<"$entry"
+    [[ -z $of ]] || continue  # runs another build's program
     echo
     echo "rule cxx_$name"
     echo "  command = $cxx \$common $flags -MD -MF \$out.d -c \$in -o \$out"
@@ -228,20 +255,23 @@ if ((compile_only)); then
 fi
 
 # --- run: every build, at most 2 at a time -----------------------------------
-run_one() {  # run_one NAME RUNNER
-  local name=$1 runner=$2 out="$build_dir/$1.out" err="$build_dir/$1.err" start=$SECONDS rc=0
-  if [[ -n $runner ]]; then
-    "$runner" "$build_dir/$name/det_checksums" "$ticks" >"$out" 2>"$err" || rc=$?
+run_one() {  # run_one NAME RUNNER [BUILD whose program it runs]
+  local name=$1 runner=$2 program="$build_dir/${3:-$1}/det_checksums"
+  local out="$build_dir/$1.out" err="$build_dir/$1.err" start=$SECONDS rc=0
+  if [[ $runner == chromium ]]; then
+    node "$chromium_dir/run_in_chromium.mjs" "$program" "$ticks" >"$out" 2>"$err" || rc=$?
+  elif [[ -n $runner ]]; then
+    "$runner" "$program" "$ticks" >"$out" 2>"$err" || rc=$?
   else
-    "$build_dir/$name/det_checksums" "$ticks" >"$out" 2>"$err" || rc=$?
+    "$program" "$ticks" >"$out" 2>"$err" || rc=$?
   fi
   echo "$rc $((SECONDS - start))" >"$build_dir/$name.status"
 }
 running=0
 for entry in "${builds[@]}"; do
-  IFS='|' read -r name _cxx _flags _ldflags runner <<<"$entry"
+  IFS='|' read -r name _cxx _flags _ldflags runner of <<<"$entry"
   rm -f "$build_dir/$name.out" "$build_dir/$name.err" "$build_dir/$name.status"
-  run_one "$name" "$runner" &
+  run_one "$name" "$runner" "$of" &
   running=$((running + 1))
   if ((running >= 2)); then
     wait -n || true
@@ -257,7 +287,7 @@ ref_out="$build_dir/$reference.out"
 failed=0
 rows=()
 for entry in "${builds[@]}"; do
-  IFS='|' read -r name cxx flags ldflags runner <<<"$entry"
+  IFS='|' read -r name cxx flags ldflags runner _of <<<"$entry"
   out="$build_dir/$name.out"
   read -r rc secs <"$build_dir/$name.status" || { rc=255; secs=0; }
   lines=$(grep -c -E '^-?[0-9]+ [0-9a-f]{16}$' "$out" || true)

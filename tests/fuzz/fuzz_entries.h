@@ -46,3 +46,7 @@ int fuzz_http_response_one(const uint8_t* data, size_t size);
 /// Chunk sequences (resync snapshots, desync dumps): ChunkAssembler checked
 /// against a model of its rules, chunk by chunk.
 int fuzz_chunk_assembler_one(const uint8_t* data, size_t size);
+
+/// View bundles (the viewer's files): decode_view_bundle, the re-encoding of
+/// what it accepts, and a replay player's first steps and desync report.
+int fuzz_view_bundle_one(const uint8_t* data, size_t size);

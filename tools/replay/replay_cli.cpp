@@ -25,6 +25,9 @@ constexpr const char* kToolHelp =
     "                         re-simulate the match and compare every checksum\n"
     "  inspect FILE           print header, engine, world config, tick range,\n"
     "                         keyframes, substitutions, whether the file is complete\n"
+    "  view FILE [--desync BIN] [--port N]\n"
+    "                         watch the match in a browser: serves the viewer,\n"
+    "                         which re-simulates it, and prints its address\n"
     "  tamper FILE ...        rewrite one input with valid framing (for tests)\n"
     "\n"
     "Run 'rewind-replay COMMAND --help' for a command's flags.\n"
@@ -171,6 +174,40 @@ Result<Command> parse_tamper(int argc, const char* const* argv) {
   return Command(cmd);
 }
 
+Result<Command> parse_view(int argc, const char* const* argv) {
+  ViewCommand cmd;
+  int64_t port = cmd.port;
+  cli::FlagParser flags(
+      std::string(kProgram) + " view",
+      "rewind-replay view FILE [--desync DESYNC.bin] [--address A] [--port N] "
+      "[--viewer-dir DIR] [--bundle-out PATH]",
+      "Serves the browser viewer for the replay FILE (or a view bundle --bundle-out wrote) and "
+      "prints its address; open it in a "
+      "browser. The viewer re-simulates the match in WebAssembly and compares every tick's "
+      "checksum with the recorded one: play, pause, step, scrub to any tick, speed, camera, "
+      "debug-draw overlays, stats. With --desync (a server's desync_pP_tT_rR.bin, its .txt "
+      "beside it) the viewer opens at that tick and draws the bodies whose fields differ "
+      "from the client's state in red, listing both values. Runs until interrupted "
+      "(Ctrl-C). A damaged or cut-short replay is viewed up to its last whole tick.\n"
+      "exit codes: 0 served and stopped, or the bundle written; 1 the viewer could not be "
+      "served (not built, port taken); 2 the replay or desync report cannot be read; 64 usage");
+  flags.add_string("desync", &cmd.desync, "a desync report's .bin to open the viewer at");
+  flags.add_string("address", &cmd.address, "address to listen on (default 127.0.0.1)");
+  flags.add_int("port", &port, 0, 65535, "port to listen on; 0 picks a free one (default 8080)");
+  flags.add_string("viewer-dir", &cmd.viewer_dir,
+                   "the built viewer's files (default: this build's viewer_web)");
+  flags.add_string("bundle-out", &cmd.bundle_out,
+                   "write the view bundle (what the viewer loads) to PATH and stop");
+  std::vector<std::string> positionals;
+  if (Status s = flags.parse(argc, argv, 2, &positionals); !s.ok()) return s;
+  if (flags.help_requested()) return Command(HelpRequest{flags.help_text()});
+  Result<std::string> file = single_file(positionals, "view");
+  if (!file.ok()) return file.status();
+  cmd.file = *file;
+  cmd.port = static_cast<uint16_t>(port);
+  return Command(cmd);
+}
+
 }  // namespace
 
 Result<Command> parse_command_line(int argc, const char* const* argv) {
@@ -182,6 +219,7 @@ Result<Command> parse_command_line(int argc, const char* const* argv) {
   if (command == "verify") return parse_verify(argc, argv);
   if (command == "inspect") return parse_inspect(argc, argv);
   if (command == "tamper") return parse_tamper(argc, argv);
+  if (command == "view") return parse_view(argc, argv);
   return usage_error("unknown command '" + std::string(command) + "' (see " + kProgram +
                      " --help)");
 }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // Command-line parsing for rewind-replay: one struct per subcommand.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <variant>
@@ -32,7 +33,17 @@ struct TamperCommand {
   bool overwrite = false;
 };
 
-using Command = std::variant<HelpRequest, VerifyCommand, InspectCommand, TamperCommand>;
+struct ViewCommand {
+  std::string file;
+  std::string desync;  ///< a server's desync_pP_tT_rR.bin to open, or empty
+  std::string address = "127.0.0.1";
+  uint16_t port = 8080;    ///< 0: any free port
+  std::string viewer_dir;  ///< empty: the build's viewer
+  std::string bundle_out;  ///< write the view bundle here and stop, serving nothing
+};
+
+using Command =
+    std::variant<HelpRequest, VerifyCommand, InspectCommand, TamperCommand, ViewCommand>;
 
 /// Parses argv. kInvalidArgument (exit 64) names the bad argument.
 Result<Command> parse_command_line(int argc, const char* const* argv);

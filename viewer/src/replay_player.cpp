@@ -77,6 +77,27 @@ TickCheck ReplayPlayer::check(Tick p) const {
   return checks_[static_cast<size_t>(p)];
 }
 
+std::optional<std::array<double, 3>> ReplayPlayer::body_center(uint32_t index) const {
+  std::vector<sim::BodyField> fields;
+  sim_->dump_bodies(fields);
+  std::array<double, 3> at{};
+  bool found = false;
+  for (const sim::BodyField& f : fields) {
+    if (f.body_index != index) continue;
+    // The 3D lane dumps position.x/y/z, the 2D lane center.x/y.
+    const std::string_view n = f.name;
+    const int axis = (n == "position.x" || n == "center.x")   ? 0
+                     : (n == "position.y" || n == "center.y") ? 1
+                     : n == "position.z"                      ? 2
+                                                              : -1;
+    if (axis < 0) continue;
+    at[static_cast<size_t>(axis)] = f.value();
+    found = true;
+  }
+  if (!found) return std::nullopt;
+  return at;
+}
+
 Result<DesyncView> ReplayPlayer::open_desync() {
   if (!bundle_.desync) return Status::Error(ErrorCode::kNotFound, "the bundle holds no desync");
   const ViewDesync& d = *bundle_.desync;

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 #include <regex>
+#include <string_view>
 
 #include "rewind/proto/input_wire.h"
 #include "rewind/replay/engine_identity.h"
@@ -67,6 +68,23 @@ Result<viewer::ViewBundle> view_bundle_from_replay(ReplayReader& reader, ReplayV
   }
   out.file_state = reader.state();
   return b;
+}
+
+Result<viewer::ViewBundle> load_view_bundle(const std::string& path, ReplayViewInfo* info) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status::Error(ErrorCode::kIo, "cannot read '" + path + "'");
+  char magic[8] = {};
+  in.read(magic, sizeof magic);
+  if (in.gcount() == sizeof magic && std::string_view(magic, sizeof magic) == "RWDVIEW1") {
+    in.seekg(0);
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                     std::istreambuf_iterator<char>());
+    if (info != nullptr) info->file_state = ReadState::kComplete;
+    return viewer::decode_view_bundle(bytes);
+  }
+  Result<ReplayReader> reader = ReplayReader::open(path);
+  if (!reader.ok()) return reader.status();
+  return view_bundle_from_replay(*reader, info);
 }
 
 Status attach_desync_report(viewer::ViewBundle& bundle, const std::string& bin_path) {

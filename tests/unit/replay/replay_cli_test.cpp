@@ -45,7 +45,8 @@ bool contains(const std::string& haystack, const std::string& needle) {
 }
 
 TEST(ReplayCli, HelpForTheToolAndEveryCommand) {
-  for (const char* args : {"--help", "verify --help", "inspect --help", "tamper --help"}) {
+  for (const char* args :
+       {"--help", "verify --help", "inspect --help", "tamper --help", "view --help"}) {
     const ToolRun run = run_tool(args);
     EXPECT_EQ(run.exit_code, 0) << args << "\n" << run.output;
     EXPECT_TRUE(contains(run.output, "usage: rewind-replay")) << args << "\n" << run.output;
@@ -78,6 +79,37 @@ TEST(ReplayCli, UsageErrorsExit64WithAMessage) {
     EXPECT_EQ(run.exit_code, 64) << c.args << "\n" << run.output;
     EXPECT_TRUE(contains(run.output, c.says)) << c.args << "\n" << run.output;
   }
+}
+
+TEST(ReplayCli, ViewWritesABundleAndRefusesWhatItCannotServe) {
+  TempFile replay("cli_view");
+  Recording rec;
+  rec.players = 2;
+  rec.ticks = 60;
+  const std::vector<uint64_t> recorded = record_match(replay.path(), rec);
+  TempFile bundle("cli_view_bundle");
+
+  ToolRun run = run_tool("view " + replay.path() + " --bundle-out " + bundle.path());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "crates, 2 players, 60 ticks")) << run.output;
+  // The bundle is a file `view` reads back like a replay.
+  TempFile again("cli_view_again");
+  run = run_tool("view " + bundle.path() + " --bundle-out " + again.path());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(std::filesystem::file_size(bundle.path()), std::filesystem::file_size(again.path()));
+
+  // A viewer directory without the viewer: exit 1, saying how to build it.
+  run = run_tool("view " + replay.path() + " --port 0 --viewer-dir " + ::testing::TempDir());
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "--target rewind_viewer")) << run.output;
+  // Files it cannot read, desync reports it cannot use: exit 2.
+  run = run_tool("view /nonexistent/match.rwr --bundle-out " + again.path());
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  run = run_tool("view " + replay.path() + " --desync /tmp/state.bin --bundle-out " + again.path());
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, "desync_pP_tT_rR.bin")) << run.output;
+  run = run_tool("view " + replay.path() + " --port 70000");
+  EXPECT_EQ(run.exit_code, 64) << run.output;
 }
 
 TEST(ReplayCli, VerifyTamperInspectEndToEnd) {

@@ -139,6 +139,28 @@ TEST(ReplayPlayer, ADesyncReportNamesTheBodiesThatDiffer) {
   EXPECT_EQ((*broken)->position(), 0);  // nothing moved
 }
 
+TEST(ReplayPlayer, FindsABodysCentreInEitherLane) {
+  for (const char* name : {"crates", "arena"}) {
+    auto player = ReplayPlayer::create(played(name, 2, 20));
+    ASSERT_TRUE(player.ok());
+    (*player)->seek(20);
+    std::vector<sim::BodyField> fields;
+    (*player)->simulation().dump_bodies(fields);
+    const uint32_t last = fields.back().body_index;
+    const auto at = (*player)->body_center(last);
+    ASSERT_TRUE(at.has_value()) << name;
+    bool matched = false;
+    for (const sim::BodyField& f : fields) {
+      if (f.body_index == last && (f.name == "position.x" || f.name == "center.x")) {
+        EXPECT_EQ((*at)[0], f.value()) << name;
+        matched = true;
+      }
+    }
+    EXPECT_TRUE(matched) << name;
+    EXPECT_FALSE((*player)->body_center(100000).has_value());
+  }
+}
+
 TEST(ReplayPlayer, AnUnknownGameIsRefused) {
   ViewBundle bundle = played("crates", 2, 5);
   bundle.game = "chess";

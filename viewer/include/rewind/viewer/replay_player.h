@@ -10,6 +10,7 @@
 // Positions count ticks simulated: position 0 is the match's initial
 // state, position p the state after ticks 0 .. p-1, whose recorded
 // checksum is the bundle's checksums[p - 1].
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -74,6 +75,10 @@ class ReplayPlayer {
   }
   sim::WorldViewStats stats() const { return sim_->lane().view_stats(); }
   const game::Simulation& simulation() const { return *sim_; }
+  /// Where body `index` is now (m; its centre of mass, z = 0 in 2D), read
+  /// from the lane-neutral dump; nullopt for no live body there. For a
+  /// viewer that frames a body (a desync's), not for anything per tick.
+  std::optional<std::array<double, 3>> body_center(uint32_t index) const;
 
   /// Seeks to the bundle's desync (its tick + 1) and compares the client's
   /// state there with the re-simulated one. kNotFound without a desync in

@@ -25,6 +25,11 @@ struct ReplayViewInfo {
 /// game or player count cannot make a bundle.
 Result<viewer::ViewBundle> view_bundle_from_replay(ReplayReader& reader, ReplayViewInfo* info);
 
+/// A bundle from `path`: a view bundle as written before (it starts with
+/// "RWDVIEW1"), or a replay file read as view_bundle_from_replay() does.
+/// kIo when the file cannot be read, kCorrupt when it is neither.
+Result<viewer::ViewBundle> load_view_bundle(const std::string& path, ReplayViewInfo* info);
+
 /// Adds a client's desync report to `bundle`: the raw state the server
 /// stored as DIR/desync_pP_tT_rR.bin (Simulation::serialize bytes) and
 /// the headline of its .txt beside it (the first line; empty when the

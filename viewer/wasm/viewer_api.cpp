@@ -1,0 +1,302 @@
+// SPDX-License-Identifier: MIT
+// The browser viewer's entry points: a C interface over ReplayPlayer that
+// JavaScript calls through Emscripten (viewer/web/viewer.js). One player
+// per module instance. Strings returned stay valid until the next call
+// that returns one; buffers until the next rv_draw. Every call is safe
+// before a bundle is loaded (it answers zero, empty or -1).
+#include <cinttypes>
+#include <cstdio>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "rewind/game/world_lane.h"
+#include "rewind/sim2d/world2d.h"
+#include "rewind/viewer/replay_player.h"
+
+#if defined(__EMSCRIPTEN__)
+#include <emscripten/emscripten.h>
+#define RV_EXPORT extern "C" EMSCRIPTEN_KEEPALIVE
+#else
+#define RV_EXPORT extern "C"
+#endif
+
+namespace {
+
+using rwd::viewer::ReplayPlayer;
+
+struct ViewerState {
+  std::unique_ptr<ReplayPlayer> player;
+  std::string error;
+  std::string text;  ///< the last string handed out
+  rwd::sim::DebugDrawBuffers draw;
+  std::optional<rwd::viewer::DesyncView> desync;
+};
+
+ViewerState& state() {
+  static ViewerState s;
+  return s;
+}
+
+const char* hand_out(std::string text) {
+  state().text = std::move(text);
+  return state().text.c_str();
+}
+
+std::string hex64(uint64_t v) {
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "%016" PRIx64, v);
+  return buf;
+}
+
+/// rv_draw's flag bits.
+enum : uint32_t {
+  kDrawShapes = 1u << 0,
+  kDrawSolids = 1u << 1,
+  kDrawContacts = 1u << 2,
+  kDrawNormals = 1u << 3,
+  kDrawJoints = 1u << 4,
+  kDrawBounds = 1u << 5,
+  kDrawCenters = 1u << 6,
+  kDrawStatics = 1u << 7,
+};
+
+}  // namespace
+
+/// Loads a view bundle from `size` bytes at `bytes` (copied). 0 on success;
+/// otherwise the error code and rv_error() says why, and any player
+/// loaded before stays.
+RV_EXPORT int rv_load(const uint8_t* bytes, uint32_t size, uint32_t keyframe_every) {
+  ViewerState& s = state();
+  auto bundle = rwd::viewer::decode_view_bundle(std::span<const uint8_t>(bytes, size));
+  if (!bundle.ok()) {
+    s.error = bundle.status().message();
+    return static_cast<int>(bundle.status().code());
+  }
+  auto player = ReplayPlayer::create(std::move(*bundle), keyframe_every);
+  if (!player.ok()) {
+    s.error = player.status().message();
+    return static_cast<int>(player.status().code());
+  }
+  s.player = std::move(*player);
+  s.desync.reset();
+  s.error.clear();
+  return 0;
+}
+
+RV_EXPORT const char* rv_error() {
+  return state().error.c_str();
+}
+
+RV_EXPORT int rv_loaded() {
+  return state().player ? 1 : 0;
+}
+
+RV_EXPORT const char* rv_game() {
+  return hand_out(state().player ? state().player->bundle().game : "");
+}
+
+RV_EXPORT int rv_players() {
+  return state().player ? static_cast<int>(state().player->bundle().setup.player_count) : 0;
+}
+
+RV_EXPORT const char* rv_player_name(int player) {
+  const ViewerState& s = state();
+  if (!s.player || player < 0 ||
+      static_cast<size_t>(player) >= s.player->bundle().player_names.size()) {
+    return hand_out("");
+  }
+  return hand_out(s.player->bundle().player_names[static_cast<size_t>(player)]);
+}
+
+RV_EXPORT int rv_tick_rate() {
+  return state().player ? static_cast<int>(state().player->bundle().tick_rate_hz) : 0;
+}
+
+/// 1 when the recording engine, rules and config are this build's.
+RV_EXPORT int rv_identity_matches() {
+  return state().player && state().player->bundle().identity_matches ? 1 : 0;
+}
+
+RV_EXPORT const char* rv_identity_note() {
+  return hand_out(state().player ? state().player->bundle().identity_note : "");
+}
+
+/// 1 when the game runs on the 2D lane (the viewer then looks at the x-y
+/// plane from +z).
+RV_EXPORT int rv_is_2d() {
+  const ViewerState& s = state();
+  if (!s.player) return 0;
+  return rwd::game::world_of<rwd::sim2d::World2D>(s.player->simulation().lane()) != nullptr ? 1 : 0;
+}
+
+RV_EXPORT int rv_position() {
+  return state().player ? state().player->position() : -1;
+}
+
+RV_EXPORT int rv_length() {
+  return state().player ? state().player->length() : -1;
+}
+
+/// One tick forward; 0 at the end.
+RV_EXPORT int rv_step() {
+  return state().player && state().player->step() ? 1 : 0;
+}
+
+RV_EXPORT void rv_seek(int position) {
+  if (state().player) state().player->seek(position);
+}
+
+/// The state's checksum, 16 hex digits.
+RV_EXPORT const char* rv_checksum() {
+  return hand_out(state().player ? hex64(state().player->checksum()) : "");
+}
+
+/// The recorded checksum at this position, or "" at position 0.
+RV_EXPORT const char* rv_recorded_checksum() {
+  const ViewerState& s = state();
+  if (!s.player) return hand_out("");
+  const auto recorded = s.player->recorded_checksum();
+  return hand_out(recorded ? hex64(*recorded) : "");
+}
+
+/// 0 unchecked, 1 matched, 2 differed (TickCheck) for `position`.
+RV_EXPORT int rv_check(int position) {
+  return state().player ? static_cast<int>(state().player->check(position)) : 0;
+}
+
+RV_EXPORT int rv_first_mismatch() {
+  const ViewerState& s = state();
+  if (!s.player || !s.player->first_mismatch()) return -1;
+  return *s.player->first_mismatch();
+}
+
+/// Bodies, awake bodies, touching pairs, contact points, joints
+/// (index 0 to 4), as of the last step.
+RV_EXPORT int rv_stat(int which) {
+  const ViewerState& s = state();
+  if (!s.player) return 0;
+  const rwd::sim::WorldViewStats v = s.player->stats();
+  const uint32_t values[] = {v.bodies, v.awake_bodies, v.touching_pairs, v.contact_points,
+                             v.joints};
+  return which >= 0 && which < 5 ? static_cast<int>(values[which]) : 0;
+}
+
+/// Fills the draw buffers (flags: the kDraw* bits above) with
+/// `highlight_count` body indices at `highlight` drawn in the highlight
+/// colour. Lines and triangles are 16-byte vertices (x, y, z float32,
+/// colour 0xRRGGBBAA), points 20 bytes (the same and a size in pixels).
+RV_EXPORT void rv_draw(uint32_t flags, const uint32_t* highlight, uint32_t highlight_count) {
+  ViewerState& s = state();
+  s.draw.clear();
+  if (!s.player) return;
+  rwd::sim::DebugDrawOptions o;
+  o.shapes = (flags & kDrawShapes) != 0;
+  o.solid_shapes = (flags & kDrawSolids) != 0;
+  o.contacts = (flags & kDrawContacts) != 0;
+  o.contact_normals = (flags & kDrawNormals) != 0;
+  o.joints = (flags & kDrawJoints) != 0;
+  o.bounds = (flags & kDrawBounds) != 0;
+  o.centers_of_mass = (flags & kDrawCenters) != 0;
+  o.static_shapes = (flags & kDrawStatics) != 0;
+  o.highlight_bodies = std::span<const uint32_t>(highlight, highlight_count);
+  s.player->draw(o, s.draw);
+}
+
+RV_EXPORT const void* rv_lines() {
+  return state().draw.lines.data();
+}
+RV_EXPORT uint32_t rv_line_vertices() {
+  return static_cast<uint32_t>(state().draw.lines.size());
+}
+RV_EXPORT const void* rv_triangles() {
+  return state().draw.triangles.data();
+}
+RV_EXPORT uint32_t rv_triangle_vertices() {
+  return static_cast<uint32_t>(state().draw.triangles.size());
+}
+RV_EXPORT const void* rv_points() {
+  return state().draw.points.data();
+}
+RV_EXPORT uint32_t rv_point_count() {
+  return static_cast<uint32_t>(state().draw.points.size());
+}
+
+/// Where body `index` is now (3 floats, m; z = 0 in 2D), or null when no
+/// live body is there. Valid until the next call.
+RV_EXPORT const float* rv_body_center(int index) {
+  static float at[3];
+  const ViewerState& s = state();
+  if (!s.player || index < 0) return nullptr;
+  const auto c = s.player->body_center(static_cast<uint32_t>(index));
+  if (!c) return nullptr;
+  for (int k = 0; k < 3; ++k) at[k] = static_cast<float>((*c)[static_cast<size_t>(k)]);
+  return at;
+}
+
+/// 1 when the bundle holds a desync report.
+RV_EXPORT int rv_has_desync() {
+  return state().player && state().player->bundle().desync ? 1 : 0;
+}
+
+RV_EXPORT const char* rv_desync_headline() {
+  const ViewerState& s = state();
+  if (!s.player || !s.player->bundle().desync) return hand_out("");
+  return hand_out(s.player->bundle().desync->headline);
+}
+
+/// Seeks to the desync and compares the client's state there: the number
+/// of differing fields, or -1 (rv_error() says why).
+RV_EXPORT int rv_open_desync() {
+  ViewerState& s = state();
+  if (!s.player) return -1;
+  auto view = s.player->open_desync();
+  if (!view.ok()) {
+    s.error = view.status().message();
+    return -1;
+  }
+  s.desync = std::move(*view);
+  return static_cast<int>(s.desync->differences.size());
+}
+
+RV_EXPORT int rv_desync_position() {
+  return state().desync ? state().desync->position : -1;
+}
+
+RV_EXPORT const char* rv_desync_client_checksum() {
+  return hand_out(state().desync ? hex64(state().desync->client_checksum) : "");
+}
+
+/// The bodies the desync names (ascending): count, then each by index.
+RV_EXPORT int rv_desync_body_count() {
+  return state().desync ? static_cast<int>(state().desync->bodies.size()) : 0;
+}
+RV_EXPORT const uint32_t* rv_desync_bodies() {
+  return state().desync ? state().desync->bodies.data() : nullptr;
+}
+
+/// Field difference i: its body, its name, the replay's ("expected") and
+/// the client's ("actual") value.
+RV_EXPORT int rv_desync_field_body(int i) {
+  const ViewerState& s = state();
+  if (!s.desync || i < 0 || static_cast<size_t>(i) >= s.desync->differences.size()) return -1;
+  return static_cast<int>(s.desync->differences[static_cast<size_t>(i)].body_index);
+}
+RV_EXPORT const char* rv_desync_field_name(int i) {
+  const ViewerState& s = state();
+  if (!s.desync || i < 0 || static_cast<size_t>(i) >= s.desync->differences.size()) {
+    return hand_out("");
+  }
+  return hand_out(s.desync->differences[static_cast<size_t>(i)].field);
+}
+RV_EXPORT double rv_desync_field_expected(int i) {
+  const ViewerState& s = state();
+  if (!s.desync || i < 0 || static_cast<size_t>(i) >= s.desync->differences.size()) return 0.0;
+  return s.desync->differences[static_cast<size_t>(i)].expected;
+}
+RV_EXPORT double rv_desync_field_actual(int i) {
+  const ViewerState& s = state();
+  if (!s.desync || i < 0 || static_cast<size_t>(i) >= s.desync->differences.size()) return 0.0;
+  return s.desync->differences[static_cast<size_t>(i)].actual;
+}
