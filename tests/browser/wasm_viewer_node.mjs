@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The viewer's WebAssembly engine under node: every bundle make_bundles
 // wrote (each built-in game, both lanes, played natively) is re-simulated
-// and must reach the native checksum at every tick; seeks back and forth
-// land on the recorded state; the desync bundle names the bodies the
-// native comparison named.
+// and must reach the native checksum at every tick, with the cosmetic
+// debris layer throwing props all along in 3D; seeks back and forth land on
+// the recorded state; the desync bundle names the bodies the native
+// comparison named.
 //
 // usage: node wasm_viewer_node.mjs REWIND_VIEWER_JS BUNDLE_DIR
 import { createRequire } from 'node:module';
@@ -38,8 +39,10 @@ for (const game of ['crates', 'arena', 'joust']) {
   load(`${game}.bin`);
   const length = mod._rv_length();
   let steps = 0;
+  let debris = 0;
   while (mod._rv_step()) {
     ++steps;
+    debris = Math.max(debris, mod._rv_debris_count());
     const p = mod._rv_position();
     if (mod._rv_check(p) !== 1 || str(mod._rv_checksum()) !== str(mod._rv_recorded_checksum())) {
       fail(`${game}: tick ${p - 1} gives ${str(mod._rv_checksum())}, native ${str(mod._rv_recorded_checksum())}`);
@@ -47,6 +50,10 @@ for (const game of ['crates', 'arena', 'joust']) {
     }
   }
   if (steps !== length) fail(`${game}: stepped ${steps} of ${length} ticks`);
+  // The cosmetic debris layer (3D games) throws props from hard impacts
+  // while every checksum above stays native: it never touches the match.
+  if (game === 'crates' && debris === 0) fail('crates: no debris from any impact');
+  if (game === 'arena' && debris !== 0) fail('arena: debris in a 2D game');
   // Seeks back through the kept snapshots and forward again.
   for (const target of [length - 1, 3, Math.floor(length / 2), 1, length, 77, 0]) {
     mod._rv_seek(target);
@@ -59,7 +66,8 @@ for (const game of ['crates', 'arena', 'joust']) {
   const drawn = mod._rv_line_vertices() + mod._rv_triangle_vertices();
   if (drawn === 0) fail(`${game}: nothing drawn`);
   console.log(`${game} (${mod._rv_is_2d() ? '2D' : '3D'}): ${length} ticks, every checksum native;` +
-              ` ${mod._rv_stat(0)} bodies; ${drawn} vertices drawn; first mismatch ${mod._rv_first_mismatch()}`);
+              ` ${mod._rv_stat(0)} bodies; ${drawn} vertices drawn; up to ${debris} debris props;` +
+              ` first mismatch ${mod._rv_first_mismatch()}`);
 }
 
 load('desync.bin');

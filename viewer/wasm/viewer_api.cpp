@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The browser viewer's entry points: a C interface over ReplayPlayer that
 // JavaScript calls through Emscripten (viewer/web/viewer.js). One player
-// per module instance. Strings returned stay valid until the next call
+// per module instance, and for 3D games a cosmetic world of debris thrown
+// from hard impacts (rewind/sim/cosmetic_world.h): drawn, never part of
+// the match. Strings returned stay valid until the next call
 // that returns one; buffers until the next rv_draw. Every call is safe
 // before a bundle is loaded (it answers zero, empty or -1).
 #include <cinttypes>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include "rewind/game/world_lane.h"
+#include "rewind/sim/cosmetic_world.h"
 #include "rewind/sim2d/world2d.h"
 #include "rewind/viewer/replay_player.h"
 
@@ -28,6 +31,10 @@ using rwd::viewer::ReplayPlayer;
 
 struct ViewerState {
   std::unique_ptr<ReplayPlayer> player;
+  /// Debris for the eye (3D games): props thrown from hard impacts, on
+  /// proxies of the match's bodies; never part of the match.
+  std::unique_ptr<rwd::sim::CosmeticWorld> debris;
+  uint32_t debris_seed = 1;
   std::string error;
   std::string text;  ///< the last string handed out
   rwd::sim::DebugDrawBuffers draw;
@@ -50,6 +57,51 @@ std::string hex64(uint64_t v) {
   return buf;
 }
 
+const rwd::sim::World3D* world3d() {
+  const ViewerState& s = state();
+  return s.player ? rwd::game::world_of<rwd::sim::World3D>(s.player->simulation().lane()) : nullptr;
+}
+
+/// The debris layer follows one tick of the match: proxies to the new
+/// poses, a few props thrown from each hard impact of the tick, one step.
+void debris_after_step() {
+  ViewerState& s = state();
+  const rwd::sim::World3D* world = world3d();
+  if (!s.debris || world == nullptr) return;
+  s.debris->sync(*world);
+  uint32_t impacts = 0;
+  for (const rwd::sim::ContactEvent& e : world->events()) {
+    if (e.type != rwd::sim::ContactEventType::kEnter || e.sensor || e.impulse < 40.0f) continue;
+    if (++impacts > 4) break;
+    for (int k = 0; k < 4; ++k) {
+      auto next = [&s] {  // a small LCG: debris needs variety, not determinism
+        s.debris_seed = s.debris_seed * 1664525u + 1013904223u;
+        return static_cast<float>(s.debris_seed >> 8) / 16777216.0f - 0.5f;
+      };
+      rwd::sim::BodyDef def;
+      const float half = 0.04f + 0.04f * (next() + 0.5f);
+      def.shape = rwd::sim::Shape::make_box({half, half, half});
+      def.position = e.point + e.normal * 0.15f +
+                     rwd::sim::Vec3{next() * 0.3f, 0.1f + (next() + 0.5f) * 0.2f, next() * 0.3f};
+      def.linear_velocity =
+          rwd::sim::Vec3{next() * 3.0f, 2.0f + (next() + 0.5f) * 2.0f, next() * 3.0f};
+      def.angular_velocity = {next() * 10.0f, next() * 10.0f, next() * 10.0f};
+      def.density = 500.0f;
+      (void)s.debris->add_prop(def);
+    }
+  }
+  s.debris->step();
+}
+
+/// After a jump (a seek), the debris starts over where the match is.
+void debris_reset() {
+  ViewerState& s = state();
+  if (!s.debris) return;
+  s.debris->clear_props();
+  s.debris->teleport_next_sync();
+  if (const rwd::sim::World3D* world = world3d()) s.debris->sync(*world);
+}
+
 /// rv_draw's flag bits.
 enum : uint32_t {
   kDrawShapes = 1u << 0,
@@ -60,6 +112,7 @@ enum : uint32_t {
   kDrawBounds = 1u << 5,
   kDrawCenters = 1u << 6,
   kDrawStatics = 1u << 7,
+  kDrawDebris = 1u << 8,
 };
 
 }  // namespace
@@ -82,6 +135,16 @@ RV_EXPORT int rv_load(const uint8_t* bytes, uint32_t size, uint32_t keyframe_eve
   s.player = std::move(*player);
   s.desync.reset();
   s.error.clear();
+  s.debris.reset();
+  if (const rwd::sim::World3D* world = world3d()) {
+    rwd::sim::CosmeticConfig config;
+    config.world = world->config();
+    config.max_props = 200;
+    config.prop_lifetime_s = 4.0f;
+    auto debris = rwd::sim::CosmeticWorld::create(config, world->shared_geometry());
+    if (debris.ok()) s.debris = std::move(*debris);
+    debris_reset();
+  }
   return 0;
 }
 
@@ -141,11 +204,25 @@ RV_EXPORT int rv_length() {
 
 /// One tick forward; 0 at the end.
 RV_EXPORT int rv_step() {
-  return state().player && state().player->step() ? 1 : 0;
+  if (!state().player || !state().player->step()) return 0;
+  debris_after_step();
+  return 1;
 }
 
 RV_EXPORT void rv_seek(int position) {
-  if (state().player) state().player->seek(position);
+  ViewerState& s = state();
+  if (!s.player) return;
+  if (position == s.player->position() + 1) {
+    rv_step();
+    return;
+  }
+  s.player->seek(position);
+  debris_reset();
+}
+
+/// Debris props alive (3D games; 0 otherwise).
+RV_EXPORT int rv_debris_count() {
+  return state().debris ? static_cast<int>(state().debris->prop_count()) : 0;
 }
 
 /// The state's checksum, 16 hex digits.
@@ -202,6 +279,7 @@ RV_EXPORT void rv_draw(uint32_t flags, const uint32_t* highlight, uint32_t highl
   o.static_shapes = (flags & kDrawStatics) != 0;
   o.highlight_bodies = std::span<const uint32_t>(highlight, highlight_count);
   s.player->draw(o, s.draw);
+  if (s.debris && (flags & kDrawDebris) != 0) s.debris->draw_props(o, 0xC8A06EFFu, s.draw);
 }
 
 RV_EXPORT const void* rv_lines() {

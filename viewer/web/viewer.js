@@ -148,7 +148,8 @@ class Viewer {
 
   stats() {
     const s = (i) => this.mod._rv_stat(i);
-    return { bodies: s(0), awake: s(1), pairs: s(2), contactPoints: s(3), joints: s(4) };
+    return { bodies: s(0), awake: s(1), pairs: s(2), contactPoints: s(3), joints: s(4),
+      debris: this.mod._rv_debris_count() };
   }
 
   openDesync() {
@@ -225,7 +226,8 @@ class Viewer {
     $('first-mismatch').textContent = first >= 0 ? `first difference at tick ${first}` : '';
     const s = this.stats();
     $('stats').textContent = `${s.bodies} bodies, ${s.awake} awake, ${s.pairs} touching pairs, ` +
-      `${s.contactPoints} contact points, ${s.joints} joints`;
+      `${s.contactPoints} contact points, ${s.joints} joints` +
+      (this.planar ? '' : `; ${s.debris} debris props (cosmetic)`);
     $('step-ms').textContent = this.stepMs === null ? '–' : this.stepMs.toFixed(3);
   }
 
