@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "draw_colours.h"
 #include "rewind/sim/debug_draw3d.h"
 #include "rewind/sim/world3d.h"
 #include "sim_test_scenes.h"
@@ -169,17 +170,9 @@ TEST(DebugDraw3D, BodiesTakeTheColourOfTheirState) {
   auto colours = [&](const DebugDrawOptions& o) {
     DebugDrawBuffers out;
     debug_draw(world, o, out);
-    std::vector<DrawColor> seen;
-    for (const DrawVertex& v : out.lines) {
-      if (std::find(seen.begin(), seen.end(), v.color) == seen.end()) seen.push_back(v.color);
-    }
-    std::sort(seen.begin(), seen.end());
-    return seen;
+    return test_support::line_colours(out);
   };
-  auto sorted = [](std::vector<DrawColor> v) {
-    std::sort(v.begin(), v.end());
-    return v;
-  };
+  using test_support::sorted;
   EXPECT_EQ(colours(options), sorted({c.static_body, c.awake_body, c.kinematic_body}));
   test::step_seconds(world, 3.0f);
   ASSERT_FALSE(world.is_awake(box));

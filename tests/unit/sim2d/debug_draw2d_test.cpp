@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "draw_colours.h"
 #include "rewind/fixed/fx_literal.h"
 #include "rewind/sim2d/debug_draw2d.h"
 #include "rewind/sim2d/world2d.h"
@@ -121,17 +122,9 @@ TEST(DebugDraw2D, BodiesTakeTheColourOfTheirState) {
   auto colours = [&](const DebugDrawOptions& o) {
     DebugDrawBuffers out;
     debug_draw(world, o, out);
-    std::vector<sim::DrawColor> seen;
-    for (const DrawVertex& v : out.lines) {
-      if (std::find(seen.begin(), seen.end(), v.color) == seen.end()) seen.push_back(v.color);
-    }
-    std::sort(seen.begin(), seen.end());
-    return seen;
+    return test_support::line_colours(out);
   };
-  auto sorted = [](std::vector<sim::DrawColor> v) {
-    std::sort(v.begin(), v.end());
-    return v;
-  };
+  using test_support::sorted;
   EXPECT_EQ(colours(options), sorted({c.static_body, c.awake_body, c.kinematic_body}));
   for (int i = 0; i < 240 && world.is_awake(box); ++i) world.step();
   ASSERT_FALSE(world.is_awake(box));
