@@ -20,7 +20,9 @@
 # the determinism matrix in the background at idle priority when ctest
 # starts: the real-time integration tests run alone and leave most of the
 # CPU idle, and the matrix test, which ctest runs last, then finds its
-# objects built (its log: build/P/matrix-prebuild.log).
+# objects built (its log: build/P/matrix-prebuild.log); then the browser
+# viewer's WebAssembly build, which the viewer_build test, also run last,
+# finds done (log: build/P/viewer-prebuild.log).
 # Exit codes: ctest's status; the failing step's status if setup, configure or
 # build fails; 2 on bad usage.
 set -euo pipefail
@@ -49,8 +51,8 @@ if [[ $wasm == ON ]]; then bash scripts/setup.sh --wasm --viewer; else bash scri
 
 jobs=$(nproc 2>/dev/null || echo 2)
 step "configure + build (preset $preset, -j$jobs)"
-# The viewer's WebAssembly build is a test fixture (viewer_build), so it
-# compiles while the real-time tests leave the CPU idle.
+# The viewer's WebAssembly build is a test fixture (viewer_build) and is
+# compiled in the background while the real-time tests leave the CPU idle.
 cmake --preset "$preset" -DREWIND_TEST_WASM=$wasm -DREWIND_BUILD_VIEWER=ON
 cmake --build --preset "$preset" -j"$jobs"
 
@@ -62,8 +64,17 @@ if [[ -z $label ]]; then
   # it a process group, so ninja and its compilers go with it on exit.
   idle=()
   if chrt --idle 0 true 2>/dev/null; then idle=(chrt --idle 0); fi
-  setsid "${idle[@]}" nice -n 19 bash tests/determinism/run_matrix.sh --compile-only \
-    --source . "build/$preset/tests/determinism/matrix" >"build/$preset/matrix-prebuild.log" 2>&1 &
+  # The browser viewer's WebAssembly build too, with the commands and the
+  # lock of its external project (viewer/CMakeLists.txt): the viewer_build
+  # test, which ctest runs last, then finds it built.
+  wasm_dir="build/$preset/viewer_wasm"
+  setsid "${idle[@]}" nice -n 19 bash -c '
+    bash tests/determinism/run_matrix.sh --compile-only --source . "$1" >"$2" 2>&1
+    flock "$3.lock" env NODE_PATH=/usr/share/nodejs emcmake cmake -G Ninja -S viewer/wasm -B "$3" \
+      -DREWIND_SOURCE_DIR="$PWD" -DCMAKE_BUILD_TYPE=Release &&
+      flock "$3.lock" env NODE_PATH=/usr/share/nodejs cmake --build "$3"' prebuild \
+    "build/$preset/tests/determinism/matrix" "build/$preset/matrix-prebuild.log" "$wasm_dir" \
+    >"build/$preset/viewer-prebuild.log" 2>&1 &
   prebuild=$!
   trap '[[ -z $prebuild ]] || kill -- -"$prebuild" 2>/dev/null || true' EXIT
 fi
