@@ -2,6 +2,7 @@
 // rewind-server: flags -> config -> run -> summary.
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,7 @@ struct MatchOutputs {
   std::string port_file;
   std::string metrics_port_file;
   std::string control_port_file;
+  std::string live_port_file;
   bool summary_json = false;
 };
 
@@ -59,6 +61,11 @@ int host_match(const rwd::server::ServerConfig& config, const MatchOutputs& outp
   if (!outputs.control_port_file.empty() &&
       !write_port_file(outputs.control_port_file, {(*server)->control_port()})) {
     write_log(LogLevel::kError, "cannot write --control-port-file " + outputs.control_port_file);
+    return 1;
+  }
+  if (!outputs.live_port_file.empty() &&
+      !write_port_file(outputs.live_port_file, {(*server)->live_port()})) {
+    write_log(LogLevel::kError, "cannot write --live-port-file " + outputs.live_port_file);
     return 1;
   }
   (*server)->run();
@@ -196,6 +203,28 @@ int main(int argc, char** argv) {
   flags.add_string("metrics-keys", &metrics_keys,
                    "scrapes must carry a bearer key of this file ('NAME KEY' a line); required "
                    "to serve metrics on an address other than loopback");
+  std::string live_bind, live_port_file;
+  std::string live_viewer_dir = std::filesystem::exists(REWIND_VIEWER_DIR "/index.html")
+                                    ? std::string(REWIND_VIEWER_DIR)
+                                    : std::string();
+  int64_t live_delay = config.match.live_delay_ticks,
+          live_keyframe = config.match.live_keyframe_ticks;
+  flags.add_string("live-bind", &live_bind,
+                   "let browsers spectate every match on HOST:PORT over HTTP (port 0 = any free "
+                   "port; empty = off): open http://HOST:PORT/ for the list of matches, each "
+                   "shown in the viewer");
+  flags.add_string("live-port-file", &live_port_file,
+                   "write the bound live TCP port to this file once listening");
+  flags.add_string("live-viewer-dir", &live_viewer_dir,
+                   "the built viewer the live endpoint serves (default: this build's viewer_web "
+                   "when built; empty = data routes only)");
+  flags.add_int("live-delay-ticks", &live_delay, 0, 36000,
+                "spectators see each tick this many ticks after it became final");
+  flags.add_int("live-keyframe-ticks", &live_keyframe, 1, 3600,
+                "ticks between the states a joining spectator starts from");
+  flags.add_double("live-linger", &config.live_linger_s, 0, 60,
+                   "seconds the live endpoint stays up after the last match ended, for "
+                   "spectators to see the end");
   bool agones = false;
   rwd::server::AgonesLifecycleOptions agones_options;
   flags.add_bool("agones", &agones,
@@ -268,6 +297,20 @@ int main(int argc, char** argv) {
     write_log(LogLevel::kError, "--metrics-port-file needs --metrics-bind");
     return rwd::cli::kExitUsage;
   }
+  if (!live_bind.empty()) {
+    rwd::server::ServerConfig::HttpBind live;
+    if (!rwd::cli::split_host_port(live_bind, &live.address, &live.port)) {
+      write_log(LogLevel::kError, "--live-bind: expected HOST:PORT, got '" + live_bind + "'");
+      return rwd::cli::kExitUsage;
+    }
+    config.live = live;
+    config.live_viewer_dir = live_viewer_dir;
+  } else if (!live_port_file.empty()) {
+    write_log(LogLevel::kError, "--live-port-file needs --live-bind");
+    return rwd::cli::kExitUsage;
+  }
+  config.match.live_delay_ticks = static_cast<uint32_t>(live_delay);
+  config.match.live_keyframe_ticks = static_cast<uint32_t>(live_keyframe);
   if (!tls.certificate_file.empty() || !tls.private_key_file.empty() ||
       !tls.client_ca_file.empty()) {
     if (tls.certificate_file.empty() || tls.private_key_file.empty()) {
@@ -310,7 +353,8 @@ int main(int argc, char** argv) {
 
   config.insecure_tokenless_public = insecure_tokenless_public;
 
-  const MatchOutputs outputs{port_file, metrics_port_file, control_port_file, summary_json};
+  const MatchOutputs outputs{port_file, metrics_port_file, control_port_file, live_port_file,
+                             summary_json};
   if (!agones) return host_match(config, outputs);
   if (config.matches != 1 || config.control) {
     // An Agones GameServer is one allocation, so one match.

@@ -41,6 +41,10 @@ Status MatchConfig::validate() const {
   if (window_ticks < 1 || window_ticks > 120) return bad("window must be in [1, 120] ticks");
   if (max_ticks < 0) return bad("ticks must be >= 0");
   if (keyframe_interval < 0) return bad("keyframe interval must be >= 0");
+  if (live_keyframe_ticks < 1 || live_keyframe_ticks > 3600) {
+    return bad("live keyframe ticks must be in [1, 3600]");
+  }
+  if (live_delay_ticks > 36000) return bad("live delay must be in [0, 36000] ticks");
   if (!(join_timeout_s > 0) || !(peer_timeout_s > 0)) return bad("timeouts must be > 0");
   if (!(start_delay_s >= 0 && start_delay_s <= 10)) return bad("start delay must be in [0, 10] s");
   if (!(closing_s >= 0 && closing_s <= 10)) return bad("closing time must be in [0, 10] s");

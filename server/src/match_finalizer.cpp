@@ -53,29 +53,18 @@ void MatchHost::finalize_ready_ticks() {
     final_history_[static_cast<size_t>(t) % kFinalHistory] = {t, substituted, checksum};
     stats_.final_checksum = checksum;
 
-    if (replay_ && !replay_failed_) {
-      Status status = replay_->append_tick(t, final_inputs_, substituted, checksum);
-      if (status.ok() && config_.keyframe_interval > 0 &&
-          (t + 1) % config_.keyframe_interval == 0 &&
-          session_->serialize_state_at(t + 1, state_buffer_)) {
-        // A keyframe the verifier could not load would stop it there: check
-        // it as a resync snapshot is checked, and leave out one that fails.
-        if (auto loaded = session_->load_snapshot(state_buffer_, checksum); loaded.ok()) {
-          status = replay_->append_keyframe(t, state_buffer_);
-        } else {
-          ++stats_.keyframe_load_failures;
-          if (worth_logging(stats_.keyframe_load_failures)) {
-            log_warning("replay keyframe after tick " + std::to_string(t) +
-                        " does not load on the server, left out: " + loaded.status().message() +
-                        " (" + std::to_string(stats_.keyframe_load_failures) + " so far)");
-          }
-        }
-      }
-      if (!status.ok()) record_replay_error(status);
-    }
+    bool serialized = false;
+    record_final_tick(t, substituted, checksum, &serialized);
+    if (live_) publish_live_tick(t, substituted, checksum, serialized);
     (void)session_->finalize_through(t);
     finals_.append(t, final_inputs_, substituted, checksum, current);
     ++next_final_;
+  }
+  if (live_ && live_names_stale_) {
+    std::vector<std::string> names;
+    for (const Peer& peer : peers_) names.push_back(peer.joined ? peer.name : std::string());
+    live_->publish_names(std::move(names));
+    live_names_stale_ = false;
   }
   // Drop history every connected client has; keep a bounded tail for the rest.
   Tick acked_by_all = next_final_ - 1;
@@ -83,6 +72,44 @@ void MatchHost::finalize_ready_ticks() {
     if (peer.joined && peer.connected) acked_by_all = std::min(acked_by_all, peer.final_seen);
   }
   finals_.trim(acked_by_all, kMaxFinalHistory);
+}
+
+void MatchHost::record_final_tick(Tick t, uint64_t substituted, uint64_t checksum,
+                                  bool* serialized) {
+  if (!replay_ || replay_failed_) return;
+  Status status = replay_->append_tick(t, final_inputs_, substituted, checksum);
+  if (status.ok() && config_.keyframe_interval > 0 && (t + 1) % config_.keyframe_interval == 0 &&
+      session_->serialize_state_at(t + 1, state_buffer_)) {
+    *serialized = true;
+    // A keyframe the verifier could not load would stop it there: check
+    // it as a resync snapshot is checked, and leave out one that fails.
+    if (auto loaded = session_->load_snapshot(state_buffer_, checksum); loaded.ok()) {
+      status = replay_->append_keyframe(t, state_buffer_);
+    } else {
+      ++stats_.keyframe_load_failures;
+      if (worth_logging(stats_.keyframe_load_failures)) {
+        log_warning("replay keyframe after tick " + std::to_string(t) +
+                    " does not load on the server, left out: " + loaded.status().message() + " (" +
+                    std::to_string(stats_.keyframe_load_failures) + " so far)");
+      }
+    }
+  }
+  if (!status.ok()) record_replay_error(status);
+}
+
+void MatchHost::attach_live_feed(std::shared_ptr<LiveFeed> feed) {
+  live_ = std::move(feed);
+  live_names_stale_ = live_ != nullptr;
+}
+
+void MatchHost::publish_live_tick(Tick t, uint64_t substituted, uint64_t checksum,
+                                  bool serialized) {
+  live_->publish_tick(t, final_inputs_, substituted, checksum);
+  if (!live_->wants_state(t + 1)) return;
+  // The replay's keyframe when it has just serialized the same state.
+  if (serialized || session_->serialize_state_at(t + 1, state_buffer_)) {
+    live_->publish_state(t + 1, state_buffer_);
+  }
 }
 
 void MatchHost::broadcast(TimePoint now) {

@@ -390,6 +390,7 @@ void MatchHost::end(const std::string& reason, TimePoint now) {
     Status status = replay_->finish(next_final_ - 1, reason);
     if (!status.ok()) record_replay_error(status);
   }
+  if (live_) live_->end();
   if (!was_running) {
     started_ = now;
     phase_ = Phase::kEnded;

@@ -62,6 +62,17 @@ Result<std::shared_ptr<MatchRunner>> MatchRunner::create(asio::io_context& io,
       net::SteadyClock::now());
   if (!host.ok()) return host.status();
   runner->host_ = std::move(*host);
+  if (settings.match.live) {
+    LiveFeed::Info info;
+    info.match_id = settings.match.match_id;
+    info.game = settings.match.game;
+    info.setup = runner->host_->session().simulation().setup();
+    info.tick_rate_hz = settings.match.tick_rate_hz;
+    info.keyframe_ticks = settings.match.live_keyframe_ticks;
+    info.delay_ticks = settings.match.live_delay_ticks;
+    runner->live_ = std::make_shared<LiveFeed>(std::move(info));
+    runner->host_->attach_live_feed(runner->live_);
+  }
   runner->publish();
   return runner;
 }

@@ -56,8 +56,9 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   if (config.control) {
     if (Status status = config.control_policy.validate(); !status.ok()) return status;
   }
-  for (const auto& [name, bind] : {std::pair{"metrics", config.metrics},
-                                   std::pair{"control", std::optional(config.control_bind)}}) {
+  for (const auto& [name, bind] :
+       {std::pair{"metrics", config.metrics},
+        std::pair{"control", std::optional(config.control_bind)}, std::pair{"live", config.live}}) {
     std::error_code error;
     if (bind) asio::ip::make_address(bind->address, error);
     if (error) {
@@ -77,6 +78,9 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
                " run past 65535");
   }
   if (config.threads > 64) return bad("threads must be in [0, 64]");
+  if (!(config.live_linger_s >= 0.0 && config.live_linger_s <= 60.0)) {
+    return bad("live linger must be in [0, 60] s");
+  }
   if (!(config.tick_budget > 0.0 && config.tick_budget <= 1.0)) {
     return bad("tick budget must be in (0, 1]");
   }
@@ -115,6 +119,9 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
     if (!control.ok()) return control.status();
     server->control_ = std::move(*control);
   }
+  if (config.live) {
+    if (Status status = server->open_live(); !status.ok()) return status;
+  }
   const uint32_t cores = std::max(1u, std::thread::hardware_concurrency());
   const uint32_t most = std::max(1u, config.control ? config.max_matches : config.matches);
   server->threads_ = config.threads != 0 ? config.threads : std::min(cores, most);
@@ -139,11 +146,53 @@ Server::~Server() {
 void Server::close_endpoints() {
   if (metrics_) metrics_->close();
   if (control_) control_->close();
+  if (live_) live_->close();
+}
+
+Status Server::open_live() {
+  std::optional<StaticFiles> viewer;
+  if (!config_.live_viewer_dir.empty()) {
+    auto files = StaticFiles::load_viewer(config_.live_viewer_dir);
+    if (!files.ok())
+      return Status::Error(ErrorCode::kInvalidArgument, "live: " + files.status().message());
+    viewer = std::move(*files);
+  }
+  const Server* self = this;
+  live_api_ = std::make_unique<LiveApi>(
+      [self](std::string_view id) -> std::shared_ptr<const LiveFeed> {
+        std::lock_guard lock(self->matches_mutex_);
+        for (const auto& match : self->matches_) {
+          if (match->id() == id) return match->live_feed();
+        }
+        return nullptr;
+      },
+      [self] {
+        std::vector<std::shared_ptr<const LiveFeed>> feeds;
+        std::lock_guard lock(self->matches_mutex_);
+        for (const auto& match : self->matches_) {
+          if (auto feed = match->live_feed()) feeds.push_back(std::move(feed));
+        }
+        return feeds;
+      },
+      std::move(viewer));
+  // Viewers poll several times a second, and a joining one loads a state:
+  // more connections and a longer deadline than the other endpoints.
+  HttpEndpointLimits limits;
+  limits.max_connections = 64;
+  limits.deadline = std::chrono::milliseconds(10000);
+  const LiveApi* api = live_api_.get();
+  auto endpoint = HttpEndpoint::open(
+      "live", config_.live->address, config_.live->port,
+      [api](const HttpRequest& request) { return api->handle(request); }, limits, config_.http_tls);
+  if (!endpoint.ok()) return endpoint.status();
+  live_ = std::move(*endpoint);
+  return Status::Ok();
 }
 
 MatchConfig Server::config_for(const MatchConfig& base, const std::string& id) const {
   MatchConfig match = base;
   match.match_id = id;
+  match.live = match.live || config_.live.has_value();
   if (!many()) return match;
   if (!match.replay_path.empty()) {
     std::string& path = match.replay_path;
@@ -308,6 +357,15 @@ void Server::run() {
                                     : tls_note.empty()   ? ""
                                                          : " (" + tls_note.substr(2) + ")"));
   }
+  if (live_) {
+    write_log(LogLevel::kInfo,
+              "live spectating on " + scheme + bracketed(config_.live->address) + ":" +
+                  std::to_string(live_->port()) + "/" +
+                  (config_.live_viewer_dir.empty() ? " (no viewer files: data routes only)" : "") +
+                  (config_.match.live_delay_ticks > 0
+                       ? ", " + std::to_string(config_.match.live_delay_ticks) + " ticks behind"
+                       : ""));
+  }
   if (control_) {
     write_log(LogLevel::kInfo,
               "control API on " + scheme + bracketed(config_.control_bind.address) + ":" +
@@ -330,6 +388,11 @@ void Server::run() {
   for (uint32_t i = 1; i < threads_; ++i) pool.emplace_back([this] { io_.run(); });
   io_.run();
   for (std::thread& thread : pool) thread.join();
+  // Spectators poll: give them the last ticks and the end before the
+  // endpoint goes (not after a signal, which wants the process gone).
+  if (live_ && !stopping_ && config_.live_linger_s > 0) {
+    std::this_thread::sleep_for(std::chrono::duration<double>(config_.live_linger_s));
+  }
   close_endpoints();
 }
 

@@ -7,7 +7,10 @@
 #      the replay with native checksums and open at the report with the
 #      bodies the server's own report names highlighted;
 #   2. a 2D match (arena) and a 3D vehicle match (joust): played back with
-#      native checksums at every tick they are scrubbed to.
+#      native checksums at every tick they are scrubbed to;
+#   3. a crates match on a server with a live endpoint, watched while it
+#      runs (during the cases above) by a page from its start and one that
+#      joins midway, to its end.
 # Screenshots of each go to SHOTS_DIR (the README shows copies).
 #
 # usage: run_viewer_browser.sh BIN_DIR VIEWER_DIR SCRIPT_DIR WORK_DIR SHOTS_DIR
@@ -54,6 +57,22 @@ report=$(ls desyncs_crates/desync_p1_t*_r*.bin 2>/dev/null | head -1)
 bodies=$(sed -n 's/^  body \([0-9]*\) .*/\1/p' "${report%.bin}.txt" | sort -n | uniq | paste -sd, -)
 [ -n "$bodies" ] || fail "the server's report names no body: $(cat "${report%.bin}.txt")"
 
+# The live match: long enough to watch while the replays above are checked.
+live_ticks=1500
+rm -f live_port live_udp_port
+"$bin/rewind-server" --game crates --bind 127.0.0.1 --port 0 --port-file live_udp_port \
+  --players 2 --ticks "$live_ticks" --live-bind 127.0.0.1:0 --live-port-file live_port \
+  --live-viewer-dir "$viewer" --live-keyframe-ticks 120 --join-timeout 120 \
+  >server_live.log 2>&1 &
+live_server=$!
+pids+=("$live_server")
+for _ in $(seq 1 100); do [ -s live_port ] && [ -s live_udp_port ] && break; sleep 0.1; done
+[ -s live_port ] || fail "the live server did not start: $(cat server_live.log)"
+"$bin/rewind-bots" --bots 2 --connect "localhost:$(cat live_udp_port)" --game crates \
+  >bots_live.log 2>&1 &
+live_bots=$!
+pids+=("$live_bots")
+
 cat >config.json <<EOF
 { "tool": "$bin/rewind-replay", "viewerDir": "$viewer", "chromium": "$chromium",
   "shots": "$shots",
@@ -62,7 +81,11 @@ cat >config.json <<EOF
       "expectBodies": [$bodies], "expectGame": "crates" },
     { "name": "viewer-2d", "file": "$PWD/arena.rwr", "expectGame": "arena" },
     { "name": "viewer-3d", "file": "$PWD/joust.rwr", "expectGame": "joust" }
-  ] }
+  ],
+  "live": { "name": "viewer-live", "url": "http://127.0.0.1:$(cat live_port)", "match": "match",
+            "names": ["bot-0", "bot-1"], "ticks": $live_ticks } }
 EOF
 node "$scripts/viewer_browser.mjs" config.json || fail "see above"
+wait "$live_bots" || fail "the live match's bots: $(tail -3 bots_live.log)"
+wait "$live_server" || fail "the live server: $(tail -3 server_live.log)"
 echo "PASS [$test_name]"

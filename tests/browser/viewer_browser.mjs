@@ -6,11 +6,19 @@
 // desync report must open at its tick with exactly the bodies a native
 // comparison named highlighted. Each case saves a screenshot.
 //
+// With "live", a match is running on a server with a live endpoint: one
+// page watches it from its first seconds while the replay cases run, a second
+// joins midway; both must follow the newest final tick with the server's
+// checksum at every tick they re-simulate, show the players' names, and
+// see the match end.
+//
 // usage: node viewer_browser.mjs CONFIG.json
 //   { "tool": rewind-replay, "viewerDir": DIR, "chromium": PATH, "shots": DIR,
 //     "cases": [ { "name", "file", "desync"?: BIN, "expectBodies"?: [..] (the
 //                  bundle holds a desync: open it and find these highlighted),
-//                  "expectGame"?: NAME, "expect2d"?: bool } ] }
+//                  "expectGame"?: NAME, "expect2d"?: bool } ],
+//     "live"?: { "name", "url" (the live endpoint), "match", "names": [..],
+//                "ticks" (the match's length) } }
 import { spawn } from 'node:child_process';
 import { readFileSync, mkdirSync } from 'node:fs';
 import path from 'node:path';
@@ -48,9 +56,107 @@ const browser = await puppeteer.launch({
   headless: true,
   args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
     '--disable-background-networking', '--disable-component-update', '--disable-sync',
+    // The live pages keep following while other pages are in front.
+    '--disable-background-timer-throttling', '--disable-renderer-backgrounding',
+    '--disable-backgrounding-occluded-windows',
     '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--window-size=1280,800'],
 });
+/** Opens the live viewer on `c.match`; resolves once it has polled. */
+async function openLive(c) {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 1280, height: 800 });
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  await page.goto(`${c.url}/?live=${encodeURIComponent(c.match)}`, { waitUntil: 'load' });
+  await page.waitForFunction(() => window.rewindViewer && (window.rewindViewer.error ||
+    (window.rewindViewer.live && window.rewindViewer.live().polls > 0)), { timeout: 60000 });
+  const loadError = await page.evaluate(() => window.rewindViewer.error);
+  if (loadError) throw new Error('the live page did not load: ' + loadError);
+  return { page, errors };
+}
+
+/** Every tick a live page re-simulated agreed with the server's checksum. */
+async function liveChecks(name, page) {
+  const r = await page.evaluate(() => {
+    const v = window.rewindViewer;
+    let checked = 0;
+    let bad = -1;
+    for (let p = v.start() + 1; p <= v.position(); ++p) {
+      if (v.check(p) === 1) ++checked; else if (bad < 0) bad = p;
+    }
+    return { start: v.start(), position: v.position(), length: v.length(), checked, bad,
+      mismatch: v.firstMismatch(), live: v.live(), names: v.names() };
+  });
+  if (r.bad >= 0 || r.mismatch !== -1) {
+    fail(`${name}: tick ${r.bad} unchecked or differs: ${JSON.stringify(r)}`);
+  }
+  return r;
+}
+
+/**
+ * Watches the live match: a page from its start, a second joining a few
+ * seconds later. Returns a function that waits for the end and checks both.
+ */
+async function watchLive(c) {
+  const started = Date.now();
+  const first = await openLive(c);
+  // A few seconds of the match, followed as it is made final.
+  await first.page.waitForFunction(() => window.rewindViewer.position() > 240, { timeout: 60000 });
+  const early = await liveChecks(c.name, first.page);
+  if (JSON.stringify(early.names) !== JSON.stringify(c.names)) {
+    fail(`${c.name}: names ${JSON.stringify(early.names)}, expected ${JSON.stringify(c.names)}`);
+  }
+  if (!early.live.following || early.live.lag > 60) {
+    fail(`${c.name}: not following: ${JSON.stringify(early.live)}`);
+  }
+  const frames = await first.page.evaluate(() => window.rewindViewer.frames());
+  await first.page.waitForFunction((f) => window.rewindViewer.frames() > f + 3, { timeout: 20000 },
+    frames);
+  const shot = path.join(config.shots, `${c.name}.png`);
+  await first.page.screenshot({ path: shot });
+  const second = await openLive(c);
+  const joined = await second.page.evaluate(() => window.rewindViewer.start());
+  if (joined <= 0) fail(`${c.name}: a viewer joining midway started at tick ${joined}`);
+  console.log(`${c.name}: following at tick ${early.position} (${early.live.lag} ticks behind the ` +
+    `newest final ${early.live.newestFinal}), ${early.checked} ticks checked; a second viewer ` +
+    `joined at tick ${joined}; ${shot}`);
+  return async () => {
+    for (const [label, w] of [['first viewer', first], ['joined later', second]]) {
+      try {
+        await w.page.bringToFront();
+        await w.page.waitForFunction((n) => {
+          const v = window.rewindViewer;
+          return v.live().gone !== null && v.position() >= n;
+        }, { timeout: 120000, polling: 250 }, c.ticks);
+      } catch (e) {
+        fail(`${c.name} (${label}): the end never showed: ` +
+          JSON.stringify(await w.page.evaluate(() => window.rewindViewer.live())));
+        continue;
+      }
+      const end = await liveChecks(`${c.name} (${label})`, w.page);
+      if (end.live.gone !== 'the match is over' || end.position !== c.ticks) {
+        fail(`${c.name} (${label}): ended as ${JSON.stringify(end)}`);
+      }
+      if (w.errors.length) fail(`${c.name} (${label}): page errors: ${w.errors.join(' | ')}`);
+      console.log(`${c.name} (${label}): ${end.checked} ticks ${end.start + 1}..${end.position} ` +
+        `re-simulated with the server's checksums, ${end.live.polls} polls, ` +
+        `${end.live.restarts} restarts; "${end.live.gone}"`);
+      await w.page.close();
+    }
+    console.log(`${c.name}: ${((Date.now() - started) / 1000).toFixed(1)} s`);
+  };
+}
+
 try {
+  let liveEnd = null;
+  if (config.live) {
+    try {
+      liveEnd = await watchLive(config.live);
+    } catch (e) {
+      fail(`${config.live.name}: ${e.message}`);
+    }
+  }
   for (const c of config.cases) {
     const started = Date.now();
     const { child, url } = await serve(c);
@@ -112,6 +218,7 @@ try {
       child.kill('SIGTERM');
     }
   }
+  if (liveEnd) await liveEnd();
 } finally {
   await browser.close();
 }

@@ -30,7 +30,7 @@ function load(file) {
   const bytes = readFileSync(path.join(dir, file));
   const ptr = mod._malloc(bytes.length);
   mod.HEAPU8.set(bytes, ptr);
-  const rc = mod._rv_load(ptr, bytes.length, 50);
+  const rc = mod._rv_load(ptr, bytes.length, 50, 0);
   mod._free(ptr);
   if (rc !== 0) throw new Error(`${file}: ${str(mod._rv_error())}`);
 }

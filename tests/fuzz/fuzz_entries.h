@@ -50,3 +50,7 @@ int fuzz_chunk_assembler_one(const uint8_t* data, size_t size);
 /// View bundles (the viewer's files): decode_view_bundle, the re-encoding of
 /// what it accepts, and a replay player's first steps and desync report.
 int fuzz_view_bundle_one(const uint8_t* data, size_t size);
+
+/// Live tick batches (what a spectating viewer polls): decode_live_ticks,
+/// the re-encoding of what it accepts, and appending it to a player.
+int fuzz_live_ticks_one(const uint8_t* data, size_t size);

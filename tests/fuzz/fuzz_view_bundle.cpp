@@ -19,9 +19,19 @@ int fuzz_view_bundle_one(const uint8_t* data, size_t size) {
     if (bundle.status().message().empty()) std::abort();
     return 0;
   }
+  // Re-encoding writes the newest version: the same bytes for one of
+  // those, the same bundle (encoding alike twice) for an older one.
+  const bool newest = size >= 12 && data[8] == rwd::viewer::kViewBundleVersion && data[9] == 0 &&
+                      data[10] == 0 && data[11] == 0;
   std::vector<uint8_t> again;
-  if (!rwd::viewer::encode_view_bundle(*bundle, again).ok() || again.size() != size ||
-      std::memcmp(again.data(), data, size) != 0) {
+  bool same = rwd::viewer::encode_view_bundle(*bundle, again).ok();
+  if (same && newest) same = again.size() == size && std::memcmp(again.data(), data, size) == 0;
+  if (same && !newest) {
+    auto reread = rwd::viewer::decode_view_bundle(again);
+    std::vector<uint8_t> twice;
+    same = reread.ok() && rwd::viewer::encode_view_bundle(*reread, twice).ok() && twice == again;
+  }
+  if (!same) {
     std::fprintf(stderr, "fuzz_view_bundle: an accepted bundle does not re-encode\n");
     std::abort();
   }
@@ -29,7 +39,7 @@ int fuzz_view_bundle_one(const uint8_t* data, size_t size) {
   if (!player.ok()) return 0;  // a game this build lacks, a setup it refuses
   for (int i = 0; i < 3 && (*player)->step(); ++i) {
   }
-  (*player)->seek(1);
+  (*player)->seek((*player)->start() + 1);
   (void)(*player)->open_desync();
   return 0;
 }

@@ -8,18 +8,14 @@
 #include <vector>
 
 #include "rewind/server/http_endpoint.h"
+#include "rewind/server/static_files.h"
 #include "rewind/sim/status.h"
 
 namespace rwd::replay_tool {
 
-/// The files a viewer directory must hold (the build's viewer_web).
-inline constexpr const char* kViewerFiles[] = {
-    "index.html", "viewer.js",        "render.js",         "camera.js",
-    "viewer.css", "rewind_viewer.js", "rewind_viewer.wasm"};
-
 /// The viewer's HTTP server: GET / (index.html), GET /<one of
-/// kViewerFiles> and GET /bundle.bin; anything else is 404, any method
-/// but GET (and HEAD) 405. Files are read once, at open().
+/// server::kViewerFiles> and GET /bundle.bin; anything else is 404, any
+/// method but GET (and HEAD) 405. Files are read once, at open().
 class ViewServer {
  public:
   /// kNotFound naming the first missing file when `viewer_dir` is not a
@@ -31,14 +27,10 @@ class ViewServer {
   void close() { endpoint_->close(); }
 
  private:
-  struct File {
-    std::string name;
-    std::string content_type;
-    std::string body;
-  };
+  explicit ViewServer(server::StaticFiles files) : files_(std::move(files)) {}
   server::HttpReply answer(const server::HttpRequest& request) const;
 
-  std::vector<File> files_;
+  server::StaticFiles files_;
   std::unique_ptr<server::HttpEndpoint> endpoint_;
 };
 

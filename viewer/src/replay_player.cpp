@@ -8,53 +8,110 @@
 namespace rwd::viewer {
 
 Result<std::unique_ptr<ReplayPlayer>> ReplayPlayer::create(ViewBundle bundle,
-                                                           uint32_t keyframe_every) {
+                                                           uint32_t keyframe_every,
+                                                           uint32_t max_keyframes) {
   auto sim = game::Simulation::create(bundle.game, bundle.setup);
   if (!sim.ok()) return sim.status();
+  if (bundle.first_tick < 0 || (bundle.first_tick > 0 && bundle.start_state.empty())) {
+    return Status::Error(
+        ErrorCode::kInvalidArgument,
+        "a bundle from tick " + std::to_string(bundle.first_tick) + " needs the state before it");
+  }
+  if (!bundle.start_state.empty()) {
+    if (Status s = (*sim)->deserialize(bundle.start_state); !s.ok()) {
+      return Status::Error(ErrorCode::kCorrupt, "the start state does not load: " + s.message());
+    }
+    if ((*sim)->tick() != bundle.first_tick) {
+      return Status::Error(ErrorCode::kCorrupt, "the start state is at tick " +
+                                                    std::to_string((*sim)->tick()) +
+                                                    ", not the bundle's first tick " +
+                                                    std::to_string(bundle.first_tick));
+    }
+  }
   keyframe_every = std::clamp(keyframe_every, 1u, 3600u);
   return std::unique_ptr<ReplayPlayer>(
-      new ReplayPlayer(std::move(bundle), std::move(*sim), keyframe_every));
+      new ReplayPlayer(std::move(bundle), std::move(*sim), keyframe_every, max_keyframes));
 }
 
 ReplayPlayer::ReplayPlayer(ViewBundle bundle, std::unique_ptr<game::Simulation> sim,
-                           uint32_t keyframe_every)
-    : bundle_(std::move(bundle)), sim_(std::move(sim)), keyframe_every_(keyframe_every) {
+                           uint32_t keyframe_every, uint32_t max_keyframes)
+    : bundle_(std::move(bundle)),
+      sim_(std::move(sim)),
+      keyframe_every_(keyframe_every),
+      max_keyframes_(max_keyframes) {
   keyframes_.resize(bundle_.tick_count() / keyframe_every_ + 1);
   checks_.assign(bundle_.tick_count() + 1, TickCheck::kUnchecked);
   keep_keyframe();
 }
 
 void ReplayPlayer::keep_keyframe() {
-  const Tick p = position();
-  if (p % static_cast<Tick>(keyframe_every_) != 0) return;
-  std::optional<game::SimSnapshot>& slot = keyframes_[static_cast<size_t>(p) / keyframe_every_];
+  const size_t at = offset(position());
+  if (at % keyframe_every_ != 0) return;
+  std::optional<game::SimSnapshot>& slot = keyframes_[at / keyframe_every_];
   if (slot) return;
   slot.emplace();
   sim_->save(*slot);
+  ++kept_keyframes_;
+  // Over the bound: the oldest kept goes, but never the first (the only
+  // way back to the start).
+  for (size_t k = 1;
+       max_keyframes_ > 0 && kept_keyframes_ > max_keyframes_ && k < keyframes_.size(); ++k) {
+    if (k != at / keyframe_every_ && keyframes_[k]) {
+      keyframes_[k].reset();
+      --kept_keyframes_;
+    }
+  }
+}
+
+Status ReplayPlayer::append(const LiveTicks& batch) {
+  const uint32_t players = bundle_.setup.player_count;
+  if (batch.player_count != players) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "the batch is for " + std::to_string(batch.player_count) +
+                             " players, the match has " + std::to_string(players));
+  }
+  if (batch.first_tick > length()) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "the batch starts at tick " + std::to_string(batch.first_tick) +
+                             ", after a gap from " + std::to_string(length()));
+  }
+  if (!batch.player_names.empty()) bundle_.player_names = batch.player_names;
+  const size_t skip = static_cast<size_t>(length() - batch.first_tick);
+  for (size_t i = skip; i < batch.checksums.size(); ++i) {
+    bundle_.checksums.push_back(batch.checksums[i]);
+    bundle_.substituted_masks.push_back(batch.substituted_masks[i]);
+    bundle_.inputs.insert(bundle_.inputs.end(), batch.inputs.begin() + i * players,
+                          batch.inputs.begin() + (i + 1) * players);
+  }
+  keyframes_.resize(bundle_.tick_count() / keyframe_every_ + 1);
+  checks_.resize(bundle_.tick_count() + 1, TickCheck::kUnchecked);
+  return Status::Ok();
 }
 
 bool ReplayPlayer::step() {
   const Tick p = position();
   if (p >= length()) return false;
   const uint32_t players = bundle_.setup.player_count;
-  sim_->step(std::span<const game::PlayerInput>(bundle_.inputs)
-                 .subspan(static_cast<size_t>(p) * players, players));
-  const bool match = sim_->checksum() == bundle_.checksums[static_cast<size_t>(p)];
-  checks_[static_cast<size_t>(p) + 1] = match ? TickCheck::kMatch : TickCheck::kMismatch;
+  const size_t i = offset(p);
+  sim_->step(std::span<const game::PlayerInput>(bundle_.inputs).subspan(i * players, players));
+  const bool match = sim_->checksum() == bundle_.checksums[i];
+  checks_[i + 1] = match ? TickCheck::kMatch : TickCheck::kMismatch;
   if (!match && (!first_mismatch_ || *first_mismatch_ > p + 1)) first_mismatch_ = p + 1;
   keep_keyframe();
   return true;
 }
 
 void ReplayPlayer::seek(Tick target) {
-  target = std::clamp(target, Tick{0}, length());
+  target = std::clamp(target, start(), length());
   const Tick now = position();
   if (target == now) return;
   // The nearest kept snapshot at or before the target; the present
-  // position wins when it is nearer (a short scrub forward).
+  // position wins when it is nearer (a short scrub forward). The first
+  // is always kept.
   Tick from = now <= target ? now : -1;
-  for (Tick k = target / static_cast<Tick>(keyframe_every_); k >= 0; --k) {
-    const Tick at = k * static_cast<Tick>(keyframe_every_);
+  const Tick every = static_cast<Tick>(keyframe_every_);
+  for (Tick k = (target - start()) / every; k >= 0; --k) {
+    const Tick at = start() + k * every;
     if (at <= from) break;
     if (keyframes_[static_cast<size_t>(k)]) {
       sim_->restore(*keyframes_[static_cast<size_t>(k)]);
@@ -68,13 +125,13 @@ void ReplayPlayer::seek(Tick target) {
 
 std::optional<uint64_t> ReplayPlayer::recorded_checksum() const {
   const Tick p = position();
-  if (p <= 0) return std::nullopt;
-  return bundle_.checksums[static_cast<size_t>(p) - 1];
+  if (p <= start()) return std::nullopt;
+  return bundle_.checksums[offset(p) - 1];
 }
 
 TickCheck ReplayPlayer::check(Tick p) const {
-  if (p < 1 || p > length()) return TickCheck::kUnchecked;
-  return checks_[static_cast<size_t>(p)];
+  if (p <= start() || p > length()) return TickCheck::kUnchecked;
+  return checks_[offset(p)];
 }
 
 std::optional<std::array<double, 3>> ReplayPlayer::body_center(uint32_t index) const {
@@ -101,10 +158,11 @@ std::optional<std::array<double, 3>> ReplayPlayer::body_center(uint32_t index) c
 Result<DesyncView> ReplayPlayer::open_desync() {
   if (!bundle_.desync) return Status::Error(ErrorCode::kNotFound, "the bundle holds no desync");
   const ViewDesync& d = *bundle_.desync;
-  if (d.tick + 1 > length()) {
+  if (d.tick + 1 > length() || d.tick + 1 < start()) {
     return Status::Error(ErrorCode::kNotFound, "the desync's tick " + std::to_string(d.tick) +
-                                                   " is past the replay's " +
-                                                   std::to_string(length()) + " ticks");
+                                                   " is outside the replay's ticks " +
+                                                   std::to_string(start()) + " to " +
+                                                   std::to_string(length()));
   }
   auto client = game::Simulation::create(bundle_.game, bundle_.setup);
   if (!client.ok()) return client.status();

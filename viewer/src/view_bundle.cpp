@@ -4,77 +4,15 @@
 #include <cstring>
 #include <string_view>
 
+#include "byte_io.h"
+
 namespace rwd::viewer {
 namespace {
 
+using detail::Reader;
+using detail::Writer;
+
 constexpr char kMagic[8] = {'R', 'W', 'D', 'V', 'I', 'E', 'W', '1'};
-
-class Writer {
- public:
-  explicit Writer(std::vector<uint8_t>& out) : out_(out) {}
-  void put(uint64_t v, int bytes) {
-    for (int i = 0; i < bytes; ++i) out_.push_back(static_cast<uint8_t>(v >> (8 * i)));
-  }
-  void bytes(std::span<const uint8_t> b) {
-    put(b.size(), 4);
-    out_.insert(out_.end(), b.begin(), b.end());
-  }
-  void str(std::string_view s) { bytes({reinterpret_cast<const uint8_t*>(s.data()), s.size()}); }
-
- private:
-  std::vector<uint8_t>& out_;
-};
-
-/// Bounds-checked reads; the first failure is kept with its offset and
-/// every later read gives zeros.
-class Reader {
- public:
-  Reader(std::span<const uint8_t> bytes, size_t start) : bytes_(bytes), pos_(start) {}
-  bool ok() const { return error_.empty(); }
-  const std::string& error() const { return error_; }
-  size_t remaining() const { return bytes_.size() - pos_; }
-  size_t offset() const { return pos_; }
-
-  uint64_t get(int n, const char* what) {
-    if (!ok()) return 0;
-    if (remaining() < static_cast<size_t>(n)) {
-      fail(what, "runs past the end");
-      return 0;
-    }
-    uint64_t v = 0;
-    for (int i = 0; i < n; ++i) v |= uint64_t{bytes_[pos_ + static_cast<size_t>(i)]} << (8 * i);
-    pos_ += static_cast<size_t>(n);
-    return v;
-  }
-  std::span<const uint8_t> run(uint32_t bound, const char* what) {
-    const uint64_t n = get(4, what);
-    if (!ok()) return {};
-    if (n > bound) {
-      fail(what,
-           ("is " + std::to_string(n) + " bytes, more than " + std::to_string(bound)).c_str());
-      return {};
-    }
-    if (remaining() < n) {
-      fail(what, "runs past the end");
-      return {};
-    }
-    const auto out = bytes_.subspan(pos_, static_cast<size_t>(n));
-    pos_ += static_cast<size_t>(n);
-    return out;
-  }
-  std::string str(uint32_t bound, const char* what) {
-    const auto b = run(bound, what);
-    return {reinterpret_cast<const char*>(b.data()), b.size()};
-  }
-  void fail(const char* what, const char* problem) {
-    if (ok()) error_ = std::string(what) + " at byte " + std::to_string(pos_) + " " + problem;
-  }
-
- private:
-  std::span<const uint8_t> bytes_;
-  size_t pos_ = 0;
-  std::string error_;
-};
 
 Status invalid(const std::string& message) {
   return Status::Error(ErrorCode::kInvalidArgument, "view bundle: " + message);
@@ -92,6 +30,11 @@ Status check(const ViewBundle& b) {
   for (const std::string& name : b.player_names) {
     if (name.size() > kViewMaxString) return invalid("a player name is too long");
   }
+  if (b.first_tick < 0 || b.first_tick > static_cast<Tick>(kViewMaxTicks)) {
+    return invalid("first tick out of [0, " + std::to_string(kViewMaxTicks) + "]");
+  }
+  if (b.first_tick > 0 && b.start_state.empty()) return invalid("a later first tick needs a state");
+  if (b.start_state.size() > kViewMaxStateBytes) return invalid("start state too big");
   if (b.checksums.size() > kViewMaxTicks) return invalid("too many ticks");
   if (b.substituted_masks.size() != b.checksums.size() ||
       b.inputs.size() != b.checksums.size() * b.setup.player_count) {
@@ -126,17 +69,14 @@ Status encode_view_bundle(const ViewBundle& b, std::vector<uint8_t>& out) {
   w.str(b.identity_note);
   w.put(b.player_names.size(), 4);
   for (const std::string& name : b.player_names) w.str(name);
+  w.put(static_cast<uint32_t>(b.first_tick), 4);
+  w.bytes(b.start_state);
   w.put(b.checksums.size(), 4);
   const uint32_t players = b.setup.player_count;
   for (size_t t = 0; t < b.checksums.size(); ++t) {
     w.put(b.checksums[t], 8);
     w.put(b.substituted_masks[t], 8);
-    for (uint32_t p = 0; p < players; ++p) {
-      const game::PlayerInput& in = b.inputs[t * players + p];
-      w.put(static_cast<uint16_t>(in.axis_x), 2);
-      w.put(static_cast<uint16_t>(in.axis_y), 2);
-      w.put(in.buttons, 4);
-    }
+    for (uint32_t p = 0; p < players; ++p) detail::put_input(w, b.inputs[t * players + p]);
   }
   w.put(b.desync ? 1 : 0, 1);
   if (b.desync) {
@@ -158,8 +98,8 @@ Result<ViewBundle> decode_view_bundle(std::span<const uint8_t> bytes) {
   }
   Reader r(bytes, sizeof kMagic);
   const uint64_t version = r.get(4, "version");
-  if (r.ok() && version != kViewBundleVersion) {
-    return corrupt("version " + std::to_string(version) + " (this build reads " +
+  if (r.ok() && (version < 1 || version > kViewBundleVersion)) {
+    return corrupt("version " + std::to_string(version) + " (this build reads 1 to " +
                    std::to_string(kViewBundleVersion) + ")");
   }
   ViewBundle b;
@@ -180,6 +120,17 @@ Result<ViewBundle> decode_view_bundle(std::span<const uint8_t> bytes) {
   for (uint64_t i = 0; r.ok() && i < names; ++i) {
     b.player_names.push_back(r.str(kViewMaxString, "player name"));
   }
+  if (version >= 2) {
+    b.first_tick = static_cast<Tick>(static_cast<uint32_t>(r.get(4, "first tick")));
+    if (r.ok() && (b.first_tick < 0 || b.first_tick > static_cast<Tick>(kViewMaxTicks))) {
+      r.fail("first tick", "is out of range");
+    }
+    const auto state = r.run(kViewMaxStateBytes, "start state");
+    b.start_state.assign(state.begin(), state.end());
+    if (r.ok() && b.first_tick > 0 && b.start_state.empty()) {
+      r.fail("start state", "is empty after a later first tick");
+    }
+  }
   const uint64_t ticks = r.get(4, "tick count");
   if (r.ok() && ticks > kViewMaxTicks) r.fail("tick count", "is beyond the bound");
   // Each tick takes 16 + 8 * players bytes: refuse a count the bytes
@@ -193,14 +144,7 @@ Result<ViewBundle> decode_view_bundle(std::span<const uint8_t> bytes) {
   for (uint64_t t = 0; r.ok() && t < ticks; ++t) {
     b.checksums.push_back(r.get(8, "checksum"));
     b.substituted_masks.push_back(r.get(8, "substituted mask"));
-    for (uint64_t p = 0; p < players; ++p) {
-      game::PlayerInput in;
-      in.axis_x = static_cast<int16_t>(static_cast<uint16_t>(r.get(2, "axis x")));
-      in.axis_y = static_cast<int16_t>(static_cast<uint16_t>(r.get(2, "axis y")));
-      in.buttons = static_cast<uint32_t>(r.get(4, "buttons"));
-      if (r.ok() && !game::is_valid(in)) r.fail("input", "has an axis out of range");
-      b.inputs.push_back(in);
-    }
+    for (uint64_t p = 0; p < players; ++p) b.inputs.push_back(detail::get_input(r));
   }
   const uint64_t has_desync = r.get(1, "desync flag");
   if (r.ok() && has_desync > 1) r.fail("desync flag", "is neither 0 nor 1");

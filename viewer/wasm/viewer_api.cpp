@@ -39,6 +39,9 @@ struct ViewerState {
   std::string text;  ///< the last string handed out
   rwd::sim::DebugDrawBuffers draw;
   std::optional<rwd::viewer::DesyncView> desync;
+  /// What the last live batch said of the match.
+  rwd::Tick newest_final = rwd::kNoTick;
+  bool ended = false;
 };
 
 ViewerState& state() {
@@ -117,22 +120,26 @@ enum : uint32_t {
 
 }  // namespace
 
-/// Loads a view bundle from `size` bytes at `bytes` (copied). 0 on success;
-/// otherwise the error code and rv_error() says why, and any player
-/// loaded before stays.
-RV_EXPORT int rv_load(const uint8_t* bytes, uint32_t size, uint32_t keyframe_every) {
+/// Loads a view bundle from `size` bytes at `bytes` (copied), keeping a
+/// snapshot every `keyframe_every` ticks, at most `max_keyframes` of them
+/// (0: all; a live viewer bounds them). 0 on success; otherwise the error
+/// code and rv_error() says why, and any player loaded before stays.
+RV_EXPORT int rv_load(const uint8_t* bytes, uint32_t size, uint32_t keyframe_every,
+                      uint32_t max_keyframes) {
   ViewerState& s = state();
   auto bundle = rwd::viewer::decode_view_bundle(std::span<const uint8_t>(bytes, size));
   if (!bundle.ok()) {
     s.error = bundle.status().message();
     return static_cast<int>(bundle.status().code());
   }
-  auto player = ReplayPlayer::create(std::move(*bundle), keyframe_every);
+  auto player = ReplayPlayer::create(std::move(*bundle), keyframe_every, max_keyframes);
   if (!player.ok()) {
     s.error = player.status().message();
     return static_cast<int>(player.status().code());
   }
   s.player = std::move(*player);
+  s.newest_final = rwd::kNoTick;
+  s.ended = false;
   s.desync.reset();
   s.error.clear();
   s.debris.reset();
@@ -146,6 +153,46 @@ RV_EXPORT int rv_load(const uint8_t* bytes, uint32_t size, uint32_t keyframe_eve
     debris_reset();
   }
   return 0;
+}
+
+/// Appends a live tick batch (`size` bytes at `bytes`, as a server's
+/// /live/<match>/ticks answers) to the loaded match. 0 on success;
+/// otherwise the error code, rv_error() says why and nothing changed.
+RV_EXPORT int rv_append(const uint8_t* bytes, uint32_t size) {
+  ViewerState& s = state();
+  if (!s.player) {
+    s.error = "no match loaded";
+    return static_cast<int>(rwd::ErrorCode::kNotFound);
+  }
+  auto batch = rwd::viewer::decode_live_ticks(std::span<const uint8_t>(bytes, size));
+  if (!batch.ok()) {
+    s.error = batch.status().message();
+    return static_cast<int>(batch.status().code());
+  }
+  if (rwd::Status appended = s.player->append(*batch); !appended.ok()) {
+    s.error = appended.message();
+    return static_cast<int>(appended.code());
+  }
+  s.newest_final = batch->newest_final;
+  s.ended = batch->ended;
+  s.error.clear();
+  return 0;
+}
+
+/// The newest final tick of the live match as of the last batch (-1:
+/// none, or not live).
+RV_EXPORT int rv_live_newest_final() {
+  return state().newest_final;
+}
+
+/// 1 once a live batch said the match is over.
+RV_EXPORT int rv_live_ended() {
+  return state().ended ? 1 : 0;
+}
+
+/// The first position: 0, or the tick a live viewer joined at.
+RV_EXPORT int rv_start() {
+  return state().player ? state().player->start() : -1;
 }
 
 RV_EXPORT const char* rv_error() {

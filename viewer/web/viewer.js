@@ -6,13 +6,17 @@
 // compared with the recorded one.
 //
 // URL parameters: bundle=PATH (default bundle.bin), tick=N (start there),
-// desync=1 (open at the bundle's desync report).
+// desync=1 (open at the bundle's desync report), live=MATCH (spectate a
+// running match on the server that serves the page: rewind-server
+// --live-bind; see live.js).
 //
 // window.rewindViewer is the page's API for scripts and tests: ready (a
-// promise), seek(p), step(), play(), pause(), position(), length(),
-// checksum(), recorded(), check(p), firstMismatch(), stats(),
-// openDesync(), highlighted(), frames(), error.
+// promise), seek(p), step(), play(), pause(), position(), start(),
+// length(), checksum(), recorded(), check(p), firstMismatch(), stats(),
+// names(), openDesync(), highlighted(), frames(), live() (null unless
+// live), error.
 import { Camera, boundsOf } from './camera.js';
+import { LiveLink } from './live.js';
 import { Renderer } from './render.js';
 
 const $ = (id) => document.getElementById(id);
@@ -37,35 +41,71 @@ class Viewer {
   async load(url) {
     const response = await fetch(url);
     if (!response.ok) throw new Error(`cannot fetch ${url}: ${response.status}`);
-    const bytes = new Uint8Array(await response.arrayBuffer());
+    this.loadBytes(new Uint8Array(await response.arrayBuffer()), 60, 0);
+  }
+
+  /** Calls `fn(ptr, size)` with `bytes` copied into the module's memory. */
+  withBytes(bytes, fn) {
     const ptr = this.mod._malloc(bytes.length);
     this.mod.HEAPU8.set(bytes, ptr);
-    const rc = this.mod._rv_load(ptr, bytes.length, 60);
-    this.mod._free(ptr);
+    try {
+      return fn(ptr, bytes.length);
+    } finally {
+      this.mod._free(ptr);
+    }
+  }
+
+  /**
+   * Loads a view bundle: a snapshot kept every `keyframeEvery` ticks, at
+   * most `maxKeyframes` (0: all). The first load sets up the drawing and
+   * frames the scene; a reload (a live viewer starting over) keeps both.
+   */
+  loadBytes(bytes, keyframeEvery, maxKeyframes) {
+    const rc = this.withBytes(bytes, (ptr, n) => this.mod._rv_load(ptr, n, keyframeEvery, maxKeyframes));
     if (rc !== 0) throw new Error('bundle refused: ' + this.str(this.mod._rv_error()));
-    this.planar = this.mod._rv_is_2d() === 1;
-    this.renderer = new Renderer($('view'));
-    this.camera = new Camera($('view'), this.planar);
+    const first = !this.renderer;
+    if (first) {
+      this.planar = this.mod._rv_is_2d() === 1;
+      this.renderer = new Renderer($('view'));
+      this.camera = new Camera($('view'), this.planar);
+    }
     this.describe();
     this.readFlags();
     this.draw();
-    const [lo, hi] = boundsOf(this.lineFloats(), 4);
-    this.camera.fit(lo, hi);
+    if (first) {
+      const [lo, hi] = boundsOf(this.lineFloats(), 4);
+      this.camera.fit(lo, hi);
+    }
+  }
+
+  names() {
+    const m = this.mod;
+    const names = [];
+    for (let p = 0; p < m._rv_players(); ++p) names.push(this.str(m._rv_player_name(p)));
+    return names;
+  }
+
+  /** The header's player list and the scrub bar's range. */
+  showNames() {
+    const free = this.live ? '(free)' : null;
+    $('players').textContent = this.names().map((n, p) => n || free || `player ${p}`).join(', ');
+  }
+
+  showRange() {
+    $('length').textContent = this.mod._rv_length();
+    $('scrub').min = this.mod._rv_start();
+    $('scrub').max = this.mod._rv_length();
   }
 
   describe() {
     const m = this.mod;
-    const players = m._rv_players();
-    const names = [];
-    for (let p = 0; p < players; ++p) names.push(this.str(m._rv_player_name(p)) || `player ${p}`);
     $('game').textContent = `${this.str(m._rv_game())} · ${m._rv_tick_rate()} Hz`;
-    $('players').textContent = names.join(', ');
+    this.showNames();
     if (!m._rv_identity_matches()) {
       $('identity').hidden = false;
       $('identity').textContent = '⚠ ' + this.str(m._rv_identity_note());
     }
-    $('length').textContent = m._rv_length();
-    $('scrub').max = m._rv_length();
+    this.showRange();
     if (m._rv_has_desync()) {
       $('desync').hidden = false;
       $('desync-headline').textContent = this.str(m._rv_desync_headline());
@@ -129,6 +169,10 @@ class Viewer {
 
   /** Advances playback by `dt` seconds of wall time. */
   advance(dt) {
+    if (this.live && this.live.following) {
+      this.follow(dt);
+      return;
+    }
     if (!this.playing) return;
     this.carry += dt * this.speed * this.mod._rv_tick_rate();
     let steps = Math.min(Math.floor(this.carry), 240);
@@ -141,7 +185,29 @@ class Viewer {
     if (this.mod._rv_position() >= this.mod._rv_length()) this.setPlaying(false);
   }
 
+  /**
+   * A live match: plays at the tick rate just behind the newest tick the
+   * viewer has, and catches up in bigger steps when far behind (joining,
+   * or after the tab slept).
+   */
+  follow(dt) {
+    const m = this.mod;
+    const rate = m._rv_tick_rate();
+    const behind = m._rv_length() - m._rv_position();
+    this.carry += dt * rate;
+    let steps = Math.min(Math.floor(this.carry), behind);
+    this.carry -= Math.floor(this.carry);
+    if (behind > rate / 2) steps = Math.min(behind, 240);
+    if (steps <= 0) return;
+    this.timed(() => {
+      let done = 0;
+      while (steps-- > 0 && m._rv_step()) ++done;
+      return done;
+    });
+  }
+
   setPlaying(on) {
+    if (this.live) this.live.following = false;
     this.playing = on && this.mod._rv_position() < this.mod._rv_length();
     $('play').textContent = this.playing ? '❚❚' : '▶';
   }
@@ -229,6 +295,7 @@ class Viewer {
       `${s.contactPoints} contact points, ${s.joints} joints` +
       (this.planar ? '' : `; ${s.debris} debris props (cosmetic)`);
     $('step-ms').textContent = this.stepMs === null ? '–' : this.stepMs.toFixed(3);
+    if (this.live) this.live.panel();
   }
 
   frame(dt) {
@@ -246,7 +313,7 @@ function wire(viewer) {
   $('play').onclick = () => viewer.setPlaying(!viewer.playing);
   $('step').onclick = () => { viewer.setPlaying(false); viewer.step(); };
   $('back').onclick = () => { viewer.setPlaying(false); viewer.back(); };
-  $('scrub').oninput = (e) => viewer.seek(Number(e.target.value));
+  $('scrub').oninput = (e) => { viewer.setPlaying(false); viewer.seek(Number(e.target.value)); };
   $('speed').onchange = (e) => { viewer.speed = Number(e.target.value); };
   $('open-desync').onclick = () => viewer.openDesync();
   for (const box of document.querySelectorAll('input[data-flag]')) box.onchange = () => viewer.readFlags();
@@ -266,7 +333,12 @@ async function main() {
   try {
     const mod = await RewindViewer();  // eslint-disable-line no-undef
     const viewer = new Viewer(mod);
-    await viewer.load(params.get('bundle') || 'bundle.bin');
+    if (params.get('live')) {
+      viewer.live = new LiveLink(viewer, params.get('live'));
+      await viewer.live.begin();
+    } else {
+      await viewer.load(params.get('bundle') || 'bundle.bin');
+    }
     wire(viewer);
     Object.assign(api, {
       seek: (p) => { viewer.seek(p); viewer.frame(0); },
@@ -274,7 +346,10 @@ async function main() {
       play: () => viewer.setPlaying(true),
       pause: () => viewer.setPlaying(false),
       position: () => mod._rv_position(),
+      start: () => mod._rv_start(),
       length: () => mod._rv_length(),
+      names: () => viewer.names(),
+      live: () => (viewer.live ? viewer.live.report() : null),
       checksum: () => viewer.str(mod._rv_checksum()),
       recorded: () => viewer.str(mod._rv_recorded_checksum()),
       check: (p) => mod._rv_check(p),

@@ -161,6 +161,110 @@ TEST(ReplayPlayer, FindsABodysCentreInEitherLane) {
   }
 }
 
+/// The part of `whole` from tick `from` on, starting from the state a
+/// straight run reaches there, as a live server hands a joining viewer.
+ViewBundle joined_at(const ViewBundle& whole, Tick from, Tick through) {
+  ViewBundle b = whole;
+  const uint32_t players = whole.setup.player_count;
+  auto sim = game::Simulation::create(whole.game, whole.setup);
+  for (Tick t = 0; t < from; ++t) {
+    (*sim)->step(std::span<const game::PlayerInput>(whole.inputs)
+                     .subspan(static_cast<size_t>(t) * players, players));
+  }
+  (*sim)->serialize(b.start_state);
+  b.first_tick = from;
+  const auto first = static_cast<ptrdiff_t>(from);
+  const auto last = static_cast<ptrdiff_t>(through);
+  b.checksums.assign(whole.checksums.begin() + first, whole.checksums.begin() + last);
+  b.substituted_masks.assign(whole.substituted_masks.begin() + first,
+                             whole.substituted_masks.begin() + last);
+  b.inputs.assign(whole.inputs.begin() + first * players, whole.inputs.begin() + last * players);
+  return b;
+}
+
+LiveTicks batch_of(const ViewBundle& whole, Tick from, Tick through) {
+  LiveTicks batch;
+  batch.player_count = whole.setup.player_count;
+  batch.first_tick = from;
+  batch.newest_final = through - 1;
+  const uint32_t players = whole.setup.player_count;
+  for (Tick t = from; t < through; ++t) {
+    batch.checksums.push_back(whole.checksums[static_cast<size_t>(t)]);
+    batch.substituted_masks.push_back(0);
+    for (uint32_t p = 0; p < players; ++p) {
+      batch.inputs.push_back(whole.inputs[static_cast<size_t>(t) * players + p]);
+    }
+  }
+  return batch;
+}
+
+TEST(ReplayPlayer, AViewerJoiningMidwayFollowsTheLiveTicks) {
+  for (const char* name : {"crates", "arena"}) {
+    const ViewBundle whole = played(name, 2, 260);
+    auto player = ReplayPlayer::create(joined_at(whole, 90, 130), 25, 3);
+    ASSERT_TRUE(player.ok()) << name << ": " << player.status().message();
+    ReplayPlayer& p = **player;
+    EXPECT_EQ(p.start(), 90);
+    EXPECT_EQ(p.position(), 90);
+    EXPECT_EQ(p.length(), 130);
+    EXPECT_FALSE(p.recorded_checksum().has_value());
+    // Polls that overlap what the player has, or come in pieces.
+    ASSERT_TRUE(p.append(batch_of(whole, 120, 180)).ok());
+    LiveTicks named = batch_of(whole, 180, 260);
+    named.player_names = {"ann", "bo"};
+    ASSERT_TRUE(p.append(named).ok());
+    EXPECT_EQ(p.bundle().player_names, named.player_names);
+    EXPECT_EQ(p.length(), 260);
+    while (p.step()) {
+      ASSERT_EQ(p.checksum(), *p.recorded_checksum()) << name << " at " << p.position();
+    }
+    EXPECT_FALSE(p.first_mismatch().has_value());
+    EXPECT_EQ(p.check(90), TickCheck::kUnchecked);
+    EXPECT_EQ(p.check(91), TickCheck::kMatch);
+    // Back through the few snapshots it keeps, and to the start.
+    for (Tick target : {Tick{200}, Tick{91}, Tick{0}, Tick{259}, Tick{140}}) {
+      p.seek(target);
+      const Tick expect = std::max(target, Tick{90});
+      ASSERT_EQ(p.position(), expect) << name;
+      EXPECT_EQ(p.checksum(), whole.checksums[static_cast<size_t>(expect) - 1]) << name;
+    }
+  }
+}
+
+TEST(ReplayPlayer, ABatchWithAGapOrOtherPlayersIsRefused) {
+  const ViewBundle whole = played("arena", 2, 80);
+  auto player = ReplayPlayer::create(joined_at(whole, 10, 40));
+  ASSERT_TRUE(player.ok());
+  ReplayPlayer& p = **player;
+  auto gap = p.append(batch_of(whole, 41, 60));
+  EXPECT_EQ(gap.code(), ErrorCode::kInvalidArgument);
+  LiveTicks three = batch_of(whole, 40, 41);
+  three.player_count = 3;
+  three.inputs.push_back({});
+  EXPECT_EQ(p.append(three).code(), ErrorCode::kInvalidArgument);
+  EXPECT_EQ(p.length(), 40);  // nothing taken
+  EXPECT_EQ(p.bundle().inputs.size(), 60u);
+}
+
+TEST(ReplayPlayer, AStartStateThatDoesNotFitIsRefused) {
+  const ViewBundle whole = played("crates", 2, 60);
+  ViewBundle wrong_tick = joined_at(whole, 30, 50);
+  wrong_tick.first_tick = 31;  // the state is at 30
+  auto refused = ReplayPlayer::create(wrong_tick);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), ErrorCode::kCorrupt);
+  ViewBundle broken = joined_at(whole, 30, 50);
+  broken.start_state.resize(broken.start_state.size() / 2);
+  refused = ReplayPlayer::create(broken);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), ErrorCode::kCorrupt);
+  ViewBundle stateless = joined_at(whole, 30, 50);
+  stateless.start_state.clear();
+  refused = ReplayPlayer::create(stateless);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), ErrorCode::kInvalidArgument);
+}
+
 TEST(ReplayPlayer, AnUnknownGameIsRefused) {
   ViewBundle bundle = played("crates", 2, 5);
   bundle.game = "chess";

@@ -40,6 +40,8 @@ void expect_same(const ViewBundle& a, const ViewBundle& b) {
   EXPECT_EQ(a.identity_matches, b.identity_matches);
   EXPECT_EQ(a.identity_note, b.identity_note);
   EXPECT_EQ(a.player_names, b.player_names);
+  EXPECT_EQ(a.first_tick, b.first_tick);
+  EXPECT_EQ(a.start_state, b.start_state);
   EXPECT_EQ(a.inputs, b.inputs);
   EXPECT_EQ(a.checksums, b.checksums);
   EXPECT_EQ(a.substituted_masks, b.substituted_masks);
@@ -68,6 +70,44 @@ TEST(ViewBundle, RoundTripsEveryField) {
   expect_same(bare, *back);
 }
 
+TEST(ViewBundle, ALaterStartRoundTripsWithItsState) {
+  ViewBundle later = sample();
+  later.first_tick = 4000;
+  later.start_state = {9, 8, 7, 6, 5};
+  EXPECT_EQ(later.end_position(), 4005);
+  std::vector<uint8_t> bytes;
+  ASSERT_TRUE(encode_view_bundle(later, bytes).ok());
+  auto back = decode_view_bundle(bytes);
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  expect_same(later, *back);
+
+  // A later start without the state before it cannot be played.
+  later.start_state.clear();
+  std::vector<uint8_t> untouched = {1};
+  EXPECT_EQ(encode_view_bundle(later, untouched).code(), ErrorCode::kInvalidArgument);
+  EXPECT_EQ(untouched, std::vector<uint8_t>{1});
+  later.first_tick = -1;
+  EXPECT_EQ(encode_view_bundle(later, untouched).code(), ErrorCode::kInvalidArgument);
+}
+
+TEST(ViewBundle, VersionOneBundlesStillLoad) {
+  // Version 1 had no first tick and start state: the same bytes without
+  // those 8 (an i32 0 and an empty run) after the names.
+  ViewBundle old = sample();
+  std::vector<uint8_t> bytes;
+  ASSERT_TRUE(encode_view_bundle(old, bytes).ok());
+  const std::vector<uint8_t> tail(
+      bytes.end() - static_cast<ptrdiff_t>(4 + 5 * (16 + 3 * 8) + 1 + 4 + 4 + 4 + 25 + 4 + 4),
+      bytes.end());
+  std::vector<uint8_t> v1(bytes.begin(), bytes.end() - static_cast<ptrdiff_t>(tail.size()) - 8);
+  v1.insert(v1.end(), tail.begin(), tail.end());
+  v1[8] = 1;
+  auto back = decode_view_bundle(v1);
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  expect_same(old, *back);
+  EXPECT_EQ(back->first_tick, 0);
+}
+
 TEST(ViewBundle, EveryTruncationIsRefused) {
   std::vector<uint8_t> bytes;
   ASSERT_TRUE(encode_view_bundle(sample(), bytes).ok());
@@ -93,7 +133,8 @@ TEST(ViewBundle, BadFieldsAreNamed) {
     EXPECT_NE(r.status().message().find(named), std::string::npos) << r.status().message();
   };
   refused(0, 'X', "magic");
-  refused(8, 2, "version");
+  refused(8, 3, "version");
+  refused(8, 0, "version");
   // 8 magic + 4 version + 4 + 6 "crates": the player count.
   refused(22, 0, "player count");
   refused(22, 33, "player count");

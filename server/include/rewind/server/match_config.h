@@ -38,7 +38,15 @@ struct MatchConfig {
   bool replay_overwrite = true;
   int32_t keyframe_interval = 300;  ///< ticks between replay keyframes, 0 = none
   std::string desync_dir;           ///< empty: desync reports are counted, not stored
-  double join_timeout_s = 60.0;     ///< give up when the lobby is not full by then
+  /// Publish the match to browsers that spectate it (LiveFeed; the
+  /// server's live endpoint, ServerConfig::live, serves it).
+  bool live = false;
+  /// Ticks between the states a joining spectator starts from, [1, 3600].
+  uint32_t live_keyframe_ticks = 120;
+  /// Spectators see each tick this many ticks after it became final,
+  /// [0, 36000] (10 minutes at 60 Hz); 0: at once.
+  uint32_t live_delay_ticks = 0;
+  double join_timeout_s = 60.0;  ///< give up when the lobby is not full by then
   /// Countdown between "everyone joined" and tick 0, so that every client
   /// hears MatchStart (repeated each tick) and starts its clock in time.
   double start_delay_s = 0.25;

@@ -26,6 +26,7 @@
 #include "rewind/replay/replay_writer.h"
 #include "rewind/server/desync_forensics.h"
 #include "rewind/server/final_tick_log.h"
+#include "rewind/server/live_feed.h"
 #include "rewind/server/match_config.h"
 #include "rewind/server/match_environment.h"
 #include "rewind/server/match_stats.h"
@@ -85,6 +86,11 @@ class MatchHost {
   const net::RollbackSession& session() const { return *session_; }
   /// Final ticks still held for resending, oldest first.
   const std::deque<v1::FinalTick>& recent_finals() const { return finals_.ticks(); }
+
+  /// Publishes every final tick, a state every feed->info().keyframe_ticks
+  /// and the players' names to `feed` from now on (spectating browsers:
+  /// LiveFeed). Attach before the first tick; null detaches.
+  void attach_live_feed(std::shared_ptr<LiveFeed> feed);
 
   /// Test hook: sees every resync snapshot right after it is serialized,
   /// before the server checks that it loads, and may damage it; fault
@@ -169,6 +175,10 @@ class MatchHost {
   void send_unconnected(const Endpoint& to, v1::Envelope& envelope);
   Peer* find_peer(uint64_t connection_id, uint32_t* player);
   void record_replay_error(const Status& status);
+  /// The final tick `t` to the replay, with a keyframe after it when due
+  /// (serialized into state_buffer_: `serialized` says it holds t + 1).
+  void record_final_tick(Tick t, uint64_t substituted, uint64_t checksum, bool* serialized);
+  void publish_live_tick(Tick t, uint64_t substituted, uint64_t checksum, bool serialized);
 
   MatchConfig config_;
   SendFn send_;
@@ -222,6 +232,8 @@ class MatchHost {
   std::vector<uint8_t> state_buffer_;
   std::vector<game::PlayerInput> final_inputs_;
   bool replay_failed_ = false;
+  std::shared_ptr<LiveFeed> live_;
+  bool live_names_stale_ = false;  // a seat changed hands since the feed last had the names
   SnapshotHook snapshot_hook_;
   DesyncForensics forensics_;
 };

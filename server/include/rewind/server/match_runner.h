@@ -23,8 +23,8 @@
 #include "rewind/server/metrics_text.h"
 #include "rewind/server/secure_gateway.h"
 #include "rewind/server/tick_histogram.h"
-#include "rewind/server/tokenless_gateway.h"
 #include "rewind/server/tick_schedule.h"
+#include "rewind/server/tokenless_gateway.h"
 
 namespace rwd::server {
 
@@ -69,6 +69,9 @@ class MatchRunner : public std::enable_shared_from_this<MatchRunner> {
   /// thread: the stats with the gateway's folded in, phase, players, tick
   /// times.
   MetricsSample sample() const;
+  /// What browsers spectating the match read (MatchConfig::live); null
+  /// without. Set at create(), never changed: safe from any thread.
+  std::shared_ptr<const LiveFeed> live_feed() const { return live_; }
 
   MatchRunner(asio::io_context& io, const Settings& settings, EndedFn on_ended);
   MatchRunner(const MatchRunner&) = delete;
@@ -96,6 +99,7 @@ class MatchRunner : public std::enable_shared_from_this<MatchRunner> {
   std::unique_ptr<SecureGateway> gateway_;       ///< null in tokenless mode
   std::unique_ptr<TokenlessGateway> tokenless_;  ///< null in secure mode
   std::unique_ptr<MatchHost> host_;
+  std::shared_ptr<LiveFeed> live_;  ///< null without MatchConfig::live
   EndedFn on_ended_;
   TickSchedule schedule_;    ///< when ticks are due, how late they start
   TickHistogram tick_time_;  ///< wall time of each tick: datagrams in, MatchHost::on_tick, out

@@ -19,6 +19,7 @@
 #include "rewind/server/api_keys.h"
 #include "rewind/server/control_api.h"
 #include "rewind/server/http_endpoint.h"
+#include "rewind/server/live_api.h"
 #include "rewind/server/load_monitor.h"
 #include "rewind/server/match_request.h"
 #include "rewind/server/match_runner.h"
@@ -73,6 +74,17 @@ struct ServerConfig {
   HttpBind control_bind{"127.0.0.1", 7790};
   std::optional<ApiKeys> control_keys;
   ControlPolicy control_policy;
+  /// Serves browsers spectating every match (LiveApi): each match
+  /// publishes to a LiveFeed (MatchConfig::live is set for all). Read-only
+  /// and without keys, like a broadcast: with hidden information in a
+  /// game, hold spectators back with MatchConfig::live_delay_ticks.
+  std::optional<HttpBind> live;
+  /// The built viewer (the build's viewer_web) served on the live
+  /// endpoint; empty: the data routes and the listing only.
+  std::string live_viewer_dir;
+  /// Seconds the live endpoint stays up after the last match ended, so
+  /// spectators see its last ticks and its end, [0, 60].
+  double live_linger_s = 2.0;
   /// The share of the match threads' time spent ticking (over the last
   /// LoadMonitor::kWindowS seconds) beyond which allocate() refuses new
   /// matches, in (0, 1]. Ticks slipping refuse them too.
@@ -125,6 +137,8 @@ class Server final : private ControlTarget {
   uint16_t port() const { return launch_ports_.empty() ? 0 : launch_ports_.front(); }
   /// The metrics endpoint's TCP port; 0 when there is none.
   uint16_t metrics_port() const { return metrics_ ? metrics_->port() : 0; }
+  /// The live endpoint's TCP port; 0 without it.
+  uint16_t live_port() const { return live_ ? live_->port() : 0; }
   /// The control API's TCP port; 0 without it.
   uint16_t control_port() const { return control_ ? control_->port() : 0; }
   /// Threads run() uses.
@@ -143,6 +157,8 @@ class Server final : private ControlTarget {
   void maybe_finish();
   HttpReply serve_metrics(const HttpRequest& request);
   void close_endpoints();
+  /// Opens the live endpoint (ServerConfig::live) with its viewer files.
+  Status open_live();
   static MatchListing listing_of(const MatchRunner& match);
   // ControlTarget, on the control endpoint's thread.
   const MatchConfig& match_defaults() const override { return config_.match; }
@@ -162,6 +178,8 @@ class Server final : private ControlTarget {
   std::unique_ptr<HttpEndpoint> metrics_;  ///< null without ServerConfig::metrics
   std::unique_ptr<ControlApi> control_api_;
   std::unique_ptr<HttpEndpoint> control_;  ///< null without ServerConfig::control
+  std::unique_ptr<LiveApi> live_api_;
+  std::unique_ptr<HttpEndpoint> live_;  ///< null without ServerConfig::live
   uint32_t threads_ = 1;
   std::shared_ptr<LoadMonitor> load_;
   std::atomic<uint64_t> refused_{0};  ///< allocations refused as overloaded

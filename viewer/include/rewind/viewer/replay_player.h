@@ -9,7 +9,9 @@
 //
 // Positions count ticks simulated: position 0 is the match's initial
 // state, position p the state after ticks 0 .. p-1, whose recorded
-// checksum is the bundle's checksums[p - 1].
+// checksum is tick p - 1's. A bundle that starts later (a live match
+// joined midway: its first_tick and start_state) has positions from
+// first_tick on. A live viewer appends the ticks it polls (append()).
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -20,6 +22,7 @@
 #include "rewind/sim/body_field.h"
 #include "rewind/sim/debug_draw.h"
 #include "rewind/sim/status.h"
+#include "rewind/viewer/live_ticks.h"
 #include "rewind/viewer/view_bundle.h"
 
 namespace rwd::viewer {
@@ -44,20 +47,33 @@ struct DesyncView {
 
 class ReplayPlayer {
  public:
-  /// A player at position 0. kInvalidArgument for an unknown game or a
-  /// setup the game refuses; `keyframe_every` is clamped to [1, 3600].
+  /// A player at the bundle's first position (0, or its first_tick with
+  /// its start state loaded). kInvalidArgument for an unknown game or a
+  /// setup the game refuses, kCorrupt for a start state that does not
+  /// load or is not at first_tick. `keyframe_every` is clamped to
+  /// [1, 3600]; `max_keyframes` > 0 bounds the snapshots kept (the oldest
+  /// go first: a live viewer's memory stays flat over hours), 0 keeps all.
   static Result<std::unique_ptr<ReplayPlayer>> create(ViewBundle bundle,
-                                                      uint32_t keyframe_every = 60);
+                                                      uint32_t keyframe_every = 60,
+                                                      uint32_t max_keyframes = 0);
 
   const ViewBundle& bundle() const { return bundle_; }
   Tick position() const { return sim_->tick(); }
-  /// The last position: the number of recorded ticks.
-  Tick length() const { return static_cast<Tick>(bundle_.tick_count()); }
+  /// The first position: 0, or the bundle's first_tick.
+  Tick start() const { return bundle_.first_tick; }
+  /// The last position: the bundle's first tick + its ticks.
+  Tick length() const { return bundle_.end_position(); }
+
+  /// Adds a live batch's ticks after the last one. Ticks the player holds
+  /// already are skipped (polls may overlap); names replace the bundle's
+  /// when the batch has them. kInvalidArgument, nothing changed, for
+  /// another player count or a gap (batch.first_tick past length()).
+  Status append(const LiveTicks& batch);
 
   /// Simulates the next tick with its recorded inputs and checks it.
   /// False, changing nothing, at the end.
   bool step();
-  /// Moves to `position` (clamped to [0, length()]): from the nearest kept
+  /// Moves to `position` (clamped to [start(), length()]): from the nearest kept
   /// snapshot at or before it, or from the current position when that is
   /// nearer, stepping the rest.
   void seek(Tick position);
@@ -65,7 +81,7 @@ class ReplayPlayer {
   /// The state's checksum now, and the recorded one (none at position 0).
   uint64_t checksum() const { return sim_->checksum(); }
   std::optional<uint64_t> recorded_checksum() const;
-  /// The check of `position` (kUnchecked outside [1, length()]).
+  /// The check of `position` (kUnchecked outside [start() + 1, length()]).
   TickCheck check(Tick position) const;
   /// The first simulated position whose checksum differed from the record.
   std::optional<Tick> first_mismatch() const { return first_mismatch_; }
@@ -86,15 +102,20 @@ class ReplayPlayer {
   Result<DesyncView> open_desync();
 
  private:
-  ReplayPlayer(ViewBundle bundle, std::unique_ptr<game::Simulation> sim, uint32_t keyframe_every);
+  ReplayPlayer(ViewBundle bundle, std::unique_ptr<game::Simulation> sim, uint32_t keyframe_every,
+               uint32_t max_keyframes);
   void keep_keyframe();
+  size_t offset(Tick position) const { return static_cast<size_t>(position - bundle_.first_tick); }
 
   ViewBundle bundle_;
   std::unique_ptr<game::Simulation> sim_;
   uint32_t keyframe_every_;
-  /// keyframes_[k]: the state at position k * keyframe_every_, once passed.
+  uint32_t max_keyframes_;
+  uint32_t kept_keyframes_ = 0;
+  /// keyframes_[k]: the state at position start() + k * keyframe_every_,
+  /// once passed (and not yet dropped for max_keyframes).
   std::vector<std::optional<game::SimSnapshot>> keyframes_;
-  std::vector<TickCheck> checks_;  ///< by position
+  std::vector<TickCheck> checks_;  ///< by position - start()
   std::optional<Tick> first_mismatch_;
 };
 

@@ -7,12 +7,14 @@
 // replay file (rewind/replay/replay_view.h); the viewer, native or
 // WebAssembly, reads it with no protobuf and re-simulates from it.
 //
-// Layout (version 1), every integer little-endian, strings and byte runs
+// Layout (version 2), every integer little-endian, strings and byte runs
 // as a u32 length and that many bytes:
 //   "RWDVIEW1"  u32 version
 //   str game  u32 player_count  u64 seed  u32 tick_rate_hz
 //   u8 identity_matches  str identity_note
 //   u32 name_count  str name...               (0 or player_count names)
+//   i32 first_tick  bytes start_state         (version 2; version 1 has
+//                                              neither: 0 and empty)
 //   u32 tick_count  per tick: u64 checksum  u64 substituted_mask
 //                             player_count x (i16 axis_x  i16 axis_y  u32 buttons)
 //   u8 has_desync  [i32 tick  u32 player  str headline  bytes client_state]
@@ -29,7 +31,7 @@
 
 namespace rwd::viewer {
 
-inline constexpr uint32_t kViewBundleVersion = 1;
+inline constexpr uint32_t kViewBundleVersion = 2;
 /// Bounds a reader enforces (a bundle is untrusted input).
 inline constexpr uint32_t kViewMaxTicks = 1u << 24;        ///< 77 hours at 60 Hz
 inline constexpr uint32_t kViewMaxString = 256;            ///< bytes, names and notes
@@ -56,13 +58,22 @@ struct ViewBundle {
   bool identity_matches = true;
   std::string identity_note;
   std::vector<std::string> player_names;  ///< empty, or one per player
-  /// Tick t's inputs are inputs[t * player_count .. + player_count).
+  /// The first tick the bundle holds. 0: the match from its start, from
+  /// the setup alone (or `start_state` when given). Later (a live match
+  /// joined midway): `start_state` is the state before that tick.
+  Tick first_tick = 0;
+  /// Simulation::serialize bytes of the state at position first_tick;
+  /// empty: the setup's initial state (only with first_tick 0).
+  std::vector<uint8_t> start_state;
+  /// Tick first_tick + i's inputs are inputs[i * player_count .. + player_count).
   std::vector<game::PlayerInput> inputs;
   std::vector<uint64_t> checksums;          ///< recorded, after each tick
   std::vector<uint64_t> substituted_masks;  ///< bit p: player p's input was substituted
   std::optional<ViewDesync> desync;
 
   uint32_t tick_count() const { return static_cast<uint32_t>(checksums.size()); }
+  /// The position after the last tick: first_tick + tick_count().
+  Tick end_position() const { return first_tick + static_cast<Tick>(checksums.size()); }
 };
 
 /// Writes `bundle` (which must be consistent: sizes as documented above,

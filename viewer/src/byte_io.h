@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Little-endian writes and bounds-checked reads for the viewer's flat
+// formats (view bundles, live tick batches): integers of 1-8 bytes, and
+// byte runs and strings as a u32 length and that many bytes.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rewind/game/player_input.h"
+
+namespace rwd::viewer::detail {
+
+class Writer {
+ public:
+  explicit Writer(std::vector<uint8_t>& out) : out_(out) {}
+  void put(uint64_t v, int bytes) {
+    for (int i = 0; i < bytes; ++i) out_.push_back(static_cast<uint8_t>(v >> (8 * i)));
+  }
+  void bytes(std::span<const uint8_t> b) {
+    put(b.size(), 4);
+    out_.insert(out_.end(), b.begin(), b.end());
+  }
+  void str(std::string_view s) { bytes({reinterpret_cast<const uint8_t*>(s.data()), s.size()}); }
+
+ private:
+  std::vector<uint8_t>& out_;
+};
+
+/// Bounds-checked reads; the first failure is kept with its offset and
+/// every later read gives zeros.
+class Reader {
+ public:
+  Reader(std::span<const uint8_t> bytes, size_t start) : bytes_(bytes), pos_(start) {}
+  bool ok() const { return error_.empty(); }
+  const std::string& error() const { return error_; }
+  size_t remaining() const { return bytes_.size() - pos_; }
+  size_t offset() const { return pos_; }
+
+  uint64_t get(int n, const char* what) {
+    if (!ok()) return 0;
+    if (remaining() < static_cast<size_t>(n)) {
+      fail(what, "runs past the end");
+      return 0;
+    }
+    uint64_t v = 0;
+    for (int i = 0; i < n; ++i) v |= uint64_t{bytes_[pos_ + static_cast<size_t>(i)]} << (8 * i);
+    pos_ += static_cast<size_t>(n);
+    return v;
+  }
+  std::span<const uint8_t> run(uint32_t bound, const char* what) {
+    const uint64_t n = get(4, what);
+    if (!ok()) return {};
+    if (n > bound) {
+      fail(what,
+           ("is " + std::to_string(n) + " bytes, more than " + std::to_string(bound)).c_str());
+      return {};
+    }
+    if (remaining() < n) {
+      fail(what, "runs past the end");
+      return {};
+    }
+    const auto out = bytes_.subspan(pos_, static_cast<size_t>(n));
+    pos_ += static_cast<size_t>(n);
+    return out;
+  }
+  std::string str(uint32_t bound, const char* what) {
+    const auto b = run(bound, what);
+    return {reinterpret_cast<const char*>(b.data()), b.size()};
+  }
+  void fail(const char* what, const char* problem) {
+    if (ok()) error_ = std::string(what) + " at byte " + std::to_string(pos_) + " " + problem;
+  }
+
+ private:
+  std::span<const uint8_t> bytes_;
+  size_t pos_ = 0;
+  std::string error_;
+};
+
+/// One input as both formats store it: i16 axis_x, i16 axis_y, u32 buttons.
+inline void put_input(Writer& w, const game::PlayerInput& in) {
+  w.put(static_cast<uint16_t>(in.axis_x), 2);
+  w.put(static_cast<uint16_t>(in.axis_y), 2);
+  w.put(in.buttons, 4);
+}
+inline game::PlayerInput get_input(Reader& r) {
+  game::PlayerInput in;
+  in.axis_x = static_cast<int16_t>(static_cast<uint16_t>(r.get(2, "axis x")));
+  in.axis_y = static_cast<int16_t>(static_cast<uint16_t>(r.get(2, "axis y")));
+  in.buttons = static_cast<uint32_t>(r.get(4, "buttons"));
+  if (r.ok() && !game::is_valid(in)) r.fail("input", "has an axis out of range");
+  return in;
+}
+
+}  // namespace rwd::viewer::detail
