@@ -21,8 +21,8 @@
 # starts: the real-time integration tests run alone and leave most of the
 # CPU idle, and the matrix test, which ctest runs last, then finds its
 # objects built (its log: build/P/matrix-prebuild.log); then the browser
-# viewer's WebAssembly build, which the viewer_build test, also run last,
-# finds done (log: build/P/viewer-prebuild.log).
+# viewer's WebAssembly build, which the browser tests, also run last, find
+# done (log: build/P/viewer-prebuild.log).
 # Exit codes: ctest's status; the failing step's status if setup, configure or
 # build fails; 2 on bad usage.
 set -euo pipefail
@@ -65,8 +65,8 @@ if [[ -z $label ]]; then
   idle=()
   if chrt --idle 0 true 2>/dev/null; then idle=(chrt --idle 0); fi
   # The browser viewer's WebAssembly build too, with the commands and the
-  # lock of its external project (viewer/CMakeLists.txt): the viewer_build
-  # test, which ctest runs last, then finds it built.
+  # lock of its external project (viewer/CMakeLists.txt): the browser tests,
+  # which ctest runs last, then find it built.
   wasm_dir="build/$preset/viewer_wasm"
   setsid "${idle[@]}" nice -n 19 bash -c '
     bash tests/determinism/run_matrix.sh --compile-only --source . "$1" >"$2" 2>&1
