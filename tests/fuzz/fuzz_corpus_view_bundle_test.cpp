@@ -39,6 +39,7 @@ std::vector<uint8_t> bundle_of(const char* game, int ticks, bool desync) {
     client->step(std::span<const rwd::game::PlayerInput>(b.inputs).subspan(2, 2));
     client->serialize(d.client_state);
     b.desync = d;
+    b.keyframes.push_back({2, d.client_state});  // the state after tick 1, to seek by
   }
   std::vector<uint8_t> bytes;
   EXPECT_TRUE(rwd::viewer::encode_view_bundle(b, bytes).ok());

@@ -46,7 +46,7 @@ Status encode_live_ticks(const LiveTicks& b, std::vector<uint8_t>& out) {
   std::vector<uint8_t> bytes;
   bytes.reserve(48 + b.checksums.size() * (16 + 8 * size_t{b.player_count}));
   detail::Writer w(bytes);
-  bytes.insert(bytes.end(), kMagic, kMagic + sizeof kMagic);
+  for (const char c : kMagic) w.put(static_cast<uint8_t>(c), 1);
   w.put(kLiveTicksVersion, 4);
   w.put(b.player_count, 4);
   w.put(b.player_names.size(), 4);

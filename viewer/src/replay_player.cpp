@@ -41,6 +41,7 @@ ReplayPlayer::ReplayPlayer(ViewBundle bundle, std::unique_ptr<game::Simulation> 
       max_keyframes_(max_keyframes) {
   keyframes_.resize(bundle_.tick_count() / keyframe_every_ + 1);
   checks_.assign(bundle_.tick_count() + 1, TickCheck::kUnchecked);
+  verified_ = bundle_.first_tick;
   keep_keyframe();
 }
 
@@ -94,11 +95,47 @@ bool ReplayPlayer::step() {
   const uint32_t players = bundle_.setup.player_count;
   const size_t i = offset(p);
   sim_->step(std::span<const game::PlayerInput>(bundle_.inputs).subspan(i * players, players));
-  const bool match = sim_->checksum() == bundle_.checksums[i];
-  checks_[i + 1] = match ? TickCheck::kMatch : TickCheck::kMismatch;
-  if (!match && (!first_mismatch_ || *first_mismatch_ > p + 1)) first_mismatch_ = p + 1;
+  record_check(p + 1, sim_->checksum());
+  // Stepping from the start (or from states it made itself) verifies.
+  if (!jumped_ && verified_ == p) verified_ = p + 1;
   keep_keyframe();
   return true;
+}
+
+void ReplayPlayer::record_check(Tick position, uint64_t checksum) {
+  const size_t i = offset(position);
+  const bool match = checksum == bundle_.checksums[i - 1];
+  checks_[i] = match ? TickCheck::kMatch : TickCheck::kMismatch;
+  if (!match && (!first_mismatch_ || *first_mismatch_ > position)) first_mismatch_ = position;
+}
+
+Tick ReplayPlayer::verify(uint32_t max_steps) {
+  if (verified_ >= length()) return verified_;
+  if (!verifier_) {
+    auto sim = game::Simulation::create(bundle_.game, bundle_.setup);
+    if (!sim.ok()) return verified_;
+    verifier_ = std::move(*sim);
+    if (!bundle_.start_state.empty() && !verifier_->deserialize(bundle_.start_state).ok()) {
+      verifier_.reset();
+      return verified_;
+    }
+    // Behind the player's own stepping, which verified up to verified_.
+    while (verifier_->tick() < verified_) {
+      const size_t i = offset(verifier_->tick());
+      const uint32_t players = bundle_.setup.player_count;
+      verifier_->step(
+          std::span<const game::PlayerInput>(bundle_.inputs).subspan(i * players, players));
+    }
+  }
+  const uint32_t players = bundle_.setup.player_count;
+  for (uint32_t n = 0; n < max_steps && verifier_->tick() < length(); ++n) {
+    const size_t i = offset(verifier_->tick());
+    verifier_->step(
+        std::span<const game::PlayerInput>(bundle_.inputs).subspan(i * players, players));
+    record_check(verifier_->tick(), verifier_->checksum());
+  }
+  verified_ = std::max(verified_, verifier_->tick());
+  return verified_;
 }
 
 void ReplayPlayer::seek(Tick target) {
@@ -110,17 +147,53 @@ void ReplayPlayer::seek(Tick target) {
   // is always kept.
   Tick from = now <= target ? now : -1;
   const Tick every = static_cast<Tick>(keyframe_every_);
+  Tick snapshot_at = -1;
   for (Tick k = (target - start()) / every; k >= 0; --k) {
-    const Tick at = start() + k * every;
-    if (at <= from) break;
     if (keyframes_[static_cast<size_t>(k)]) {
-      sim_->restore(*keyframes_[static_cast<size_t>(k)]);
-      from = at;
+      snapshot_at = start() + k * every;
       break;
     }
   }
+  // A recorded state nearer still saves the steps between.
+  if (load_recorded_state(std::max(from, snapshot_at), target)) from = position();
+  if (snapshot_at > from) {
+    sim_->restore(*keyframes_[static_cast<size_t>((snapshot_at - start()) / every)]);
+    from = snapshot_at;
+  }
   while (position() < target && step()) {
   }
+}
+
+bool ReplayPlayer::load_recorded_state(Tick after, Tick target) {
+  const std::vector<ViewKeyframe>& recorded = bundle_.keyframes;
+  // The newest usable one in (after, target].
+  for (size_t i = recorded.size(); i-- > 0;) {
+    const ViewKeyframe& k = recorded[i];
+    if (k.position > target) continue;
+    if (k.position <= after) return false;
+    if (unusable_.size() < recorded.size()) unusable_.resize(recorded.size(), false);
+    if (unusable_[i]) continue;
+    // Tried in a scratch simulation first: one that fails leaves the
+    // player where it was.
+    if (!scratch_) {
+      auto sim = game::Simulation::create(bundle_.game, bundle_.setup);
+      if (!sim.ok()) return false;
+      scratch_ = std::move(*sim);
+    }
+    const bool usable = scratch_->deserialize(k.state).ok() && scratch_->tick() == k.position &&
+                        scratch_->checksum() == bundle_.checksums[offset(k.position) - 1];
+    // Loaded again into the player's own simulation, which renderers and
+    // the cosmetic layer hold on to.
+    if (!usable || !sim_->deserialize(k.state).ok()) {
+      unusable_[i] = true;
+      continue;
+    }
+    checks_[offset(k.position)] = TickCheck::kMatch;
+    jumped_ = true;
+    keep_keyframe();
+    return true;
+  }
+  return false;
 }
 
 std::optional<uint64_t> ReplayPlayer::recorded_checksum() const {

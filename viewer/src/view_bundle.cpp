@@ -36,6 +36,15 @@ Status check(const ViewBundle& b) {
   if (b.first_tick > 0 && b.start_state.empty()) return invalid("a later first tick needs a state");
   if (b.start_state.size() > kViewMaxStateBytes) return invalid("start state too big");
   if (b.checksums.size() > kViewMaxTicks) return invalid("too many ticks");
+  Tick after = b.first_tick;
+  for (const ViewKeyframe& k : b.keyframes) {
+    if (k.position <= after || k.position > b.end_position()) {
+      return invalid("keyframe positions must ascend within the ticks");
+    }
+    if (k.state.empty() || k.state.size() > kViewMaxStateBytes)
+      return invalid("keyframe state size");
+    after = k.position;
+  }
   if (b.substituted_masks.size() != b.checksums.size() ||
       b.inputs.size() != b.checksums.size() * b.setup.player_count) {
     return invalid("inputs, checksums and masks must cover the same ticks");
@@ -59,7 +68,7 @@ Status encode_view_bundle(const ViewBundle& b, std::vector<uint8_t>& out) {
   bytes.reserve(64 + b.inputs.size() * 8 + b.checksums.size() * 16 +
                 (b.desync ? b.desync->client_state.size() : 0));
   Writer w(bytes);
-  bytes.insert(bytes.end(), kMagic, kMagic + sizeof kMagic);
+  for (const char c : kMagic) w.put(static_cast<uint8_t>(c), 1);
   w.put(kViewBundleVersion, 4);
   w.str(b.game);
   w.put(b.setup.player_count, 4);
@@ -71,6 +80,11 @@ Status encode_view_bundle(const ViewBundle& b, std::vector<uint8_t>& out) {
   for (const std::string& name : b.player_names) w.str(name);
   w.put(static_cast<uint32_t>(b.first_tick), 4);
   w.bytes(b.start_state);
+  w.put(b.keyframes.size(), 4);
+  for (const ViewKeyframe& k : b.keyframes) {
+    w.put(static_cast<uint32_t>(k.position), 4);
+    w.bytes(k.state);
+  }
   w.put(b.checksums.size(), 4);
   const uint32_t players = b.setup.player_count;
   for (size_t t = 0; t < b.checksums.size(); ++t) {
@@ -130,6 +144,20 @@ Result<ViewBundle> decode_view_bundle(std::span<const uint8_t> bytes) {
     if (r.ok() && b.first_tick > 0 && b.start_state.empty()) {
       r.fail("start state", "is empty after a later first tick");
     }
+    const uint64_t keyframes = r.get(4, "keyframe count");
+    // Each takes at least 8 bytes and a state byte.
+    if (r.ok() && keyframes > r.remaining() / 9) r.fail("keyframe count", "runs past the end");
+    Tick after = b.first_tick;
+    for (uint64_t k = 0; r.ok() && k < keyframes; ++k) {
+      ViewKeyframe keyframe;
+      keyframe.position = static_cast<Tick>(static_cast<uint32_t>(r.get(4, "keyframe position")));
+      if (r.ok() && keyframe.position <= after) r.fail("keyframe position", "does not ascend");
+      const auto keyframe_state = r.run(kViewMaxStateBytes, "keyframe state");
+      if (r.ok() && keyframe_state.empty()) r.fail("keyframe state", "is empty");
+      keyframe.state.assign(keyframe_state.begin(), keyframe_state.end());
+      after = keyframe.position;
+      b.keyframes.push_back(std::move(keyframe));
+    }
   }
   const uint64_t ticks = r.get(4, "tick count");
   if (r.ok() && ticks > kViewMaxTicks) r.fail("tick count", "is beyond the bound");
@@ -148,6 +176,9 @@ Result<ViewBundle> decode_view_bundle(std::span<const uint8_t> bytes) {
   }
   const uint64_t has_desync = r.get(1, "desync flag");
   if (r.ok() && has_desync > 1) r.fail("desync flag", "is neither 0 nor 1");
+  if (r.ok() && !b.keyframes.empty() && b.keyframes.back().position > b.end_position()) {
+    r.fail("keyframe position", "is past the ticks");
+  }
   if (r.ok() && has_desync == 1) {
     ViewDesync d;
     d.tick = static_cast<Tick>(static_cast<uint32_t>(r.get(4, "desync tick")));

@@ -267,6 +267,13 @@ RV_EXPORT void rv_seek(int position) {
   debris_reset();
 }
 
+/// Re-simulates up to `max_steps` ticks from the start apart from the view
+/// (ReplayPlayer::verify), so ticks a seek jumped over get their checks;
+/// the position verified through.
+RV_EXPORT int rv_verify(uint32_t max_steps) {
+  return state().player ? state().player->verify(max_steps) : -1;
+}
+
 /// Debris props alive (3D games; 0 otherwise).
 RV_EXPORT int rv_debris_count() {
   return state().debris ? static_cast<int>(state().debris->prop_count()) : 0;

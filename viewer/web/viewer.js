@@ -12,7 +12,9 @@
 //
 // window.rewindViewer is the page's API for scripts and tests: ready (a
 // promise), seek(p), step(), play(), pause(), position(), start(),
-// length(), checksum(), recorded(), check(p), firstMismatch(), stats(),
+// length(), checksum(), recorded(), check(p), firstMismatch(),
+// verifiedThrough() (every tick before it re-simulated from the start and
+// checked, whatever seeks jumped over), stats(),
 // names(), openDesync(), highlighted(), frames(), live() (null unless
 // live), error.
 import { Camera, boundsOf } from './camera.js';
@@ -34,6 +36,7 @@ class Viewer {
     this.frameCount = 0;
     this.dirty = true;
     this.flags = 0;
+    this.verified = 0;
   }
 
   str(ptr) { return this.mod.UTF8ToString(ptr); }
@@ -290,6 +293,11 @@ class Viewer {
     verdict.textContent = check === 1 ? '✓ same as recorded' : check === 2 ? '✗ differs from the recording' : '';
     const first = m._rv_first_mismatch();
     $('first-mismatch').textContent = first >= 0 ? `first difference at tick ${first}` : '';
+    if (!this.live) {
+      $('verified').textContent = this.verified >= m._rv_length()
+        ? `every tick re-simulated: ${first >= 0 ? 'differences found' : 'all as recorded'}`
+        : `re-simulated from the start through tick ${this.verified}`;
+    }
     const s = this.stats();
     $('stats').textContent = `${s.bodies} bodies, ${s.awake} awake, ${s.pairs} touching pairs, ` +
       `${s.contactPoints} contact points, ${s.joints} joints` +
@@ -298,8 +306,22 @@ class Viewer {
     if (this.live) this.live.panel();
   }
 
+  /**
+   * Re-simulates a few ticks from the start beside the view, so that ticks
+   * a seek jumped over (through the replay's keyframes) get their checks
+   * too. A live viewer steps every tick itself.
+   */
+  verifySome() {
+    const m = this.mod;
+    if (this.live || this.verified >= m._rv_length()) return;
+    const before = this.verified;
+    this.verified = m._rv_verify(30);
+    if (this.verified !== before) this.dirty = true;
+  }
+
   frame(dt) {
     this.advance(dt);
+    this.verifySome();
     if (this.dirty) {
       this.draw();
       this.panel();
@@ -354,6 +376,7 @@ async function main() {
       recorded: () => viewer.str(mod._rv_recorded_checksum()),
       check: (p) => mod._rv_check(p),
       firstMismatch: () => mod._rv_first_mismatch(),
+      verifiedThrough: () => viewer.verified,
       stats: () => viewer.stats(),
       openDesync: () => { const d = viewer.openDesync(); viewer.frame(0); return d; },
       highlighted: () => viewer.highlight.slice(),

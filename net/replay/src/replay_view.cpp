@@ -43,6 +43,18 @@ Result<viewer::ViewBundle> view_bundle_from_replay(ReplayReader& reader, ReplayV
     }
     if (!next->has_value()) break;
     const v1::ReplayRecord& record = **next;
+    if (record.has_keyframe()) {
+      // The state after its tick: the viewer seeks through it. One the
+      // bundle cannot hold (out of order, too big) is left out.
+      const Tick position = record.keyframe().tick() + 1;
+      const std::string& state = record.keyframe().state();
+      const Tick after = b.keyframes.empty() ? 0 : b.keyframes.back().position;
+      if (position > after && position <= static_cast<Tick>(b.checksums.size()) && !state.empty() &&
+          state.size() <= viewer::kViewMaxStateBytes) {
+        b.keyframes.push_back({position, std::vector<uint8_t>(state.begin(), state.end())});
+      }
+      continue;
+    }
     if (!record.has_tick()) continue;
     const v1::ReplayTick& tick = record.tick();
     if (static_cast<uint32_t>(tick.inputs_size()) != players ||

@@ -265,6 +265,96 @@ TEST(ReplayPlayer, AStartStateThatDoesNotFitIsRefused) {
   EXPECT_EQ(refused.status().code(), ErrorCode::kInvalidArgument);
 }
 
+/// `bundle` with the state after every `every`th tick as recorded keyframes.
+ViewBundle with_keyframes(ViewBundle bundle, Tick every) {
+  auto sim = game::Simulation::create(bundle.game, bundle.setup);
+  const uint32_t players = bundle.setup.player_count;
+  for (Tick t = 0; t < bundle.end_position(); ++t) {
+    (*sim)->step(std::span<const game::PlayerInput>(bundle.inputs)
+                     .subspan(static_cast<size_t>(t) * players, players));
+    if ((t + 1) % every == 0) {
+      ViewKeyframe k;
+      k.position = t + 1;
+      (*sim)->serialize(k.state);
+      bundle.keyframes.push_back(std::move(k));
+    }
+  }
+  return bundle;
+}
+
+TEST(ReplayPlayer, SeeksJumpThroughTheRecordedKeyframes) {
+  for (const char* name : {"crates", "arena"}) {
+    const ViewBundle bundle = with_keyframes(played(name, 2, 300), 100);
+    auto player = ReplayPlayer::create(bundle, 1000);
+    ASSERT_TRUE(player.ok());
+    ReplayPlayer& p = **player;
+    p.seek(250);  // from the state recorded at 200: ticks 1..200 never stepped
+    EXPECT_EQ(p.checksum(), bundle.checksums[249]) << name;
+    EXPECT_EQ(p.check(200), TickCheck::kMatch);
+    EXPECT_EQ(p.check(150), TickCheck::kUnchecked);
+    EXPECT_EQ(p.check(250), TickCheck::kMatch);
+    p.seek(120);  // back: from the one at 100
+    EXPECT_EQ(p.checksum(), bundle.checksums[119]) << name;
+    EXPECT_EQ(p.check(99), TickCheck::kUnchecked);
+    EXPECT_FALSE(p.first_mismatch().has_value());
+    EXPECT_EQ(p.verified_through(), 0);
+    // Verifying when idle fills in what the jumps passed over.
+    EXPECT_EQ(p.verify(40), 40);
+    EXPECT_EQ(p.check(40), TickCheck::kMatch);
+    EXPECT_EQ(p.check(41), TickCheck::kUnchecked);
+    while (p.verify(100) < p.length()) {
+    }
+    for (Tick t = 1; t <= 300; ++t) ASSERT_EQ(p.check(t), TickCheck::kMatch) << name << " " << t;
+    EXPECT_EQ(p.position(), 120);  // the view did not move
+    EXPECT_EQ(p.checksum(), bundle.checksums[119]);
+  }
+}
+
+TEST(ReplayPlayer, VerifyingFindsAMismatchASeekJumpedOver) {
+  ViewBundle bundle = with_keyframes(played("arena", 2, 200), 100);
+  bundle.checksums[30] ^= 1;  // position 31: the recording says otherwise
+  auto player = ReplayPlayer::create(bundle);
+  ASSERT_TRUE(player.ok());
+  ReplayPlayer& p = **player;
+  p.seek(150);
+  EXPECT_FALSE(p.first_mismatch().has_value());
+  for (int i = 0; i < 10; ++i) p.verify(25);
+  ASSERT_TRUE(p.first_mismatch().has_value());
+  EXPECT_EQ(*p.first_mismatch(), 31);
+  EXPECT_EQ(p.verified_through(), 200);
+}
+
+TEST(ReplayPlayer, SteppingFromTheStartCountsAsVerified) {
+  auto player = ReplayPlayer::create(played("crates", 2, 50));
+  ASSERT_TRUE(player.ok());
+  ReplayPlayer& p = **player;
+  p.seek(30);
+  EXPECT_EQ(p.verified_through(), 30);
+  p.seek(10);
+  p.step();
+  EXPECT_EQ(p.verified_through(), 30);
+  EXPECT_EQ(p.verify(5), 35);
+}
+
+TEST(ReplayPlayer, ARecordedKeyframeThatDoesNotFitIsPassedOver) {
+  ViewBundle bundle = with_keyframes(played("crates", 2, 200), 50);
+  std::swap(bundle.keyframes[2].state, bundle.keyframes[1].state);         // 150 holds 100's state
+  bundle.keyframes[0].state.resize(bundle.keyframes[0].state.size() / 2);  // 50 does not load
+  auto player = ReplayPlayer::create(bundle, 1000);
+  ASSERT_TRUE(player.ok());
+  ReplayPlayer& p = **player;
+  p.seek(170);  // 150 is unusable: from the one at 100 (which holds 150's state: unusable too)
+  EXPECT_EQ(p.position(), 170);
+  EXPECT_EQ(p.checksum(), bundle.checksums[169]);
+  EXPECT_FALSE(p.first_mismatch().has_value());
+  p.seek(60);  // 50 does not load: from the start
+  EXPECT_EQ(p.checksum(), bundle.checksums[59]);
+  EXPECT_EQ(p.check(10), TickCheck::kMatch);
+  p.seek(199);
+  EXPECT_EQ(p.checksum(), bundle.checksums[198]);
+  EXPECT_FALSE(p.first_mismatch().has_value());
+}
+
 TEST(ReplayPlayer, AnUnknownGameIsRefused) {
   ViewBundle bundle = played("crates", 2, 5);
   bundle.game = "chess";

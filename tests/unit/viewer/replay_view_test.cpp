@@ -37,6 +37,10 @@ TEST(ReplayView, AReplayPlaysBackWithItsChecksums) {
   EXPECT_EQ(bundle->setup.player_count, 4u);
   EXPECT_EQ(bundle->checksums, recorded);
   EXPECT_EQ(bundle->substituted_masks[49], 1u);  // player 0 dropped out then
+  // The replay's keyframes (after ticks 59, 119, 179) come along to seek by.
+  ASSERT_EQ(bundle->keyframes.size(), 3u);
+  EXPECT_EQ(bundle->keyframes[0].position, 60);
+  EXPECT_EQ(bundle->keyframes[2].position, 180);
 
   std::vector<uint8_t> bytes;
   ASSERT_TRUE(viewer::encode_view_bundle(*bundle, bytes).ok());
@@ -44,7 +48,13 @@ TEST(ReplayView, AReplayPlaysBackWithItsChecksums) {
   ASSERT_TRUE(decoded.ok());
   auto player = viewer::ReplayPlayer::create(std::move(*decoded));
   ASSERT_TRUE(player.ok());
-  (*player)->seek(180);
+  (*player)->seek(170);  // from the keyframe at 120
+  EXPECT_EQ((*player)->checksum(), recorded[169]);
+  EXPECT_EQ((*player)->check(120), viewer::TickCheck::kMatch);
+  EXPECT_EQ((*player)->check(100), viewer::TickCheck::kUnchecked);  // jumped over
+  (*player)->seek(0);
+  while ((*player)->step()) {
+  }
   EXPECT_FALSE((*player)->first_mismatch().has_value());
   EXPECT_EQ((*player)->checksum(), recorded.back());
 }

@@ -42,6 +42,11 @@ void expect_same(const ViewBundle& a, const ViewBundle& b) {
   EXPECT_EQ(a.player_names, b.player_names);
   EXPECT_EQ(a.first_tick, b.first_tick);
   EXPECT_EQ(a.start_state, b.start_state);
+  ASSERT_EQ(a.keyframes.size(), b.keyframes.size());
+  for (size_t k = 0; k < a.keyframes.size(); ++k) {
+    EXPECT_EQ(a.keyframes[k].position, b.keyframes[k].position);
+    EXPECT_EQ(a.keyframes[k].state, b.keyframes[k].state);
+  }
   EXPECT_EQ(a.inputs, b.inputs);
   EXPECT_EQ(a.checksums, b.checksums);
   EXPECT_EQ(a.substituted_masks, b.substituted_masks);
@@ -90,6 +95,30 @@ TEST(ViewBundle, ALaterStartRoundTripsWithItsState) {
   EXPECT_EQ(encode_view_bundle(later, untouched).code(), ErrorCode::kInvalidArgument);
 }
 
+TEST(ViewBundle, KeyframesRoundTripAndMustAscendWithinTheTicks) {
+  ViewBundle b = sample();
+  b.first_tick = 10;
+  b.start_state = {1};
+  b.keyframes = {{12, {4, 5}}, {15, {6}}};  // the ticks run 10..14: positions up to 15
+  std::vector<uint8_t> bytes;
+  ASSERT_TRUE(encode_view_bundle(b, bytes).ok());
+  auto back = decode_view_bundle(bytes);
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  expect_same(b, *back);
+
+  std::vector<uint8_t> untouched = {3};
+  for (const std::vector<ViewKeyframe>& bad :
+       {std::vector<ViewKeyframe>{{10, {1}}},             // not after the first tick
+        std::vector<ViewKeyframe>{{16, {1}}},             // past the ticks
+        std::vector<ViewKeyframe>{{13, {1}}, {12, {1}}},  // descending
+        std::vector<ViewKeyframe>{{13, {}}}}) {           // no state
+    ViewBundle refused = b;
+    refused.keyframes = bad;
+    EXPECT_EQ(encode_view_bundle(refused, untouched).code(), ErrorCode::kInvalidArgument);
+  }
+  EXPECT_EQ(untouched, std::vector<uint8_t>{3});
+}
+
 TEST(ViewBundle, VersionOneBundlesStillLoad) {
   // Version 1 had no first tick and start state: the same bytes without
   // those 8 (an i32 0 and an empty run) after the names.
@@ -99,7 +128,8 @@ TEST(ViewBundle, VersionOneBundlesStillLoad) {
   const std::vector<uint8_t> tail(
       bytes.end() - static_cast<ptrdiff_t>(4 + 5 * (16 + 3 * 8) + 1 + 4 + 4 + 4 + 25 + 4 + 4),
       bytes.end());
-  std::vector<uint8_t> v1(bytes.begin(), bytes.end() - static_cast<ptrdiff_t>(tail.size()) - 8);
+  // Version 2 adds 12 bytes: first tick, an empty start state, no keyframes.
+  std::vector<uint8_t> v1(bytes.begin(), bytes.end() - static_cast<ptrdiff_t>(tail.size()) - 12);
   v1.insert(v1.end(), tail.begin(), tail.end());
   v1[8] = 1;
   auto back = decode_view_bundle(v1);

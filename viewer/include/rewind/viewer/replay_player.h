@@ -73,10 +73,22 @@ class ReplayPlayer {
   /// Simulates the next tick with its recorded inputs and checks it.
   /// False, changing nothing, at the end.
   bool step();
-  /// Moves to `position` (clamped to [start(), length()]): from the nearest kept
-  /// snapshot at or before it, or from the current position when that is
-  /// nearer, stepping the rest.
+  /// Moves to `position` (clamped to [start(), length()]): from the nearest
+  /// state at or before it (a snapshot the player kept, one of the
+  /// bundle's recorded keyframes, or the current position), stepping the
+  /// rest. A recorded keyframe is used only when it loads at its position
+  /// with the recorded checksum; its position then counts as checked, and
+  /// the ticks jumped over stay unchecked.
   void seek(Tick position);
+
+  /// Re-simulates up to `max_steps` more ticks from the start, apart from
+  /// what the viewer shows, so that every tick gets its check even when
+  /// seeks jumped over it through recorded keyframes. A viewer calls it
+  /// when idle. Returns the position verified through (length() when done).
+  Tick verify(uint32_t max_steps);
+  /// The position through which every tick has been re-simulated from the
+  /// start, by verify() or by stepping.
+  Tick verified_through() const { return verified_; }
 
   /// The state's checksum now, and the recorded one (none at position 0).
   uint64_t checksum() const { return sim_->checksum(); }
@@ -105,6 +117,11 @@ class ReplayPlayer {
   ReplayPlayer(ViewBundle bundle, std::unique_ptr<game::Simulation> sim, uint32_t keyframe_every,
                uint32_t max_keyframes);
   void keep_keyframe();
+  /// Records the check of `position` from a re-simulated checksum.
+  void record_check(Tick position, uint64_t checksum);
+  /// Loads the newest usable recorded keyframe in (after, target]; false
+  /// when there is none (the player is unchanged).
+  bool load_recorded_state(Tick after, Tick target);
   size_t offset(Tick position) const { return static_cast<size_t>(position - bundle_.first_tick); }
 
   ViewBundle bundle_;
@@ -115,7 +132,12 @@ class ReplayPlayer {
   /// keyframes_[k]: the state at position start() + k * keyframe_every_,
   /// once passed (and not yet dropped for max_keyframes).
   std::vector<std::optional<game::SimSnapshot>> keyframes_;
-  std::vector<TickCheck> checks_;  ///< by position - start()
+  std::vector<TickCheck> checks_;               ///< by position - start()
+  std::vector<bool> unusable_;                  ///< bundle keyframes found not to load or match
+  std::unique_ptr<game::Simulation> scratch_;   ///< where a recorded keyframe is tried
+  std::unique_ptr<game::Simulation> verifier_;  ///< verify()'s own re-simulation
+  Tick verified_ = 0;    ///< every tick before it re-simulated from the start (absolute)
+  bool jumped_ = false;  ///< a recorded keyframe was loaded: stepping no longer verifies
   std::optional<Tick> first_mismatch_;
 };
 

@@ -14,7 +14,8 @@
 //   u8 identity_matches  str identity_note
 //   u32 name_count  str name...               (0 or player_count names)
 //   i32 first_tick  bytes start_state         (version 2; version 1 has
-//                                              neither: 0 and empty)
+//   u32 keyframe_count                         none of these: 0, empty, none)
+//     per keyframe: i32 position  bytes state
 //   u32 tick_count  per tick: u64 checksum  u64 substituted_mask
 //                             player_count x (i16 axis_x  i16 axis_y  u32 buttons)
 //   u8 has_desync  [i32 tick  u32 player  str headline  bytes client_state]
@@ -37,6 +38,14 @@ inline constexpr uint32_t kViewMaxTicks = 1u << 24;        ///< 77 hours at 60 H
 inline constexpr uint32_t kViewMaxString = 256;            ///< bytes, names and notes
 inline constexpr uint32_t kViewMaxHeadline = 4096;         ///< bytes
 inline constexpr uint32_t kViewMaxStateBytes = 64u << 20;  ///< a client's state
+
+/// A recorded state a viewer may jump to instead of re-simulating up to
+/// it: Simulation::serialize bytes of the state at `position` (after tick
+/// position - 1), such as a replay's keyframes.
+struct ViewKeyframe {
+  Tick position = 0;
+  std::vector<uint8_t> state;
+};
 
 /// A client's desync report as the viewer shows it: the final tick whose
 /// checksums differed and the client's whole state after that tick
@@ -65,6 +74,10 @@ struct ViewBundle {
   /// Simulation::serialize bytes of the state at position first_tick;
   /// empty: the setup's initial state (only with first_tick 0).
   std::vector<uint8_t> start_state;
+  /// States to seek through, positions ascending in (first_tick,
+  /// end_position()]. A player uses one only when it loads, is at its
+  /// position and has the recorded checksum there.
+  std::vector<ViewKeyframe> keyframes;
   /// Tick first_tick + i's inputs are inputs[i * player_count .. + player_count).
   std::vector<game::PlayerInput> inputs;
   std::vector<uint64_t> checksums;          ///< recorded, after each tick

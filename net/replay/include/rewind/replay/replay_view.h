@@ -18,8 +18,8 @@ struct ReplayViewInfo {
   std::string problem;  ///< why reading stopped early (a torn or corrupt record), if it did
 };
 
-/// Reads every tick record of `reader`'s valid prefix into a bundle (the
-/// replay's own keyframes are left out: the viewer keeps its own). A file
+/// Reads every tick record of `reader`'s valid prefix into a bundle, with
+/// the replay's keyframes for the viewer to seek through. A file
 /// that is torn or corrupt part way gives the ticks before the damage, and
 /// `info` says where reading stopped. kInvalidArgument when the header's
 /// game or player count cannot make a bundle.
