@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 #include <vector>
+#include "rewind/sim/splitmix64.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::bench::query_level {
@@ -44,14 +45,7 @@ constexpr float kQueryMargin = 0.001f;  // Bullet's box margin in the query leve
 constexpr double kMinAgreement = 0.99;
 constexpr float kDistanceTolerance = 0.01f;
 
-struct SplitMix64 {
-  uint64_t state;
-  uint64_t next() {
-    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
+struct SplitMix64 : rwd::SplitMix64 {
   float uniform(float lo, float hi) {
     return lo + (hi - lo) * static_cast<float>(next() >> 40) * 0x1p-24f;
   }

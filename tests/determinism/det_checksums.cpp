@@ -53,11 +53,13 @@
 #include "lane2d_scene.h"
 #include "rewind/game/player_input.h"
 #include "rewind/game/simulation.h"
+#include "rewind/sim/splitmix64.h"
 #include "rewind/sim/thread_pool.h"
 #include "rewind/sim/world3d.h"
 
 namespace {
 
+using rwd::SplitMix64;
 using rwd::Tick;
 using rwd::game::MatchSetup;
 using rwd::game::PlayerInput;
@@ -70,19 +72,9 @@ constexpr uint64_t kScriptSeed = 0x5EED'0F'DE7E'2A11ull;
 constexpr Tick kRollbackEvery = 10;
 constexpr Tick kRollbackDepth = 5;
 
-// splitmix64: a few integer operations, identical on every compiler and
-// architecture, so the input script itself can never be the difference.
-struct SplitMix64 {
-  uint64_t state;
-  uint64_t next() {
-    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  // Uniform enough for a test script; the modulo bias does not matter here.
-  uint32_t below(uint32_t n) { return static_cast<uint32_t>(next() % n); }
-};
+// SplitMix64 (rewind/sim/splitmix64.h): integer operations only, identical
+// on every compiler and architecture, so the input script itself can never
+// be the difference.
 
 // inputs[t * kPlayers + p] is player p's input for tick t. Each player holds
 // an input for 1..6 ticks and then switches to a new random one.

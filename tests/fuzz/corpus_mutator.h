@@ -6,20 +6,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <vector>
+#include "rewind/sim/splitmix64.h"
 
 namespace rwd::fuzz {
 
 /// splitmix64: deterministic, so a failing input can be reproduced.
-struct CorpusRng {
-  uint64_t state;
-  uint64_t next() {
-    state += 0x9E37'79B9'7F4A'7C15ull;
-    uint64_t z = state;
-    z = (z ^ (z >> 30)) * 0xBF58'476D'1CE4'E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D0'49BB'1331'11EBull;
-    return z ^ (z >> 31);
-  }
-  size_t below(size_t n) { return n == 0 ? 0 : static_cast<size_t>(next() % n); }
+struct CorpusRng : SplitMix64 {
+  size_t below(size_t n) { return static_cast<size_t>(SplitMix64::below(n)); }
 };
 
 /// One mutation: flip a bit, replace, insert or erase a byte, or splice in

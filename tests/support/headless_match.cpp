@@ -12,6 +12,7 @@
 #include "rewind/net/connect_token.h"
 #include "rewind/net/connection.h"
 #include "rewind/net/envelope_codec.h"
+#include "rewind/sim/splitmix64.h"
 #include "scripted_peer.h"
 
 namespace rwd::test {
@@ -97,10 +98,7 @@ class ScriptedAdapter final : public HeadlessMatch::Peer {
 };
 
 uint64_t mix(uint64_t z) {
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
+  return splitmix64_once(z);
 }
 
 }  // namespace

@@ -1,14 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/tools/bot_script.h"
+#include "rewind/sim/splitmix64.h"
 
 namespace rwd::tools {
 namespace {
 
 uint64_t mix(uint64_t z) {
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
+  return splitmix64_once(z);
 }
 
 int16_t axis_from(uint64_t bits) {

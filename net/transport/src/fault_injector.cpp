@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/net/fault_injector.h"
 
+#include "rewind/sim/splitmix64.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -38,13 +40,6 @@ Status check_delay(const char* field, uint32_t ms, uint32_t min_ms) {
   return Status::Ok();
 }
 
-uint64_t splitmix64(uint64_t& x) {
-  uint64_t z = (x += 0x9E37'79B9'7F4A'7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58'476D'1CE4'E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D0'49BB'1331'11EBull;
-  return z ^ (z >> 31);
-}
-
 constexpr uint64_t rotl(uint64_t x, int k) {
   return (x << k) | (x >> (64 - k));
 }
@@ -71,8 +66,8 @@ Result<FaultInjector> FaultInjector::create(const FaultConfig& config) {
 FaultInjector::FaultInjector(const FaultConfig& config) : config_(config) {
   // splitmix64 expands the seed as the xoshiro authors recommend; it never
   // yields the all-zero state for four consecutive outputs.
-  uint64_t x = config.seed;
-  for (uint64_t& word : state_) word = splitmix64(x);
+  SplitMix64 seeder{config.seed};
+  for (uint64_t& word : state_) word = seeder.next();
 }
 
 uint64_t FaultInjector::next() {

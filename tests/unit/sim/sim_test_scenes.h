@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "rewind/sim/splitmix64.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim::test {
@@ -59,17 +60,8 @@ inline BodyId add_sphere(World3D& world, Vec3 position, float radius = 0.5f,
 
 /// SplitMix64: the same sequence on every platform (std distributions are
 /// not specified bit for bit), for reproducible random scenes and queries.
-struct Rng {
-  uint64_t state = 0;
-  uint64_t next() {
-    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  float uniform(float lo, float hi) {
-    return lo + (hi - lo) * static_cast<float>(next() >> 40) / static_cast<float>(1ull << 24);
-  }
+struct Rng : SplitMix64 {
+  float uniform(float lo, float hi) { return lo + (hi - lo) * unit(); }
   Quat rotation() {
     return normalize(Quat{uniform(-1.0f, 1.0f), uniform(-1.0f, 1.0f), uniform(-1.0f, 1.0f),
                           uniform(-1.0f, 1.0f)});

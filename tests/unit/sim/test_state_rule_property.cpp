@@ -13,6 +13,7 @@
 #include <limits>
 #include <vector>
 
+#include "rewind/sim/splitmix64.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim {
@@ -22,14 +23,9 @@ namespace {
 // not specified bit for bit).
 class Rng {
  public:
-  explicit Rng(uint64_t seed) : state_(seed) {}
-  uint64_t next() {
-    uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  float unit() { return static_cast<float>(next() >> 40) / static_cast<float>(1ull << 24); }
+  explicit Rng(uint64_t seed) : bits_{seed} {}
+  uint64_t next() { return bits_.next(); }
+  float unit() { return bits_.unit(); }
   float uniform(float lo, float hi) { return lo + (hi - lo) * unit(); }
   /// Log-uniform in [lo, hi]: covers several orders of magnitude evenly.
   float log_uniform(float lo, float hi) {
@@ -43,7 +39,7 @@ class Rng {
   }
 
  private:
-  uint64_t state_;
+  SplitMix64 bits_;
 };
 
 WorldConfig random_config(Rng& rng) {

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <random>
 
+#include "rewind/sim/splitmix64.h"
+
 namespace rwd::net {
 
 /// Makes 64-bit connection ids that a third party cannot predict, so a
@@ -16,7 +18,8 @@ namespace rwd::net {
 class ConnectionIdGenerator {
  public:
   /// Deterministic stream for `seed` (tests); time still mixes into next().
-  explicit ConnectionIdGenerator(uint64_t seed) : state_(mix(seed ^ 0x5EED'0F1D'C0DE'D00Dull)) {}
+  explicit ConnectionIdGenerator(uint64_t seed)
+      : state_(splitmix64_mix(seed ^ 0x5EED'0F1D'C0DE'D00Dull)) {}
 
   /// Seeded from std::random_device and the clock: the constructor for servers.
   static ConnectionIdGenerator from_os_entropy() {
@@ -25,7 +28,7 @@ class ConnectionIdGenerator {
     const uint64_t low = device();
     const auto now =
         static_cast<uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
-    return ConnectionIdGenerator((high << 32 | low) ^ mix(now));
+    return ConnectionIdGenerator((high << 32 | low) ^ splitmix64_mix(now));
   }
 
   /// A fresh id mixing in the current steady-clock time.
@@ -39,22 +42,16 @@ class ConnectionIdGenerator {
     // Weyl step keeps the stream distinct even if time_entropy repeats; the
     // counter guarantees distinct inputs to the bijective mix within one
     // generator, so ids only collide after 2^64 calls.
-    state_ += 0x9E37'79B9'7F4A'7C15ull;
+    state_ += kSplitMix64Gamma;
     ++counter_;
-    uint64_t id = mix(state_ ^ mix(time_entropy + counter_));
+    // splitmix64's mix is a bijection with full avalanche.
+    uint64_t id = splitmix64_mix(state_ ^ splitmix64_mix(time_entropy + counter_));
     // A zero would read as "no connection"; resample rather than bias.
-    while (id == 0) id = mix(++state_);
+    while (id == 0) id = splitmix64_mix(++state_);
     return id;
   }
 
  private:
-  // splitmix64 finalizer: a bijection on 64 bits with full avalanche.
-  static constexpr uint64_t mix(uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xBF58'476D'1CE4'E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D0'49BB'1331'11EBull;
-    return z ^ (z >> 31);
-  }
-
   uint64_t state_;
   uint64_t counter_ = 0;
 };
