@@ -75,6 +75,8 @@ LiveApi::LiveApi(FindFn find, ListFn list, std::optional<StaticFiles> viewer)
     : find_(std::move(find)), list_(std::move(list)), viewer_(std::move(viewer)) {}
 
 HttpReply LiveApi::handle(const HttpRequest& request) const {
+  last_request_.store(std::chrono::steady_clock::now().time_since_epoch().count(),
+                      std::memory_order_relaxed);
   if (request.method != "GET" && request.method != "HEAD") return method_not_allowed();
   const std::string_view path = request.path();
   if (path == "/") {

@@ -223,8 +223,8 @@ int main(int argc, char** argv) {
   flags.add_int("live-keyframe-ticks", &live_keyframe, 1, 3600,
                 "ticks between the states a joining spectator starts from");
   flags.add_double("live-linger", &config.live_linger_s, 0, 60,
-                   "seconds the live endpoint stays up after the last match ended, for "
-                   "spectators to see the end");
+                   "seconds the live endpoint may stay up after the last match ended, for "
+                   "spectators to see the end (it closes once none has polled for 2 s)");
   bool agones = false;
   rwd::server::AgonesLifecycleOptions agones_options;
   flags.add_bool("agones", &agones,

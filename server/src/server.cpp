@@ -388,10 +388,19 @@ void Server::run() {
   for (uint32_t i = 1; i < threads_; ++i) pool.emplace_back([this] { io_.run(); });
   io_.run();
   for (std::thread& thread : pool) thread.join();
-  // Spectators poll: give them the last ticks and the end before the
-  // endpoint goes (not after a signal, which wants the process gone).
+  // Spectators poll: while they still do, give them the last ticks and
+  // the end before the endpoint goes, for at most live_linger_s (not after
+  // a signal, which wants the process gone). A viewer stops polling once it
+  // has seen the end; none polling for 2 s means none is left.
   if (live_ && !stopping_ && config_.live_linger_s > 0) {
-    std::this_thread::sleep_for(std::chrono::duration<double>(config_.live_linger_s));
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point until =
+        Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                           std::chrono::duration<double>(config_.live_linger_s));
+    while (Clock::now() < until &&
+           Clock::now() - live_api_->last_request() < std::chrono::seconds(2)) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
   }
   close_endpoints();
 }

@@ -73,18 +73,23 @@ for _ in $(seq 1 100); do [ -s live_port ] && [ -s live_udp_port ] && break; sle
 live_bots=$!
 pids+=("$live_bots")
 
-cat >config.json <<EOF
-{ "tool": "$bin/rewind-replay", "viewerDir": "$viewer", "chromium": "$chromium",
-  "shots": "$shots",
-  "cases": [
-    { "name": "viewer-desync", "file": "$PWD/crates.rwr", "desync": "$PWD/$report",
-      "expectBodies": [$bodies], "expectGame": "crates" },
-    { "name": "viewer-2d", "file": "$PWD/arena.rwr", "expectGame": "arena" },
-    { "name": "viewer-3d", "file": "$PWD/joust.rwr", "expectGame": "joust" }
-  ],
-  "live": { "name": "viewer-live", "url": "http://127.0.0.1:$(cat live_port)", "match": "match",
-            "names": ["bot-0", "bot-1"], "ticks": $live_ticks } }
-EOF
+# Written by python: the paths (the checkout's) may hold any character.
+python3 - "$bin/rewind-replay" "$viewer" "$chromium" "$shots" "$PWD" "$report" "$bodies" \
+  "$(cat live_port)" "$live_ticks" >config.json <<'PY'
+import json, sys
+tool, viewer, chromium, shots, here, report, bodies, live_port, live_ticks = sys.argv[1:]
+print(json.dumps({
+    "tool": tool, "viewerDir": viewer, "chromium": chromium, "shots": shots,
+    "cases": [
+        {"name": "viewer-desync", "file": here + "/crates.rwr", "desync": here + "/" + report,
+         "expectBodies": [int(b) for b in bodies.split(",")], "expectGame": "crates"},
+        {"name": "viewer-2d", "file": here + "/arena.rwr", "expectGame": "arena"},
+        {"name": "viewer-3d", "file": here + "/joust.rwr", "expectGame": "joust"},
+    ],
+    "live": {"name": "viewer-live", "url": "http://127.0.0.1:" + live_port, "match": "match",
+             "names": ["bot-0", "bot-1"], "ticks": int(live_ticks)},
+}))
+PY
 node "$scripts/viewer_browser.mjs" config.json || fail "see above"
 wait "$live_bots" || fail "the live match's bots: $(tail -3 bots_live.log)"
 wait "$live_server" || fail "the live server: $(tail -3 server_live.log)"

@@ -17,6 +17,8 @@
 //                         410 when T is no longer held (start over)
 //
 // 404 names an unknown match or path, 400 a bad `from`, 405 another method.
+#include <atomic>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -41,6 +43,12 @@ class LiveApi {
 
   /// Answers one request; on the endpoint's thread.
   HttpReply handle(const HttpRequest& request) const;
+  /// When the last request came (steady clock); the epoch before any. For
+  /// a server that stays up while spectators still poll.
+  std::chrono::steady_clock::time_point last_request() const {
+    return std::chrono::steady_clock::time_point(
+        std::chrono::steady_clock::duration(last_request_.load(std::memory_order_relaxed)));
+  }
 
  private:
   HttpReply listing_page() const;
@@ -50,6 +58,7 @@ class LiveApi {
   FindFn find_;
   ListFn list_;
   std::optional<StaticFiles> viewer_;
+  mutable std::atomic<std::chrono::steady_clock::rep> last_request_{0};
 };
 
 }  // namespace rwd::server

@@ -82,9 +82,10 @@ struct ServerConfig {
   /// The built viewer (the build's viewer_web) served on the live
   /// endpoint; empty: the data routes and the listing only.
   std::string live_viewer_dir;
-  /// Seconds the live endpoint stays up after the last match ended, so
-  /// spectators see its last ticks and its end, [0, 60].
-  double live_linger_s = 2.0;
+  /// Seconds the live endpoint may stay up after the last match ended, so
+  /// spectators see its last ticks and its end, [0, 60]: it closes once no
+  /// spectator has polled for 2 s.
+  double live_linger_s = 10.0;
   /// The share of the match threads' time spent ticking (over the last
   /// LoadMonitor::kWindowS seconds) beyond which allocate() refuses new
   /// matches, in (0, 1]. Ticks slipping refuse them too.
