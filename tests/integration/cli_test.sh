@@ -58,6 +58,15 @@ check 64 "--slot: 99 is outside [0, 63]" rewind-token mint --slot 99
 check 64 "are required" rewind-token mint --match m
 check 1 "cannot read /nonexistent/key" rewind-token mint --key-file /nonexistent/key --match m --slot 0 --client-id 1
 check 64 "--key-file /nonexistent/key: cannot read it" rewind-server --key-file /nonexistent/key --port 0
+check 64 "--live-bind: expected HOST:PORT, got 'nowhere'" rewind-server --live-bind nowhere
+check 64 "--live-port-file needs --live-bind" rewind-server --live-port-file x --port 0
+check 64 "--live-delay-ticks: 40000 is outside [0, 36000]" rewind-server --live-delay-ticks 40000
+check 1 "live: the viewer is not built in '/nonexistent/viewer'" rewind-server --bind 127.0.0.1 --port 0 --live-bind 127.0.0.1:0 --live-viewer-dir /nonexistent/viewer
+check 1 "live: bad address 'nowhere.invalid'" rewind-server --bind 127.0.0.1 --port 0 --live-bind nowhere.invalid:0
+check 0 "usage: rewind-synctest" rewind-synctest --help
+check 0 "synctest arena: deterministic: 120 ticks of 3 players" rewind-synctest --game arena --players 3 --ticks 120
+check 64 "unknown game 'chess'" rewind-synctest --game chess
+check 64 "--check-distance: 0 is outside [1, 64]" rewind-synctest --check-distance 0
 # Tokenless only on loopback, unless the operator says otherwise; the
 # refusal says how to run secure (also before an Agones GameServer is Ready).
 check 1 "refusing to run tokenless on 0.0.0.0" rewind-server --port 0

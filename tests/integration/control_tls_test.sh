@@ -42,8 +42,8 @@ server_pid=$!
 pids+=("$server_pid")
 for _ in $(seq 1 100); do [ -s cport ] && [ -s mport ] && break; sleep 0.1; done
 [ -s cport ] || fail "no control endpoint: $(cat server.log)"
-grep -q "control API on https://" server.log || fail "no https in the log: $(cat server.log)"
-grep -q "mutual TLS" server.log || fail "the log does not say mutual TLS: $(cat server.log)"
+log_has server.log "control API on https://" || fail "no https in the log: $(cat server.log)"
+log_has server.log "mutual TLS" || fail "the log does not say mutual TLS: $(cat server.log)"
 
 # call PORT METHOD TARGET CERT KEY: prints the status code, or "none" when
 # the connection ends without an answer.

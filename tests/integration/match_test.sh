@@ -145,7 +145,10 @@ if [ "$mode" = signal ] || [ "$mode" = kill ]; then
   # Interrupt (or kill) the server once the match has been running a while.
   sig=INT
   [ "$mode" = kill ] && sig=KILL
-  ( sleep $(( ticks / tick_rate / 2 + 1 )); kill -"$sig" "$server_pid" ) &
+  # Counted from the start of play, not of the server: slow joins on a
+  # loaded machine must not move the signal into the lobby.
+  ( for _ in $(seq 1 600); do grep -q "players joined" server.log && break; sleep 0.1; done
+    sleep $(( ticks / tick_rate / 2 + 1 )); kill -"$sig" "$server_pid" ) &
 fi
 set +e
 "$bin/rewind-bots" "${bots_args[@]}" >bots.json 2>bots.log

@@ -23,6 +23,14 @@ pids=()
 kill_started() { for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; }
 trap kill_started EXIT
 
+# log_has FILE PATTERN: whether FILE gets a line matching PATTERN (grep -E)
+# within 15 s. The server writes its port files before its start-up lines,
+# so a script that saw the port must still wait for the line.
+log_has() {
+  for _ in $(seq 1 150); do grep -qE -- "$2" "$1" 2>/dev/null && return 0; sleep 0.1; done
+  return 1
+}
+
 # start_server ARGS...: rewind-server from $bin with ARGS (which include
 # --port-file port) in the background, stdout to server.json and stderr to
 # server.log; waits for the port it bound. Sets server_pid and port.

@@ -38,7 +38,7 @@ done
 start_server --game crates --bind 127.0.0.1 --port 0 --port-file port --players "$players" \
   --tick-rate "$tick_rate" --ticks "$ticks" --replay match.rwr --join-timeout 30 \
   --key-file server.key --match-id duel-7 --summary-json
-grep -q "secure connections" server.log || fail "the server does not say it is secure"
+log_has server.log "secure connections" || fail "the server does not say it is secure"
 
 python3 "$here/hostile_secure.py" probe "$port" tokens foreign >probe.json || fail "probe: $(cat probe.json)"
 echo "probe: $(cat probe.json)"

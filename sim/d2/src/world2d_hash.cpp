@@ -2,7 +2,7 @@
 // The checksum and the readable dump: the two places the 2D lane meets the
 // shared hasher and field types, which name floating-point types for the
 // 3D lane. Only integers flow through here; the float check of the step
-// (sim2d_no_float) lists this file as its boundary.
+// (sim2d_no_float_*) lists this file as its boundary.
 #include <type_traits>
 #include <vector>
 

@@ -27,9 +27,16 @@ struct ToolRun {
   std::string output;  // stdout and stderr
 };
 
+/// `text` as one shell word: the build tree may sit under any path.
+std::string shell_quoted(const std::string& text) {
+  std::string out = "'";
+  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
 ToolRun run_tool(const std::string& args) {
   ToolRun run;
-  const std::string command = std::string(REWIND_REPLAY_TOOL) + " " + args + " 2>&1";
+  const std::string command = shell_quoted(REWIND_REPLAY_TOOL) + " " + args + " 2>&1";
   std::FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) return run;
   std::array<char, 4096> buf;

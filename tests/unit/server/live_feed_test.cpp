@@ -16,6 +16,7 @@
 #include "rewind/server/server.h"
 #include "rewind/viewer/live_ticks.h"
 #include "rewind/viewer/replay_player.h"
+#include "scratch_dir.h"
 
 namespace rwd::server {
 namespace {
@@ -182,12 +183,10 @@ TEST(LiveFeed, TheHostPublishesNamesAndTheEnd) {
   EXPECT_TRUE(feed->summary().ended);
 }
 
-/// A viewer directory with stand-in files.
-std::string fake_viewer_dir() {
-  const auto dir = std::filesystem::path(testing::TempDir()) / "rewind_live_viewer";
-  std::filesystem::create_directories(dir);
-  for (const char* name : kViewerFiles) std::ofstream(dir / name) << "file " << name;
-  return dir.string();
+/// Stand-in viewer files in `dir`.
+std::string fake_viewer_in(const test::ScratchDir& dir) {
+  for (const char* name : kViewerFiles) std::ofstream(dir.path() / name) << "file " << name;
+  return dir.path().string();
 }
 
 HttpRequest get(std::string target) {
@@ -201,7 +200,8 @@ TEST(LiveApi, AnswersEveryRouteAsDocumented) {
   auto feed = std::make_shared<LiveFeed>(plain_info(10, 0));
   feed->publish_names({"<ann>", "bo"});
   publish(*feed, 0, 50);
-  auto viewer = StaticFiles::load_viewer(fake_viewer_dir());
+  const test::ScratchDir dir("live_api_viewer");
+  auto viewer = StaticFiles::load_viewer(fake_viewer_in(dir));
   ASSERT_TRUE(viewer.ok()) << viewer.status().message();
   const LiveApi api(
       [feed](std::string_view id) {
@@ -264,7 +264,8 @@ TEST(LiveServer, ServesItsMatchesOnTheLiveEndpoint) {
   config.bind_address = "127.0.0.1";
   config.port = 0;
   config.live = ServerConfig::HttpBind{"127.0.0.1", 0};
-  config.live_viewer_dir = fake_viewer_dir();
+  const test::ScratchDir dir("live_server_viewer");
+  config.live_viewer_dir = fake_viewer_in(dir);
   auto server = Server::create(config);
   ASSERT_TRUE(server.ok()) << server.status().message();
   ASSERT_NE((*server)->live_port(), 0);
@@ -280,7 +281,7 @@ TEST(LiveServer, ServesItsMatchesOnTheLiveEndpoint) {
       client.exchange("GET /?live=match HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
   EXPECT_EQ(testing_http::body_of(page), "file index.html");
 
-  config.live_viewer_dir = (std::filesystem::path(testing::TempDir()) / "no_such_viewer").string();
+  config.live_viewer_dir = (dir.path() / "no_such_viewer").string();
   auto refused = Server::create(config);
   ASSERT_FALSE(refused.ok());
   EXPECT_NE(refused.status().message().find("viewer is not built"), std::string::npos);

@@ -4,6 +4,7 @@
 #include "match_host_harness.h"
 #include "rewind/game/crates_game.h"
 #include "rewind/proto/message_inputs.h"
+#include "scratch_dir.h"
 
 namespace rwd::server {
 namespace {
@@ -263,8 +264,8 @@ TEST(MatchHost, ConfigErrorsAreReported) {
 }
 
 TEST(MatchHost, ReplayHeaderNamesThisBuildAndAStoppedMatchVerifiesAsIncomplete) {
-  const std::string path =
-      (std::filesystem::path(::testing::TempDir()) / "match_host_replay.rwr").string();
+  const test::ScratchDir dir("match_host_replay");
+  const std::string path = (dir.path() / "match.rwr").string();
   MatchConfig config = test_config();
   config.replay_path = path;
   Tick finals = 0;

@@ -25,11 +25,19 @@ struct ToolRun {
   std::string all;  // stdout, then stderr
 };
 
+/// `text` as one shell word: the build tree may sit under any path.
+std::string shell_quoted(const std::string& text) {
+  std::string out = "'";
+  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
 ToolRun run_tool(const std::string& args) {
   ToolRun run;
   const std::filesystem::path err =
       std::filesystem::temp_directory_path() / ("rewind_tune_cli_" + std::to_string(::getpid()));
-  const std::string command = std::string(REWIND_TUNE_TOOL) + " " + args + " 2>" + err.string();
+  const std::string command =
+      shell_quoted(REWIND_TUNE_TOOL) + " " + args + " 2>" + shell_quoted(err.string());
   std::FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) return run;
   std::array<char, 4096> buf;

@@ -27,7 +27,7 @@
 namespace rwd::sim {
 // Declared only: the step's files never include the hasher or the dump
 // (they name floating-point types for the 3D lane), which keeps the 2D
-// step checkable for floating point (test sim2d_no_float).
+// step checkable for floating point (tests sim2d_no_float_*).
 class StateHasher;
 struct BodyField;
 class ThreadPool;  // rewind/sim/thread_pool.h
