@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -286,29 +287,30 @@ int main(int argc, char** argv) {
     }
     config.server_key = *key;
   }
-  if (!metrics_bind.empty()) {
-    rwd::server::ServerConfig::MetricsBind metrics;
-    if (!rwd::cli::split_host_port(metrics_bind, &metrics.address, &metrics.port)) {
-      write_log(LogLevel::kError, "--metrics-bind: expected HOST:PORT, got '" + metrics_bind + "'");
-      return rwd::cli::kExitUsage;
+  // An HTTP endpoint's HOST:PORT flag, and its port file that needs it.
+  const auto http_bind = [](const char* flag, const std::string& text,
+                            const std::string& its_port_file, const char* port_file_flag,
+                            std::optional<rwd::server::ServerConfig::HttpBind>* out) {
+    if (text.empty()) {
+      if (its_port_file.empty()) return true;
+      write_log(LogLevel::kError, std::string("--") + port_file_flag + " needs --" + flag);
+      return false;
     }
-    config.metrics = metrics;
-  } else if (!metrics_port_file.empty()) {
-    write_log(LogLevel::kError, "--metrics-port-file needs --metrics-bind");
+    rwd::server::ServerConfig::HttpBind endpoint;
+    if (!rwd::cli::split_host_port(text, &endpoint.address, &endpoint.port)) {
+      write_log(LogLevel::kError,
+                std::string("--") + flag + ": expected HOST:PORT, got '" + text + "'");
+      return false;
+    }
+    *out = endpoint;
+    return true;
+  };
+  if (!http_bind("metrics-bind", metrics_bind, metrics_port_file, "metrics-port-file",
+                 &config.metrics) ||
+      !http_bind("live-bind", live_bind, live_port_file, "live-port-file", &config.live)) {
     return rwd::cli::kExitUsage;
   }
-  if (!live_bind.empty()) {
-    rwd::server::ServerConfig::HttpBind live;
-    if (!rwd::cli::split_host_port(live_bind, &live.address, &live.port)) {
-      write_log(LogLevel::kError, "--live-bind: expected HOST:PORT, got '" + live_bind + "'");
-      return rwd::cli::kExitUsage;
-    }
-    config.live = live;
-    config.live_viewer_dir = live_viewer_dir;
-  } else if (!live_port_file.empty()) {
-    write_log(LogLevel::kError, "--live-port-file needs --live-bind");
-    return rwd::cli::kExitUsage;
-  }
+  if (config.live) config.live_viewer_dir = live_viewer_dir;
   config.match.live_delay_ticks = static_cast<uint32_t>(live_delay);
   config.match.live_keyframe_ticks = static_cast<uint32_t>(live_keyframe);
   if (!tls.certificate_file.empty() || !tls.private_key_file.empty() ||

@@ -96,4 +96,34 @@ inline game::PlayerInput get_input(Reader& r) {
   return in;
 }
 
+/// Tick records as both formats store them: per tick u64 checksum, u64
+/// substituted mask, then `players` inputs.
+inline void put_ticks(Writer& w, uint32_t players, const std::vector<uint64_t>& checksums,
+                      const std::vector<uint64_t>& masks,
+                      const std::vector<game::PlayerInput>& inputs) {
+  for (size_t t = 0; t < checksums.size(); ++t) {
+    w.put(checksums[t], 8);
+    w.put(masks[t], 8);
+    for (uint32_t p = 0; p < players; ++p) put_input(w, inputs[t * players + p]);
+  }
+}
+/// Reads a u32 tick count (at most `bound`) and that many records.
+inline void get_ticks(Reader& r, uint64_t players, uint64_t bound, std::vector<uint64_t>& checksums,
+                      std::vector<uint64_t>& masks, std::vector<game::PlayerInput>& inputs) {
+  const uint64_t ticks = r.get(4, "tick count");
+  if (r.ok() && ticks > bound) r.fail("tick count", "is beyond the bound");
+  // Each tick takes 16 + 8 * players bytes: refuse a count the bytes
+  // cannot hold before reserving for it.
+  if (r.ok() && r.remaining() / (16 + 8 * players) < ticks) r.fail("ticks", "run past the end");
+  if (!r.ok()) return;
+  checksums.reserve(ticks);
+  masks.reserve(ticks);
+  inputs.reserve(ticks * players);
+  for (uint64_t t = 0; r.ok() && t < ticks; ++t) {
+    checksums.push_back(r.get(8, "checksum"));
+    masks.push_back(r.get(8, "substituted mask"));
+    for (uint64_t p = 0; p < players; ++p) inputs.push_back(get_input(r));
+  }
+}
+
 }  // namespace rwd::viewer::detail

@@ -55,13 +55,7 @@ Status encode_live_ticks(const LiveTicks& b, std::vector<uint8_t>& out) {
   w.put(b.ended ? 1 : 0, 1);
   w.put(static_cast<uint32_t>(b.first_tick), 4);
   w.put(b.checksums.size(), 4);
-  for (size_t t = 0; t < b.checksums.size(); ++t) {
-    w.put(b.checksums[t], 8);
-    w.put(b.substituted_masks[t], 8);
-    for (uint32_t p = 0; p < b.player_count; ++p) {
-      detail::put_input(w, b.inputs[t * b.player_count + p]);
-    }
-  }
+  detail::put_ticks(w, b.player_count, b.checksums, b.substituted_masks, b.inputs);
   out = std::move(bytes);
   return Status::Ok();
 }
@@ -99,19 +93,7 @@ Result<LiveTicks> decode_live_ticks(std::span<const uint8_t> bytes) {
   b.ended = ended == 1;
   b.first_tick = static_cast<Tick>(static_cast<uint32_t>(r.get(4, "first tick")));
   if (r.ok() && b.first_tick < 0) r.fail("first tick", "is negative");
-  const uint64_t ticks = r.get(4, "tick count");
-  if (r.ok() && ticks > kLiveMaxBatchTicks) r.fail("tick count", "is beyond the bound");
-  if (r.ok() && r.remaining() / (16 + 8 * players) < ticks) r.fail("ticks", "run past the end");
-  if (r.ok()) {
-    b.checksums.reserve(ticks);
-    b.substituted_masks.reserve(ticks);
-    b.inputs.reserve(ticks * players);
-  }
-  for (uint64_t t = 0; r.ok() && t < ticks; ++t) {
-    b.checksums.push_back(r.get(8, "checksum"));
-    b.substituted_masks.push_back(r.get(8, "substituted mask"));
-    for (uint64_t p = 0; p < players; ++p) b.inputs.push_back(detail::get_input(r));
-  }
+  detail::get_ticks(r, players, kLiveMaxBatchTicks, b.checksums, b.substituted_masks, b.inputs);
   if (r.ok() && r.remaining() != 0) {
     r.fail("end", ("has " + std::to_string(r.remaining()) + " bytes left over").c_str());
   }

@@ -86,12 +86,7 @@ Status encode_view_bundle(const ViewBundle& b, std::vector<uint8_t>& out) {
     w.bytes(k.state);
   }
   w.put(b.checksums.size(), 4);
-  const uint32_t players = b.setup.player_count;
-  for (size_t t = 0; t < b.checksums.size(); ++t) {
-    w.put(b.checksums[t], 8);
-    w.put(b.substituted_masks[t], 8);
-    for (uint32_t p = 0; p < players; ++p) detail::put_input(w, b.inputs[t * players + p]);
-  }
+  detail::put_ticks(w, b.setup.player_count, b.checksums, b.substituted_masks, b.inputs);
   w.put(b.desync ? 1 : 0, 1);
   if (b.desync) {
     w.put(static_cast<uint32_t>(b.desync->tick), 4);
@@ -159,21 +154,7 @@ Result<ViewBundle> decode_view_bundle(std::span<const uint8_t> bytes) {
       b.keyframes.push_back(std::move(keyframe));
     }
   }
-  const uint64_t ticks = r.get(4, "tick count");
-  if (r.ok() && ticks > kViewMaxTicks) r.fail("tick count", "is beyond the bound");
-  // Each tick takes 16 + 8 * players bytes: refuse a count the bytes
-  // cannot hold before reserving for it.
-  if (r.ok() && r.remaining() / (16 + 8 * players) < ticks) r.fail("ticks", "run past the end");
-  if (r.ok()) {
-    b.checksums.reserve(ticks);
-    b.substituted_masks.reserve(ticks);
-    b.inputs.reserve(ticks * players);
-  }
-  for (uint64_t t = 0; r.ok() && t < ticks; ++t) {
-    b.checksums.push_back(r.get(8, "checksum"));
-    b.substituted_masks.push_back(r.get(8, "substituted mask"));
-    for (uint64_t p = 0; p < players; ++p) b.inputs.push_back(detail::get_input(r));
-  }
+  detail::get_ticks(r, players, kViewMaxTicks, b.checksums, b.substituted_masks, b.inputs);
   const uint64_t has_desync = r.get(1, "desync flag");
   if (r.ok() && has_desync > 1) r.fail("desync flag", "is neither 0 nor 1");
   if (r.ok() && !b.keyframes.empty() && b.keyframes.back().position > b.end_position()) {
