@@ -75,6 +75,18 @@ void LiveFeed::trim_locked() {
   }
 }
 
+void LiveFeed::copy_ticks_locked(Tick from, Tick through, std::vector<uint64_t>& checksums,
+                                 std::vector<uint64_t>& masks,
+                                 std::vector<game::PlayerInput>& inputs) const {
+  const auto players = static_cast<ptrdiff_t>(info_.setup.player_count);
+  for (Tick t = from; t <= through; ++t) {
+    const auto i = static_cast<ptrdiff_t>(t - base_);
+    checksums.push_back(checksums_[static_cast<size_t>(i)]);
+    masks.push_back(masks_[static_cast<size_t>(i)]);
+    inputs.insert(inputs.end(), inputs_.begin() + i * players, inputs_.begin() + (i + 1) * players);
+  }
+}
+
 Status LiveFeed::start_bundle(std::vector<uint8_t>& out) const {
   std::lock_guard<std::mutex> lock(mutex_);
   const Tick visible = published_locked();
@@ -95,14 +107,8 @@ Status LiveFeed::start_bundle(std::vector<uint8_t>& out) const {
   }
   bundle.first_tick = from != nullptr ? from->position : 0;
   if (from != nullptr) bundle.start_state = from->state;
-  const uint32_t players = info_.setup.player_count;
-  for (Tick t = bundle.first_tick; t <= visible; ++t) {
-    const size_t i = static_cast<size_t>(t - base_);
-    bundle.checksums.push_back(checksums_[i]);
-    bundle.substituted_masks.push_back(masks_[i]);
-    bundle.inputs.insert(bundle.inputs.end(), inputs_.begin() + static_cast<ptrdiff_t>(i * players),
-                         inputs_.begin() + static_cast<ptrdiff_t>((i + 1) * players));
-  }
+  copy_ticks_locked(bundle.first_tick, visible, bundle.checksums, bundle.substituted_masks,
+                    bundle.inputs);
   return viewer::encode_view_bundle(bundle, out);
 }
 
@@ -122,14 +128,7 @@ Status LiveFeed::ticks_from(Tick from, std::vector<uint8_t>& out) const {
   batch.ended = ended_;
   batch.first_tick = from;
   const Tick last = std::min(visible, from + static_cast<Tick>(viewer::kLiveMaxBatchTicks) - 1);
-  const uint32_t players = info_.setup.player_count;
-  for (Tick t = from; t <= last; ++t) {
-    const size_t i = static_cast<size_t>(t - base_);
-    batch.checksums.push_back(checksums_[i]);
-    batch.substituted_masks.push_back(masks_[i]);
-    batch.inputs.insert(batch.inputs.end(), inputs_.begin() + static_cast<ptrdiff_t>(i * players),
-                        inputs_.begin() + static_cast<ptrdiff_t>((i + 1) * players));
-  }
+  copy_ticks_locked(from, last, batch.checksums, batch.substituted_masks, batch.inputs);
   return viewer::encode_live_ticks(batch, out);
 }
 

@@ -92,6 +92,10 @@ class LiveFeed {
     std::vector<uint8_t> state;
   };
   Tick published_locked() const;
+  /// Appends the held ticks from .. through (both held) to the three lists.
+  void copy_ticks_locked(Tick from, Tick through, std::vector<uint64_t>& checksums,
+                         std::vector<uint64_t>& masks,
+                         std::vector<game::PlayerInput>& inputs) const;
   /// Drops the oldest keyframes and their ticks while two later ones are
   /// visible to spectators.
   void trim_locked();
