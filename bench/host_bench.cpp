@@ -27,7 +27,7 @@ namespace {
 
 using rwd::Tick;
 
-rwd::game::PlayerInput circling(uint32_t player, Tick tick) {
+rwd::PlayerInput circling(uint32_t player, Tick tick) {
   // A direction that changes every 15 ticks, different per player: the
   // inputs change as often as a real player's stick does.
   static constexpr int16_t kAxis[8] = {1000, 707, 0, -707, -1000, -707, 0, 707};

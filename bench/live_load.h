@@ -19,7 +19,7 @@
 #include <memory>
 #include <string>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 
 namespace rwd::bench {
 

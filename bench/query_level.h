@@ -15,7 +15,7 @@
 #include <optional>
 #include <string>
 #include <vector>
-#include "rewind/sim/splitmix64.h"
+#include "rewind/core/splitmix64.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::bench::query_level {

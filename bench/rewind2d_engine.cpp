@@ -26,7 +26,7 @@ double to_double(Fx v) {
 Rewind2DEngine::Rewind2DEngine(int substeps, int relax_iterations, uint32_t threads) {
   config_.substeps = substeps;
   config_.relax_iterations = relax_iterations;
-  if (threads > 1) pool_ = std::make_unique<sim::ThreadPool>(threads);
+  if (threads > 1) pool_ = std::make_unique<rwd::ThreadPool>(threads);
 }
 
 std::string Rewind2DEngine::settings() const {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "engine2d.h"
-#include "rewind/sim/thread_pool.h"
+#include "rewind/core/thread_pool.h"
 #include "rewind/sim2d/world2d.h"
 
 namespace rwd::bench {
@@ -39,7 +39,7 @@ class Rewind2DEngine final : public Engine2D {
            std::string& error);
 
   sim2d::World2DConfig config_;
-  std::unique_ptr<sim::ThreadPool> pool_;  // null: one thread; outlives world_
+  std::unique_ptr<rwd::ThreadPool> pool_;  // null: one thread; outlives world_
   std::unique_ptr<sim2d::World2D> world_;
   std::vector<sim2d::BodyId2D> ids_;
   std::vector<std::vector<sim2d::BodyId2D>> wave_ids_;  // per wave added

@@ -12,7 +12,7 @@
 
 namespace {
 
-using rwd::game::PlayerInput;
+using rwd::PlayerInput;
 using rwd::game::Simulation;
 
 std::vector<PlayerInput> inputs_for(uint32_t players, rwd::Tick tick) {

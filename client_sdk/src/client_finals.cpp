@@ -9,7 +9,7 @@
 namespace rwd::client {
 
 void ClientProtocol::Impl::on_relayed(uint32_t player, Tick first_tick,
-                                      std::span<const game::PlayerInput> inputs) {
+                                      std::span<const rwd::PlayerInput> inputs) {
   if (player >= player_count_ || player == player_) return;
   for (size_t i = 0; i < inputs.size(); ++i) {
     (void)session_->add_input(player, first_tick + static_cast<Tick>(i), inputs[i]);

@@ -34,11 +34,9 @@ uint64_t micros_since_epoch(TimePoint t) {
       std::chrono::duration_cast<std::chrono::microseconds>(t.time_since_epoch()).count());
 }
 
-game::PlayerInput clamped(game::PlayerInput input) {
-  input.axis_x =
-      static_cast<int16_t>(std::clamp<int>(input.axis_x, -game::kAxisMax, game::kAxisMax));
-  input.axis_y =
-      static_cast<int16_t>(std::clamp<int>(input.axis_y, -game::kAxisMax, game::kAxisMax));
+rwd::PlayerInput clamped(rwd::PlayerInput input) {
+  input.axis_x = static_cast<int16_t>(std::clamp<int>(input.axis_x, -rwd::kAxisMax, rwd::kAxisMax));
+  input.axis_y = static_cast<int16_t>(std::clamp<int>(input.axis_y, -rwd::kAxisMax, rwd::kAxisMax));
   return input;
 }
 
@@ -86,7 +84,7 @@ void ClientProtocol::disconnect(const std::string& reason, TimePoint now) {
 void ClientProtocol::set_input_provider(InputProvider provider) {
   impl_->provider_ = std::move(provider);
 }
-void ClientProtocol::set_input(const game::PlayerInput& input) {
+void ClientProtocol::set_input(const rwd::PlayerInput& input) {
   impl_->held_input_ = input;
 }
 
@@ -242,7 +240,7 @@ void ClientProtocol::Impl::step_due_ticks(TimePoint now) {
        ++steps) {
     const Tick t = session_->current_tick();
     if (!spectator_ && t >= next_input_tick_) {
-      const game::PlayerInput input = clamped(provider_ ? provider_(t) : held_input_);
+      const rwd::PlayerInput input = clamped(provider_ ? provider_(t) : held_input_);
       (void)session_->add_input(player_, t, input);
       unacked_.emplace_back(t, input);
       next_input_tick_ = t + 1;

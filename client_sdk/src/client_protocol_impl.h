@@ -57,7 +57,7 @@ struct ClientProtocol::Impl {
   /// of the tick before (last_final_inputs_).
   bool apply_final_tick(const v1::FinalTick& final_tick, TimePoint now);
   /// Another player's inputs as the server relayed them.
-  void on_relayed(uint32_t player, Tick first_tick, std::span<const game::PlayerInput> inputs);
+  void on_relayed(uint32_t player, Tick first_tick, std::span<const rwd::PlayerInput> inputs);
 
   // client_resync.cpp
   void request_resync(TimePoint now);
@@ -78,7 +78,7 @@ struct ClientProtocol::Impl {
   std::unique_ptr<net::RollbackSession> session_;
   net::TimeSync time_sync_;
   InputProvider provider_;
-  game::PlayerInput held_input_;
+  rwd::PlayerInput held_input_;
 
   // The tick clock: fractional ticks, advanced by the time given scaled by
   // the time sync, so steps happen at the right moments.
@@ -88,7 +88,7 @@ struct ClientProtocol::Impl {
   TimePoint last_join_sent_;
   TimePoint last_ping_;
   Tick next_input_tick_ = 0;  // first tick whose input is not yet taken
-  std::deque<std::pair<Tick, game::PlayerInput>> unacked_;
+  std::deque<std::pair<Tick, rwd::PlayerInput>> unacked_;
   Tick input_ack_ = kNoTick;
   Tick last_final_received_ = kNoTick;
   /// Last final tick our state is known to agree on: verified, or passed
@@ -98,9 +98,9 @@ struct ClientProtocol::Impl {
   std::map<Tick, v1::FinalTick> early_finals_;            // arrived ahead of a gap, bounded
   /// The final inputs of tick last_final_received_ (empty after a resync:
   /// the server then sends the next tick standalone).
-  std::vector<game::PlayerInput> last_final_inputs_;
-  std::vector<game::PlayerInput> final_inputs_buffer_;
-  std::vector<game::PlayerInput> relayed_buffer_;
+  std::vector<rwd::PlayerInput> last_final_inputs_;
+  std::vector<rwd::PlayerInput> final_inputs_buffer_;
+  std::vector<rwd::PlayerInput> relayed_buffer_;
   std::vector<proto::RelayedRun> relayed_runs_;
   Tick last_final_acked_ = kNoTick;  // last_final_received_ as last sent
   /// Since when an acknowledgement of new final ticks has waited for an

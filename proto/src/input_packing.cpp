@@ -8,7 +8,7 @@ namespace {
 
 constexpr size_t kInputBytes = 8;
 
-void to_bytes(const game::PlayerInput& in, uint8_t* out) {
+void to_bytes(const rwd::PlayerInput& in, uint8_t* out) {
   const auto x = static_cast<uint16_t>(in.axis_x);
   const auto y = static_cast<uint16_t>(in.axis_y);
   out[0] = static_cast<uint8_t>(x);
@@ -18,8 +18,8 @@ void to_bytes(const game::PlayerInput& in, uint8_t* out) {
   for (int i = 0; i < 4; ++i) out[4 + i] = static_cast<uint8_t>(in.buttons >> (8 * i));
 }
 
-game::PlayerInput from_bytes(const uint8_t* in) {
-  game::PlayerInput out;
+rwd::PlayerInput from_bytes(const uint8_t* in) {
+  rwd::PlayerInput out;
   out.axis_x = static_cast<int16_t>(static_cast<uint16_t>(in[0] | in[1] << 8));
   out.axis_y = static_cast<int16_t>(static_cast<uint16_t>(in[2] | in[3] << 8));
   out.buttons = 0;
@@ -27,8 +27,7 @@ game::PlayerInput from_bytes(const uint8_t* in) {
   return out;
 }
 
-void pack_one(const game::PlayerInput& value, const game::PlayerInput& reference,
-              std::string& out) {
+void pack_one(const rwd::PlayerInput& value, const rwd::PlayerInput& reference, std::string& out) {
   uint8_t a[kInputBytes];
   uint8_t b[kInputBytes];
   to_bytes(value, a);
@@ -44,8 +43,8 @@ void pack_one(const game::PlayerInput& value, const game::PlayerInput& reference
 }
 
 // Reads one input at `at` against `reference`; false when the bytes end.
-bool unpack_one(std::string_view bytes, size_t& at, const game::PlayerInput& reference,
-                game::PlayerInput& out) {
+bool unpack_one(std::string_view bytes, size_t& at, const rwd::PlayerInput& reference,
+                rwd::PlayerInput& out) {
   if (at >= bytes.size()) return false;
   const auto mask = static_cast<uint8_t>(bytes[at++]);
   uint8_t value[kInputBytes];
@@ -59,9 +58,9 @@ bool unpack_one(std::string_view bytes, size_t& at, const game::PlayerInput& ref
   return true;
 }
 
-bool in_range(const game::PlayerInput& in) {
-  return in.axis_x >= -game::kAxisMax && in.axis_x <= game::kAxisMax &&
-         in.axis_y >= -game::kAxisMax && in.axis_y <= game::kAxisMax;
+bool in_range(const rwd::PlayerInput& in) {
+  return in.axis_x >= -rwd::kAxisMax && in.axis_x <= rwd::kAxisMax && in.axis_y >= -rwd::kAxisMax &&
+         in.axis_y <= rwd::kAxisMax;
 }
 
 Status corrupt(const std::string& what) {
@@ -70,26 +69,26 @@ Status corrupt(const std::string& what) {
 
 }  // namespace
 
-void pack_inputs(std::span<const game::PlayerInput> values,
-                 std::span<const game::PlayerInput> references, std::string& out) {
+void pack_inputs(std::span<const rwd::PlayerInput> values,
+                 std::span<const rwd::PlayerInput> references, std::string& out) {
   out.push_back(static_cast<char>(values.size()));
-  const game::PlayerInput neutral;
+  const rwd::PlayerInput neutral;
   for (size_t i = 0; i < values.size(); ++i) {
     pack_one(values[i], references.empty() ? neutral : references[i], out);
   }
 }
 
-void pack_run(std::span<const game::PlayerInput> run, std::string& out) {
+void pack_run(std::span<const rwd::PlayerInput> run, std::string& out) {
   out.push_back(static_cast<char>(run.size()));
-  game::PlayerInput previous;
-  for (const game::PlayerInput& input : run) {
+  rwd::PlayerInput previous;
+  for (const rwd::PlayerInput& input : run) {
     pack_one(input, previous, out);
     previous = input;
   }
 }
 
-Status unpack_inputs(std::string_view bytes, std::span<const game::PlayerInput> references,
-                     std::vector<game::PlayerInput>& out) {
+Status unpack_inputs(std::string_view bytes, std::span<const rwd::PlayerInput> references,
+                     std::vector<rwd::PlayerInput>& out) {
   out.clear();
   if (bytes.empty()) return corrupt("packed inputs: no count");
   const auto count = static_cast<uint8_t>(bytes[0]);
@@ -99,9 +98,9 @@ Status unpack_inputs(std::string_view bytes, std::span<const game::PlayerInput> 
                    std::to_string(references.size()) + " references");
   }
   size_t at = 1;
-  const game::PlayerInput neutral;
+  const rwd::PlayerInput neutral;
   for (size_t i = 0; i < count; ++i) {
-    game::PlayerInput in;
+    rwd::PlayerInput in;
     if (!unpack_one(bytes, at, references.empty() ? neutral : references[i], in)) {
       out.clear();
       return corrupt("packed inputs: cut short at input " + std::to_string(i));
@@ -136,15 +135,15 @@ Status check_packed_inputs(std::string_view bytes) {
   return Status::Ok();
 }
 
-Status unpack_run(std::string_view bytes, std::vector<game::PlayerInput>& out) {
+Status unpack_run(std::string_view bytes, std::vector<rwd::PlayerInput>& out) {
   out.clear();
   if (bytes.empty()) return corrupt("packed run: no count");
   const auto count = static_cast<uint8_t>(bytes[0]);
   if (count > kMaxPackedInputs) return corrupt("packed run: more than 64 inputs");
   size_t at = 1;
-  game::PlayerInput previous;
+  rwd::PlayerInput previous;
   for (size_t i = 0; i < count; ++i) {
-    game::PlayerInput in;
+    rwd::PlayerInput in;
     if (!unpack_one(bytes, at, previous, in) || !in_range(in)) {
       out.clear();
       return corrupt("packed run: input " + std::to_string(i) + " cut short or out of range");

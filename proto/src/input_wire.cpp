@@ -6,7 +6,7 @@
 
 namespace rwd::proto {
 
-v1::Input to_wire(const game::PlayerInput& input) {
+v1::Input to_wire(const rwd::PlayerInput& input) {
   v1::Input out;
   out.set_axis_x(input.axis_x);
   out.set_axis_y(input.axis_y);
@@ -14,7 +14,7 @@ v1::Input to_wire(const game::PlayerInput& input) {
   return out;
 }
 
-Result<game::PlayerInput> from_wire(const v1::Input& input) {
+Result<rwd::PlayerInput> from_wire(const v1::Input& input) {
   constexpr int32_t lo = std::numeric_limits<int16_t>::min();
   constexpr int32_t hi = std::numeric_limits<int16_t>::max();
   if (input.axis_x() < lo || input.axis_x() > hi || input.axis_y() < lo || input.axis_y() > hi) {
@@ -22,7 +22,7 @@ Result<game::PlayerInput> from_wire(const v1::Input& input) {
                                                   ", " + std::to_string(input.axis_y()) +
                                                   ") does not fit 16 bits");
   }
-  game::PlayerInput out;
+  rwd::PlayerInput out;
   out.axis_x = static_cast<int16_t>(input.axis_x());
   out.axis_y = static_cast<int16_t>(input.axis_y());
   out.buttons = input.buttons();

@@ -16,13 +16,13 @@ Status corrupt(const std::string& what) {
 }
 
 Status repeated_inputs(const google::protobuf::RepeatedPtrField<v1::Input>& inputs,
-                       std::vector<game::PlayerInput>& out) {
+                       std::vector<rwd::PlayerInput>& out) {
   out.clear();
   for (const v1::Input& wire : inputs) {
     auto in = from_wire(wire);
     if (!in.ok()) return in.status();
-    if (in->axis_x < -game::kAxisMax || in->axis_x > game::kAxisMax ||
-        in->axis_y < -game::kAxisMax || in->axis_y > game::kAxisMax) {
+    if (in->axis_x < -rwd::kAxisMax || in->axis_x > rwd::kAxisMax || in->axis_y < -rwd::kAxisMax ||
+        in->axis_y > rwd::kAxisMax) {
       return corrupt("an input axis outside [-1000, 1000]");
     }
     out.push_back(*in);
@@ -55,7 +55,7 @@ constexpr uint32_t kMaxSlots = 64;
 }  // namespace
 
 void append_relayed_run(uint32_t player, int32_t first_tick, int32_t server_tick,
-                        std::span<const game::PlayerInput> inputs, std::string& out) {
+                        std::span<const rwd::PlayerInput> inputs, std::string& out) {
   out.push_back(static_cast<char>(player));
   const int64_t offset = int64_t{first_tick} - int64_t{server_tick};
   put_varint(static_cast<uint64_t>((offset << 1) ^ (offset >> 63)), out);
@@ -99,7 +99,7 @@ Status relayed_runs(const v1::FinalTicks& finals, std::vector<RelayedRun>& out) 
 }
 
 Status check_final_tick_inputs(const v1::FinalTicks& finals) {
-  std::vector<game::PlayerInput> scratch;
+  std::vector<rwd::PlayerInput> scratch;
   for (int t = 0; t < finals.ticks_size(); ++t) {
     const v1::FinalTick& tick = finals.ticks(t);
     const std::string name = "final_ticks.ticks[" + std::to_string(t) + "]";
@@ -119,8 +119,8 @@ Status check_final_tick_inputs(const v1::FinalTicks& finals) {
   return Status::Ok();
 }
 
-Status final_tick_inputs(const v1::FinalTick& tick, std::span<const game::PlayerInput> previous,
-                         std::vector<game::PlayerInput>& out) {
+Status final_tick_inputs(const v1::FinalTick& tick, std::span<const rwd::PlayerInput> previous,
+                         std::vector<rwd::PlayerInput>& out) {
   if (tick.packed_inputs().empty()) {
     if (tick.delta()) return corrupt("a delta final tick without packed inputs");
     return repeated_inputs(tick.inputs(), out);
@@ -133,7 +133,7 @@ Status final_tick_inputs(const v1::FinalTick& tick, std::span<const game::Player
   return unpack_inputs(tick.packed_inputs(), previous, out);
 }
 
-Status relayed_run_inputs(const v1::RelayedInputs& run, std::vector<game::PlayerInput>& out) {
+Status relayed_run_inputs(const v1::RelayedInputs& run, std::vector<rwd::PlayerInput>& out) {
   if (run.packed_inputs().empty()) return repeated_inputs(run.inputs(), out);
   if (run.inputs_size() != 0) {
     out.clear();

@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <string>
 
+#include "rewind/core/det_math.h"
 #include "rewind/scenes/joint_scenes.h"
-#include "rewind/sim/det_math.h"
 #include "rewind/sim/ragdoll3d.h"
 #include "rewind/sim/world_state.h"
 
@@ -24,8 +24,8 @@ constexpr uint32_t kParts = sim::kRagdollPartCount3D;
 constexpr uint32_t kJoints = sim::kRagdollJointCount3D;
 
 sim::Quat about(sim::Vec3 axis, float angle) {
-  const float s = sim::det_sin(0.5f * angle);
-  return {axis.x * s, axis.y * s, axis.z * s, sim::det_cos(0.5f * angle)};
+  const float s = rwd::det_sin(0.5f * angle);
+  return {axis.x * s, axis.y * s, axis.z * s, rwd::det_cos(0.5f * angle)};
 }
 
 bool close(float a, float b) {
@@ -135,17 +135,17 @@ JointScene ragdoll_pile(int count) {
   floor.position = {0.0f, -0.5f, 0.0f};
   s.bodies.push_back(floor);
 
-  const sim::Quat lying = about({1.0f, 0.0f, 0.0f}, -0.5f * sim::kPi);  // face up, head to +z
+  const sim::Quat lying = about({1.0f, 0.0f, 0.0f}, -0.5f * rwd::kPi);  // face up, head to +z
   std::array<sim::RagdollPartPose3D, kParts> pose;
   for (int i = 0; i < count; ++i) {
     const auto layer = static_cast<uint32_t>(i / 5);
     const auto slot = static_cast<uint32_t>(i % 5);
     const float across = (static_cast<float>(slot) - 2.0f) * 0.6f;
-    const float yaw = (layer % 2 == 0 ? 0.0f : 0.5f * sim::kPi) +
-                      0.25f * sim::det_sin(1.7f * static_cast<float>(i) + 0.3f);
+    const float yaw = (layer % 2 == 0 ? 0.0f : 0.5f * rwd::kPi) +
+                      0.25f * rwd::det_sin(1.7f * static_cast<float>(i) + 0.3f);
     sim::RagdollSpec3D spec = defaults;
     spec.rotation = about({0.0f, 1.0f, 0.0f}, yaw) * lying;
-    const float along = 0.3f * sim::det_cos(2.3f * static_cast<float>(i));
+    const float along = 0.3f * rwd::det_cos(2.3f * static_cast<float>(i));
     const float height = 0.4f + 0.45f * static_cast<float>(layer);
     spec.position =
         layer % 2 == 0 ? sim::Vec3{across, height, along} : sim::Vec3{along, height, across};

@@ -10,7 +10,7 @@
 namespace rwd::scenes {
 
 RewindEngine::RewindEngine(const sim::WorldConfig& config, uint32_t threads) : config_(config) {
-  if (threads > 1) pool_ = std::make_unique<sim::ThreadPool>(threads);
+  if (threads > 1) pool_ = std::make_unique<rwd::ThreadPool>(threads);
 }
 
 std::string RewindEngine::settings() const {

@@ -97,7 +97,7 @@ Setter seconds(double min, double max, double MatchConfig::*field) {
   };
 }
 
-// The ranges are rewind-server's flags' (server/src/main.cpp).
+// The ranges are rewind-server's flags' (server/src/server_main.cpp).
 const std::map<std::string, Setter, std::less<>>& setters() {
   static const std::map<std::string, Setter, std::less<>> table = {
       {"game",

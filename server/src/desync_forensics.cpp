@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "host_log.h"
-#include "rewind/sim/body_field.h"
+#include "rewind/core/body_field.h"
 
 namespace rwd::server {
 
@@ -41,14 +41,14 @@ DesyncFindings DesyncForensics::examine(const DesyncReportInfo& report,
     } else if (auto server_sim = session.load_snapshot(server_state); !server_sim.ok()) {
       out.problem = "server state unreadable: " + server_sim.status().message();
     } else {
-      std::vector<sim::BodyField> expected, actual;
+      std::vector<rwd::BodyField> expected, actual;
       (*server_sim)->dump_bodies(expected);
       (*client_sim)->dump_bodies(actual);
-      const auto differences = sim::diff_body_fields(expected, actual);
+      const auto differences = rwd::diff_body_fields(expected, actual);
       out.text += std::to_string(differences.size()) +
                   " differing fields (server = expected, client = actual):\n";
       char line[160];
-      for (const sim::FieldDifference& d : differences) {
+      for (const rwd::FieldDifference& d : differences) {
         std::snprintf(line, sizeof(line), "  body %u %s: expected %.9g actual %.9g\n", d.body_index,
                       d.field.c_str(), d.expected, d.actual);
         out.text += line;

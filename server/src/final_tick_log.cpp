@@ -9,8 +9,8 @@
 
 namespace rwd::server {
 
-void FinalTickLog::append(Tick tick, std::span<const game::PlayerInput> inputs,
-                          uint64_t substituted, uint64_t checksum, Tick made_at) {
+void FinalTickLog::append(Tick tick, std::span<const rwd::PlayerInput> inputs, uint64_t substituted,
+                          uint64_t checksum, Tick made_at) {
   v1::FinalTick& final_tick = ticks_.emplace_back();
   final_tick.set_tick(tick);
   proto::pack_inputs(inputs, {}, *final_tick.mutable_packed_inputs());

@@ -20,7 +20,7 @@ LiveFeed::LiveFeed(Info info) : info_(std::move(info)) {
   names_.assign(info_.setup.player_count, std::string());
 }
 
-void LiveFeed::publish_tick(Tick tick, std::span<const game::PlayerInput> inputs,
+void LiveFeed::publish_tick(Tick tick, std::span<const rwd::PlayerInput> inputs,
                             uint64_t substituted, uint64_t checksum) {
   if (inputs.size() != info_.setup.player_count) return;
   std::lock_guard<std::mutex> lock(mutex_);
@@ -77,7 +77,7 @@ void LiveFeed::trim_locked() {
 
 void LiveFeed::copy_ticks_locked(Tick from, Tick through, std::vector<uint64_t>& checksums,
                                  std::vector<uint64_t>& masks,
-                                 std::vector<game::PlayerInput>& inputs) const {
+                                 std::vector<rwd::PlayerInput>& inputs) const {
   const auto players = static_cast<ptrdiff_t>(info_.setup.player_count);
   for (Tick t = from; t <= through; ++t) {
     const auto i = static_cast<ptrdiff_t>(t - base_);

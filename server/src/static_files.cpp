@@ -31,9 +31,29 @@ Result<StaticFiles> StaticFiles::load(const std::string& dir, std::span<const ch
   return files;
 }
 
+std::string default_viewer_dir() {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::path program = fs::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    const fs::path installed = program.parent_path().parent_path() / "share" / "rewind" / "viewer";
+    if (fs::exists(installed / "index.html", error)) return installed.string();
+  }
+  const fs::path built = REWIND_BUILD_VIEWER_DIR;
+  if (fs::exists(built / "index.html", error)) return built.string();
+  return {};
+}
+
 Result<StaticFiles> StaticFiles::load_viewer(const std::string& dir) {
   auto files = load(dir, kViewerFiles);
   if (files.ok()) return files;
+  if (dir.empty()) {
+    return Status::Error(
+        ErrorCode::kNotFound,
+        "no browser viewer is installed or built: build it with cmake "
+        "-DREWIND_BUILD_VIEWER=ON and cmake --build DIR --target rewind_viewer "
+        "(needs emscripten: bash scripts/setup.sh --viewer), or pass --viewer-dir");
+  }
   return Status::Error(ErrorCode::kNotFound,
                        "the viewer is not built in '" + dir + "' (" + files.status().message() +
                            "): build it with cmake -DREWIND_BUILD_VIEWER=ON and cmake --build "

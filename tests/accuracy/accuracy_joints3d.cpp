@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "rewind/core/det_math.h"
 #include "rewind/scenes/joint_scene_meter.h"
 #include "rewind/scenes/joint_scenes.h"
-#include "rewind/sim/det_math.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim {

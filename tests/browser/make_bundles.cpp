@@ -33,7 +33,7 @@ viewer::ViewBundle play(const std::string& game_name, uint32_t players, Tick tic
     std::fprintf(stderr, "make_bundles: %s\n", sim.status().message().c_str());
     std::exit(1);
   }
-  std::vector<game::PlayerInput> inputs(players);
+  std::vector<rwd::PlayerInput> inputs(players);
   for (Tick t = 0; t < ticks; ++t) {
     for (uint32_t p = 0; p < players; ++p) {
       inputs[p].axis_x = static_cast<int16_t>(((t / 17 + static_cast<Tick>(p)) % 3 - 1) * 1000);
@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
   auto client = game::Simulation::create("crates", b.setup);
   for (Tick t = 0; t <= 100; ++t) {
     (*client)->step(
-        std::span<const game::PlayerInput>(b.inputs).subspan(static_cast<size_t>(t) * 2, 2));
+        std::span<const rwd::PlayerInput>(b.inputs).subspan(static_cast<size_t>(t) * 2, 2));
   }
   if (!(*client)->lane().perturb_for_drill()) return 1;
   viewer::ViewDesync d;

@@ -51,18 +51,19 @@
 #include "golden_digest.h"
 #include "joints3d_scene.h"
 #include "lane2d_scene.h"
-#include "rewind/game/player_input.h"
+#include "rewind/core/player_input.h"
+#include "rewind/core/splitmix64.h"
+#include "rewind/core/thread_pool.h"
 #include "rewind/game/simulation.h"
-#include "rewind/sim/splitmix64.h"
-#include "rewind/sim/thread_pool.h"
+#include "rewind/sim/hash_math.h"
 #include "rewind/sim/world3d.h"
 
 namespace {
 
+using rwd::PlayerInput;
 using rwd::SplitMix64;
 using rwd::Tick;
 using rwd::game::MatchSetup;
-using rwd::game::PlayerInput;
 using rwd::game::SimSnapshot;
 using rwd::game::Simulation;
 
@@ -72,7 +73,7 @@ constexpr uint64_t kScriptSeed = 0x5EED'0F'DE7E'2A11ull;
 constexpr Tick kRollbackEvery = 10;
 constexpr Tick kRollbackDepth = 5;
 
-// SplitMix64 (rewind/sim/splitmix64.h): integer operations only, identical
+// SplitMix64 (rewind/core/splitmix64.h): integer operations only, identical
 // on every compiler and architecture, so the input script itself can never
 // be the difference.
 
@@ -243,7 +244,7 @@ bool run_edge_scene(Tick ticks) {
 // must re-step bit for bit. Returns false (after saying why) otherwise.
 // The heap scene on `pool` (null: the stepping thread alone), its lines
 // appended to `out`: the same lines on any number of threads.
-bool run_heap_scene(Tick ticks, rwd::sim::ThreadPool* pool, std::string& out) {
+bool run_heap_scene(Tick ticks, rwd::ThreadPool* pool, std::string& out) {
   namespace sim = rwd::sim;
   sim::World3D world;
   world.set_thread_pool(pool);
@@ -351,13 +352,13 @@ bool run_heap_scene(Tick ticks, rwd::sim::ThreadPool* pool, std::string& out) {
     // Contact points and reused manifolds too: every build must carry the
     // same manifolds forward on the same ticks; and the events a game reads
     // (with their points, normals, depths and impulses) must agree as well.
-    rwd::sim::StateHasher events;
+    rwd::StateHasher events;
     for (const sim::ContactEvent& e : world.events()) {
       events.add_u8(static_cast<uint8_t>(e.type));
       events.add_u32(e.a.index);
       events.add_u32(e.b.index);
-      events.add_vec3(e.point);
-      events.add_vec3(e.normal);
+      sim::hash_vec3(events, e.point);
+      sim::hash_vec3(events, e.normal);
       events.add_f32(e.depth);
       events.add_f32(e.impulse);
     }
@@ -462,7 +463,7 @@ int main(int argc, char** argv) {
     std::string alone;
     if (!run_heap_scene(400, nullptr, alone)) return 3;
     std::fputs(alone.c_str(), stdout);
-    rwd::sim::ThreadPool pool(3);
+    rwd::ThreadPool pool(3);
     std::string threaded;
     if (!run_heap_scene(400, &pool, threaded)) return 3;
     if (threaded != alone) {

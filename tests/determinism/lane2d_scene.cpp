@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <vector>
 
+#include "rewind/core/state_hasher.h"
 #include "rewind/fixed/fx_literal.h"
-#include "rewind/sim/state_hasher.h"
 #include "rewind/sim2d/chain2d.h"
 #include "rewind/sim2d/character2d.h"
 #include "rewind/sim2d/world2d.h"
@@ -149,7 +149,7 @@ void fire(World2D& world, int shot) {
 }
 
 // Every query once, their results streamed into `hasher`.
-void digest_queries(const World2D& world, int tick, sim::StateHasher& hasher,
+void digest_queries(const World2D& world, int tick, rwd::StateHasher& hasher,
                     std::vector<RayHit2D>& hits, std::vector<BodyId2D>& bodies) {
   auto add_vec = [&](Vec2 v) {
     hasher.add_i32(v.x.raw());
@@ -231,7 +231,7 @@ bool run_lane2d_scene(int ticks) {
       world = std::move(reloaded);
     }
     world.step();
-    sim::StateHasher queries;
+    rwd::StateHasher queries;
     digest_queries(world, t, queries, hits, bodies);
     queries.add_i32(character.position.x.raw());
     queries.add_i32(character.position.y.raw());

@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: MIT
 #
 # Determinism matrix: builds det_checksums.cpp together with every source of
-# the engine (sim/src/**/*.cpp), the game seam (sim/game/src/*.cpp) and the
-# fixed-point library with its golden digest (sim/fixed/src/*.cpp,
+# the core and the engine (core/src/*.cpp, sim/src/**/*.cpp), the game seam
+# (sim/game/src/*.cpp) and the fixed-point library with its golden digest (sim/fixed/src/*.cpp,
 # tests/unit/fixed/golden_digest.cpp) and the 2D lane (sim/d2/src/*.cpp,
 # with its engine scene tests/determinism/lane2d_scene.cpp)
 # directly with each compiler -- no CMake, so no project flag can hide a
@@ -110,7 +110,7 @@ fi
 
 # --- sources ------------------------------------------------------------------
 cd "$source_dir"
-mapfile -t sim_sources < <(find sim/src -name '*.cpp' -type f 2>/dev/null | LC_ALL=C sort)
+mapfile -t sim_sources < <(find core/src sim/src -name '*.cpp' -type f 2>/dev/null | LC_ALL=C sort)
 mapfile -t game_sources < <(find sim/game/src -maxdepth 1 -name '*.cpp' -type f 2>/dev/null | LC_ALL=C sort)
 if ((${#sim_sources[@]} == 0 || ${#game_sources[@]} == 0)); then
   echo "run_matrix: FAIL: no engine or game sources under $source_dir/sim/src and" \
@@ -143,7 +143,8 @@ ln -sf /usr/include/xxhash.h "$build_dir/include/xxhash.h"
 # command shell-quoted (%q), and into ninja's file with its own escapes.
 printf -v src_q '%q' "$source_dir"
 printf -v build_q '%q' "$build_dir"
-common_flags="-std=c++20 -ffp-contract=off -fno-fast-math -I$src_q/sim/include"
+common_flags="-std=c++20 -ffp-contract=off -fno-fast-math -I$src_q/core/include"
+common_flags+=" -I$src_q/sim/include"
 common_flags+=" -I$src_q/sim/src -I$src_q/sim/game/include -I$src_q/sim/game/src"
 common_flags+=" -I$src_q/sim/fixed/include -I$src_q/tests/unit/fixed"
 common_flags+=" -I$src_q/sim/d2/include -I$src_q/sim/d2/src"

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <vector>
-#include "rewind/sim/splitmix64.h"
+#include "rewind/core/splitmix64.h"
 
 namespace rwd::fuzz {
 

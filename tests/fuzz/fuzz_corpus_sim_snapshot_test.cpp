@@ -13,7 +13,7 @@ namespace {
 
 std::vector<uint8_t> snapshot_after(int ticks) {
   auto sim = std::move(*rwd::game::Simulation::create("crates", {4, 7}));
-  std::vector<rwd::game::PlayerInput> inputs(4);
+  std::vector<rwd::PlayerInput> inputs(4);
   for (int t = 0; t < ticks; ++t) {
     for (int p = 0; p < 4; ++p)
       inputs[static_cast<size_t>(p)] = {int16_t((t * 37 + p * 500) % 2001 - 1000), 0, 0};

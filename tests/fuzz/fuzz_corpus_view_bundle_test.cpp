@@ -20,7 +20,7 @@ std::vector<uint8_t> bundle_of(const char* game, int ticks, bool desync) {
   b.setup = {2, 3};
   b.player_names = {"a", "b"};
   auto sim = std::move(*rwd::game::Simulation::create(game, b.setup));
-  std::vector<rwd::game::PlayerInput> inputs(2);
+  std::vector<rwd::PlayerInput> inputs(2);
   for (int t = 0; t < ticks; ++t) {
     for (int p = 0; p < 2; ++p) {
       inputs[static_cast<size_t>(p)] = {int16_t((t * 37 + p * 500) % 2001 - 1000), 300, 1};
@@ -35,8 +35,8 @@ std::vector<uint8_t> bundle_of(const char* game, int ticks, bool desync) {
     d.tick = 1;
     d.headline = "desync";
     auto client = std::move(*rwd::game::Simulation::create(game, b.setup));
-    client->step(std::span<const rwd::game::PlayerInput>(b.inputs).first(2));
-    client->step(std::span<const rwd::game::PlayerInput>(b.inputs).subspan(2, 2));
+    client->step(std::span<const rwd::PlayerInput>(b.inputs).first(2));
+    client->step(std::span<const rwd::PlayerInput>(b.inputs).subspan(2, 2));
     client->serialize(d.client_state);
     b.desync = d;
     b.keyframes.push_back({2, d.client_state});  // the state after tick 1, to seek by

@@ -59,7 +59,7 @@ int fuzz_sim_snapshot_one(const uint8_t* data, size_t size) {
                  again_status.message().c_str());
     std::abort();
   }
-  std::vector<rwd::game::PlayerInput> inputs(4);
+  std::vector<rwd::PlayerInput> inputs(4);
   sim->step(inputs);
   sim->serialize(again);
   if (rwd::Status stepped = copy->deserialize(again);

@@ -235,7 +235,7 @@ TEST(LongMatch, SixteenPlayersAggressivePlayLateDesyncResyncsAndReplayVerifies) 
   uint64_t keyframes = 0;
   ArenaCheck arena;
   std::string previous_keyframe;  // to find the exact tick of the first escape
-  std::vector<std::vector<game::PlayerInput>> inputs_since;
+  std::vector<std::vector<rwd::PlayerInput>> inputs_since;
   for (;;) {
     auto record = reader->next();
     ASSERT_TRUE(record.ok()) << record.status().message();

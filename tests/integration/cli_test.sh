@@ -48,7 +48,8 @@ check 64 "--agones-health-period: 0 is outside [0.1, 60]" rewind-server --agones
 AGONES_SDK_HTTP_PORT=x check 64 "AGONES_SDK_HTTP_PORT='x' is not a port number" rewind-server --agones
 check 64 "--loss: 1.5 is outside [0, 1]" rewind-bots --loss 1.5
 check 64 "--connect: expected HOST:PORT" rewind-bots --connect nowhere
-check 64 "--script: expected random, circle or idle" rewind-bots --script dance
+check 64 "--script: expected game, random, circle or idle" rewind-bots --script dance
+check 64 "--game: no game named 'chess' in this program" rewind-bots --game chess
 check 64 "--corrupt-bot and --corrupt-at-tick go together" rewind-bots --corrupt-bot 1
 check 64 "usage" rewind-replay
 check 2 "" rewind-replay verify /nonexistent/file.rwr

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 #include "rewind/sim/ragdoll3d.h"
 #include "rewind/sim/world3d.h"
 

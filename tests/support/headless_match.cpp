@@ -7,12 +7,12 @@
 #include <set>
 #include <thread>
 
+#include "rewind/core/splitmix64.h"
 #include "rewind/game/crates_game.h"
 #include "rewind/net/address_cookie.h"
 #include "rewind/net/connect_token.h"
 #include "rewind/net/connection.h"
 #include "rewind/net/envelope_codec.h"
-#include "rewind/sim/splitmix64.h"
 #include "scripted_peer.h"
 
 namespace rwd::test {
@@ -321,14 +321,14 @@ HeadlessResult HeadlessMatch::run() {
   return result;
 }
 
-game::PlayerInput aggressive_crates_input(uint64_t seed, uint32_t player, Tick tick) {
+rwd::PlayerInput aggressive_crates_input(uint64_t seed, uint32_t player, Tick tick) {
   // Ten-second phases: four in five send everyone into the same corner,
   // the fifth is a free-for-all with a new direction every 45 ticks.
   const uint64_t phase = mix(seed ^ mix(static_cast<uint64_t>(tick) / 600));
-  game::PlayerInput input;
+  rwd::PlayerInput input;
   if (phase % 5 < 4) {
-    input.axis_x = (phase & 1) ? game::kAxisMax : -game::kAxisMax;
-    input.axis_y = (phase & 2) ? game::kAxisMax : -game::kAxisMax;
+    input.axis_x = (phase & 1) ? rwd::kAxisMax : -rwd::kAxisMax;
+    input.axis_y = (phase & 2) ? rwd::kAxisMax : -rwd::kAxisMax;
   } else {
     const uint64_t d =
         mix(phase ^ mix(player + 1) ^ mix(static_cast<uint64_t>(tick) / 45 + 0x5151));

@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "rewind/client/client_session.h"
-#include "rewind/game/player_input.h"
+#include "rewind/core/player_input.h"
 #include "rewind/server/match_host.h"
 #include "rewind/server/secure_gateway.h"
 #include "rewind/server/tokenless_gateway.h"
@@ -156,6 +156,6 @@ class HeadlessMatch {
 /// corner for a while (pile-ups, and escapes where the arena lets them),
 /// then another corner, with bursts of free-for-all; jumps and dashes all
 /// the time. A pure function of (seed, player, tick).
-game::PlayerInput aggressive_crates_input(uint64_t seed, uint32_t player, Tick tick);
+rwd::PlayerInput aggressive_crates_input(uint64_t seed, uint32_t player, Tick tick);
 
 }  // namespace rwd::test

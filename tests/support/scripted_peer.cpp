@@ -137,7 +137,7 @@ void ScriptedPeer::update(TimePoint now) {
   if (!ending_) {
     for (Tick t = first; t <= target && t < first + 64; ++t) {
       *frame->add_inputs() =
-          proto::to_wire(settings_.inputs ? settings_.inputs(player_, t) : game::PlayerInput{});
+          proto::to_wire(settings_.inputs ? settings_.inputs(player_, t) : rwd::PlayerInput{});
     }
   }
   send(envelope, now);

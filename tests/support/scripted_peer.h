@@ -18,19 +18,19 @@
 #include <string>
 #include <vector>
 
-#include "rewind/game/player_input.h"
+#include "rewind/core/player_input.h"
+#include "rewind/core/tick.h"
 #include "rewind/net/address_cookie.h"
 #include "rewind/net/clock.h"
 #include "rewind/net/connection.h"
 #include "rewind/net/secure_channel.h"
-#include "rewind/sim/tick.h"
 
 namespace rwd::test {
 
 using TimePoint = net::TimePoint;
 
 /// Inputs as a pure function of the player slot and the tick.
-using InputScript = std::function<game::PlayerInput(uint32_t player, Tick tick)>;
+using InputScript = std::function<rwd::PlayerInput(uint32_t player, Tick tick)>;
 
 class ScriptedPeer {
  public:

@@ -1,22 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/tools/bot_script.h"
-#include "rewind/sim/splitmix64.h"
 
 namespace rwd::tools {
-namespace {
-
-uint64_t mix(uint64_t z) {
-  return splitmix64_once(z);
-}
-
-int16_t axis_from(uint64_t bits) {
-  return static_cast<int16_t>(static_cast<int64_t>(bits % 2001) - 1000);
-}
-
-}  // namespace
 
 bool parse_bot_script(std::string_view text, BotScript* out) {
-  if (text == "random")
+  if (text == "game")
+    *out = BotScript::kGame;
+  else if (text == "random")
     *out = BotScript::kRandom;
   else if (text == "circle")
     *out = BotScript::kCircle;
@@ -27,8 +17,9 @@ bool parse_bot_script(std::string_view text, BotScript* out) {
   return true;
 }
 
-game::PlayerInput bot_input(BotScript script, uint64_t seed, uint32_t bot, Tick tick) {
-  game::PlayerInput input;
+rwd::PlayerInput bot_input(BotScript script, const game::Game& game, uint64_t seed, uint32_t bot,
+                           Tick tick) {
+  rwd::PlayerInput input;
   switch (script) {
     case BotScript::kIdle:
       break;
@@ -40,18 +31,12 @@ game::PlayerInput bot_input(BotScript script, uint64_t seed, uint32_t bot, Tick 
       input.axis_y = kX[(phase + 2) % 8];
       break;
     }
-    case BotScript::kRandom: {
-      // A new direction every 40 ticks; hashing the segment number keeps the
-      // function pure in `tick`.
-      const uint64_t block = static_cast<uint64_t>(tick) / 20;
-      const uint64_t h = mix(seed ^ mix(bot) ^ mix(block / 2));
-      input.axis_x = axis_from(h);
-      input.axis_y = axis_from(h >> 16);
-      const uint64_t b = mix(h ^ static_cast<uint64_t>(tick));
-      if (b % 97 == 0) input.buttons |= 1u;   // jump
-      if (b % 131 == 0) input.buttons |= 2u;  // dash
+    case BotScript::kGame:
+      input = game.bot_input(seed, bot, tick);
       break;
-    }
+    case BotScript::kRandom:
+      input = game::random_bot_input(seed, bot, tick);
+      break;
   }
   return input;
 }

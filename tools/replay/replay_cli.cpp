@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "rewind/cli/flag_parser.h"
-#include "rewind/game/player_input.h"
+#include "rewind/core/player_input.h"
 
 namespace rwd::replay_tool {
 namespace {
@@ -156,11 +156,9 @@ Result<Command> parse_tamper(int argc, const char* const* argv) {
   cmd.edit.tick = static_cast<Tick>(tick);
   cmd.edit.player = static_cast<uint32_t>(player);
 
-  Result<std::optional<int64_t>> x =
-      optional_int("axis-x", axis_x, -game::kAxisMax, game::kAxisMax);
+  Result<std::optional<int64_t>> x = optional_int("axis-x", axis_x, -rwd::kAxisMax, rwd::kAxisMax);
   if (!x.ok()) return x.status();
-  Result<std::optional<int64_t>> y =
-      optional_int("axis-y", axis_y, -game::kAxisMax, game::kAxisMax);
+  Result<std::optional<int64_t>> y = optional_int("axis-y", axis_y, -rwd::kAxisMax, rwd::kAxisMax);
   if (!y.ok()) return y.status();
   Result<std::optional<int64_t>> b =
       optional_int("buttons", buttons, 0, std::numeric_limits<uint32_t>::max());

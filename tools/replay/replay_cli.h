@@ -6,8 +6,8 @@
 #include <string>
 #include <variant>
 
+#include "rewind/core/status.h"
 #include "rewind/replay/replay_rewrite.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::replay_tool {
 

@@ -136,7 +136,7 @@ void print_differences(const replay::VerifyReport& report, std::ostream& out) {
   if (report.differences_tick && !report.differences.empty()) {
     out << "fields that differ at tick " << *report.differences_tick
         << " (expected = recorded keyframe, actual = re-simulated):\n";
-    for (const sim::FieldDifference& d : report.differences) {
+    for (const rwd::FieldDifference& d : report.differences) {
       out << "  body " << d.body_index << " " << d.field << " expected " << number(d.expected)
           << " actual " << number(d.actual) << "\n";
     }
@@ -283,7 +283,7 @@ void print_verify_json(const std::string& file, const replay::VerifyReport& repo
       << "  \"differences_total\": " << report.differences_total << ",\n"
       << "  \"differences\": [";
   for (size_t i = 0; i < report.differences.size(); ++i) {
-    const sim::FieldDifference& d = report.differences[i];
+    const rwd::FieldDifference& d = report.differences[i];
     out << (i == 0 ? "\n" : ",\n") << "    {\"body\": " << d.body_index
         << ", \"field\": " << json_string(d.field) << ", \"expected\": " << json_number(d.expected)
         << ", \"actual\": " << json_number(d.actual) << "}";

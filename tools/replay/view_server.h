@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "rewind/core/status.h"
 #include "rewind/server/http_endpoint.h"
 #include "rewind/server/static_files.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::replay_tool {
 

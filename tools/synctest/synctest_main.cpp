@@ -56,7 +56,7 @@ int synctest_main(int argc, const char* const* argv) {
   if (report->failure) {
     const game::SyncTestFailure& f = *report->failure;
     std::printf("synctest %s: NOT DETERMINISTIC: %s\n", game.c_str(), f.describe().c_str());
-    for (const sim::FieldDifference& d : f.fields) {
+    for (const rwd::FieldDifference& d : f.fields) {
       std::printf("  body %u %s: %.9g, expected %.9g\n", d.body_index, d.field.c_str(), d.actual,
                   d.expected);
     }

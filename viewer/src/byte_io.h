@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "rewind/game/player_input.h"
+#include "rewind/core/player_input.h"
 
 namespace rwd::viewer::detail {
 
@@ -82,17 +82,17 @@ class Reader {
 };
 
 /// One input as both formats store it: i16 axis_x, i16 axis_y, u32 buttons.
-inline void put_input(Writer& w, const game::PlayerInput& in) {
+inline void put_input(Writer& w, const rwd::PlayerInput& in) {
   w.put(static_cast<uint16_t>(in.axis_x), 2);
   w.put(static_cast<uint16_t>(in.axis_y), 2);
   w.put(in.buttons, 4);
 }
-inline game::PlayerInput get_input(Reader& r) {
-  game::PlayerInput in;
+inline rwd::PlayerInput get_input(Reader& r) {
+  rwd::PlayerInput in;
   in.axis_x = static_cast<int16_t>(static_cast<uint16_t>(r.get(2, "axis x")));
   in.axis_y = static_cast<int16_t>(static_cast<uint16_t>(r.get(2, "axis y")));
   in.buttons = static_cast<uint32_t>(r.get(4, "buttons"));
-  if (r.ok() && !game::is_valid(in)) r.fail("input", "has an axis out of range");
+  if (r.ok() && !rwd::is_valid(in)) r.fail("input", "has an axis out of range");
   return in;
 }
 
@@ -100,7 +100,7 @@ inline game::PlayerInput get_input(Reader& r) {
 /// substituted mask, then `players` inputs.
 inline void put_ticks(Writer& w, uint32_t players, const std::vector<uint64_t>& checksums,
                       const std::vector<uint64_t>& masks,
-                      const std::vector<game::PlayerInput>& inputs) {
+                      const std::vector<rwd::PlayerInput>& inputs) {
   for (size_t t = 0; t < checksums.size(); ++t) {
     w.put(checksums[t], 8);
     w.put(masks[t], 8);
@@ -109,7 +109,7 @@ inline void put_ticks(Writer& w, uint32_t players, const std::vector<uint64_t>& 
 }
 /// Reads a u32 tick count (at most `bound`) and that many records.
 inline void get_ticks(Reader& r, uint64_t players, uint64_t bound, std::vector<uint64_t>& checksums,
-                      std::vector<uint64_t>& masks, std::vector<game::PlayerInput>& inputs) {
+                      std::vector<uint64_t>& masks, std::vector<rwd::PlayerInput>& inputs) {
   const uint64_t ticks = r.get(4, "tick count");
   if (r.ok() && ticks > bound) r.fail("tick count", "is beyond the bound");
   // Each tick takes 16 + 8 * players bytes: refuse a count the bytes

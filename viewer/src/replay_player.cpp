@@ -94,7 +94,7 @@ bool ReplayPlayer::step() {
   if (p >= length()) return false;
   const uint32_t players = bundle_.setup.player_count;
   const size_t i = offset(p);
-  sim_->step(std::span<const game::PlayerInput>(bundle_.inputs).subspan(i * players, players));
+  sim_->step(std::span<const rwd::PlayerInput>(bundle_.inputs).subspan(i * players, players));
   record_check(p + 1, sim_->checksum());
   // Stepping from the start (or from states it made itself) verifies.
   if (!jumped_ && verified_ == p) verified_ = p + 1;
@@ -124,14 +124,14 @@ Tick ReplayPlayer::verify(uint32_t max_steps) {
       const size_t i = offset(verifier_->tick());
       const uint32_t players = bundle_.setup.player_count;
       verifier_->step(
-          std::span<const game::PlayerInput>(bundle_.inputs).subspan(i * players, players));
+          std::span<const rwd::PlayerInput>(bundle_.inputs).subspan(i * players, players));
     }
   }
   const uint32_t players = bundle_.setup.player_count;
   for (uint32_t n = 0; n < max_steps && verifier_->tick() < length(); ++n) {
     const size_t i = offset(verifier_->tick());
     verifier_->step(
-        std::span<const game::PlayerInput>(bundle_.inputs).subspan(i * players, players));
+        std::span<const rwd::PlayerInput>(bundle_.inputs).subspan(i * players, players));
     record_check(verifier_->tick(), verifier_->checksum());
   }
   verified_ = std::max(verified_, verifier_->tick());
@@ -208,11 +208,11 @@ TickCheck ReplayPlayer::check(Tick p) const {
 }
 
 std::optional<std::array<double, 3>> ReplayPlayer::body_center(uint32_t index) const {
-  std::vector<sim::BodyField> fields;
+  std::vector<rwd::BodyField> fields;
   sim_->dump_bodies(fields);
   std::array<double, 3> at{};
   bool found = false;
-  for (const sim::BodyField& f : fields) {
+  for (const rwd::BodyField& f : fields) {
     if (f.body_index != index) continue;
     // The 3D lane dumps position.x/y/z, the 2D lane center.x/y.
     const std::string_view n = f.name;
@@ -247,12 +247,12 @@ Result<DesyncView> ReplayPlayer::open_desync() {
   view.position = position();
   view.client_checksum = (*client)->checksum();
   view.replay_checksum = checksum();
-  std::vector<sim::BodyField> expected;
-  std::vector<sim::BodyField> actual;
+  std::vector<rwd::BodyField> expected;
+  std::vector<rwd::BodyField> actual;
   sim_->dump_bodies(expected);
   (*client)->dump_bodies(actual);
-  view.differences = sim::diff_body_fields(expected, actual);
-  for (const sim::FieldDifference& f : view.differences) view.bodies.push_back(f.body_index);
+  view.differences = rwd::diff_body_fields(expected, actual);
+  for (const rwd::FieldDifference& f : view.differences) view.bodies.push_back(f.body_index);
   std::sort(view.bodies.begin(), view.bodies.end());
   view.bodies.erase(std::unique(view.bodies.begin(), view.bodies.end()), view.bodies.end());
   return view;

@@ -49,8 +49,8 @@ Status check(const ViewBundle& b) {
       b.inputs.size() != b.checksums.size() * b.setup.player_count) {
     return invalid("inputs, checksums and masks must cover the same ticks");
   }
-  for (const game::PlayerInput& input : b.inputs) {
-    if (!game::is_valid(input)) return invalid("an input axis is out of range");
+  for (const rwd::PlayerInput& input : b.inputs) {
+    if (!rwd::is_valid(input)) return invalid("an input axis is out of range");
   }
   if (b.desync) {
     if (b.desync->tick < 0) return invalid("desync tick is negative");

@@ -37,7 +37,7 @@ struct ViewerState {
   uint32_t debris_seed = 1;
   std::string error;
   std::string text;  ///< the last string handed out
-  rwd::sim::DebugDrawBuffers draw;
+  rwd::DebugDrawBuffers draw;
   std::optional<rwd::viewer::DesyncView> desync;
   /// What the last live batch said of the match.
   rwd::Tick newest_final = rwd::kNoTick;
@@ -308,7 +308,7 @@ RV_EXPORT int rv_first_mismatch() {
 RV_EXPORT int rv_stat(int which) {
   const ViewerState& s = state();
   if (!s.player) return 0;
-  const rwd::sim::WorldViewStats v = s.player->stats();
+  const rwd::WorldViewStats v = s.player->stats();
   const uint32_t values[] = {v.bodies, v.awake_bodies, v.touching_pairs, v.contact_points,
                              v.joints};
   return which >= 0 && which < 5 ? static_cast<int>(values[which]) : 0;
@@ -322,7 +322,7 @@ RV_EXPORT void rv_draw(uint32_t flags, const uint32_t* highlight, uint32_t highl
   ViewerState& s = state();
   s.draw.clear();
   if (!s.player) return;
-  rwd::sim::DebugDrawOptions o;
+  rwd::DebugDrawOptions o;
   o.shapes = (flags & kDrawShapes) != 0;
   o.solid_shapes = (flags & kDrawSolids) != 0;
   o.contacts = (flags & kDrawContacts) != 0;

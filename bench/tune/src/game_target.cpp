@@ -43,6 +43,8 @@ double percentile(std::vector<double> values, double p) {
 
 std::string script_name(tools::BotScript script) {
   switch (script) {
+    case tools::BotScript::kGame:
+      return "game";
     case tools::BotScript::kRandom:
       return "random";
     case tools::BotScript::kCircle:
@@ -102,17 +104,17 @@ Result<std::unique_ptr<GameTarget>> GameTarget::create(const GamePlay& play,
   if (!(play.diverge_m > 0.0) || !std::isfinite(play.diverge_m)) {
     return bad("the divergence distance must be a positive number of metres");
   }
-  std::unique_ptr<GameTarget> target(new GameTarget(play, game3d->world_config()));
+  std::unique_ptr<GameTarget> target(new GameTarget(play, *game, game3d->world_config()));
   if (Status status = target->play_reference(progress); !status.ok()) return status;
   return target;
 }
 
-GameTarget::GameTarget(const GamePlay& play, const sim::WorldConfig& config)
+GameTarget::GameTarget(const GamePlay& play, const game::Game& game, const sim::WorldConfig& config)
     : play_(play), config_(config) {
   inputs_.resize(static_cast<size_t>(play_.ticks));
   for (Tick t = 0; t < play_.ticks; ++t) {
     for (uint32_t p = 0; p < play_.players; ++p) {
-      inputs_[t].push_back(tools::bot_input(play_.script, play_.seed, p, t));
+      inputs_[t].push_back(tools::bot_input(play_.script, game, play_.seed, p, t));
     }
   }
 }

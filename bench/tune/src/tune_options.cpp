@@ -145,7 +145,8 @@ cli::FlagParser declare(RawFlags& f) {
   flags.add_string("game", &f.game, "built-in game to tune (see --list)");
   flags.add_int("players", &f.players, 1, game::kMaxPlayers, "game: players in the match");
   flags.add_int("seed", &f.seed, 0, INT64_MAX, "game: match seed and input-script seed");
-  flags.add_string("script", &f.script, "game: every player's inputs: random, circle or idle");
+  flags.add_string("script", &f.script,
+                   "game: every player's inputs: game (its own bots), random, circle or idle");
   flags.add_int("ticks", &f.ticks, 1, 36000, "game: match length in ticks (60 per second)");
   flags.add_int("window-ticks", &f.window_ticks, 1, 36000,
                 "game: ticks per error window, each restarted from the reference");
@@ -246,7 +247,7 @@ Result<TuneCommand> parse_tune_command(int argc, const char* const* argv) {
   }
   tools::BotScript script{};
   if (!tools::parse_bot_script(raw.script, &script)) {
-    return usage("--script: expected random, circle or idle, got '" + raw.script + "'");
+    return usage("--script: expected game, random, circle or idle, got '" + raw.script + "'");
   }
   if (raw.quick && (!raw.substeps.empty() || !raw.relax.empty() || !raw.hertz.empty())) {
     return usage("--quick is a grid of its own; give it or --substeps/--relax/--hertz, not both");

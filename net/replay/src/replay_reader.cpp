@@ -225,7 +225,7 @@ Status ReplayReader::check_order(const v1::ReplayRecord& record) const {
                                                       " players");
       }
       for (const v1::Input& input : t.inputs()) {
-        Result<game::PlayerInput> converted = proto::from_wire(input);
+        Result<rwd::PlayerInput> converted = proto::from_wire(input);
         if (!converted.ok()) {
           return Status::Error(ErrorCode::kCorrupt, "tick " + std::to_string(t.tick()) + ": " +
                                                         converted.status().message());

@@ -14,10 +14,10 @@ namespace {
 
 // Streams every record through a ReplayWriter, so the forgery obeys exactly
 // the rules a real recording does.
-Result<game::PlayerInput> copy_with_edit(ReplayReader& reader, ReplayWriter& writer,
-                                         const InputEdit& edit) {
-  std::optional<game::PlayerInput> original;
-  std::vector<game::PlayerInput> inputs;
+Result<rwd::PlayerInput> copy_with_edit(ReplayReader& reader, ReplayWriter& writer,
+                                        const InputEdit& edit) {
+  std::optional<rwd::PlayerInput> original;
+  std::vector<rwd::PlayerInput> inputs;
   while (true) {
     Result<std::optional<v1::ReplayRecord>> record = reader.next();
     if (!record.ok()) return record.status();
@@ -32,7 +32,7 @@ Result<game::PlayerInput> copy_with_edit(ReplayReader& reader, ReplayWriter& wri
         inputs.push_back(*proto::from_wire(in));
       }
       if (t.tick() == edit.tick) {
-        game::PlayerInput& target = inputs[edit.player];
+        rwd::PlayerInput& target = inputs[edit.player];
         original = target;
         if (edit.axis_x) target.axis_x = *edit.axis_x;
         if (edit.axis_y) target.axis_y = *edit.axis_y;
@@ -61,9 +61,9 @@ Result<game::PlayerInput> copy_with_edit(ReplayReader& reader, ReplayWriter& wri
 
 }  // namespace
 
-Result<game::PlayerInput> rewrite_replay_input(const std::string& in_path,
-                                               const std::string& out_path, const InputEdit& edit,
-                                               bool overwrite) {
+Result<rwd::PlayerInput> rewrite_replay_input(const std::string& in_path,
+                                              const std::string& out_path, const InputEdit& edit,
+                                              bool overwrite) {
   Result<ReplayReader> reader = ReplayReader::open(in_path);
   if (!reader.ok()) return reader.status();
   if (edit.player >= reader->header().player_count()) {
@@ -80,7 +80,7 @@ Result<game::PlayerInput> rewrite_replay_input(const std::string& in_path,
   v1::ReplayHeader header = reader->header();
   Result<ReplayWriter> writer = ReplayWriter::open(out_path, header, options);
   if (!writer.ok()) return writer.status();
-  Result<game::PlayerInput> original = copy_with_edit(*reader, *writer, edit);
+  Result<rwd::PlayerInput> original = copy_with_edit(*reader, *writer, edit);
   if (!original.ok()) {
     // Close before removing so the destructor's flush cannot recreate it.
     { ReplayWriter closing = std::move(*writer); }

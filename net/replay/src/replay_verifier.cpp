@@ -20,8 +20,8 @@ std::span<const uint8_t> bytes_of(const std::string& s) {
   return {reinterpret_cast<const uint8_t*>(s.data()), s.size()};
 }
 
-std::vector<game::PlayerInput> inputs_of(const v1::ReplayTick& tick) {
-  std::vector<game::PlayerInput> inputs;
+std::vector<rwd::PlayerInput> inputs_of(const v1::ReplayTick& tick) {
+  std::vector<rwd::PlayerInput> inputs;
   inputs.reserve(static_cast<size_t>(tick.inputs_size()));
   // The reader already refused inputs that do not convert.
   for (const v1::Input& in : tick.inputs()) inputs.push_back(*proto::from_wire(in));
@@ -30,11 +30,11 @@ std::vector<game::PlayerInput> inputs_of(const v1::ReplayTick& tick) {
 
 void set_differences(VerifyReport& report, const Simulation& recorded, const Simulation& resim,
                      Tick tick, const VerifyOptions& options) {
-  std::vector<sim::BodyField> expected;
-  std::vector<sim::BodyField> actual;
+  std::vector<rwd::BodyField> expected;
+  std::vector<rwd::BodyField> actual;
   recorded.dump_bodies(expected);
   resim.dump_bodies(actual);
-  std::vector<sim::FieldDifference> diff = sim::diff_body_fields(expected, actual);
+  std::vector<rwd::FieldDifference> diff = rwd::diff_body_fields(expected, actual);
   report.differences_tick = tick;
   report.differences_total = diff.size();
   if (diff.size() > options.max_differences) diff.resize(options.max_differences);
@@ -125,7 +125,7 @@ class Verifier {
                       " but the simulation is at tick " + std::to_string(sim_->tick());
       return false;
     }
-    const std::vector<game::PlayerInput> inputs = inputs_of(tick);
+    const std::vector<rwd::PlayerInput> inputs = inputs_of(tick);
     sim_->step(inputs);
     const uint64_t actual = sim_->checksum();
     if (actual != tick.checksum()) {

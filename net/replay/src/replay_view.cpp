@@ -64,9 +64,9 @@ Result<viewer::ViewBundle> view_bundle_from_replay(ReplayReader& reader, ReplayV
                     " players)";
       break;
     }
-    std::vector<game::PlayerInput> inputs;
+    std::vector<rwd::PlayerInput> inputs;
     for (const v1::Input& wire : tick.inputs()) {
-      Result<game::PlayerInput> input = proto::from_wire(wire);
+      Result<rwd::PlayerInput> input = proto::from_wire(wire);
       if (!input.ok()) break;
       inputs.push_back(*input);
     }

@@ -123,7 +123,7 @@ Status ReplayWriter::usable() const {
   return Status::Ok();
 }
 
-Status ReplayWriter::append_tick(Tick tick, std::span<const game::PlayerInput> inputs,
+Status ReplayWriter::append_tick(Tick tick, std::span<const rwd::PlayerInput> inputs,
                                  uint64_t substituted_mask, uint64_t checksum) {
   if (Status s = usable(); !s.ok()) return s;
   if (tick != last_tick_ + 1) {
@@ -147,7 +147,7 @@ Status ReplayWriter::append_tick(Tick tick, std::span<const game::PlayerInput> i
   v1::ReplayRecord record;
   v1::ReplayTick* out = record.mutable_tick();
   out->set_tick(tick);
-  for (const game::PlayerInput& input : inputs) *out->add_inputs() = proto::to_wire(input);
+  for (const rwd::PlayerInput& input : inputs) *out->add_inputs() = proto::to_wire(input);
   out->set_substituted_mask(substituted_mask);
   out->set_checksum(checksum);
   if (Status s = append_frame(record, buffer_); !s.ok()) return s;

@@ -11,7 +11,7 @@ InputQueue::InputQueue(int32_t capacity, Tick base)
       contiguous_(base_ - 1),
       slots_(static_cast<size_t>(capacity_)) {}
 
-InputQueue::AddOutcome InputQueue::add(Tick tick, const game::PlayerInput& input) {
+InputQueue::AddOutcome InputQueue::add(Tick tick, const rwd::PlayerInput& input) {
   if (!in_range(tick)) return AddOutcome::kOutOfRange;
   Slot& s = slot(tick);
   if (s.tick == tick) return s.input == input ? AddOutcome::kDuplicate : AddOutcome::kConflict;
@@ -22,7 +22,7 @@ InputQueue::AddOutcome InputQueue::add(Tick tick, const game::PlayerInput& input
   return AddOutcome::kNew;
 }
 
-InputQueue::AddOutcome InputQueue::set_authoritative(Tick tick, const game::PlayerInput& input) {
+InputQueue::AddOutcome InputQueue::set_authoritative(Tick tick, const rwd::PlayerInput& input) {
   if (!in_range(tick)) return AddOutcome::kOutOfRange;
   Slot& s = slot(tick);
   if (s.tick == tick && s.input == input) return AddOutcome::kDuplicate;
@@ -37,7 +37,7 @@ bool InputQueue::is_confirmed(Tick tick) const {
   return in_range(tick) && slot(tick).tick == tick;
 }
 
-game::PlayerInput InputQueue::input_for(Tick tick) const {
+rwd::PlayerInput InputQueue::input_for(Tick tick) const {
   // Walk back to the newest confirmed input before `tick`. The walk is
   // bounded by the capacity; games keep it to the rollback window.
   Tick t = std::min(tick, base_ + capacity_ - 1);

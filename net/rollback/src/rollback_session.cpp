@@ -39,7 +39,7 @@ void RollbackSession::note_changed(Tick tick) {
   dirty_from_ = dirty_from_ == kNoTick ? tick : std::min(dirty_from_, tick);
 }
 
-InputResult RollbackSession::add_input(uint32_t player, Tick tick, const game::PlayerInput& input) {
+InputResult RollbackSession::add_input(uint32_t player, Tick tick, const rwd::PlayerInput& input) {
   if (player >= player_count_) return InputResult::kBadPlayer;
   if (tick <= final_tick_) return InputResult::kFinal;
   const InputQueue::AddOutcome outcome = queues_[player].add(tick, input);
@@ -48,7 +48,7 @@ InputResult RollbackSession::add_input(uint32_t player, Tick tick, const game::P
 }
 
 InputResult RollbackSession::add_final_input(uint32_t player, Tick tick,
-                                             const game::PlayerInput& input) {
+                                             const rwd::PlayerInput& input) {
   if (player >= player_count_) return InputResult::kBadPlayer;
   if (tick <= final_tick_) return InputResult::kFinal;
   const InputQueue::AddOutcome outcome = queues_[player].set_authoritative(tick, input);
@@ -56,7 +56,7 @@ InputResult RollbackSession::add_final_input(uint32_t player, Tick tick,
   return classify(outcome);
 }
 
-game::PlayerInput RollbackSession::used_input(uint32_t player, Tick tick) const {
+rwd::PlayerInput RollbackSession::used_input(uint32_t player, Tick tick) const {
   if (player >= player_count_ || tick < 0 || tick >= current_tick()) return {};
   return used_row(tick)[player];
 }
@@ -71,7 +71,7 @@ bool RollbackSession::synchronize() {
   // queues say now; the first difference is where history diverged.
   Tick first_bad = kNoTick;
   for (Tick t = from; t < current_tick() && first_bad == kNoTick; ++t) {
-    const game::PlayerInput* row = used_row(t);
+    const rwd::PlayerInput* row = used_row(t);
     for (uint32_t p = 0; p < player_count_; ++p) {
       if (!(queues_[p].input_for(t) == row[p])) {
         first_bad = t;
@@ -103,7 +103,7 @@ bool RollbackSession::advance() {
 void RollbackSession::step_once() {
   const Tick t = current_tick();
   ring_.save(*sim_);
-  game::PlayerInput* row = used_row(t);
+  rwd::PlayerInput* row = used_row(t);
   for (uint32_t p = 0; p < player_count_; ++p) {
     row[p] = scratch_inputs_[p] = queues_[p].input_for(t);
   }

@@ -71,7 +71,7 @@ Status check_relayed(std::string_view field, const v1::RelayedInputs& run) {
     return s;
   }
   if (run.packed_inputs().empty()) return Status::Ok();
-  std::vector<game::PlayerInput> inputs;
+  std::vector<rwd::PlayerInput> inputs;
   if (Status s = proto::relayed_run_inputs(run, inputs); !s.ok()) {
     return corrupt(std::string(field) + ": " + s.message());
   }

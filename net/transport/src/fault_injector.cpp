@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/net/fault_injector.h"
 
-#include "rewind/sim/splitmix64.h"
+#include "rewind/core/splitmix64.h"
 
 #include <algorithm>
 #include <chrono>

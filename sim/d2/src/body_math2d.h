@@ -2,7 +2,7 @@
 #pragma once
 // Small conversions between a body record and what the API speaks of.
 #include "body_mass2d.h"
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 #include "rewind/sim2d/world2d_state.h"
 #include "wmath.h"
 

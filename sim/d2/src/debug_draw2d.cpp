@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "body_math2d.h"
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 #include "rewind/sim2d/world2d.h"
 #include "shape_bounds2d.h"
 #include "wmath.h"
@@ -17,9 +17,9 @@
 namespace rwd::sim2d {
 namespace {
 
-using sim::DebugDrawBuffers;
-using sim::DebugDrawOptions;
-using sim::DrawColor;
+using rwd::DebugDrawBuffers;
+using rwd::DebugDrawOptions;
+using rwd::DrawColor;
 
 struct F2 {
   float x = 0.0f;
@@ -76,11 +76,11 @@ struct Outline {
 };
 
 void add_arc(Outline& o, F2 center, float radius, float from, float sweep, uint32_t segments) {
-  const float step = 2.0f * sim::kPi / static_cast<float>(segments);
+  const float step = 2.0f * rwd::kPi / static_cast<float>(segments);
   const uint32_t n = std::max(1u, static_cast<uint32_t>(std::ceil(sweep / step - 1e-4f)));
   for (uint32_t k = 0; k <= n; ++k) {
     const float a = from + sweep * static_cast<float>(k) / static_cast<float>(n);
-    o.add(center + F2{sim::det_cos(a), sim::det_sin(a)} * radius);
+    o.add(center + F2{rwd::det_cos(a), rwd::det_sin(a)} * radius);
   }
 }
 
@@ -90,8 +90,8 @@ Outline outline_of(const Shape2D& shape, uint32_t segments) {
   if (shape.type == ShapeType2D::kCircle) {
     const F2 c = to_f2(shape.vertices[0]);
     for (uint32_t k = 0; k < segments; ++k) {
-      const float a = 2.0f * sim::kPi * static_cast<float>(k) / static_cast<float>(segments);
-      o.add(c + F2{sim::det_cos(a), sim::det_sin(a)} * r);
+      const float a = 2.0f * rwd::kPi * static_cast<float>(k) / static_cast<float>(segments);
+      o.add(c + F2{rwd::det_cos(a), rwd::det_sin(a)} * r);
     }
     return o;
   }
@@ -104,7 +104,7 @@ Outline outline_of(const Shape2D& shape, uint32_t segments) {
   for (uint32_t i = 0; i < m; ++i) core[i] = to_f2(shape.vertices[i]);
   for (uint32_t i = 0; i < m; ++i) {
     const F2 d = core[(i + 1) % m] - core[i];
-    normal_angle[i] = sim::det_atan2(-d.x, d.y);  // the right-hand normal (d.y, -d.x)
+    normal_angle[i] = rwd::det_atan2(-d.x, d.y);  // the right-hand normal (d.y, -d.x)
   }
   for (uint32_t i = 0; i < m; ++i) {
     if (r == 0.0f) {
@@ -113,7 +113,7 @@ Outline outline_of(const Shape2D& shape, uint32_t segments) {
     }
     const float before = normal_angle[(i + m - 1) % m];
     float sweep = normal_angle[i] - before;
-    while (sweep < 0.0f) sweep += 2.0f * sim::kPi;
+    while (sweep < 0.0f) sweep += 2.0f * rwd::kPi;
     add_arc(o, core[i], r, before, sweep, segments);
   }
   return o;
@@ -153,7 +153,7 @@ void draw_local_shape(const Shape2D& shape, const Frame& f, float z, DrawColor c
 }
 
 DrawColor body_color(const BodyRecord2D& body, uint32_t index, const DebugDrawOptions& o) {
-  const sim::DrawColors& c = o.colors;
+  const rwd::DrawColors& c = o.colors;
   if (std::find(o.highlight_bodies.begin(), o.highlight_bodies.end(), index) !=
       o.highlight_bodies.end()) {
     return c.highlight;
@@ -254,7 +254,7 @@ void draw_joints(const World2DState& s, const DebugDrawOptions& o, DebugDrawBuff
 }  // namespace
 
 void debug_draw(const World2D& world, const DebugDrawOptions& options, DebugDrawBuffers& out) {
-  const DebugDrawOptions o = sim::sanitized(options);
+  const DebugDrawOptions o = rwd::sanitized(options);
   const World2DState& s = world.state();
   if (o.shapes || o.solid_shapes || o.centers_of_mass) draw_bodies(s, o, out);
   if (o.bounds) draw_bounds(s, o, out);
@@ -262,9 +262,9 @@ void debug_draw(const World2D& world, const DebugDrawOptions& options, DebugDraw
   if (o.joints) draw_joints(s, o, out);
 }
 
-sim::WorldViewStats view_stats(const World2D& world) {
+rwd::WorldViewStats view_stats(const World2D& world) {
   const World2DState& s = world.state();
-  sim::WorldViewStats v;
+  rwd::WorldViewStats v;
   for (const BodyRecord2D& b : s.bodies) {
     if ((b.flags & kBodyLive) == 0) continue;
     ++v.bodies;
@@ -282,7 +282,7 @@ sim::WorldViewStats view_stats(const World2D& world) {
 void draw_shape(const Shape2D& shape, Vec2 position, Fx angle, Fx z, DrawColor color,
                 const DebugDrawOptions& options, DebugDrawBuffers& out) {
   if (!validate_shape(shape).ok()) return;
-  const DebugDrawOptions o = sim::sanitized(options);
+  const DebugDrawOptions o = rwd::sanitized(options);
   const detail::Xf xf{detail::V2{detail::w_from(position.x), detail::w_from(position.y)},
                       detail::rotation_from_angle(angle)};
   draw_local_shape(shape, frame_of(xf), to_float(z), color, o, out);

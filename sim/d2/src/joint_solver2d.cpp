@@ -5,8 +5,8 @@
 #include "body_math2d.h"
 #include "contact_solver2d.h"
 #include "joint_math2d.h"
+#include "rewind/core/detail/take_color.h"
 #include "rewind/fixed/trig.h"
-#include "rewind/sim/detail/take_color.h"
 
 namespace rwd::sim2d::detail {
 
@@ -94,7 +94,7 @@ void order_by_color(StepScratch2D& scratch) {
     const bool moves_a = a.inv_mass != 0 || a.inv_inertia != 0;
     const bool moves_b = b.inv_mass != 0 || b.inv_inertia != 0;
     const uint32_t col =
-        sim::detail::take_color(bits.data(), words, kJointColors, c.a, moves_a, c.b, moves_b);
+        rwd::detail::take_color(bits.data(), words, kJointColors, c.a, moves_a, c.b, moves_b);
     color[k] = col;
     ++count[col];
   }

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "manifold2.h"
-#include "rewind/sim/thread_pool.h"
+#include "rewind/core/thread_pool.h"
 #include "rewind/sim2d/contact_event2d.h"
 #include "rewind/sim2d/world2d_state.h"
 #include "shape_bounds2d.h"
@@ -172,7 +172,7 @@ class StepScratch2D {
   std::vector<uint8_t> widened;
   /// The threads the narrowphase cuts its pairs across
   /// (World2D::set_thread_pool); null: the stepping thread. Not owned.
-  sim::ThreadPool* pool = nullptr;
+  rwd::ThreadPool* pool = nullptr;
   std::vector<SolverBody2D> bodies;  ///< by body index
   std::vector<BodyMotion2D> moving;  ///< the bodies that move this step, by index
   std::vector<ContactConstraint2D> constraints;

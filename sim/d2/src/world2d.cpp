@@ -430,7 +430,7 @@ Status World2D::set_enabled(BodyId2D id, bool enabled) {
 const StepStats2D& World2D::stats() const {
   return stats_;
 }
-void World2D::set_thread_pool(sim::ThreadPool* pool) {
+void World2D::set_thread_pool(rwd::ThreadPool* pool) {
   scratch_->pool = pool;
 }
 

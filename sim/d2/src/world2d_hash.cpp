@@ -6,8 +6,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "rewind/sim/body_field.h"
-#include "rewind/sim/state_hasher.h"
+#include "rewind/core/body_field.h"
+#include "rewind/core/state_hasher.h"
 #include "rewind/sim2d/world2d.h"
 #include "state_schema2d.h"
 
@@ -19,7 +19,7 @@ namespace {
 
 class HashVisitor {
  public:
-  explicit HashVisitor(sim::StateHasher& hasher) : hasher_(hasher) {}
+  explicit HashVisitor(rwd::StateHasher& hasher) : hasher_(hasher) {}
   template <class T>
   void operator()(std::string_view, const T& field) {
     if constexpr (std::is_same_v<T, Fx>) {
@@ -34,31 +34,31 @@ class HashVisitor {
   }
 
  private:
-  sim::StateHasher& hasher_;
+  rwd::StateHasher& hasher_;
 };
 
 class DumpVisitor {
  public:
-  DumpVisitor(std::vector<sim::BodyField>& out, uint32_t index) : out_(out), index_(index) {}
+  DumpVisitor(std::vector<rwd::BodyField>& out, uint32_t index) : out_(out), index_(index) {}
   template <class T>
   void operator()(std::string_view name, const T& field) {
     if constexpr (std::is_same_v<T, Fx>) {
-      out_.push_back(sim::BodyField::fixed16(index_, name, field.raw()));
+      out_.push_back(rwd::BodyField::fixed16(index_, name, field.raw()));
     } else if constexpr (std::is_same_v<T, W>) {
-      out_.push_back(sim::BodyField::fixed32(index_, name, field));
+      out_.push_back(rwd::BodyField::fixed32(index_, name, field));
     } else {
-      out_.push_back(sim::BodyField::unsigned_int(index_, name, static_cast<uint64_t>(field)));
+      out_.push_back(rwd::BodyField::unsigned_int(index_, name, static_cast<uint64_t>(field)));
     }
   }
 
  private:
-  std::vector<sim::BodyField>& out_;
+  std::vector<rwd::BodyField>& out_;
   uint32_t index_;
 };
 
 }  // namespace
 
-void World2D::hash_state(const World2DState& state, sim::StateHasher& hasher) {
+void World2D::hash_state(const World2DState& state, rwd::StateHasher& hasher) {
   HashVisitor v(hasher);
   visit_config(state.config, v);
   hasher.add_u64(state.step_count);
@@ -78,17 +78,17 @@ void World2D::hash_state(const World2DState& state, sim::StateHasher& hasher) {
   }
 }
 
-void World2D::hash(sim::StateHasher& hasher) const {
+void World2D::hash(rwd::StateHasher& hasher) const {
   hash_state(state_, hasher);
 }
 
 uint64_t World2D::checksum() const {
-  sim::StateHasher hasher;
+  rwd::StateHasher hasher;
   hash(hasher);
   return hasher.digest();
 }
 
-void World2D::dump_fields(std::vector<sim::BodyField>& out) const {
+void World2D::dump_fields(std::vector<rwd::BodyField>& out) const {
   out.clear();
   for (uint32_t i = 0; i < state_.bodies.size(); ++i) {
     const BodyRecord2D& body = state_.bodies[i];

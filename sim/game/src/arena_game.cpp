@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <string>
 
+#include "rewind/core/state_hasher.h"
 #include "rewind/fixed/fx_literal.h"
 #include "rewind/fixed/trig.h"
-#include "rewind/sim/state_hasher.h"
 
 namespace rwd::game {
 namespace {
@@ -275,7 +275,7 @@ void ArenaGame::after_step_typed(Tick /*tick*/, World2D& world, ArenaState& stat
   }
 }
 
-void ArenaGame::hash_typed(const ArenaState& state, sim::StateHasher& hasher) const {
+void ArenaGame::hash_typed(const ArenaState& state, rwd::StateHasher& hasher) const {
   hasher.add_u32(state.player_count);
   hasher.add_u32(state.crate_count);
   for (uint32_t p = 0; p < state.player_count; ++p) {

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 
 namespace rwd::game {
 namespace {
@@ -46,9 +46,9 @@ sim::BodyDef static_box(sim::Vec3 centre, sim::Vec3 half) {
 // Spawn points spread evenly on a circle; the angle comes from det_cos/det_sin
 // so every machine places pushers on the same bits.
 sim::Vec3 spawn_point(uint32_t player, uint32_t player_count) {
-  float angle = 2.0f * sim::kPi * static_cast<float>(player) / static_cast<float>(player_count);
+  float angle = 2.0f * rwd::kPi * static_cast<float>(player) / static_cast<float>(player_count);
   float r = kArenaHalf - 2.0f;
-  return {r * sim::det_cos(angle), kPusherRadius + 0.01f, r * sim::det_sin(angle)};
+  return {r * rwd::det_cos(angle), kPusherRadius + 0.01f, r * rwd::det_sin(angle)};
 }
 
 // Where crate c reappears after a fall: above the tower (whose top is at
@@ -223,7 +223,7 @@ void CratesGame::after_step_typed(Tick /*tick*/, sim::World3D& world, CratesStat
   }
 }
 
-void CratesGame::hash_typed(const CratesState& state, sim::StateHasher& hasher) const {
+void CratesGame::hash_typed(const CratesState& state, rwd::StateHasher& hasher) const {
   hasher.add_u32(state.player_count);
   hasher.add_u32(state.crate_count);
   for (uint32_t p = 0; p < state.player_count; ++p) {

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "joust_layout.h"
+#include "rewind/core/det_math.h"
 #include "rewind/game/joust_game.h"
-#include "rewind/sim/det_math.h"
 #include "rewind/sim/ragdoll3d.h"
 
 namespace rwd::game {
@@ -56,7 +56,7 @@ sim::JointId create(sim::World3D& world, const sim::JointDef& def) {
 }
 
 sim::Quat yaw(float angle) {
-  return {0.0f, sim::det_sin(0.5f * angle), 0.0f, sim::det_cos(0.5f * angle)};
+  return {0.0f, rwd::det_sin(0.5f * angle), 0.0f, rwd::det_cos(0.5f * angle)};
 }
 
 // Moves `id` to its place in the chassis frame (chassis at `p`, `q`),
@@ -129,9 +129,9 @@ namespace joust_detail {
 
 void spawn_pose(const sim::World3D& world, uint32_t player, uint32_t player_count,
                 sim::Vec3& position, sim::Quat& rotation) {
-  const float a = 2.0f * sim::kPi * static_cast<float>(player) / static_cast<float>(player_count);
-  const float ca = sim::det_cos(a);
-  const float sa = sim::det_sin(a);
+  const float a = 2.0f * rwd::kPi * static_cast<float>(player) / static_cast<float>(player_count);
+  const float ca = rwd::det_cos(a);
+  const float sa = rwd::det_sin(a);
   const float x = kSpawnRadius * ca;
   const float z = kSpawnRadius * sa;
   sim::QueryFilter ground;
@@ -142,7 +142,7 @@ void spawn_pose(const sim::World3D& world, uint32_t player, uint32_t player_coun
   // Chassis centre where the wheels' rays just reach the ground.
   position = {x, ground_y - kWheelAttachY + kRestLength + kWheelRadius + 0.05f, z};
   // Forward (+z) turned onto (-cos a, 0, -sin a).
-  rotation = yaw(sim::det_atan2(-ca, -sa));
+  rotation = yaw(rwd::det_atan2(-ca, -sa));
 }
 
 // While seated the rider holds its posture: each joint's motor at zero
@@ -287,8 +287,8 @@ void JoustGame::build_typed(const MatchSetup& setup, sim::World3D& world, JoustS
 
   // The chain, straight, released kReleaseAngle out toward -z; the ball at
   // its end. Each link's axis (local y) lies along the chain.
-  const sim::Quat tilt{sim::det_sin(0.5f * kReleaseAngle), 0.0f, 0.0f,
-                       sim::det_cos(0.5f * kReleaseAngle)};
+  const sim::Quat tilt{rwd::det_sin(0.5f * kReleaseAngle), 0.0f, 0.0f,
+                       rwd::det_cos(0.5f * kReleaseAngle)};
   const sim::Vec3 down = sim::rotate(tilt, {0.0f, -1.0f, 0.0f});
   const sim::Vec3 pivot{0.0f, kPivotY, 0.0f};
   sim::BodyId above = state.gantry;

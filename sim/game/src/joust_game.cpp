@@ -9,7 +9,7 @@
 #include <string>
 
 #include "joust_layout.h"
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 #include "rewind/sim/vehicle3d.h"
 
 namespace rwd::game {
@@ -199,7 +199,7 @@ void JoustGame::after_step_typed(Tick /*tick*/, sim::World3D& world, JoustState&
   }
 }
 
-void JoustGame::hash_typed(const JoustState& state, sim::StateHasher& hasher) const {
+void JoustGame::hash_typed(const JoustState& state, rwd::StateHasher& hasher) const {
   auto add_body = [&hasher](sim::BodyId id) {
     hasher.add_u32(id.index);
     hasher.add_u32(id.generation);

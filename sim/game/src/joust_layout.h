@@ -5,8 +5,8 @@
 #include <array>
 #include <cstdint>
 
+#include "rewind/core/det_math.h"
 #include "rewind/game/joust_game.h"
-#include "rewind/sim/det_math.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::game::joust_detail {
@@ -96,7 +96,7 @@ inline constexpr float kLinkRadius = 0.09f;
 inline constexpr float kLinkDensity = 3000.0f;
 inline constexpr float kBallRadius = 0.7f;
 inline constexpr float kBallDensity = 1500.0f;
-inline constexpr float kReleaseAngle = 50.0f * sim::kPi / 180.0f;
+inline constexpr float kReleaseAngle = 50.0f * rwd::kPi / 180.0f;
 // Near the bottom of its swing the ball gets a small push along its motion
 // while slower than this, so it keeps swinging all match.
 inline constexpr float kPumpSpeedMps = 5.5f;

@@ -119,7 +119,7 @@ void Simulation::restore(const SimSnapshot& in) {
 }
 
 uint64_t Simulation::checksum() const {
-  sim::StateHasher hasher;
+  rwd::StateHasher hasher;
   hasher.add_i32(tick_);
   lane_->hash(hasher);
   game_->hash_state(game_state_, hasher);
@@ -127,7 +127,7 @@ uint64_t Simulation::checksum() const {
 }
 
 uint64_t Simulation::checksum_of(const SimSnapshot& snapshot) const {
-  sim::StateHasher hasher;
+  rwd::StateHasher hasher;
   hasher.add_i32(snapshot.tick);
   lane_->hash_snapshot(*snapshot.world, hasher);
   game_->hash_state(snapshot.game_state, hasher);

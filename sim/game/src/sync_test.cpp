@@ -7,8 +7,8 @@
 #include <memory>
 #include <utility>
 
+#include "rewind/core/splitmix64.h"
 #include "rewind/game/simulation.h"
-#include "rewind/sim/splitmix64.h"
 
 namespace rwd::game {
 namespace {
@@ -48,11 +48,11 @@ SyncTestFailure compare(SyncCheck check, Tick tick, const Simulation& expected,
   f.tick = tick;
   f.expected = expected.checksum();
   f.actual = actual.checksum();
-  std::vector<sim::BodyField> want;
-  std::vector<sim::BodyField> got;
+  std::vector<rwd::BodyField> want;
+  std::vector<rwd::BodyField> got;
   expected.dump_bodies(want);
   actual.dump_bodies(got);
-  f.fields = sim::diff_body_fields(want, got);
+  f.fields = rwd::diff_body_fields(want, got);
   if (f.fields.size() > kMaxFieldsReported) f.fields.resize(kMaxFieldsReported);
   const std::span<const std::byte> a = expected.game_state();
   const std::span<const std::byte> b = actual.game_state();
@@ -90,7 +90,7 @@ std::string SyncTestFailure::describe() const {
                 sync_check_name(check), tick, actual, expected);
   std::string text = head;
   if (!fields.empty()) {
-    const sim::FieldDifference& d = fields.front();
+    const rwd::FieldDifference& d = fields.front();
     char field[200];
     std::snprintf(field, sizeof field, "; first field: body %u %s = %.9g, expected %.9g",
                   d.body_index, d.field.c_str(), d.actual, d.expected);

@@ -3,8 +3,8 @@
 #include <span>
 
 #include "d3/compound.h"
+#include "rewind/core/status.h"
 #include "rewind/sim/geometry.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::sim::d3 {
 

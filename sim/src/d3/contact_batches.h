@@ -15,7 +15,7 @@
 #include <cstdint>
 
 #include "d3/wide_float.h"
-#include "rewind/sim/detail/take_color.h"
+#include "rewind/core/detail/take_color.h"
 #include "rewind/sim/world_state.h"
 
 namespace rwd::sim {
@@ -28,7 +28,7 @@ inline constexpr uint32_t kColorCount = 24;
 
 /// The first colour in which neither solver body a nor b (each only if it
 /// can move) is taken yet, marking them taken in it; kColorCount when every
-/// colour has one of them (rewind/sim/detail/take_color.h). `bits` holds
+/// colour has one of them (rewind/core/detail/take_color.h). `bits` holds
 /// kColorCount runs of `words` words, one bit per solver body.
 inline uint32_t take_color(uint64_t* bits, size_t words, uint32_t a, bool movable_a, uint32_t b,
                            bool movable_b) {

@@ -46,7 +46,7 @@
 #include "d3/pipeline.h"
 #include "d3/shape_ops.h"
 #include "d3/state_rules.h"
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 
 namespace rwd::sim::d3 {
 namespace {

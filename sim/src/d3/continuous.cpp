@@ -37,7 +37,7 @@
 #include "d3/query_filter.h"
 #include "d3/shape_ops.h"
 #include "d3/swept_shape.h"
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 
 namespace rwd::sim::d3 {
 namespace {

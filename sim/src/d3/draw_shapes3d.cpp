@@ -8,7 +8,7 @@
 #include "d3/hull.h"
 #include "d3/mass_frame.h"
 #include "d3/mesh.h"
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 
 namespace rwd::sim::d3 {
 namespace {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // Outlines and surfaces of 3D shapes for debug draw (rewind/sim/debug_draw3d.h).
-#include "rewind/sim/debug_draw.h"
+#include "rewind/core/debug_draw.h"
 #include "rewind/sim/geometry.h"
 #include "rewind/sim/math.h"
 #include "rewind/sim/shape.h"

@@ -12,7 +12,7 @@
 #include "d3/hull.h"
 #include "d3/hull_builder.h"
 #include "d3/mesh.h"
-#include "rewind/sim/state_hasher.h"
+#include "rewind/sim/hash_math.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim {
@@ -34,10 +34,10 @@ uint64_t hash_hull(const d3::Hull& h) {
   StateHasher s;
   s.add_u8(static_cast<uint8_t>(GeometryKind::kHull));
   s.add_u32(static_cast<uint32_t>(h.vertices.size()));
-  for (const Vec3& v : h.vertices) s.add_vec3(v);
+  for (const Vec3& v : h.vertices) hash_vec3(s, v);
   s.add_u32(static_cast<uint32_t>(h.faces.size()));
   for (const d3::HullFace& f : h.faces) {
-    s.add_vec3(f.normal);
+    hash_vec3(s, f.normal);
     s.add_f32(f.offset);
     s.add_u32(f.first);
     s.add_u8(f.count);
@@ -51,12 +51,12 @@ uint64_t hash_hull(const d3::Hull& h) {
     s.add_u8(e.face_left);
     s.add_u8(e.face_right);
   }
-  s.add_vec3(h.frame.center);
-  s.add_quat(h.frame.rotation);
+  hash_vec3(s, h.frame.center);
+  hash_quat(s, h.frame.rotation);
   s.add_f32(h.volume);
-  s.add_vec3(h.unit_inertia);
+  hash_vec3(s, h.unit_inertia);
   s.add_f32(h.extent);
-  s.add_vec3(h.half_size);
+  hash_vec3(s, h.half_size);
   return s.digest();
 }
 
@@ -67,7 +67,7 @@ uint64_t hash_mesh(const d3::TriangleMesh& m) {
   s.add_u8(static_cast<uint8_t>(GeometryKind::kMesh));
   s.add_u8(m.one_sided ? 1 : 0);
   s.add_u32(static_cast<uint32_t>(m.vertices.size()));
-  for (const Vec3& v : m.vertices) s.add_vec3(v);
+  for (const Vec3& v : m.vertices) hash_vec3(s, v);
   s.add_u32(static_cast<uint32_t>(m.triangles.size()));
   for (const d3::MeshTriangle& t : m.triangles) {
     s.add_u32(t.v[0]);
@@ -82,7 +82,7 @@ uint64_t hash_height_field(const d3::HeightField& h) {
   s.add_u8(static_cast<uint8_t>(GeometryKind::kHeightField));
   s.add_u32(h.rows);
   s.add_u32(h.cols);
-  s.add_vec3(h.scale);
+  hash_vec3(s, h.scale);
   for (float v : h.heights) s.add_f32(v);
   s.add_u32(static_cast<uint32_t>(h.holes.size()));
   for (uint8_t v : h.holes) s.add_u8(v);
@@ -98,16 +98,16 @@ uint64_t hash_compound(const d3::Compound& c, const GeometryStore& store) {
   for (const d3::CompoundPart& p : c.parts) {
     s.add_u8(static_cast<uint8_t>(p.shape.type));
     s.add_f32(p.shape.radius);
-    s.add_vec3(p.shape.half_extents);
+    hash_vec3(s, p.shape.half_extents);
     s.add_f32(p.shape.half_height);
     s.add_u64(p.shape.uses_geometry() ? store.hash(GeometryId{p.shape.geometry}) : 0);
-    s.add_vec3(p.position);
-    s.add_quat(p.rotation);
+    hash_vec3(s, p.position);
+    hash_quat(s, p.rotation);
   }
-  s.add_vec3(c.frame.center);
-  s.add_quat(c.frame.rotation);
+  hash_vec3(s, c.frame.center);
+  hash_quat(s, c.frame.rotation);
   s.add_f32(c.volume);
-  s.add_vec3(c.unit_inertia);
+  hash_vec3(s, c.unit_inertia);
   return s.digest();
 }
 

@@ -17,8 +17,8 @@
 #include <span>
 
 #include "d3/hull.h"
+#include "rewind/core/status.h"
 #include "rewind/sim/math.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::sim::d3 {
 

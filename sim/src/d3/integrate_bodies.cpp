@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "d3/step_threads.h"
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 #include "rewind/sim/math.h"
 
 namespace rwd::sim::d3 {

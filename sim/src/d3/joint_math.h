@@ -4,7 +4,7 @@
 // symmetric 3x3 and 2x2 solves, cross-product matrices and rotation
 // vectors. Written operation by operation like math.h, so every build
 // rounds alike.
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 #include "rewind/sim/math.h"
 
 namespace rwd::sim::d3 {

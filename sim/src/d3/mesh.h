@@ -19,8 +19,8 @@
 
 #include "d3/aabb_tree.h"
 #include "d3/triangle.h"
+#include "rewind/core/status.h"
 #include "rewind/sim/math.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::sim::d3 {
 

@@ -31,7 +31,7 @@
 
 #include "d3/mesh.h"
 #include "d3/triangle_closest.h"
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 
 namespace rwd::sim::d3 {
 namespace {

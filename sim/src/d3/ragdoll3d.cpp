@@ -13,7 +13,7 @@
 #include <cmath>
 #include <string>
 
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim {

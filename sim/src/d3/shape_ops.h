@@ -14,10 +14,10 @@
 
 #include "d3/gjk.h"
 #include "d3/triangle.h"
+#include "rewind/core/status.h"
 #include "rewind/sim/geometry.h"
 #include "rewind/sim/math.h"
 #include "rewind/sim/shape.h"
-#include "rewind/sim/status.h"
 #include "rewind/sim/world_state.h"
 
 namespace rwd::sim::d3 {

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 
 namespace rwd::sim::d3 {
 namespace {

@@ -13,10 +13,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "rewind/core/status.h"
 #include "rewind/sim/body.h"
 #include "rewind/sim/geometry.h"
 #include "rewind/sim/query.h"
-#include "rewind/sim/status.h"
 #include "rewind/sim/world_config.h"
 #include "rewind/sim/world_state.h"
 

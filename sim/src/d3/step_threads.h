@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "d3/world_scratch.h"
-#include "rewind/sim/thread_pool.h"
+#include "rewind/core/thread_pool.h"
 
 namespace rwd::sim::d3 {
 

@@ -13,7 +13,7 @@
 
 #include "d3/body_storage.h"
 #include "d3/state_rules.h"
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim {

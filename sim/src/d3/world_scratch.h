@@ -20,9 +20,9 @@
 #include "d3/manifold.h"
 #include "d3/solver_body.h"
 #include "d3/swept_shape.h"
+#include "rewind/core/thread_pool.h"
 #include "rewind/sim/body_event.h"
 #include "rewind/sim/contact_event.h"
-#include "rewind/sim/thread_pool.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim::d3 {

@@ -16,7 +16,7 @@ namespace {
 TEST(ClientProtocol, TakesEachInputOnceAndResendsItUntilAcknowledged) {
   Harness h;
   h.join_and_start();
-  std::map<Tick, game::PlayerInput> seen;  // every input the frames carried
+  std::map<Tick, rwd::PlayerInput> seen;  // every input the frames carried
   Tick newest_sent = kNoTick;
   for (int i = 0; i < 20; ++i) {
     h.advance(kTick);

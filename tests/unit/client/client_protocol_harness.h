@@ -26,7 +26,7 @@ using net::TimePoint;
 inline constexpr uint64_t kNonce = 0x5EED'0000'0000'0042ull;
 inline constexpr auto kTick = std::chrono::microseconds(16'667);
 
-inline game::PlayerInput own_input(Tick tick) {
+inline rwd::PlayerInput own_input(Tick tick) {
   return {static_cast<int16_t>((tick * 37) % 2001 - 1000), static_cast<int16_t>(tick % 7),
           static_cast<uint32_t>(tick % 3)};
 }
@@ -78,7 +78,7 @@ struct Harness {
   Tick client_tick() const { return protocol.rollback()->current_tick(); }
   /// Steps the server through every tick the client has simulated, with
   /// the client's own inputs and `others` for the rest.
-  void catch_up_server(game::PlayerInput others = {}) {
+  void catch_up_server(rwd::PlayerInput others = {}) {
     while (server.next_tick() < client_tick()) {
       server.step({own_input(server.next_tick()), others});
     }

@@ -161,10 +161,10 @@ TEST(ClientProtocol, RelayedInputsRollThePredictionBack) {
   for (int i = 0; i < 10; ++i) h.advance(kTick);
   const Tick simulated = h.client_tick();
   // Player 1 really pushed right from tick 0; we predicted it idle.
-  const game::PlayerInput push{700, -300, 1};
+  const rwd::PlayerInput push{700, -300, 1};
   while (h.server.next_tick() < simulated) h.server.step({own_input(h.server.next_tick()), push});
   FakeServer::Relayed run{1, 0,
-                          std::vector<game::PlayerInput>(static_cast<size_t>(simulated), push)};
+                          std::vector<rwd::PlayerInput>(static_cast<size_t>(simulated), push)};
   h.deliver(h.server.final_ticks(0, -1, 0, h.now, std::nullopt, {run}));
   h.advance(kTick);  // the next step re-simulates first
   EXPECT_GE(h.protocol.stats().rollbacks, 1u);

@@ -95,7 +95,7 @@ std::vector<uint8_t> FakeServer::disconnect(const std::string& reason, net::Time
   return encode(envelope, now);
 }
 
-void FakeServer::step(const std::vector<game::PlayerInput>& inputs) {
+void FakeServer::step(const std::vector<rwd::PlayerInput>& inputs) {
   TickRecord record;
   record.inputs = inputs;
   sim_->serialize(record.state_before);
@@ -117,8 +117,7 @@ std::vector<uint8_t> FakeServer::final_ticks(
     const TickRecord& record = ticks_.at(t);
     v1::FinalTick* tick = finals->add_ticks();
     tick->set_tick(t);
-    for (const game::PlayerInput& input : record.inputs)
-      *tick->add_inputs() = proto::to_wire(input);
+    for (const rwd::PlayerInput& input : record.inputs) *tick->add_inputs() = proto::to_wire(input);
     tick->set_checksum(checksum_override && checksum_override->first == t
                            ? checksum_override->second
                            : record.checksum);

@@ -51,7 +51,7 @@ class FakeServer {
   /// Steps the authoritative simulation through `tick` (ticks in order,
   /// from the next unstepped one) with `inputs` (one per player) and
   /// remembers the tick's inputs and checksum.
-  void step(const std::vector<game::PlayerInput>& inputs);
+  void step(const std::vector<rwd::PlayerInput>& inputs);
   Tick next_tick() const { return next_tick_; }
   /// The checksum after stepping `tick`.
   uint64_t checksum_after(Tick tick) const { return ticks_.at(tick).checksum; }
@@ -62,7 +62,7 @@ class FakeServer {
   struct Relayed {
     uint32_t player = 0;
     Tick first_tick = 0;
-    std::vector<game::PlayerInput> inputs;
+    std::vector<rwd::PlayerInput> inputs;
   };
   std::vector<uint8_t> final_ticks(Tick first, Tick last, Tick input_ack, net::TimePoint now,
                                    std::optional<std::pair<Tick, uint64_t>> checksum_override = {},
@@ -81,7 +81,7 @@ class FakeServer {
 
  private:
   struct TickRecord {
-    std::vector<game::PlayerInput> inputs;
+    std::vector<rwd::PlayerInput> inputs;
     uint64_t checksum = 0;
     std::vector<uint8_t> state_before;
     uint64_t checksum_before = 0;

@@ -3,7 +3,7 @@
 // A deterministic input generator for the fixed-point tests: splitmix64,
 // integer-only, so every platform feeds the library the same values.
 #include <cstdint>
-#include "rewind/sim/splitmix64.h"
+#include "rewind/core/splitmix64.h"
 
 namespace rwd::fixed {
 

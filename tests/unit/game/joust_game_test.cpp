@@ -10,10 +10,10 @@
 #include <cstring>
 #include <vector>
 
+#include "rewind/core/det_math.h"
 #include "rewind/game/joust_game.h"
 #include "rewind/game/simulation.h"
 #include "rewind/game/world_lane.h"
-#include "rewind/sim/det_math.h"
 
 namespace rwd::game {
 namespace {
@@ -46,7 +46,7 @@ sim::World3D& world(Simulation& sim) {
 }
 
 sim::Quat yaw(float angle) {
-  return {0.0f, sim::det_sin(0.5f * angle), 0.0f, sim::det_cos(0.5f * angle)};
+  return {0.0f, rwd::det_sin(0.5f * angle), 0.0f, rwd::det_cos(0.5f * angle)};
 }
 
 // Scripted drivers: each player sweeps the stick through throttle and
@@ -183,7 +183,7 @@ TEST(JoustGame, ALanceStrikeThrowsTheRiderAndScores) {
   auto sim = make_match(2);
   JoustState s = state_of(*sim);
   sim::World3D& w = world(*sim);
-  ASSERT_TRUE(JoustGame::place_car(w, s, 1, {-10.0f, 1.3f, 6.0f}, yaw(0.5f * sim::kPi)));
+  ASSERT_TRUE(JoustGame::place_car(w, s, 1, {-10.0f, 1.3f, 6.0f}, yaw(0.5f * rwd::kPi)));
   ASSERT_TRUE(JoustGame::place_car(w, s, 0, {-10.75f, 1.3f, -8.0f}, yaw(0.0f)));
   store(*sim, s);
   std::vector<PlayerInput> inputs(2);

@@ -45,7 +45,7 @@ class MistakenCrates : public Game {
   void after_step(Tick tick, Lane& lane, std::span<std::byte> state) const override {
     crates_.after_step(tick, lane, state);
   }
-  void hash_state(std::span<const std::byte> state, sim::StateHasher& hasher) const override {
+  void hash_state(std::span<const std::byte> state, rwd::StateHasher& hasher) const override {
     crates_.hash_state(state, hasher);
   }
   Status validate_state(const MatchSetup& setup, std::span<const std::byte> state) const override {

@@ -40,7 +40,7 @@ TEST(WorldLane, ForwardsToTheWorldItWraps) {
   const sim::World3D* world = world_of<sim::World3D>(sim->lane());
   ASSERT_NE(world, nullptr);
 
-  sim::StateHasher via_lane;
+  rwd::StateHasher via_lane;
   sim->lane().hash(via_lane);
   EXPECT_EQ(via_lane.digest(), world->checksum());
 
@@ -56,12 +56,12 @@ TEST(WorldLane, ForwardsToTheWorldItWraps) {
   sim::World3D::encode_config(CratesGame().world_config(), world_config);
   EXPECT_EQ(game_config, world_config);
 
-  std::vector<sim::BodyField> lane_dump;
-  std::vector<sim::BodyField> world_dump;
+  std::vector<rwd::BodyField> lane_dump;
+  std::vector<rwd::BodyField> world_dump;
   sim->dump_bodies(lane_dump);
   world->dump_fields(world_dump);
   EXPECT_FALSE(lane_dump.empty());
-  EXPECT_TRUE(sim::diff_body_fields(lane_dump, world_dump).empty());
+  EXPECT_TRUE(rwd::diff_body_fields(lane_dump, world_dump).empty());
 }
 
 TEST(WorldLane, SnapshotsAreOpaqueAndRoundTrip) {
@@ -156,17 +156,17 @@ TEST(WorldLane, DrawsAndCountsItsWorldForAViewerOfEitherLane) {
     Simulation& sim = **made;
     for (Tick t = 0; t < 60; ++t) sim.step(steer(2, t));
     const uint64_t before = sim.checksum();
-    sim::DebugDrawBuffers out;
+    rwd::DebugDrawBuffers out;
     sim.lane().debug_draw({}, out);
     EXPECT_EQ(sim.checksum(), before) << name;
     EXPECT_GT(out.lines.size(), 8u) << name;
-    const sim::WorldViewStats stats = sim.lane().view_stats();
-    std::vector<sim::BodyField> fields;
+    const rwd::WorldViewStats stats = sim.lane().view_stats();
+    std::vector<rwd::BodyField> fields;
     sim.dump_bodies(fields);
     // The dump names every live body's fields; its distinct indices are the
     // live bodies.
     std::vector<uint32_t> bodies;
-    for (const sim::BodyField& f : fields) {
+    for (const rwd::BodyField& f : fields) {
       if (bodies.empty() || bodies.back() != f.body_index) bodies.push_back(f.body_index);
     }
     EXPECT_EQ(stats.bodies, bodies.size()) << name;
@@ -179,9 +179,9 @@ TEST(WorldLane, DrawsAndCountsItsWorldForAViewerOfEitherLane) {
     // A joint, a contact point and a body each drew: a highlighted body
     // changes its outline's colour only.
     const uint32_t highlight[] = {bodies.back()};
-    sim::DebugDrawOptions lit;
+    rwd::DebugDrawOptions lit;
     lit.highlight_bodies = highlight;
-    sim::DebugDrawBuffers marked;
+    rwd::DebugDrawBuffers marked;
     sim.lane().debug_draw(lit, marked);
     ASSERT_EQ(marked.lines.size(), out.lines.size()) << name;
     size_t recoloured = 0;

@@ -156,9 +156,9 @@ inline std::vector<v1::Envelope> sample_envelopes() {
     // them.
     v1::Envelope e = header();
     auto* m = e.mutable_final_ticks();
-    std::vector<game::PlayerInput> previous;
+    std::vector<rwd::PlayerInput> previous;
     for (int t = 0; t < 3; ++t) {
-      std::vector<game::PlayerInput> inputs;
+      std::vector<rwd::PlayerInput> inputs;
       for (int p = 0; p < 4; ++p) {
         inputs.push_back({static_cast<int16_t>(p * 250 - 500),
                           static_cast<int16_t>(t == 2 ? 707 : 0),
@@ -175,7 +175,7 @@ inline std::vector<v1::Envelope> sample_envelopes() {
       }
       previous = inputs;
     }
-    const std::vector<game::PlayerInput> run_inputs = {
+    const std::vector<rwd::PlayerInput> run_inputs = {
         {1000, -1000, 1}, {1000, -1000, 1}, {0, 0, 0}};
     proto::append_relayed_run(3, 304, 306, run_inputs, *m->mutable_relayed());
     proto::append_relayed_run(1, 309, 306, run_inputs, *m->mutable_relayed());

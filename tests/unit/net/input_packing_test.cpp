@@ -14,7 +14,7 @@
 namespace rwd::proto {
 namespace {
 
-using game::PlayerInput;
+using rwd::PlayerInput;
 
 std::vector<PlayerInput> random_inputs(std::mt19937& rng, size_t n) {
   std::uniform_int_distribution<int> axis(-1000, 1000);

@@ -46,8 +46,8 @@ inline v1::ReplayHeader test_header(uint32_t players = 3) {
   return h;
 }
 
-inline std::vector<game::PlayerInput> inputs_for(Tick tick, uint32_t players) {
-  std::vector<game::PlayerInput> inputs(players);
+inline std::vector<rwd::PlayerInput> inputs_for(Tick tick, uint32_t players) {
+  std::vector<rwd::PlayerInput> inputs(players);
   for (uint32_t p = 0; p < players; ++p) {
     inputs[p].axis_x = static_cast<int16_t>(tick * 10 - static_cast<int>(p));
     inputs[p].axis_y = static_cast<int16_t>(-tick);
@@ -145,7 +145,7 @@ struct FileBuilder {
   FileBuilder& tick(Tick t, uint32_t players = 3) {
     v1::ReplayRecord r;
     r.mutable_tick()->set_tick(t);
-    for (const game::PlayerInput& in : inputs_for(t, players)) {
+    for (const rwd::PlayerInput& in : inputs_for(t, players)) {
       *r.mutable_tick()->add_inputs() = proto::to_wire(in);
     }
     return add(r);

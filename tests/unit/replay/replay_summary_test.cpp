@@ -67,7 +67,7 @@ TEST(ReplayIo, RewriteForgesOneInputWithValidFraming) {
   edit.tick = 3;
   edit.player = 1;
   edit.axis_x = -999;
-  Result<game::PlayerInput> original = rewrite_replay_input(in.path(), out.path(), edit, false);
+  Result<rwd::PlayerInput> original = rewrite_replay_input(in.path(), out.path(), edit, false);
   ASSERT_TRUE(original.ok()) << original.status().message();
   EXPECT_EQ(*original, inputs_for(3, 3)[1]);
 

@@ -83,7 +83,7 @@ inline std::vector<uint64_t> record_match(const std::string& path, const Recordi
   std::mt19937 rng(rec.input_seed);
   std::uniform_int_distribution<int> axis(-1000, 1000);
   std::uniform_int_distribution<int> press(0, 19);
-  std::vector<game::PlayerInput> inputs(rec.players);
+  std::vector<rwd::PlayerInput> inputs(rec.players);
   std::vector<uint8_t> state;
   for (Tick t = 0; t < rec.ticks; ++t) {
     uint64_t substituted = 0;

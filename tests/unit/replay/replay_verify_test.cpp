@@ -43,7 +43,7 @@ void forge_input(const std::string& in, const std::string& out, Tick tick, uint3
   edit.tick = tick;
   edit.player = player;
   edit.axis_x = static_cast<int16_t>(old_x > 0 ? -1000 : 1000);
-  Result<game::PlayerInput> original = rewrite_replay_input(in, out, edit, true);
+  Result<rwd::PlayerInput> original = rewrite_replay_input(in, out, edit, true);
   ASSERT_TRUE(original.ok()) << original.status().message();
 }
 
@@ -60,7 +60,7 @@ void older_engine(v1::ReplayHeader& header) {
 }
 
 bool names_a_moving_field(const VerifyReport& report) {
-  for (const sim::FieldDifference& d : report.differences) {
+  for (const rwd::FieldDifference& d : report.differences) {
     if (d.field.find("position") != std::string::npos ||
         d.field.find("velocity") != std::string::npos) {
       return true;
@@ -175,7 +175,7 @@ TEST(ReplayVerify, KeyframeHoldingAnotherTickIsRefused) {
     auto later = game::Simulation::create(rec.game, game::MatchSetup{rec.players, rec.seed});
     ASSERT_TRUE(later.ok());
     ASSERT_TRUE((*later)->deserialize(state).ok());
-    (*later)->step(std::vector<game::PlayerInput>(rec.players));
+    (*later)->step(std::vector<rwd::PlayerInput>(rec.players));
     (*later)->serialize(state);
   };
   record_match(file.path(), rec);

@@ -28,7 +28,7 @@ TEST(ReplayIo, WriterReaderRoundTrip) {
       EXPECT_EQ(r.tick().tick(), expected_tick);
       EXPECT_EQ(r.tick().checksum(), checksum_for(expected_tick));
       EXPECT_EQ(r.tick().substituted_mask(), expected_tick == 2 ? 0b101u : 0u);
-      const std::vector<game::PlayerInput> want = inputs_for(expected_tick, 3);
+      const std::vector<rwd::PlayerInput> want = inputs_for(expected_tick, 3);
       ASSERT_EQ(r.tick().inputs_size(), 3);
       for (int p = 0; p < 3; ++p) {
         EXPECT_EQ(*proto::from_wire(r.tick().inputs(p)), want[static_cast<size_t>(p)]);

@@ -6,14 +6,14 @@
 namespace rwd::net {
 namespace {
 
-game::PlayerInput in(int16_t x, uint32_t buttons = 0) {
+rwd::PlayerInput in(int16_t x, uint32_t buttons = 0) {
   return {x, 0, buttons};
 }
 
 TEST(InputQueue, PredictsNeutralBeforeAnyInput) {
   InputQueue q(16);
-  EXPECT_EQ(q.input_for(0), game::PlayerInput{});
-  EXPECT_EQ(q.input_for(10), game::PlayerInput{});
+  EXPECT_EQ(q.input_for(0), rwd::PlayerInput{});
+  EXPECT_EQ(q.input_for(10), rwd::PlayerInput{});
   EXPECT_EQ(q.contiguous_through(), -1);
   EXPECT_EQ(q.newest(), kNoTick);
 }

@@ -22,10 +22,10 @@ std::unique_ptr<RollbackSession> make_session(int32_t snapshot_ticks = 32) {
 
 // A scripted input stream: direction changes every few ticks, buttons now
 // and then, so mispredictions are frequent.
-game::PlayerInput scripted(uint32_t player, Tick tick) {
+rwd::PlayerInput scripted(uint32_t player, Tick tick) {
   std::mt19937 rng(static_cast<uint32_t>(tick / 4) * 7919u + player * 104729u);
   std::uniform_int_distribution<int> axis(-1000, 1000);
-  game::PlayerInput input;
+  rwd::PlayerInput input;
   input.axis_x = static_cast<int16_t>(axis(rng));
   input.axis_y = static_cast<int16_t>(axis(rng));
   input.buttons = (rng() % 23 == 0) ? 1u : 0u;
@@ -113,7 +113,7 @@ TEST(RollbackSession, FinalInputOverridesAConfirmedOneAndResimulates) {
   EXPECT_EQ(session->stats().rollbacks, 1u);
   EXPECT_EQ(session->stats().resimulated_ticks, 4u);
   EXPECT_NE(*session->checksum_after(3), before);
-  EXPECT_EQ(session->used_input(1, 0), (game::PlayerInput{1000, 1000, 2}));
+  EXPECT_EQ(session->used_input(1, 0), (rwd::PlayerInput{1000, 1000, 2}));
 }
 
 TEST(RollbackSession, RollbackBeyondTheRingIsReportedNotGuessed) {

@@ -12,7 +12,7 @@ TEST(SnapshotRing, HoldsTheLastCapacityTicks) {
   auto sim = game::Simulation::create("crates", {2, 3});
   ASSERT_TRUE(sim.ok());
   SnapshotRing ring(4);
-  std::vector<game::PlayerInput> inputs(2);
+  std::vector<rwd::PlayerInput> inputs(2);
   std::vector<uint64_t> checksums;
   for (int i = 0; i < 6; ++i) {
     ring.save(**sim);

@@ -10,7 +10,7 @@
 namespace rwd::server {
 namespace {
 
-std::vector<game::PlayerInput> inputs_at(Tick t) {
+std::vector<rwd::PlayerInput> inputs_at(Tick t) {
   return {{static_cast<int16_t>(t % 3 * 100), 0, 0}, {-500, static_cast<int16_t>(t % 5), 1}};
 }
 
@@ -34,10 +34,10 @@ TEST(FinalTickLog, NewTicksFirstEachPackedAgainstTheOneBefore) {
   EXPECT_EQ(ticks_in(out), (std::vector<Tick>{0, 1, 2, 3, 4}));
   EXPECT_EQ(cursor.sent, 4);
   // The client applies them in order: each reads against the one before.
-  std::vector<game::PlayerInput> previous;
+  std::vector<rwd::PlayerInput> previous;
   for (const v1::FinalTick& f : out.ticks()) {
     EXPECT_EQ(f.delta(), f.tick() > 0);
-    std::vector<game::PlayerInput> got;
+    std::vector<rwd::PlayerInput> got;
     ASSERT_TRUE(proto::final_tick_inputs(f, previous, got).ok()) << f.tick();
     EXPECT_EQ(got, inputs_at(f.tick()));
     EXPECT_EQ(f.checksum(), 1000u + static_cast<uint64_t>(f.tick()));

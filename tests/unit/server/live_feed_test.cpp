@@ -96,7 +96,7 @@ LiveFeed::Info plain_info(uint32_t keyframe_ticks, uint32_t delay_ticks) {
 /// Ticks 0..count-1 with made-up checksums and a stand-in state every
 /// keyframe (the feed does not look inside states).
 void publish(LiveFeed& feed, Tick from, Tick count) {
-  const std::vector<game::PlayerInput> inputs(2);
+  const std::vector<rwd::PlayerInput> inputs(2);
   for (Tick t = from; t < from + count; ++t) {
     feed.publish_tick(t, inputs, 0, 1000 + static_cast<uint64_t>(t));
     if (feed.wants_state(t + 1)) feed.publish_state(t + 1, std::vector<uint8_t>{1, 2, 3});
@@ -130,10 +130,10 @@ TEST(LiveFeed, HoldsAFewStatesAndTheTicksSinceTheOldest) {
   EXPECT_EQ(start->start_state, (std::vector<uint8_t>{1, 2, 3}));
 
   // Out of order or after the end: ignored.
-  const std::vector<game::PlayerInput> inputs(2);
+  const std::vector<rwd::PlayerInput> inputs(2);
   feed.publish_tick(1005, inputs, 0, 1);
   feed.publish_tick(998, inputs, 0, 1);
-  feed.publish_tick(1000, std::vector<game::PlayerInput>(3), 0, 1);  // three inputs for two
+  feed.publish_tick(1000, std::vector<rwd::PlayerInput>(3), 0, 1);  // three inputs for two
   EXPECT_EQ(feed.summary().newest_final, 999);
   feed.end();
   feed.publish_tick(1000, inputs, 0, 1);

@@ -43,7 +43,7 @@ struct FakeClient {
   uint32_t sequence = 1;
 };
 
-inline game::PlayerInput scripted(uint32_t player, Tick tick) {
+inline rwd::PlayerInput scripted(uint32_t player, Tick tick) {
   return {static_cast<int16_t>(((tick / 5 + player) % 3 - 1) * 900),
           static_cast<int16_t>(((tick / 7 + player) % 3 - 1) * 700), 0};
 }
@@ -95,7 +95,7 @@ class HostHarness {
     EXPECT_NE(client.connection_id, 0u);
     return client;
   }
-  void send_input(FakeClient& client, Tick tick, game::PlayerInput input, uint32_t as_player) {
+  void send_input(FakeClient& client, Tick tick, rwd::PlayerInput input, uint32_t as_player) {
     v1::Envelope envelope;
     v1::InputFrame* frame = envelope.mutable_input_frame();
     frame->set_player(as_player);

@@ -47,7 +47,7 @@ class FaultyCrates final : public game::Game {
              std::span<std::byte> state) const override {
     crates_.build(setup, lane, state);
   }
-  void apply_inputs(Tick tick, std::span<const game::PlayerInput> inputs, game::Lane& lane,
+  void apply_inputs(Tick tick, std::span<const rwd::PlayerInput> inputs, game::Lane& lane,
                     std::span<std::byte> state) const override {
     crates_.apply_inputs(tick, inputs, lane, state);
   }
@@ -57,7 +57,7 @@ class FaultyCrates final : public game::Game {
       throw std::runtime_error("score table out of range");
     }
   }
-  void hash_state(std::span<const std::byte> state, sim::StateHasher& hasher) const override {
+  void hash_state(std::span<const std::byte> state, rwd::StateHasher& hasher) const override {
     crates_.hash_state(state, hasher);
   }
   Status validate_state(const game::MatchSetup& setup,

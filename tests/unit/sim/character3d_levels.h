@@ -7,8 +7,8 @@
 #include <cstring>
 #include <vector>
 
+#include "rewind/core/det_math.h"
 #include "rewind/sim/character3d.h"
-#include "rewind/sim/det_math.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim::character_test {

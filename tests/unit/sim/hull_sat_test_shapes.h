@@ -11,7 +11,7 @@
 #include "d3/hull.h"
 #include "d3/manifold.h"
 #include "d3/manifold_hull_sat.h"
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 #include "sim_test_scenes.h"
 
 namespace rwd::sim::d3::hull_sat_test {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "rewind/sim/splitmix64.h"
+#include "rewind/core/splitmix64.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim::test {

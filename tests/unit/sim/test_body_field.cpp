@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "rewind/sim/body_field.h"
+#include "rewind/core/body_field.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // det_math accuracy against long double references over a grid. This is the
 // only test allowed to call the C library's trigonometry: it is the
 // reference, never the implementation.
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 
 #include <cmath>
 #include <cstring>

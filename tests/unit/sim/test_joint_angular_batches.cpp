@@ -17,7 +17,7 @@
 
 #include "d3/lane_atan2.h"
 #include "joint_test_helpers.h"
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 #include "rewind/sim/world3d.h"
 #include "sim_test_scenes.h"
 

@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 #include "rewind/sim/world3d.h"
 #include "sim_test_scenes.h"
 

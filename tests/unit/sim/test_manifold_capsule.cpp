@@ -11,7 +11,7 @@
 
 #include "d3/manifold.h"
 #include "d3/shape_ops.h"
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 #include "rewind/sim/world3d.h"
 #include "sim_test_scenes.h"
 

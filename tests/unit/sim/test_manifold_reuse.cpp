@@ -14,7 +14,7 @@
 
 #include "d3/manifold.h"
 #include "d3/manifold_reuse.h"
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 #include "rewind/sim/world3d.h"
 #include "sim_test_scenes.h"
 

@@ -13,7 +13,7 @@
 #include <limits>
 #include <vector>
 
-#include "rewind/sim/splitmix64.h"
+#include "rewind/core/splitmix64.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim {

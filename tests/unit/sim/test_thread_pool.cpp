@@ -2,7 +2,7 @@
 // ThreadPool, and a world stepped on 1, 2, 4 and 8 threads: every tick's
 // checksum the same as without a pool, for a pile of every shape kind on a
 // mesh floor, with a joint chain, a wake-up and a restore along the way.
-#include "rewind/sim/thread_pool.h"
+#include "rewind/core/thread_pool.h"
 
 #include <gtest/gtest.h>
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "rewind/core/det_math.h"
 #include "rewind/scenes/vehicle_scene.h"
-#include "rewind/sim/det_math.h"
 #include "rewind/sim/vehicle3d.h"
 #include "sim_test_scenes.h"
 

@@ -19,9 +19,9 @@ namespace rwd::sim2d {
 namespace {
 
 using namespace rwd::fixed::literals;  // NOLINT: test brevity
-using sim::DebugDrawBuffers;
-using sim::DebugDrawOptions;
-using sim::DrawVertex;
+using rwd::DebugDrawBuffers;
+using rwd::DebugDrawOptions;
+using rwd::DrawVertex;
 using testing::add_body;
 
 Vec2 fx2(float x, float y) {
@@ -118,7 +118,7 @@ TEST(DebugDraw2D, BodiesTakeTheColourOfTheirState) {
       add_body(world, BodyKind2D::kKinematic, make_circle(0.3_fx), {Fx(5), Fx(3)});
   DebugDrawOptions options;
   options.contacts = false;
-  const sim::DrawColors& c = options.colors;
+  const rwd::DrawColors& c = options.colors;
   auto colours = [&](const DebugDrawOptions& o) {
     DebugDrawBuffers out;
     debug_draw(world, o, out);

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include <vector>
 
-#include "rewind/sim/state_hasher.h"
+#include "rewind/core/state_hasher.h"
 #include "rewind/sim2d/world2d.h"
 #include "world2d_test_scenes.h"
 

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "rewind/core/thread_pool.h"
 #include "rewind/fixed/fx_literal.h"
-#include "rewind/sim/thread_pool.h"
 #include "rewind/sim2d/world2d.h"
 #include "world2d_test_scenes.h"
 
@@ -43,7 +43,7 @@ void build_bin(World2D& world, int bodies) {
   }
 }
 
-std::vector<uint64_t> run_bin(sim::ThreadPool* pool, int bodies, int ticks) {
+std::vector<uint64_t> run_bin(rwd::ThreadPool* pool, int bodies, int ticks) {
   World2D world;
   build_bin(world, bodies);
   world.set_thread_pool(pool);
@@ -63,7 +63,7 @@ TEST(World2DThreads, EveryTickTheSameOnOneTwoFourAndEightThreads) {
   constexpr int kTicks = 180;
   const std::vector<uint64_t> alone = run_bin(nullptr, kBodies, kTicks);
   for (uint32_t threads : {1u, 2u, 4u, 8u}) {
-    sim::ThreadPool pool(threads);
+    rwd::ThreadPool pool(threads);
     const std::vector<uint64_t> sums = run_bin(&pool, kBodies, kTicks);
     ASSERT_EQ(sums.size(), alone.size());
     for (size_t t = 0; t < sums.size(); ++t) {

@@ -23,7 +23,7 @@ ViewBundle played(const std::string& game_name, uint32_t players, Tick ticks) {
   b.setup.seed = 11;
   auto sim = game::Simulation::create(game_name, b.setup);
   EXPECT_TRUE(sim.ok());
-  std::vector<game::PlayerInput> inputs(players);
+  std::vector<rwd::PlayerInput> inputs(players);
   for (Tick t = 0; t < ticks; ++t) {
     for (uint32_t p = 0; p < players; ++p) {
       inputs[p].axis_x = static_cast<int16_t>(((t / 13 + static_cast<Tick>(p)) % 3 - 1) * 1000);
@@ -95,7 +95,7 @@ TEST(ReplayPlayer, DrawsItsWorld) {
   auto player = ReplayPlayer::create(played("crates", 2, 30));
   ASSERT_TRUE(player.ok());
   (*player)->seek(30);
-  sim::DebugDrawBuffers out;
+  rwd::DebugDrawBuffers out;
   (*player)->draw({}, out);
   EXPECT_FALSE(out.lines.empty());
   EXPECT_GT((*player)->stats().bodies, 2u);
@@ -107,7 +107,7 @@ TEST(ReplayPlayer, ADesyncReportNamesTheBodiesThatDiffer) {
   auto client = game::Simulation::create("crates", bundle.setup);
   for (Tick t = 0; t <= 80; ++t) {
     (*client)->step(
-        std::span<const game::PlayerInput>(bundle.inputs).subspan(static_cast<size_t>(t) * 2, 2));
+        std::span<const rwd::PlayerInput>(bundle.inputs).subspan(static_cast<size_t>(t) * 2, 2));
   }
   ASSERT_TRUE((*client)->lane().perturb_for_drill());
   ViewDesync d;
@@ -126,7 +126,7 @@ TEST(ReplayPlayer, ADesyncReportNamesTheBodiesThatDiffer) {
   EXPECT_NE(view->client_checksum, view->replay_checksum);
   ASSERT_FALSE(view->differences.empty());
   ASSERT_EQ(view->bodies.size(), 1u);  // the drill nudges one body
-  for (const sim::FieldDifference& f : view->differences) {
+  for (const rwd::FieldDifference& f : view->differences) {
     EXPECT_EQ(f.body_index, view->bodies[0]);
     EXPECT_NE(f.expected, f.actual);
   }
@@ -144,13 +144,13 @@ TEST(ReplayPlayer, FindsABodysCentreInEitherLane) {
     auto player = ReplayPlayer::create(played(name, 2, 20));
     ASSERT_TRUE(player.ok());
     (*player)->seek(20);
-    std::vector<sim::BodyField> fields;
+    std::vector<rwd::BodyField> fields;
     (*player)->simulation().dump_bodies(fields);
     const uint32_t last = fields.back().body_index;
     const auto at = (*player)->body_center(last);
     ASSERT_TRUE(at.has_value()) << name;
     bool matched = false;
-    for (const sim::BodyField& f : fields) {
+    for (const rwd::BodyField& f : fields) {
       if (f.body_index == last && (f.name == "position.x" || f.name == "center.x")) {
         EXPECT_EQ((*at)[0], f.value()) << name;
         matched = true;
@@ -168,7 +168,7 @@ ViewBundle joined_at(const ViewBundle& whole, Tick from, Tick through) {
   const uint32_t players = whole.setup.player_count;
   auto sim = game::Simulation::create(whole.game, whole.setup);
   for (Tick t = 0; t < from; ++t) {
-    (*sim)->step(std::span<const game::PlayerInput>(whole.inputs)
+    (*sim)->step(std::span<const rwd::PlayerInput>(whole.inputs)
                      .subspan(static_cast<size_t>(t) * players, players));
   }
   (*sim)->serialize(b.start_state);
@@ -270,7 +270,7 @@ ViewBundle with_keyframes(ViewBundle bundle, Tick every) {
   auto sim = game::Simulation::create(bundle.game, bundle.setup);
   const uint32_t players = bundle.setup.player_count;
   for (Tick t = 0; t < bundle.end_position(); ++t) {
-    (*sim)->step(std::span<const game::PlayerInput>(bundle.inputs)
+    (*sim)->step(std::span<const rwd::PlayerInput>(bundle.inputs)
                      .subspan(static_cast<size_t>(t) * players, players));
     if ((t + 1) % every == 0) {
       ViewKeyframe k;

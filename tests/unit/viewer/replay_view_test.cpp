@@ -93,7 +93,7 @@ TEST(ReplayView, ADesyncReportIsAttachedByItsFileName) {
   auto client = game::Simulation::create("crates", bundle->setup);
   for (Tick t = 0; t <= 40; ++t) {
     (*client)->step(
-        std::span<const game::PlayerInput>(bundle->inputs).subspan(static_cast<size_t>(t) * 2, 2));
+        std::span<const rwd::PlayerInput>(bundle->inputs).subspan(static_cast<size_t>(t) * 2, 2));
   }
   ASSERT_TRUE((*client)->lane().perturb_for_drill());
   std::vector<uint8_t> state;

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "rewind/core/tick.h"
 #include "rewind/net/fault_config.h"
-#include "rewind/sim/tick.h"
 
 namespace rwd::client {
 

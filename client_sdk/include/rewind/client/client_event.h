@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <string>
 
-#include "rewind/sim/tick.h"
+#include "rewind/core/tick.h"
 
 namespace rwd::client {
 

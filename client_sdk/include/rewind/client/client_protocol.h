@@ -25,10 +25,10 @@
 
 #include "rewind/client/client_config.h"
 #include "rewind/client/client_event.h"
-#include "rewind/game/player_input.h"
+#include "rewind/core/player_input.h"
+#include "rewind/core/status.h"
 #include "rewind/net/clock.h"
 #include "rewind/net/rollback_session.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::client {
 
@@ -42,7 +42,7 @@ class ClientProtocol {
  public:
   /// Supplies our input for a tick, once per tick, when that tick is first
   /// simulated.
-  using InputProvider = std::function<game::PlayerInput(Tick tick)>;
+  using InputProvider = std::function<rwd::PlayerInput(Tick tick)>;
   /// Datagrams held for the caller at most; more are dropped and counted
   /// (ClientStats::datagrams_dropped) until it drains them.
   static constexpr size_t kMaxQueuedDatagrams = 1024;
@@ -80,7 +80,7 @@ class ClientProtocol {
   void set_input_provider(InputProvider provider);
   /// The input used for every tick from now on (when no provider is set).
   /// Axes are clamped to [-1000, 1000].
-  void set_input(const game::PlayerInput& input);
+  void set_input(const rwd::PlayerInput& input);
 
   /// The oldest datagram for the server, removed from the queue; nullopt
   /// when none is left. The bytes stay valid until the next call that

@@ -17,8 +17,8 @@
 #include <string_view>
 #include <vector>
 
-#include "rewind/game/player_input.h"
-#include "rewind/sim/status.h"
+#include "rewind/core/player_input.h"
+#include "rewind/core/status.h"
 
 namespace rwd::proto {
 
@@ -27,19 +27,19 @@ inline constexpr size_t kMaxPackedInputs = 64;
 
 /// Appends `values` packed against `references` (same size, or empty for
 /// the neutral input) to `out`. At most kMaxPackedInputs values.
-void pack_inputs(std::span<const game::PlayerInput> values,
-                 std::span<const game::PlayerInput> references, std::string& out);
+void pack_inputs(std::span<const rwd::PlayerInput> values,
+                 std::span<const rwd::PlayerInput> references, std::string& out);
 
 /// Appends a run of one player's inputs, each packed against the one
 /// before it (the first against the neutral input).
-void pack_run(std::span<const game::PlayerInput> run, std::string& out);
+void pack_run(std::span<const rwd::PlayerInput> run, std::string& out);
 
 /// Reads a packed list against `references` (empty: the neutral input;
 /// else as many as the list holds) into `out` (replaced). kCorrupt for a
 /// truncated list, trailing bytes, a count above kMaxPackedInputs, a
 /// reference count that does not match, or an axis outside [-1000, 1000].
-Status unpack_inputs(std::string_view bytes, std::span<const game::PlayerInput> references,
-                     std::vector<game::PlayerInput>& out);
+Status unpack_inputs(std::string_view bytes, std::span<const rwd::PlayerInput> references,
+                     std::vector<rwd::PlayerInput>& out);
 
 /// Checks that `bytes` is a well-formed packed list (count, masks and
 /// bytes agree, nothing trailing) without its references: the values are
@@ -47,6 +47,6 @@ Status unpack_inputs(std::string_view bytes, std::span<const game::PlayerInput> 
 Status check_packed_inputs(std::string_view bytes);
 
 /// Reads a run packed by pack_run.
-Status unpack_run(std::string_view bytes, std::vector<game::PlayerInput>& out);
+Status unpack_run(std::string_view bytes, std::vector<rwd::PlayerInput>& out);
 
 }  // namespace rwd::proto

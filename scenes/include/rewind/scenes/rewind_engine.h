@@ -4,8 +4,8 @@
 #include <memory>
 #include <vector>
 
+#include "rewind/core/thread_pool.h"
 #include "rewind/scenes/engine.h"
-#include "rewind/sim/thread_pool.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::scenes {
@@ -44,7 +44,7 @@ class RewindEngine final : public Engine {
 
  private:
   sim::WorldConfig config_;
-  std::unique_ptr<sim::ThreadPool> pool_;  // null: one thread; outlives world_
+  std::unique_ptr<rwd::ThreadPool> pool_;  // null: one thread; outlives world_
   std::unique_ptr<sim::World3D> world_;
   std::vector<sim::BodyId> ids_;
 };

@@ -9,8 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "rewind/core/tick.h"
 #include "rewind/scenes/engine.h"
-#include "rewind/sim/tick.h"
 
 namespace rwd::scenes {
 

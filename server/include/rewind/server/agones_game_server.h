@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 
 namespace rwd::server {
 

@@ -21,9 +21,9 @@
 #include <string>
 #include <string_view>
 
+#include "rewind/core/status.h"
 #include "rewind/server/agones_sdk.h"
 #include "rewind/server/match_config.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::server {
 

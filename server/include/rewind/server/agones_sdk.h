@@ -12,8 +12,8 @@
 #include <string_view>
 #include <utility>
 
+#include "rewind/core/status.h"
 #include "rewind/server/agones_game_server.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::server {
 

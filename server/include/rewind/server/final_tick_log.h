@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "rewind/game/player_input.h"
-#include "rewind/sim/tick.h"
+#include "rewind/core/player_input.h"
+#include "rewind/core/tick.h"
 #include "rewind/v1/input.pb.h"
 
 namespace rwd::server {
@@ -33,7 +33,7 @@ class FinalTickLog {
 
   /// Appends the next final tick (`tick` follows the last one appended),
   /// made at server tick `made_at`.
-  void append(Tick tick, std::span<const game::PlayerInput> inputs, uint64_t substituted,
+  void append(Tick tick, std::span<const rwd::PlayerInput> inputs, uint64_t substituted,
               uint64_t checksum, Tick made_at);
   /// Drops the ticks every client has (through `acked_by_all`) and, past
   /// `max_held` ticks, the oldest.
@@ -59,7 +59,7 @@ class FinalTickLog {
   };
   std::deque<v1::FinalTick> ticks_;  // standalone, as appended
   std::deque<Held> held_;            // in step with ticks_
-  std::vector<game::PlayerInput> previous_inputs_;
+  std::vector<rwd::PlayerInput> previous_inputs_;
   Tick next_ = 0;
 };
 

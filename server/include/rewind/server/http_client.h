@@ -15,7 +15,7 @@
 #include <string>
 #include <string_view>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 
 namespace rwd::server {
 

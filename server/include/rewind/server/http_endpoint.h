@@ -24,7 +24,7 @@
 #include <utility>
 #include <vector>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 
 namespace rwd::server {
 

@@ -19,10 +19,10 @@
 #include <string>
 #include <vector>
 
+#include "rewind/core/player_input.h"
+#include "rewind/core/status.h"
+#include "rewind/core/tick.h"
 #include "rewind/game/game.h"
-#include "rewind/game/player_input.h"
-#include "rewind/sim/status.h"
-#include "rewind/sim/tick.h"
 
 namespace rwd::server {
 
@@ -57,7 +57,7 @@ class LiveFeed {
   /// Tick `tick`'s final inputs (one per player), its substituted-input
   /// mask and its checksum. Ticks come in order from 0; anything else is
   /// ignored.
-  void publish_tick(Tick tick, std::span<const game::PlayerInput> inputs, uint64_t substituted,
+  void publish_tick(Tick tick, std::span<const rwd::PlayerInput> inputs, uint64_t substituted,
                     uint64_t checksum);
   /// Whether publish_state() wants the state at `position` (after tick
   /// position - 1): every keyframe_ticks.
@@ -94,8 +94,7 @@ class LiveFeed {
   Tick published_locked() const;
   /// Appends the held ticks from .. through (both held) to the three lists.
   void copy_ticks_locked(Tick from, Tick through, std::vector<uint64_t>& checksums,
-                         std::vector<uint64_t>& masks,
-                         std::vector<game::PlayerInput>& inputs) const;
+                         std::vector<uint64_t>& masks, std::vector<rwd::PlayerInput>& inputs) const;
   /// Drops the oldest keyframes and their ticks while two later ones are
   /// visible to spectators.
   void trim_locked();
@@ -107,8 +106,8 @@ class LiveFeed {
   Tick newest_ = kNoTick;           ///< the newest final tick
   std::deque<uint64_t> checksums_;  ///< from base_
   std::deque<uint64_t> masks_;
-  std::deque<game::PlayerInput> inputs_;  ///< players per tick
-  std::deque<Keyframe> keyframes_;        ///< ascending positions, all >= base_
+  std::deque<rwd::PlayerInput> inputs_;  ///< players per tick
+  std::deque<Keyframe> keyframes_;       ///< ascending positions, all >= base_
   bool ended_ = false;
 };
 

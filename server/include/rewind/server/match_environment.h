@@ -10,7 +10,7 @@
 #include <span>
 #include <string>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 
 namespace rwd::server {
 

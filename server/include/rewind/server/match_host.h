@@ -193,11 +193,11 @@ class MatchHost {
   struct RelayRun {
     uint32_t player = 0;
     Tick first_tick = 0;
-    std::vector<game::PlayerInput> inputs;
+    std::vector<rwd::PlayerInput> inputs;
   };
   std::vector<RelayRun> relay_batch_;
-  std::vector<std::string> relay_packed_;     // each run packed, at broadcast
-  std::vector<game::PlayerInput> relay_run_;  // the run being gathered
+  std::vector<std::string> relay_packed_;    // each run packed, at broadcast
+  std::vector<rwd::PlayerInput> relay_run_;  // the run being gathered
   Tick next_final_ = 0;
   int32_t countdown_ticks_ = 0;
   // Substitution masks of the last kFinalHistory final ticks, to tell a
@@ -230,7 +230,7 @@ class MatchHost {
   google::protobuf::Arena receive_arena_;
   google::protobuf::Arena broadcast_arena_;
   std::vector<uint8_t> state_buffer_;
-  std::vector<game::PlayerInput> final_inputs_;
+  std::vector<rwd::PlayerInput> final_inputs_;
   bool replay_failed_ = false;
   std::shared_ptr<LiveFeed> live_;
   bool live_names_stale_ = false;  // a seat changed hands since the feed last had the names

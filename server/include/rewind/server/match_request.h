@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include "rewind/core/status.h"
 #include "rewind/server/match_config.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::server {
 

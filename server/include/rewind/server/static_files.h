@@ -10,8 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "rewind/core/status.h"
 #include "rewind/server/http_endpoint.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::server {
 
@@ -41,6 +41,11 @@ class StaticFiles {
   };
   std::vector<File> files_;
 };
+
+/// Where the browser viewer is when no directory is given: installed next
+/// to the running program (PREFIX/share/rewind/viewer for PREFIX/bin), else
+/// the build's viewer_web when it was built; empty when neither holds one.
+std::string default_viewer_dir();
 
 /// The reply to a method other than GET or HEAD: 405 with an Allow header.
 HttpReply method_not_allowed();

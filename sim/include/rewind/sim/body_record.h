@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "rewind/core/body_field.h"
 #include "rewind/sim/body.h"
-#include "rewind/sim/body_field.h"
 
 namespace rwd::sim {
 

@@ -21,9 +21,9 @@
 #include <memory>
 #include <vector>
 
+#include "rewind/core/debug_draw.h"
+#include "rewind/core/status.h"
 #include "rewind/sim/body.h"
-#include "rewind/sim/debug_draw.h"
-#include "rewind/sim/status.h"
 #include "rewind/sim/world3d.h"
 
 namespace rwd::sim {

@@ -2,8 +2,8 @@
 #pragma once
 // Debug draw of the 3D lane: a World3D's bodies, the last step's contacts,
 // its joints and bounds, and single shapes at a pose (a query's or a cast's
-// shape), appended to plain buffers (rewind/sim/debug_draw.h).
-#include "rewind/sim/debug_draw.h"
+// shape), appended to plain buffers (rewind/core/debug_draw.h).
+#include "rewind/core/debug_draw.h"
 #include "rewind/sim/geometry.h"
 #include "rewind/sim/math.h"
 #include "rewind/sim/shape.h"

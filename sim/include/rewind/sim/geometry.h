@@ -20,10 +20,10 @@
 #include <span>
 #include <vector>
 
+#include "rewind/core/status.h"
 #include "rewind/sim/geometry_id.h"
 #include "rewind/sim/math.h"
 #include "rewind/sim/shape.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::sim {
 

@@ -6,7 +6,7 @@
 // reassociate (and -ffp-contract=off forbids fusing).
 #include <cmath>
 
-#include "rewind/sim/build_checks.h"
+#include "rewind/core/build_checks.h"
 
 namespace rwd::sim {
 

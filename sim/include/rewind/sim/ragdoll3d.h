@@ -40,10 +40,10 @@
 #include <cstdint>
 #include <span>
 
+#include "rewind/core/status.h"
 #include "rewind/sim/body.h"
 #include "rewind/sim/joint.h"
 #include "rewind/sim/math.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::sim {
 

@@ -11,10 +11,10 @@
 #include <cstdint>
 #include <span>
 
+#include "rewind/core/status.h"
 #include "rewind/sim/body.h"
 #include "rewind/sim/math.h"
 #include "rewind/sim/query.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::sim {
 

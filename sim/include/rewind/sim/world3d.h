@@ -12,6 +12,9 @@
 #include <utility>
 #include <vector>
 
+#include "rewind/core/state_hasher.h"
+#include "rewind/core/status.h"
+#include "rewind/core/thread_pool.h"
 #include "rewind/sim/body.h"
 #include "rewind/sim/body_event.h"
 #include "rewind/sim/body_record.h"
@@ -20,8 +23,6 @@
 #include "rewind/sim/joint.h"
 #include "rewind/sim/query.h"
 #include "rewind/sim/scheduled_query.h"
-#include "rewind/sim/state_hasher.h"
-#include "rewind/sim/status.h"
 #include "rewind/sim/world_config.h"
 #include "rewind/sim/world_state.h"
 
@@ -48,7 +49,6 @@ struct StepStats {
 };
 
 class WorldScratch;  // per-step working memory; not state
-class ThreadPool;    // rewind/sim/thread_pool.h
 
 class World3D {
  public:

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 
 #define float rwd_fixed_forbids_float
 #define double rwd_fixed_forbids_double

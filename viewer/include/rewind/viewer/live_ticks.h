@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "rewind/game/player_input.h"
-#include "rewind/sim/status.h"
-#include "rewind/sim/tick.h"
+#include "rewind/core/player_input.h"
+#include "rewind/core/status.h"
+#include "rewind/core/tick.h"
 
 namespace rwd::viewer {
 
@@ -40,7 +40,7 @@ struct LiveTicks {
   Tick first_tick = 0;
   std::vector<uint64_t> checksums;  ///< after each tick, from first_tick on
   std::vector<uint64_t> substituted_masks;
-  std::vector<game::PlayerInput> inputs;  ///< tick i's: [i * player_count, + player_count)
+  std::vector<rwd::PlayerInput> inputs;  ///< tick i's: [i * player_count, + player_count)
 
   uint32_t tick_count() const { return static_cast<uint32_t>(checksums.size()); }
 };

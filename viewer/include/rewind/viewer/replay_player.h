@@ -18,10 +18,10 @@
 #include <optional>
 #include <vector>
 
+#include "rewind/core/body_field.h"
+#include "rewind/core/debug_draw.h"
+#include "rewind/core/status.h"
 #include "rewind/game/simulation.h"
-#include "rewind/sim/body_field.h"
-#include "rewind/sim/debug_draw.h"
-#include "rewind/sim/status.h"
 #include "rewind/viewer/live_ticks.h"
 #include "rewind/viewer/view_bundle.h"
 
@@ -41,7 +41,7 @@ struct DesyncView {
   uint64_t client_checksum = 0;
   uint64_t replay_checksum = 0;
   /// Re-simulated ("expected") against the client's ("actual") fields.
-  std::vector<sim::FieldDifference> differences;
+  std::vector<rwd::FieldDifference> differences;
   std::vector<uint32_t> bodies;  ///< the body indices named above, ascending, once each
 };
 
@@ -98,10 +98,10 @@ class ReplayPlayer {
   /// The first simulated position whose checksum differed from the record.
   std::optional<Tick> first_mismatch() const { return first_mismatch_; }
 
-  void draw(const sim::DebugDrawOptions& options, sim::DebugDrawBuffers& out) const {
+  void draw(const rwd::DebugDrawOptions& options, rwd::DebugDrawBuffers& out) const {
     sim_->lane().debug_draw(options, out);
   }
-  sim::WorldViewStats stats() const { return sim_->lane().view_stats(); }
+  rwd::WorldViewStats stats() const { return sim_->lane().view_stats(); }
   const game::Simulation& simulation() const { return *sim_; }
   /// Where body `index` is now (m; its centre of mass, z = 0 in 2D), read
   /// from the lane-neutral dump; nullopt for no live body there. For a

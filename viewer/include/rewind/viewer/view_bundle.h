@@ -25,10 +25,10 @@
 #include <string>
 #include <vector>
 
+#include "rewind/core/player_input.h"
+#include "rewind/core/status.h"
+#include "rewind/core/tick.h"
 #include "rewind/game/game.h"
-#include "rewind/game/player_input.h"
-#include "rewind/sim/status.h"
-#include "rewind/sim/tick.h"
 
 namespace rwd::viewer {
 
@@ -79,7 +79,7 @@ struct ViewBundle {
   /// position and has the recorded checksum there.
   std::vector<ViewKeyframe> keyframes;
   /// Tick first_tick + i's inputs are inputs[i * player_count .. + player_count).
-  std::vector<game::PlayerInput> inputs;
+  std::vector<rwd::PlayerInput> inputs;
   std::vector<uint64_t> checksums;          ///< recorded, after each tick
   std::vector<uint64_t> substituted_masks;  ///< bit p: player p's input was substituted
   std::optional<ViewDesync> desync;

@@ -8,8 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "rewind/core/status.h"
 #include "rewind/scenes/scene.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::tune {
 

@@ -27,9 +27,9 @@
 #include <string>
 #include <vector>
 
-#include "rewind/game/player_input.h"
+#include "rewind/core/player_input.h"
+#include "rewind/core/status.h"
 #include "rewind/game/simulation.h"
-#include "rewind/sim/status.h"
 #include "rewind/tools/bot_script.h"
 #include "rewind/tune/tune_target.h"
 
@@ -71,7 +71,7 @@ class GameTarget final : public TuneTarget {
   SolverSetting reference_setting() const;
 
  private:
-  GameTarget(const GamePlay& play, const sim::WorldConfig& config);
+  GameTarget(const GamePlay& play, const game::Game& game, const sim::WorldConfig& config);
   Status play_reference(std::ostream* progress);
   /// Largest distance of any tracked body from the reference after `tick`:
   /// positions (m) and velocities (m/s).
@@ -79,11 +79,11 @@ class GameTarget final : public TuneTarget {
                double* position_sum_m) const;
 
   GamePlay play_;
-  sim::WorldConfig config_;                             // the game's own world config
-  std::vector<std::vector<game::PlayerInput>> inputs_;  // [tick][player]
-  std::vector<sim::BodyId> bodies_;                     // dynamic bodies, index order
-  std::vector<game::SimSnapshot> window_starts_;        // reference state at each window start
-  std::vector<sim::Vec3> reference_position_;           // [tick * bodies + body], after the tick
+  sim::WorldConfig config_;                            // the game's own world config
+  std::vector<std::vector<rwd::PlayerInput>> inputs_;  // [tick][player]
+  std::vector<sim::BodyId> bodies_;                    // dynamic bodies, index order
+  std::vector<game::SimSnapshot> window_starts_;       // reference state at each window start
+  std::vector<sim::Vec3> reference_position_;          // [tick * bodies + body], after the tick
   std::vector<sim::Vec3> reference_velocity_;
 };
 

@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 #include "rewind/sim/world_config.h"
 #include "rewind/tune/tune_target.h"
 

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 #include "rewind/sim/world_config.h"
 
 namespace rwd::tune {

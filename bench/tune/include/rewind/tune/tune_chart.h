@@ -5,7 +5,7 @@
 // its ms/step, the budget as a dashed line, the default and the pick marked.
 #include <string>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 #include "rewind/tune/tuner.h"
 
 namespace rwd::tune {

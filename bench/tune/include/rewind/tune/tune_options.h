@@ -3,7 +3,7 @@
 // rewind-tune's command line: flags to a TuneCommand, and the help text.
 #include <string>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 #include "rewind/tune/game_target.h"
 #include "rewind/tune/tuner.h"
 

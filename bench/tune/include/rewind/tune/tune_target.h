@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "rewind/core/tick.h"
 #include "rewind/scenes/scene.h"
-#include "rewind/sim/tick.h"
 #include "rewind/tune/solver_setting.h"
 
 namespace rwd::tune {

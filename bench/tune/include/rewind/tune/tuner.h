@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 #include "rewind/tune/budget.h"
 #include "rewind/tune/solver_setting.h"
 #include "rewind/tune/tune_target.h"

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 #include "rewind/v1/replay.pb.h"
 
 namespace rwd::replay {

@@ -11,9 +11,9 @@
 #include <string_view>
 #include <vector>
 
-#include "rewind/game/player_input.h"
-#include "rewind/sim/status.h"
-#include "rewind/sim/tick.h"
+#include "rewind/core/player_input.h"
+#include "rewind/core/status.h"
+#include "rewind/core/tick.h"
 #include "rewind/v1/replay.pb.h"
 
 namespace rwd::replay {

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "rewind/sim/status.h"
-#include "rewind/sim/tick.h"
+#include "rewind/core/status.h"
+#include "rewind/core/tick.h"
 #include "rewind/v1/replay.pb.h"
 
 namespace rwd::replay {

@@ -7,9 +7,9 @@
 #include <optional>
 #include <string>
 
-#include "rewind/game/player_input.h"
-#include "rewind/sim/status.h"
-#include "rewind/sim/tick.h"
+#include "rewind/core/player_input.h"
+#include "rewind/core/status.h"
+#include "rewind/core/tick.h"
 
 namespace rwd::replay {
 
@@ -26,8 +26,8 @@ struct InputEdit {
 /// returns the input as it was before the edit. The input must read cleanly
 /// to its end and contain edit.tick; `out_path` is refused if it exists
 /// non-empty unless `overwrite`, and removed again on failure.
-Result<game::PlayerInput> rewrite_replay_input(const std::string& in_path,
-                                               const std::string& out_path, const InputEdit& edit,
-                                               bool overwrite);
+Result<rwd::PlayerInput> rewrite_replay_input(const std::string& in_path,
+                                              const std::string& out_path, const InputEdit& edit,
+                                              bool overwrite);
 
 }  // namespace rwd::replay

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "rewind/core/status.h"
+#include "rewind/core/tick.h"
 #include "rewind/replay/replay_reader.h"
-#include "rewind/sim/status.h"
-#include "rewind/sim/tick.h"
 #include "rewind/v1/replay.pb.h"
 
 namespace rwd::replay {

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "rewind/core/body_field.h"
+#include "rewind/core/tick.h"
 #include "rewind/replay/engine_identity.h"
 #include "rewind/replay/replay_reader.h"
-#include "rewind/sim/body_field.h"
-#include "rewind/sim/tick.h"
 #include "rewind/v1/replay.pb.h"
 
 namespace rwd::replay {
@@ -83,7 +83,7 @@ struct VerifyReport {
   /// divergent tick); unset when no keyframe allowed naming fields.
   std::optional<Tick> differences_tick;
   /// Recorded ("expected") against re-simulated ("actual") body fields.
-  std::vector<sim::FieldDifference> differences;
+  std::vector<rwd::FieldDifference> differences;
   size_t differences_total = 0;
   /// How the fields were found, or why there are none.
   std::string differences_note;

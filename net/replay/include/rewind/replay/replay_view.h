@@ -6,8 +6,8 @@
 #include <span>
 #include <string>
 
+#include "rewind/core/status.h"
 #include "rewind/replay/replay_reader.h"
-#include "rewind/sim/status.h"
 #include "rewind/viewer/view_bundle.h"
 
 namespace rwd::replay {

@@ -12,9 +12,9 @@
 #include <string_view>
 #include <vector>
 
-#include "rewind/game/player_input.h"
-#include "rewind/sim/status.h"
-#include "rewind/sim/tick.h"
+#include "rewind/core/player_input.h"
+#include "rewind/core/status.h"
+#include "rewind/core/tick.h"
 #include "rewind/v1/replay.pb.h"
 
 namespace rwd::replay {
@@ -63,8 +63,8 @@ class ReplayWriter {
   /// Records final tick `tick` (must be last_tick() + 1): one input per
   /// player slot, bit p of `substituted_mask` set when player p's input was
   /// substituted, and the world checksum after stepping `tick`.
-  Status append_tick(Tick tick, std::span<const game::PlayerInput> inputs,
-                     uint64_t substituted_mask, uint64_t checksum);
+  Status append_tick(Tick tick, std::span<const rwd::PlayerInput> inputs, uint64_t substituted_mask,
+                     uint64_t checksum);
 
   /// Records the serialized simulation state after `tick`, which must be the
   /// last appended tick (or kNoTick before the first one, for the initial

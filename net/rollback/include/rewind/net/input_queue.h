@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "rewind/game/player_input.h"
-#include "rewind/sim/tick.h"
+#include "rewind/core/player_input.h"
+#include "rewind/core/tick.h"
 
 namespace rwd::net {
 
@@ -26,13 +26,13 @@ class InputQueue {
 
   /// Stores a confirmed input. First writer wins (an input, once sent, never
   /// changes); use set_authoritative() for the server's final word.
-  AddOutcome add(Tick tick, const game::PlayerInput& input);
+  AddOutcome add(Tick tick, const rwd::PlayerInput& input);
   /// Stores an input that overrides anything stored (the server's final input).
-  AddOutcome set_authoritative(Tick tick, const game::PlayerInput& input);
+  AddOutcome set_authoritative(Tick tick, const rwd::PlayerInput& input);
 
   bool is_confirmed(Tick tick) const;
   /// The confirmed input, or the prediction for an unconfirmed tick.
-  game::PlayerInput input_for(Tick tick) const;
+  rwd::PlayerInput input_for(Tick tick) const;
   /// Highest tick such that every tick in [base, it] is confirmed (base - 1 if none).
   Tick contiguous_through() const { return contiguous_; }
   /// Newest confirmed tick (kNoTick if none).
@@ -50,7 +50,7 @@ class InputQueue {
  private:
   struct Slot {
     Tick tick = kNoTick;
-    game::PlayerInput input;
+    rwd::PlayerInput input;
   };
   bool in_range(Tick tick) const { return tick >= base_ && tick < base_ + capacity_; }
   Slot& slot(Tick tick) { return slots_[static_cast<size_t>(tick % capacity_)]; }
@@ -61,7 +61,7 @@ class InputQueue {
   Tick base_;
   Tick contiguous_;
   Tick newest_ = kNoTick;
-  game::PlayerInput carried_;  // newest input before base_, the prediction seed
+  rwd::PlayerInput carried_;  // newest input before base_, the prediction seed
   std::vector<Slot> slots_;
 };
 

@@ -15,10 +15,10 @@
 #include <span>
 #include <vector>
 
+#include "rewind/core/status.h"
 #include "rewind/game/simulation.h"
 #include "rewind/net/input_queue.h"
 #include "rewind/net/snapshot_ring.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::net {
 
@@ -60,16 +60,16 @@ class RollbackSession {
 
   /// Adds a confirmed input. Inputs for ticks already simulated mark the
   /// session for re-simulation if they differ from what was used.
-  InputResult add_input(uint32_t player, Tick tick, const game::PlayerInput& input);
+  InputResult add_input(uint32_t player, Tick tick, const rwd::PlayerInput& input);
   /// Adds the server's final input, overriding anything confirmed before.
-  InputResult add_final_input(uint32_t player, Tick tick, const game::PlayerInput& input);
+  InputResult add_final_input(uint32_t player, Tick tick, const rwd::PlayerInput& input);
 
   /// The input player `player` has (or is predicted to have) at `tick`.
-  game::PlayerInput input_for(uint32_t player, Tick tick) const {
+  rwd::PlayerInput input_for(uint32_t player, Tick tick) const {
     return queues_[player].input_for(tick);
   }
   /// The input that the simulated `tick` used, for ticks in the rollback window.
-  game::PlayerInput used_input(uint32_t player, Tick tick) const;
+  rwd::PlayerInput used_input(uint32_t player, Tick tick) const;
 
   /// Re-simulates from the first tick whose inputs changed, if any, so the
   /// simulation reflects every input known now. Returns false if that tick
@@ -118,10 +118,10 @@ class RollbackSession {
                     std::optional<uint64_t> expected_checksum = std::nullopt);
 
  private:
-  game::PlayerInput* used_row(Tick tick) {
+  rwd::PlayerInput* used_row(Tick tick) {
     return &used_[static_cast<size_t>(tick % ring_.capacity()) * player_count_];
   }
-  const game::PlayerInput* used_row(Tick tick) const {
+  const rwd::PlayerInput* used_row(Tick tick) const {
     return &used_[static_cast<size_t>(tick % ring_.capacity()) * player_count_];
   }
   InputResult classify(InputQueue::AddOutcome outcome) const;
@@ -133,8 +133,8 @@ class RollbackSession {
   RollbackConfig config_;
   std::vector<InputQueue> queues_;
   SnapshotRing ring_;
-  std::vector<game::PlayerInput> used_;  // ring_.capacity() rows of player_count_
-  std::vector<game::PlayerInput> scratch_inputs_;
+  std::vector<rwd::PlayerInput> used_;  // ring_.capacity() rows of player_count_
+  std::vector<rwd::PlayerInput> scratch_inputs_;
   Tick final_tick_ = kNoTick;
   Tick dirty_from_ = kNoTick;  // earliest tick whose inputs may have changed
   RollbackStats stats_;

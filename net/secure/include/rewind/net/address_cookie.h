@@ -33,9 +33,9 @@
 #include <span>
 #include <vector>
 
+#include "rewind/core/status.h"
 #include "rewind/net/connect_token.h"
 #include "rewind/net/secure_channel.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::net {
 

@@ -42,8 +42,8 @@
 #include <span>
 #include <vector>
 
+#include "rewind/core/status.h"
 #include "rewind/net/connect_token.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::net {
 

@@ -13,7 +13,7 @@
 #include <span>
 #include <vector>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 
 namespace rwd::net {
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <random>
 
-#include "rewind/sim/splitmix64.h"
+#include "rewind/core/splitmix64.h"
 
 namespace rwd::net {
 

@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 #include "rewind/v1/envelope.pb.h"
 
 namespace rwd::net {

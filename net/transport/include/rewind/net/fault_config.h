@@ -5,7 +5,7 @@
 // pulling in sockets.
 #include <cstdint>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 
 namespace rwd::net {
 

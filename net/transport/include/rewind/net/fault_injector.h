@@ -9,8 +9,8 @@
 #include <asio/io_context.hpp>
 #include <asio/ip/udp.hpp>
 
+#include "rewind/core/status.h"
 #include "rewind/net/fault_config.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::net {
 

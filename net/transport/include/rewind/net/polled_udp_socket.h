@@ -16,7 +16,7 @@
 #include <system_error>
 #include <vector>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 
 namespace rwd::net {
 

@@ -9,8 +9,8 @@
 #include <span>
 #include <vector>
 
+#include "rewind/core/status.h"
 #include "rewind/fixed/vec2.h"
-#include "rewind/sim/status.h"
 #include "rewind/sim2d/shape2d.h"
 
 namespace rwd::sim2d {

@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <span>
 
+#include "rewind/core/status.h"
 #include "rewind/fixed/fx.h"
 #include "rewind/fixed/vec2.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::sim2d {
 

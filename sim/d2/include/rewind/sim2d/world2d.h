@@ -14,8 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "rewind/core/status.h"
 #include "rewind/fixed/rot2.h"
-#include "rewind/sim/status.h"
 #include "rewind/sim2d/body2d.h"
 #include "rewind/sim2d/contact_event2d.h"
 #include "rewind/sim2d/joint2d.h"
@@ -24,14 +24,14 @@
 #include "rewind/sim2d/world2d_config.h"
 #include "rewind/sim2d/world2d_state.h"
 
-namespace rwd::sim {
+namespace rwd {
 // Declared only: the step's files never include the hasher or the dump
-// (they name floating-point types for the 3D lane), which keeps the 2D
+// (they name floating-point types for float lanes), which keeps the 2D
 // step checkable for floating point (tests sim2d_no_float_*).
 class StateHasher;
 struct BodyField;
-class ThreadPool;  // rewind/sim/thread_pool.h
-}  // namespace rwd::sim
+class ThreadPool;  // rewind/core/thread_pool.h
+}  // namespace rwd
 
 namespace rwd::sim2d {
 
@@ -183,7 +183,7 @@ class World2D {
   /// bit for bit for any pool and none (each pair's manifold is its own;
   /// the solver's sweep stays in one order on the stepping thread). Not
   /// state. The pool must outlive the world or be replaced first.
-  void set_thread_pool(sim::ThreadPool* pool);
+  void set_thread_pool(rwd::ThreadPool* pool);
   const World2DConfig& config() const;
   uint64_t step_count() const;
 
@@ -196,12 +196,12 @@ class World2D {
   /// Copies `in` (a state save() made) back.
   void restore(const World2DState& in);
   /// Feeds the canonical fields of the state to `hasher`.
-  void hash(sim::StateHasher& hasher) const;
-  static void hash_state(const World2DState& state, sim::StateHasher& hasher);
+  void hash(rwd::StateHasher& hasher) const;
+  static void hash_state(const World2DState& state, rwd::StateHasher& hasher);
   /// XXH3-64 of hash(): the per-tick checksum.
   uint64_t checksum() const;
   /// Every live body's fields (the schema's names) in index order.
-  void dump_fields(std::vector<sim::BodyField>& out) const;
+  void dump_fields(std::vector<rwd::BodyField>& out) const;
   /// Portable bytes of the whole state (resync snapshots).
   void serialize(std::vector<uint8_t>& out) const;
   /// serialize()'s bytes back; kCorrupt (naming what is wrong) leaves the

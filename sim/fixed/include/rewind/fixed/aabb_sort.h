@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <span>
 
+#include "rewind/core/status.h"
 #include "rewind/fixed/aabb2.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::fixed {
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include "rewind/core/status.h"
 #include "rewind/fixed/fx.h"
 #include "rewind/fixed/fx_wide.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::fixed {
 

@@ -2,10 +2,10 @@
 #pragma once
 #include <span>
 
+#include "rewind/core/status.h"
 #include "rewind/fixed/aabb2.h"
 #include "rewind/fixed/circle.h"
 #include "rewind/fixed/vec2.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::fixed {
 

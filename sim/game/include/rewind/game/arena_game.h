@@ -44,7 +44,7 @@ class ArenaGame final : public GameWithState<sim2d::World2D, ArenaState> {
   void apply_typed(Tick tick, std::span<const PlayerInput> inputs, sim2d::World2D& world,
                    ArenaState& state) const override;
   void after_step_typed(Tick tick, sim2d::World2D& world, ArenaState& state) const override;
-  void hash_typed(const ArenaState& state, sim::StateHasher& hasher) const override;
+  void hash_typed(const ArenaState& state, rwd::StateHasher& hasher) const override;
   Status validate_typed(const MatchSetup& setup, const ArenaState& state) const override;
 };
 

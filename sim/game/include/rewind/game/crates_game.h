@@ -43,7 +43,7 @@ class CratesGame final : public GameWithState<sim::World3D, CratesState> {
   void apply_typed(Tick tick, std::span<const PlayerInput> inputs, sim::World3D& world,
                    CratesState& state) const override;
   void after_step_typed(Tick tick, sim::World3D& world, CratesState& state) const override;
-  void hash_typed(const CratesState& state, sim::StateHasher& hasher) const override;
+  void hash_typed(const CratesState& state, rwd::StateHasher& hasher) const override;
   Status validate_typed(const MatchSetup& setup, const CratesState& state) const override;
 };
 

@@ -15,11 +15,11 @@
 #include <utility>
 #include <vector>
 
+#include "rewind/core/player_input.h"
+#include "rewind/core/state_hasher.h"
+#include "rewind/core/status.h"
+#include "rewind/core/tick.h"
 #include "rewind/game/lane.h"
-#include "rewind/game/player_input.h"
-#include "rewind/sim/state_hasher.h"
-#include "rewind/sim/status.h"
-#include "rewind/sim/tick.h"
 
 namespace rwd::game {
 
@@ -30,6 +30,11 @@ struct MatchSetup {
 };
 
 inline constexpr uint32_t kMaxPlayers = 32;
+
+/// A stick direction drawn at random every 40 ticks, with a rare jump
+/// (button bit 0) or dash (bit 1): Game::bot_input()'s default. A pure
+/// function of its arguments.
+PlayerInput random_bot_input(uint64_t seed, uint32_t player, Tick tick);
 
 class Game {
  public:
@@ -66,12 +71,18 @@ class Game {
   /// Runs after the world stepped (scoring, respawns); may read events.
   virtual void after_step(Tick tick, Lane& lane, std::span<std::byte> state) const = 0;
   /// Feeds the canonical fields of the state block to the hasher.
-  virtual void hash_state(std::span<const std::byte> state, sim::StateHasher& hasher) const = 0;
+  virtual void hash_state(std::span<const std::byte> state, rwd::StateHasher& hasher) const = 0;
   /// Checks a state block that arrived from outside (a resync snapshot, a
   /// desync dump) before it is used: counts, indices and ranges the rules
   /// rely on. Returns kCorrupt naming the bad field.
   virtual Status validate_state(const MatchSetup& setup,
                                 std::span<const std::byte> state) const = 0;
+  /// The input a bot in seat `player` sends on `tick`: what rewind-bots
+  /// plays by default (--script game) and load tests drive. It must be a
+  /// pure function of its arguments, so a run repeats with the same seed.
+  virtual PlayerInput bot_input(uint64_t seed, uint32_t player, Tick tick) const {
+    return random_bot_input(seed, player, tick);
+  }
 };
 
 }  // namespace rwd::game

@@ -71,7 +71,7 @@ class GameWithState : public GameOn<World> {
 
  public:
   size_t state_size() const final { return sizeof(State); }
-  void hash_state(std::span<const std::byte> state, sim::StateHasher& hasher) const final {
+  void hash_state(std::span<const std::byte> state, rwd::StateHasher& hasher) const final {
     hash_typed(load(state), hasher);
   }
   Status validate_state(const MatchSetup& setup, std::span<const std::byte> state) const final {
@@ -86,7 +86,7 @@ class GameWithState : public GameOn<World> {
   virtual void apply_typed(Tick tick, std::span<const PlayerInput> inputs, World& world,
                            State& state) const = 0;
   virtual void after_step_typed(Tick tick, World& world, State& state) const = 0;
-  virtual void hash_typed(const State& state, sim::StateHasher& hasher) const = 0;
+  virtual void hash_typed(const State& state, rwd::StateHasher& hasher) const = 0;
   virtual Status validate_typed(const MatchSetup& setup, const State& state) const = 0;
 
  private:

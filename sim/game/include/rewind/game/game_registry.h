@@ -8,8 +8,8 @@
 #include <memory>
 #include <string_view>
 
+#include "rewind/core/status.h"
 #include "rewind/game/game.h"
-#include "rewind/sim/status.h"
 
 namespace rwd::game {
 

@@ -93,7 +93,7 @@ class JoustGame final : public GameWithState<sim::World3D, JoustState> {
   void apply_typed(Tick tick, std::span<const PlayerInput> inputs, sim::World3D& world,
                    JoustState& state) const override;
   void after_step_typed(Tick tick, sim::World3D& world, JoustState& state) const override;
-  void hash_typed(const JoustState& state, sim::StateHasher& hasher) const override;
+  void hash_typed(const JoustState& state, rwd::StateHasher& hasher) const override;
   Status validate_typed(const MatchSetup& setup, const JoustState& state) const override;
 };
 

@@ -9,10 +9,10 @@
 #include <span>
 #include <vector>
 
-#include "rewind/sim/body_field.h"
-#include "rewind/sim/debug_draw.h"
-#include "rewind/sim/state_hasher.h"
-#include "rewind/sim/status.h"
+#include "rewind/core/body_field.h"
+#include "rewind/core/debug_draw.h"
+#include "rewind/core/state_hasher.h"
+#include "rewind/core/status.h"
 
 namespace rwd::game {
 
@@ -44,13 +44,13 @@ class Lane {
   virtual void restore(const LaneSnapshot& in) = 0;
 
   /// Feeds the canonical fields of the state to `hasher`.
-  virtual void hash(sim::StateHasher& hasher) const = 0;
+  virtual void hash(rwd::StateHasher& hasher) const = 0;
   /// hash() of a saved state (made by this lane type), without restoring it.
-  virtual void hash_snapshot(const LaneSnapshot& snapshot, sim::StateHasher& hasher) const = 0;
+  virtual void hash_snapshot(const LaneSnapshot& snapshot, rwd::StateHasher& hasher) const = 0;
 
   /// Every live body's fields in ascending body index order; `out` is
   /// cleared first.
-  virtual void dump_fields(std::vector<sim::BodyField>& out) const = 0;
+  virtual void dump_fields(std::vector<rwd::BodyField>& out) const = 0;
 
   /// Portable encoding of the whole state (resync snapshots); `out` is
   /// replaced.
@@ -58,12 +58,12 @@ class Lane {
   /// Replaces the state from serialize()'s bytes; kCorrupt leaves it intact.
   virtual Status deserialize(std::span<const uint8_t> bytes) = 0;
 
-  /// Appends the world's debug draw to `out` (rewind/sim/debug_draw.h):
+  /// Appends the world's debug draw to `out` (rewind/core/debug_draw.h):
   /// for viewers, never part of the state.
-  virtual void debug_draw(const sim::DebugDrawOptions& options,
-                          sim::DebugDrawBuffers& out) const = 0;
+  virtual void debug_draw(const rwd::DebugDrawOptions& options,
+                          rwd::DebugDrawBuffers& out) const = 0;
   /// The world's counts for a viewer (bodies, awake, contacts, joints).
-  virtual sim::WorldViewStats view_stats() const = 0;
+  virtual rwd::WorldViewStats view_stats() const = 0;
 
   /// Test hook for desync drills: changes the state slightly, the way a
   /// real non-determinism would, and the same way for the same state.

@@ -9,11 +9,11 @@
 #include <string_view>
 #include <vector>
 
+#include "rewind/core/body_field.h"
+#include "rewind/core/status.h"
+#include "rewind/core/tick.h"
 #include "rewind/game/game.h"
 #include "rewind/game/lane.h"
-#include "rewind/sim/body_field.h"
-#include "rewind/sim/status.h"
-#include "rewind/sim/tick.h"
 #include "rewind/sim/world_config.h"
 
 namespace rwd::game {
@@ -87,7 +87,7 @@ class Simulation {
   uint64_t checksum_of(const SimSnapshot& snapshot) const;
   /// Lane-neutral body dump (every live body's fields in index order), for
   /// desync reports and replay diffs; `out` is cleared first.
-  void dump_bodies(std::vector<sim::BodyField>& out) const { lane_->dump_fields(out); }
+  void dump_bodies(std::vector<rwd::BodyField>& out) const { lane_->dump_fields(out); }
 
   /// Portable encoding of the whole simulation (resync snapshots).
   void serialize(std::vector<uint8_t>& out) const;

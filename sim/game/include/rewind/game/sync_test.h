@@ -17,11 +17,11 @@
 #include <string_view>
 #include <vector>
 
+#include "rewind/core/body_field.h"
+#include "rewind/core/player_input.h"
+#include "rewind/core/status.h"
+#include "rewind/core/tick.h"
 #include "rewind/game/game.h"
-#include "rewind/game/player_input.h"
-#include "rewind/sim/body_field.h"
-#include "rewind/sim/status.h"
-#include "rewind/sim/tick.h"
 
 namespace rwd::game {
 
@@ -58,7 +58,7 @@ struct SyncTestFailure {
   uint64_t expected = 0;  ///< the checksum of the first run
   uint64_t actual = 0;    ///< the checksum of the check's run
   /// The body fields that differ (first run = expected), at most 16.
-  std::vector<sim::FieldDifference> fields;
+  std::vector<rwd::FieldDifference> fields;
   /// The first byte of the game's state block that differs; none when the
   /// blocks are equal.
   std::optional<size_t> game_state_byte;

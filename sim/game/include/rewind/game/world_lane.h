@@ -22,12 +22,12 @@ namespace lane_detail {
 // The world's own free functions, by argument-dependent lookup; inside
 // WorldLane its members of the same names would hide them.
 template <class World>
-void draw_world(const World& world, const sim::DebugDrawOptions& options,
-                sim::DebugDrawBuffers& out) {
+void draw_world(const World& world, const rwd::DebugDrawOptions& options,
+                rwd::DebugDrawBuffers& out) {
   debug_draw(world, options, out);
 }
 template <class World>
-sim::WorldViewStats stats_of(const World& world) {
+rwd::WorldViewStats stats_of(const World& world) {
   return view_stats(world);
 }
 }  // namespace lane_detail
@@ -62,17 +62,17 @@ class WorldLane final : public Lane {
   void restore(const LaneSnapshot& in) override {
     world_.restore(static_cast<const Snapshot&>(in).state);
   }
-  void hash(sim::StateHasher& hasher) const override { world_.hash(hasher); }
-  void hash_snapshot(const LaneSnapshot& snapshot, sim::StateHasher& hasher) const override {
+  void hash(rwd::StateHasher& hasher) const override { world_.hash(hasher); }
+  void hash_snapshot(const LaneSnapshot& snapshot, rwd::StateHasher& hasher) const override {
     World::hash_state(static_cast<const Snapshot&>(snapshot).state, hasher);
   }
-  void dump_fields(std::vector<sim::BodyField>& out) const override { world_.dump_fields(out); }
+  void dump_fields(std::vector<rwd::BodyField>& out) const override { world_.dump_fields(out); }
   void serialize(std::vector<uint8_t>& out) const override { world_.serialize(out); }
   Status deserialize(std::span<const uint8_t> bytes) override { return world_.deserialize(bytes); }
-  void debug_draw(const sim::DebugDrawOptions& options, sim::DebugDrawBuffers& out) const override {
+  void debug_draw(const rwd::DebugDrawOptions& options, rwd::DebugDrawBuffers& out) const override {
     lane_detail::draw_world(world_, options, out);
   }
-  sim::WorldViewStats view_stats() const override { return lane_detail::stats_of(world_); }
+  rwd::WorldViewStats view_stats() const override { return lane_detail::stats_of(world_); }
   bool perturb_for_drill() override { return world_.perturb_for_drill(); }
 
  private:

@@ -6,20 +6,24 @@
 #include <cstdint>
 #include <string_view>
 
-#include "rewind/game/player_input.h"
-#include "rewind/sim/tick.h"
+#include "rewind/core/player_input.h"
+#include "rewind/core/tick.h"
+#include "rewind/game/game.h"
 
 namespace rwd::tools {
 
 enum class BotScript : uint8_t {
+  kGame,    ///< the game's own Game::bot_input() (random_bot_input() unless it overrides)
   kRandom,  ///< a random stick direction every 40 ticks, occasional jump/dash
   kCircle,  ///< steers in a circle
   kIdle,    ///< neutral input
 };
 
-/// Parses "random", "circle", "idle".
+/// Parses "game", "random", "circle", "idle".
 bool parse_bot_script(std::string_view text, BotScript* out);
 
-game::PlayerInput bot_input(BotScript script, uint64_t seed, uint32_t bot, Tick tick);
+/// The input `script` sends for seat `bot` on `tick` in `game`.
+rwd::PlayerInput bot_input(BotScript script, const game::Game& game, uint64_t seed, uint32_t bot,
+                           Tick tick);
 
 }  // namespace rwd::tools

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-#include "rewind/sim/build_checks.h"
+#include "rewind/core/build_checks.h"
 
 // Rewind's own transcendental functions. The C library's sin/cos/atan2 differ
 // between libm versions and architectures; these are polynomials built from
 // + - * / and sqrt only, so they give the same bits everywhere.
-namespace rwd::sim {
+namespace rwd {
 
 /// Sine of x radians. Range-reduced to [-pi/4, pi/4]; |error| < 2e-7 for |x| < 1e5.
 float det_sin(float x);
@@ -20,4 +20,4 @@ float det_exp(float x);
 
 inline constexpr float kPi = 3.14159265358979323846f;
 
-}  // namespace rwd::sim
+}  // namespace rwd

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-#include "rewind/sim/body_field.h"
+#include "rewind/core/body_field.h"
 
 #include <cstddef>
 #include <cstring>
 
-namespace rwd::sim {
+namespace rwd {
 namespace {
 
 // A float's bits and back (std::bit_cast, which some standard libraries
@@ -115,4 +115,4 @@ std::vector<FieldDifference> diff_body_fields(const std::vector<BodyField>& expe
   return out;
 }
 
-}  // namespace rwd::sim
+}  // namespace rwd

@@ -8,9 +8,7 @@
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
-#include "rewind/sim/math.h"
-
-namespace rwd::sim {
+namespace rwd {
 
 /// Streams chosen state fields, in a fixed order and a fixed little-endian
 /// encoding, into XXH3-64. Never feed raw structs: padding is not state.
@@ -37,17 +35,6 @@ class StateHasher {
     uint32_t bits;
     std::memcpy(&bits, &v, 4);
     add_u32(bits);
-  }
-  void add_vec3(const Vec3& v) {
-    add_f32(v.x);
-    add_f32(v.y);
-    add_f32(v.z);
-  }
-  void add_quat(const Quat& q) {
-    add_f32(q.x);
-    add_f32(q.y);
-    add_f32(q.z);
-    add_f32(q.w);
   }
   void add_bytes(const void* data, size_t size) {
     flush();
@@ -80,4 +67,4 @@ class StateHasher {
   uint8_t buffer_[512];
 };
 
-}  // namespace rwd::sim
+}  // namespace rwd

@@ -14,7 +14,7 @@
 // range r by setting bit r with the generation it read the job under; the
 // caller waits until every range is done and closes the word before it
 // writes the next job, so a late worker's claim on a finished job fails.
-#include "rewind/sim/thread_pool.h"
+#include "rewind/core/thread_pool.h"
 
 #include <algorithm>
 #include <atomic>
@@ -22,7 +22,7 @@
 #include <thread>
 #include <vector>
 
-namespace rwd::sim {
+namespace rwd {
 namespace {
 
 // A spin-wait hint, given once every kRelaxEvery looks rather than on each:
@@ -185,4 +185,4 @@ void ThreadPool::run(uint32_t count, uint32_t ranges, RangeFn fn, void* context)
   s.claims.store(claims_of(generation) | kClosedBit, std::memory_order_seq_cst);
 }
 
-}  // namespace rwd::sim
+}  // namespace rwd

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "rewind/sim/status.h"
+#include "rewind/core/status.h"
 
 namespace rwd::cli {
 

@@ -19,7 +19,7 @@
 #include <memory>
 #include <type_traits>
 
-namespace rwd::sim {
+namespace rwd {
 
 class ThreadPool {
  public:
@@ -72,4 +72,4 @@ class ThreadPool {
   std::unique_ptr<Shared> shared_;
 };
 
-}  // namespace rwd::sim
+}  // namespace rwd

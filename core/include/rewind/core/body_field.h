@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-namespace rwd::sim {
+namespace rwd {
 
 /// How a BodyField's `bits` are read.
 enum class FieldType : uint8_t {
@@ -56,4 +56,4 @@ struct FieldDifference {
 std::vector<FieldDifference> diff_body_fields(const std::vector<BodyField>& expected,
                                               const std::vector<BodyField>& actual);
 
-}  // namespace rwd::sim
+}  // namespace rwd

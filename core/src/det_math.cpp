@@ -5,13 +5,13 @@
 // reproducible as float arithmetic; it simply gives the polynomials headroom
 // so the float result is within ~1 ulp of the true value). The C library is
 // rejected because its results differ between libm versions and targets.
-#include "rewind/sim/det_math.h"
+#include "rewind/core/det_math.h"
 
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 
-namespace rwd::sim {
+namespace rwd {
 namespace {
 
 // pi/2 split Cody-Waite style: kPio2Hi has 33 significant bits, so k * kPio2Hi
@@ -164,4 +164,4 @@ float det_exp(float x) {
   return static_cast<float>(p * scale);
 }
 
-}  // namespace rwd::sim
+}  // namespace rwd

@@ -15,7 +15,7 @@
 #include <span>
 #include <vector>
 
-namespace rwd::sim {
+namespace rwd {
 
 /// A colour as 0xRRGGBBAA (red in the high byte, alpha in the low one).
 using DrawColor = uint32_t;
@@ -130,4 +130,4 @@ inline DebugDrawOptions sanitized(DebugDrawOptions o) {
   return o;
 }
 
-}  // namespace rwd::sim
+}  // namespace rwd

@@ -2,7 +2,7 @@
 #pragma once
 #include <cstdint>
 
-namespace rwd::game {
+namespace rwd {
 
 /// One player's input for one tick. Fixed size and game-agnostic: each game
 /// gives the axes and buttons their meaning. Axes are in [-1000, 1000]
@@ -24,4 +24,4 @@ inline bool is_valid(const PlayerInput& input) {
          input.axis_y <= kAxisMax;
 }
 
-}  // namespace rwd::game
+}  // namespace rwd

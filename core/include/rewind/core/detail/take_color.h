@@ -11,7 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 
-namespace rwd::sim::detail {
+namespace rwd::detail {
 
 /// The first of `colors` colours in which neither body a nor b (each only
 /// if it moves) is taken yet, marking them taken in it; `colors` when every
@@ -31,4 +31,4 @@ inline uint32_t take_color(uint64_t* bits, size_t words, uint32_t colors, uint32
   return colors;
 }
 
-}  // namespace rwd::sim::detail
+}  // namespace rwd::detail

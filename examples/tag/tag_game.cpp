@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: MIT
+#include "tag_game.h"
+
+#include <algorithm>
+#include <memory>
+#include <string>
+
+#include <rewind/core/det_math.h>
+#include <rewind/core/splitmix64.h>
+#include <rewind/game/game_registry.h>
+
+namespace tag {
+namespace {
+
+using rwd::sim::BodyId;
+using rwd::sim::Vec3;
+
+constexpr float kYardHalf = 8.0f;      // m, inner half width of the yard
+constexpr float kBallRadius = 0.5f;    // m
+constexpr float kRunSpeed = 5.0f;      // m/s at full deflection
+constexpr float kItSpeed = 5.5f;       // m/s: "it" is a little faster
+constexpr float kSteerGain = 6.0f;     // 1/s: how fast a ball follows the stick
+constexpr uint64_t kTagBall = 0x7A60;  // user_data of player p's ball: kTagBall + p
+
+rwd::sim::BodyDef wall(Vec3 centre, Vec3 half) {
+  rwd::sim::BodyDef def;
+  def.kind = rwd::sim::BodyKind::kStatic;
+  def.shape = rwd::sim::Shape::make_box(half);
+  def.position = centre;
+  def.contact_events = false;  // the rules read ball-against-ball contacts only
+  return def;
+}
+
+// Balls start on a circle; det_cos/det_sin give the same bits on every
+// machine, where std::cos may not.
+Vec3 start_point(uint32_t player, uint32_t players) {
+  const float angle = 2.0f * rwd::kPi * static_cast<float>(player) / static_cast<float>(players);
+  const float r = kYardHalf - 2.0f;
+  return {r * rwd::det_cos(angle), kBallRadius, r * rwd::det_sin(angle)};
+}
+
+bool is_ball(uint64_t user_data, uint32_t players) {
+  return user_data >= kTagBall && user_data < kTagBall + players;
+}
+
+}  // namespace
+
+rwd::sim::WorldConfig TagGame::world_config() const {
+  rwd::sim::WorldConfig config;
+  config.tick_seconds = 1.0f / 60.0f;
+  config.substeps = 4;
+  return config;
+}
+
+void TagGame::build_typed(const rwd::game::MatchSetup& setup, rwd::sim::World3D& world,
+                          TagState& state) const {
+  state.player_count = setup.player_count;
+  (void)world.create_body(wall({0, -0.5f, 0}, {kYardHalf + 1, 0.5f, kYardHalf + 1}));
+  (void)world.create_body(wall({kYardHalf + 0.5f, 1, 0}, {0.5f, 1, kYardHalf + 1}));
+  (void)world.create_body(wall({-kYardHalf - 0.5f, 1, 0}, {0.5f, 1, kYardHalf + 1}));
+  (void)world.create_body(wall({0, 1, kYardHalf + 0.5f}, {kYardHalf, 1, 0.5f}));
+  (void)world.create_body(wall({0, 1, -kYardHalf - 0.5f}, {kYardHalf, 1, 0.5f}));
+  for (uint32_t p = 0; p < setup.player_count; ++p) {
+    rwd::sim::BodyDef def;
+    def.shape = rwd::sim::Shape::make_sphere(kBallRadius);
+    def.position = start_point(p, setup.player_count);
+    def.density = 1000.0f;
+    def.angular_damping = 2.0f;
+    def.user_data = kTagBall + p;
+    rwd::Result<BodyId> ball = world.create_body(def);
+    state.balls[p] = ball.ok() ? *ball : BodyId{};
+  }
+  // The seed picks who starts as "it", the same way on every machine.
+  state.it = static_cast<uint32_t>(rwd::splitmix64_once(setup.seed) % setup.player_count);
+}
+
+void TagGame::apply_typed(rwd::Tick /*tick*/, std::span<const rwd::PlayerInput> inputs,
+                          rwd::sim::World3D& world, TagState& state) const {
+  const float blend = std::min(1.0f, kSteerGain * world.config().tick_seconds);
+  const uint32_t players = std::min<uint32_t>(state.player_count, uint32_t(inputs.size()));
+  for (uint32_t p = 0; p < players; ++p) {
+    const BodyId ball = state.balls[p];
+    if (!world.is_valid(ball)) continue;
+    const float speed = p == state.it ? kItSpeed : kRunSpeed;
+    const float ax = std::clamp<float>(inputs[p].axis_x, -rwd::kAxisMax, rwd::kAxisMax) /
+                     static_cast<float>(rwd::kAxisMax);
+    const float az = std::clamp<float>(inputs[p].axis_y, -rwd::kAxisMax, rwd::kAxisMax) /
+                     static_cast<float>(rwd::kAxisMax);
+    const Vec3 v = world.linear_velocity(ball);
+    const Vec3 dv{(ax * speed - v.x) * blend, 0.0f, (az * speed - v.z) * blend};
+    (void)world.apply_linear_impulse(ball, dv * world.mass(ball), world.position(ball));
+  }
+}
+
+void TagGame::after_step_typed(rwd::Tick /*tick*/, rwd::sim::World3D& world,
+                               TagState& state) const {
+  if (state.tag_cooldown > 0) --state.tag_cooldown;
+  // Events come in a fixed order (by body index), so when "it" touches two
+  // balls in one tick every machine tags the same one: the first.
+  for (const rwd::sim::ContactEvent& event : world.events()) {
+    if (state.tag_cooldown > 0) break;
+    if (event.type != rwd::sim::ContactEventType::kEnter) continue;
+    const uint64_t a = world.user_data(event.a);
+    const uint64_t b = world.user_data(event.b);
+    if (!is_ball(a, state.player_count) || !is_ball(b, state.player_count)) continue;
+    const uint32_t pa = static_cast<uint32_t>(a - kTagBall);
+    const uint32_t pb = static_cast<uint32_t>(b - kTagBall);
+    if (pa != state.it && pb != state.it) continue;
+    state.it = pa == state.it ? pb : pa;
+    state.tag_cooldown = kTagCooldownTicks;
+    ++state.tags;
+  }
+  for (uint32_t p = 0; p < state.player_count; ++p) {
+    if (p != state.it) ++state.points[p];
+  }
+}
+
+void TagGame::hash_typed(const TagState& state, rwd::StateHasher& hasher) const {
+  hasher.add_u32(state.player_count);
+  hasher.add_u32(state.it);
+  hasher.add_i32(state.tag_cooldown);
+  hasher.add_u32(state.tags);
+  for (uint32_t p = 0; p < state.player_count; ++p) {
+    hasher.add_u32(state.balls[p].index);
+    hasher.add_u32(state.balls[p].generation);
+    hasher.add_u32(state.points[p]);
+  }
+}
+
+rwd::Status TagGame::validate_typed(const rwd::game::MatchSetup& setup,
+                                    const TagState& state) const {
+  auto bad = [](const std::string& what) {
+    return rwd::Status::Error(rwd::ErrorCode::kCorrupt, "tag state: " + what);
+  };
+  if (state.player_count != setup.player_count) return bad("player count differs from the match");
+  if (state.it >= state.player_count) return bad("'it' is not a player");
+  if (state.tag_cooldown < 0 || state.tag_cooldown > kTagCooldownTicks) {
+    return bad("tag cooldown out of range");
+  }
+  return rwd::Status::Ok();
+}
+
+rwd::PlayerInput TagGame::bot_input(uint64_t seed, uint32_t player, rwd::Tick tick) const {
+  // Each bot runs a wide circle of its own size and direction, and every
+  // two seconds picks a new one: enough for "it" to catch someone.
+  const uint64_t leg =
+      rwd::splitmix64_once(seed ^ rwd::splitmix64_once(player) ^ static_cast<uint64_t>(tick / 120));
+  const float turn = (leg & 1) ? 1.0f : -1.0f;
+  const float angle = turn * static_cast<float>(tick % 360) * (2.0f * rwd::kPi / 360.0f) +
+                      static_cast<float>(leg % 628) / 100.0f;
+  rwd::PlayerInput input;
+  input.axis_x = static_cast<int16_t>(rwd::kAxisMax * rwd::det_cos(angle));
+  input.axis_y = static_cast<int16_t>(rwd::kAxisMax * rwd::det_sin(angle));
+  return input;
+}
+
+rwd::Status register_tag_game() {
+  return rwd::game::register_game("tag", [] { return std::make_unique<TagGame>(); });
+}
+
+}  // namespace tag
