@@ -182,6 +182,14 @@ int ClientProtocol::Impl::update(TimePoint now) {
   tick_clock_ += time_sync_.take_jump();
   const Tick before = session_->current_tick();
   step_due_ticks(now);
+  if (!session_->game_error().ok()) {
+    // The rules failed here as they must have on the server, which ends
+    // the match; nothing more can be simulated.
+    phase_ = ClientPhase::kEnded;
+    emit({ClientEventType::kDisconnected, session_->current_tick(), player_, 0, 0,
+          "the game's rules failed: " + session_->game_error().message()});
+    return session_->current_tick() - before;
+  }
   verify_finals(now);
   if (awaiting_resync_ && now - last_report_sent_ >= kReportResend) send_desync_report(now);
   if (phase_ == ClientPhase::kEnding &&
@@ -250,6 +258,7 @@ void ClientProtocol::Impl::step_due_ticks(TimePoint now) {
       // The misprediction reaches past our snapshots: only the server can fix it.
       request_resync(now);
     }
+    if (!session_->game_error().ok()) break;
   }
   if (new_input) send_inputs(now);
 }

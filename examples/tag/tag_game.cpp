@@ -52,14 +52,21 @@ rwd::sim::WorldConfig TagGame::world_config() const {
   return config;
 }
 
-void TagGame::build_typed(const rwd::game::MatchSetup& setup, rwd::sim::World3D& world,
-                          TagState& state) const {
+rwd::Status TagGame::build_typed(const rwd::game::MatchSetup& setup, rwd::sim::World3D& world,
+                                 TagState& state) const {
   state.player_count = setup.player_count;
-  (void)world.create_body(wall({0, -0.5f, 0}, {kYardHalf + 1, 0.5f, kYardHalf + 1}));
-  (void)world.create_body(wall({kYardHalf + 0.5f, 1, 0}, {0.5f, 1, kYardHalf + 1}));
-  (void)world.create_body(wall({-kYardHalf - 0.5f, 1, 0}, {0.5f, 1, kYardHalf + 1}));
-  (void)world.create_body(wall({0, 1, kYardHalf + 0.5f}, {kYardHalf, 1, 0.5f}));
-  (void)world.create_body(wall({0, 1, -kYardHalf - 0.5f}, {kYardHalf, 1, 0.5f}));
+  const rwd::sim::BodyDef yard[] = {
+      wall({0, -0.5f, 0}, {kYardHalf + 1, 0.5f, kYardHalf + 1}),
+      wall({kYardHalf + 0.5f, 1, 0}, {0.5f, 1, kYardHalf + 1}),
+      wall({-kYardHalf - 0.5f, 1, 0}, {0.5f, 1, kYardHalf + 1}),
+      wall({0, 1, kYardHalf + 0.5f}, {kYardHalf, 1, 0.5f}),
+      wall({0, 1, -kYardHalf - 0.5f}, {kYardHalf, 1, 0.5f}),
+  };
+  // An error here (a bad body definition) ends the match with its message
+  // instead of hosting a broken yard.
+  for (const rwd::sim::BodyDef& def : yard) {
+    if (rwd::Result<BodyId> id = world.create_body(def); !id.ok()) return id.status();
+  }
   for (uint32_t p = 0; p < setup.player_count; ++p) {
     rwd::sim::BodyDef def;
     def.shape = rwd::sim::Shape::make_sphere(kBallRadius);
@@ -68,14 +75,16 @@ void TagGame::build_typed(const rwd::game::MatchSetup& setup, rwd::sim::World3D&
     def.angular_damping = 2.0f;
     def.user_data = kTagBall + p;
     rwd::Result<BodyId> ball = world.create_body(def);
-    state.balls[p] = ball.ok() ? *ball : BodyId{};
+    if (!ball.ok()) return ball.status();
+    state.balls[p] = *ball;
   }
   // The seed picks who starts as "it", the same way on every machine.
   state.it = static_cast<uint32_t>(rwd::splitmix64_once(setup.seed) % setup.player_count);
+  return rwd::Status::Ok();
 }
 
-void TagGame::apply_typed(rwd::Tick /*tick*/, std::span<const rwd::PlayerInput> inputs,
-                          rwd::sim::World3D& world, TagState& state) const {
+rwd::Status TagGame::apply_typed(rwd::Tick /*tick*/, std::span<const rwd::PlayerInput> inputs,
+                                 rwd::sim::World3D& world, TagState& state) const {
   const float blend = std::min(1.0f, kSteerGain * world.config().tick_seconds);
   const uint32_t players = std::min<uint32_t>(state.player_count, uint32_t(inputs.size()));
   for (uint32_t p = 0; p < players; ++p) {
@@ -90,10 +99,11 @@ void TagGame::apply_typed(rwd::Tick /*tick*/, std::span<const rwd::PlayerInput> 
     const Vec3 dv{(ax * speed - v.x) * blend, 0.0f, (az * speed - v.z) * blend};
     (void)world.apply_linear_impulse(ball, dv * world.mass(ball), world.position(ball));
   }
+  return rwd::Status::Ok();
 }
 
-void TagGame::after_step_typed(rwd::Tick /*tick*/, rwd::sim::World3D& world,
-                               TagState& state) const {
+rwd::Status TagGame::after_step_typed(rwd::Tick /*tick*/, rwd::sim::World3D& world,
+                                      TagState& state) const {
   if (state.tag_cooldown > 0) --state.tag_cooldown;
   // Events come in a fixed order (by body index), so when "it" touches two
   // balls in one tick every machine tags the same one: the first.
@@ -113,6 +123,7 @@ void TagGame::after_step_typed(rwd::Tick /*tick*/, rwd::sim::World3D& world,
   for (uint32_t p = 0; p < state.player_count; ++p) {
     if (p != state.it) ++state.points[p];
   }
+  return rwd::Status::Ok();
 }
 
 void TagGame::hash_typed(const TagState& state, rwd::StateHasher& hasher) const {
@@ -121,8 +132,7 @@ void TagGame::hash_typed(const TagState& state, rwd::StateHasher& hasher) const 
   hasher.add_i32(state.tag_cooldown);
   hasher.add_u32(state.tags);
   for (uint32_t p = 0; p < state.player_count; ++p) {
-    hasher.add_u32(state.balls[p].index);
-    hasher.add_u32(state.balls[p].generation);
+    hasher.add_id(state.balls[p]);
     hasher.add_u32(state.points[p]);
   }
 }

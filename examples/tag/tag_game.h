@@ -38,11 +38,12 @@ class TagGame final : public rwd::game::GameWithState<rwd::sim::World3D, TagStat
   rwd::PlayerInput bot_input(uint64_t seed, uint32_t player, rwd::Tick tick) const override;
 
  protected:
-  void build_typed(const rwd::game::MatchSetup& setup, rwd::sim::World3D& world,
-                   TagState& state) const override;
-  void apply_typed(rwd::Tick tick, std::span<const rwd::PlayerInput> inputs,
-                   rwd::sim::World3D& world, TagState& state) const override;
-  void after_step_typed(rwd::Tick tick, rwd::sim::World3D& world, TagState& state) const override;
+  rwd::Status build_typed(const rwd::game::MatchSetup& setup, rwd::sim::World3D& world,
+                          TagState& state) const override;
+  rwd::Status apply_typed(rwd::Tick tick, std::span<const rwd::PlayerInput> inputs,
+                          rwd::sim::World3D& world, TagState& state) const override;
+  rwd::Status after_step_typed(rwd::Tick tick, rwd::sim::World3D& world,
+                               TagState& state) const override;
   void hash_typed(const TagState& state, rwd::StateHasher& hasher) const override;
   rwd::Status validate_typed(const rwd::game::MatchSetup& setup,
                              const TagState& state) const override;

@@ -44,7 +44,10 @@ int main() {
   const int ticks = 1800;
   for (rwd::Tick t = 0; t < ticks; ++t) {
     for (uint32_t p = 0; p < 4; ++p) inputs[p] = game.bot_input(7, p, t);
-    (*sim)->step(inputs);
+    if (rwd::Status status = (*sim)->step(inputs); !status.ok()) {
+      std::fprintf(stderr, "FAIL: %s\n", status.message().c_str());
+      return 1;
+    }
   }
   const tag::TagState end = state_of(**sim);
   std::printf("after %d ticks: %u tags; points", ticks, end.tags);

@@ -374,6 +374,13 @@ void MatchHost::on_tick(TimePoint now) {
     return;
   }
   session_->advance();
+  if (!session_->game_error().ok()) {
+    // The rules refused the state they made: no further tick can be
+    // simulated, so the match ends with their message.
+    broadcast(now);
+    end("the game's rules failed: " + session_->game_error().message(), now);
+    return;
+  }
   broadcast(now);
   if (replay_ && !replay_failed_) {
     if (Status status = replay_->flush_if_due(); !status.ok()) record_replay_error(status);

@@ -40,7 +40,10 @@ viewer::ViewBundle play(const std::string& game_name, uint32_t players, Tick tic
       inputs[p].axis_y = static_cast<int16_t>(((t / 41 + 2 * static_cast<Tick>(p)) % 3 - 1) * 800);
       inputs[p].buttons = (t + 7 * static_cast<Tick>(p)) % 45 < 3 ? 1u + (t / 90) % 2 : 0u;
     }
-    (*sim)->step(inputs);
+    if (rwd::Status status = (*sim)->step(inputs); !status.ok()) {
+      std::fprintf(stderr, "make_bundles: %s\n", status.message().c_str());
+      std::exit(1);
+    }
     b.inputs.insert(b.inputs.end(), inputs.begin(), inputs.end());
     b.checksums.push_back((*sim)->checksum());
     b.substituted_masks.push_back(0);
@@ -85,8 +88,12 @@ int main(int argc, char** argv) {
   viewer::ViewBundle b = play("crates", 2, ticks);
   auto client = game::Simulation::create("crates", b.setup);
   for (Tick t = 0; t <= 100; ++t) {
-    (*client)->step(
-        std::span<const rwd::PlayerInput>(b.inputs).subspan(static_cast<size_t>(t) * 2, 2));
+    if (!(*client)
+             ->step(
+                 std::span<const rwd::PlayerInput>(b.inputs).subspan(static_cast<size_t>(t) * 2, 2))
+             .ok()) {
+      return 1;
+    }
   }
   if (!(*client)->lane().perturb_for_drill()) return 1;
   viewer::ViewDesync d;

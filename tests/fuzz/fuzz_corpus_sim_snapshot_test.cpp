@@ -17,7 +17,7 @@ std::vector<uint8_t> snapshot_after(int ticks) {
   for (int t = 0; t < ticks; ++t) {
     for (int p = 0; p < 4; ++p)
       inputs[static_cast<size_t>(p)] = {int16_t((t * 37 + p * 500) % 2001 - 1000), 0, 0};
-    sim->step(inputs);
+    EXPECT_TRUE(sim->step(inputs).ok());
   }
   std::vector<uint8_t> bytes;
   sim->serialize(bytes);

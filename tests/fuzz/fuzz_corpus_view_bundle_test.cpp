@@ -25,7 +25,7 @@ std::vector<uint8_t> bundle_of(const char* game, int ticks, bool desync) {
     for (int p = 0; p < 2; ++p) {
       inputs[static_cast<size_t>(p)] = {int16_t((t * 37 + p * 500) % 2001 - 1000), 300, 1};
     }
-    sim->step(inputs);
+    EXPECT_TRUE(sim->step(inputs).ok());
     b.inputs.insert(b.inputs.end(), inputs.begin(), inputs.end());
     b.checksums.push_back(sim->checksum());
     b.substituted_masks.push_back(static_cast<uint64_t>(t % 3));
@@ -35,8 +35,8 @@ std::vector<uint8_t> bundle_of(const char* game, int ticks, bool desync) {
     d.tick = 1;
     d.headline = "desync";
     auto client = std::move(*rwd::game::Simulation::create(game, b.setup));
-    client->step(std::span<const rwd::PlayerInput>(b.inputs).first(2));
-    client->step(std::span<const rwd::PlayerInput>(b.inputs).subspan(2, 2));
+    EXPECT_TRUE(client->step(std::span<const rwd::PlayerInput>(b.inputs).first(2)).ok());
+    EXPECT_TRUE(client->step(std::span<const rwd::PlayerInput>(b.inputs).subspan(2, 2)).ok());
     client->serialize(d.client_state);
     b.desync = d;
     b.keyframes.push_back({2, d.client_state});  // the state after tick 1, to seek by

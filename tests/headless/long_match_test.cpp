@@ -270,7 +270,7 @@ TEST(LongMatch, SixteenPlayersAggressivePlayLateDesyncResyncsAndReplayVerifies) 
       ASSERT_TRUE(step.ok());
       for (const auto& inputs : inputs_since) {
         const Tick t = (*step)->tick();
-        (*step)->step(inputs);
+        EXPECT_TRUE((*step)->step(inputs).ok());
         uint32_t player = 0;
         if (count_outside(**step, &player) > 0) {
           arena.first_escape_tick = t;

@@ -94,7 +94,12 @@ bool ReplayPlayer::step() {
   if (p >= length()) return false;
   const uint32_t players = bundle_.setup.player_count;
   const size_t i = offset(p);
-  sim_->step(std::span<const rwd::PlayerInput>(bundle_.inputs).subspan(i * players, players));
+  if (!sim_->step(std::span<const rwd::PlayerInput>(bundle_.inputs).subspan(i * players, players))
+           .ok()) {
+    // The rules failed where the match did not: the tick cannot match.
+    record_check(p + 1, ~bundle_.checksums[i]);
+    return false;
+  }
   record_check(p + 1, sim_->checksum());
   // Stepping from the start (or from states it made itself) verifies.
   if (!jumped_ && verified_ == p) verified_ = p + 1;
@@ -123,15 +128,24 @@ Tick ReplayPlayer::verify(uint32_t max_steps) {
     while (verifier_->tick() < verified_) {
       const size_t i = offset(verifier_->tick());
       const uint32_t players = bundle_.setup.player_count;
-      verifier_->step(
-          std::span<const rwd::PlayerInput>(bundle_.inputs).subspan(i * players, players));
+      if (!verifier_
+               ->step(
+                   std::span<const rwd::PlayerInput>(bundle_.inputs).subspan(i * players, players))
+               .ok()) {
+        verifier_.reset();
+        return verified_;
+      }
     }
   }
   const uint32_t players = bundle_.setup.player_count;
   for (uint32_t n = 0; n < max_steps && verifier_->tick() < length(); ++n) {
     const size_t i = offset(verifier_->tick());
-    verifier_->step(
-        std::span<const rwd::PlayerInput>(bundle_.inputs).subspan(i * players, players));
+    if (!verifier_
+             ->step(std::span<const rwd::PlayerInput>(bundle_.inputs).subspan(i * players, players))
+             .ok()) {
+      record_check(verifier_->tick() + 1, ~bundle_.checksums[i]);
+      break;
+    }
     record_check(verifier_->tick(), verifier_->checksum());
   }
   verified_ = std::max(verified_, verifier_->tick());

@@ -156,7 +156,7 @@ Status GameTarget::play_reference(std::ostream* progress) {
       window_starts_.emplace_back();
       (*sim)->save(window_starts_.back());
     }
-    (*sim)->step(inputs_[t]);
+    if (Status status = (*sim)->step(inputs_[t]); !status.ok()) return status;
     for (size_t b = 0; b < n; ++b) {
       reference_position_[t * n + b] = world3d(**sim).position(bodies_[b]);
       reference_velocity_[t * n + b] = world3d(**sim).linear_velocity(bodies_[b]);
@@ -215,7 +215,10 @@ Measurement GameTarget::measure(const SolverSetting& setting) {
     double worst_v = 0.0;
     for (Tick t = first; t < end; ++t) {
       const Clock::time_point before = Clock::now();
-      (*windowed)->step(inputs_[t]);
+      if (Status status = (*windowed)->step(inputs_[t]); !status.ok()) {
+        m.error = status.message();
+        return m;
+      }
       stepping += Clock::now() - before;
       double p = 0.0;
       double v = 0.0;
@@ -233,7 +236,10 @@ Measurement GameTarget::measure(const SolverSetting& setting) {
   const double tick_s = config_.tick_seconds;
   double diverged_s = play_.ticks * tick_s;
   for (Tick t = 0; t < play_.ticks; ++t) {
-    (*free_run)->step(inputs_[t]);
+    if (Status status = (*free_run)->step(inputs_[t]); !status.ok()) {
+      m.error = status.message();
+      return m;
+    }
     double p = 0.0;
     double v = 0.0;
     compare(**free_run, t, p, v, nullptr);

@@ -126,7 +126,10 @@ class Verifier {
       return false;
     }
     const std::vector<rwd::PlayerInput> inputs = inputs_of(tick);
-    sim_->step(inputs);
+    if (Status status = sim_->step(inputs); !status.ok()) {
+      report_.error = "the game's rules failed: " + status.message();
+      return false;
+    }
     const uint64_t actual = sim_->checksum();
     if (actual != tick.checksum()) {
       report_.first_divergent_tick = tick.tick();
@@ -192,7 +195,11 @@ class Verifier {
   void name_fields_after(Tick divergent) {
     while (std::optional<v1::ReplayRecord> r = read()) {
       if (r->has_tick()) {
-        sim_->step(inputs_of(r->tick()));
+        if (Status status = sim_->step(inputs_of(r->tick())); !status.ok()) {
+          report_.differences_note =
+              "the game's rules failed after the divergence: " + status.message();
+          return;
+        }
       } else if (r->has_keyframe()) {
         Simulation* recorded = load_keyframe(r->keyframe());
         if (recorded == nullptr) {

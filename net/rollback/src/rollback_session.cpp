@@ -86,7 +86,7 @@ bool RollbackSession::synchronize() {
   const Tick target = current_tick();
   sim_->restore(*snapshot);
   ++stats_.rollbacks;
-  while (current_tick() < target) {
+  while (current_tick() < target && game_error_.ok()) {
     step_once();
     ++stats_.resimulated_ticks;
   }
@@ -101,13 +101,17 @@ bool RollbackSession::advance() {
 }
 
 void RollbackSession::step_once() {
+  if (!game_error_.ok()) return;
   const Tick t = current_tick();
   ring_.save(*sim_);
   rwd::PlayerInput* row = used_row(t);
   for (uint32_t p = 0; p < player_count_; ++p) {
     row[p] = scratch_inputs_[p] = queues_[p].input_for(t);
   }
-  sim_->step(scratch_inputs_);
+  if (Status status = sim_->step(scratch_inputs_); !status.ok()) {
+    game_error_ = std::move(status);
+    return;
+  }
   if (step_hook_) step_hook_(*sim_, t);
 }
 

@@ -91,6 +91,11 @@ void free_body(World2DState& state, BodyId2D id) {
 
 }  // namespace
 
+Result<std::unique_ptr<World2D>> World2D::create(const World2DConfig& config) {
+  if (Status status = validate_config(config); !status.ok()) return status;
+  return std::make_unique<World2D>(config);
+}
+
 World2D::World2D(const World2DConfig& config) : scratch_(std::make_unique<StepScratch2D>()) {
   state_.config = validate_config(config).ok() ? config : World2DConfig{};
 }

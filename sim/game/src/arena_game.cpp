@@ -88,7 +88,7 @@ sim2d::World2DConfig ArenaGame::world_config() const {
   return config;
 }
 
-void ArenaGame::build_typed(const MatchSetup& setup, World2D& world, ArenaState& state) const {
+Status ArenaGame::build_typed(const MatchSetup& setup, World2D& world, ArenaState& state) const {
   state.player_count = setup.player_count;
   const Fx outer_x = kHalfWidth + kWallHalf;
   const Fx outer_y = kHalfHeight + kWallHalf;
@@ -202,10 +202,11 @@ void ArenaGame::build_typed(const MatchSetup& setup, World2D& world, ArenaState&
     def.user_data = kTagDisc + p;
     state.discs[p] = create(world, def);
   }
+  return Status::Ok();
 }
 
-void ArenaGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs, World2D& world,
-                            ArenaState& state) const {
+Status ArenaGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs, World2D& world,
+                              ArenaState& state) const {
   const uint32_t players = std::min<uint32_t>(state.player_count, uint32_t(inputs.size()));
   for (uint32_t p = 0; p < players; ++p) {
     const BodyId2D disc = state.discs[p];
@@ -227,9 +228,10 @@ void ArenaGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs, 
       (void)world.apply_linear_impulse(disc, dv * world.mass(disc).to_fx(), world.position(disc));
     }
   }
+  return Status::Ok();
 }
 
-void ArenaGame::after_step_typed(Tick /*tick*/, World2D& world, ArenaState& state) const {
+Status ArenaGame::after_step_typed(Tick /*tick*/, World2D& world, ArenaState& state) const {
   // Events are ordered by body index, so when two discs touch a crate in
   // one tick the later in that order is its last toucher on every machine.
   for (const sim2d::ContactEvent2D& event : world.events()) {
@@ -273,28 +275,25 @@ void ArenaGame::after_step_typed(Tick /*tick*/, World2D& world, ArenaState& stat
       (void)world.set_enabled(state.crates[c], true);
     }
   }
+  return Status::Ok();
 }
 
 void ArenaGame::hash_typed(const ArenaState& state, rwd::StateHasher& hasher) const {
   hasher.add_u32(state.player_count);
   hasher.add_u32(state.crate_count);
   for (uint32_t p = 0; p < state.player_count; ++p) {
-    hasher.add_u32(state.discs[p].index);
-    hasher.add_u32(state.discs[p].generation);
+    hasher.add_id(state.discs[p]);
     hasher.add_u32(state.score[p]);
     hasher.add_i32(state.dash_cooldown[p]);
   }
   for (uint32_t c = 0; c < state.crate_count; ++c) {
-    hasher.add_u32(state.crates[c].index);
-    hasher.add_u32(state.crates[c].generation);
+    hasher.add_id(state.crates[c]);
     hasher.add_u8(state.crate_last_toucher[c]);
   }
   for (const BodyId2D& goal : state.goals) {
-    hasher.add_u32(goal.index);
-    hasher.add_u32(goal.generation);
+    hasher.add_id(goal);
   }
-  hasher.add_u32(state.spinner.index);
-  hasher.add_u32(state.spinner.generation);
+  hasher.add_id(state.spinner);
   hasher.add_u32(state.goals_scored);
 }
 

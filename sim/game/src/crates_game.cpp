@@ -83,24 +83,26 @@ sim::WorldConfig CratesGame::world_config() const {
   return config;
 }
 
-void CratesGame::build_typed(const MatchSetup& setup, sim::World3D& world,
-                             CratesState& state) const {
+Status CratesGame::build_typed(const MatchSetup& setup, sim::World3D& world,
+                               CratesState& state) const {
   state.player_count = setup.player_count;
 
   // Arena: floor with its top at y = 0, four walls and a roof: a closed box.
   // The x walls run the floor's full length so the corners are closed; the
   // roof stops pushers squeezed up a corner pile-up (or jumping off one)
   // from going over the walls.
-  (void)world.create_body(static_box({0, -0.5f, 0}, {kArenaHalf + 1, 0.5f, kArenaHalf + 1}));
   const float wall_y = kWallHeight * 0.5f;
-  (void)world.create_body(
-      static_box({kArenaHalf + 0.5f, wall_y, 0}, {0.5f, wall_y, kArenaHalf + 1}));
-  (void)world.create_body(
-      static_box({-kArenaHalf - 0.5f, wall_y, 0}, {0.5f, wall_y, kArenaHalf + 1}));
-  (void)world.create_body(static_box({0, wall_y, kArenaHalf + 0.5f}, {kArenaHalf, wall_y, 0.5f}));
-  (void)world.create_body(static_box({0, wall_y, -kArenaHalf - 0.5f}, {kArenaHalf, wall_y, 0.5f}));
-  (void)world.create_body(
-      static_box({0, kWallHeight + 0.5f, 0}, {kArenaHalf + 1, 0.5f, kArenaHalf + 1}));
+  const sim::BodyDef arena[] = {
+      static_box({0, -0.5f, 0}, {kArenaHalf + 1, 0.5f, kArenaHalf + 1}),
+      static_box({kArenaHalf + 0.5f, wall_y, 0}, {0.5f, wall_y, kArenaHalf + 1}),
+      static_box({-kArenaHalf - 0.5f, wall_y, 0}, {0.5f, wall_y, kArenaHalf + 1}),
+      static_box({0, wall_y, kArenaHalf + 0.5f}, {kArenaHalf, wall_y, 0.5f}),
+      static_box({0, wall_y, -kArenaHalf - 0.5f}, {kArenaHalf, wall_y, 0.5f}),
+      static_box({0, kWallHeight + 0.5f, 0}, {kArenaHalf + 1, 0.5f, kArenaHalf + 1}),
+  };
+  for (const sim::BodyDef& def : arena) {
+    if (Result<sim::BodyId> id = world.create_body(def); !id.ok()) return id.status();
+  }
 
   // The tower: kTowerLevels levels of 2x2 crates, resting exactly on each other.
   uint32_t crate = 0;
@@ -119,7 +121,8 @@ void CratesGame::build_typed(const MatchSetup& setup, sim::World3D& world,
       // of the tick's events, read by nobody.
       def.contact_events = false;
       Result<sim::BodyId> id = world.create_body(def);
-      state.crates[crate++] = id.ok() ? *id : sim::BodyId{};
+      if (!id.ok()) return id.status();
+      state.crates[crate++] = *id;
     }
   }
   state.crate_count = crate;
@@ -134,12 +137,14 @@ void CratesGame::build_typed(const MatchSetup& setup, sim::World3D& world,
     def.layer = kLayerPusher;
     def.user_data = kTagPusher + p;
     Result<sim::BodyId> id = world.create_body(def);
-    state.pushers[p] = id.ok() ? *id : sim::BodyId{};
+    if (!id.ok()) return id.status();
+    state.pushers[p] = *id;
   }
+  return Status::Ok();
 }
 
-void CratesGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs,
-                             sim::World3D& world, CratesState& state) const {
+Status CratesGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs,
+                               sim::World3D& world, CratesState& state) const {
   const float dt = world.config().tick_seconds;
   const uint32_t players = std::min<uint32_t>(state.player_count, uint32_t(inputs.size()));
   for (uint32_t p = 0; p < players; ++p) {
@@ -179,9 +184,10 @@ void CratesGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs,
       (void)world.apply_linear_impulse(pusher, dv * mass, world.position(pusher));
     }
   }
+  return Status::Ok();
 }
 
-void CratesGame::after_step_typed(Tick /*tick*/, sim::World3D& world, CratesState& state) const {
+Status CratesGame::after_step_typed(Tick /*tick*/, sim::World3D& world, CratesState& state) const {
   // Remember who touched each crate last; events are ordered by body index,
   // so when two pushers touch one crate in the same tick the later in that
   // order wins on every machine alike.
@@ -221,22 +227,21 @@ void CratesGame::after_step_typed(Tick /*tick*/, sim::World3D& world, CratesStat
       ++state.score[state.crate_last_toucher[c] - 1];
     }
   }
+  return Status::Ok();
 }
 
 void CratesGame::hash_typed(const CratesState& state, rwd::StateHasher& hasher) const {
   hasher.add_u32(state.player_count);
   hasher.add_u32(state.crate_count);
   for (uint32_t p = 0; p < state.player_count; ++p) {
-    hasher.add_u32(state.pushers[p].index);
-    hasher.add_u32(state.pushers[p].generation);
+    hasher.add_id(state.pushers[p]);
     hasher.add_u32(state.score[p]);
     hasher.add_i32(state.cooldown_ticks[p]);
     hasher.add_u32(state.falls[p]);
   }
   hasher.add_u32(state.crate_respawns);
   for (uint32_t c = 0; c < state.crate_count; ++c) {
-    hasher.add_u32(state.crates[c].index);
-    hasher.add_u32(state.crates[c].generation);
+    hasher.add_id(state.crates[c]);
     hasher.add_u8(state.crate_last_toucher[c]);
     hasher.add_u8(state.crate_scored[c]);
   }

@@ -246,7 +246,8 @@ float JoustGame::chain_opening(const sim::World3D& world, const JoustState& stat
   return worst;
 }
 
-void JoustGame::build_typed(const MatchSetup& setup, sim::World3D& world, JoustState& state) const {
+Status JoustGame::build_typed(const MatchSetup& setup, sim::World3D& world,
+                              JoustState& state) const {
   state.player_count = setup.player_count;
 
   // The ground: one height field, its sample (0, 0) at the arena's corner.
@@ -366,6 +367,7 @@ void JoustGame::build_typed(const MatchSetup& setup, sim::World3D& world, JoustS
     }
     (void)seat_rider(world, state, p);
   }
+  return Status::Ok();
 }
 
 }  // namespace rwd::game

@@ -73,8 +73,8 @@ int32_t rider_owner(uint64_t tag, uint32_t players) {
 
 }  // namespace
 
-void JoustGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs, sim::World3D& world,
-                            JoustState& state) const {
+Status JoustGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs,
+                              sim::World3D& world, JoustState& state) const {
   const std::array<sim::WheelDef3D, 4> wheel_defs = wheels();
   std::array<sim::WheelTelemetry3D, 4> telemetry{};
   const uint32_t players = std::min<uint32_t>(state.player_count, uint32_t(inputs.size()));
@@ -125,9 +125,10 @@ void JoustGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs, 
       (void)world.apply_linear_impulse(ball, push, world.center_of_mass(ball));
     }
   }
+  return Status::Ok();
 }
 
-void JoustGame::after_step_typed(Tick /*tick*/, sim::World3D& world, JoustState& state) const {
+Status JoustGame::after_step_typed(Tick /*tick*/, sim::World3D& world, JoustState& state) const {
   const uint32_t players = state.player_count;
   // Lance strikes on other players' riders, in event order (by body index):
   // the later strike of one tick is the one remembered, on every machine.
@@ -197,17 +198,12 @@ void JoustGame::after_step_typed(Tick /*tick*/, sim::World3D& world, JoustState&
       state.respawn_ticks[p] = seat_rider(world, state, p) ? 0 : 1;
     }
   }
+  return Status::Ok();
 }
 
 void JoustGame::hash_typed(const JoustState& state, rwd::StateHasher& hasher) const {
-  auto add_body = [&hasher](sim::BodyId id) {
-    hasher.add_u32(id.index);
-    hasher.add_u32(id.generation);
-  };
-  auto add_joint = [&hasher](sim::JointId id) {
-    hasher.add_u32(id.index);
-    hasher.add_u32(id.generation);
-  };
+  auto add_body = [&hasher](sim::BodyId id) { hasher.add_id(id); };
+  auto add_joint = [&hasher](sim::JointId id) { hasher.add_id(id); };
   hasher.add_u32(state.player_count);
   for (uint32_t p = 0; p < std::min<uint32_t>(state.player_count, kMaxPlayers); ++p) {
     add_body(state.chassis[p]);

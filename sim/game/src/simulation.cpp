@@ -2,7 +2,6 @@
 #include "rewind/game/simulation.h"
 
 #include <cstring>
-#include <stdexcept>
 #include <string>
 
 #include "rewind/game/game_on.h"
@@ -25,13 +24,18 @@ uint32_t get_u32(const uint8_t* p) {
   return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
 }
 
-// The game `game_name` for a match of `setup`, or why there is none.
-Result<std::unique_ptr<Game>> make_game(std::string_view game_name, const MatchSetup& setup) {
+Status check_setup(const MatchSetup& setup) {
   if (setup.player_count < 1 || setup.player_count > kMaxPlayers) {
     return Status::Error(ErrorCode::kInvalidArgument, "player_count must be in [1, " +
                                                           std::to_string(kMaxPlayers) + "], got " +
                                                           std::to_string(setup.player_count));
   }
+  return Status::Ok();
+}
+
+// The game `game_name` for a match of `setup`, or why there is none.
+Result<std::unique_ptr<Game>> make_game(std::string_view game_name, const MatchSetup& setup) {
+  if (Status status = check_setup(setup); !status.ok()) return status;
   std::unique_ptr<Game> game = make_builtin_game(game_name);
   if (!game) {
     std::string known;
@@ -51,7 +55,28 @@ Result<std::unique_ptr<Simulation>> Simulation::create(std::string_view game_nam
                                                        const MatchSetup& setup) {
   Result<std::unique_ptr<Game>> game = make_game(game_name, setup);
   if (!game.ok()) return game.status();
-  return std::make_unique<Simulation>(std::move(*game), setup);
+  return create(std::move(*game), setup);
+}
+
+Result<std::unique_ptr<Simulation>> Simulation::create(std::unique_ptr<Game> game,
+                                                       const MatchSetup& setup,
+                                                       std::unique_ptr<Lane> lane) {
+  if (game == nullptr) return Status::Error(ErrorCode::kInvalidArgument, "no game given");
+  if (Status status = check_setup(setup); !status.ok()) return status;
+  if (lane == nullptr) {
+    lane = game->make_lane();
+  } else if (!game->accepts_lane(*lane)) {
+    // The game's calls cast the lane to its own world type without a check
+    // (once per tick), so a lane of another type is refused here.
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "game '" + std::string(game->name()) + "' does not run on the lane given");
+  }
+  std::unique_ptr<Simulation> sim(new Simulation(std::move(game), setup, std::move(lane)));
+  if (Status status = sim->game_->build(sim->setup_, *sim->lane_, sim->game_state_); !status.ok()) {
+    return Status::Error(status.code(), "game '" + std::string(sim->game_->name()) +
+                                            "' could not build its match: " + status.message());
+  }
+  return sim;
 }
 
 Result<std::unique_ptr<Simulation>> Simulation::create(std::string_view game_name,
@@ -66,8 +91,7 @@ Result<std::unique_ptr<Simulation>> Simulation::create(std::string_view game_nam
   if (Status status = sim::World3D::validate_config(world_config); !status.ok()) {
     return Status::Error(ErrorCode::kInvalidArgument, "world config: " + status.message());
   }
-  return std::make_unique<Simulation>(std::move(*game), setup,
-                                      std::make_unique<WorldLane<sim::World3D>>(world_config));
+  return create(std::move(*game), setup, std::make_unique<WorldLane<sim::World3D>>(world_config));
 }
 
 SimSnapshot::SimSnapshot(const SimSnapshot& other)
@@ -80,29 +104,24 @@ SimSnapshot& SimSnapshot::operator=(const SimSnapshot& other) {
   return *this;
 }
 
-Simulation::Simulation(std::unique_ptr<Game> game, const MatchSetup& setup)
-    : game_(std::move(game)), setup_(setup), lane_(game_->make_lane()) {
-  game_state_.assign(game_->state_size(), std::byte{0});
-  game_->build(setup_, *lane_, game_state_);
-}
-
 Simulation::Simulation(std::unique_ptr<Game> game, const MatchSetup& setup,
                        std::unique_ptr<Lane> lane)
     : game_(std::move(game)), setup_(setup), lane_(std::move(lane)) {
-  // The game's calls cast the lane to its own world type without a check
-  // (once per tick); a lane of another type is a programming error.
-  if (lane_ == nullptr || !game_->accepts_lane(*lane_)) {
-    throw std::invalid_argument("Simulation: the lane is not of the game's lane type");
-  }
   game_state_.assign(game_->state_size(), std::byte{0});
-  game_->build(setup_, *lane_, game_state_);
 }
 
-void Simulation::step(std::span<const PlayerInput> inputs) {
-  game_->apply_inputs(tick_, inputs, *lane_, game_state_);
-  lane_->step();
-  game_->after_step(tick_, *lane_, game_state_);
+Status Simulation::step(std::span<const PlayerInput> inputs) {
+  Status status = game_->apply_inputs(tick_, inputs, *lane_, game_state_);
+  if (status.ok()) {
+    lane_->step();
+    status = game_->after_step(tick_, *lane_, game_state_);
+  }
+  if (!status.ok()) {
+    return Status::Error(status.code(), "game '" + std::string(game_->name()) + "', tick " +
+                                            std::to_string(tick_) + ": " + status.message());
+  }
   ++tick_;
+  return status;
 }
 
 void Simulation::save(SimSnapshot& out) const {

@@ -144,14 +144,16 @@ Result<SyncTestReport> run_sync_test(std::string_view game_name, const MatchSetu
       scripted.fill(in);
     }
     sim.save(states[slot]);
-    sim.step(in);
+    // The rules' own errors end the test with their message: they are not
+    // a determinism failure, but nothing after them can be checked.
+    if (Status status = sim.step(in); !status.ok()) return status;
     const uint64_t checksum = sim.checksum();
     checksums[static_cast<size_t>(t + 1) % (ring + 1)] = checksum;
     report.ticks = static_cast<uint32_t>(t + 1);
     report.final_checksum = checksum;
 
     if (twin) {
-      twin->step(in);
+      if (Status status = twin->step(in); !status.ok()) return status;
       if (twin->checksum() != checksum) {
         report.failure = compare(SyncCheck::kSecondInstance, t, sim, *twin);
         return report;
@@ -159,7 +161,7 @@ Result<SyncTestReport> run_sync_test(std::string_view game_name, const MatchSetu
     }
     if (reloaded) {
       // The reloaded state steps this tick as the first run did.
-      reloaded->step(in);
+      if (Status status = reloaded->step(in); !status.ok()) return status;
       if (reloaded->checksum() != checksum) {
         report.failure = compare(SyncCheck::kRoundTrip, t, sim, *reloaded);
         return report;
@@ -173,7 +175,9 @@ Result<SyncTestReport> run_sync_test(std::string_view game_name, const MatchSetu
     const Tick from = std::max<Tick>(0, t + 1 - static_cast<Tick>(options.check_distance));
     sim.restore(states[static_cast<size_t>(from) % ring]);
     for (Tick u = from; u <= t; ++u) {
-      sim.step(ring_inputs[static_cast<size_t>(u) % ring]);
+      if (Status status = sim.step(ring_inputs[static_cast<size_t>(u) % ring]); !status.ok()) {
+        return status;
+      }
       ++report.resimulated_ticks;
       if (sim.checksum() != checksums[static_cast<size_t>(u + 1) % (ring + 1)]) {
         scratch.restore(u == t ? after : states[static_cast<size_t>(u + 1) % ring]);

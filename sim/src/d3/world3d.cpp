@@ -100,6 +100,12 @@ Quat quantize(Quat q) {
 
 }  // namespace
 
+Result<std::unique_ptr<World3D>> World3D::create(const WorldConfig& config,
+                                                 std::shared_ptr<GeometryStore> geometry) {
+  if (Status status = validate_config(config); !status.ok()) return status;
+  return std::make_unique<World3D>(config, std::move(geometry));
+}
+
 World3D::World3D(const WorldConfig& config, std::shared_ptr<GeometryStore> geometry)
     : geometry_(geometry != nullptr ? std::move(geometry) : std::make_shared<GeometryStore>()),
       scratch_(std::make_unique<WorldScratch>()) {

@@ -100,7 +100,9 @@ void FakeServer::step(const std::vector<rwd::PlayerInput>& inputs) {
   record.inputs = inputs;
   sim_->serialize(record.state_before);
   record.checksum_before = sim_->checksum();
-  sim_->step(inputs);
+  if (rwd::Status status = sim_->step(inputs); !status.ok()) {
+    throw std::runtime_error("FakeServer: " + status.message());
+  }
   record.checksum = sim_->checksum();
   ticks_[next_tick_++] = std::move(record);
 }

@@ -60,7 +60,7 @@ TEST(ArenaGame, DiscsStayInsideTheWallsAtFullSpeed) {
       inputs[p].axis_y = (p % 2) ? kAxisMax : -kAxisMax;
       inputs[p].buttons = kArenaDash;
     }
-    sim->step(inputs);
+    EXPECT_TRUE(sim->step(inputs).ok());
   }
   const ArenaState s = state_of(*sim);
   for (uint32_t p = 0; p < 8; ++p) {
@@ -84,7 +84,8 @@ TEST(ArenaGame, ADiscShovesACrateIntoAGoalAndScores) {
   ASSERT_TRUE(w.set_transform(s.discs[0], {6_fx, Fx()}, Fx()).ok());
   std::vector<PlayerInput> inputs(2);
   inputs[0].axis_x = kAxisMax;
-  for (Tick t = 0; t < 240 && state_of(*sim).goals_scored == 0; ++t) sim->step(inputs);
+  for (Tick t = 0; t < 240 && state_of(*sim).goals_scored == 0; ++t)
+    EXPECT_TRUE(sim->step(inputs).ok());
   s = state_of(*sim);
   EXPECT_EQ(s.goals_scored, 1u);
   EXPECT_EQ(s.score[0], 1u);
@@ -95,25 +96,25 @@ TEST(ArenaGame, ADiscShovesACrateIntoAGoalAndScores) {
 
 TEST(ArenaGame, RollbackAndReloadAreBitForBit) {
   auto sim = make_match(4);
-  for (Tick t = 0; t < 200; ++t) sim->step(inputs_at(t, 4));
+  for (Tick t = 0; t < 200; ++t) EXPECT_TRUE(sim->step(inputs_at(t, 4)).ok());
   SimSnapshot saved;
   sim->save(saved);
   std::vector<uint64_t> expected;
   for (Tick t = 200; t < 400; ++t) {
-    sim->step(inputs_at(t, 4));
+    EXPECT_TRUE(sim->step(inputs_at(t, 4)).ok());
     expected.push_back(sim->checksum());
   }
   sim->restore(saved);
   // A misprediction first, then the real inputs.
-  for (Tick t = 200; t < 260; ++t) sim->step(inputs_at(t + 5, 4));
+  for (Tick t = 200; t < 260; ++t) EXPECT_TRUE(sim->step(inputs_at(t + 5, 4)).ok());
   sim->restore(saved);
   std::vector<uint8_t> bytes;
   sim->serialize(bytes);
   auto reloaded = make_match(4);
   ASSERT_TRUE(reloaded->deserialize(bytes).ok());
   for (Tick t = 200; t < 400; ++t) {
-    sim->step(inputs_at(t, 4));
-    reloaded->step(inputs_at(t, 4));
+    EXPECT_TRUE(sim->step(inputs_at(t, 4)).ok());
+    EXPECT_TRUE(reloaded->step(inputs_at(t, 4)).ok());
     ASSERT_EQ(sim->checksum(), expected[static_cast<size_t>(t - 200)]) << "tick " << t;
     ASSERT_EQ(reloaded->checksum(), expected[static_cast<size_t>(t - 200)]) << "tick " << t;
   }
@@ -137,8 +138,10 @@ TEST(ArenaGame, ASimulationRefusesALaneOfAnotherType) {
   ASSERT_NE(arena, nullptr);
   EXPECT_TRUE(arena->accepts_lane(*arena->make_lane()));
   EXPECT_FALSE(crates->accepts_lane(*arena->make_lane()));
-  EXPECT_THROW(Simulation(std::move(crates), MatchSetup{}, arena->make_lane()),
-               std::invalid_argument);
+  auto refused = Simulation::create(std::move(crates), MatchSetup{}, arena->make_lane());
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), ErrorCode::kInvalidArgument);
+  EXPECT_NE(refused.status().message().find("does not run on the lane given"), std::string::npos);
 }
 
 }  // namespace

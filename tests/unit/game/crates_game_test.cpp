@@ -53,7 +53,7 @@ TEST(CratesGame, CornersAreClosed) {
       inputs[p].axis_y = (p % 2) ? kAxisMax : -kAxisMax;  // two corners
       inputs[p].buttons = kCratesDash;
     }
-    sim->step(inputs);
+    EXPECT_TRUE(sim->step(inputs).ok());
     expect_all_in_play(*sim, t);
     if (HasFatalFailure()) return;
   }
@@ -70,7 +70,7 @@ TEST(CratesGame, EscapedPusherRespawnsAtItsSpawnPoint) {
   ASSERT_TRUE(
       world_of<sim::World3D>((*sim).lane())->set_transform(pusher, {15.0f, 2.0f, 15.0f}, {}).ok());
   std::vector<PlayerInput> inputs(4);
-  for (int t = 0; t < 240 && state_of(*sim).falls[2] == 0; ++t) sim->step(inputs);
+  for (int t = 0; t < 240 && state_of(*sim).falls[2] == 0; ++t) EXPECT_TRUE(sim->step(inputs).ok());
   const CratesState after = state_of(*sim);
   EXPECT_EQ(after.falls[2], 1u);
   EXPECT_TRUE(world_of<sim::World3D>((*sim).lane())->is_enabled(pusher));
@@ -90,7 +90,7 @@ TEST(CratesGame, PusherFlungOutOfTheWorldComesBack) {
                   ->set_linear_velocity(pusher, {0.0f, 9999.0f, 0.0f})
                   .ok());
   std::vector<PlayerInput> inputs(2);
-  for (int t = 0; t < 120 && state_of(*sim).falls[0] == 0; ++t) sim->step(inputs);
+  for (int t = 0; t < 120 && state_of(*sim).falls[0] == 0; ++t) EXPECT_TRUE(sim->step(inputs).ok());
   EXPECT_EQ(state_of(*sim).falls[0], 1u);
   EXPECT_TRUE(world_of<sim::World3D>((*sim).lane())->is_enabled(pusher));
   EXPECT_LT(world_of<sim::World3D>((*sim).lane())->position(pusher).y, 2.0f);
@@ -123,7 +123,7 @@ TEST(CratesGame, AggressiveMatchStaysInPlayAndLoadable) {
       inputs[p].buttons =
           (next() % 3 == 0 ? kCratesJump : 0u) | (next() % 5 == 0 ? kCratesDash : 0u);
     }
-    sim->step(inputs);
+    EXPECT_TRUE(sim->step(inputs).ok());
     expect_all_in_play(*sim, t);
     if (HasFatalFailure()) return;
     if (t % 10 == 0) {

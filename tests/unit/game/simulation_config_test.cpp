@@ -44,14 +44,14 @@ TEST(SimulationConfig, AnOverrideRunsTheSameGameOnThatWorld) {
   // Another world: its checksum (which covers the config) differs from the
   // first tick on.
   const std::vector<PlayerInput> inputs = forward(2);
-  (*tuned)->step(inputs);
-  (*usual)->step(inputs);
+  EXPECT_TRUE((*tuned)->step(inputs).ok());
+  EXPECT_TRUE((*usual)->step(inputs).ok());
   EXPECT_NE((*tuned)->checksum(), (*usual)->checksum());
 
   // The game's own config passed explicitly is the usual match, bit for bit.
   auto same = Simulation::create("crates", {2, 1}, CratesGame().world_config());
   ASSERT_TRUE(same.ok());
-  (*same)->step(inputs);
+  EXPECT_TRUE((*same)->step(inputs).ok());
   EXPECT_EQ((*same)->checksum(), (*usual)->checksum());
 }
 

@@ -33,17 +33,17 @@ class MistakenCrates : public Game {
     return crates_.describe_world_config(bytes);
   }
   size_t state_size() const override { return crates_.state_size(); }
-  void build(const MatchSetup& setup, Lane& lane, std::span<std::byte> state) const override {
-    crates_.build(setup, lane, state);
+  Status build(const MatchSetup& setup, Lane& lane, std::span<std::byte> state) const override {
+    return crates_.build(setup, lane, state);
   }
-  void apply_inputs(Tick tick, std::span<const PlayerInput> inputs, Lane& lane,
-                    std::span<std::byte> state) const override {
+  Status apply_inputs(Tick tick, std::span<const PlayerInput> inputs, Lane& lane,
+                      std::span<std::byte> state) const override {
     std::vector<PlayerInput> in(inputs.begin(), inputs.end());
     in[0].axis_x = static_cast<int16_t>(in[0].axis_x / 2 + tweak());
-    crates_.apply_inputs(tick, in, lane, state);
+    return crates_.apply_inputs(tick, in, lane, state);
   }
-  void after_step(Tick tick, Lane& lane, std::span<std::byte> state) const override {
-    crates_.after_step(tick, lane, state);
+  Status after_step(Tick tick, Lane& lane, std::span<std::byte> state) const override {
+    return crates_.after_step(tick, lane, state);
   }
   void hash_state(std::span<const std::byte> state, rwd::StateHasher& hasher) const override {
     crates_.hash_state(state, hasher);

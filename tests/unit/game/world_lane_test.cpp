@@ -31,7 +31,7 @@ std::vector<PlayerInput> steer(uint32_t players, Tick tick) {
 std::unique_ptr<Simulation> played(Tick ticks) {
   auto sim = Simulation::create("crates", {2, 7});
   EXPECT_TRUE(sim.ok()) << sim.status().message();
-  for (Tick t = 0; t < ticks; ++t) (*sim)->step(steer(2, t));
+  for (Tick t = 0; t < ticks; ++t) EXPECT_TRUE((*sim)->step(steer(2, t)).ok());
   return std::move(*sim);
 }
 
@@ -75,7 +75,7 @@ TEST(WorldLane, SnapshotsAreOpaqueAndRoundTrip) {
 
   std::vector<uint64_t> first;
   for (Tick t = 60; t < 120; ++t) {
-    sim->step(steer(2, t));
+    EXPECT_TRUE(sim->step(steer(2, t)).ok());
     first.push_back(sim->checksum());
   }
   // A copy is independent of the snapshot it came from.
@@ -87,7 +87,7 @@ TEST(WorldLane, SnapshotsAreOpaqueAndRoundTrip) {
   sim->restore(copy);
   EXPECT_EQ(sim->checksum(), at_save);
   for (Tick t = 60; t < 120; ++t) {
-    sim->step(steer(2, t));
+    EXPECT_TRUE(sim->step(steer(2, t)).ok());
     ASSERT_EQ(sim->checksum(), first[static_cast<size_t>(t - 60)]) << "tick " << t;
   }
 }
@@ -154,7 +154,7 @@ TEST(WorldLane, DrawsAndCountsItsWorldForAViewerOfEitherLane) {
     auto made = Simulation::create(name, {2, 3});
     ASSERT_TRUE(made.ok()) << name;
     Simulation& sim = **made;
-    for (Tick t = 0; t < 60; ++t) sim.step(steer(2, t));
+    for (Tick t = 0; t < 60; ++t) EXPECT_TRUE(sim.step(steer(2, t)).ok());
     const uint64_t before = sim.checksum();
     rwd::DebugDrawBuffers out;
     sim.lane().debug_draw({}, out);

@@ -97,7 +97,7 @@ inline std::vector<uint64_t> record_match(const std::string& path, const Recordi
       inputs[p].buttons = press(rng) == 0 ? (1u << (t % 2)) : 0u;
       if (p == 0 && t % 50 == 49) substituted |= 1u;
     }
-    (*sim)->step(inputs);
+    EXPECT_TRUE((*sim)->step(inputs).ok());
     checksums.push_back((*sim)->checksum());
     EXPECT_TRUE(writer->append_tick(t, inputs, substituted, checksums.back()).ok());
     if (rec.keyframe_interval > 0 && (t + 1) % static_cast<Tick>(rec.keyframe_interval) == 0) {

@@ -175,7 +175,7 @@ TEST(ReplayVerify, KeyframeHoldingAnotherTickIsRefused) {
     auto later = game::Simulation::create(rec.game, game::MatchSetup{rec.players, rec.seed});
     ASSERT_TRUE(later.ok());
     ASSERT_TRUE((*later)->deserialize(state).ok());
-    (*later)->step(std::vector<rwd::PlayerInput>(rec.players));
+    ASSERT_TRUE((*later)->step(std::vector<rwd::PlayerInput>(rec.players)).ok());
     (*later)->serialize(state);
   };
   record_match(file.path(), rec);

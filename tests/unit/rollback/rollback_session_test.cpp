@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/net/rollback_session.h"
 
+#include "failing_game.h"
+
 #include <gtest/gtest.h>
 
 #include <map>
@@ -158,6 +160,30 @@ TEST(RollbackSession, StepHookRunsOnEveryResimulationOfItsTick) {
   (void)session->add_input(0, 1, {1000, 0, 0});
   ASSERT_TRUE(session->synchronize());
   EXPECT_EQ(calls_at_2, 2);
+}
+
+// A late input that makes the rules fail during re-simulation stops the
+// session there: the error is kept, and nothing steps past it.
+TEST(RollbackSession, TheRulesFirstErrorStopsTheSession) {
+  using test::FailingGame;
+  auto sim = game::Simulation::create(
+      std::make_unique<FailingGame>(FailingGame::Where::kApplyOnTrigger, 0), {2, 1});
+  ASSERT_TRUE(sim.ok()) << sim.status().message();
+  RollbackSession session(std::move(*sim), RollbackConfig{});
+  for (Tick t = 0; t < 6; ++t) session.advance();  // predicted inputs: all neutral
+  EXPECT_TRUE(session.game_error().ok());
+  rwd::PlayerInput trigger;
+  trigger.axis_x = FailingGame::kTrigger;
+  ASSERT_EQ(session.add_input(0, 2, trigger), InputResult::kAccepted);
+  session.advance();
+  ASSERT_FALSE(session.game_error().ok());
+  EXPECT_NE(session.game_error().message().find("tick 2: score table out of range"),
+            std::string::npos)
+      << session.game_error().message();
+  EXPECT_EQ(session.current_tick(), 2);
+  session.advance();
+  EXPECT_TRUE(session.synchronize());
+  EXPECT_EQ(session.current_tick(), 2) << "a failed session steps no more";
 }
 
 }  // namespace

@@ -83,7 +83,7 @@ class HostHarness {
     FakeClient client;
     client.endpoint = Endpoint(make_address("127.0.0.1"), port);
     v1::Envelope envelope;
-    envelope.mutable_join_request()->set_game("crates");
+    envelope.mutable_join_request()->set_game(host_->config().game);
     envelope.mutable_join_request()->set_nonce(port);
     admitted(client.endpoint, encode(envelope));
     for (const v1::Envelope& answer : outbox_.received[client.endpoint]) {

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 // MatchHost driven without sockets: scripted clients build envelopes by
 // hand, and the clock is whatever the test says.
+#include "failing_game.h"
 #include "match_host_harness.h"
 #include "rewind/game/crates_game.h"
+#include "rewind/game/game_registry.h"
 #include "rewind/proto/message_inputs.h"
 #include "scratch_dir.h"
 
@@ -246,6 +248,23 @@ TEST(MatchHost, ClosingResendsMatchEndUntilEveryClientSaysGoodbye) {
   }
   h.tick();
   EXPECT_EQ(h.host().phase(), MatchHost::Phase::kEnded);
+}
+
+// Rules that return an error end their match with the message; the host
+// does not tick on past them.
+TEST(MatchHost, AnErrorFromTheRulesEndsTheMatchWithItsMessage) {
+  ASSERT_TRUE(game::register_game("fails-after-tick-5", [] {
+                return std::make_unique<test::FailingGame>(test::FailingGame::Where::kAfterStep, 5);
+              }).ok());
+  MatchConfig config = test_config();
+  config.game = "fails-after-tick-5";
+  HostHarness h(config);
+  (void)play(h, 20, nullptr);
+  EXPECT_EQ(h.host().phase(), MatchHost::Phase::kClosing);
+  const std::string reason = h.host().stats().end_reason;
+  EXPECT_EQ(reason.rfind("the game's rules failed: game 'failing', tick 5: ", 0), 0u) << reason;
+  EXPECT_NE(reason.find("the flag's body is gone"), std::string::npos) << reason;
+  EXPECT_LE(h.host().last_final_tick(), 4);
 }
 
 TEST(MatchHost, ConfigErrorsAreReported) {

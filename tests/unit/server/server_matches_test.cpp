@@ -43,19 +43,19 @@ class FaultyCrates final : public game::Game {
     return crates_.describe_world_config(bytes);
   }
   size_t state_size() const override { return crates_.state_size(); }
-  void build(const game::MatchSetup& setup, game::Lane& lane,
-             std::span<std::byte> state) const override {
-    crates_.build(setup, lane, state);
+  Status build(const game::MatchSetup& setup, game::Lane& lane,
+               std::span<std::byte> state) const override {
+    return crates_.build(setup, lane, state);
   }
-  void apply_inputs(Tick tick, std::span<const rwd::PlayerInput> inputs, game::Lane& lane,
-                    std::span<std::byte> state) const override {
-    crates_.apply_inputs(tick, inputs, lane, state);
+  Status apply_inputs(Tick tick, std::span<const rwd::PlayerInput> inputs, game::Lane& lane,
+                      std::span<std::byte> state) const override {
+    return crates_.apply_inputs(tick, inputs, lane, state);
   }
-  void after_step(Tick tick, game::Lane& lane, std::span<std::byte> state) const override {
-    crates_.after_step(tick, lane, state);
+  Status after_step(Tick tick, game::Lane& lane, std::span<std::byte> state) const override {
     if (!t_client_thread && tick == kFaultTick) {
       throw std::runtime_error("score table out of range");
     }
+    return crates_.after_step(tick, lane, state);
   }
   void hash_state(std::span<const std::byte> state, rwd::StateHasher& hasher) const override {
     crates_.hash_state(state, hasher);

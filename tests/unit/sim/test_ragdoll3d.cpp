@@ -17,6 +17,7 @@
 
 #include "rewind/core/det_math.h"
 #include "rewind/sim/ragdoll3d.h"
+#include "rewind/sim/rotation.h"
 #include "rewind/sim/world3d.h"
 #include "sim_test_scenes.h"
 
@@ -26,12 +27,6 @@ namespace {
 constexpr uint32_t kParts = kRagdollPartCount3D;
 constexpr uint32_t kJoints = kRagdollJointCount3D;
 constexpr float kDeg = kPi / 180.0f;
-
-Quat axis_angle(Vec3 axis, float angle) {
-  const Vec3 n = normalize_or_zero(axis);
-  const float s = std::sin(0.5f * angle);
-  return {n.x * s, n.y * s, n.z * s, std::cos(0.5f * angle)};
-}
 
 Ragdoll3D make(World3D& world, const RagdollSpec3D& spec) {
   auto r = create_ragdoll(world, spec);

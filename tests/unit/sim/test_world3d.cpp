@@ -197,6 +197,20 @@ TEST(World3D, InvalidConfigIsReportedAndReplaced) {
   EXPECT_TRUE(World3D::validate_config(WorldConfig{}).ok());
 }
 
+TEST(World3D, CreateRefusesABadConfigInsteadOfRepairingIt) {
+  WorldConfig bad;
+  bad.substeps = 0;
+  auto refused = World3D::create(bad);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), ErrorCode::kInvalidArgument);
+  EXPECT_EQ(refused.status().message(), World3D::validate_config(bad).message());
+  WorldConfig good;
+  good.substeps = 8;
+  auto made = World3D::create(good);
+  ASSERT_TRUE(made.ok()) << made.status().message();
+  EXPECT_EQ((*made)->config().substeps, 8u);
+}
+
 // A substep longer than 1/240 s is refused, whichever of the tick and the
 // substeps makes it so; a 60 Hz tick cut in four is exactly at the limit.
 TEST(World3D, SubstepsLongerThanA240thOfASecondAreRefused) {

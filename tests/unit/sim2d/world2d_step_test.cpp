@@ -28,6 +28,13 @@ TEST(World2DStep, SubstepsLongerThanA240thOfASecondAreRefused) {
   }
   const World2D world(config(60, 2));
   EXPECT_EQ(world.config().substeps, World2DConfig{}.substeps);
+  // create() refuses what the constructor repairs.
+  auto refused = World2D::create(config(60, 2));
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), ErrorCode::kInvalidArgument);
+  auto made = World2D::create(config(30, 8));
+  ASSERT_TRUE(made.ok()) << made.status().message();
+  EXPECT_EQ((*made)->config().substeps, 8);
 }
 
 TEST(World2DStep, FreeFallMatchesTheSemiImplicitEulerSum) {

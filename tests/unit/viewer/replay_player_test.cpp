@@ -30,7 +30,7 @@ ViewBundle played(const std::string& game_name, uint32_t players, Tick ticks) {
       inputs[p].axis_y = static_cast<int16_t>(((t / 29 + static_cast<Tick>(p)) % 3 - 1) * 700);
       inputs[p].buttons = (t + static_cast<Tick>(p)) % 40 == 0 ? 1u : 0u;
     }
-    (*sim)->step(inputs);
+    EXPECT_TRUE((*sim)->step(inputs).ok());
     b.inputs.insert(b.inputs.end(), inputs.begin(), inputs.end());
     b.checksums.push_back((*sim)->checksum());
     b.substituted_masks.push_back(0);
@@ -106,8 +106,10 @@ TEST(ReplayPlayer, ADesyncReportNamesTheBodiesThatDiffer) {
   // The client's state after tick 80, one body nudged as a desync would.
   auto client = game::Simulation::create("crates", bundle.setup);
   for (Tick t = 0; t <= 80; ++t) {
-    (*client)->step(
-        std::span<const rwd::PlayerInput>(bundle.inputs).subspan(static_cast<size_t>(t) * 2, 2));
+    ASSERT_TRUE((*client)
+                    ->step(std::span<const rwd::PlayerInput>(bundle.inputs)
+                               .subspan(static_cast<size_t>(t) * 2, 2))
+                    .ok());
   }
   ASSERT_TRUE((*client)->lane().perturb_for_drill());
   ViewDesync d;
@@ -168,8 +170,10 @@ ViewBundle joined_at(const ViewBundle& whole, Tick from, Tick through) {
   const uint32_t players = whole.setup.player_count;
   auto sim = game::Simulation::create(whole.game, whole.setup);
   for (Tick t = 0; t < from; ++t) {
-    (*sim)->step(std::span<const rwd::PlayerInput>(whole.inputs)
-                     .subspan(static_cast<size_t>(t) * players, players));
+    EXPECT_TRUE((*sim)
+                    ->step(std::span<const rwd::PlayerInput>(whole.inputs)
+                               .subspan(static_cast<size_t>(t) * players, players))
+                    .ok());
   }
   (*sim)->serialize(b.start_state);
   b.first_tick = from;
@@ -270,8 +274,10 @@ ViewBundle with_keyframes(ViewBundle bundle, Tick every) {
   auto sim = game::Simulation::create(bundle.game, bundle.setup);
   const uint32_t players = bundle.setup.player_count;
   for (Tick t = 0; t < bundle.end_position(); ++t) {
-    (*sim)->step(std::span<const rwd::PlayerInput>(bundle.inputs)
-                     .subspan(static_cast<size_t>(t) * players, players));
+    EXPECT_TRUE((*sim)
+                    ->step(std::span<const rwd::PlayerInput>(bundle.inputs)
+                               .subspan(static_cast<size_t>(t) * players, players))
+                    .ok());
     if ((t + 1) % every == 0) {
       ViewKeyframe k;
       k.position = t + 1;

@@ -92,8 +92,10 @@ TEST(ReplayView, ADesyncReportIsAttachedByItsFileName) {
   // The client's state after tick 40, nudged, stored as the server does.
   auto client = game::Simulation::create("crates", bundle->setup);
   for (Tick t = 0; t <= 40; ++t) {
-    (*client)->step(
-        std::span<const rwd::PlayerInput>(bundle->inputs).subspan(static_cast<size_t>(t) * 2, 2));
+    ASSERT_TRUE((*client)
+                    ->step(std::span<const rwd::PlayerInput>(bundle->inputs)
+                               .subspan(static_cast<size_t>(t) * 2, 2))
+                    .ok());
   }
   ASSERT_TRUE((*client)->lane().perturb_for_drill());
   std::vector<uint8_t> state;

@@ -36,6 +36,13 @@ class StateHasher {
     std::memcpy(&bits, &v, 4);
     add_u32(bits);
   }
+  /// A handle of either lane (BodyId, BodyId2D, JointId, ...): its index,
+  /// then its generation, so a recycled slot hashes differently.
+  template <class Id>
+  void add_id(const Id& id) {
+    add_u32(id.index);
+    add_u32(id.generation);
+  }
   void add_bytes(const void* data, size_t size) {
     flush();
     XXH3_64bits_update(&state_, data, size);

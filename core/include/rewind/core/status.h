@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -40,7 +41,18 @@ class [[nodiscard]] Status {
   std::string message_;
 };
 
-/// A value or the Status explaining why there is none.
+/// Thrown when a Result that holds an error is read as a value: a bug in
+/// the caller, who must check ok() first. what() carries the error's
+/// message.
+class BadResultAccess : public std::logic_error {
+ public:
+  explicit BadResultAccess(const Status& status)
+      : std::logic_error("read the value of a failed Result: " + status.message()) {}
+};
+
+/// A value or the Status explaining why there is none. Check ok() before
+/// reading the value: reading a failed Result throws BadResultAccess
+/// instead of reading nothing. An error Status must not be Ok.
 template <class T>
 class [[nodiscard]] Result {
  public:
@@ -48,14 +60,23 @@ class [[nodiscard]] Result {
   Result(Status status) : status_(std::move(status)) {}  // NOLINT
   bool ok() const { return value_.has_value(); }
   const Status& status() const { return status_; }
-  T& value() { return *value_; }
-  const T& value() const { return *value_; }
-  T* operator->() { return &*value_; }
-  const T* operator->() const { return &*value_; }
-  T& operator*() { return *value_; }
-  const T& operator*() const { return *value_; }
+  T& value() { return checked(); }
+  const T& value() const { return checked(); }
+  T* operator->() { return &checked(); }
+  const T* operator->() const { return &checked(); }
+  T& operator*() { return checked(); }
+  const T& operator*() const { return checked(); }
 
  private:
+  T& checked() {
+    if (!value_) throw BadResultAccess(status_);
+    return *value_;
+  }
+  const T& checked() const {
+    if (!value_) throw BadResultAccess(status_);
+    return *value_;
+  }
+
   std::optional<T> value_;
   Status status_;
 };

@@ -52,10 +52,15 @@ class WorldScratch;  // per-step working memory; not state
 
 class World3D {
  public:
-  /// Creates an empty world. An invalid config is replaced field by field
-  /// with defaults; use validate_config() first to report errors. The world
-  /// reads hulls and other registered geometry from `geometry` (a new,
-  /// empty store when null); worlds that share a store share its ids.
+  /// An empty world with `config` exactly as given, or kInvalidArgument
+  /// naming the first field validate_config() refuses (nothing is
+  /// repaired). The world reads hulls and other registered geometry from
+  /// `geometry` (a new, empty store when null); worlds that share a store
+  /// share its ids. What a game or tool should call.
+  static Result<std::unique_ptr<World3D>> create(const WorldConfig& config,
+                                                 std::shared_ptr<GeometryStore> geometry = nullptr);
+  /// Creates an empty world, replacing each invalid field of `config` with
+  /// its default; create() refuses such a config instead.
   explicit World3D(const WorldConfig& config = {},
                    std::shared_ptr<GeometryStore> geometry = nullptr);
   ~World3D();

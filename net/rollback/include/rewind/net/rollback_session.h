@@ -78,6 +78,12 @@ class RollbackSession {
   /// synchronize(), then saves a snapshot and simulates current_tick().
   bool advance();
 
+  /// The first error the game's rules returned (Simulation::step), or Ok.
+  /// Once set the session steps no more: advance() and synchronize() leave
+  /// current_tick() where the rules failed, and the host ends the match
+  /// with this message.
+  const Status& game_error() const { return game_error_; }
+
   /// Checksum of the state after tick `t` (t < current_tick(), within the
   /// ring). Call synchronize() first so it reflects every known input.
   std::optional<uint64_t> checksum_after(Tick t) const;
@@ -139,6 +145,7 @@ class RollbackSession {
   Tick dirty_from_ = kNoTick;  // earliest tick whose inputs may have changed
   RollbackStats stats_;
   StepHook step_hook_;
+  Status game_error_;
 };
 
 }  // namespace rwd::net

@@ -49,8 +49,12 @@ class StepScratch2D;  // per-step working memory; not state
 
 class World2D {
  public:
-  /// An empty world. An invalid config is replaced by the defaults; check
-  /// it with validate_config() first to report errors.
+  /// An empty world with `config` exactly as given, or kInvalidArgument
+  /// naming the first field validate_config() refuses (nothing is
+  /// repaired). What a game or tool should call.
+  static Result<std::unique_ptr<World2D>> create(const World2DConfig& config);
+  /// An empty world; an invalid config is replaced by the defaults, where
+  /// create() refuses it.
   explicit World2D(const World2DConfig& config = {});
   ~World2D();
   World2D(World2D&&) noexcept;

@@ -39,11 +39,11 @@ class ArenaGame final : public GameWithState<sim2d::World2D, ArenaState> {
   sim2d::World2DConfig world_config() const override;
 
  protected:
-  void build_typed(const MatchSetup& setup, sim2d::World2D& world,
-                   ArenaState& state) const override;
-  void apply_typed(Tick tick, std::span<const PlayerInput> inputs, sim2d::World2D& world,
-                   ArenaState& state) const override;
-  void after_step_typed(Tick tick, sim2d::World2D& world, ArenaState& state) const override;
+  Status build_typed(const MatchSetup& setup, sim2d::World2D& world,
+                     ArenaState& state) const override;
+  Status apply_typed(Tick tick, std::span<const PlayerInput> inputs, sim2d::World2D& world,
+                     ArenaState& state) const override;
+  Status after_step_typed(Tick tick, sim2d::World2D& world, ArenaState& state) const override;
   void hash_typed(const ArenaState& state, rwd::StateHasher& hasher) const override;
   Status validate_typed(const MatchSetup& setup, const ArenaState& state) const override;
 };

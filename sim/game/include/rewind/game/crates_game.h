@@ -39,10 +39,11 @@ class CratesGame final : public GameWithState<sim::World3D, CratesState> {
   sim::WorldConfig world_config() const override;
 
  protected:
-  void build_typed(const MatchSetup& setup, sim::World3D& world, CratesState& state) const override;
-  void apply_typed(Tick tick, std::span<const PlayerInput> inputs, sim::World3D& world,
-                   CratesState& state) const override;
-  void after_step_typed(Tick tick, sim::World3D& world, CratesState& state) const override;
+  Status build_typed(const MatchSetup& setup, sim::World3D& world,
+                     CratesState& state) const override;
+  Status apply_typed(Tick tick, std::span<const PlayerInput> inputs, sim::World3D& world,
+                     CratesState& state) const override;
+  Status after_step_typed(Tick tick, sim::World3D& world, CratesState& state) const override;
   void hash_typed(const CratesState& state, rwd::StateHasher& hasher) const override;
   Status validate_typed(const MatchSetup& setup, const CratesState& state) const override;
 };

@@ -61,15 +61,23 @@ class Game {
       std::span<const uint8_t> bytes) const = 0;
   /// Size in bytes of the game's state block (trivially copyable data).
   virtual size_t state_size() const = 0;
+  // The three rules hooks return a Status so that no error is dropped: a
+  // call the world refuses (a body the scene cannot create, a handle that
+  // should exist but does not) is returned, and the match that runs the
+  // game ends with its message (Simulation::step, the server, the client
+  // SDK and the replay verifier all pass it on). An error is a bug in the
+  // rules or a state no rule expects, never a way to reject a player's
+  // input: inputs are clamped, not refused.
+
   /// Builds the scene into `lane` (made by make_lane(), or a lane of the
   /// same type) and initializes the zeroed state block.
-  virtual void build(const MatchSetup& setup, Lane& lane, std::span<std::byte> state) const = 0;
+  virtual Status build(const MatchSetup& setup, Lane& lane, std::span<std::byte> state) const = 0;
   /// Applies one tick of inputs (one per player, index = player slot)
   /// before the world steps.
-  virtual void apply_inputs(Tick tick, std::span<const PlayerInput> inputs, Lane& lane,
-                            std::span<std::byte> state) const = 0;
+  virtual Status apply_inputs(Tick tick, std::span<const PlayerInput> inputs, Lane& lane,
+                              std::span<std::byte> state) const = 0;
   /// Runs after the world stepped (scoring, respawns); may read events.
-  virtual void after_step(Tick tick, Lane& lane, std::span<std::byte> state) const = 0;
+  virtual Status after_step(Tick tick, Lane& lane, std::span<std::byte> state) const = 0;
   /// Feeds the canonical fields of the state block to the hasher.
   virtual void hash_state(std::span<const std::byte> state, rwd::StateHasher& hasher) const = 0;
   /// Checks a state block that arrived from outside (a resync snapshot, a

@@ -40,23 +40,23 @@ class GameOn : public Game {
     if (!config.ok()) return config.status();
     return World::describe_config(*config);
   }
-  void build(const MatchSetup& setup, Lane& lane, std::span<std::byte> state) const final {
-    build_world(setup, world_in(lane), state);
+  Status build(const MatchSetup& setup, Lane& lane, std::span<std::byte> state) const final {
+    return build_world(setup, world_in(lane), state);
   }
-  void apply_inputs(Tick tick, std::span<const PlayerInput> inputs, Lane& lane,
-                    std::span<std::byte> state) const final {
-    apply_world(tick, inputs, world_in(lane), state);
+  Status apply_inputs(Tick tick, std::span<const PlayerInput> inputs, Lane& lane,
+                      std::span<std::byte> state) const final {
+    return apply_world(tick, inputs, world_in(lane), state);
   }
-  void after_step(Tick tick, Lane& lane, std::span<std::byte> state) const final {
-    after_step_world(tick, world_in(lane), state);
+  Status after_step(Tick tick, Lane& lane, std::span<std::byte> state) const final {
+    return after_step_world(tick, world_in(lane), state);
   }
 
  protected:
-  virtual void build_world(const MatchSetup& setup, World& world,
-                           std::span<std::byte> state) const = 0;
-  virtual void apply_world(Tick tick, std::span<const PlayerInput> inputs, World& world,
-                           std::span<std::byte> state) const = 0;
-  virtual void after_step_world(Tick tick, World& world, std::span<std::byte> state) const = 0;
+  virtual Status build_world(const MatchSetup& setup, World& world,
+                             std::span<std::byte> state) const = 0;
+  virtual Status apply_world(Tick tick, std::span<const PlayerInput> inputs, World& world,
+                             std::span<std::byte> state) const = 0;
+  virtual Status after_step_world(Tick tick, World& world, std::span<std::byte> state) const = 0;
 
  private:
   // Simulation only hands a game the lane its make_lane() type made, so the
@@ -82,29 +82,35 @@ class GameWithState : public GameOn<World> {
   }
 
  protected:
-  virtual void build_typed(const MatchSetup& setup, World& world, State& state) const = 0;
-  virtual void apply_typed(Tick tick, std::span<const PlayerInput> inputs, World& world,
-                           State& state) const = 0;
-  virtual void after_step_typed(Tick tick, World& world, State& state) const = 0;
+  // Game's build(), apply_inputs() and after_step() on the typed world and
+  // state; what they change in `state` is kept even when they fail.
+  virtual Status build_typed(const MatchSetup& setup, World& world, State& state) const = 0;
+  virtual Status apply_typed(Tick tick, std::span<const PlayerInput> inputs, World& world,
+                             State& state) const = 0;
+  virtual Status after_step_typed(Tick tick, World& world, State& state) const = 0;
   virtual void hash_typed(const State& state, rwd::StateHasher& hasher) const = 0;
   virtual Status validate_typed(const MatchSetup& setup, const State& state) const = 0;
 
  private:
-  void build_world(const MatchSetup& setup, World& world, std::span<std::byte> state) const final {
+  Status build_world(const MatchSetup& setup, World& world,
+                     std::span<std::byte> state) const final {
     State s{};
-    build_typed(setup, world, s);
+    Status status = build_typed(setup, world, s);
     store(s, state);
+    return status;
   }
-  void apply_world(Tick tick, std::span<const PlayerInput> inputs, World& world,
-                   std::span<std::byte> state) const final {
+  Status apply_world(Tick tick, std::span<const PlayerInput> inputs, World& world,
+                     std::span<std::byte> state) const final {
     State s = load(state);
-    apply_typed(tick, inputs, world, s);
+    Status status = apply_typed(tick, inputs, world, s);
     store(s, state);
+    return status;
   }
-  void after_step_world(Tick tick, World& world, std::span<std::byte> state) const final {
+  Status after_step_world(Tick tick, World& world, std::span<std::byte> state) const final {
     State s = load(state);
-    after_step_typed(tick, world, s);
+    Status status = after_step_typed(tick, world, s);
     store(s, state);
+    return status;
   }
   static State load(std::span<const std::byte> bytes) {
     State s;

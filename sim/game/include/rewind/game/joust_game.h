@@ -89,10 +89,11 @@ class JoustGame final : public GameWithState<sim::World3D, JoustState> {
   static float chain_opening(const sim::World3D& world, const JoustState& state);
 
  protected:
-  void build_typed(const MatchSetup& setup, sim::World3D& world, JoustState& state) const override;
-  void apply_typed(Tick tick, std::span<const PlayerInput> inputs, sim::World3D& world,
-                   JoustState& state) const override;
-  void after_step_typed(Tick tick, sim::World3D& world, JoustState& state) const override;
+  Status build_typed(const MatchSetup& setup, sim::World3D& world,
+                     JoustState& state) const override;
+  Status apply_typed(Tick tick, std::span<const PlayerInput> inputs, sim::World3D& world,
+                     JoustState& state) const override;
+  Status after_step_typed(Tick tick, sim::World3D& world, JoustState& state) const override;
   void hash_typed(const JoustState& state, rwd::StateHasher& hasher) const override;
   Status validate_typed(const MatchSetup& setup, const JoustState& state) const override;
 };

@@ -54,12 +54,14 @@ class Simulation {
   static Result<std::unique_ptr<Simulation>> create(std::string_view game_name,
                                                     const MatchSetup& setup,
                                                     const sim::WorldConfig& world_config);
-  /// The game on a world of its own lane with its own tuning.
-  Simulation(std::unique_ptr<Game> game, const MatchSetup& setup);
-  /// The game on `lane`, a lane of the type game->make_lane() makes (e.g.
-  /// one built from another config, see create()); throws
-  /// std::invalid_argument for a null lane or one of another type.
-  Simulation(std::unique_ptr<Game> game, const MatchSetup& setup, std::unique_ptr<Lane> lane);
+  /// `game` (registered or not) on `lane`, a lane of the type
+  /// game->make_lane() makes (e.g. one built from another config), or on a
+  /// lane of its own when null. kInvalidArgument for a null game, an
+  /// invalid setup or a lane of another type; the game's own error when
+  /// its build() fails.
+  static Result<std::unique_ptr<Simulation>> create(std::unique_ptr<Game> game,
+                                                    const MatchSetup& setup,
+                                                    std::unique_ptr<Lane> lane = nullptr);
 
   /// The next tick step() will simulate.
   Tick tick() const { return tick_; }
@@ -73,7 +75,10 @@ class Simulation {
 
   /// Simulates tick(): applies `inputs` (exactly player_count, index = player
   /// slot), steps the world, runs the game's after-step rules, then tick()+1.
-  void step(std::span<const PlayerInput> inputs);
+  /// When the game's rules fail, their error (naming the game and the tick)
+  /// is returned and tick() stays: the state is then whatever the rules
+  /// left, so restore a snapshot or drop the simulation.
+  Status step(std::span<const PlayerInput> inputs);
 
   /// Copies the state into `out`, reusing its buffers.
   void save(SimSnapshot& out) const;
@@ -100,6 +105,8 @@ class Simulation {
   std::unique_ptr<Lane> lane_;
   std::vector<std::byte> game_state_;
   Tick tick_ = 0;
+
+  Simulation(std::unique_ptr<Game> game, const MatchSetup& setup, std::unique_ptr<Lane> lane);
 };
 
 /// Names of the built-in games, for --help texts.

@@ -76,8 +76,9 @@ struct SyncTestReport {
 
 /// Runs the sync test on game `game_name` (built-in or registered).
 /// kInvalidArgument for an unknown game, a setup it refuses or options
-/// out of range; otherwise a report, with `failure` set at the first
-/// check that failed (the test stops there).
+/// out of range; the game's own error, naming the tick, when its rules
+/// fail; otherwise a report, with `failure` set at the first check that
+/// failed (the test stops there).
 Result<SyncTestReport> run_sync_test(std::string_view game_name, const MatchSetup& setup,
                                      const SyncTestOptions& options,
                                      const SyncTestInputs& inputs = {});
