@@ -3,8 +3,9 @@
 #
 # Builds Rewind and runs every test (unit, integration, determinism matrix,
 # long, container, the browser viewer in headless Chromium) but the ones
-# labelled `extended`: the five-minute real-time long match, left out so the
-# run stays inside 30 minutes on 2 cores (--label extended runs it).
+# labelled `extended`: the five-minute real-time long match and the two-minute
+# soak, left out so the run stays inside 30 minutes on 2 cores (--label
+# extended runs them).
 #
 # Usage: scripts/test.sh [--debug] [--label LABEL]
 #   --debug        use the ASan + UBSan preset (build/debug) instead of release

@@ -7,7 +7,7 @@ server=$1 bots=$2 replay=$3
 dir=$(mktemp -d)
 trap 'kill "$pid" 2>/dev/null || true; rm -rf "$dir"' EXIT
 
-"$server" --game tag --players 2 --ticks 900 --bind 127.0.0.1 --port 0 \
+"$server" --game tag --players 2 --ticks 600 --bind 127.0.0.1 --port 0 \
   --port-file "$dir/port" --replay "$dir/match.rwr" 2>"$dir/server.log" &
 pid=$!
 for _ in $(seq 200); do [ -s "$dir/port" ] && break; sleep 0.05; done
