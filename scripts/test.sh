@@ -21,7 +21,7 @@
 # the determinism matrix in the background at idle priority when ctest
 # starts: the real-time integration tests run alone and leave most of the
 # CPU idle, and the matrix test, which ctest runs last, then finds its
-# objects built (its log: build/P/matrix-prebuild.log); then the browser
+# objects built (its log: build/P/matrix-prebuild.log); beside it, the browser
 # viewer's WebAssembly build, which the browser tests, also run last, find
 # done (log: build/P/viewer-prebuild.log).
 # Exit codes: ctest's status; the failing step's status if setup, configure or
@@ -59,7 +59,7 @@ cmake --build --preset "$preset" -j"$jobs"
 
 ctest_args=(--preset "$preset" --output-on-failure -j2 --no-tests=error)
 if [[ -z $label ]]; then ctest_args+=(-LE extended); else ctest_args+=(-L "$label"); fi
-prebuild=""
+prebuilds=()
 if [[ -z $label ]]; then
   # Idle priority: the compile takes only what the tests leave. setsid makes
   # it a process group, so ninja and its compilers go with it on exit.
@@ -69,15 +69,18 @@ if [[ -z $label ]]; then
   # lock of its external project (viewer/CMakeLists.txt): the browser tests,
   # which ctest runs last, then find it built.
   wasm_dir="build/$preset/viewer_wasm"
+  setsid "${idle[@]}" nice -n 19 bash tests/determinism/run_matrix.sh --compile-only --source . \
+    "build/$preset/tests/determinism/matrix" >"build/$preset/matrix-prebuild.log" 2>&1 &
+  prebuilds=($!)
+  # Beside it, not after it: the matrix takes most of the run, and the
+  # browser tests would otherwise compile the viewer themselves, alone.
   setsid "${idle[@]}" nice -n 19 bash -c '
-    bash tests/determinism/run_matrix.sh --compile-only --source . "$1" >"$2" 2>&1
-    flock "$3.lock" env NODE_PATH=/usr/share/nodejs emcmake cmake -G Ninja -S viewer/wasm -B "$3" \
+    flock "$1.lock" env NODE_PATH=/usr/share/nodejs emcmake cmake -G Ninja -S viewer/wasm -B "$1" \
       -DREWIND_SOURCE_DIR="$PWD" -DCMAKE_BUILD_TYPE=Release &&
-      flock "$3.lock" env NODE_PATH=/usr/share/nodejs cmake --build "$3"' prebuild \
-    "build/$preset/tests/determinism/matrix" "build/$preset/matrix-prebuild.log" "$wasm_dir" \
-    >"build/$preset/viewer-prebuild.log" 2>&1 &
-  prebuild=$!
-  trap '[[ -z $prebuild ]] || kill -- -"$prebuild" 2>/dev/null || true' EXIT
+      flock "$1.lock" env NODE_PATH=/usr/share/nodejs cmake --build "$1"' prebuild \
+    "$wasm_dir" >"build/$preset/viewer-prebuild.log" 2>&1 &
+  prebuilds+=($!)
+  trap 'for pid in "${prebuilds[@]}"; do kill -- -"$pid" 2>/dev/null || true; done' EXIT
 fi
 step "ctest ${ctest_args[*]}"
 status=0
