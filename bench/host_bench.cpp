@@ -32,7 +32,7 @@ rwd::PlayerInput circling(uint32_t player, Tick tick) {
   // inputs change as often as a real player's stick does.
   static constexpr int16_t kAxis[8] = {1000, 707, 0, -707, -1000, -707, 0, 707};
   const uint32_t phase = (static_cast<uint32_t>(tick) / 15 + player) % 8;
-  return {kAxis[phase], kAxis[(phase + 2) % 8], 0};
+  return rwd::stick_input(kAxis[phase], kAxis[(phase + 2) % 8]);
 }
 
 void BM_HostTick(benchmark::State& state) {

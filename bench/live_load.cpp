@@ -271,7 +271,7 @@ Result<std::unique_ptr<LiveLoad>> LiveLoad::start(const LiveLoadConfig& config) 
       settings.inputs = [](uint32_t player, Tick tick) {
         static constexpr int16_t kAxis[8] = {1000, 707, 0, -707, -1000, -707, 0, 707};
         const uint32_t phase = (static_cast<uint32_t>(tick) / 15 + player) % 8;
-        return rwd::PlayerInput{kAxis[phase], kAxis[(phase + 2) % 8], 0};
+        return rwd::stick_input(kAxis[phase], kAxis[(phase + 2) % 8]);
       };
       settings.lead_ticks = 3.0;
       settings.period = std::chrono::nanoseconds(1'000'000'000LL / config.tick_rate_hz);

@@ -19,8 +19,8 @@ using rwd::game::Simulation;
 std::vector<PlayerInput> inputs_for(uint32_t players, rwd::Tick tick) {
   std::vector<PlayerInput> inputs(players);
   for (uint32_t p = 0; p < players; ++p) {
-    inputs[p].axis_x = static_cast<int16_t>(((tick / 30 + p) % 3 - 1) * 1000);
-    inputs[p].axis_y = static_cast<int16_t>(((tick / 45 + 2 * p) % 3 - 1) * 1000);
+    inputs[p] = rwd::stick_input(static_cast<int16_t>(((tick / 30 + p) % 3 - 1) * 1000),
+                                 static_cast<int16_t>(((tick / 45 + 2 * p) % 3 - 1) * 1000));
   }
   return inputs;
 }
@@ -91,8 +91,8 @@ void BM_Rollback8(benchmark::State& state) {
   uint32_t flip = 0;
   for (auto _ : state) {
     const rwd::Tick target = session.current_tick() - 8;
-    (void)session.add_final_input(0, target,
-                                  {static_cast<int16_t>(++flip % 2 ? 1000 : -1000), 0, 0});
+    (void)session.add_final_input(
+        0, target, rwd::stick_input(static_cast<int16_t>(++flip % 2 ? 1000 : -1000), 0));
     session.synchronize();
     session.finalize_through(target);
     session.advance();

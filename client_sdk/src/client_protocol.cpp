@@ -34,12 +34,6 @@ uint64_t micros_since_epoch(TimePoint t) {
       std::chrono::duration_cast<std::chrono::microseconds>(t.time_since_epoch()).count());
 }
 
-rwd::PlayerInput clamped(rwd::PlayerInput input) {
-  input.axis_x = static_cast<int16_t>(std::clamp<int>(input.axis_x, -rwd::kAxisMax, rwd::kAxisMax));
-  input.axis_y = static_cast<int16_t>(std::clamp<int>(input.axis_y, -rwd::kAxisMax, rwd::kAxisMax));
-  return input;
-}
-
 }  // namespace
 
 Result<ClientProtocol> ClientProtocol::create(const ClientConfig& config, uint64_t join_nonce) {
@@ -84,8 +78,13 @@ void ClientProtocol::disconnect(const std::string& reason, TimePoint now) {
 void ClientProtocol::set_input_provider(InputProvider provider) {
   impl_->provider_ = std::move(provider);
 }
-void ClientProtocol::set_input(const rwd::PlayerInput& input) {
+Status ClientProtocol::set_input(const rwd::PlayerInput& input) {
+  if (impl_->session_ != nullptr) {
+    Status status = check_input(impl_->session_->simulation().game().input_spec(), input);
+    if (!status.ok()) return status;
+  }
   impl_->held_input_ = input;
+  return Status::Ok();
 }
 
 std::optional<std::span<const uint8_t>> ClientProtocol::next_datagram() {
@@ -248,7 +247,10 @@ void ClientProtocol::Impl::step_due_ticks(TimePoint now) {
        ++steps) {
     const Tick t = session_->current_tick();
     if (!spectator_ && t >= next_input_tick_) {
-      const rwd::PlayerInput input = clamped(provider_ ? provider_(t) : held_input_);
+      rwd::PlayerInput input = provider_ ? provider_(t) : held_input_;
+      // The server would refuse it, and the other players would never see
+      // it: the neutral input is played and sent in its place.
+      if (!check_input(session_->simulation().game().input_spec(), input).ok()) input = {};
       (void)session_->add_input(player_, t, input);
       unacked_.emplace_back(t, input);
       next_input_tick_ = t + 1;

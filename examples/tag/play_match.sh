@@ -16,3 +16,11 @@ for _ in $(seq 200); do [ -s "$dir/port" ] && break; sleep 0.05; done
 "$bots" --game tag --bots 2 --connect "127.0.0.1:$(head -1 "$dir/port")" --summary-json
 wait "$pid" || { cat "$dir/server.log"; echo "tag-server failed"; exit 1; }
 "$replay" verify "$dir/match.rwr"
+# A forged input, edited by the name of one of tag's own input fields: the
+# replay still reads, and re-simulation catches it.
+"$replay" tamper "$dir/match.rwr" --tick 300 --player 1 --set heading=900,sprint=1 \
+  --out "$dir/forged.rwr"
+status=0
+"$replay" verify "$dir/forged.rwr" >"$dir/forged.txt" || status=$?
+[ "$status" -eq 1 ] || { cat "$dir/forged.txt"; echo "the forged replay was not caught"; exit 1; }
+echo "the forged replay diverges: $(grep -m1 DIVERGED "$dir/forged.txt")"

@@ -2,6 +2,7 @@
 #include "tag_game.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <memory>
 #include <string>
 
@@ -20,6 +21,7 @@ constexpr float kBallRadius = 0.5f;    // m
 constexpr float kRunSpeed = 5.0f;      // m/s at full deflection
 constexpr float kItSpeed = 5.5f;       // m/s: "it" is a little faster
 constexpr float kSteerGain = 6.0f;     // 1/s: how fast a ball follows the stick
+constexpr float kSprint = 1.4f;        // speed factor while sprinting
 constexpr uint64_t kTagBall = 0x7A60;  // user_data of player p's ball: kTagBall + p
 
 rwd::sim::BodyDef wall(Vec3 centre, Vec3 half) {
@@ -83,18 +85,21 @@ rwd::Status TagGame::build_typed(const rwd::game::MatchSetup& setup, rwd::sim::W
   return rwd::Status::Ok();
 }
 
-rwd::Status TagGame::apply_typed(rwd::Tick /*tick*/, std::span<const rwd::PlayerInput> inputs,
+rwd::Status TagGame::apply_typed(rwd::Tick /*tick*/, std::span<const TagInput> inputs,
                                  rwd::sim::World3D& world, TagState& state) const {
   const float blend = std::min(1.0f, kSteerGain * world.config().tick_seconds);
   const uint32_t players = std::min<uint32_t>(state.player_count, uint32_t(inputs.size()));
   for (uint32_t p = 0; p < players; ++p) {
     const BodyId ball = state.balls[p];
     if (!world.is_valid(ball)) continue;
-    const float speed = p == state.it ? kItSpeed : kRunSpeed;
-    const float ax = std::clamp<float>(inputs[p].axis_x, -rwd::kAxisMax, rwd::kAxisMax) /
-                     static_cast<float>(rwd::kAxisMax);
-    const float az = std::clamp<float>(inputs[p].axis_y, -rwd::kAxisMax, rwd::kAxisMax) /
-                     static_cast<float>(rwd::kAxisMax);
+    // Rewind has checked every input against input_spec(): the fields are
+    // within their ranges here.
+    const TagInput& in = inputs[p];
+    const float top = (p == state.it ? kItSpeed : kRunSpeed) * (in.sprint != 0 ? kSprint : 1.0f);
+    const float speed = top * static_cast<float>(in.throttle) / 100.0f;
+    const float heading = static_cast<float>(in.heading) * (rwd::kPi / 1800.0f);
+    const float ax = rwd::det_cos(heading);
+    const float az = rwd::det_sin(heading);
     const Vec3 v = world.linear_velocity(ball);
     const Vec3 dv{(ax * speed - v.x) * blend, 0.0f, (az * speed - v.z) * blend};
     (void)world.apply_linear_impulse(ball, dv * world.mass(ball), world.position(ball));
@@ -150,18 +155,39 @@ rwd::Status TagGame::validate_typed(const rwd::game::MatchSetup& setup,
   return rwd::Status::Ok();
 }
 
+namespace {
+
+rwd::PlayerInput predict_tag_input(const rwd::PlayerInput& newest) {
+  TagInput input = newest.as<TagInput>();
+  input.sprint = 0;
+  return rwd::PlayerInput::of(input);
+}
+
+}  // namespace
+
+const rwd::InputSpec& TagGame::input_spec() const {
+  static constexpr rwd::InputField kFields[] = {
+      {"heading", rwd::InputFieldType::kI16, offsetof(TagInput, heading), 0, 3599},
+      {"throttle", rwd::InputFieldType::kU8, offsetof(TagInput, throttle), 0, 100},
+      {"sprint", rwd::InputFieldType::kU8, offsetof(TagInput, sprint), 0, 1},
+  };
+  static constexpr rwd::InputSpec kSpec{"tag", sizeof(TagInput), kFields, &predict_tag_input};
+  return kSpec;
+}
+
 rwd::PlayerInput TagGame::bot_input(uint64_t seed, uint32_t player, rwd::Tick tick) const {
   // Each bot runs a wide circle of its own size and direction, and every
-  // two seconds picks a new one: enough for "it" to catch someone.
+  // two seconds picks a new one: enough for "it" to catch someone. Integer
+  // steps, so the bot needs no trig.
   const uint64_t leg =
       rwd::splitmix64_once(seed ^ rwd::splitmix64_once(player) ^ static_cast<uint64_t>(tick / 120));
-  const float turn = (leg & 1) ? 1.0f : -1.0f;
-  const float angle = turn * static_cast<float>(tick % 360) * (2.0f * rwd::kPi / 360.0f) +
-                      static_cast<float>(leg % 628) / 100.0f;
-  rwd::PlayerInput input;
-  input.axis_x = static_cast<int16_t>(rwd::kAxisMax * rwd::det_cos(angle));
-  input.axis_y = static_cast<int16_t>(rwd::kAxisMax * rwd::det_sin(angle));
-  return input;
+  const int32_t turn = (leg & 1) ? 1 : -1;
+  const int32_t start = static_cast<int32_t>(leg % 3600);
+  TagInput input;
+  input.heading = static_cast<int16_t>(((start + turn * 10 * (tick % 360)) % 3600 + 3600) % 3600);
+  input.throttle = static_cast<uint8_t>(70 + (leg >> 12) % 31);
+  input.sprint = (tick % 120) < 15 ? 1 : 0;
+  return rwd::PlayerInput::of(input);
 }
 
 rwd::Status register_tag_game() {

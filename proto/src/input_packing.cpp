@@ -1,66 +1,58 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/proto/input_packing.h"
 
-#include <cstring>
+#include <bit>
+#include <cstdint>
 
 namespace rwd::proto {
 namespace {
 
-constexpr size_t kInputBytes = 8;
-
-void to_bytes(const rwd::PlayerInput& in, uint8_t* out) {
-  const auto x = static_cast<uint16_t>(in.axis_x);
-  const auto y = static_cast<uint16_t>(in.axis_y);
-  out[0] = static_cast<uint8_t>(x);
-  out[1] = static_cast<uint8_t>(x >> 8);
-  out[2] = static_cast<uint8_t>(y);
-  out[3] = static_cast<uint8_t>(y >> 8);
-  for (int i = 0; i < 4; ++i) out[4 + i] = static_cast<uint8_t>(in.buttons >> (8 * i));
-}
-
-rwd::PlayerInput from_bytes(const uint8_t* in) {
-  rwd::PlayerInput out;
-  out.axis_x = static_cast<int16_t>(static_cast<uint16_t>(in[0] | in[1] << 8));
-  out.axis_y = static_cast<int16_t>(static_cast<uint16_t>(in[2] | in[3] << 8));
-  out.buttons = 0;
-  for (int i = 0; i < 4; ++i) out.buttons |= uint32_t{in[4 + i]} << (8 * i);
-  return out;
-}
+static_assert(rwd::kInputCapacity == 32, "the byte mask has one bit per input byte");
 
 void pack_one(const rwd::PlayerInput& value, const rwd::PlayerInput& reference, std::string& out) {
-  uint8_t a[kInputBytes];
-  uint8_t b[kInputBytes];
-  to_bytes(value, a);
-  to_bytes(reference, b);
-  uint8_t mask = 0;
-  for (size_t i = 0; i < kInputBytes; ++i) {
-    if (a[i] != b[i]) mask |= static_cast<uint8_t>(1u << i);
+  uint32_t mask = 0;
+  for (size_t i = 0; i < rwd::kInputCapacity; ++i) {
+    if (value.bytes[i] != reference.bytes[i]) mask |= 1u << i;
   }
-  out.push_back(static_cast<char>(mask));
-  for (size_t i = 0; i < kInputBytes; ++i) {
-    if (mask >> i & 1u) out.push_back(static_cast<char>(a[i] ^ b[i]));
+  // The mask as a little-endian base-128 varint: the first byte covers
+  // bytes 0 to 6, so an unchanged input costs one byte.
+  uint32_t m = mask;
+  while (m >= 0x80) {
+    out.push_back(static_cast<char>(m | 0x80));
+    m >>= 7;
   }
+  out.push_back(static_cast<char>(m));
+  for (size_t i = 0; i < rwd::kInputCapacity; ++i) {
+    if (mask >> i & 1u) out.push_back(static_cast<char>(value.bytes[i] ^ reference.bytes[i]));
+  }
+}
+
+// Reads a mask at `at`; false when the bytes end or it is longer than 32 bits.
+bool read_mask(std::string_view bytes, size_t& at, uint32_t& mask) {
+  mask = 0;
+  for (int shift = 0; shift < 35; shift += 7) {
+    if (at >= bytes.size()) return false;
+    const auto byte = static_cast<uint8_t>(bytes[at++]);
+    const uint64_t bits = uint64_t{byte & 0x7Fu} << shift;
+    if (bits > UINT32_MAX) return false;
+    mask |= static_cast<uint32_t>(bits);
+    if ((byte & 0x80u) == 0) return true;
+  }
+  return false;
 }
 
 // Reads one input at `at` against `reference`; false when the bytes end.
 bool unpack_one(std::string_view bytes, size_t& at, const rwd::PlayerInput& reference,
                 rwd::PlayerInput& out) {
-  if (at >= bytes.size()) return false;
-  const auto mask = static_cast<uint8_t>(bytes[at++]);
-  uint8_t value[kInputBytes];
-  to_bytes(reference, value);
-  for (size_t i = 0; i < kInputBytes; ++i) {
+  uint32_t mask = 0;
+  if (!read_mask(bytes, at, mask)) return false;
+  out = reference;
+  for (size_t i = 0; i < rwd::kInputCapacity; ++i) {
     if ((mask >> i & 1u) == 0) continue;
     if (at >= bytes.size()) return false;
-    value[i] ^= static_cast<uint8_t>(bytes[at++]);
+    out.bytes[i] ^= static_cast<uint8_t>(bytes[at++]);
   }
-  out = from_bytes(value);
   return true;
-}
-
-bool in_range(const rwd::PlayerInput& in) {
-  return in.axis_x >= -rwd::kAxisMax && in.axis_x <= rwd::kAxisMax && in.axis_y >= -rwd::kAxisMax &&
-         in.axis_y <= rwd::kAxisMax;
 }
 
 Status corrupt(const std::string& what) {
@@ -105,11 +97,6 @@ Status unpack_inputs(std::string_view bytes, std::span<const rwd::PlayerInput> r
       out.clear();
       return corrupt("packed inputs: cut short at input " + std::to_string(i));
     }
-    if (!in_range(in)) {
-      out.clear();
-      return corrupt("packed inputs: input " + std::to_string(i) +
-                     " has an axis outside [-1000, 1000]");
-    }
     out.push_back(in);
   }
   if (at != bytes.size()) {
@@ -127,8 +114,11 @@ Status check_packed_inputs(std::string_view bytes) {
   for (size_t i = 0; i < count; ++i) {
     if (at >= bytes.size())
       return corrupt("packed inputs: cut short at input " + std::to_string(i));
-    const auto mask = static_cast<uint8_t>(bytes[at++]);
-    at += static_cast<size_t>(__builtin_popcount(mask));
+    uint32_t mask = 0;
+    if (!read_mask(bytes, at, mask)) {
+      return corrupt("packed inputs: bad mask at input " + std::to_string(i));
+    }
+    at += static_cast<size_t>(std::popcount(mask));
     if (at > bytes.size()) return corrupt("packed inputs: cut short at input " + std::to_string(i));
   }
   if (at != bytes.size()) return corrupt("packed inputs: trailing bytes");
@@ -144,9 +134,9 @@ Status unpack_run(std::string_view bytes, std::vector<rwd::PlayerInput>& out) {
   rwd::PlayerInput previous;
   for (size_t i = 0; i < count; ++i) {
     rwd::PlayerInput in;
-    if (!unpack_one(bytes, at, previous, in) || !in_range(in)) {
+    if (!unpack_one(bytes, at, previous, in)) {
       out.clear();
-      return corrupt("packed run: input " + std::to_string(i) + " cut short or out of range");
+      return corrupt("packed run: input " + std::to_string(i) + " cut short");
     }
     out.push_back(in);
     previous = in;

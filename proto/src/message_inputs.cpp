@@ -21,10 +21,6 @@ Status repeated_inputs(const google::protobuf::RepeatedPtrField<v1::Input>& inpu
   for (const v1::Input& wire : inputs) {
     auto in = from_wire(wire);
     if (!in.ok()) return in.status();
-    if (in->axis_x < -rwd::kAxisMax || in->axis_x > rwd::kAxisMax || in->axis_y < -rwd::kAxisMax ||
-        in->axis_y > rwd::kAxisMax) {
-      return corrupt("an input axis outside [-1000, 1000]");
-    }
     out.push_back(*in);
   }
   return Status::Ok();

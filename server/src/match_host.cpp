@@ -311,6 +311,7 @@ void MatchHost::handle_input(Peer& peer, uint32_t player, const v1::InputFrame& 
       case net::InputResult::kConflict:
       case net::InputResult::kTooFar:
       case net::InputResult::kBadPlayer:
+      case net::InputResult::kBadInput:
         ++stats_.rejected_inputs;
         break;
     }

@@ -36,9 +36,10 @@ viewer::ViewBundle play(const std::string& game_name, uint32_t players, Tick tic
   std::vector<rwd::PlayerInput> inputs(players);
   for (Tick t = 0; t < ticks; ++t) {
     for (uint32_t p = 0; p < players; ++p) {
-      inputs[p].axis_x = static_cast<int16_t>(((t / 17 + static_cast<Tick>(p)) % 3 - 1) * 1000);
-      inputs[p].axis_y = static_cast<int16_t>(((t / 41 + 2 * static_cast<Tick>(p)) % 3 - 1) * 800);
-      inputs[p].buttons = (t + 7 * static_cast<Tick>(p)) % 45 < 3 ? 1u + (t / 90) % 2 : 0u;
+      inputs[p] = rwd::stick_input(
+          static_cast<int16_t>(((t / 17 + static_cast<Tick>(p)) % 3 - 1) * 1000),
+          static_cast<int16_t>(((t / 41 + 2 * static_cast<Tick>(p)) % 3 - 1) * 800),
+          (t + 7 * static_cast<Tick>(p)) % 45 < 3 ? 1u + (t / 90) % 2 : 0u);
     }
     if (rwd::Status status = (*sim)->step(inputs); !status.ok()) {
       std::fprintf(stderr, "make_bundles: %s\n", status.message().c_str());

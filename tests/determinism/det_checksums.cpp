@@ -62,6 +62,7 @@ namespace {
 
 using rwd::PlayerInput;
 using rwd::SplitMix64;
+using rwd::StickInput;
 using rwd::Tick;
 using rwd::game::MatchSetup;
 using rwd::game::SimSnapshot;
@@ -82,7 +83,7 @@ constexpr Tick kRollbackDepth = 5;
 std::vector<PlayerInput> make_script(Tick ticks) {
   std::vector<PlayerInput> inputs(static_cast<size_t>(ticks) * kPlayers);
   SplitMix64 rng{kScriptSeed};
-  PlayerInput current[kPlayers] = {};
+  StickInput current[kPlayers] = {};
   uint32_t hold[kPlayers] = {};
   for (Tick t = 0; t < ticks; ++t) {
     for (uint32_t p = 0; p < kPlayers; ++p) {
@@ -93,7 +94,7 @@ std::vector<PlayerInput> make_script(Tick ticks) {
         hold[p] = 1 + rng.below(6);
       }
       --hold[p];
-      inputs[static_cast<size_t>(t) * kPlayers + p] = current[p];
+      inputs[static_cast<size_t>(t) * kPlayers + p] = PlayerInput::of(current[p]);
     }
   }
   return inputs;
@@ -104,10 +105,12 @@ std::vector<PlayerInput> make_script(Tick ticks) {
 // braking on one tick in eight.
 std::vector<PlayerInput> make_joust_script(Tick ticks) {
   std::vector<PlayerInput> inputs = make_script(ticks);
-  for (PlayerInput& in : inputs) {
+  for (PlayerInput& input : inputs) {
+    StickInput in = input.as<StickInput>();
     const int32_t y = in.axis_y < 0 ? -in.axis_y : in.axis_y;
     in.axis_y = static_cast<int16_t>(300 + y * 7 / 10);
     in.buttons = (in.buttons & 2u) | ((in.buttons >> 8) % 8 == 0 ? 1u : 0u);
+    input = PlayerInput::of(in);
   }
   return inputs;
 }
@@ -121,8 +124,9 @@ std::span<const PlayerInput> inputs_for(const std::vector<PlayerInput>& script, 
 std::vector<PlayerInput> mispredict(const std::vector<PlayerInput>& script, Tick t) {
   std::vector<PlayerInput> guess(kPlayers);
   for (uint32_t p = 0; p < kPlayers; ++p) {
-    const PlayerInput& prev = script[static_cast<size_t>(t > 0 ? t - 1 : 0) * kPlayers + p];
-    guess[p] = PlayerInput{static_cast<int16_t>(-prev.axis_y), prev.axis_x, ~prev.buttons};
+    const StickInput prev =
+        script[static_cast<size_t>(t > 0 ? t - 1 : 0) * kPlayers + p].as<StickInput>();
+    guess[p] = rwd::stick_input(static_cast<int16_t>(-prev.axis_y), prev.axis_x, ~prev.buttons);
   }
   return guess;
 }

@@ -9,6 +9,7 @@
 
 #include "corpus_mutator.h"
 #include "fuzz_entries.h"
+#include "rewind/core/stick_input.h"
 #include "rewind/viewer/live_ticks.h"
 
 namespace {
@@ -22,7 +23,8 @@ std::vector<uint8_t> batch_of(rwd::Tick first, int ticks, bool names) {
   for (int t = 0; t < ticks; ++t) {
     b.checksums.push_back(0x1234u + static_cast<uint64_t>(t));
     b.substituted_masks.push_back(static_cast<uint64_t>(t % 4));
-    for (int p = 0; p < 2; ++p) b.inputs.push_back({int16_t(t * 100 - 300), int16_t(p * 50), 3});
+    for (int p = 0; p < 2; ++p)
+      b.inputs.push_back(rwd::stick_input(int16_t(t * 100 - 300), int16_t(p * 50), 3));
   }
   std::vector<uint8_t> bytes;
   EXPECT_TRUE(rwd::viewer::encode_live_ticks(b, bytes).ok());

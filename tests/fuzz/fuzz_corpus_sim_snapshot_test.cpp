@@ -16,7 +16,8 @@ std::vector<uint8_t> snapshot_after(int ticks) {
   std::vector<rwd::PlayerInput> inputs(4);
   for (int t = 0; t < ticks; ++t) {
     for (int p = 0; p < 4; ++p)
-      inputs[static_cast<size_t>(p)] = {int16_t((t * 37 + p * 500) % 2001 - 1000), 0, 0};
+      inputs[static_cast<size_t>(p)] =
+          rwd::stick_input(int16_t((t * 37 + p * 500) % 2001 - 1000), 0);
     EXPECT_TRUE(sim->step(inputs).ok());
   }
   std::vector<uint8_t> bytes;

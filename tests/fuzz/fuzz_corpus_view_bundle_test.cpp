@@ -23,7 +23,8 @@ std::vector<uint8_t> bundle_of(const char* game, int ticks, bool desync) {
   std::vector<rwd::PlayerInput> inputs(2);
   for (int t = 0; t < ticks; ++t) {
     for (int p = 0; p < 2; ++p) {
-      inputs[static_cast<size_t>(p)] = {int16_t((t * 37 + p * 500) % 2001 - 1000), 300, 1};
+      inputs[static_cast<size_t>(p)] =
+          rwd::stick_input(int16_t((t * 37 + p * 500) % 2001 - 1000), 300, 1);
     }
     EXPECT_TRUE(sim->step(inputs).ok());
     b.inputs.insert(b.inputs.end(), inputs.begin(), inputs.end());

@@ -23,9 +23,9 @@ COOKIE_REPLY_BYTES = 17
 
 
 def join_envelope(nonce: int, spectator: bool) -> bytes:
-    # Envelope{protocol_version 2, join_request{game "crates", nonce, spectator}}
+    # Envelope{protocol_version 3, join_request{game "crates", nonce, spectator}}
     request = b"\x0a\x06crates" + b"\x20" + bytes([nonce]) + (b"\x28\x01" if spectator else b"")
-    return b"\x08\x02" + b"\x52" + bytes([len(request)]) + request
+    return b"\x08\x03" + b"\x52" + bytes([len(request)]) + request
 
 
 def probe(port: int) -> int:
@@ -52,7 +52,7 @@ def probe(port: int) -> int:
             replies.append(data)
 
     for i in range(3):
-        send(b"\x08\x02\x52\x00")
+        send(b"\x08\x03\x52\x00")
         send(join_envelope(i + 1, spectator=False))
         send(join_envelope(i + 10, spectator=True))
         send(b"\xb3" + bytes(16) + join_envelope(i + 20, spectator=False))

@@ -34,7 +34,7 @@ class FailingGame final : public game::GameWithState<sim::World3D, FailingGameSt
     if (Result<sim::BodyId> id = world.create_body(ball); !id.ok()) return id.status();
     return Status::Ok();
   }
-  Status apply_typed(Tick tick, std::span<const PlayerInput> inputs, sim::World3D&,
+  Status apply_typed(Tick tick, std::span<const StickInput> inputs, sim::World3D&,
                      FailingGameState&) const override {
     if ((where_ == Where::kApply && tick == tick_) ||
         (where_ == Where::kApplyOnTrigger && !inputs.empty() && inputs[0].axis_x == kTrigger)) {

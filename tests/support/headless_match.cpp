@@ -325,7 +325,7 @@ rwd::PlayerInput aggressive_crates_input(uint64_t seed, uint32_t player, Tick ti
   // Ten-second phases: four in five send everyone into the same corner,
   // the fifth is a free-for-all with a new direction every 45 ticks.
   const uint64_t phase = mix(seed ^ mix(static_cast<uint64_t>(tick) / 600));
-  rwd::PlayerInput input;
+  rwd::StickInput input;
   if (phase % 5 < 4) {
     input.axis_x = (phase & 1) ? rwd::kAxisMax : -rwd::kAxisMax;
     input.axis_y = (phase & 2) ? rwd::kAxisMax : -rwd::kAxisMax;
@@ -342,7 +342,7 @@ rwd::PlayerInput aggressive_crates_input(uint64_t seed, uint32_t player, Tick ti
   // chaos in the pile.
   if (tick % 37 == 0) input.buttons |= game::kCratesJump;
   if (tick % 67 == 0) input.buttons |= game::kCratesDash;
-  return input;
+  return rwd::PlayerInput::of(input);
 }
 
 }  // namespace rwd::test

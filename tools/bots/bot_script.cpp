@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/tools/bot_script.h"
 
+#include <algorithm>
+#include <string>
+
 namespace rwd::tools {
 
 bool parse_bot_script(std::string_view text, BotScript* out) {
@@ -17,25 +20,52 @@ bool parse_bot_script(std::string_view text, BotScript* out) {
   return true;
 }
 
+namespace {
+
+const rwd::InputField* field_named(const rwd::InputSpec& spec, std::string_view name) {
+  for (const rwd::InputField& f : spec.fields) {
+    if (f.name == name) return &f;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+Status check_bot_script(BotScript script, const rwd::InputSpec& spec) {
+  if (script == BotScript::kCircle &&
+      (field_named(spec, "axis_x") == nullptr || field_named(spec, "axis_y") == nullptr)) {
+    return Status::Error(ErrorCode::kInvalidArgument,
+                         "the circle script steers the input fields axis_x and axis_y, and the "
+                         "game's input ('" +
+                             std::string(spec.name) + "') has no such fields");
+  }
+  return Status::Ok();
+}
+
 rwd::PlayerInput bot_input(BotScript script, const game::Game& game, uint64_t seed, uint32_t bot,
                            Tick tick) {
+  const rwd::InputSpec& spec = game.input_spec();
   rwd::PlayerInput input;
   switch (script) {
     case BotScript::kIdle:
       break;
     case BotScript::kCircle: {
-      // A square-ish circle from integer steps: no trig needed for a bot.
-      static constexpr int16_t kX[8] = {1000, 707, 0, -707, -1000, -707, 0, 707};
+      // A square-ish circle from integer steps (thousandths of the field's
+      // reach): no trig needed for a bot.
+      static constexpr int64_t kX[8] = {1000, 707, 0, -707, -1000, -707, 0, 707};
       const uint32_t phase = (static_cast<uint32_t>(tick) / 15 + bot) % 8;
-      input.axis_x = kX[phase];
-      input.axis_y = kX[(phase + 2) % 8];
+      const rwd::InputField* x = field_named(spec, "axis_x");
+      const rwd::InputField* y = field_named(spec, "axis_y");
+      if (x == nullptr || y == nullptr) break;  // check_bot_script() refuses this
+      rwd::write_input_field(input, *x, std::clamp(kX[phase], x->min, x->max));
+      rwd::write_input_field(input, *y, std::clamp(kX[(phase + 2) % 8], y->min, y->max));
       break;
     }
     case BotScript::kGame:
       input = game.bot_input(seed, bot, tick);
       break;
     case BotScript::kRandom:
-      input = game::random_bot_input(seed, bot, tick);
+      input = game::random_bot_input(spec, seed, bot, tick);
       break;
   }
   return input;

@@ -128,6 +128,11 @@ int bots_main(int argc, const char* const* argv) {
     std::fprintf(stderr, "rewind-bots: --game: no game named '%s' in this program\n", game.c_str());
     return rwd::cli::kExitUsage;
   }
+  if (rwd::Status fits = rwd::tools::check_bot_script(script, bot_game->input_spec()); !fits.ok()) {
+    std::fprintf(stderr, "rewind-bots: --script %s: %s\n", script_name.c_str(),
+                 fits.message().c_str());
+    return rwd::cli::kExitUsage;
+  }
   if ((corrupt_bot >= 0) != (corrupt_at >= 0)) {
     std::fprintf(stderr, "rewind-bots: --corrupt-bot and --corrupt-at-tick go together\n");
     return rwd::cli::kExitUsage;

@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "replay_cli.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <limits>
+#include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "rewind/cli/flag_parser.h"
@@ -128,20 +131,24 @@ Result<Command> parse_tamper(int argc, const char* const* argv) {
   TamperCommand cmd;
   int64_t tick = -1;
   int64_t player = -1;
+  std::string set;
   std::string axis_x;
   std::string axis_y;
   std::string buttons;
   cli::FlagParser flags(std::string(kProgram) + " tamper",
-                        "rewind-replay tamper FILE --tick T --player P [--axis-x V] [--axis-y V] "
-                        "[--buttons B] --out OUT",
+                        "rewind-replay tamper FILE --tick T --player P --set FIELD=V[,FIELD=V...] "
+                        "--out OUT",
                         "Writes a copy of FILE with one recorded input changed and every frame "
                         "hashed correctly: a consistent forgery that only re-simulation catches "
-                        "(used to test 'verify').\nexit codes: 0 written, 1 failed, 64 usage");
+                        "(used to test 'verify'). FIELD is a field of the game's input (its "
+                        "InputSpec; the built-in games: axis_x, axis_y, buttons).\nexit codes: "
+                        "0 written, 1 failed, 64 usage");
   flags.add_int("tick", &tick, 0, std::numeric_limits<int32_t>::max(), "tick to change (required)");
   flags.add_int("player", &player, 0, 63, "player slot to change (required)");
-  flags.add_string("axis-x", &axis_x, "new axis_x in [-1000, 1000]");
-  flags.add_string("axis-y", &axis_y, "new axis_y in [-1000, 1000]");
-  flags.add_string("buttons", &buttons, "new button bits (decimal or 0x hex)");
+  flags.add_string("set", &set, "fields to change, FIELD=VALUE separated by commas");
+  flags.add_string("axis-x", &axis_x, "the same as --set axis_x=V");
+  flags.add_string("axis-y", &axis_y, "the same as --set axis_y=V");
+  flags.add_string("buttons", &buttons, "the same as --set buttons=B (decimal or 0x hex)");
   flags.add_string("out", &cmd.out, "file to write (required)");
   flags.add_bool("overwrite", &cmd.overwrite, "replace OUT if it exists");
   std::vector<std::string> positionals;
@@ -156,19 +163,33 @@ Result<Command> parse_tamper(int argc, const char* const* argv) {
   cmd.edit.tick = static_cast<Tick>(tick);
   cmd.edit.player = static_cast<uint32_t>(player);
 
-  Result<std::optional<int64_t>> x = optional_int("axis-x", axis_x, -rwd::kAxisMax, rwd::kAxisMax);
-  if (!x.ok()) return x.status();
-  Result<std::optional<int64_t>> y = optional_int("axis-y", axis_y, -rwd::kAxisMax, rwd::kAxisMax);
-  if (!y.ok()) return y.status();
-  Result<std::optional<int64_t>> b =
-      optional_int("buttons", buttons, 0, std::numeric_limits<uint32_t>::max());
-  if (!b.ok()) return b.status();
-  if (!*x && !*y && !*b) {
-    return usage_error("tamper: give at least one of --axis-x, --axis-y, --buttons");
+  // The field's range is the game's, checked when the replay is read.
+  constexpr int64_t kAny = std::numeric_limits<uint32_t>::max();
+  size_t at = 0;
+  while (at < set.size()) {
+    const size_t comma = std::min(set.find(',', at), set.size());
+    const std::string item = set.substr(at, comma - at);
+    at = comma + 1;
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      return usage_error("--set: expected FIELD=VALUE, got '" + item + "'");
+    }
+    Result<std::optional<int64_t>> v =
+        optional_int("set " + item.substr(0, eq), item.substr(eq + 1), -kAny, kAny);
+    if (!v.ok()) return v.status();
+    if (!*v) return usage_error("--set: no value for '" + item.substr(0, eq) + "'");
+    cmd.edit.fields.push_back({item.substr(0, eq), **v});
   }
-  if (*x) cmd.edit.axis_x = static_cast<int16_t>(**x);
-  if (*y) cmd.edit.axis_y = static_cast<int16_t>(**y);
-  if (*b) cmd.edit.buttons = static_cast<uint32_t>(**b);
+  for (const auto& [flag, text, field] :
+       {std::tuple{"axis-x", &axis_x, "axis_x"}, std::tuple{"axis-y", &axis_y, "axis_y"},
+        std::tuple{"buttons", &buttons, "buttons"}}) {
+    Result<std::optional<int64_t>> v = optional_int(flag, *text, -kAny, kAny);
+    if (!v.ok()) return v.status();
+    if (*v) cmd.edit.fields.push_back({field, **v});
+  }
+  if (cmd.edit.fields.empty()) {
+    return usage_error("tamper: give --set FIELD=VALUE (or --axis-x, --axis-y, --buttons)");
+  }
   return Command(cmd);
 }
 

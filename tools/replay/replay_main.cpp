@@ -4,11 +4,14 @@
 #include <csignal>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <variant>
 
 #include "replay_cli.h"
 #include "replay_print.h"
 #include "rewind/cli/flag_parser.h"
+#include "rewind/game/simulation.h"
+#include "rewind/replay/replay_reader.h"
 #include "rewind/replay/replay_rewrite.h"
 #include "rewind/replay/replay_summary.h"
 #include "rewind/replay/replay_verifier.h"
@@ -49,17 +52,31 @@ int run(const replay_tool::InspectCommand& cmd) {
 }
 
 int run(const replay_tool::TamperCommand& cmd) {
-  Result<rwd::PlayerInput> original =
-      replay::rewrite_replay_input(cmd.file, cmd.out, cmd.edit, cmd.overwrite);
-  if (!original.ok()) {
-    std::cerr << "rewind-replay tamper: " << original.status().message() << "\n";
+  // The fields are the recorded game's: its input spec comes from the game
+  // this program has registered under the header's name.
+  Result<replay::ReplayReader> reader = replay::ReplayReader::open(cmd.file);
+  if (!reader.ok()) {
+    std::cerr << "rewind-replay tamper: " << reader.status().message() << "\n";
+    return 1;
+  }
+  game::MatchSetup setup;
+  setup.player_count = reader->header().player_count();
+  setup.seed = reader->header().seed();
+  Result<std::unique_ptr<game::Simulation>> sim =
+      game::Simulation::create(reader->header().game(), setup);
+  if (!sim.ok()) {
+    std::cerr << "rewind-replay tamper: " << sim.status().message() << "\n";
+    return 1;
+  }
+  Result<replay::InputRewrite> rewrite = replay::rewrite_replay_input(
+      cmd.file, cmd.out, cmd.edit, (*sim)->game().input_spec(), cmd.overwrite);
+  if (!rewrite.ok()) {
+    std::cerr << "rewind-replay tamper: " << rewrite.status().message() << "\n";
     return 1;
   }
   std::cout << "wrote " << cmd.out << ": tick " << cmd.edit.tick << " player " << cmd.edit.player
-            << " input (" << original->axis_x << ", " << original->axis_y << ", buttons "
-            << original->buttons << ") -> (" << cmd.edit.axis_x.value_or(original->axis_x) << ", "
-            << cmd.edit.axis_y.value_or(original->axis_y) << ", buttons "
-            << cmd.edit.buttons.value_or(original->buttons) << "), frames re-hashed\n";
+            << " input (" << rewrite->before_text << ") -> (" << rewrite->after_text
+            << "), frames re-hashed\n";
   return 0;
 }
 

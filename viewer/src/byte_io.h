@@ -81,18 +81,33 @@ class Reader {
   std::string error_;
 };
 
-/// One input as both formats store it: i16 axis_x, i16 axis_y, u32 buttons.
+/// How a format stores inputs.
+enum class InputEncoding : uint8_t {
+  kBytes,  ///< u8 length (at most kInputCapacity), then the input's bytes
+           ///< without its trailing zeros
+  kStick,  ///< older versions: i16 axis_x, i16 axis_y, u32 buttons
+};
+
 inline void put_input(Writer& w, const rwd::PlayerInput& in) {
-  w.put(static_cast<uint16_t>(in.axis_x), 2);
-  w.put(static_cast<uint16_t>(in.axis_y), 2);
-  w.put(in.buttons, 4);
+  size_t used = in.bytes.size();
+  while (used > 0 && in.bytes[used - 1] == 0) --used;
+  w.put(used, 1);
+  for (size_t i = 0; i < used; ++i) w.put(in.bytes[i], 1);
 }
-inline rwd::PlayerInput get_input(Reader& r) {
+inline rwd::PlayerInput get_input(Reader& r, InputEncoding layout) {
   rwd::PlayerInput in;
-  in.axis_x = static_cast<int16_t>(static_cast<uint16_t>(r.get(2, "axis x")));
-  in.axis_y = static_cast<int16_t>(static_cast<uint16_t>(r.get(2, "axis y")));
-  in.buttons = static_cast<uint32_t>(r.get(4, "buttons"));
-  if (r.ok() && !rwd::is_valid(in)) r.fail("input", "has an axis out of range");
+  if (layout == InputEncoding::kStick) {
+    // The stick input's bytes are these eight, in this order.
+    for (size_t i = 0; i < 8 && r.ok(); ++i) in.bytes[i] = static_cast<uint8_t>(r.get(1, "input"));
+    return in;
+  }
+  const uint64_t used = r.get(1, "input length");
+  if (r.ok() && used > rwd::kInputCapacity) r.fail("input length", "is beyond 32 bytes");
+  for (uint64_t i = 0; i < used && r.ok(); ++i) {
+    in.bytes[i] = static_cast<uint8_t>(r.get(1, "input"));
+  }
+  // One form per input: the writer leaves trailing zeros out.
+  if (r.ok() && used > 0 && in.bytes[used - 1] == 0) r.fail("input", "ends in a zero byte");
   return in;
 }
 
@@ -108,13 +123,15 @@ inline void put_ticks(Writer& w, uint32_t players, const std::vector<uint64_t>& 
   }
 }
 /// Reads a u32 tick count (at most `bound`) and that many records.
-inline void get_ticks(Reader& r, uint64_t players, uint64_t bound, std::vector<uint64_t>& checksums,
-                      std::vector<uint64_t>& masks, std::vector<rwd::PlayerInput>& inputs) {
+inline void get_ticks(Reader& r, InputEncoding layout, uint64_t players, uint64_t bound,
+                      std::vector<uint64_t>& checksums, std::vector<uint64_t>& masks,
+                      std::vector<rwd::PlayerInput>& inputs) {
   const uint64_t ticks = r.get(4, "tick count");
   if (r.ok() && ticks > bound) r.fail("tick count", "is beyond the bound");
-  // Each tick takes 16 + 8 * players bytes: refuse a count the bytes
-  // cannot hold before reserving for it.
-  if (r.ok() && r.remaining() / (16 + 8 * players) < ticks) r.fail("ticks", "run past the end");
+  // Each tick takes at least 16 bytes and one per player: refuse a count
+  // the bytes cannot hold before reserving for it.
+  const uint64_t least = 16 + (layout == InputEncoding::kStick ? 8 : 1) * players;
+  if (r.ok() && r.remaining() / least < ticks) r.fail("ticks", "run past the end");
   if (!r.ok()) return;
   checksums.reserve(ticks);
   masks.reserve(ticks);
@@ -122,7 +139,7 @@ inline void get_ticks(Reader& r, uint64_t players, uint64_t bound, std::vector<u
   for (uint64_t t = 0; r.ok() && t < ticks; ++t) {
     checksums.push_back(r.get(8, "checksum"));
     masks.push_back(r.get(8, "substituted mask"));
-    for (uint64_t p = 0; p < players; ++p) inputs.push_back(get_input(r));
+    for (uint64_t p = 0; p < players; ++p) inputs.push_back(get_input(r, layout));
   }
 }
 

@@ -33,9 +33,6 @@ Status check(const LiveTicks& b) {
       b.inputs.size() != b.checksums.size() * b.player_count) {
     return invalid("inputs, checksums and masks must cover the same ticks");
   }
-  for (const rwd::PlayerInput& input : b.inputs) {
-    if (!rwd::is_valid(input)) return invalid("an input axis is out of range");
-  }
   return Status::Ok();
 }
 
@@ -93,7 +90,8 @@ Result<LiveTicks> decode_live_ticks(std::span<const uint8_t> bytes) {
   b.ended = ended == 1;
   b.first_tick = static_cast<Tick>(static_cast<uint32_t>(r.get(4, "first tick")));
   if (r.ok() && b.first_tick < 0) r.fail("first tick", "is negative");
-  detail::get_ticks(r, players, kLiveMaxBatchTicks, b.checksums, b.substituted_masks, b.inputs);
+  detail::get_ticks(r, detail::InputEncoding::kBytes, players, kLiveMaxBatchTicks, b.checksums,
+                    b.substituted_masks, b.inputs);
   if (r.ok() && r.remaining() != 0) {
     r.fail("end", ("has " + std::to_string(r.remaining()) + " bytes left over").c_str());
   }

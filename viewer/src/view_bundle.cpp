@@ -49,9 +49,6 @@ Status check(const ViewBundle& b) {
       b.inputs.size() != b.checksums.size() * b.setup.player_count) {
     return invalid("inputs, checksums and masks must cover the same ticks");
   }
-  for (const rwd::PlayerInput& input : b.inputs) {
-    if (!rwd::is_valid(input)) return invalid("an input axis is out of range");
-  }
   if (b.desync) {
     if (b.desync->tick < 0) return invalid("desync tick is negative");
     if (b.desync->headline.size() > kViewMaxHeadline) return invalid("desync headline too long");
@@ -154,7 +151,8 @@ Result<ViewBundle> decode_view_bundle(std::span<const uint8_t> bytes) {
       b.keyframes.push_back(std::move(keyframe));
     }
   }
-  detail::get_ticks(r, players, kViewMaxTicks, b.checksums, b.substituted_masks, b.inputs);
+  detail::get_ticks(r, version >= 3 ? detail::InputEncoding::kBytes : detail::InputEncoding::kStick,
+                    players, kViewMaxTicks, b.checksums, b.substituted_masks, b.inputs);
   const uint64_t has_desync = r.get(1, "desync flag");
   if (r.ok() && has_desync > 1) r.fail("desync flag", "is neither 0 nor 1");
   if (r.ok() && !b.keyframes.empty() && b.keyframes.back().position > b.end_position()) {

@@ -3,6 +3,9 @@
 #include "rewind/proto/input_wire.h"
 
 #include <filesystem>
+#include <memory>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "rewind/replay/replay_format.h"
@@ -12,10 +15,46 @@
 namespace rwd::replay {
 namespace {
 
+// The edit's fields resolved against the game's input spec.
+struct ResolvedEdit {
+  std::vector<std::pair<InputField, int64_t>> fields;
+};
+
+Result<ResolvedEdit> resolve(const InputSpec& spec, const InputEdit& edit) {
+  if (edit.fields.empty()) {
+    return Status::Error(ErrorCode::kInvalidArgument, "the edit names no input field");
+  }
+  ResolvedEdit out;
+  for (const InputFieldEdit& f : edit.fields) {
+    const InputField* found = nullptr;
+    for (const InputField& candidate : spec.fields) {
+      if (candidate.name == f.name) found = &candidate;
+    }
+    if (found == nullptr) {
+      std::string names;
+      for (const InputField& candidate : spec.fields) {
+        names += (names.empty() ? "" : ", ") + std::string(candidate.name);
+      }
+      return Status::Error(
+          ErrorCode::kInvalidArgument,
+          "the input ('" + std::string(spec.name) + "') has no field '" + f.name + "' (" +
+              (names.empty() ? "it has no named fields" : "fields: " + names) + ")");
+    }
+    if (f.value < found->min || f.value > found->max) {
+      return Status::Error(ErrorCode::kInvalidArgument,
+                           "input field '" + f.name + "' = " + std::to_string(f.value) +
+                               " is outside [" + std::to_string(found->min) + ", " +
+                               std::to_string(found->max) + "]");
+    }
+    out.fields.emplace_back(*found, f.value);
+  }
+  return out;
+}
+
 // Streams every record through a ReplayWriter, so the forgery obeys exactly
 // the rules a real recording does.
 Result<rwd::PlayerInput> copy_with_edit(ReplayReader& reader, ReplayWriter& writer,
-                                        const InputEdit& edit) {
+                                        const InputEdit& edit, const ResolvedEdit& resolved) {
   std::optional<rwd::PlayerInput> original;
   std::vector<rwd::PlayerInput> inputs;
   while (true) {
@@ -34,9 +73,7 @@ Result<rwd::PlayerInput> copy_with_edit(ReplayReader& reader, ReplayWriter& writ
       if (t.tick() == edit.tick) {
         rwd::PlayerInput& target = inputs[edit.player];
         original = target;
-        if (edit.axis_x) target.axis_x = *edit.axis_x;
-        if (edit.axis_y) target.axis_y = *edit.axis_y;
-        if (edit.buttons) target.buttons = *edit.buttons;
+        for (const auto& [field, value] : resolved.fields) write_input_field(target, field, value);
       }
       s = writer.append_tick(t.tick(), inputs, t.substituted_mask(), t.checksum());
     } else if (r.has_keyframe()) {
@@ -61,9 +98,9 @@ Result<rwd::PlayerInput> copy_with_edit(ReplayReader& reader, ReplayWriter& writ
 
 }  // namespace
 
-Result<rwd::PlayerInput> rewrite_replay_input(const std::string& in_path,
-                                              const std::string& out_path, const InputEdit& edit,
-                                              bool overwrite) {
+Result<InputRewrite> rewrite_replay_input(const std::string& in_path, const std::string& out_path,
+                                          const InputEdit& edit, const InputSpec& spec,
+                                          bool overwrite) {
   Result<ReplayReader> reader = ReplayReader::open(in_path);
   if (!reader.ok()) return reader.status();
   if (edit.player >= reader->header().player_count()) {
@@ -71,6 +108,8 @@ Result<rwd::PlayerInput> rewrite_replay_input(const std::string& in_path,
                          "player " + std::to_string(edit.player) + " is not in the replay (" +
                              std::to_string(reader->header().player_count()) + " players)");
   }
+  Result<ResolvedEdit> resolved = resolve(spec, edit);
+  if (!resolved.ok()) return resolved.status();
   std::error_code ec;
   if (std::filesystem::equivalent(in_path, out_path, ec)) {
     return Status::Error(ErrorCode::kInvalidArgument, "output must differ from the input file");
@@ -80,13 +119,20 @@ Result<rwd::PlayerInput> rewrite_replay_input(const std::string& in_path,
   v1::ReplayHeader header = reader->header();
   Result<ReplayWriter> writer = ReplayWriter::open(out_path, header, options);
   if (!writer.ok()) return writer.status();
-  Result<rwd::PlayerInput> original = copy_with_edit(*reader, *writer, edit);
+  Result<rwd::PlayerInput> original = copy_with_edit(*reader, *writer, edit, *resolved);
   if (!original.ok()) {
     // Close before removing so the destructor's flush cannot recreate it.
     { ReplayWriter closing = std::move(*writer); }
     std::filesystem::remove(out_path, ec);
+    return original.status();
   }
-  return original;
+  InputRewrite rewrite;
+  rewrite.before = rewrite.after = *original;
+  for (const auto& [field, value] : resolved->fields)
+    write_input_field(rewrite.after, field, value);
+  rewrite.before_text = describe_input(spec, rewrite.before);
+  rewrite.after_text = describe_input(spec, rewrite.after);
+  return rewrite;
 }
 
 }  // namespace rwd::replay

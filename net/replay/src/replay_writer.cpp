@@ -10,6 +10,7 @@
 #include <cstring>
 #include <utility>
 
+#include "rewind/core/stick_input.h"
 #include "rewind/replay/replay_format.h"
 
 namespace rwd::replay {
@@ -59,6 +60,7 @@ ReplayWriter::ReplayWriter(std::string path, int fd, const v1::ReplayHeader& hea
     : path_(std::move(path)),
       fd_(fd),
       player_count_(header.player_count()),
+      stick_inputs_(header.format_version() < 3),
       options_(std::move(options)),
       last_flush_(now_from(options_)) {}
 
@@ -66,6 +68,7 @@ ReplayWriter::ReplayWriter(ReplayWriter&& other) noexcept
     : path_(std::move(other.path_)),
       fd_(std::exchange(other.fd_, -1)),
       player_count_(other.player_count_),
+      stick_inputs_(other.stick_inputs_),
       options_(std::move(other.options_)),
       buffer_(std::move(other.buffer_)),
       last_flush_(other.last_flush_),
@@ -86,6 +89,7 @@ ReplayWriter& ReplayWriter::operator=(ReplayWriter&& other) noexcept {
     path_ = std::move(other.path_);
     fd_ = std::exchange(other.fd_, -1);
     player_count_ = other.player_count_;
+    stick_inputs_ = other.stick_inputs_;
     options_ = std::move(other.options_);
     buffer_ = std::move(other.buffer_);
     other.buffer_.clear();
@@ -144,10 +148,31 @@ Status ReplayWriter::append_tick(Tick tick, std::span<const rwd::PlayerInput> in
                              " marks substituted inputs for players beyond " +
                              std::to_string(player_count_));
   }
+  if (stick_inputs_) {
+    for (const rwd::PlayerInput& input : inputs) {
+      if (!(rwd::PlayerInput::of(input.as<rwd::StickInput>()) == input)) {
+        return Status::Error(ErrorCode::kInvalidArgument,
+                             "replay tick " + std::to_string(tick) +
+                                 ": an input that is not a stick input, in a format " +
+                                 std::to_string(kFormatVersion - 1) + " or older file");
+      }
+    }
+  }
   v1::ReplayRecord record;
   v1::ReplayTick* out = record.mutable_tick();
   out->set_tick(tick);
-  for (const rwd::PlayerInput& input : inputs) *out->add_inputs() = proto::to_wire(input);
+  for (const rwd::PlayerInput& input : inputs) {
+    v1::Input* wire = out->add_inputs();
+    if (!stick_inputs_) {
+      *wire = proto::to_wire(input);
+      continue;
+    }
+    // Formats 1 and 2 stored the stick fields (copies of old files).
+    const auto stick = input.as<rwd::StickInput>();
+    wire->set_axis_x(stick.axis_x);
+    wire->set_axis_y(stick.axis_y);
+    wire->set_buttons(stick.buttons);
+  }
   out->set_substituted_mask(substituted_mask);
   out->set_checksum(checksum);
   if (Status s = append_frame(record, buffer_); !s.ok()) return s;

@@ -5,10 +5,11 @@
 
 namespace rwd::net {
 
-InputQueue::InputQueue(int32_t capacity, Tick base)
+InputQueue::InputQueue(int32_t capacity, Tick base, InputPredictor predict)
     : capacity_(std::max<int32_t>(capacity, 1)),
       base_(std::max<Tick>(base, 0)),
       contiguous_(base_ - 1),
+      predict_(predict),
       slots_(static_cast<size_t>(capacity_)) {}
 
 InputQueue::AddOutcome InputQueue::add(Tick tick, const rwd::PlayerInput& input) {
@@ -38,11 +39,15 @@ bool InputQueue::is_confirmed(Tick tick) const {
 }
 
 rwd::PlayerInput InputQueue::input_for(Tick tick) const {
-  // Walk back to the newest confirmed input before `tick`. The walk is
-  // bounded by the capacity; games keep it to the rollback window.
-  Tick t = std::min(tick, base_ + capacity_ - 1);
-  if (t < base_) return carried_;
-  if (t == tick && slot(t).tick == t) return slot(t).input;
+  if (is_confirmed(tick)) return slot(tick).input;
+  const rwd::PlayerInput newest = newest_at_or_before(tick);
+  return predict_ != nullptr ? predict_(newest) : newest;
+}
+
+rwd::PlayerInput InputQueue::newest_at_or_before(Tick tick) const {
+  // Walk back to the newest confirmed input. The walk is bounded by the
+  // capacity; games keep it to the rollback window.
+  const Tick t = std::min(tick, base_ + capacity_ - 1);
   for (Tick u = std::min(t, newest_); u >= base_; --u) {
     if (slot(u).tick == u) return slot(u).input;
   }
@@ -74,8 +79,8 @@ void InputQueue::rebase(Tick base) {
     return;
   }
   // Moving back: older slots are gone, so restart from what is still held.
-  InputQueue fresh(capacity_, base);
-  fresh.carried_ = input_for(base - 1);
+  InputQueue fresh(capacity_, base, predict_);
+  fresh.carried_ = newest_at_or_before(base - 1);
   for (Tick u = base_; u <= newest_ && u < base_ + capacity_; ++u) {
     if (slot(u).tick == u) (void)fresh.add(u, slot(u).input);
   }

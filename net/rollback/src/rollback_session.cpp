@@ -15,7 +15,7 @@ RollbackSession::RollbackSession(std::unique_ptr<game::Simulation> sim,
       scratch_inputs_(player_count_) {
   queues_.reserve(player_count_);
   for (uint32_t p = 0; p < player_count_; ++p) {
-    queues_.emplace_back(config.input_ticks, sim_->tick());
+    queues_.emplace_back(config.input_ticks, sim_->tick(), sim_->game().input_spec().predict);
   }
   final_tick_ = sim_->tick() - 1;
 }
@@ -41,6 +41,8 @@ void RollbackSession::note_changed(Tick tick) {
 
 InputResult RollbackSession::add_input(uint32_t player, Tick tick, const rwd::PlayerInput& input) {
   if (player >= player_count_) return InputResult::kBadPlayer;
+  if (!check_input(sim_->game().input_spec(), input).ok()) return InputResult::kBadInput;
+  if (!check_input(sim_->game().input_spec(), input).ok()) return InputResult::kBadInput;
   if (tick <= final_tick_) return InputResult::kFinal;
   const InputQueue::AddOutcome outcome = queues_[player].add(tick, input);
   if (outcome == InputQueue::AddOutcome::kNew) note_changed(tick);
@@ -50,6 +52,7 @@ InputResult RollbackSession::add_input(uint32_t player, Tick tick, const rwd::Pl
 InputResult RollbackSession::add_final_input(uint32_t player, Tick tick,
                                              const rwd::PlayerInput& input) {
   if (player >= player_count_) return InputResult::kBadPlayer;
+  if (!check_input(sim_->game().input_spec(), input).ok()) return InputResult::kBadInput;
   if (tick <= final_tick_) return InputResult::kFinal;
   const InputQueue::AddOutcome outcome = queues_[player].set_authoritative(tick, input);
   if (outcome == InputQueue::AddOutcome::kNew) note_changed(tick);

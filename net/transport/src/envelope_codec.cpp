@@ -26,16 +26,26 @@ Status check_string(std::string_view field, const std::string& value, size_t max
   return Status::Ok();
 }
 
-bool axes_in_range(const v1::Input& input) {
-  return input.axis_x() >= -kMaxAxis && input.axis_x() <= kMaxAxis && input.axis_y() >= -kMaxAxis &&
-         input.axis_y() <= kMaxAxis;
+// Since protocol 3 an input is its bytes; the stick fields are for old
+// replay files only. What the bytes may hold is the game's to check.
+bool input_well_formed(const v1::Input& input) {
+  return input.data().size() <= rwd::kInputCapacity &&
+         (input.data().empty() || input.data().back() != '\0') && input.axis_x() == 0 &&
+         input.axis_y() == 0 && input.buttons() == 0;
 }
 
 // Every datagram in and out is validated, inputs by the dozen: field names
 // are only put together once something is wrong.
 Status input_error(const std::string& field, int index, const v1::Input& input) {
-  return corrupt(field + "[" + std::to_string(index) + "] axis (" + std::to_string(input.axis_x()) +
-                 ", " + std::to_string(input.axis_y()) + ") outside [-1000, 1000]");
+  const std::string name = field + "[" + std::to_string(index) + "]";
+  if (input.data().size() > rwd::kInputCapacity) {
+    return corrupt(name + " has " + std::to_string(input.data().size()) + " bytes, limit " +
+                   std::to_string(rwd::kInputCapacity));
+  }
+  if (!input.data().empty() && input.data().back() == '\0') {
+    return corrupt(name + " ends in a zero byte (trailing zeros are left out)");
+  }
+  return corrupt(name + " sets the stick fields of replay formats 1 and 2");
 }
 
 // A run of inputs starting at first_tick: the last tick must still be an
@@ -57,7 +67,7 @@ Status check_input_run(std::string_view field, uint32_t player, int32_t first_ti
                    " out of range");
   }
   for (int i = 0; i < inputs.size(); ++i) {
-    if (!axes_in_range(inputs.Get(i))) {
+    if (!input_well_formed(inputs.Get(i))) {
       return input_error(std::string(field) + ".inputs", i, inputs.Get(i));
     }
   }
@@ -189,7 +199,7 @@ Status check_payload(const Envelope& e) {
                          std::to_string(kMaxPlayerSlots));
         }
         for (int i = 0; i < ft.inputs_size(); ++i) {
-          if (!axes_in_range(ft.inputs(i)))
+          if (!input_well_formed(ft.inputs(i)))
             return input_error(field() + ".inputs", i, ft.inputs(i));
         }
       }

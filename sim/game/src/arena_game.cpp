@@ -205,13 +205,13 @@ Status ArenaGame::build_typed(const MatchSetup& setup, World2D& world, ArenaStat
   return Status::Ok();
 }
 
-Status ArenaGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs, World2D& world,
+Status ArenaGame::apply_typed(Tick /*tick*/, std::span<const StickInput> inputs, World2D& world,
                               ArenaState& state) const {
   const uint32_t players = std::min<uint32_t>(state.player_count, uint32_t(inputs.size()));
   for (uint32_t p = 0; p < players; ++p) {
     const BodyId2D disc = state.discs[p];
     if (!world.is_valid(disc)) continue;
-    const PlayerInput& in = inputs[p];
+    const StickInput& in = inputs[p];
     const Vec2 stick{Fx::ratio(std::clamp<int>(in.axis_x, -kAxisMax, kAxisMax), kAxisMax),
                      Fx::ratio(std::clamp<int>(in.axis_y, -kAxisMax, kAxisMax), kAxisMax)};
     const Vec2 v = world.linear_velocity(disc);

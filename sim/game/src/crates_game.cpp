@@ -143,14 +143,14 @@ Status CratesGame::build_typed(const MatchSetup& setup, sim::World3D& world,
   return Status::Ok();
 }
 
-Status CratesGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs,
+Status CratesGame::apply_typed(Tick /*tick*/, std::span<const StickInput> inputs,
                                sim::World3D& world, CratesState& state) const {
   const float dt = world.config().tick_seconds;
   const uint32_t players = std::min<uint32_t>(state.player_count, uint32_t(inputs.size()));
   for (uint32_t p = 0; p < players; ++p) {
     const sim::BodyId pusher = state.pushers[p];
     if (!world.is_valid(pusher)) continue;
-    const PlayerInput& in = inputs[p];
+    const StickInput& in = inputs[p];
     const float ax = static_cast<float>(std::clamp<int>(in.axis_x, -kAxisMax, kAxisMax)) / kAxisMax;
     const float az = static_cast<float>(std::clamp<int>(in.axis_y, -kAxisMax, kAxisMax)) / kAxisMax;
     const float mass = world.mass(pusher);

@@ -73,7 +73,7 @@ int32_t rider_owner(uint64_t tag, uint32_t players) {
 
 }  // namespace
 
-Status JoustGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs,
+Status JoustGame::apply_typed(Tick /*tick*/, std::span<const StickInput> inputs,
                               sim::World3D& world, JoustState& state) const {
   const std::array<sim::WheelDef3D, 4> wheel_defs = wheels();
   std::array<sim::WheelTelemetry3D, 4> telemetry{};
@@ -81,7 +81,7 @@ Status JoustGame::apply_typed(Tick /*tick*/, std::span<const PlayerInput> inputs
   for (uint32_t p = 0; p < players; ++p) {
     const sim::BodyId chassis = state.chassis[p];
     if (!world.is_valid(chassis) || !world.is_enabled(chassis)) continue;
-    const PlayerInput& in = inputs[p];
+    const StickInput& in = inputs[p];
     const float ax = static_cast<float>(std::clamp<int>(in.axis_x, -kAxisMax, kAxisMax)) / kAxisMax;
     const float ay = static_cast<float>(std::clamp<int>(in.axis_y, -kAxisMax, kAxisMax)) / kAxisMax;
 

@@ -11,18 +11,21 @@ int16_t axis_from(uint64_t bits) {
 
 }  // namespace
 
-PlayerInput random_bot_input(uint64_t seed, uint32_t player, Tick tick) {
+PlayerInput random_bot_input(const InputSpec& spec, uint64_t seed, uint32_t player, Tick tick) {
   // A new direction every 40 ticks; hashing the segment number keeps the
   // function pure in `tick`.
   const uint64_t block = static_cast<uint64_t>(tick) / 20;
+  if (&spec != &stick_input_spec()) {
+    return random_input(spec, splitmix64_once(seed ^ splitmix64_once(player) ^ block));
+  }
   const uint64_t h = splitmix64_once(seed ^ splitmix64_once(player) ^ splitmix64_once(block / 2));
-  PlayerInput input;
+  StickInput input;
   input.axis_x = axis_from(h);
   input.axis_y = axis_from(h >> 16);
   const uint64_t b = splitmix64_once(h ^ static_cast<uint64_t>(tick));
   if (b % 97 == 0) input.buttons |= 1u;   // jump
   if (b % 131 == 0) input.buttons |= 2u;  // dash
-  return input;
+  return PlayerInput::of(input);
 }
 
 }  // namespace rwd::game

@@ -63,6 +63,10 @@ Result<std::unique_ptr<Simulation>> Simulation::create(std::unique_ptr<Game> gam
                                                        std::unique_ptr<Lane> lane) {
   if (game == nullptr) return Status::Error(ErrorCode::kInvalidArgument, "no game given");
   if (Status status = check_setup(setup); !status.ok()) return status;
+  if (Status status = check_input_spec(game->input_spec()); !status.ok()) {
+    return Status::Error(status.code(), "game '" + std::string(game->name()) +
+                                            "' declares a bad input: " + status.message());
+  }
   if (lane == nullptr) {
     lane = game->make_lane();
   } else if (!game->accepts_lane(*lane)) {
@@ -111,6 +115,16 @@ Simulation::Simulation(std::unique_ptr<Game> game, const MatchSetup& setup,
 }
 
 Status Simulation::step(std::span<const PlayerInput> inputs) {
+  // The rules may rely on their spec: an input outside it never reaches
+  // them, and the state stays as it was.
+  const InputSpec& spec = game_->input_spec();
+  for (size_t p = 0; p < inputs.size(); ++p) {
+    if (Status bad = check_input(spec, inputs[p]); !bad.ok()) {
+      return Status::Error(bad.code(), "game '" + std::string(game_->name()) + "', tick " +
+                                           std::to_string(tick_) + ": player " + std::to_string(p) +
+                                           ": " + bad.message());
+    }
+  }
   Status status = game_->apply_inputs(tick_, inputs, *lane_, game_state_);
   if (status.ok()) {
     lane_->step();

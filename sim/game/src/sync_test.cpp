@@ -15,18 +15,26 @@ namespace {
 
 constexpr size_t kMaxFieldsReported = 16;
 
-/// The default inputs: each player holds a random input (axes and buttons)
-/// for 1 to 6 ticks, from one seeded SplitMix64 stream.
+/// The default inputs: each player holds a random input for 1 to 6 ticks,
+/// from one seeded SplitMix64 stream: axes and 4 buttons for the stick
+/// input, every field within its range for a game's own.
 class ScriptedInputs {
  public:
-  ScriptedInputs(uint32_t players, uint64_t seed) : rng_{seed}, held_(players), hold_(players, 0) {}
+  ScriptedInputs(const InputSpec& spec, uint32_t players, uint64_t seed)
+      : spec_(spec), rng_{seed}, held_(players), hold_(players, 0) {}
 
   void fill(std::span<PlayerInput> out) {
     for (size_t p = 0; p < out.size(); ++p) {
       if (hold_[p] == 0) {
-        held_[p].axis_x = static_cast<int16_t>(static_cast<int32_t>(rng_.below(2001)) - 1000);
-        held_[p].axis_y = static_cast<int16_t>(static_cast<int32_t>(rng_.below(2001)) - 1000);
-        held_[p].buttons = static_cast<uint32_t>(rng_.next() & 0xFu);
+        if (&spec_ == &stick_input_spec()) {
+          StickInput stick;
+          stick.axis_x = static_cast<int16_t>(static_cast<int32_t>(rng_.below(2001)) - 1000);
+          stick.axis_y = static_cast<int16_t>(static_cast<int32_t>(rng_.below(2001)) - 1000);
+          stick.buttons = static_cast<uint32_t>(rng_.next() & 0xFu);
+          held_[p] = PlayerInput::of(stick);
+        } else {
+          held_[p] = random_input(spec_, rng_.next());
+        }
         hold_[p] = static_cast<uint32_t>(1 + rng_.below(6));
       }
       --hold_[p];
@@ -35,6 +43,7 @@ class ScriptedInputs {
   }
 
  private:
+  const InputSpec& spec_;
   SplitMix64 rng_;
   std::vector<PlayerInput> held_;
   std::vector<uint32_t> hold_;
@@ -130,7 +139,7 @@ Result<SyncTestReport> run_sync_test(std::string_view game_name, const MatchSetu
   std::vector<std::vector<PlayerInput>> ring_inputs(ring, std::vector<PlayerInput>(players));
   std::vector<uint64_t> checksums(ring + 1, 0);
   SimSnapshot after;  // the first run's state after the present tick
-  ScriptedInputs scripted(players, options.input_seed);
+  ScriptedInputs scripted(scratch.game().input_spec(), players, options.input_seed);
   std::vector<uint8_t> bytes;
   std::unique_ptr<Simulation> reloaded;  // a round trip waiting to step the next tick
 

@@ -12,6 +12,7 @@
 
 #include "fake_server.h"
 #include "rewind/client/client_protocol.h"
+#include "rewind/core/stick_input.h"
 #include "rewind/net/address_cookie.h"
 
 namespace rwd::test {
@@ -27,8 +28,8 @@ inline constexpr uint64_t kNonce = 0x5EED'0000'0000'0042ull;
 inline constexpr auto kTick = std::chrono::microseconds(16'667);
 
 inline rwd::PlayerInput own_input(Tick tick) {
-  return {static_cast<int16_t>((tick * 37) % 2001 - 1000), static_cast<int16_t>(tick % 7),
-          static_cast<uint32_t>(tick % 3)};
+  return rwd::stick_input(static_cast<int16_t>((tick * 37) % 2001 - 1000),
+                          static_cast<int16_t>(tick % 7), static_cast<uint32_t>(tick % 3));
 }
 
 inline ClientProtocol make_protocol(const ClientConfig& config) {

@@ -161,7 +161,7 @@ TEST(ClientProtocol, RelayedInputsRollThePredictionBack) {
   for (int i = 0; i < 10; ++i) h.advance(kTick);
   const Tick simulated = h.client_tick();
   // Player 1 really pushed right from tick 0; we predicted it idle.
-  const rwd::PlayerInput push{700, -300, 1};
+  const rwd::PlayerInput push = rwd::stick_input(700, -300, 1);
   while (h.server.next_tick() < simulated) h.server.step({own_input(h.server.next_tick()), push});
   FakeServer::Relayed run{1, 0,
                           std::vector<rwd::PlayerInput>(static_cast<size_t>(simulated), push)};

@@ -36,8 +36,8 @@ const sim2d::World2D& world(const Simulation& sim) {
 }
 
 // Scripted sticks: each player circles at its own rate, dashing now and then.
-std::vector<PlayerInput> inputs_at(Tick t, uint32_t players) {
-  std::vector<PlayerInput> inputs(players);
+std::vector<StickInput> inputs_at(Tick t, uint32_t players) {
+  std::vector<StickInput> inputs(players);
   for (uint32_t p = 0; p < players; ++p) {
     const int32_t phase = (static_cast<int32_t>(t) * static_cast<int32_t>(p + 3) / 7) % 8;
     static constexpr int16_t kDir[8][2] = {{1000, 0},  {700, 700},   {0, 1000},  {-700, 700},
@@ -52,7 +52,7 @@ std::vector<PlayerInput> inputs_at(Tick t, uint32_t players) {
 TEST(ArenaGame, DiscsStayInsideTheWallsAtFullSpeed) {
   // Everybody drives into the same corner, dashing whenever allowed.
   auto sim = make_match(8);
-  std::vector<PlayerInput> inputs(8);
+  std::vector<StickInput> inputs(8);
   for (Tick t = 0; t < 900; ++t) {
     for (uint32_t p = 0; p < 8; ++p) {
       inputs[p] = {};
@@ -60,7 +60,7 @@ TEST(ArenaGame, DiscsStayInsideTheWallsAtFullSpeed) {
       inputs[p].axis_y = (p % 2) ? kAxisMax : -kAxisMax;
       inputs[p].buttons = kArenaDash;
     }
-    EXPECT_TRUE(sim->step(inputs).ok());
+    EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());
   }
   const ArenaState s = state_of(*sim);
   for (uint32_t p = 0; p < 8; ++p) {
@@ -82,10 +82,10 @@ TEST(ArenaGame, ADiscShovesACrateIntoAGoalAndScores) {
   sim2d::World2D& w = *world_of<sim2d::World2D>(sim->lane());
   ASSERT_TRUE(w.set_transform(s.crates[8], {8_fx, Fx()}, Fx()).ok());
   ASSERT_TRUE(w.set_transform(s.discs[0], {6_fx, Fx()}, Fx()).ok());
-  std::vector<PlayerInput> inputs(2);
+  std::vector<StickInput> inputs(2);
   inputs[0].axis_x = kAxisMax;
   for (Tick t = 0; t < 240 && state_of(*sim).goals_scored == 0; ++t)
-    EXPECT_TRUE(sim->step(inputs).ok());
+    EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());
   s = state_of(*sim);
   EXPECT_EQ(s.goals_scored, 1u);
   EXPECT_EQ(s.score[0], 1u);
@@ -96,25 +96,25 @@ TEST(ArenaGame, ADiscShovesACrateIntoAGoalAndScores) {
 
 TEST(ArenaGame, RollbackAndReloadAreBitForBit) {
   auto sim = make_match(4);
-  for (Tick t = 0; t < 200; ++t) EXPECT_TRUE(sim->step(inputs_at(t, 4)).ok());
+  for (Tick t = 0; t < 200; ++t) EXPECT_TRUE(sim->step(stick_inputs(inputs_at(t, 4))).ok());
   SimSnapshot saved;
   sim->save(saved);
   std::vector<uint64_t> expected;
   for (Tick t = 200; t < 400; ++t) {
-    EXPECT_TRUE(sim->step(inputs_at(t, 4)).ok());
+    EXPECT_TRUE(sim->step(stick_inputs(inputs_at(t, 4))).ok());
     expected.push_back(sim->checksum());
   }
   sim->restore(saved);
   // A misprediction first, then the real inputs.
-  for (Tick t = 200; t < 260; ++t) EXPECT_TRUE(sim->step(inputs_at(t + 5, 4)).ok());
+  for (Tick t = 200; t < 260; ++t) EXPECT_TRUE(sim->step(stick_inputs(inputs_at(t + 5, 4))).ok());
   sim->restore(saved);
   std::vector<uint8_t> bytes;
   sim->serialize(bytes);
   auto reloaded = make_match(4);
   ASSERT_TRUE(reloaded->deserialize(bytes).ok());
   for (Tick t = 200; t < 400; ++t) {
-    EXPECT_TRUE(sim->step(inputs_at(t, 4)).ok());
-    EXPECT_TRUE(reloaded->step(inputs_at(t, 4)).ok());
+    EXPECT_TRUE(sim->step(stick_inputs(inputs_at(t, 4))).ok());
+    EXPECT_TRUE(reloaded->step(stick_inputs(inputs_at(t, 4))).ok());
     ASSERT_EQ(sim->checksum(), expected[static_cast<size_t>(t - 200)]) << "tick " << t;
     ASSERT_EQ(reloaded->checksum(), expected[static_cast<size_t>(t - 200)]) << "tick " << t;
   }

@@ -45,7 +45,7 @@ TEST(CratesGame, CornersAreClosed) {
   // Everybody drives diagonally into the same corner at full speed, dashing
   // whenever the cooldown allows, without jumping: nobody may get out.
   auto sim = make_match(8);
-  std::vector<PlayerInput> inputs(8);
+  std::vector<StickInput> inputs(8);
   for (Tick t = 0; t < 1800; ++t) {
     for (uint32_t p = 0; p < 8; ++p) {
       inputs[p] = {};
@@ -53,7 +53,7 @@ TEST(CratesGame, CornersAreClosed) {
       inputs[p].axis_y = (p % 2) ? kAxisMax : -kAxisMax;  // two corners
       inputs[p].buttons = kCratesDash;
     }
-    EXPECT_TRUE(sim->step(inputs).ok());
+    EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());
     expect_all_in_play(*sim, t);
     if (HasFatalFailure()) return;
   }
@@ -69,8 +69,9 @@ TEST(CratesGame, EscapedPusherRespawnsAtItsSpawnPoint) {
   // Put it outside the arena, beside the floor: it falls past the kill plane.
   ASSERT_TRUE(
       world_of<sim::World3D>((*sim).lane())->set_transform(pusher, {15.0f, 2.0f, 15.0f}, {}).ok());
-  std::vector<PlayerInput> inputs(4);
-  for (int t = 0; t < 240 && state_of(*sim).falls[2] == 0; ++t) EXPECT_TRUE(sim->step(inputs).ok());
+  std::vector<StickInput> inputs(4);
+  for (int t = 0; t < 240 && state_of(*sim).falls[2] == 0; ++t)
+    EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());
   const CratesState after = state_of(*sim);
   EXPECT_EQ(after.falls[2], 1u);
   EXPECT_TRUE(world_of<sim::World3D>((*sim).lane())->is_enabled(pusher));
@@ -89,8 +90,9 @@ TEST(CratesGame, PusherFlungOutOfTheWorldComesBack) {
   ASSERT_TRUE(world_of<sim::World3D>((*sim).lane())
                   ->set_linear_velocity(pusher, {0.0f, 9999.0f, 0.0f})
                   .ok());
-  std::vector<PlayerInput> inputs(2);
-  for (int t = 0; t < 120 && state_of(*sim).falls[0] == 0; ++t) EXPECT_TRUE(sim->step(inputs).ok());
+  std::vector<StickInput> inputs(2);
+  for (int t = 0; t < 120 && state_of(*sim).falls[0] == 0; ++t)
+    EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());
   EXPECT_EQ(state_of(*sim).falls[0], 1u);
   EXPECT_TRUE(world_of<sim::World3D>((*sim).lane())->is_enabled(pusher));
   EXPECT_LT(world_of<sim::World3D>((*sim).lane())->position(pusher).y, 2.0f);
@@ -102,7 +104,7 @@ TEST(CratesGame, AggressiveMatchStaysInPlayAndLoadable) {
   constexpr uint32_t kPlayers = 16;
   auto sim = make_match(kPlayers, 99);
   auto loaded = make_match(kPlayers, 99);
-  std::vector<PlayerInput> inputs(kPlayers);
+  std::vector<StickInput> inputs(kPlayers);
   std::vector<uint8_t> bytes;
   uint64_t rng = 12345;
   auto next = [&rng]() {
@@ -123,7 +125,7 @@ TEST(CratesGame, AggressiveMatchStaysInPlayAndLoadable) {
       inputs[p].buttons =
           (next() % 3 == 0 ? kCratesJump : 0u) | (next() % 5 == 0 ? kCratesDash : 0u);
     }
-    EXPECT_TRUE(sim->step(inputs).ok());
+    EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());
     expect_all_in_play(*sim, t);
     if (HasFatalFailure()) return;
     if (t % 10 == 0) {

@@ -51,8 +51,8 @@ sim::Quat yaw(float angle) {
 
 // Scripted drivers: each player sweeps the stick through throttle and
 // steering at its own rate, charging and braking now and then.
-std::vector<PlayerInput> inputs_at(Tick t, uint32_t players) {
-  std::vector<PlayerInput> inputs(players);
+std::vector<StickInput> inputs_at(Tick t, uint32_t players) {
+  std::vector<StickInput> inputs(players);
   for (uint32_t p = 0; p < players; ++p) {
     const int32_t phase = (static_cast<int32_t>(t) * static_cast<int32_t>(p + 2) / 40) % 6;
     static constexpr int16_t kSteer[6] = {0, 600, 0, -900, 300, 0};
@@ -88,7 +88,7 @@ TEST(JoustGame, CarsDriveAndRidersStaySeatedOnTheBumps) {
   // Every car drives its own slow circle: no car meets another, so every
   // rider rides out the bumps on its seat.
   auto sim = make_match(4);
-  std::vector<PlayerInput> inputs(4);
+  std::vector<StickInput> inputs(4);
   for (auto& in : inputs) {
     in.axis_y = 300;
     in.axis_x = 1000;
@@ -106,7 +106,7 @@ TEST(JoustGame, CarsDriveAndRidersStaySeatedOnTheBumps) {
   for (uint32_t p = 0; p < 4; ++p) seated_head.push_back(head_in_car(p));
   float travelled = 0.0f;
   for (Tick t = 0; t < 600; ++t) {
-    EXPECT_TRUE(sim->step(inputs).ok());
+    EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());
     travelled = std::max(travelled, sim::length(world(*sim).position(start.chassis[0]) - from));
   }
   const JoustState s = state_of(*sim);
@@ -124,25 +124,26 @@ TEST(JoustGame, CarsDriveAndRidersStaySeatedOnTheBumps) {
 TEST(JoustGame, RollbackAndReloadAreBitForBit) {
   constexpr uint32_t kPlayers = 4;
   auto sim = make_match(kPlayers);
-  for (Tick t = 0; t < 150; ++t) EXPECT_TRUE(sim->step(inputs_at(t, kPlayers)).ok());
+  for (Tick t = 0; t < 150; ++t) EXPECT_TRUE(sim->step(stick_inputs(inputs_at(t, kPlayers))).ok());
   SimSnapshot saved;
   sim->save(saved);
   std::vector<uint64_t> expected;
   for (Tick t = 150; t < 450; ++t) {
-    EXPECT_TRUE(sim->step(inputs_at(t, kPlayers)).ok());
+    EXPECT_TRUE(sim->step(stick_inputs(inputs_at(t, kPlayers))).ok());
     expected.push_back(sim->checksum());
   }
   sim->restore(saved);
   // A misprediction first, then the real inputs.
-  for (Tick t = 150; t < 230; ++t) EXPECT_TRUE(sim->step(inputs_at(t + 17, kPlayers)).ok());
+  for (Tick t = 150; t < 230; ++t)
+    EXPECT_TRUE(sim->step(stick_inputs(inputs_at(t + 17, kPlayers))).ok());
   sim->restore(saved);
   std::vector<uint8_t> bytes;
   sim->serialize(bytes);
   auto reloaded = make_match(kPlayers);
   ASSERT_TRUE(reloaded->deserialize(bytes).ok());
   for (Tick t = 150; t < 450; ++t) {
-    EXPECT_TRUE(sim->step(inputs_at(t, kPlayers)).ok());
-    EXPECT_TRUE(reloaded->step(inputs_at(t, kPlayers)).ok());
+    EXPECT_TRUE(sim->step(stick_inputs(inputs_at(t, kPlayers))).ok());
+    EXPECT_TRUE(reloaded->step(stick_inputs(inputs_at(t, kPlayers))).ok());
     ASSERT_EQ(sim->checksum(), expected[static_cast<size_t>(t - 150)]) << "tick " << t;
     ASSERT_EQ(reloaded->checksum(), expected[static_cast<size_t>(t - 150)]) << "tick " << t;
   }
@@ -156,13 +157,13 @@ TEST(JoustGame, EveryTickRoundTripsThroughTheSnapshotBytes) {
   auto loaded = make_match(kPlayers, 9);
   std::vector<uint8_t> bytes;
   for (Tick t = 0; t < 400; ++t) {
-    const std::vector<PlayerInput> inputs = inputs_at(t, kPlayers);
+    const std::vector<StickInput> inputs = inputs_at(t, kPlayers);
     sim->serialize(bytes);
     Status s = loaded->deserialize(bytes);
     ASSERT_TRUE(s.ok()) << "tick " << t << ": " << s.message();
     ASSERT_EQ(loaded->checksum(), sim->checksum()) << "tick " << t;
-    EXPECT_TRUE(sim->step(inputs).ok());
-    EXPECT_TRUE(loaded->step(inputs).ok());
+    EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());
+    EXPECT_TRUE(loaded->step(stick_inputs(inputs)).ok());
     ASSERT_EQ(loaded->checksum(), sim->checksum()) << "tick " << t;
     ASSERT_TRUE(sim->game().validate_state(sim->setup(), sim->game_state()).ok()) << "tick " << t;
   }
@@ -186,8 +187,9 @@ TEST(JoustGame, ALanceStrikeThrowsTheRiderAndScores) {
   ASSERT_TRUE(JoustGame::place_car(w, s, 1, {-10.0f, 1.3f, 6.0f}, yaw(0.5f * rwd::kPi)));
   ASSERT_TRUE(JoustGame::place_car(w, s, 0, {-10.75f, 1.3f, -8.0f}, yaw(0.0f)));
   store(*sim, s);
-  std::vector<PlayerInput> inputs(2);
-  for (Tick t = 0; t < 60; ++t) EXPECT_TRUE(sim->step(inputs).ok());  // settle on the wheels
+  std::vector<StickInput> inputs(2);
+  for (Tick t = 0; t < 60; ++t)
+    EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());  // settle on the wheels
   s = state_of(*sim);
   ASSERT_FALSE(s.seats[1].is_null());
   ASSERT_EQ(s.unseated[1], 0u);
@@ -198,13 +200,13 @@ TEST(JoustGame, ALanceStrikeThrowsTheRiderAndScores) {
   float strike_speed = 0.0f;
   for (Tick t = 0; t < 240 && thrown_at < 0; ++t) {
     strike_speed = sim::length(w.linear_velocity(state_of(*sim).lances[0]));
-    EXPECT_TRUE(sim->step(inputs).ok());
+    EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());
     if (state_of(*sim).unseated[1] > 0) thrown_at = t;
   }
   // Player 0 stops before its bumper meets the other car.
   inputs[0] = {};
   inputs[0].buttons = kJoustBrake;
-  for (Tick t = 0; t < 6; ++t) EXPECT_TRUE(sim->step(inputs).ok());
+  for (Tick t = 0; t < 6; ++t) EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());
   ASSERT_GE(thrown_at, 0) << "the rider was never thrown";
   s = state_of(*sim);
   std::printf("[ measured ] rider thrown %d ticks into the run, the lance striking at %.1f m/s\n",
@@ -216,7 +218,7 @@ TEST(JoustGame, ALanceStrikeThrowsTheRiderAndScores) {
   EXPECT_FALSE(s.seats[0].is_null());
 
   // The figure leaves the car: half a second later its pelvis is well clear.
-  for (Tick t = 0; t < 30; ++t) EXPECT_TRUE(sim->step(inputs).ok());
+  for (Tick t = 0; t < 30; ++t) EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());
   s = state_of(*sim);
   const sim::Vec3 seat = w.position(s.chassis[1]);
   const float away = sim::length(w.position(s.riders[1][0]) - seat);
@@ -226,7 +228,7 @@ TEST(JoustGame, ALanceStrikeThrowsTheRiderAndScores) {
   EXPECT_EQ(state_of(*sim).score[0], 1u);  // one throw, one point
 
   // A few seconds later the rider is back on its car.
-  for (Tick t = 0; t < 180; ++t) EXPECT_TRUE(sim->step(inputs).ok());
+  for (Tick t = 0; t < 180; ++t) EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());
   s = state_of(*sim);
   EXPECT_FALSE(s.seats[1].is_null());
   EXPECT_EQ(s.respawn_ticks[1], 0);
@@ -242,8 +244,8 @@ TEST(JoustGame, AnUpsetCarGoesBackToItsSpawnPoint) {
   // On its roof, away from the spawn point.
   ASSERT_TRUE(JoustGame::place_car(w, s, 1, {-5.0f, 2.5f, 8.0f}, {1.0f, 0.0f, 0.0f, 0.0f}));
   store(*sim, s);
-  std::vector<PlayerInput> inputs(2);
-  for (Tick t = 0; t < 200; ++t) EXPECT_TRUE(sim->step(inputs).ok());
+  std::vector<StickInput> inputs(2);
+  for (Tick t = 0; t < 200; ++t) EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());
   s = state_of(*sim);
   EXPECT_EQ(s.car_resets[1], 1u);
   // Put back and left with no brake on the bowl's floor, it may roll a
@@ -257,11 +259,11 @@ TEST(JoustGame, TheWreckingBallSwingsAndItsChainHolds) {
   auto sim = make_match(2);
   const JoustState s = state_of(*sim);
   sim::World3D& w = world(*sim);
-  std::vector<PlayerInput> inputs(2);
+  std::vector<StickInput> inputs(2);
   float worst_opening = 0.0f;
   float z_min = 0.0f, z_max = 0.0f, top_speed = 0.0f;
   for (Tick t = 0; t < 1200; ++t) {
-    EXPECT_TRUE(sim->step(inputs).ok());
+    EXPECT_TRUE(sim->step(stick_inputs(inputs)).ok());
     worst_opening = std::max(worst_opening, JoustGame::chain_opening(w, s));
     if (t >= 900) {  // the last five seconds
       const sim::Vec3 p = w.position(s.ball);

@@ -13,9 +13,9 @@ namespace rwd::game {
 namespace {
 
 std::vector<PlayerInput> forward(uint32_t players) {
-  std::vector<PlayerInput> inputs(players);
-  for (PlayerInput& in : inputs) in.axis_y = kAxisMax;
-  return inputs;
+  std::vector<StickInput> inputs(players);
+  for (StickInput& in : inputs) in.axis_y = kAxisMax;
+  return stick_inputs(inputs);
 }
 
 TEST(SimulationConfig, TheGamesOwnConfigByDefault) {

@@ -39,7 +39,9 @@ class MistakenCrates : public Game {
   Status apply_inputs(Tick tick, std::span<const PlayerInput> inputs, Lane& lane,
                       std::span<std::byte> state) const override {
     std::vector<PlayerInput> in(inputs.begin(), inputs.end());
-    in[0].axis_x = static_cast<int16_t>(in[0].axis_x / 2 + tweak());
+    StickInput first = in[0].as<StickInput>();
+    first.axis_x = static_cast<int16_t>(first.axis_x / 2 + tweak());
+    in[0] = PlayerInput::of(first);
     return crates_.apply_inputs(tick, in, lane, state);
   }
   Status after_step(Tick tick, Lane& lane, std::span<std::byte> state) const override {
@@ -159,7 +161,7 @@ TEST(SyncTest, GivenInputsAreUsedAndBadOptionsRefused) {
   int calls = 0;
   auto report = run_sync_test("arena", {2, 1}, options, [&calls](Tick, std::span<PlayerInput> in) {
     ++calls;
-    for (PlayerInput& i : in) i = {700, -300, 1};
+    for (PlayerInput& i : in) i = stick_input(700, -300, 1);
   });
   ASSERT_TRUE(report.ok());
   EXPECT_EQ(calls, 30);

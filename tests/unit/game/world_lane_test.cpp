@@ -20,12 +20,12 @@ namespace rwd::game {
 namespace {
 
 std::vector<PlayerInput> steer(uint32_t players, Tick tick) {
-  std::vector<PlayerInput> inputs(players);
+  std::vector<StickInput> inputs(players);
   for (uint32_t p = 0; p < players; ++p) {
     inputs[p].axis_x = static_cast<int16_t>(((tick / 20 + static_cast<Tick>(p)) % 3 - 1) * 1000);
     inputs[p].axis_y = kAxisMax;
   }
-  return inputs;
+  return stick_inputs(inputs);
 }
 
 std::unique_ptr<Simulation> played(Tick ticks) {

@@ -151,12 +151,7 @@ TEST(EnvelopeCodec, EncodeRefusesOversize) {
   auto* m = e.mutable_input_frame();
   m->set_first_tick(0);
   m->set_last_final_tick_seen(-1);
-  for (int i = 0; i < 128; ++i) {
-    v1::Input* in = m->add_inputs();
-    in->set_axis_x(-1000);
-    in->set_axis_y(1000);
-    in->set_buttons(0xFFFF'FFFFu);
-  }
+  for (int i = 0; i < 128; ++i) m->add_inputs()->set_data(std::string(16, '\x7f'));
   std::vector<uint8_t> out = {9};
   Status s = encode_envelope(e, out);
   ASSERT_FALSE(s.ok());
@@ -200,7 +195,8 @@ TEST(EnvelopeCodec, RejectsInvalidUtf8Silently) {
 }
 
 TEST(EnvelopeCodec, RejectsWrongProtocolVersion) {
-  for (uint32_t version : {0u, 1u, 3u, 0xFFFF'FFFFu}) {  // 1: before address cookies
+  for (uint32_t version :
+       {0u, 1u, 2u, 4u, 0xFFFF'FFFFu}) {  // 1: before address cookies, 2: stick inputs
     v1::Envelope e = sample_envelopes()[6];
     e.set_protocol_version(version);
     expect_rejected(e, "protocol_version");
@@ -238,22 +234,23 @@ TEST(EnvelopeCodec, RejectsTooManyInputs) {
   expect_rejected(relayed, "relayed_inputs has 129 inputs");
 }
 
-TEST(EnvelopeCodec, RejectsAxesOutOfRange) {
-  for (auto [x, y] : {std::pair{1001, 0}, std::pair{0, -1001}, std::pair{-2147483647 - 1, 0}}) {
-    v1::Envelope e = sample_envelopes()[8];
-    e.mutable_input_frame()->mutable_inputs(3)->set_axis_x(x);
-    e.mutable_input_frame()->mutable_inputs(3)->set_axis_y(y);
-    expect_rejected(e, "input_frame.inputs[3] axis");
-  }
+TEST(EnvelopeCodec, RejectsInputsBeyondTheCapacityAndStickFields) {
+  v1::Envelope e = sample_envelopes()[8];
+  e.mutable_input_frame()->mutable_inputs(3)->set_data(std::string(rwd::kInputCapacity + 1, 'x'));
+  expect_rejected(e, "input_frame.inputs[3] has 33 bytes, limit 32");
+  // One form per input: trailing zeros are left out.
+  v1::Envelope zero = sample_envelopes()[8];
+  zero.mutable_input_frame()->mutable_inputs(3)->set_data(std::string("\x01\x00", 2));
+  expect_rejected(zero, "input_frame.inputs[3] ends in a zero byte");
+  // Protocol 3 carries the game's bytes; the stick fields are for old replays.
   v1::Envelope f = sample_envelopes()[10];
-  f.mutable_final_ticks()->mutable_ticks(1)->mutable_inputs(2)->set_axis_y(5000);
-  expect_rejected(f, "final_ticks.ticks[1].inputs[2] axis");
+  f.mutable_final_ticks()->mutable_ticks(1)->mutable_inputs(2)->set_axis_y(5);
+  expect_rejected(f, "final_ticks.ticks[1].inputs[2] sets the stick fields");
 }
 
-TEST(EnvelopeCodec, AcceptsAxisLimits) {
+TEST(EnvelopeCodec, AcceptsAFullInput) {
   v1::Envelope e = sample_envelopes()[8];
-  e.mutable_input_frame()->mutable_inputs(0)->set_axis_x(-1000);
-  e.mutable_input_frame()->mutable_inputs(0)->set_axis_y(1000);
+  e.mutable_input_frame()->mutable_inputs(0)->set_data(std::string(rwd::kInputCapacity, '\xff'));
   EXPECT_TRUE(decode_envelope(raw_bytes(e)).ok());
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "rewind/core/stick_input.h"
 #include "rewind/net/envelope_codec.h"
 #include "rewind/proto/input_packing.h"
 #include "rewind/proto/message_inputs.h"
@@ -24,9 +25,10 @@ inline v1::Envelope header(uint64_t connection_id = 0x1234'5678'9ABC'DEF0ull) {
 }
 
 inline void fill_input(v1::Input* input, int i) {
-  input->set_axis_x(-1000 + (i * 37) % 2001);
-  input->set_axis_y(1000 - (i * 53) % 2001);
-  input->set_buttons(0x8000'0000u | static_cast<uint32_t>(i));
+  // Up to eight bytes, the last one never zero (trailing zeros are left out).
+  std::string data;
+  for (int b = 0; b <= i % 8; ++b) data.push_back(static_cast<char>(1 + (i * 37 + b * 53) % 255));
+  input->set_data(data);
 }
 
 /// Every payload kind, each valid and within kMaxDatagramBytes.
@@ -160,9 +162,9 @@ inline std::vector<v1::Envelope> sample_envelopes() {
     for (int t = 0; t < 3; ++t) {
       std::vector<rwd::PlayerInput> inputs;
       for (int p = 0; p < 4; ++p) {
-        inputs.push_back({static_cast<int16_t>(p * 250 - 500),
-                          static_cast<int16_t>(t == 2 ? 707 : 0),
-                          static_cast<uint32_t>(p == 1 ? 3 : 0)});
+        inputs.push_back(rwd::stick_input(static_cast<int16_t>(p * 250 - 500),
+                                          static_cast<int16_t>(t == 2 ? 707 : 0),
+                                          static_cast<uint32_t>(p == 1 ? 3 : 0)));
       }
       auto* ft = m->add_ticks();
       ft->set_tick(300 + t);
@@ -176,7 +178,7 @@ inline std::vector<v1::Envelope> sample_envelopes() {
       previous = inputs;
     }
     const std::vector<rwd::PlayerInput> run_inputs = {
-        {1000, -1000, 1}, {1000, -1000, 1}, {0, 0, 0}};
+        rwd::stick_input(1000, -1000, 1), rwd::stick_input(1000, -1000, 1), rwd::PlayerInput{}};
     proto::append_relayed_run(3, 304, 306, run_inputs, *m->mutable_relayed());
     proto::append_relayed_run(1, 309, 306, run_inputs, *m->mutable_relayed());
     m->set_input_ack_tick(305);

@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
-// Packed inputs: lists and runs round-trip for any values in range, an
-// unchanged input costs one byte, and every malformed list (cut short,
-// trailing bytes, too many inputs, wrong reference count, an axis out of
-// range) is kCorrupt. A delta final tick reads against the tick before
+// Packed inputs: lists and runs round-trip for any bytes, an unchanged
+// input costs one byte, and every malformed list (cut short, trailing
+// bytes, too many inputs, wrong reference count, a mask longer than the
+// input) is kCorrupt. A delta final tick reads against the tick before
 // it and is checked for its form where that is unknown.
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "rewind/core/stick_input.h"
 #include "rewind/proto/input_packing.h"
 #include "rewind/proto/message_inputs.h"
 
@@ -16,13 +17,20 @@ namespace {
 
 using rwd::PlayerInput;
 
+PlayerInput S(int16_t x, int16_t y, uint32_t buttons) {
+  return rwd::stick_input(x, y, buttons);
+}
+
+// Any bytes: the packing does not know the game. Some inputs use all 32.
 std::vector<PlayerInput> random_inputs(std::mt19937& rng, size_t n) {
-  std::uniform_int_distribution<int> axis(-1000, 1000);
-  std::uniform_int_distribution<uint32_t> buttons(0, 0xFFFFFFFFu);
+  std::uniform_int_distribution<int> byte(0, 255);
   std::vector<PlayerInput> out;
   for (size_t i = 0; i < n; ++i) {
-    out.push_back({static_cast<int16_t>(axis(rng)), static_cast<int16_t>(axis(rng)),
-                   i % 3 == 0 ? buttons(rng) : 0u});
+    PlayerInput in;
+    const size_t used = i % 3 == 0 ? rwd::kInputCapacity : 8;
+    for (size_t b = 0; b < used; ++b)
+      in.bytes[b] = static_cast<uint8_t>(byte(rng) % 4 == 0 ? 0 : byte(rng));
+    out.push_back(in);
   }
   return out;
 }
@@ -49,7 +57,7 @@ TEST(InputPacking, ListsAndRunsRoundTrip) {
 }
 
 TEST(InputPacking, UnchangedInputsCostAByte) {
-  const std::vector<PlayerInput> same(8, PlayerInput{-707, 707, 2});
+  const std::vector<PlayerInput> same(8, S(-707, 707, 2));
   std::string bytes;
   pack_inputs(same, same, bytes);
   EXPECT_EQ(bytes.size(), 1u + 8u);
@@ -59,7 +67,7 @@ TEST(InputPacking, UnchangedInputsCostAByte) {
 }
 
 TEST(InputPacking, MalformedListsAreCorrupt) {
-  const std::vector<PlayerInput> values = {{10, -20, 1}, {300, 0, 0}};
+  const std::vector<PlayerInput> values = {S(10, -20, 1), S(300, 0, 0)};
   std::string bytes;
   pack_inputs(values, {}, bytes);
   std::vector<PlayerInput> out;
@@ -70,15 +78,24 @@ TEST(InputPacking, MalformedListsAreCorrupt) {
   EXPECT_EQ(unpack_inputs(bytes + '\0', {}, out).code(), ErrorCode::kCorrupt);
   EXPECT_EQ(unpack_inputs(bytes, std::vector<PlayerInput>(3), out).code(), ErrorCode::kCorrupt);
   EXPECT_EQ(unpack_inputs(std::string(1, '\x41'), {}, out).code(), ErrorCode::kCorrupt);
-  // An axis of 2000: the mask names both axis_x bytes.
-  const std::string wide = {'\x01', '\x03', '\xD0', '\x07'};
+  // A mask of more than 32 bits names bytes no input has.
+  const std::string wide = {'\x01', '\x80', '\x80', '\x80', '\x80', '\x7F'};
   EXPECT_EQ(unpack_inputs(wide, {}, out).code(), ErrorCode::kCorrupt);
   EXPECT_EQ(unpack_run(wide, out).code(), ErrorCode::kCorrupt);
+  EXPECT_EQ(check_packed_inputs(wide).code(), ErrorCode::kCorrupt);
+  // Byte 31 changed: a five-byte mask, then the byte.
+  PlayerInput last;
+  last.bytes[31] = 9;
+  bytes.clear();
+  pack_inputs(std::vector<PlayerInput>{last}, {}, bytes);
+  EXPECT_EQ(bytes.size(), 1u + 5u + 1u);
+  ASSERT_TRUE(unpack_inputs(bytes, {}, out).ok());
+  EXPECT_EQ(out, std::vector<PlayerInput>{last});
 }
 
 TEST(MessageInputs, ADeltaReadsAgainstTheTickBeforeAndIsCheckedForItsForm) {
-  const std::vector<PlayerInput> a = {{1, 2, 3}, {4, 5, 6}};
-  const std::vector<PlayerInput> b = {{1, 2, 3}, {-4, 5, 0}};
+  const std::vector<PlayerInput> a = {S(1, 2, 3), S(4, 5, 6)};
+  const std::vector<PlayerInput> b = {S(1, 2, 3), S(-4, 5, 0)};
   v1::FinalTicks finals;
   v1::FinalTick* first = finals.add_ticks();
   first->set_tick(10);
@@ -98,15 +115,15 @@ TEST(MessageInputs, ADeltaReadsAgainstTheTickBeforeAndIsCheckedForItsForm) {
   // A delta cut short is refused by its form alone.
   second->mutable_packed_inputs()->pop_back();
   EXPECT_EQ(check_final_tick_inputs(finals).code(), ErrorCode::kCorrupt);
-  // A standalone tick is checked for its values too.
+  // A standalone tick is read through, so a bad mask is refused.
   second->set_delta(false);
-  first->set_packed_inputs(std::string{'\x01', '\x03', '\xD0', '\x07'});  // an axis of 2000
+  first->set_packed_inputs(std::string{'\x01', '\x80', '\x80', '\x80', '\x80', '\x7F'});
   EXPECT_EQ(check_final_tick_inputs(finals).code(), ErrorCode::kCorrupt);
 }
 
 TEST(MessageInputs, RelayedRunsRoundTripAndRefuseBadBytes) {
-  const std::vector<PlayerInput> a = {{5, 5, 0}, {5, 6, 0}};
-  const std::vector<PlayerInput> b = {{-1000, 1000, 9}};
+  const std::vector<PlayerInput> a = {S(5, 5, 0), S(5, 6, 0)};
+  const std::vector<PlayerInput> b = {S(-1000, 1000, 9)};
   v1::FinalTicks finals;
   finals.set_server_tick(1000);
   append_relayed_run(2, 1003, 1000, a, *finals.mutable_relayed());

@@ -77,9 +77,11 @@ TEST(ReplayCli, UsageErrorsExit64WithAMessage) {
              "--tick: expected an integer, got 'abc'"},
         Case{"tamper a.rwr --tick 3 --player 0 --axis-x 1.5 --out b",
              "--axis-x: expected an integer, got '1.5'"},
-        Case{"tamper a.rwr --tick 3 --player 0 --axis-x 5000 --out b",
-             "--axis-x: 5000 is outside [-1000, 1000]"},
-        Case{"tamper a.rwr --tick 3 --player 0 --out b", "give at least one"},
+        Case{"tamper a.rwr --tick 3 --player 0 --set axis_x --out b",
+             "--set: expected FIELD=VALUE, got 'axis_x'"},
+        Case{"tamper a.rwr --tick 3 --player 0 --set axis_x=1e3 --out b",
+             "--set axis_x: expected an integer, got '1e3'"},
+        Case{"tamper a.rwr --tick 3 --player 0 --out b", "give --set FIELD=VALUE"},
         Case{"tamper a.rwr --tick 3 --axis-x 1 --out b", "--player is required"},
         Case{"tamper a.rwr --tick 3 --player 0 --axis-x 1", "--out is required"}}) {
     const ToolRun run = run_tool(c.args);
@@ -152,7 +154,7 @@ TEST(ReplayCli, VerifyTamperInspectEndToEnd) {
     auto r = reader->next();
     ASSERT_TRUE(r.ok() && r->has_value());
     if ((*r)->has_tick() && (*r)->tick().tick() == 150) {
-      recorded_x = (*r)->tick().inputs(3).axis_x();
+      recorded_x = proto::from_wire((*r)->tick().inputs(3))->as<rwd::StickInput>().axis_x;
       break;
     }
   }
@@ -172,6 +174,17 @@ TEST(ReplayCli, VerifyTamperInspectEndToEnd) {
   EXPECT_EQ(run.exit_code, 1) << run.output;
   EXPECT_TRUE(contains(run.output, "\"first_divergent_tick\": 150")) << run.output;
   EXPECT_TRUE(contains(run.output, "\"differences_tick\": 179")) << run.output;
+
+  // Fields and ranges are the recorded game's.
+  run = run_tool("tamper " + file.path() +
+                 " --tick 150 --player 3 --set axis_x=5000 --overwrite --out " + forged.path());
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "input field 'axis_x' = 5000 is outside [-1000, 1000]"))
+      << run.output;
+  run = run_tool("tamper " + file.path() +
+                 " --tick 150 --player 3 --set heading=5 --overwrite --out " + forged.path());
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "the input ('stick') has no field 'heading'")) << run.output;
 
   // Tampering again without --overwrite refuses to clobber the output.
   run = run_tool("tamper " + file.path() + " --tick 150 --player 3 --axis-x 0 --out " +

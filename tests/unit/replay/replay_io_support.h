@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "rewind/core/stick_input.h"
 #include "rewind/proto/input_wire.h"
 #include "rewind/replay/replay_format.h"
 #include "rewind/replay/replay_reader.h"
@@ -49,9 +50,8 @@ inline v1::ReplayHeader test_header(uint32_t players = 3) {
 inline std::vector<rwd::PlayerInput> inputs_for(Tick tick, uint32_t players) {
   std::vector<rwd::PlayerInput> inputs(players);
   for (uint32_t p = 0; p < players; ++p) {
-    inputs[p].axis_x = static_cast<int16_t>(tick * 10 - static_cast<int>(p));
-    inputs[p].axis_y = static_cast<int16_t>(-tick);
-    inputs[p].buttons = static_cast<uint32_t>(tick) ^ p;
+    inputs[p] = rwd::stick_input(static_cast<int16_t>(tick * 10 - static_cast<int>(p)),
+                                 static_cast<int16_t>(-tick), static_cast<uint32_t>(tick) ^ p);
   }
   return inputs;
 }

@@ -201,12 +201,12 @@ TEST(ReplayIo, ReaderRefusesFilesTheWriterWouldNotWrite) {
   const FileBuilder future = FileBuilder{}.add(future_record).tick(0);
   EXPECT_EQ(future.open_error(), "");
   EXPECT_EQ(future.read_error(),
-            "records of replay format version 3 are not read by this build "
-            "(it reads formats 1 to 2)");
+            "records of replay format version 4 are not read by this build "
+            "(it reads formats 1 to 3)");
   {
     Result<ReplayReader> reader = ReplayReader::from_bytes(future.bytes);
     ASSERT_TRUE(reader.ok());
-    EXPECT_EQ(reader->header().format_version(), 3u);
+    EXPECT_EQ(reader->header().format_version(), kFormatVersion + 1);
     EXPECT_EQ(reader->state(), ReadState::kReading);
     EXPECT_FALSE(reader->next().ok());
     EXPECT_EQ(reader->state(), ReadState::kUnsupported);
@@ -276,6 +276,13 @@ TEST(ReplayIo, ReaderRefusesFilesTheWriterWouldNotWrite) {
   for (int p = 0; p < 3; ++p) wide.mutable_tick()->add_inputs()->set_axis_x(40000);
   EXPECT_NE(FileBuilder{}.header(h).add(wide).read_error().find("does not fit 16 bits"),
             std::string::npos);
+
+  v1::ReplayRecord big = wide;
+  for (auto& in : *big.mutable_tick()->mutable_inputs()) {
+    in.set_axis_x(0);
+    in.set_data(std::string(rwd::kInputCapacity + 1, '\x01'));
+  }
+  EXPECT_NE(FileBuilder{}.header(h).add(big).read_error().find("more than 32"), std::string::npos);
 
   v1::ReplayRecord mask = wide;
   for (auto& in : *mask.mutable_tick()->mutable_inputs()) in.set_axis_x(0);

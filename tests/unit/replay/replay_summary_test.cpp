@@ -66,10 +66,15 @@ TEST(ReplayIo, RewriteForgesOneInputWithValidFraming) {
   InputEdit edit;
   edit.tick = 3;
   edit.player = 1;
-  edit.axis_x = -999;
-  Result<rwd::PlayerInput> original = rewrite_replay_input(in.path(), out.path(), edit, false);
+  edit.fields = {{"axis_x", -999}};
+  Result<InputRewrite> original =
+      rewrite_replay_input(in.path(), out.path(), edit, rwd::stick_input_spec(), false);
   ASSERT_TRUE(original.ok()) << original.status().message();
-  EXPECT_EQ(*original, inputs_for(3, 3)[1]);
+  EXPECT_EQ(original->before, inputs_for(3, 3)[1]);
+  const rwd::StickInput before = original->before.as<rwd::StickInput>();
+  EXPECT_EQ(original->after, rwd::stick_input(-999, before.axis_y, before.buttons));
+  EXPECT_EQ(original->after_text, "axis_x=-999 axis_y=" + std::to_string(before.axis_y) +
+                                      " buttons=" + std::to_string(before.buttons));
 
   Result<ReplayReader> a = ReplayReader::open(in.path());
   Result<ReplayReader> b = ReplayReader::open(out.path());
@@ -85,26 +90,47 @@ TEST(ReplayIo, RewriteForgesOneInputWithValidFraming) {
     ++changed;
     ASSERT_TRUE(rb[i].has_tick());
     EXPECT_EQ(rb[i].tick().tick(), 3);
-    EXPECT_EQ(rb[i].tick().inputs(1).axis_x(), -999);
-    EXPECT_EQ(rb[i].tick().inputs(1).axis_y(), ra[i].tick().inputs(1).axis_y());
+    const auto forged = proto::from_wire(rb[i].tick().inputs(1))->as<rwd::StickInput>();
+    const auto recorded = proto::from_wire(ra[i].tick().inputs(1))->as<rwd::StickInput>();
+    EXPECT_EQ(forged.axis_x, -999);
+    EXPECT_EQ(forged.axis_y, recorded.axis_y);
     EXPECT_EQ(rb[i].tick().checksum(), ra[i].tick().checksum());
   }
   EXPECT_EQ(changed, 1);
   EXPECT_TRUE(b->ended());
 
   // Refusals: existing output, missing tick, missing player.
-  EXPECT_FALSE(rewrite_replay_input(in.path(), out.path(), edit, false).ok());
-  EXPECT_TRUE(rewrite_replay_input(in.path(), out.path(), edit, true).ok());
+  EXPECT_FALSE(
+      rewrite_replay_input(in.path(), out.path(), edit, rwd::stick_input_spec(), false).ok());
+  EXPECT_TRUE(
+      rewrite_replay_input(in.path(), out.path(), edit, rwd::stick_input_spec(), true).ok());
   edit.tick = 60;
-  EXPECT_EQ(rewrite_replay_input(in.path(), out.path(), edit, true).status().code(),
+  EXPECT_EQ(rewrite_replay_input(in.path(), out.path(), edit, rwd::stick_input_spec(), true)
+                .status()
+                .code(),
             ErrorCode::kNotFound);
   EXPECT_FALSE(fs::exists(out.path()));  // no half-forged file left behind
   edit.tick = 1;
   edit.player = 3;
-  EXPECT_EQ(rewrite_replay_input(in.path(), out.path(), edit, true).status().code(),
+  EXPECT_EQ(rewrite_replay_input(in.path(), out.path(), edit, rwd::stick_input_spec(), true)
+                .status()
+                .code(),
             ErrorCode::kInvalidArgument);
   edit.player = 0;
-  EXPECT_FALSE(rewrite_replay_input(in.path(), in.path(), edit, true).ok());
+  EXPECT_FALSE(
+      rewrite_replay_input(in.path(), in.path(), edit, rwd::stick_input_spec(), true).ok());
+  // Fields are the game's: an unknown one, or a value outside its range.
+  edit.fields = {{"throttle", 1}};
+  Result<InputRewrite> unknown =
+      rewrite_replay_input(in.path(), out.path(), edit, rwd::stick_input_spec(), true);
+  EXPECT_EQ(unknown.status().code(), ErrorCode::kInvalidArgument);
+  EXPECT_EQ(unknown.status().message(),
+            "the input ('stick') has no field 'throttle' (fields: axis_x, axis_y, buttons)");
+  edit.fields = {{"axis_y", 1001}};
+  EXPECT_EQ(rewrite_replay_input(in.path(), out.path(), edit, rwd::stick_input_spec(), true)
+                .status()
+                .message(),
+            "input field 'axis_y' = 1001 is outside [-1000, 1000]");
   EXPECT_TRUE(ReplayReader::open(in.path()).ok());  // input untouched
 }
 

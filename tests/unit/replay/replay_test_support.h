@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "rewind/game/simulation.h"
+#include "rewind/proto/input_wire.h"
 #include "rewind/replay/replay_format.h"
 #include "rewind/replay/replay_header.h"
 #include "rewind/replay/replay_reader.h"
@@ -83,7 +84,7 @@ inline std::vector<uint64_t> record_match(const std::string& path, const Recordi
   std::mt19937 rng(rec.input_seed);
   std::uniform_int_distribution<int> axis(-1000, 1000);
   std::uniform_int_distribution<int> press(0, 19);
-  std::vector<rwd::PlayerInput> inputs(rec.players);
+  std::vector<rwd::StickInput> sticks(rec.players);
   std::vector<uint8_t> state;
   for (Tick t = 0; t < rec.ticks; ++t) {
     uint64_t substituted = 0;
@@ -91,12 +92,13 @@ inline std::vector<uint64_t> record_match(const std::string& path, const Recordi
       // Players hold the stick for a while, as people do, and sometimes
       // press buttons; player 0 drops out now and then (substituted input).
       if (t % 15 == 0) {
-        inputs[p].axis_x = static_cast<int16_t>(axis(rng));
-        inputs[p].axis_y = static_cast<int16_t>(axis(rng));
+        sticks[p].axis_x = static_cast<int16_t>(axis(rng));
+        sticks[p].axis_y = static_cast<int16_t>(axis(rng));
       }
-      inputs[p].buttons = press(rng) == 0 ? (1u << (t % 2)) : 0u;
+      sticks[p].buttons = press(rng) == 0 ? (1u << (t % 2)) : 0u;
       if (p == 0 && t % 50 == 49) substituted |= 1u;
     }
+    const std::vector<rwd::PlayerInput> inputs = rwd::stick_inputs(sticks);
     EXPECT_TRUE((*sim)->step(inputs).ok());
     checksums.push_back((*sim)->checksum());
     EXPECT_TRUE(writer->append_tick(t, inputs, substituted, checksums.back()).ok());

@@ -35,15 +35,18 @@ void forge_input(const std::string& in, const std::string& out, Tick tick, uint3
     ASSERT_TRUE(r.ok());
     ASSERT_TRUE(r->has_value()) << "tick " << tick << " not recorded";
     if ((*r)->has_tick() && (*r)->tick().tick() == tick) {
-      old_x = static_cast<int16_t>((*r)->tick().inputs(static_cast<int>(player)).axis_x());
+      old_x = proto::from_wire((*r)->tick().inputs(static_cast<int>(player)))
+                  ->as<rwd::StickInput>()
+                  .axis_x;
       break;
     }
   }
   InputEdit edit;
   edit.tick = tick;
   edit.player = player;
-  edit.axis_x = static_cast<int16_t>(old_x > 0 ? -1000 : 1000);
-  Result<rwd::PlayerInput> original = rewrite_replay_input(in, out, edit, true);
+  edit.fields = {{"axis_x", old_x > 0 ? -1000 : 1000}};
+  Result<InputRewrite> original =
+      rewrite_replay_input(in, out, edit, rwd::stick_input_spec(), true);
   ASSERT_TRUE(original.ok()) << original.status().message();
 }
 
@@ -474,7 +477,7 @@ TEST(ReplayVerify, NewerFormatIsAVersionMismatchNotCorruption) {
   ASSERT_TRUE(report.versions.has_value());
   ASSERT_EQ(report.versions->differences.size(), 2u);
   EXPECT_EQ(report.versions->differences[0],
-            "replay format: recorded version 3, this build reads formats 1 to 2");
+            "replay format: recorded version 4, this build reads formats 1 to 3");
 
   // Its records cannot be read, so re-simulating anyway cannot run.
   VerifyOptions anyway;

@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/net/input_queue.h"
 
+#include "rewind/core/stick_input.h"
+
 #include <gtest/gtest.h>
 
 namespace rwd::net {
 namespace {
 
 rwd::PlayerInput in(int16_t x, uint32_t buttons = 0) {
-  return {x, 0, buttons};
+  return rwd::stick_input(x, 0, buttons);
 }
 
 TEST(InputQueue, PredictsNeutralBeforeAnyInput) {
@@ -16,6 +18,30 @@ TEST(InputQueue, PredictsNeutralBeforeAnyInput) {
   EXPECT_EQ(q.input_for(10), rwd::PlayerInput{});
   EXPECT_EQ(q.contiguous_through(), -1);
   EXPECT_EQ(q.newest(), kNoTick);
+}
+
+// A predictor that releases the buttons: what a game might say of a fire
+// button, pressed for a tick and not held.
+rwd::PlayerInput release_buttons(const rwd::PlayerInput& newest) {
+  rwd::StickInput stick = newest.as<rwd::StickInput>();
+  stick.buttons = 0;
+  return rwd::PlayerInput::of(stick);
+}
+
+TEST(InputQueue, AGamesPredictorGuessesUnconfirmedTicks) {
+  InputQueue q(16, 0, &release_buttons);
+  EXPECT_EQ(q.add(0, in(5, 3)), InputQueue::AddOutcome::kNew);
+  EXPECT_EQ(q.input_for(0), in(5, 3));  // confirmed: as sent
+  EXPECT_EQ(q.input_for(1), in(5));     // predicted from tick 0, once
+  EXPECT_EQ(q.input_for(7), in(5));
+  // After the queue moves on, the carried input is the confirmed one.
+  q.discard_before(4);
+  EXPECT_EQ(q.input_for(4), in(5));
+  q.rebase(2);
+  EXPECT_EQ(q.input_for(2), in(5));
+  EXPECT_EQ(q.add(6, in(-1, 8)), InputQueue::AddOutcome::kNew);
+  EXPECT_EQ(q.input_for(6), in(-1, 8));
+  EXPECT_EQ(q.input_for(9), in(-1));
 }
 
 TEST(InputQueue, RepeatsNewestEarlierInput) {

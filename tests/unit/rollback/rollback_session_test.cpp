@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/net/rollback_session.h"
 
+#include "car_input_game.h"
 #include "failing_game.h"
 
 #include <gtest/gtest.h>
@@ -27,11 +28,11 @@ std::unique_ptr<RollbackSession> make_session(int32_t snapshot_ticks = 32) {
 rwd::PlayerInput scripted(uint32_t player, Tick tick) {
   std::mt19937 rng(static_cast<uint32_t>(tick / 4) * 7919u + player * 104729u);
   std::uniform_int_distribution<int> axis(-1000, 1000);
-  rwd::PlayerInput input;
+  rwd::StickInput input;
   input.axis_x = static_cast<int16_t>(axis(rng));
   input.axis_y = static_cast<int16_t>(axis(rng));
   input.buttons = (rng() % 23 == 0) ? 1u : 0u;
-  return input;
+  return rwd::PlayerInput::of(input);
 }
 
 // Checksums after each tick when every input is known before it is simulated.
@@ -100,9 +101,26 @@ TEST(RollbackSession, InputsForFinalTicksAndBadSlotsAreRefused) {
   EXPECT_EQ(session->add_final_input(0, 1, {}), InputResult::kFinal);
   EXPECT_EQ(session->add_input(kPlayers, 3, {}), InputResult::kBadPlayer);
   EXPECT_EQ(session->add_input(0, 3 + 1000, {}), InputResult::kTooFar);
-  EXPECT_EQ(session->add_input(0, 3, {100, 0, 0}), InputResult::kAccepted);
-  EXPECT_EQ(session->add_input(0, 3, {100, 0, 0}), InputResult::kDuplicate);
-  EXPECT_EQ(session->add_input(0, 3, {-100, 0, 0}), InputResult::kConflict);
+  EXPECT_EQ(session->add_input(0, 3, rwd::stick_input(100, 0)), InputResult::kAccepted);
+  EXPECT_EQ(session->add_input(0, 3, rwd::stick_input(100, 0)), InputResult::kDuplicate);
+  EXPECT_EQ(session->add_input(0, 3, rwd::stick_input(-100, 0)), InputResult::kConflict);
+  // Outside the game's input spec: refused before it is stored.
+  EXPECT_EQ(session->add_input(1, 3, rwd::stick_input(1001, 0)), InputResult::kBadInput);
+  EXPECT_EQ(session->add_final_input(1, 3, rwd::stick_input(0, -1001)), InputResult::kBadInput);
+  EXPECT_FALSE(session->queue(1).is_confirmed(3));
+}
+
+TEST(RollbackSession, UnconfirmedTicksUseTheGamesPredictor) {
+  auto sim = game::Simulation::create(std::make_unique<test::CarInputGame>(), {2, 11});
+  ASSERT_TRUE(sim.ok());
+  RollbackSession session(std::move(*sim), RollbackConfig{});
+  const auto braking = rwd::PlayerInput::of(test::CarInput{200, 80, 1});
+  EXPECT_EQ(session.add_input(0, 0, braking), InputResult::kAccepted);
+  session.advance();
+  session.advance();
+  EXPECT_EQ(session.used_input(0, 0), braking);
+  // Tick 1 is predicted: the same steering and throttle, the brake let go.
+  EXPECT_EQ(session.used_input(0, 1), rwd::PlayerInput::of(test::CarInput{200, 80, 0}));
 }
 
 TEST(RollbackSession, FinalInputOverridesAConfirmedOneAndResimulates) {
@@ -110,18 +128,19 @@ TEST(RollbackSession, FinalInputOverridesAConfirmedOneAndResimulates) {
   for (uint32_t p = 0; p < kPlayers; ++p) (void)session->add_input(p, 0, scripted(p, 0));
   for (Tick t = 0; t < 4; ++t) session->advance();
   const uint64_t before = *session->checksum_after(3);
-  EXPECT_EQ(session->add_final_input(1, 0, {1000, 1000, 2}), InputResult::kAccepted);
+  EXPECT_EQ(session->add_final_input(1, 0, rwd::stick_input(1000, 1000, 2)),
+            InputResult::kAccepted);
   ASSERT_TRUE(session->synchronize());
   EXPECT_EQ(session->stats().rollbacks, 1u);
   EXPECT_EQ(session->stats().resimulated_ticks, 4u);
   EXPECT_NE(*session->checksum_after(3), before);
-  EXPECT_EQ(session->used_input(1, 0), (rwd::PlayerInput{1000, 1000, 2}));
+  EXPECT_EQ(session->used_input(1, 0), rwd::stick_input(1000, 1000, 2));
 }
 
 TEST(RollbackSession, RollbackBeyondTheRingIsReportedNotGuessed) {
   auto session = make_session(/*snapshot_ticks=*/16);
   for (Tick t = 0; t < 30; ++t) session->advance();
-  EXPECT_EQ(session->add_input(0, 2, {500, 0, 0}), InputResult::kAccepted);
+  EXPECT_EQ(session->add_input(0, 2, rwd::stick_input(500, 0)), InputResult::kAccepted);
   EXPECT_FALSE(session->synchronize());
 }
 
@@ -157,7 +176,7 @@ TEST(RollbackSession, StepHookRunsOnEveryResimulationOfItsTick) {
   session->set_step_hook([&](game::Simulation&, Tick tick) { calls_at_2 += tick == 2; });
   for (Tick t = 0; t < 5; ++t) session->advance();
   EXPECT_EQ(calls_at_2, 1);
-  (void)session->add_input(0, 1, {1000, 0, 0});
+  (void)session->add_input(0, 1, rwd::stick_input(1000, 0));
   ASSERT_TRUE(session->synchronize());
   EXPECT_EQ(calls_at_2, 2);
 }
@@ -172,8 +191,7 @@ TEST(RollbackSession, TheRulesFirstErrorStopsTheSession) {
   RollbackSession session(std::move(*sim), RollbackConfig{});
   for (Tick t = 0; t < 6; ++t) session.advance();  // predicted inputs: all neutral
   EXPECT_TRUE(session.game_error().ok());
-  rwd::PlayerInput trigger;
-  trigger.axis_x = FailingGame::kTrigger;
+  const rwd::PlayerInput trigger = rwd::stick_input(FailingGame::kTrigger, 0);
   ASSERT_EQ(session.add_input(0, 2, trigger), InputResult::kAccepted);
   session.advance();
   ASSERT_FALSE(session.game_error().ok());

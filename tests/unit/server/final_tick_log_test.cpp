@@ -4,6 +4,7 @@
 // round trip has passed, round-robin; trimming drops what every client has.
 #include <gtest/gtest.h>
 
+#include "rewind/core/stick_input.h"
 #include "rewind/proto/message_inputs.h"
 #include "rewind/server/final_tick_log.h"
 
@@ -11,7 +12,8 @@ namespace rwd::server {
 namespace {
 
 std::vector<rwd::PlayerInput> inputs_at(Tick t) {
-  return {{static_cast<int16_t>(t % 3 * 100), 0, 0}, {-500, static_cast<int16_t>(t % 5), 1}};
+  return {rwd::stick_input(static_cast<int16_t>(t % 3 * 100), 0),
+          rwd::stick_input(-500, static_cast<int16_t>(t % 5), 1)};
 }
 
 FinalTickLog log_of(Tick count, Tick made_every = 1) {

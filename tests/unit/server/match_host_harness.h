@@ -16,6 +16,7 @@
 
 #include "rewind/game/simulation.h"
 #include "rewind/net/envelope_codec.h"
+#include "rewind/proto/input_wire.h"
 #include "rewind/replay/engine_identity.h"
 #include "rewind/replay/replay_format.h"
 #include "rewind/replay/replay_reader.h"
@@ -44,8 +45,8 @@ struct FakeClient {
 };
 
 inline rwd::PlayerInput scripted(uint32_t player, Tick tick) {
-  return {static_cast<int16_t>(((tick / 5 + player) % 3 - 1) * 900),
-          static_cast<int16_t>(((tick / 7 + player) % 3 - 1) * 700), 0};
+  return rwd::stick_input(static_cast<int16_t>(((tick / 5 + player) % 3 - 1) * 900),
+                          static_cast<int16_t>(((tick / 7 + player) % 3 - 1) * 700));
 }
 
 class HostHarness {
@@ -100,10 +101,7 @@ class HostHarness {
     v1::InputFrame* frame = envelope.mutable_input_frame();
     frame->set_player(as_player);
     frame->set_first_tick(tick);
-    v1::Input* in = frame->add_inputs();
-    in->set_axis_x(input.axis_x);
-    in->set_axis_y(input.axis_y);
-    in->set_buttons(input.buttons);
+    *frame->add_inputs() = proto::to_wire(input);
     send(client, envelope);
   }
   void tick() {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // MatchHost driven without sockets: scripted clients build envelopes by
 // hand, and the clock is whatever the test says.
+#include "car_input_game.h"
 #include "failing_game.h"
 #include "match_host_harness.h"
 #include "rewind/game/crates_game.h"
@@ -92,7 +93,7 @@ TEST(MatchHost, ASpectatorWatchesButNeverPlays) {
   for (Tick t = 0; t < 20; ++t) {
     h.send_input(a, t, scripted(a.player, t), a.player);
     h.send_input(b, t, scripted(b.player, t), b.player);
-    h.send_input(watcher, t, {1000, 1000, 1}, watcher.player);  // never taken
+    h.send_input(watcher, t, rwd::stick_input(1000, 1000, 1), watcher.player);  // never taken
     h.tick();
   }
   EXPECT_GT(h.host().stats().rejected_inputs, 0u);
@@ -115,7 +116,7 @@ TEST(MatchHost, MissingInputsAreSubstitutedAtTheDeadline) {
   EXPECT_EQ(stats.substituted_inputs, static_cast<uint64_t>(stats.ticks_final));
   for (const v1::FinalTick& f : h.host().recent_finals()) EXPECT_EQ(f.substituted_mask(), 2u);
   // b's input for a final tick arrives now: rejected and counted.
-  h.send_input(b, 0, {1000, 0, 0}, b.player);
+  h.send_input(b, 0, rwd::stick_input(1000, 0), b.player);
   EXPECT_EQ(h.host().stats().rejected_inputs, 1u);
 }
 
@@ -137,7 +138,7 @@ TEST(MatchHost, HostileDatagramsChangeNothingForThePlayers) {
     frame.set_sequence(999999);
     frame.mutable_input_frame()->set_player(a.player);
     frame.mutable_input_frame()->set_first_tick(t);
-    frame.mutable_input_frame()->add_inputs()->set_axis_x(5);
+    frame.mutable_input_frame()->add_inputs()->set_data("\x05");
     std::vector<uint8_t> bytes = host.encode(frame);
     bytes.resize(bytes.size() - 3);
     host.raw(a.endpoint, bytes);
@@ -154,16 +155,16 @@ TEST(MatchHost, HostileDatagramsChangeNothingForThePlayers) {
     spoof.set_sequence(a.sequence + 5);
     spoof.mutable_input_frame()->set_player(a.player);
     spoof.mutable_input_frame()->set_first_tick(t + 1);
-    spoof.mutable_input_frame()->add_inputs()->set_axis_x(-1000);
+    *spoof.mutable_input_frame()->add_inputs() = proto::to_wire(rwd::stick_input(-1000, 0));
     host.raw(attacker, host.encode(spoof));
     // An unknown connection id.
     spoof.set_connection_id(a.connection_id ^ 0x5555);
     host.raw(a.endpoint, host.encode(spoof));
     // Player a claiming to be player b.
-    host.send_input(a, t + 1, {-1000, -1000, 3}, b.player);
+    host.send_input(a, t + 1, rwd::stick_input(-1000, -1000, 3), b.player);
     // Far in the future, and for a final tick.
-    host.send_input(a, t + 100000, {1000, 0, 0}, a.player);
-    if (t > 10) host.send_input(b, t - 9, {-999, 999, 1}, b.player);
+    host.send_input(a, t + 100000, rwd::stick_input(1000, 0), a.player);
+    if (t > 10) host.send_input(b, t - 9, rwd::stick_input(-999, 999, 1), b.player);
     // A server-to-client message from a client.
     v1::Envelope bogus;
     bogus.mutable_final_ticks()->set_server_tick(t);
@@ -265,6 +266,30 @@ TEST(MatchHost, AnErrorFromTheRulesEndsTheMatchWithItsMessage) {
   EXPECT_EQ(reason.rfind("the game's rules failed: game 'failing', tick 5: ", 0), 0u) << reason;
   EXPECT_NE(reason.find("the flag's body is gone"), std::string::npos) << reason;
   EXPECT_LE(h.host().last_final_tick(), 4);
+}
+
+TEST(MatchHost, AGamesOwnInputIsPlayedAndInputOutsideItsSpecIsRejected) {
+  ASSERT_TRUE(
+      game::register_game("cars", [] { return std::make_unique<test::CarInputGame>(); }).ok());
+  MatchConfig config = test_config();
+  config.game = "cars";
+  HostHarness h(config);
+  FakeClient a = h.join(4001);
+  FakeClient b = h.join(4002);
+  for (Tick t = 0; t < 20; ++t) {
+    const auto brake = static_cast<uint8_t>(t % 2);
+    h.send_input(a, t, PlayerInput::of(test::CarInput{-250, 40, brake}), a.player);
+    // b's throttle at tick 6 is beyond the game's 100: refused on arrival,
+    // and the tick is played with a substitute.
+    const auto throttle = static_cast<uint8_t>(t == 6 ? 101 : 90);
+    h.send_input(b, t, PlayerInput::of(test::CarInput{300, throttle, 0}), b.player);
+    h.tick();
+  }
+  const MatchStats stats = h.host().stats();
+  EXPECT_EQ(stats.rejected_inputs, 1u);
+  EXPECT_GE(stats.ticks_final, 14);
+  EXPECT_EQ(stats.substituted_inputs, 1u);
+  EXPECT_EQ(h.host().phase(), MatchHost::Phase::kRunning);
 }
 
 TEST(MatchHost, ConfigErrorsAreReported) {

@@ -26,9 +26,10 @@ ViewBundle played(const std::string& game_name, uint32_t players, Tick ticks) {
   std::vector<rwd::PlayerInput> inputs(players);
   for (Tick t = 0; t < ticks; ++t) {
     for (uint32_t p = 0; p < players; ++p) {
-      inputs[p].axis_x = static_cast<int16_t>(((t / 13 + static_cast<Tick>(p)) % 3 - 1) * 1000);
-      inputs[p].axis_y = static_cast<int16_t>(((t / 29 + static_cast<Tick>(p)) % 3 - 1) * 700);
-      inputs[p].buttons = (t + static_cast<Tick>(p)) % 40 == 0 ? 1u : 0u;
+      inputs[p] =
+          rwd::stick_input(static_cast<int16_t>(((t / 13 + static_cast<Tick>(p)) % 3 - 1) * 1000),
+                           static_cast<int16_t>(((t / 29 + static_cast<Tick>(p)) % 3 - 1) * 700),
+                           (t + static_cast<Tick>(p)) % 40 == 0 ? 1u : 0u);
     }
     EXPECT_TRUE((*sim)->step(inputs).ok());
     b.inputs.insert(b.inputs.end(), inputs.begin(), inputs.end());

@@ -3,9 +3,11 @@
 // field is refused with a message naming it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
+#include "rewind/core/stick_input.h"
 #include "rewind/viewer/view_bundle.h"
 
 namespace rwd::viewer {
@@ -22,8 +24,9 @@ ViewBundle sample() {
   b.player_names = {"ada", "bo", ""};
   for (uint32_t t = 0; t < 5; ++t) {
     for (uint32_t p = 0; p < 3; ++p) {
-      b.inputs.push_back({static_cast<int16_t>(-1000 + 37 * static_cast<int>(t + p)),
-                          static_cast<int16_t>(999 - static_cast<int>(p)), 0x80000001u >> p});
+      b.inputs.push_back(
+          rwd::stick_input(static_cast<int16_t>(-1000 + 37 * static_cast<int>(t + p)),
+                           static_cast<int16_t>(999 - static_cast<int>(p)), 0x80000001u >> p));
     }
     b.checksums.push_back(0xF00D0000ull + t);
     b.substituted_masks.push_back(t % 2 == 0 ? 0 : 5);
@@ -119,23 +122,42 @@ TEST(ViewBundle, KeyframesRoundTripAndMustAscendWithinTheTicks) {
   EXPECT_EQ(untouched, std::vector<uint8_t>{3});
 }
 
-TEST(ViewBundle, VersionOneBundlesStillLoad) {
-  // Version 1 had no first tick and start state: the same bytes without
-  // those 8 (an i32 0 and an empty run) after the names.
-  ViewBundle old = sample();
+TEST(ViewBundle, VersionOneAndTwoBundlesStillLoad) {
+  // Versions 1 and 2 stored each input as the stick's 8 bytes, where
+  // version 3 stores a length and the bytes without trailing zeros (here
+  // all 8 are used: 9 bytes). Version 1 also had no first tick, start state
+  // or keyframes: 12 bytes fewer before the ticks.
+  const ViewBundle old = sample();
   std::vector<uint8_t> bytes;
   ASSERT_TRUE(encode_view_bundle(old, bytes).ok());
-  const std::vector<uint8_t> tail(
-      bytes.end() - static_cast<ptrdiff_t>(4 + 5 * (16 + 3 * 8) + 1 + 4 + 4 + 4 + 25 + 4 + 4),
-      bytes.end());
-  // Version 2 adds 12 bytes: first tick, an empty start state, no keyframes.
-  std::vector<uint8_t> v1(bytes.begin(), bytes.end() - static_cast<ptrdiff_t>(tail.size()) - 12);
-  v1.insert(v1.end(), tail.begin(), tail.end());
-  v1[8] = 1;
-  auto back = decode_view_bundle(v1);
-  ASSERT_TRUE(back.ok()) << back.status().message();
-  expect_same(old, *back);
-  EXPECT_EQ(back->first_tick, 0);
+  constexpr size_t kDesync = 1 + 4 + 4 + 4 + 25 + 4 + 4;
+  constexpr size_t kTicks = 4 + 5 * (16 + 3 * 9);
+  const size_t ticks_at = bytes.size() - kDesync - kTicks;
+  std::vector<uint8_t> stick_ticks(bytes.begin() + static_cast<ptrdiff_t>(ticks_at),
+                                   bytes.begin() + static_cast<ptrdiff_t>(ticks_at) + 4);
+  size_t at = ticks_at + 4;
+  for (int t = 0; t < 5; ++t) {
+    stick_ticks.insert(stick_ticks.end(), bytes.begin() + static_cast<ptrdiff_t>(at),
+                       bytes.begin() + static_cast<ptrdiff_t>(at) + 16);
+    at += 16;
+    for (int p = 0; p < 3; ++p) {
+      ASSERT_EQ(bytes[at], 8u);
+      stick_ticks.insert(stick_ticks.end(), bytes.begin() + static_cast<ptrdiff_t>(at) + 1,
+                         bytes.begin() + static_cast<ptrdiff_t>(at) + 9);
+      at += 9;
+    }
+  }
+  for (const uint32_t version : {1u, 2u}) {
+    const size_t head = ticks_at - (version == 1 ? 12 : 0);
+    std::vector<uint8_t> older(bytes.begin(), bytes.begin() + static_cast<ptrdiff_t>(head));
+    older.insert(older.end(), stick_ticks.begin(), stick_ticks.end());
+    older.insert(older.end(), bytes.end() - static_cast<ptrdiff_t>(kDesync), bytes.end());
+    older[8] = static_cast<uint8_t>(version);
+    auto back = decode_view_bundle(older);
+    ASSERT_TRUE(back.ok()) << version << ": " << back.status().message();
+    expect_same(old, *back);
+    EXPECT_EQ(back->first_tick, 0);
+  }
 }
 
 TEST(ViewBundle, EveryTruncationIsRefused) {
@@ -163,26 +185,26 @@ TEST(ViewBundle, BadFieldsAreNamed) {
     EXPECT_NE(r.status().message().find(named), std::string::npos) << r.status().message();
   };
   refused(0, 'X', "magic");
-  refused(8, 3, "version");
+  refused(8, 4, "version");
   refused(8, 0, "version");
   // 8 magic + 4 version + 4 + 6 "crates": the player count.
   refused(22, 0, "player count");
   refused(22, 33, "player count");
   refused(38, 2, "identity flag");  // after the seed (8) and the tick rate (4)
-  // The first tick's first axis: its bytes follow the names; find them by
-  // encoding an axis of 1001 through the raw bytes of -1000 + 37 * 0.
-  std::vector<uint8_t> bytes = good;
-  const uint16_t raw = static_cast<uint16_t>(int16_t{-1000});
-  for (size_t i = 0; i + 1 < bytes.size(); ++i) {
-    if (bytes[i] == (raw & 0xFF) && bytes[i + 1] == (raw >> 8)) {
-      bytes[i] = 0x17;  // -1000 -> -1001
-      break;
-    }
-  }
+  // An input longer than 32 bytes: a full input's length byte, found by
+  // its 32 bytes of 0xEE, raised to 33.
+  ViewBundle full = sample();
+  full.inputs[0].bytes.fill(0xEE);
+  std::vector<uint8_t> bytes;
+  ASSERT_TRUE(encode_view_bundle(full, bytes).ok());
+  const std::vector<uint8_t> run(32, 0xEE);
+  auto found = std::search(bytes.begin(), bytes.end(), run.begin(), run.end());
+  ASSERT_NE(found, bytes.end());
+  ASSERT_EQ(*(found - 1), 32u);
+  *(found - 1) = 33;
   auto r = decode_view_bundle(bytes);
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.status().message().find("axis out of range"), std::string::npos)
-      << r.status().message();
+  EXPECT_NE(r.status().message().find("input length"), std::string::npos) << r.status().message();
 }
 
 TEST(ViewBundle, InconsistentBundlesAreNotWritten) {
@@ -192,9 +214,6 @@ TEST(ViewBundle, InconsistentBundlesAreNotWritten) {
   EXPECT_FALSE(encode_view_bundle(b, out).ok());
   b = sample();
   b.player_names.pop_back();
-  EXPECT_FALSE(encode_view_bundle(b, out).ok());
-  b = sample();
-  b.inputs[0].axis_x = 1001;
   EXPECT_FALSE(encode_view_bundle(b, out).ok());
   b = sample();
   b.setup.player_count = 0;

@@ -77,10 +77,14 @@ class ClientProtocol {
   void disconnect(const std::string& reason, TimePoint now);
 
   /// Sets the input provider; by default the last set_input() value is held.
+  /// A provided input the game's InputSpec refuses is replaced by the
+  /// neutral input (the server would refuse it).
   void set_input_provider(InputProvider provider);
   /// The input used for every tick from now on (when no provider is set).
-  /// Axes are clamped to [-1000, 1000].
-  void set_input(const rwd::PlayerInput& input);
+  /// Once the match is joined, an input the game's InputSpec refuses is
+  /// kInvalidArgument and the held input stays; one set before is checked
+  /// when sent, as a provider's is.
+  Status set_input(const rwd::PlayerInput& input);
 
   /// The oldest datagram for the server, removed from the queue; nullopt
   /// when none is left. The bytes stay valid until the next call that

@@ -60,7 +60,7 @@ class ClientSession {
     protocol_.set_input_provider(std::move(provider));
   }
   /// The input used for every tick from now on (when no provider is set).
-  void set_input(const rwd::PlayerInput& input) { protocol_.set_input(input); }
+  Status set_input(const rwd::PlayerInput& input) { return protocol_.set_input(input); }
   /// Advances the tick clock, steps due ticks, verifies final ticks, sends
   /// what is due. Returns the number of ticks stepped.
   int update(TimePoint now);

@@ -3,10 +3,11 @@
 // Inputs packed against a reference, for the datagrams that carry many of
 // them (final ticks, relayed runs). Consecutive inputs of a player, and a
 // player's input on consecutive ticks, are mostly equal, so each input is
-// sent as its XOR with a reference input: one mask byte naming the bytes
-// that differ (axis_x low and high, axis_y low and high, buttons bytes 0
-// to 3, little-endian), then those bytes. An unchanged input costs one
-// byte, a changed stick three.
+// sent as its XOR with a reference input: a mask naming the bytes that
+// differ (bit i for byte i of the input, as a base-128 varint of up to 5
+// bytes), then those bytes. An unchanged input costs one byte; a change in
+// the first 7 bytes costs one byte plus the bytes changed (a stick that
+// moved: three).
 //
 // A packed list is a count byte (0 to 64) followed by the inputs; the
 // references are the caller's (the neutral input, the previous input of a
@@ -37,7 +38,7 @@ void pack_run(std::span<const rwd::PlayerInput> run, std::string& out);
 /// Reads a packed list against `references` (empty: the neutral input;
 /// else as many as the list holds) into `out` (replaced). kCorrupt for a
 /// truncated list, trailing bytes, a count above kMaxPackedInputs, a
-/// reference count that does not match, or an axis outside [-1000, 1000].
+/// reference count that does not match, or a mask longer than the input.
 Status unpack_inputs(std::string_view bytes, std::span<const rwd::PlayerInput> references,
                      std::vector<rwd::PlayerInput>& out);
 

@@ -7,13 +7,14 @@
 // bundle (rewind/viewer/view_bundle.h, whose first_tick and start_state
 // let it join midway) and appends batches to its ReplayPlayer.
 //
-// Layout (version 1), integers little-endian, strings as u32 length + bytes:
+// Layout (version 2), integers little-endian, strings as u32 length + bytes:
 //   "RWDLIVE1"  u32 version
 //   u32 player_count  u32 name_count  str name...   (0 or player_count names)
 //   i32 newest_final  u8 ended
 //   i32 first_tick  u32 tick_count
 //   per tick: u64 checksum  u64 substituted_mask
-//             player_count x (i16 axis_x  i16 axis_y  u32 buttons)
+//             player_count x (u8 n  n bytes: the input without its
+//                             trailing zeros)
 #include <cstdint>
 #include <span>
 #include <string>
@@ -25,7 +26,7 @@
 
 namespace rwd::viewer {
 
-inline constexpr uint32_t kLiveTicksVersion = 1;
+inline constexpr uint32_t kLiveTicksVersion = 2;
 /// Most ticks one batch carries (a reader refuses more).
 inline constexpr uint32_t kLiveMaxBatchTicks = 1u << 16;
 

@@ -7,7 +7,7 @@
 // replay file (rewind/replay/replay_view.h); the viewer, native or
 // WebAssembly, reads it with no protobuf and re-simulates from it.
 //
-// Layout (version 2), every integer little-endian, strings and byte runs
+// Layout (version 3), every integer little-endian, strings and byte runs
 // as a u32 length and that many bytes:
 //   "RWDVIEW1"  u32 version
 //   str game  u32 player_count  u64 seed  u32 tick_rate_hz
@@ -17,7 +17,9 @@
 //   u32 keyframe_count                         none of these: 0, empty, none)
 //     per keyframe: i32 position  bytes state
 //   u32 tick_count  per tick: u64 checksum  u64 substituted_mask
-//                             player_count x (i16 axis_x  i16 axis_y  u32 buttons)
+//                             player_count x (u8 n  n bytes: the input
+//                             without its trailing zeros; versions 1 and 2:
+//                             i16 axis_x  i16 axis_y  u32 buttons)
 //   u8 has_desync  [i32 tick  u32 player  str headline  bytes client_state]
 #include <cstdint>
 #include <optional>
@@ -32,7 +34,7 @@
 
 namespace rwd::viewer {
 
-inline constexpr uint32_t kViewBundleVersion = 2;
+inline constexpr uint32_t kViewBundleVersion = 3;
 /// Bounds a reader enforces (a bundle is untrusted input).
 inline constexpr uint32_t kViewMaxTicks = 1u << 24;        ///< 77 hours at 60 Hz
 inline constexpr uint32_t kViewMaxString = 256;            ///< bytes, names and notes

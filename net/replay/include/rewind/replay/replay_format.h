@@ -28,8 +28,10 @@ inline constexpr uint32_t kMaxRecordBytes = 8u * 1024u * 1024u;
 ///   1  no engine identity in the header
 ///   2  the header records engine, sim revision, game rules version and
 ///      world config (what re-simulation must match)
-/// Frames and records are the same in both.
-inline constexpr uint32_t kFormatVersion = 2;
+///   3  inputs are the game's bytes (Input.data) instead of the stick
+///      fields (formats 1 and 2 are read as the stick input)
+/// Frames and records are the same in all.
+inline constexpr uint32_t kFormatVersion = 3;
 /// The oldest format_version this build reads.
 inline constexpr uint32_t kOldestFormatVersion = 1;
 /// Most players a replay can hold. Equal to game::kMaxPlayers (checked where
@@ -51,7 +53,7 @@ Status append_frame(const v1::ReplayRecord& record, std::vector<uint8_t>& out);
 /// read.
 Status validate_header(const v1::ReplayHeader& header);
 
-/// "formats 1 to 2": the format versions this build reads.
+/// "formats 1 to 3": the format versions this build reads.
 std::string readable_formats();
 
 /// Length of the shortest prefix of `bytes` whose payload_hash() is `hash`,

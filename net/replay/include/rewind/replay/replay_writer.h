@@ -100,6 +100,7 @@ class ReplayWriter {
   std::string path_;
   int fd_ = -1;
   uint32_t player_count_ = 0;
+  bool stick_inputs_ = false;  // format 1 or 2: inputs as the stick fields
   ReplayWriterOptions options_;
   std::vector<uint8_t> buffer_;
   std::chrono::steady_clock::time_point last_flush_;

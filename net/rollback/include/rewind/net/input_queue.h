@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // One player's input stream: confirmed inputs in a ring indexed by tick, and
-// the prediction rule for ticks not yet confirmed (repeat the newest earlier
-// confirmed input; neutral before any).
+// the prediction for ticks not yet confirmed: the game's predictor applied
+// to the newest earlier confirmed input (neutral before any); without a
+// predictor, that input repeated.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "rewind/core/input_spec.h"
 #include "rewind/core/player_input.h"
 #include "rewind/core/tick.h"
 
@@ -21,8 +23,9 @@ class InputQueue {
     kOutOfRange,  ///< before the queue's base or beyond its capacity
   };
 
-  /// `capacity` ticks starting at `base` can be held; base only moves forward.
-  explicit InputQueue(int32_t capacity = 256, Tick base = 0);
+  /// `capacity` ticks starting at `base` can be held; base only moves
+  /// forward. `predict` (nullptr: repeat) guesses unconfirmed ticks.
+  explicit InputQueue(int32_t capacity = 256, Tick base = 0, InputPredictor predict = nullptr);
 
   /// Stores a confirmed input. First writer wins (an input, once sent, never
   /// changes); use set_authoritative() for the server's final word.
@@ -56,11 +59,14 @@ class InputQueue {
   Slot& slot(Tick tick) { return slots_[static_cast<size_t>(tick % capacity_)]; }
   const Slot& slot(Tick tick) const { return slots_[static_cast<size_t>(tick % capacity_)]; }
   void advance_contiguous();
+  // The newest confirmed input at or before `tick` (carried_ before base_).
+  rwd::PlayerInput newest_at_or_before(Tick tick) const;
 
   int32_t capacity_;
   Tick base_;
   Tick contiguous_;
   Tick newest_ = kNoTick;
+  InputPredictor predict_;
   rwd::PlayerInput carried_;  // newest input before base_, the prediction seed
   std::vector<Slot> slots_;
 };

@@ -43,6 +43,7 @@ enum class InputResult : uint8_t {
   kFinal,      ///< the tick is already final
   kTooFar,     ///< beyond what the input queue can hold
   kBadPlayer,  ///< no such player slot
+  kBadInput,   ///< the game's input spec does not allow it (check_input)
 };
 
 class RollbackSession {

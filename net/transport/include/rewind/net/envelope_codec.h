@@ -12,7 +12,8 @@ namespace rwd::net {
 
 /// Wire protocol version carried in every Envelope; a receiver drops any other.
 /// 2: a tokenless join travels in a cookie packet (net/address_cookie.h).
-inline constexpr uint32_t kProtocolVersion = 2;
+/// 3: inputs are the game's bytes (Input.data), packed with a varint mask.
+inline constexpr uint32_t kProtocolVersion = 3;
 /// Largest datagram Rewind sends or accepts, in bytes. Chosen to stay below
 /// the common 1280-byte IPv6 minimum MTU minus IP/UDP headers, so datagrams
 /// are never fragmented.
@@ -29,7 +30,6 @@ inline constexpr uint32_t kMaxDesyncChunks = 256;           ///< DesyncReport.ch
 inline constexpr uint32_t kMaxResyncChunks = 1024;          ///< ResyncChunk.chunk_count
 inline constexpr uint32_t kMaxDesyncDumpBytes = 1u << 20;   ///< DesyncReport.total_size
 inline constexpr uint32_t kMaxResyncStateBytes = 4u << 20;  ///< ResyncChunk.total_size
-inline constexpr int32_t kMaxAxis = 1000;                   ///< |Input.axis_x|, |Input.axis_y|
 inline constexpr uint32_t kMaxTickRateHz = 1000;            ///< JoinAccept.tick_rate_hz, >= 1
 
 /// Parses one datagram. Never throws and never crashes, whatever the bytes.

@@ -14,7 +14,7 @@
 
 namespace rwd::game {
 
-/// Button bits of PlayerInput::buttons in arena.
+/// Button bits of StickInput::buttons in arena.
 inline constexpr uint32_t kArenaDash = 1u << 0;
 
 inline constexpr uint32_t kArenaMaxCrates = 16;
@@ -41,7 +41,7 @@ class ArenaGame final : public GameWithState<sim2d::World2D, ArenaState> {
  protected:
   Status build_typed(const MatchSetup& setup, sim2d::World2D& world,
                      ArenaState& state) const override;
-  Status apply_typed(Tick tick, std::span<const PlayerInput> inputs, sim2d::World2D& world,
+  Status apply_typed(Tick tick, std::span<const StickInput> inputs, sim2d::World2D& world,
                      ArenaState& state) const override;
   Status after_step_typed(Tick tick, sim2d::World2D& world, ArenaState& state) const override;
   void hash_typed(const ArenaState& state, rwd::StateHasher& hasher) const override;

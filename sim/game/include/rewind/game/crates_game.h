@@ -14,7 +14,7 @@
 
 namespace rwd::game {
 
-/// Button bits of PlayerInput::buttons in crates.
+/// Button bits of StickInput::buttons in crates.
 inline constexpr uint32_t kCratesJump = 1u << 0;
 inline constexpr uint32_t kCratesDash = 1u << 1;
 
@@ -41,7 +41,7 @@ class CratesGame final : public GameWithState<sim::World3D, CratesState> {
  protected:
   Status build_typed(const MatchSetup& setup, sim::World3D& world,
                      CratesState& state) const override;
-  Status apply_typed(Tick tick, std::span<const PlayerInput> inputs, sim::World3D& world,
+  Status apply_typed(Tick tick, std::span<const StickInput> inputs, sim::World3D& world,
                      CratesState& state) const override;
   Status after_step_typed(Tick tick, sim::World3D& world, CratesState& state) const override;
   void hash_typed(const CratesState& state, rwd::StateHasher& hasher) const override;

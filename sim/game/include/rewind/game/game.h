@@ -15,9 +15,11 @@
 #include <utility>
 #include <vector>
 
+#include "rewind/core/input_spec.h"
 #include "rewind/core/player_input.h"
 #include "rewind/core/state_hasher.h"
 #include "rewind/core/status.h"
+#include "rewind/core/stick_input.h"
 #include "rewind/core/tick.h"
 #include "rewind/game/lane.h"
 
@@ -31,10 +33,11 @@ struct MatchSetup {
 
 inline constexpr uint32_t kMaxPlayers = 32;
 
-/// A stick direction drawn at random every 40 ticks, with a rare jump
-/// (button bit 0) or dash (bit 1): Game::bot_input()'s default. A pure
-/// function of its arguments.
-PlayerInput random_bot_input(uint64_t seed, uint32_t player, Tick tick);
+/// Game::bot_input()'s default, a pure function of its arguments. For the
+/// stick input (stick_input_spec()): a direction drawn at random every 40
+/// ticks, with a rare jump (button bit 0) or dash (bit 1). For any other
+/// spec: every field drawn from its range every 20 ticks (random_input()).
+PlayerInput random_bot_input(const InputSpec& spec, uint64_t seed, uint32_t player, Tick tick);
 
 class Game {
  public:
@@ -61,6 +64,13 @@ class Game {
       std::span<const uint8_t> bytes) const = 0;
   /// Size in bytes of the game's state block (trivially copyable data).
   virtual size_t state_size() const = 0;
+  /// What the game's input is: its size, its fields and their allowed
+  /// ranges, and how a missing input is predicted. The server refuses an
+  /// input outside it before the rules see it, so apply_inputs() only gets
+  /// inputs the spec allows (or the neutral, all-zero input). The default
+  /// is StickInput (two axes and 32 buttons). The spec must not change
+  /// while the game is in use.
+  virtual const InputSpec& input_spec() const { return stick_input_spec(); }
   // The three rules hooks return a Status so that no error is dropped: a
   // call the world refuses (a body the scene cannot create, a handle that
   // should exist but does not) is returned, and the match that runs the
@@ -73,7 +83,8 @@ class Game {
   /// same type) and initializes the zeroed state block.
   virtual Status build(const MatchSetup& setup, Lane& lane, std::span<std::byte> state) const = 0;
   /// Applies one tick of inputs (one per player, index = player slot)
-  /// before the world steps.
+  /// before the world steps. Each is the player's input as input_spec()
+  /// describes it (PlayerInput::as<T>() reads the game's struct).
   virtual Status apply_inputs(Tick tick, std::span<const PlayerInput> inputs, Lane& lane,
                               std::span<std::byte> state) const = 0;
   /// Runs after the world stepped (scoring, respawns); may read events.
@@ -89,7 +100,7 @@ class Game {
   /// plays by default (--script game) and load tests drive. It must be a
   /// pure function of its arguments, so a run repeats with the same seed.
   virtual PlayerInput bot_input(uint64_t seed, uint32_t player, Tick tick) const {
-    return random_bot_input(seed, player, tick);
+    return random_bot_input(input_spec(), seed, player, tick);
   }
 };
 

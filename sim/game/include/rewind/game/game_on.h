@@ -2,6 +2,8 @@
 #pragma once
 // Bases for games written against one concrete world type. They turn the
 // lane-neutral Game calls into calls with the typed world, once per tick.
+#include <algorithm>
+#include <array>
 #include <cstring>
 #include <memory>
 #include <span>
@@ -64,8 +66,11 @@ class GameOn : public Game {
   static World& world_in(Lane& lane) { return static_cast<WorldLane<World>&>(lane).world(); }
 };
 
-/// Convenience base for games whose state is one trivially copyable struct.
-template <class World, class State>
+/// Convenience base for games whose state is one trivially copyable struct
+/// and whose input is one struct `Input` (StickInput unless the game names
+/// its own; a game with its own Input also overrides Game::input_spec() to
+/// describe it, with the same size).
+template <class World, class State, InputLayout Input = StickInput>
 class GameWithState : public GameOn<World> {
   static_assert(std::is_trivially_copyable_v<State>, "game state must be trivially copyable");
 
@@ -85,7 +90,7 @@ class GameWithState : public GameOn<World> {
   // Game's build(), apply_inputs() and after_step() on the typed world and
   // state; what they change in `state` is kept even when they fail.
   virtual Status build_typed(const MatchSetup& setup, World& world, State& state) const = 0;
-  virtual Status apply_typed(Tick tick, std::span<const PlayerInput> inputs, World& world,
+  virtual Status apply_typed(Tick tick, std::span<const Input> inputs, World& world,
                              State& state) const = 0;
   virtual Status after_step_typed(Tick tick, World& world, State& state) const = 0;
   virtual void hash_typed(const State& state, rwd::StateHasher& hasher) const = 0;
@@ -94,6 +99,12 @@ class GameWithState : public GameOn<World> {
  private:
   Status build_world(const MatchSetup& setup, World& world,
                      std::span<std::byte> state) const final {
+    if (this->input_spec().size != sizeof(Input)) {
+      return Status::Error(ErrorCode::kInvalidArgument,
+                           "input_spec() declares " + std::to_string(this->input_spec().size) +
+                               " bytes, but the game's Input struct has " +
+                               std::to_string(sizeof(Input)));
+    }
     State s{};
     Status status = build_typed(setup, world, s);
     store(s, state);
@@ -101,8 +112,11 @@ class GameWithState : public GameOn<World> {
   }
   Status apply_world(Tick tick, std::span<const PlayerInput> inputs, World& world,
                      std::span<std::byte> state) const final {
+    std::array<Input, kMaxPlayers> typed;
+    const size_t count = std::min(inputs.size(), typed.size());
+    for (size_t p = 0; p < count; ++p) typed[p] = inputs[p].template as<Input>();
     State s = load(state);
-    Status status = apply_typed(tick, inputs, world, s);
+    Status status = apply_typed(tick, std::span<const Input>(typed.data(), count), world, s);
     store(s, state);
     return status;
   }

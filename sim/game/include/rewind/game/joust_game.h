@@ -11,7 +11,7 @@
 // seconds later; a car on its roof (or out of the arena) is put back at its
 // spawn point.
 //
-// Controls (PlayerInput): axis_y sets the speed the car drives toward
+// Controls (StickInput): axis_y sets the speed the car drives toward
 // (full deflection 12 m/s ahead or behind; released, it rolls to a stop),
 // axis_x steers (+ right), kJoustBrake brakes, kJoustCharge starts a
 // charge (more drive force and top speed for a second, then a cooldown).
@@ -24,7 +24,7 @@
 
 namespace rwd::game {
 
-/// Button bits of PlayerInput::buttons in joust.
+/// Button bits of StickInput::buttons in joust.
 inline constexpr uint32_t kJoustBrake = 1u << 0;
 inline constexpr uint32_t kJoustCharge = 1u << 1;
 
@@ -91,7 +91,7 @@ class JoustGame final : public GameWithState<sim::World3D, JoustState> {
  protected:
   Status build_typed(const MatchSetup& setup, sim::World3D& world,
                      JoustState& state) const override;
-  Status apply_typed(Tick tick, std::span<const PlayerInput> inputs, sim::World3D& world,
+  Status apply_typed(Tick tick, std::span<const StickInput> inputs, sim::World3D& world,
                      JoustState& state) const override;
   Status after_step_typed(Tick tick, sim::World3D& world, JoustState& state) const override;
   void hash_typed(const JoustState& state, rwd::StateHasher& hasher) const override;

@@ -77,7 +77,9 @@ class Simulation {
   /// slot), steps the world, runs the game's after-step rules, then tick()+1.
   /// When the game's rules fail, their error (naming the game and the tick)
   /// is returned and tick() stays: the state is then whatever the rules
-  /// left, so restore a snapshot or drop the simulation.
+  /// left, so restore a snapshot or drop the simulation. An input the
+  /// game's InputSpec refuses is kInvalidArgument naming the player, before
+  /// anything changes.
   Status step(std::span<const PlayerInput> inputs);
 
   /// Copies the state into `out`, reusing its buffers.
