@@ -104,6 +104,13 @@ Status check_input_spec(const InputSpec& spec) {
   return Status::Ok();
 }
 
+const InputField* find_input_field(const InputSpec& spec, std::string_view name) {
+  for (const InputField& f : spec.fields) {
+    if (f.name == name) return &f;
+  }
+  return nullptr;
+}
+
 int64_t read_input_field(const PlayerInput& input, const InputField& field) {
   const size_t bytes = input_field_bytes(field.type);
   uint64_t raw = 0;

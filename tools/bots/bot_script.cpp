@@ -20,20 +20,9 @@ bool parse_bot_script(std::string_view text, BotScript* out) {
   return true;
 }
 
-namespace {
-
-const rwd::InputField* field_named(const rwd::InputSpec& spec, std::string_view name) {
-  for (const rwd::InputField& f : spec.fields) {
-    if (f.name == name) return &f;
-  }
-  return nullptr;
-}
-
-}  // namespace
-
 Status check_bot_script(BotScript script, const rwd::InputSpec& spec) {
-  if (script == BotScript::kCircle &&
-      (field_named(spec, "axis_x") == nullptr || field_named(spec, "axis_y") == nullptr)) {
+  if (script == BotScript::kCircle && (rwd::find_input_field(spec, "axis_x") == nullptr ||
+                                       rwd::find_input_field(spec, "axis_y") == nullptr)) {
     return Status::Error(ErrorCode::kInvalidArgument,
                          "the circle script steers the input fields axis_x and axis_y, and the "
                          "game's input ('" +
@@ -50,12 +39,12 @@ rwd::PlayerInput bot_input(BotScript script, const game::Game& game, uint64_t se
     case BotScript::kIdle:
       break;
     case BotScript::kCircle: {
-      // A square-ish circle from integer steps (thousandths of the field's
-      // reach): no trig needed for a bot.
+      // A square-ish circle from integer steps (the stick's thousandths,
+      // clamped to the fields' ranges): no trig needed for a bot.
       static constexpr int64_t kX[8] = {1000, 707, 0, -707, -1000, -707, 0, 707};
       const uint32_t phase = (static_cast<uint32_t>(tick) / 15 + bot) % 8;
-      const rwd::InputField* x = field_named(spec, "axis_x");
-      const rwd::InputField* y = field_named(spec, "axis_y");
+      const rwd::InputField* x = rwd::find_input_field(spec, "axis_x");
+      const rwd::InputField* y = rwd::find_input_field(spec, "axis_y");
       if (x == nullptr || y == nullptr) break;  // check_bot_script() refuses this
       rwd::write_input_field(input, *x, std::clamp(kX[phase], x->min, x->max));
       rwd::write_input_field(input, *y, std::clamp(kX[(phase + 2) % 8], y->min, y->max));

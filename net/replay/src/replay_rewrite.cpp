@@ -26,10 +26,7 @@ Result<ResolvedEdit> resolve(const InputSpec& spec, const InputEdit& edit) {
   }
   ResolvedEdit out;
   for (const InputFieldEdit& f : edit.fields) {
-    const InputField* found = nullptr;
-    for (const InputField& candidate : spec.fields) {
-      if (candidate.name == f.name) found = &candidate;
-    }
+    const InputField* found = find_input_field(spec, f.name);
     if (found == nullptr) {
       std::string names;
       for (const InputField& candidate : spec.fields) {

@@ -42,7 +42,6 @@ void RollbackSession::note_changed(Tick tick) {
 InputResult RollbackSession::add_input(uint32_t player, Tick tick, const rwd::PlayerInput& input) {
   if (player >= player_count_) return InputResult::kBadPlayer;
   if (!check_input(sim_->game().input_spec(), input).ok()) return InputResult::kBadInput;
-  if (!check_input(sim_->game().input_spec(), input).ok()) return InputResult::kBadInput;
   if (tick <= final_tick_) return InputResult::kFinal;
   const InputQueue::AddOutcome outcome = queues_[player].add(tick, input);
   if (outcome == InputQueue::AddOutcome::kNew) note_changed(tick);

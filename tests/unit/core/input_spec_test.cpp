@@ -126,6 +126,8 @@ TEST(InputSpec, DescribeRandomAndPredict) {
   EXPECT_EQ(describe_input(kCarSpec, input), "steer=-7 throttle=30 brake=1 horn=9");
   EXPECT_EQ(describe_input(stick_input_spec(), stick_input(12, -40, 3)),
             "axis_x=12 axis_y=-40 buttons=3");
+  EXPECT_EQ(find_input_field(kCarSpec, "brake"), &kCarFields[2]);
+  EXPECT_EQ(find_input_field(kCarSpec, "horns"), nullptr);
   const InputSpec opaque{"blob", 3, {}, nullptr};
   PlayerInput blob;
   blob.bytes = {0x0A, 0xFF, 0x00};

@@ -61,6 +61,9 @@ Status check_input(const InputSpec& spec, const PlayerInput& input);
 /// spec has no predictor).
 PlayerInput predict_input(const InputSpec& spec, const PlayerInput& newest);
 
+/// The field of `spec` named `name`, or nullptr.
+const InputField* find_input_field(const InputSpec& spec, std::string_view name);
+
 /// A field's value in `input`.
 int64_t read_input_field(const PlayerInput& input, const InputField& field);
 /// Stores `value`, truncated to the field's bytes, into `input`.
