@@ -22,7 +22,7 @@ Result<uint16_t> agones_port_from_env(const char* value) {
 }
 
 Result<std::string> AgonesSdk::call(std::string_view method, std::string_view path) const {
-  HttpRequest request;
+  HttpCallRequest request;
   request.method = std::string(method);
   request.target = std::string(path);
   // The REST gateway's lifecycle calls take an empty message.

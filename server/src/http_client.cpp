@@ -186,7 +186,7 @@ struct Call {
 
 }  // namespace
 
-Result<HttpResponse> http_call(std::string_view host, uint16_t port, const HttpRequest& request,
+Result<HttpResponse> http_call(std::string_view host, uint16_t port, const HttpCallRequest& request,
                                const HttpCallLimits& limits) {
   if (!is_method(request.method)) {
     return Status::Error(ErrorCode::kInvalidArgument,

@@ -135,7 +135,7 @@ TEST(HttpCall, SendsOneRequestAndReadsTheAnswer) {
         "HTTP/1.1 201 Created\r\nTransfer-Encoding: chunked\r\n\r\n3\r\n{\"a\r\n3\r\n\":1\r\n1\r\n}"
         "\r\n0\r\n\r\n");
   });
-  HttpRequest request;
+  HttpCallRequest request;
   request.method = "PATCH";
   request.target = "/x?y=1";
   request.body = "{\"b\":2}";
@@ -163,13 +163,13 @@ TEST(HttpCall, AnAnswerInManyReadsComesWhole) {
     return "HTTP/1.1 200 OK\r\nX-Pad: " + std::string(8000, 'p') +
            "\r\nContent-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
   });
-  auto response = http_call("127.0.0.1", server.port(), HttpRequest{}, quick());
+  auto response = http_call("127.0.0.1", server.port(), HttpCallRequest{}, quick());
   ASSERT_TRUE(response.ok()) << response.status().message();
   EXPECT_EQ(response->body, body);
 }
 
 TEST(HttpCall, MalformedRequestsAreNotSent) {
-  HttpRequest request;
+  HttpCallRequest request;
   request.method = "get";
   EXPECT_EQ(http_call("127.0.0.1", 1, request).status().code(), ErrorCode::kInvalidArgument);
   request.method = "GET";
@@ -185,12 +185,12 @@ TEST(HttpCall, BrokenAnswersNameTheCall) {
   LocalHttpServer cut([](const std::string&) {
     return std::string("HTTP/1.1 200 OK\r\nContent-Length: 10\r\n\r\nabc");
   });
-  Status status = http_call("127.0.0.1", cut.port(), HttpRequest{}, quick()).status();
+  Status status = http_call("127.0.0.1", cut.port(), HttpCallRequest{}, quick()).status();
   EXPECT_EQ(status.code(), ErrorCode::kCorrupt);
   EXPECT_EQ(status.message(), context("GET /", cut.port()) + "the connection closed mid-response");
 
   LocalHttpServer garbled([](const std::string&) { return std::string("SSH-2.0-x\r\n\r\n"); });
-  status = http_call("127.0.0.1", garbled.port(), HttpRequest{}, quick()).status();
+  status = http_call("127.0.0.1", garbled.port(), HttpCallRequest{}, quick()).status();
   EXPECT_EQ(status.code(), ErrorCode::kCorrupt);
   EXPECT_EQ(status.message(), context("GET /", garbled.port()) + "malformed response: bad version");
 
@@ -199,13 +199,13 @@ TEST(HttpCall, BrokenAnswersNameTheCall) {
   });
   HttpCallLimits small = quick();
   small.response.max_body_bytes = 99;
-  status = http_call("127.0.0.1", flood.port(), HttpRequest{}, small).status();
+  status = http_call("127.0.0.1", flood.port(), HttpCallRequest{}, small).status();
   EXPECT_EQ(status.code(), ErrorCode::kCapacity);
   EXPECT_EQ(status.message(), context("GET /", flood.port()) + "body longer than 99 bytes");
 }
 
 TEST(HttpCall, UnresolvableHostIsAnIoError) {
-  const Status status = http_call("no-such-host.invalid", 80, HttpRequest{}, quick()).status();
+  const Status status = http_call("no-such-host.invalid", 80, HttpCallRequest{}, quick()).status();
   EXPECT_EQ(status.code(), ErrorCode::kIo);
   EXPECT_EQ(status.message().rfind("HTTP GET / to no-such-host.invalid:80: resolve: ", 0), 0u)
       << status.message();
@@ -215,7 +215,7 @@ TEST(HttpCall, ASilentPeerTimesOutAtTheDeadline) {
   LocalHttpServer silent([](const std::string&) { return std::string(); });
   const auto start = std::chrono::steady_clock::now();
   const Status status =
-      http_call("127.0.0.1", silent.port(), HttpRequest{}, quick(std::chrono::milliseconds(150)))
+      http_call("127.0.0.1", silent.port(), HttpCallRequest{}, quick(std::chrono::milliseconds(150)))
           .status();
   const auto took = std::chrono::steady_clock::now() - start;
   EXPECT_EQ(status.code(), ErrorCode::kIo);

@@ -19,7 +19,9 @@
 
 namespace rwd::server {
 
-struct HttpRequest {
+/// What http_call sends (the server side's parsed request is HttpRequest,
+/// in http_endpoint.h).
+struct HttpCallRequest {
   std::string method = "GET";  ///< an upper-case token: GET, POST, ...
   std::string target = "/";    ///< origin form: starts with '/', visible ASCII
   /// Sent with `Content-Type: application/json` when the method is not GET.
@@ -57,7 +59,7 @@ struct HttpCallLimits {
 /// connecting, writing or reading fails or the deadline passes (the message
 /// names the step); kCorrupt for a malformed or truncated response; kCapacity
 /// for one over the limits.
-Result<HttpResponse> http_call(std::string_view host, uint16_t port, const HttpRequest& request,
+Result<HttpResponse> http_call(std::string_view host, uint16_t port, const HttpCallRequest& request,
                                const HttpCallLimits& limits = {});
 
 /// Reads `bytes` as everything a peer sent before closing the connection,
