@@ -214,9 +214,9 @@ TEST(HttpCall, UnresolvableHostIsAnIoError) {
 TEST(HttpCall, ASilentPeerTimesOutAtTheDeadline) {
   LocalHttpServer silent([](const std::string&) { return std::string(); });
   const auto start = std::chrono::steady_clock::now();
-  const Status status =
-      http_call("127.0.0.1", silent.port(), HttpCallRequest{}, quick(std::chrono::milliseconds(150)))
-          .status();
+  const Status status = http_call("127.0.0.1", silent.port(), HttpCallRequest{},
+                                  quick(std::chrono::milliseconds(150)))
+                            .status();
   const auto took = std::chrono::steady_clock::now() - start;
   EXPECT_EQ(status.code(), ErrorCode::kIo);
   EXPECT_EQ(status.message(), context("GET /", silent.port()) + "read: no answer within 150 ms");
