@@ -30,10 +30,11 @@ Result<std::shared_ptr<MatchRunner>> MatchRunner::create(asio::io_context& io,
   if (!socket.ok()) return socket.status();
   runner->socket_ = std::move(*socket);
   runner->port_ = runner->socket_->local_port();
+  if (settings.websocket) runner->websocket_ = std::make_shared<WebSocketPort>();
   // The callbacks below run on the strand only (from the match's own
   // handlers), and the runner outlives them: they die with its members.
   const auto send_raw = [self](const Endpoint& to, std::span<const uint8_t> bytes) {
-    self->socket_->queue_send(bytes, to);
+    self->send_raw(bytes, to);
   };
   if (settings.server_key) {
     SecureGateway::Options options;
@@ -56,7 +57,7 @@ Result<std::shared_ptr<MatchRunner>> MatchRunner::create(asio::io_context& io,
         if (self->gateway_) {
           self->gateway_->send(to, bytes);
         } else {
-          self->socket_->queue_send(bytes, to);
+          self->send_raw(bytes, to);
         }
       },
       net::SteadyClock::now());
@@ -161,6 +162,14 @@ void MatchRunner::on_datagram(std::span<const uint8_t> bytes, const Endpoint& fr
   });
 }
 
+void MatchRunner::send_raw(std::span<const uint8_t> bytes, const Endpoint& to) {
+  if (websocket_ && WebSocketPort::is_websocket_endpoint(to)) {
+    websocket_->send(bytes, to);
+  } else {
+    socket_->queue_send(bytes, to);
+  }
+}
+
 void MatchRunner::schedule_tick() {
   timer_.expires_at(schedule_.due());
   timer_.async_wait([self = shared_from_this()](const std::error_code& error) {
@@ -179,8 +188,14 @@ void MatchRunner::on_tick_timer() {
   const TimePoint now = net::SteadyClock::now();
   schedule_.begin(now);
   socket_->drain([this, now](std::span<const uint8_t> bytes, const Endpoint& from) {
-    on_datagram(bytes, from, now);
+    // No real peer has a browser's endpoint: one that claims it is forged.
+    if (!WebSocketPort::is_websocket_endpoint(from)) on_datagram(bytes, from, now);
   });
+  if (websocket_ && !finished_) {
+    websocket_->drain([this, now](std::span<const uint8_t> bytes, const Endpoint& from) {
+      on_datagram(bytes, from, now);
+    });
+  }
   if (!finished_) guarded("ticking", [&] { host_->on_tick(now); });
   if (!finished_) socket_->flush_sends();
   // Wall time, for operators and the load policy only: nothing in the
@@ -216,6 +231,7 @@ void MatchRunner::finish() {
   if (started_ && settings_.load) settings_.load->match_ended();
   socket_->flush_sends();  // the match's last words: its end, to every client
   socket_->close();
+  if (websocket_) websocket_->close();  // after its last words too
   publish();
   ended_.store(true, std::memory_order_release);
   if (on_ended_) on_ended_(*this);
@@ -237,6 +253,15 @@ void MatchRunner::publish() {
     sample.stats.cookies_refused = tokenless_->stats().refused;
   }
   if (!failure_.empty()) sample.stats.end_reason = failure_;
+  const net::PolledUdpSocket::Stats& udp = socket_->stats();
+  sample.stats.udp_bytes_in = udp.bytes_received;
+  sample.stats.udp_bytes_out = udp.bytes_sent;
+  if (websocket_) {
+    const WebSocketPort::Stats ws = websocket_->stats();
+    sample.stats.websocket_connections = ws.connections;
+    sample.stats.websocket_bytes_in = ws.bytes_in;
+    sample.stats.websocket_bytes_out = ws.bytes_out;
+  }
   sample.phase = finished_ ? MatchHost::Phase::kEnded : host_->phase();
   sample.players_connected = finished_ ? 0 : host_->players_connected();
   sample.tick_time = tick_time_;

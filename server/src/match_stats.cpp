@@ -36,7 +36,11 @@ std::string MatchStats::to_json() const {
       << ",\"secure_challenges\":" << secure_challenges
       << ",\"secure_sessions\":" << secure_sessions << ",\"secure_refused\":" << secure_refused
       << ",\"secure_dropped\":" << secure_dropped << ",\"address_cookies\":" << address_cookies
-      << ",\"cookies_refused\":" << cookies_refused << ",\"ticks_late\":" << ticks_late
+      << ",\"cookies_refused\":" << cookies_refused << ",\"udp_bytes_in\":" << udp_bytes_in
+      << ",\"udp_bytes_out\":" << udp_bytes_out
+      << ",\"websocket_connections\":" << websocket_connections
+      << ",\"websocket_bytes_in\":" << websocket_bytes_in
+      << ",\"websocket_bytes_out\":" << websocket_bytes_out << ",\"ticks_late\":" << ticks_late
       << ",\"ticks_missed\":" << ticks_missed << ",\"tick_lateness_max_s\":" << tick_lateness_max_s
       << "}";
   return out.str();

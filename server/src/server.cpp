@@ -25,13 +25,23 @@ std::string bracketed(const std::string& address) {
 
 Status check_tokenless_exposure(const ServerConfig& config) {
   if (config.server_key || config.insecure_tokenless_public) return Status::Ok();
-  std::error_code error;
-  (void)asio::ip::make_address(config.bind_address, error);
   // An address that does not parse fails to bind, with its own message.
-  if (error || is_loopback_address(config.bind_address)) return Status::Ok();
+  const auto exposed = [](const std::string& address) {
+    std::error_code error;
+    (void)asio::ip::make_address(address, error);
+    return !error && !is_loopback_address(address);
+  };
+  std::string address;
+  if (exposed(config.bind_address)) {
+    address = config.bind_address;
+  } else if (config.websocket && exposed(config.websocket->address)) {
+    address = config.websocket->address + " (--websocket)";
+  } else {
+    return Status::Ok();
+  }
   return Status::Error(
       ErrorCode::kInvalidArgument,
-      "refusing to run tokenless on " + config.bind_address +
+      "refusing to run tokenless on " + address +
           ", an address other hosts can reach: without connect tokens anyone who reaches the "
           "port takes a free seat. Run secure: make a server key (rewind-token keygen --out "
           "server.key), start with --key-file server.key and give each client a connect token "
@@ -122,6 +132,9 @@ Result<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   if (config.live) {
     if (Status status = server->open_live(); !status.ok()) return status;
   }
+  if (config.websocket) {
+    if (Status status = server->open_websocket(); !status.ok()) return status;
+  }
   const uint32_t cores = std::max(1u, std::thread::hardware_concurrency());
   const uint32_t most = std::max(1u, config.control ? config.max_matches : config.matches);
   server->threads_ = config.threads != 0 ? config.threads : std::min(cores, most);
@@ -147,6 +160,7 @@ void Server::close_endpoints() {
   if (metrics_) metrics_->close();
   if (control_) control_->close();
   if (live_) live_->close();
+  if (websocket_) websocket_->close();
 }
 
 Status Server::open_live() {
@@ -186,6 +200,25 @@ Status Server::open_live() {
       [api](const HttpRequest& request) { return api->handle(request); }, limits, config_.http_tls);
   if (!endpoint.ok()) return endpoint.status();
   live_ = std::move(*endpoint);
+  return Status::Ok();
+}
+
+Status Server::open_websocket() {
+  std::optional<HttpTls> tls = config_.http_tls;
+  if (tls) tls->client_ca_file.clear();
+  const Server* self = this;
+  auto endpoint = WebSocketEndpoint::open(
+      config_.websocket->address, config_.websocket->port,
+      [self](std::string_view id) -> std::shared_ptr<WebSocketPort> {
+        std::lock_guard lock(self->matches_mutex_);
+        for (const auto& match : self->matches_) {
+          if (match->id() == id && !match->ended()) return match->websocket_port();
+        }
+        return nullptr;
+      },
+      config_.websocket_limits, tls);
+  if (!endpoint.ok()) return endpoint.status();
+  websocket_ = std::move(*endpoint);
   return Status::Ok();
 }
 
@@ -235,6 +268,7 @@ Result<std::shared_ptr<MatchRunner>> Server::add_match(const MatchConfig& config
   settings.name_in_logs = many();
   settings.owner = owner;
   settings.load = load_;
+  settings.websocket = config_.websocket.has_value();
   auto runner = MatchRunner::create(
       io_, settings, [this](MatchRunner&) { asio::post(strand_, [this] { on_match_ended(); }); });
   if (!runner.ok()) return runner.status();
@@ -365,6 +399,12 @@ void Server::run() {
                   (config_.match.live_delay_ticks > 0
                        ? ", " + std::to_string(config_.match.live_delay_ticks) + " ticks behind"
                        : ""));
+  }
+  if (websocket_) {
+    write_log(LogLevel::kInfo, std::string("browsers on ") +
+                                   (config_.http_tls ? "wss://" : "ws://") +
+                                   bracketed(config_.websocket->address) + ":" +
+                                   std::to_string(websocket_->port()) + "/matches/<match id>");
   }
   if (control_) {
     write_log(LogLevel::kInfo,

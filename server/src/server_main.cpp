@@ -42,6 +42,7 @@ struct MatchOutputs {
   std::string metrics_port_file;
   std::string control_port_file;
   std::string live_port_file;
+  std::string websocket_port_file;
   bool summary_json = false;
 };
 
@@ -69,6 +70,12 @@ int host_match(const rwd::server::ServerConfig& config, const MatchOutputs& outp
   if (!outputs.live_port_file.empty() &&
       !write_port_file(outputs.live_port_file, {(*server)->live_port()})) {
     write_log(LogLevel::kError, "cannot write --live-port-file " + outputs.live_port_file);
+    return 1;
+  }
+  if (!outputs.websocket_port_file.empty() &&
+      !write_port_file(outputs.websocket_port_file, {(*server)->websocket_port()})) {
+    write_log(LogLevel::kError,
+              "cannot write --websocket-port-file " + outputs.websocket_port_file);
     return 1;
   }
   (*server)->run();
@@ -216,6 +223,13 @@ int server_main(int argc, const char* const* argv) {
                    "let browsers spectate every match on HOST:PORT over HTTP (port 0 = any free "
                    "port; empty = off): open http://HOST:PORT/ for the list of matches, each "
                    "shown in the viewer");
+  std::string websocket_bind, websocket_port_file;
+  flags.add_string("websocket", &websocket_bind,
+                   "HOST:PORT where browsers join any match of this process over WebSocket "
+                   "(ws://HOST:PORT/matches/<match id>; wss:// with --http-tls-cert), beside UDP; "
+                   "port 0 = any free port");
+  flags.add_string("websocket-port-file", &websocket_port_file,
+                   "write the bound WebSocket TCP port to this file once listening");
   flags.add_string("live-port-file", &live_port_file,
                    "write the bound live TCP port to this file once listening");
   flags.add_string("live-viewer-dir", &live_viewer_dir,
@@ -309,7 +323,9 @@ int server_main(int argc, const char* const* argv) {
   };
   if (!http_bind("metrics-bind", metrics_bind, metrics_port_file, "metrics-port-file",
                  &config.metrics) ||
-      !http_bind("live-bind", live_bind, live_port_file, "live-port-file", &config.live)) {
+      !http_bind("live-bind", live_bind, live_port_file, "live-port-file", &config.live) ||
+      !http_bind("websocket", websocket_bind, websocket_port_file, "websocket-port-file",
+                 &config.websocket)) {
     return rwd::cli::kExitUsage;
   }
   if (config.live) config.live_viewer_dir = live_viewer_dir;
@@ -357,8 +373,8 @@ int server_main(int argc, const char* const* argv) {
 
   config.insecure_tokenless_public = insecure_tokenless_public;
 
-  const MatchOutputs outputs{port_file, metrics_port_file, control_port_file, live_port_file,
-                             summary_json};
+  const MatchOutputs outputs{port_file,      metrics_port_file,   control_port_file,
+                             live_port_file, websocket_port_file, summary_json};
   if (!agones) return host_match(config, outputs);
   if (config.matches != 1 || config.control) {
     // An Agones GameServer is one allocation, so one match.

@@ -8,14 +8,17 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "rewind/cli/flag_parser.h"
 #include "rewind/cli/host_port.h"
 #include "rewind/client/client_session.h"
+#include "rewind/client/websocket_link.h"
 #include "rewind/game/simulation.h"  // make_builtin_game
 #include "rewind/net/connect_token.h"
+#include "rewind/net/fault_injector.h"
 #include "rewind/tools/bot_script.h"
 #include "rewind/tools/bots_main.h"
 
@@ -27,6 +30,11 @@ using rwd::client::ClientSession;
 
 struct Bot {
   std::unique_ptr<ClientSession> session;
+  // Over WebSocket (--websocket): the connection, and the simulated faults
+  // on each direction (a UDP session has them inside).
+  std::unique_ptr<rwd::client::WebSocketLink> link;
+  std::optional<rwd::net::FaultyLink> faults_out;
+  std::optional<rwd::net::FaultyLink> faults_in;
   bool ended = false;
   bool match_ended = false;
   bool failed = false;
@@ -55,6 +63,40 @@ bool resolve(asio::io_context& io, const std::string& host, std::string* address
   return true;
 }
 
+// A session whose datagrams travel over WebSocket, through the same
+// simulated faults a UDP session applies (each direction its own stream).
+rwd::Result<std::unique_ptr<ClientSession>> over_websocket(asio::io_context& io,
+                                                           const std::string& url,
+                                                           rwd::client::ClientConfig config,
+                                                           Bot& bot) {
+  auto link = rwd::client::WebSocketLink::open(url);
+  if (!link.ok()) return link.status();
+  bot.link = std::move(*link);
+  rwd::client::WebSocketLink* wire = bot.link.get();
+  if (config.faults) {
+    rwd::net::FaultConfig out = *config.faults, in = *config.faults;
+    in.seed = out.seed ^ 0x9e3779b97f4a7c15ull;
+    auto sending = rwd::net::FaultyLink::create(
+        io, out, [wire](std::span<const uint8_t> bytes, const auto&) { wire->send(bytes); });
+    if (!sending.ok()) return sending.status();
+    auto receiving =
+        rwd::net::FaultyLink::create(io, in, [&bot](std::span<const uint8_t> bytes, const auto&) {
+          bot.session->receive(bytes, rwd::net::SteadyClock::now());
+        });
+    if (!receiving.ok()) return receiving.status();
+    bot.faults_out.emplace(std::move(*sending));
+    bot.faults_in.emplace(std::move(*receiving));
+    config.faults.reset();
+  }
+  return ClientSession::create_detached(config, [&bot, wire](std::span<const uint8_t> datagram) {
+    if (bot.faults_out) {
+      bot.faults_out->send(datagram, {});
+    } else {
+      wire->send(datagram);
+    }
+  });
+}
+
 }  // namespace
 
 namespace rwd::tools {
@@ -66,7 +108,7 @@ int bots_main(int argc, const char* const* argv) {
   int64_t latency_ms = 0, jitter_ms = 0;
   double loss = 0, duplicate = 0, reorder = 0, duration_s = 600;
   bool summary_json = false;
-  std::string token_file;
+  std::string token_file, websocket_url;
   std::vector<std::string> tokens;
 
   rwd::cli::FlagParser flags(
@@ -79,6 +121,9 @@ int bots_main(int argc, const char* const* argv) {
   flags.add_int("spectators", &spectators, 0, 64,
                 "spectator clients besides the bots (read-only: they verify every final tick)");
   flags.add_string("connect", &connect, "server HOST:PORT (a name, an IPv4 literal or [IPv6])");
+  flags.add_string("websocket", &websocket_url,
+                   "connect over WebSocket instead, as browsers do: "
+                   "ws://HOST:PORT/matches/<match id> (rewind-server --websocket)");
   flags.add_string("game", &game, "game the server hosts");
   flags.add_string("script", &script_name,
                    "input script: game (the game's own bots, Game::bot_input), random, circle "
@@ -174,7 +219,7 @@ int bots_main(int argc, const char* const* argv) {
 
   asio::io_context io(1);
   std::string address, resolve_error;
-  if (!resolve(io, host, &address, &resolve_error)) {
+  if (websocket_url.empty() && !resolve(io, host, &address, &resolve_error)) {
     std::fprintf(stderr, "rewind-bots: --connect: cannot resolve '%s': %s\n", host.c_str(),
                  resolve_error.c_str());
     return 2;
@@ -203,7 +248,8 @@ int bots_main(int argc, const char* const* argv) {
     }
     if (static_cast<int64_t>(i) == corrupt_bot)
       config.debug_corrupt_at_tick = static_cast<int32_t>(corrupt_at);
-    auto session = ClientSession::create(io, config);
+    auto session = websocket_url.empty() ? ClientSession::create(io, config)
+                                         : over_websocket(io, websocket_url, config, fleet[i]);
     if (!session.ok()) {
       std::fprintf(stderr, "rewind-bots: bot %zu: %s\n", i, session.status().message().c_str());
       return 2;
@@ -226,6 +272,23 @@ int bots_main(int argc, const char* const* argv) {
     for (size_t i = 0; i < fleet.size(); ++i) {
       Bot& bot = fleet[i];
       if (bot.ended) continue;
+      if (bot.link) {
+        bot.link->poll([&bot, now](std::span<const uint8_t> datagram) {
+          if (bot.faults_in) {
+            bot.faults_in->send(datagram, {});
+          } else {
+            bot.session->receive(datagram, now);
+          }
+        });
+        if (bot.link->state() == rwd::client::WebSocketLink::State::kClosed &&
+            !bot.session->simulation()) {
+          bot.failed = true;
+          bot.ended = true;
+          bot.failure = bot.link->error();
+          std::fprintf(stderr, "[rewind-bots] bot %zu: %s\n", i, bot.failure.c_str());
+          continue;
+        }
+      }
       bot.session->update(now);
       ClientEvent event;
       while (bot.session->poll_event(event)) {

@@ -25,6 +25,7 @@
 #include "rewind/server/tick_histogram.h"
 #include "rewind/server/tick_schedule.h"
 #include "rewind/server/tokenless_gateway.h"
+#include "rewind/server/websocket_port.h"
 
 namespace rwd::server {
 
@@ -45,6 +46,9 @@ class MatchRunner : public std::enable_shared_from_this<MatchRunner> {
     /// Where the match reports each tick's start, work and lateness (the
     /// process's load); none when null.
     std::shared_ptr<LoadMonitor> load;
+    /// Also takes browser players: the process's WebSocket endpoint reaches
+    /// the match through websocket_port().
+    bool websocket = false;
   };
   /// Called once, on the match's strand, after the match has ended and its
   /// socket is closed. The runner may be released from there.
@@ -72,6 +76,9 @@ class MatchRunner : public std::enable_shared_from_this<MatchRunner> {
   /// What browsers spectating the match read (MatchConfig::live); null
   /// without. Set at create(), never changed: safe from any thread.
   std::shared_ptr<const LiveFeed> live_feed() const { return live_; }
+  /// Where the WebSocket endpoint hands this match its browsers' datagrams;
+  /// null without Settings::websocket. Set at create(), never changed.
+  std::shared_ptr<WebSocketPort> websocket_port() const { return websocket_; }
 
   MatchRunner(asio::io_context& io, const Settings& settings, EndedFn on_ended);
   MatchRunner(const MatchRunner&) = delete;
@@ -81,6 +88,8 @@ class MatchRunner : public std::enable_shared_from_this<MatchRunner> {
   void schedule_tick();
   void on_tick_timer();
   void on_datagram(std::span<const uint8_t> bytes, const Endpoint& from, TimePoint now);
+  /// Sends a datagram over the transport its peer came by.
+  void send_raw(std::span<const uint8_t> bytes, const Endpoint& to);
   /// Runs `work` on the match; anything it throws ends the match.
   template <typename Work>
   void guarded(const char* what, Work&& work);
@@ -96,6 +105,7 @@ class MatchRunner : public std::enable_shared_from_this<MatchRunner> {
   asio::steady_timer timer_;
   std::optional<net::PolledUdpSocket> socket_;  ///< read once a tick, see on_tick_timer()
   uint16_t port_ = 0;
+  std::shared_ptr<WebSocketPort> websocket_;     ///< null without Settings::websocket
   std::unique_ptr<SecureGateway> gateway_;       ///< null in tokenless mode
   std::unique_ptr<TokenlessGateway> tokenless_;  ///< null in secure mode
   std::unique_ptr<MatchHost> host_;

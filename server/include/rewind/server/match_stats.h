@@ -55,6 +55,15 @@ struct MatchStats {
   /// (malformed hellos, joins without a good cookie).
   uint64_t address_cookies = 0;
   uint64_t cookies_refused = 0;
+  /// Bytes on each transport, as sent and received (sealed packets
+  /// included, IP/UDP and WebSocket framing not): the UDP socket's, and the
+  /// browsers' over WebSocket, with how many WebSocket connections the
+  /// match has had.
+  uint64_t udp_bytes_in = 0;
+  uint64_t udp_bytes_out = 0;
+  uint64_t websocket_connections = 0;
+  uint64_t websocket_bytes_in = 0;
+  uint64_t websocket_bytes_out = 0;
   /// The tick loop's punctuality (TickSchedule; zero where no loop ran, as
   /// in a headless match): ticks that started a period or more after they
   /// were due (run back to back to catch up), ticks dropped from the

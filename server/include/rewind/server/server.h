@@ -24,6 +24,7 @@
 #include "rewind/server/match_request.h"
 #include "rewind/server/match_runner.h"
 #include "rewind/server/metrics_text.h"
+#include "rewind/server/websocket_endpoint.h"
 
 namespace rwd::server {
 
@@ -79,6 +80,12 @@ struct ServerConfig {
   /// and without keys, like a broadcast: with hidden information in a
   /// game, hold spectators back with MatchConfig::live_delay_ticks.
   std::optional<HttpBind> live;
+  /// Where browser players connect (WebSocketEndpoint): every match takes
+  /// them at /matches/<match id> beside its UDP players. wss:// with
+  /// http_tls's certificate (never mutual: browsers bring no client
+  /// certificate); unset: UDP only.
+  std::optional<HttpBind> websocket;
+  WebSocketLimits websocket_limits;
   /// The built viewer (the build's viewer_web) served on the live
   /// endpoint; empty: the data routes and the listing only.
   std::string live_viewer_dir;
@@ -140,6 +147,8 @@ class Server final : private ControlTarget {
   uint16_t metrics_port() const { return metrics_ ? metrics_->port() : 0; }
   /// The live endpoint's TCP port; 0 without it.
   uint16_t live_port() const { return live_ ? live_->port() : 0; }
+  /// The WebSocket endpoint's TCP port; 0 without it.
+  uint16_t websocket_port() const { return websocket_ ? websocket_->port() : 0; }
   /// The control API's TCP port; 0 without it.
   uint16_t control_port() const { return control_ ? control_->port() : 0; }
   /// Threads run() uses.
@@ -160,6 +169,8 @@ class Server final : private ControlTarget {
   void close_endpoints();
   /// Opens the live endpoint (ServerConfig::live) with its viewer files.
   Status open_live();
+  /// Opens the WebSocket endpoint (ServerConfig::websocket).
+  Status open_websocket();
   static MatchListing listing_of(const MatchRunner& match);
   // ControlTarget, on the control endpoint's thread.
   const MatchConfig& match_defaults() const override { return config_.match; }
@@ -180,7 +191,8 @@ class Server final : private ControlTarget {
   std::unique_ptr<ControlApi> control_api_;
   std::unique_ptr<HttpEndpoint> control_;  ///< null without ServerConfig::control
   std::unique_ptr<LiveApi> live_api_;
-  std::unique_ptr<HttpEndpoint> live_;  ///< null without ServerConfig::live
+  std::unique_ptr<HttpEndpoint> live_;            ///< null without ServerConfig::live
+  std::unique_ptr<WebSocketEndpoint> websocket_;  ///< null without ServerConfig::websocket
   uint32_t threads_ = 1;
   std::shared_ptr<LoadMonitor> load_;
   std::atomic<uint64_t> refused_{0};  ///< allocations refused as overloaded
