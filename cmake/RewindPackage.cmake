@@ -92,7 +92,7 @@ function(rewind_install_package)
     "libxxhash" ${engine_libs})
   if(REWIND_WITH_SERVER)
     rewind_pkg_config(rewind "Rewind: the engine, the server core, the client SDK and the tools' run loops"
-      "libxxhash protobuf libsodium openssl"
+      "libxxhash protobuf-lite libsodium openssl"
       rewind_server_main rewind_bots_main rewind_synctest_main rewind_agones rewind_server_core
       rewind_http rewind_client rewind_client_websocket rewind_bot_script rewind_replay rewind_view rewind_replay_io
       rewind_rollback rewind_transport rewind_secure rewind_wire rewind_proto rewind_cli
