@@ -76,6 +76,10 @@ function(rewind_install_package)
   # --live-viewer-dir and rewind-replay view find it next to their binary).
   install(DIRECTORY ${REWIND_VIEWER_WEB_DIR}/ DESTINATION ${CMAKE_INSTALL_DATADIR}/rewind/viewer
     OPTIONAL)
+  # The browser client SDK's npm folder, when this build gathered it: a web
+  # game copies or `npm install`s it from there.
+  install(DIRECTORY ${CMAKE_BINARY_DIR}/client_web/ DESTINATION ${CMAKE_INSTALL_DATADIR}/rewind/client
+    OPTIONAL)
 
   set(cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/Rewind)
   install(EXPORT RewindTargets NAMESPACE Rewind:: DESTINATION ${cmake_dir})

@@ -21,9 +21,9 @@
 # the determinism matrix in the background at idle priority when ctest
 # starts: the real-time integration tests run alone and leave most of the
 # CPU idle, and the matrix test, which ctest runs last, then finds its
-# objects built (its log: build/P/matrix-prebuild.log); beside it, the browser
-# viewer's WebAssembly build, which the browser tests, also run last, find
-# done (log: build/P/viewer-prebuild.log).
+# objects built (its log: build/P/matrix-prebuild.log); beside it, the
+# WebAssembly build of the browser viewer and client SDK (wasm/), which the
+# browser tests, also run last, find done (log: build/P/wasm-prebuild.log).
 # Exit codes: ctest's status; the failing step's status if setup, configure or
 # build fails; 2 on bad usage.
 set -euo pipefail
@@ -65,20 +65,19 @@ if [[ -z $label ]]; then
   # it a process group, so ninja and its compilers go with it on exit.
   idle=()
   if chrt --idle 0 true 2>/dev/null; then idle=(chrt --idle 0); fi
-  # The browser viewer's WebAssembly build too, with the commands and the
-  # lock of its external project (viewer/CMakeLists.txt): the browser tests,
-  # which ctest runs last, then find it built.
-  wasm_dir="build/$preset/viewer_wasm"
+  # The browser viewer's and client's WebAssembly build too, with the
+  # commands and the lock of its external project (cmake/RewindBrowser.cmake):
+  # the browser tests, which ctest runs last, then find it built.
+  wasm_dir="build/$preset/wasm"
   setsid "${idle[@]}" nice -n 19 bash tests/determinism/run_matrix.sh --compile-only --source . \
     "build/$preset/tests/determinism/matrix" >"build/$preset/matrix-prebuild.log" 2>&1 &
   prebuilds=($!)
   # Beside it, not after it: the matrix takes most of the run, and the
   # browser tests would otherwise compile the viewer themselves, alone.
   setsid "${idle[@]}" nice -n 19 bash -c '
-    flock "$1.lock" env NODE_PATH=/usr/share/nodejs emcmake cmake -G Ninja -S viewer/wasm -B "$1" \
-      -DREWIND_SOURCE_DIR="$PWD" -DCMAKE_BUILD_TYPE=Release &&
+    flock "$1.lock" env NODE_PATH=/usr/share/nodejs bash wasm/configure.sh "$PWD" "$1" "$2" &&
       flock "$1.lock" env NODE_PATH=/usr/share/nodejs cmake --build "$1"' prebuild \
-    "$wasm_dir" >"build/$preset/viewer-prebuild.log" 2>&1 &
+    "$wasm_dir" "build/$preset/wasm-deps" >"build/$preset/wasm-prebuild.log" 2>&1 &
   prebuilds+=($!)
   trap 'for pid in "${prebuilds[@]}"; do kill -- -"$pid" 2>/dev/null || true; done' EXIT
 fi

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/server/websocket_endpoint.h"
 
+#include <pthread.h>
 #include <atomic>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
@@ -457,7 +458,11 @@ Result<std::unique_ptr<WebSocketEndpoint>> WebSocketEndpoint::open(
   }
   impl->accept_next();
   Impl* raw = impl.get();
-  impl->thread = std::thread([raw] { raw->io.run(); });
+  impl->thread = std::thread([raw] {
+    // Named, so operators (top -H) and the browser test see its CPU apart.
+    pthread_setname_np(pthread_self(), "rewind-ws");
+    raw->io.run();
+  });
   std::unique_ptr<WebSocketEndpoint> out(new WebSocketEndpoint(std::move(impl)));
   out->port_ = bound;
   return out;

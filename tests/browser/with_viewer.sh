@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 #
-# Builds the browser viewer if it is not built yet (target rewind_viewer,
-# one build at a time under LOCK: two browser tests may start together, and
+# Builds the browser viewer and client SDK if they are not built yet
+# (targets rewind_viewer and rewind_browser_client, one WebAssembly build,
+# one at a time under LOCK: two browser tests may start together, and
 # scripts/test.sh may be compiling it in the background), then runs the
 # command. The browser tests start with it instead of depending on a fixture
 # test: ctest starts a fixture's setup before everything else, which would
@@ -12,6 +13,6 @@
 set -euo pipefail
 lock=$1 build=$2
 shift 2
-flock "$lock" cmake --build "$build" --target rewind_viewer >"$lock.log" 2>&1 ||
-  { echo "FAIL: building the viewer: $(tail -20 "$lock.log")" >&2; exit 1; }
+flock "$lock" cmake --build "$build" --target rewind_viewer rewind_browser_client >"$lock.log" 2>&1 ||
+  { echo "FAIL: building the viewer and client: $(tail -20 "$lock.log")" >&2; exit 1; }
 exec "$@"
