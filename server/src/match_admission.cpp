@@ -128,7 +128,7 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
   peer.connection.emplace(now, id);
   peer.last_receive = now;
   peer.name = request.client_name();
-  live_names_stale_ = true;
+  recorder_.names_changed();
   if (!rejoin) ++stats_.players_joined;
   log_line("player " + std::to_string(*slot) + (rejoin ? " rejoined from " : " joined from ") +
            from.address().to_string() + ":" + std::to_string(from.port()) + " (" +

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The match host's finalizer and broadcaster: ticks become final when
 // every held slot's input is in or the window has passed (missing inputs
-// substituted by what was simulated), go to the replay with their
-// checksum, and reach each client in its one datagram of the tick with the
-// other players' new inputs and its input acknowledgement.
+// substituted by what was simulated), go to the recorder (the replay and
+// the live feed) with their checksum, and reach each client in its one
+// datagram of the tick with the other players' new inputs and its input
+// acknowledgement.
 #include <algorithm>
 
 #include "host_log.h"
@@ -14,9 +15,6 @@
 
 namespace rwd::server {
 namespace {
-
-using detail::log_warning;
-using detail::worth_logging;
 
 constexpr size_t kFinalTicksBudgetBytes = 1000;  // leaves room for the envelope header
 constexpr size_t kMaxFinalHistory = 1024;        // ticks kept for clients that fall behind
@@ -53,18 +51,15 @@ void MatchHost::finalize_ready_ticks() {
     final_history_[static_cast<size_t>(t) % kFinalHistory] = {t, substituted, checksum};
     stats_.final_checksum = checksum;
 
-    bool serialized = false;
-    record_final_tick(t, substituted, checksum, &serialized);
-    if (live_) publish_live_tick(t, substituted, checksum, serialized);
+    recorder_.record(*session_, t, final_inputs_, substituted, checksum, stats_);
     (void)session_->finalize_through(t);
     finals_.append(t, final_inputs_, substituted, checksum, current);
     ++next_final_;
   }
-  if (live_ && live_names_stale_) {
+  if (recorder_.names_stale()) {
     std::vector<std::string> names;
     for (const Peer& peer : peers_) names.push_back(peer.joined ? peer.name : std::string());
-    live_->publish_names(std::move(names));
-    live_names_stale_ = false;
+    recorder_.publish_names(std::move(names));
   }
   // Drop history every connected client has; keep a bounded tail for the rest.
   Tick acked_by_all = next_final_ - 1;
@@ -74,42 +69,8 @@ void MatchHost::finalize_ready_ticks() {
   finals_.trim(acked_by_all, kMaxFinalHistory);
 }
 
-void MatchHost::record_final_tick(Tick t, uint64_t substituted, uint64_t checksum,
-                                  bool* serialized) {
-  if (!replay_ || replay_failed_) return;
-  Status status = replay_->append_tick(t, final_inputs_, substituted, checksum);
-  if (status.ok() && config_.keyframe_interval > 0 && (t + 1) % config_.keyframe_interval == 0 &&
-      session_->serialize_state_at(t + 1, state_buffer_)) {
-    *serialized = true;
-    // A keyframe the verifier could not load would stop it there: check
-    // it as a resync snapshot is checked, and leave out one that fails.
-    if (auto loaded = session_->load_snapshot(state_buffer_, checksum); loaded.ok()) {
-      status = replay_->append_keyframe(t, state_buffer_);
-    } else {
-      ++stats_.keyframe_load_failures;
-      if (worth_logging(stats_.keyframe_load_failures)) {
-        log_warning("replay keyframe after tick " + std::to_string(t) +
-                    " does not load on the server, left out: " + loaded.status().message() + " (" +
-                    std::to_string(stats_.keyframe_load_failures) + " so far)");
-      }
-    }
-  }
-  if (!status.ok()) record_replay_error(status);
-}
-
 void MatchHost::attach_live_feed(std::shared_ptr<LiveFeed> feed) {
-  live_ = std::move(feed);
-  live_names_stale_ = live_ != nullptr;
-}
-
-void MatchHost::publish_live_tick(Tick t, uint64_t substituted, uint64_t checksum,
-                                  bool serialized) {
-  live_->publish_tick(t, final_inputs_, substituted, checksum);
-  if (!live_->wants_state(t + 1)) return;
-  // The replay's keyframe when it has just serialized the same state.
-  if (serialized || session_->serialize_state_at(t + 1, state_buffer_)) {
-    live_->publish_state(t + 1, state_buffer_);
-  }
+  recorder_.attach_live_feed(std::move(feed));
 }
 
 void MatchHost::broadcast(TimePoint now) {

@@ -85,7 +85,7 @@ MatchHost::MatchHost(const MatchConfig& config, SendFn send,
     : config_(config),
       send_(std::move(send)),
       session_(std::move(session)),
-      replay_(std::move(replay)),
+      recorder_(std::move(replay), static_cast<uint32_t>(config.keyframe_interval)),
       peers_(config.players),
       spectators_(config.max_spectators),
       created_(now),
@@ -383,9 +383,7 @@ void MatchHost::on_tick(TimePoint now) {
     return;
   }
   broadcast(now);
-  if (replay_ && !replay_failed_) {
-    if (Status status = replay_->flush_if_due(); !status.ok()) record_replay_error(status);
-  }
+  recorder_.flush_if_due();
 }
 
 void MatchHost::end(const std::string& reason, TimePoint now) {
@@ -394,11 +392,7 @@ void MatchHost::end(const std::string& reason, TimePoint now) {
   ended_ = now;
   stats_.end_reason = reason;
   log_line("match ends: " + reason);
-  if (replay_ && !replay_failed_) {
-    Status status = replay_->finish(next_final_ - 1, reason);
-    if (!status.ok()) record_replay_error(status);
-  }
-  if (live_) live_->end();
+  recorder_.finish(next_final_ - 1, reason);
   if (!was_running) {
     started_ = now;
     phase_ = Phase::kEnded;
@@ -454,12 +448,6 @@ void MatchHost::send_unconnected(const Endpoint& to, v1::Envelope& envelope) {
   ++stats_.packets_out;
   stats_.bytes_out += encode_buffer_.size();
   send_(to, encode_buffer_);
-}
-
-void MatchHost::record_replay_error(const Status& status) {
-  replay_failed_ = true;
-  log_line("replay writing stopped: " + status.message() +
-           " (the file keeps its verified prefix; the match goes on)");
 }
 
 }  // namespace rwd::server

@@ -29,6 +29,7 @@
 #include "rewind/server/live_feed.h"
 #include "rewind/server/match_config.h"
 #include "rewind/server/match_environment.h"
+#include "rewind/server/match_recorder.h"
 #include "rewind/server/match_stats.h"
 #include "rewind/server/secure_gateway.h"
 #include "rewind/v1/envelope.pb.h"
@@ -174,16 +175,11 @@ class MatchHost {
   void send(Peer& peer, v1::Envelope& envelope, TimePoint now);
   void send_unconnected(const Endpoint& to, v1::Envelope& envelope);
   Peer* find_peer(uint64_t connection_id, uint32_t* player);
-  void record_replay_error(const Status& status);
-  /// The final tick `t` to the replay, with a keyframe after it when due
-  /// (serialized into state_buffer_: `serialized` says it holds t + 1).
-  void record_final_tick(Tick t, uint64_t substituted, uint64_t checksum, bool* serialized);
-  void publish_live_tick(Tick t, uint64_t substituted, uint64_t checksum, bool serialized);
 
   MatchConfig config_;
   SendFn send_;
   std::unique_ptr<net::RollbackSession> session_;
-  std::optional<replay::ReplayWriter> replay_;
+  MatchRecorder recorder_;  // the replay and the live feed
   Phase phase_ = Phase::kLobby;
   std::vector<Peer> peers_;       // the player slots, by slot
   std::vector<Peer> spectators_;  // read-only seats; seat s is id players + s
@@ -229,11 +225,7 @@ class MatchHost {
   std::unique_ptr<char[]> arena_blocks_;
   google::protobuf::Arena receive_arena_;
   google::protobuf::Arena broadcast_arena_;
-  std::vector<uint8_t> state_buffer_;
   std::vector<rwd::PlayerInput> final_inputs_;
-  bool replay_failed_ = false;
-  std::shared_ptr<LiveFeed> live_;
-  bool live_names_stale_ = false;  // a seat changed hands since the feed last had the names
   SnapshotHook snapshot_hook_;
   DesyncForensics forensics_;
 };
