@@ -82,7 +82,8 @@ def compile_one(cxx, args, tmp, rel, line, code):
     # The compiler names the temporary file: point at the guide instead.
     def to_guide(m):
         return f"{rel}:{line + int(m.group(1)) - 1}:"
-    return re.sub(re.escape(name) + r":(\d+):", to_guide, run.stderr).rstrip()
+    message = re.sub(re.escape(name) + r":(\d+):", to_guide, run.stderr)
+    return message.replace(name, rel).rstrip()
 
 
 def main():
