@@ -343,8 +343,8 @@ def main():
         w("Jolt Physics (3D) runs the same scenes through its own adapter (`bench/jolt_engine.cpp`, "
           "built from a Jolt source tree given to `charts.sh --jolt`), at its default settings "
           "with one thread; its columns stand beside Bullet's.\n")
-    w("Rewind's 2D lane against Box2D 2.4 has [its own section](#2d-lane-rewind-and-box2d-24-on-"
-      "the-same-scenes) at the end of this page.\n")
+    w("Rewind's 2D lane against Box2D 2.4 has [its own section](#2d-lane)"
+      " at the end of this page.\n")
     w("![pile cost](%s/%s)\n" % (rel_out, main_chart))
     pr, pl = ratios(pyramid), ratios(pile_awake)
     if pr and pl:

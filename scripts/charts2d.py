@@ -197,6 +197,8 @@ def section(rows, run, rel_out, out_dir, rays=None):
     w(BEGIN)
     v3 = any(r["engine"] == "box2d3" for r in rows)
     v3_name = "Box2D " + run.get("box2d3", "v3")
+    # A fixed anchor: the heading names the peers of the run, the links do not.
+    w('<a id="2d-lane"></a>\n')
     if v3:
         w("## 2D lane: Rewind, Box2D 2.4 and %s on the same scenes\n" % v3_name)
     else:

@@ -35,6 +35,8 @@ packages=(
   g++-aarch64-linux-gnu qemu-user
   # the metrics integration test scrapes a match with a real Prometheus
   prometheus
+  # the API reference from the public headers (docs/Doxyfile, test api_reference)
+  doxygen
 )
 
 check_only=0

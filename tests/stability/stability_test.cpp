@@ -11,7 +11,7 @@ namespace rwd::scenes::test {
 namespace {
 
 // A 40-box stack with the settings rewind-tune recommends for it with every
-// body awake (`rewind-tune --scene stack --size 40 --no-sleep`; README,
+// body awake (`rewind-tune --scene stack --size 40 --no-sleep`; docs/tuning-and-benchmarks.md,
 // Tuning): the defaults hold 20 boxes, not 40.
 constexpr Tuned kStack40{12, 0};
 

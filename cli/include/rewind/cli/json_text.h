@@ -7,7 +7,7 @@
 namespace rwd::cli {
 
 /// `text` quoted and escaped as a JSON string: quote, backslash, newline and
-/// tab by name, other control characters as \u00XX; bytes >= 0x20 pass
+/// tab by name, other control characters as `\u00XX`; bytes >= 0x20 pass
 /// through unchanged (the programs print UTF-8).
 std::string json_string(std::string_view text);
 

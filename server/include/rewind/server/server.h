@@ -32,7 +32,7 @@ struct ServerConfig {
   /// Every match's settings. With more than one match in the process, the
   /// launch matches are named match_id-1, match_id-2, ..., a replay path
   /// has "{match}" replaced by the match id (or the id inserted before its
-  /// extension), and desync reports go to desync_dir/<match id>/.
+  /// extension), and desync reports go to `desync_dir/<match id>/`.
   MatchConfig match;
   std::string bind_address = "0.0.0.0";
   /// The first launch match's UDP port; match i binds port + i. 0: each
@@ -68,7 +68,7 @@ struct ServerConfig {
   /// TLS (which also lets /metrics leave loopback without metrics_keys).
   std::optional<HttpTls> http_tls;
   /// Serves the control API (ControlApi: GET/POST /matches, DELETE
-  /// /matches/<id>) on control_bind, with control_keys required; the
+  /// `/matches/<id>`) on control_bind, with control_keys required; the
   /// process then runs until signalled instead of ending with its last
   /// match.
   bool control = false;
@@ -81,7 +81,7 @@ struct ServerConfig {
   /// game, hold spectators back with MatchConfig::live_delay_ticks.
   std::optional<HttpBind> live;
   /// Where browser players connect (WebSocketEndpoint): every match takes
-  /// them at /matches/<match id> beside its UDP players. wss:// with
+  /// them at `/matches/<match id>` beside its UDP players. wss:// with
   /// http_tls's certificate (never mutual: browsers bring no client
   /// certificate); unset: UDP only.
   std::optional<HttpBind> websocket;

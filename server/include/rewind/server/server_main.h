@@ -3,8 +3,8 @@
 // rewind-server as a library function: a game developer's own program
 // registers its games (rewind/game/game_registry.h) and calls
 // server_main(argc, argv) to become a full rewind-server that hosts them,
-// with every flag, endpoint and exit status of the shipped one (README:
-// "Running the server").
+// with every flag, endpoint and exit status of the shipped one
+// (docs/hosting.md: "rewind-server").
 
 namespace rwd::server {
 

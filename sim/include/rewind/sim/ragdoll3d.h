@@ -21,7 +21,7 @@
 //   shin_*       -y (down)        thigh_*      knee_*: hinge, one way
 //
 // Limits (twist about the child bone, relative to the rest pose; the cone
-// about a rest direction fixed in the parent; see README, Ragdolls):
+// about a rest direction fixed in the parent; see docs/lane-3d.md, Ragdolls):
 //   waist      cone 35 deg about up tilted 11 deg forward (bends 46 deg
 //              forward, 24 back, 33 sideways), twist +-30 deg
 //   neck       cone 40 deg about up tilted 8.5 deg forward (48 forward,

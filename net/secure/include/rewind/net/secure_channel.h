@@ -76,7 +76,7 @@ inline constexpr int64_t kChallengeLifetimeS = 10;
 using TokenMac = std::array<uint8_t, kTokenMacBytes>;
 
 /// Where a datagram came from, as the transport saw it: IPv4 addresses
-/// are mapped into IPv6 (::ffff:a.b.c.d) so one form serves both.
+/// are mapped into IPv6 (\::ffff:a.b.c.d) so one form serves both.
 struct PeerAddress {
   std::array<uint8_t, 16> ip{};
   uint16_t port = 0;
