@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "rewind/server/http_endpoint.h"
 
-#include "tls_context.h"
+#include "endpoint_common.h"
 
 #include <algorithm>
 #include <array>
@@ -346,14 +346,7 @@ void HttpEndpoint::Impl::on_accept(const error_code& error, tcp::socket socket) 
   }
   if (live.size() - evicting >= limits.max_connections && !make_room()) {
     ++busy;
-    // A fresh socket's send buffer is empty, so this short write does not
-    // block; whatever happens, the socket is closed.
-    static constexpr std::string_view kBusy =
-        "HTTP/1.1 503 Service Unavailable\r\nContent-Length: 0\r\nConnection: close\r\n\r\n";
-    error_code ignored;
-    socket.non_blocking(true, ignored);
-    socket.write_some(asio::buffer(kBusy.data(), kBusy.size()), ignored);
-    socket.close(ignored);
+    refuse_busy(socket);
   } else if (tls) {
     std::make_shared<HttpConnection<beast::ssl_stream<beast::tcp_stream>>>(*this, std::move(socket))
         ->start();
@@ -395,13 +388,6 @@ Result<std::unique_ptr<HttpEndpoint>> HttpEndpoint::open(std::string_view name,
                                                          Handler handler, Limits limits,
                                                          const std::optional<HttpTls>& tls) {
   const std::string prefix(name);
-  error_code error;
-  const asio::ip::address ip = asio::ip::make_address(std::string(address), error);
-  if (error) {
-    return Status::Error(
-        ErrorCode::kInvalidArgument,
-        prefix + ": bad address '" + std::string(address) + "': " + error.message());
-  }
   if (limits.max_connections == 0) {
     return Status::Error(ErrorCode::kInvalidArgument, prefix + ": max connections must be > 0");
   }
@@ -411,21 +397,13 @@ Result<std::unique_ptr<HttpEndpoint>> HttpEndpoint::open(std::string_view name,
     if (!context.ok()) return context.status();
     impl->tls.emplace(std::move(*context));
   }
-  const tcp::endpoint endpoint(ip, port);
-  impl->acceptor.open(endpoint.protocol(), error);
-  if (!error) impl->acceptor.set_option(tcp::acceptor::reuse_address(true), error);
-  if (!error) impl->acceptor.bind(endpoint, error);
-  if (!error) impl->acceptor.listen(asio::socket_base::max_listen_connections, error);
-  const uint16_t bound = error ? 0 : impl->acceptor.local_endpoint(error).port();
-  if (error) {
-    return Status::Error(ErrorCode::kIo, prefix + ": cannot listen on " + std::string(address) +
-                                             ":" + std::to_string(port) + ": " + error.message());
-  }
+  auto bound = listen_on(impl->acceptor, prefix, address, port);
+  if (!bound.ok()) return bound.status();
   impl->accept_next();
   Impl* raw = impl.get();
   impl->thread = std::thread([raw] { raw->io.run(); });
   std::unique_ptr<HttpEndpoint> out(new HttpEndpoint(std::move(impl)));
-  out->port_ = bound;
+  out->port_ = *bound;
   return out;
 }
 

@@ -24,9 +24,9 @@
 #include <thread>
 #include <type_traits>
 
+#include "endpoint_common.h"
 #include "rewind/net/polled_udp_socket.h"
 #include "rewind/server/server_log.h"
-#include "tls_context.h"
 
 namespace rwd::server {
 namespace {
@@ -395,12 +395,7 @@ void WebSocketEndpoint::Impl::on_accept(const error_code& error, tcp::socket soc
   }
   if (open >= limits.max_connections) {
     ++busy;
-    static constexpr std::string_view kBusy =
-        "HTTP/1.1 503 Service Unavailable\r\nContent-Length: 0\r\nConnection: close\r\n\r\n";
-    error_code ignored;
-    socket.non_blocking(true, ignored);
-    socket.write_some(asio::buffer(kBusy.data(), kBusy.size()), ignored);
-    socket.close(ignored);
+    refuse_busy(socket);
   } else {
     // The sessions share this endpoint's ownership: a match may hold one
     // (its port does) for a moment after the endpoint has closed.
@@ -428,13 +423,6 @@ Result<std::unique_ptr<WebSocketEndpoint>> WebSocketEndpoint::open(
     std::string_view address, uint16_t port, FindPort find, Limits limits,
     const std::optional<HttpTls>& tls) {
   const std::string prefix = "websocket";
-  error_code error;
-  const asio::ip::address ip = asio::ip::make_address(std::string(address), error);
-  if (error) {
-    return Status::Error(
-        ErrorCode::kInvalidArgument,
-        prefix + ": bad address '" + std::string(address) + "': " + error.message());
-  }
   if (limits.max_connections == 0 || limits.max_queued_bytes < net::PolledUdpSocket::kMaxDatagram ||
       limits.handshake.count() <= 0 || limits.idle.count() <= 0) {
     return Status::Error(ErrorCode::kInvalidArgument,
@@ -446,16 +434,8 @@ Result<std::unique_ptr<WebSocketEndpoint>> WebSocketEndpoint::open(
     if (!context.ok()) return context.status();
     impl->tls.emplace(std::move(*context));
   }
-  const tcp::endpoint endpoint(ip, port);
-  impl->acceptor.open(endpoint.protocol(), error);
-  if (!error) impl->acceptor.set_option(tcp::acceptor::reuse_address(true), error);
-  if (!error) impl->acceptor.bind(endpoint, error);
-  if (!error) impl->acceptor.listen(asio::socket_base::max_listen_connections, error);
-  const uint16_t bound = error ? 0 : impl->acceptor.local_endpoint(error).port();
-  if (error) {
-    return Status::Error(ErrorCode::kIo, prefix + ": cannot listen on " + std::string(address) +
-                                             ":" + std::to_string(port) + ": " + error.message());
-  }
+  auto bound = listen_on(impl->acceptor, prefix, address, port);
+  if (!bound.ok()) return bound.status();
   impl->accept_next();
   Impl* raw = impl.get();
   impl->thread = std::thread([raw] {
@@ -464,7 +444,7 @@ Result<std::unique_ptr<WebSocketEndpoint>> WebSocketEndpoint::open(
     raw->io.run();
   });
   std::unique_ptr<WebSocketEndpoint> out(new WebSocketEndpoint(std::move(impl)));
-  out->port_ = bound;
+  out->port_ = *bound;
   return out;
 }
 
