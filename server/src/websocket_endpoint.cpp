@@ -305,7 +305,11 @@ class Session final : public SessionBase,
     port_->deliver(self_endpoint_,
                    std::span<const uint8_t>(static_cast<const uint8_t*>(data.data()), data.size()));
     incoming_.consume(incoming_.size());
-    if (endpoint_.serving) read();
+    if (endpoint_.serving) {
+      read();
+    } else {
+      detach();  // closing: no read will end with an error to do it
+    }
   }
 
   void detach() {
