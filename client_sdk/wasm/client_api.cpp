@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "rewind/cli/json_text.h"
 #include "rewind/client/client_protocol.h"
 #include "rewind/core/debug_draw.h"
 #include "rewind/core/input_spec.h"
@@ -69,23 +70,6 @@ const char* hand_out(std::string text) {
 rwd::net::TimePoint time_of(double now_ms) {
   return rwd::net::TimePoint(std::chrono::duration_cast<rwd::net::TimePoint::duration>(
       std::chrono::duration<double, std::milli>(now_ms < 0 ? 0 : now_ms)));
-}
-
-std::string quoted(std::string_view text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escape[8];
-      std::snprintf(escape, sizeof escape, "\\u%04x", c);
-      out += escape;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
 }
 
 std::string hex64(uint64_t v) {
@@ -170,12 +154,12 @@ RC_EXPORT const char* rc_input_spec(const char* game) {
     return hand_out("");
   }
   const rwd::InputSpec& spec = made->input_spec();
-  std::string json =
-      "{\"name\":" + quoted(spec.name) + ",\"size\":" + std::to_string(spec.size) + ",\"fields\":[";
+  std::string json = "{\"name\":" + rwd::cli::json_string(spec.name) +
+                     ",\"size\":" + std::to_string(spec.size) + ",\"fields\":[";
   for (size_t i = 0; i < spec.fields.size(); ++i) {
     const rwd::InputField& f = spec.fields[i];
-    json += (i ? "," : "") + std::string("{\"name\":") + quoted(f.name) + ",\"type\":\"" +
-            type_name(f.type) + "\",\"offset\":" + std::to_string(f.offset) +
+    json += (i ? "," : "") + std::string("{\"name\":") + rwd::cli::json_string(f.name) +
+            ",\"type\":\"" + type_name(f.type) + "\",\"offset\":" + std::to_string(f.offset) +
             ",\"min\":" + std::to_string(f.min) + ",\"max\":" + std::to_string(f.max) + "}";
   }
   return hand_out(json + "]}");
@@ -276,7 +260,8 @@ RC_EXPORT const char* rc_poll_event(int handle) {
   return hand_out(
       std::string("{\"type\":\"") + event_name(e.type) + "\",\"tick\":" + std::to_string(e.tick) +
       ",\"player\":" + std::to_string(e.player) + ",\"localChecksum\":" + hex64(e.local_checksum) +
-      ",\"serverChecksum\":" + hex64(e.server_checksum) + ",\"reason\":" + quoted(e.reason) + "}");
+      ",\"serverChecksum\":" + hex64(e.server_checksum) +
+      ",\"reason\":" + rwd::cli::json_string(e.reason) + "}");
 }
 
 /// Where the client is, as JSON: phase, player, the local tick and its
