@@ -1,12 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The match host's admission: join requests (tokens, slots, rejoining by
-// connection), the lobby, and the start of the match.
-#include <algorithm>
+#include "rewind/server/match_admission.h"
+
+#include <optional>
 
 #include "host_log.h"
-#include "rewind/net/connection_id.h"
-#include "rewind/net/envelope_codec.h"
-#include "rewind/server/match_host.h"
 
 namespace rwd::server {
 namespace {
@@ -14,61 +11,51 @@ namespace {
 using detail::log_line;
 using detail::printable;
 
+MatchAdmission::Decision rejected(std::string reason) {
+  MatchAdmission::Decision decision;
+  decision.kind = MatchAdmission::Decision::Kind::kRejected;
+  decision.reason = std::move(reason);
+  return decision;
+}
+
+MatchAdmission::Decision seated(MatchAdmission::Decision::Kind kind, uint32_t seat) {
+  MatchAdmission::Decision decision;
+  decision.kind = kind;
+  decision.seat = seat;
+  return decision;
+}
+
+std::string address_text(const Endpoint& from) {
+  return from.address().to_string() + ":" + std::to_string(from.port());
+}
+
 }  // namespace
 
-void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, TimePoint now,
-                            const Admission* who) {
-  const v1::JoinRequest& request = envelope.join_request();
-  auto reject = [&](const std::string& reason) {
-    ++stats_.rejected_packets;
-    v1::Envelope reply;
-    reply.mutable_join_reject()->set_nonce(request.nonce());
-    reply.mutable_join_reject()->set_reason(reason);
-    send_unconnected(from, reply);
-  };
-  auto accept = [&](uint32_t player) {
-    const bool spectator = player >= config_.players;
-    Peer& peer = spectator ? spectators_[player - config_.players] : peers_[player];
-    v1::Envelope reply;
-    v1::JoinAccept* answer = reply.mutable_join_accept();
-    answer->set_nonce(request.nonce());
-    answer->set_connection_id(peer.connection->connection_id());
-    answer->set_player(player);
-    answer->set_spectator(spectator);
-    answer->set_player_count(config_.players);
-    answer->set_game(config_.game);
-    answer->set_seed(config_.seed);
-    answer->set_tick_rate_hz(config_.tick_rate_hz);
-    answer->set_window_ticks(static_cast<uint32_t>(config_.window_ticks));
-    send(peer, reply, now);
-    if (phase_ == Phase::kRunning) send_match_start(peer, now);
-  };
+MatchAdmission::MatchAdmission(const MatchConfig& config, MatchSeats& seats)
+    : config_(config), seats_(seats), ids_(net::ConnectionIdGenerator::from_os_entropy()) {}
 
+MatchAdmission::Decision MatchAdmission::admit(const v1::JoinRequest& request, const Endpoint& from,
+                                               MatchPhase phase, const Admission& who,
+                                               TimePoint now) {
   // A repeated request from a joined address lost our answer: answer again.
-  for (uint32_t p = 0; p < peers_.size() + spectators_.size(); ++p) {
-    const Peer& held = p < peers_.size() ? peers_[p] : spectators_[p - peers_.size()];
-    if (held.joined && held.connected && held.endpoint == from) {
-      if (held.join_nonce == request.nonce()) {
-        accept(p);
-      } else {
-        reject("this address already holds seat " + std::to_string(p));
-      }
-      return;
+  if (const std::optional<uint32_t> held = seats_.held_from(from)) {
+    if (seats_[*held].join_nonce == request.nonce()) {
+      return seated(Decision::Kind::kAnswerAgain, *held);
     }
+    return rejected("this address already holds seat " + std::to_string(*held));
   }
   if (request.game() != config_.game) {
-    reject("this server hosts '" + config_.game + "', not '" + request.game() + "'");
-    return;
+    return rejected("this server hosts '" + config_.game + "', not '" + request.game() + "'");
   }
-  if (config_.secure ? who->slot >= config_.players : request.spectator()) {
-    uint32_t id = 0;
-    if (!seat_spectator(request, from, now, who, &id)) {
-      reject("no spectator seat is free");
-      return;
-    }
-    accept(id);
-    return;
+  if (config_.secure ? who.slot >= config_.players : request.spectator()) {
+    return seat_spectator(request, from, phase, who, now);
   }
+  return seat_player(request, from, phase, who, now);
+}
+
+MatchAdmission::Decision MatchAdmission::seat_player(const v1::JoinRequest& request,
+                                                     const Endpoint& from, MatchPhase phase,
+                                                     const Admission& who, TimePoint now) {
   std::optional<uint32_t> slot;
   if (config_.secure) {
     // The slot is the one the sender's token names (the gateway checked
@@ -76,155 +63,103 @@ void MatchHost::handle_join(const v1::Envelope& envelope, const Endpoint& from, 
     // address with a fresh token for its client id and takes its slot
     // again; another client's token takes a slot only once its holder is
     // dropped (peer timeout, goodbye): the gateway's rule too (seated()).
-    if (who->slot >= config_.players) {
-      reject("player slot " + std::to_string(who->slot) + " does not exist");
-      return;
-    }
-    const Peer& held = peers_[who->slot];
-    if (held.joined && held.connected && !held.left && held.client_id != who->client_id) {
-      reject("player slot " + std::to_string(who->slot) + " is held by another client");
-      return;
+    const Seat& held = seats_[who.slot];
+    if (held.present() && held.client_id != who.client_id) {
+      return rejected("player slot " + std::to_string(who.slot) + " is held by another client");
     }
     // Running: a client that lost its connection or restarted takes its
     // slot back by its token and catches up from a snapshot.
-    slot = who->slot;
-  } else if (phase_ == Phase::kLobby) {
-    for (uint32_t p = 0; p < peers_.size() && !slot; ++p) {
-      if (!peers_[p].joined) slot = p;
+    slot = who.slot;
+  } else if (phase == MatchPhase::kLobby) {
+    for (uint32_t p = 0; p < seats_.players() && !slot; ++p) {
+      if (!seats_[p].joined) slot = p;
     }
-  } else if (phase_ == Phase::kRunning) {
+  } else if (phase == MatchPhase::kRunning) {
     // Tokenless: a slot nobody took yet (when the match allows late join),
     // or whose player timed out or left, is free for the next joiner, who
     // catches up from a snapshot. Never-taken slots go first.
-    for (uint32_t p = 0; p < peers_.size() && !slot && config_.late_join(); ++p) {
-      if (!peers_[p].joined) slot = p;
+    for (uint32_t p = 0; p < seats_.players() && !slot && config_.late_join(); ++p) {
+      if (!seats_[p].joined) slot = p;
     }
-    for (uint32_t p = 0; p < peers_.size() && !slot; ++p) {
-      if (peers_[p].joined && (!peers_[p].connected || peers_[p].left)) slot = p;
+    for (uint32_t p = 0; p < seats_.players() && !slot; ++p) {
+      if (seats_[p].joined && (!seats_[p].connected || seats_[p].left)) slot = p;
     }
   }
-  if (!slot) {
-    reject(phase_ == Phase::kLobby ? "match is full" : "match already running");
-    return;
+  if (!slot)
+    return rejected(phase == MatchPhase::kLobby ? "match is full" : "match already running");
+  if (phase != MatchPhase::kLobby && phase != MatchPhase::kRunning) {
+    return rejected("the match is over");
   }
-  if (phase_ != Phase::kLobby && phase_ != Phase::kRunning) {
-    reject("the match is over");
-    return;
-  }
-  Peer& peer = peers_[*slot];
-  const bool rejoin = peer.joined;
-  if (phase_ == Phase::kRunning) {
-    // Whatever the old connection had in flight is void: the newcomer gets
-    // a snapshot (its final_seen is before everything held) and final
-    // ticks from there.
-    restart_peer(peer);
-  }
-  const uint64_t id = ids_.next();
-  peer.joined = true;
-  peer.connected = true;
-  peer.endpoint = from;
-  peer.join_nonce = request.nonce();
-  peer.client_id = config_.secure ? who->client_id : 0;
-  peer.connection.emplace(now, id);
-  peer.last_receive = now;
-  peer.name = request.client_name();
-  recorder_.names_changed();
-  if (!rejoin) ++stats_.players_joined;
-  log_line("player " + std::to_string(*slot) + (rejoin ? " rejoined from " : " joined from ") +
-           from.address().to_string() + ":" + std::to_string(from.port()) + " (" +
-           printable(peer.name) + ")");
-  accept(*slot);
-  const auto joined = static_cast<uint32_t>(
-      std::count_if(peers_.begin(), peers_.end(), [](const Peer& p) { return p.joined; }));
-  if (joined >= config_.players_to_start() && phase_ == Phase::kLobby) start_match(now);
+  Seat& seat = seats_[*slot];
+  Decision decision = seated(Decision::Kind::kSeated, *slot);
+  decision.rejoin = seat.joined;
+  // Whatever the old connection had in flight is void: the newcomer gets a
+  // snapshot (its final_seen is before everything held) and final ticks
+  // from there.
+  if (phase == MatchPhase::kRunning) seat.restart_progress();
+  take(seat, request, from, who, now);
+  log_line("player " + std::to_string(*slot) +
+           (decision.rejoin ? " rejoined from " : " joined from ") + address_text(from) + " (" +
+           printable(seat.name) + ")");
+  return decision;
 }
 
-bool MatchHost::seat_spectator(const v1::JoinRequest& request, const Endpoint& from, TimePoint now,
-                               const Admission* who, uint32_t* id) {
-  if (phase_ != Phase::kLobby && phase_ != Phase::kRunning) return false;
+MatchAdmission::Decision MatchAdmission::seat_spectator(const v1::JoinRequest& request,
+                                                        const Endpoint& from, MatchPhase phase,
+                                                        const Admission& who, TimePoint now) {
   // A secure server seats a spectator where its token says; a tokenless
   // one in the first seat nobody holds (or whose holder went silent).
-  std::optional<uint32_t> seat;
-  if (config_.secure) {
-    const uint32_t s = who->slot - config_.players;
-    if (s < spectators_.size()) {
-      const Peer& held = spectators_[s];
-      if (!held.joined || !held.connected || held.client_id == who->client_id) seat = s;
-    }
-  } else {
-    for (uint32_t s = 0; s < spectators_.size() && !seat; ++s) {
-      if (!spectators_[s].joined || !spectators_[s].connected) seat = s;
+  std::optional<uint32_t> seat_id;
+  if (phase == MatchPhase::kLobby || phase == MatchPhase::kRunning) {
+    if (config_.secure) {
+      const uint32_t id = who.slot;
+      if (id < seats_.size()) {
+        const Seat& held = seats_[id];
+        if (!held.joined || !held.connected || held.client_id == who.client_id) seat_id = id;
+      }
+    } else {
+      for (uint32_t id = seats_.players(); id < seats_.size() && !seat_id; ++id) {
+        if (!seats_[id].joined || !seats_[id].connected) seat_id = id;
+      }
     }
   }
-  if (!seat) return false;
-  Peer& peer = spectators_[*seat];
-  peer = Peer{};
-  peer.joined = true;
-  peer.connected = true;
-  peer.endpoint = from;
-  peer.join_nonce = request.nonce();
-  peer.client_id = config_.secure ? who->client_id : 0;
-  peer.connection.emplace(now, ids_.next());
-  peer.last_receive = now;
-  peer.name = request.client_name();
-  *id = config_.players + *seat;
-  log_line("spectator " + std::to_string(*seat) + " joined from " + from.address().to_string() +
-           ":" + std::to_string(from.port()) + " (" + printable(peer.name) + ")");
-  return true;
+  if (!seat_id) return rejected("no spectator seat is free");
+  Seat& seat = seats_[*seat_id];
+  seat = Seat{};
+  take(seat, request, from, who, now);
+  log_line("spectator " + std::to_string(*seat_id - seats_.players()) + " joined from " +
+           address_text(from) + " (" + printable(seat.name) + ")");
+  return seated(Decision::Kind::kSeated, *seat_id);
 }
 
-void MatchHost::restart_peer(Peer& peer) {
-  peer.final_seen = kNoTick;
-  peer.final_sent = kNoTick;
-  peer.resync_tick = kNoTick;
-  peer.resync_bytes.clear();
-  peer.resync_checksum = 0;
-  peer.resend_cursor = kNoTick;
-  peer.standalone_from = 0;
-  peer.left = false;
-  peer.last_lead = 0;
-  peer.sent_input = false;
-  peer.desync = DesyncAssembly{};
-  peer.handled_reports.clear();
-  peer.resynced_once = false;
+void MatchAdmission::take(Seat& seat, const v1::JoinRequest& request, const Endpoint& from,
+                          const Admission& who, TimePoint now) {
+  seat.joined = true;
+  seat.connected = true;
+  seat.endpoint = from;
+  seat.join_nonce = request.nonce();
+  seat.client_id = config_.secure ? who.client_id : 0;
+  seat.connection.emplace(now, ids_.next());
+  seat.last_receive = now;
+  seat.name = request.client_name();
 }
 
-void MatchHost::free_silent_lobby_seats(TimePoint now) {
-  for (uint32_t p = 0; p < peers_.size() + spectators_.size(); ++p) {
-    Peer& peer = p < peers_.size() ? peers_[p] : spectators_[p - peers_.size()];
-    if (!peer.joined) continue;
+const std::vector<uint32_t>& MatchAdmission::free_silent_lobby_seats(TimePoint now) {
+  freed_.clear();
+  for (uint32_t id = 0; id < seats_.size(); ++id) {
+    Seat& seat = seats_[id];
+    if (!seat.joined) continue;
     const bool silent =
-        std::chrono::duration<double>(now - peer.last_receive).count() > config_.peer_timeout_s;
-    if (!peer.left && peer.connected && !silent) continue;
-    const bool player = p < peers_.size();
+        std::chrono::duration<double>(now - seat.last_receive).count() > config_.peer_timeout_s;
+    if (!seat.left && seat.connected && !silent) continue;
+    const bool player = seats_.is_player(id);
     log_line(std::string(player ? "player " : "spectator ") +
-             std::to_string(player ? p : p - config_.players) +
-             (peer.left ? " left the lobby" : " went silent in the lobby") + "; its seat is free");
-    if (player) --stats_.players_joined;
-    peer = Peer{};
+             std::to_string(player ? id : id - seats_.players()) +
+             (seat.left ? " left the lobby" : " went silent in the lobby") + "; its seat is free");
+    seat = Seat{};
+    freed_.push_back(id);
   }
-}
-
-void MatchHost::start_match(TimePoint now) {
-  phase_ = Phase::kRunning;
-  started_ = now;
-  tick_started_ = now;
-  countdown_ticks_ = static_cast<int32_t>(std::ceil(config_.start_delay_s * config_.tick_rate_hz));
-  const auto joined = static_cast<uint32_t>(
-      std::count_if(peers_.begin(), peers_.end(), [](const Peer& p) { return p.joined; }));
-  log_line((joined == config_.players
-                ? "all " + std::to_string(joined)
-                : std::to_string(joined) + " of " + std::to_string(config_.players)) +
-           " players joined; tick 0 in " + std::to_string(countdown_ticks_) + " ticks" +
-           (joined < config_.players ? " (the other slots are open for late joiners)" : ""));
-  for (Peer& peer : peers_) send_match_start(peer, now);
-}
-
-void MatchHost::send_match_start(Peer& peer, TimePoint now) {
-  v1::Envelope start;
-  start.mutable_match_start()->set_start_tick(0);
-  start.mutable_match_start()->set_server_tick(server_tick());
-  send(peer, start, now);
+  return freed_;
 }
 
 }  // namespace rwd::server
