@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
-// The client protocol's inbound side: a tokenless server's cookie, opening
-// (on a secure connection) and decoding the server's datagrams, dropping
-// whatever is not for this connection or repeats, and the messages that
-// move the phase on: the join's answer, the match's start and end, a pong,
-// a disconnect.
+// The client protocol's inbound side: each datagram through the channel
+// (cookie, handshake, opening), decoded, dropped unless it is for this
+// connection and new, and dispatched: the messages that move the phase on
+// (the join's answer, the match's start and end, a disconnect) are handled
+// here; the rest go to the part they concern, and what one part's news
+// means for another is decided here.
 #include <chrono>
 
 #include "client_protocol_impl.h"
@@ -12,14 +13,7 @@
 namespace rwd::client {
 namespace {
 
-constexpr auto kJoinResend = std::chrono::milliseconds(250);
-constexpr auto kLobbyPing = std::chrono::milliseconds(100);
 constexpr auto kEndingWait = std::chrono::milliseconds(1500);
-
-uint64_t micros_since_epoch(TimePoint t) {
-  return static_cast<uint64_t>(
-      std::chrono::duration_cast<std::chrono::microseconds>(t.time_since_epoch()).count());
-}
 
 }  // namespace
 
@@ -29,41 +23,24 @@ void ClientProtocol::Impl::receive(std::span<const uint8_t> datagram, TimePoint 
     ++stats_.packets_rejected;  // nothing asked for yet
     return;
   }
-  if (handshake_) {
-    // A secure server: a challenge answers our request; anything else must
-    // be a payload sealed for our session.
-    const std::optional<net::SecurePacket> kind = net::secure_packet_kind(datagram);
-    if (kind == net::SecurePacket::kChallenge && phase_ == ClientPhase::kJoining) {
-      if (!handshake_->on_challenge(datagram, handshake_response_).ok()) {
-        ++stats_.packets_rejected;
-        return;
-      }
-      transmit(handshake_response_);
+  const ServerChannel::Opened opened =
+      channel_.open(datagram, phase_ == ClientPhase::kJoining, now);
+  switch (opened.kind) {
+    case ServerChannel::Inbound::kRejected:
+      ++stats_.packets_rejected;
+      return;
+    case ServerChannel::Inbound::kConsumed:
+      return;
+    case ServerChannel::Inbound::kJoinNow:
+      send_join(now);
+      return;
+    case ServerChannel::Inbound::kJoinSoon:
       last_join_sent_ = now - kJoinResend;  // the join goes out on the next update
       return;
-    }
-    if (kind != net::SecurePacket::kPayload || !handshake_->session() ||
-        !handshake_->session()->open(datagram, opened_buffer_).ok()) {
-      ++stats_.packets_rejected;
-      return;
-    }
-    secure_confirmed_ = true;
-    datagram = opened_buffer_;
-  } else if (net::cookie_packet_kind(datagram) == net::CookiePacket::kCookie) {
-    // A tokenless server's answer to our Hello: the join goes out at once
-    // with it (a second cookie, the answer to a resent Hello, only renews).
-    const std::optional<net::AddressCookie> cookie = net::read_cookie(datagram);
-    if (!cookie || phase_ != ClientPhase::kJoining) {
-      ++stats_.packets_rejected;
-      return;
-    }
-    const bool first = !cookie_;
-    cookie_ = *cookie;
-    cookie_at_ = now;
-    if (first) send_join(now);
-    return;
+    case ServerChannel::Inbound::kEnvelope:
+      break;
   }
-  auto decoded = net::decode_envelope(datagram);
+  auto decoded = net::decode_envelope(opened.bytes);
   if (!decoded.ok()) {
     ++stats_.packets_rejected;
     return;
@@ -86,13 +63,17 @@ void ClientProtocol::Impl::handle(const v1::Envelope& envelope, TimePoint now) {
       ++stats_.packets_rejected;  // a late copy, or another join's
       return;
     }
-    connection_.set_connection_id(envelope.join_accept().connection_id());
+    channel_.set_connection_id(envelope.join_accept().connection_id());
   }
-  if (connection_.connection_id() == 0 || envelope.connection_id() != connection_.connection_id()) {
-    ++stats_.packets_rejected;
-    return;
+  switch (channel_.admit(envelope, now)) {
+    case ServerChannel::Admission::kForeign:
+      ++stats_.packets_rejected;
+      return;
+    case ServerChannel::Admission::kRepeat:
+      return;
+    case ServerChannel::Admission::kNew:
+      break;
   }
-  if (!connection_.on_receive(envelope, now).is_new()) return;
 
   switch (envelope.payload_case()) {
     case v1::Envelope::kJoinAccept:
@@ -105,24 +86,13 @@ void ClientProtocol::Impl::handle(const v1::Envelope& envelope, TimePoint now) {
       on_match_end(envelope.match_end(), now);
       break;
     case v1::Envelope::kPong:
-      on_pong(envelope.pong(), now);
+      clock_.on_pong(envelope.pong().client_time_us(), envelope.pong().server_tick(), now);
       break;
     case v1::Envelope::kRelayedInputs:
-      // decode_envelope has read and checked the run.
-      if (session_ && proto::relayed_run_inputs(envelope.relayed_inputs(), relayed_buffer_).ok()) {
-        on_relayed(envelope.relayed_inputs().player(), envelope.relayed_inputs().first_tick(),
-                   relayed_buffer_);
-      }
+      if (session_) finals_.on_relayed(*session_, envelope.relayed_inputs());
       break;
     case v1::Envelope::kFinalTicks:
-      if (!session_) break;
-      // decode_envelope has read and checked the runs.
-      if (proto::relayed_runs(envelope.final_ticks(), relayed_runs_).ok()) {
-        for (const proto::RelayedRun& run : relayed_runs_) {
-          on_relayed(run.player, run.first_tick, run.inputs);
-        }
-      }
-      on_final_ticks(envelope.final_ticks(), now);
+      if (session_) on_final_ticks(envelope.final_ticks(), now);
       break;
     case v1::Envelope::kResyncChunk:
       if (session_ && (phase_ == ClientPhase::kRunning || phase_ == ClientPhase::kEnding)) {
@@ -156,13 +126,12 @@ void ClientProtocol::Impl::on_join_accept(const v1::JoinAccept& accept, TimePoin
   // moment we join, before any ping returns: take it as the first RTT
   // sample. Measured from the first request, so a lost request makes it an
   // overestimate (a little extra lead), never an underestimate (late inputs).
-  if (stats_.rtt_ms == 0.0) {
-    stats_.rtt_ms = std::chrono::duration<double, std::milli>(now - joined_at_).count();
-  }
+  clock_.seed_round_trip(std::chrono::duration<double, std::milli>(now - joined_at_).count());
   player_ = accept.player();
   player_count_ = accept.player_count();
   spectator_ = accept.spectator();
-  tick_rate_hz_ = accept.tick_rate_hz();
+  finals_.seat(player_, player_count_);
+  clock_.set_tick_rate(accept.tick_rate_hz());
   if (static_cast<int64_t>(accept.window_ticks()) + 16 > config_.snapshot_ticks) {
     phase_ = ClientPhase::kEnded;
     emit({ClientEventType::kRejected, kNoTick, 0, 0, 0,
@@ -183,20 +152,13 @@ void ClientProtocol::Impl::on_join_accept(const v1::JoinAccept& accept, TimePoin
     });
   }
   phase_ = ClientPhase::kLobby;
-  last_ping_ = now - kLobbyPing;
+  clock_.ping_now(now);
   emit({ClientEventType::kJoined, kNoTick, player_, 0, 0, {}});
 }
 
 void ClientProtocol::Impl::on_match_start(const v1::MatchStart& start, TimePoint now) {
   phase_ = ClientPhase::kRunning;
-  server_tick_ = start.server_tick();
-  // The announced server tick is a one-way delay old when it arrives, and
-  // our inputs take another one-way delay to reach the server: start a
-  // round trip plus the target lead ahead of the announced tick.
-  const double rtt_ticks = stats_.rtt_ms / 1000.0 * tick_rate_hz_;
-  tick_clock_ = start.server_tick() + rtt_ticks + config_.target_lead_ticks;
-  time_sync_.set_round_trip_ticks(rtt_ticks);
-  last_update_ = now;
+  clock_.start_match(start.server_tick(), now);
   emit({ClientEventType::kMatchStarted, start.server_tick(), player_, 0, 0, {}});
 }
 
@@ -215,20 +177,61 @@ void ClientProtocol::Impl::on_match_end(const v1::MatchEnd& end, TimePoint now) 
   } else if (phase_ == ClientPhase::kEnded) {
     v1::Envelope bye;  // our goodbye was lost: the server is still waiting
     bye.mutable_disconnect()->set_reason("match over");
-    send(bye, now);
+    channel_.send(bye, now);
   }
 }
 
-void ClientProtocol::Impl::on_pong(const v1::Pong& pong, TimePoint now) {
-  const double rtt_ms =
-      (static_cast<double>(micros_since_epoch(now)) - static_cast<double>(pong.client_time_us())) /
-      1000.0;
-  if (rtt_ms >= 0 && rtt_ms < 10000) {
-    stats_.rtt_ms =
-        stats_.rtt_ms == 0.0 ? rtt_ms : stats_.rtt_ms + 0.125 * (rtt_ms - stats_.rtt_ms);
-    time_sync_.set_round_trip_ticks(stats_.rtt_ms / 1000.0 * tick_rate_hz_);
+void ClientProtocol::Impl::on_final_ticks(const v1::FinalTicks& finals, TimePoint now) {
+  // Other players' inputs ride along, whatever becomes of the final ticks.
+  finals_.on_relayed_runs(*session_, finals);
+  clock_.on_server_tick(finals.server_tick());
+  inputs_.on_ack(finals.input_ack_tick());
+  if (inputs_.next_input_tick() > 0) clock_.on_lead_report(finals.input_lead_ticks());
+  // While desynced, final ticks are neither applied nor acknowledged: the
+  // server resends them from the resync snapshot's tick on.
+  if (resync_.awaiting()) return;
+  switch (finals_.apply(*session_, finals)) {
+    case FinalTickVerifier::Applied::kOk:
+      return;
+    case FinalTickVerifier::Applied::kRejected:
+      ++stats_.packets_rejected;
+      return;
+    case FinalTickVerifier::Applied::kTooFar:
+      resync_.request(channel_, now);
+      return;
   }
-  server_tick_ = std::max(server_tick_, pong.server_tick());
+}
+
+void ClientProtocol::Impl::on_resync_chunk(const v1::ResyncChunk& chunk, TimePoint now) {
+  const DesyncRecovery::ChunkOutcome result = resync_.on_chunk(
+      *session_, chunk, inputs_.last_final_acked(), finals_.last_received(), channel_, now);
+  switch (result.outcome) {
+    case DesyncRecovery::Outcome::kNone:
+      return;
+    case DesyncRecovery::Outcome::kRejected:
+      ++stats_.packets_rejected;
+      return;
+    case DesyncRecovery::Outcome::kRefused:
+      ++stats_.resyncs_refused;
+      emit({ClientEventType::kResyncRefused, result.tick, player_, 0, 0, result.reason});
+      return;
+    case DesyncRecovery::Outcome::kLoaded:
+      break;
+  }
+  // The server resends final ticks from the snapshot's tick; the snapshot
+  // (its checksum checked) stands for the final ticks before it that our
+  // own simulation never verified.
+  stats_.final_ticks_resynced += finals_.on_resync_loaded(result.tick);
+  inputs_.skip_to(result.tick);
+  clock_.reanchor(result.tick);
+  ++stats_.resyncs;
+  emit({ClientEventType::kResynced,
+        result.tick,
+        player_,
+        session_->simulation().checksum(),
+        result.checksum,
+        {}});
+  step_due_ticks(now);
 }
 
 }  // namespace rwd::client
