@@ -8,7 +8,11 @@
 #   REWIND_CLIENT_WEB_DIR  the client SDK for browser players as an npm
 #                          folder (client_sdk/web: rewind-client.js, its
 #                          TypeScript declarations, the module)
-#                          (target rewind_browser_client).
+#                          (target rewind_browser_client);
+#   wasm/stage             the libraries, headers and package config a game's
+#                          own browser module is built with
+#                          (rewind_add_browser_client, wasm/RewindBrowserClient.cmake),
+#                          installed under share/rewind/wasm.
 # Neither is built by every build: a few minutes each time the engine
 # changes; the browser tests' fixture or a request builds them.
 option(REWIND_BUILD_VIEWER "Add the browser viewer and the browser client SDK (targets rewind_viewer, rewind_browser_client) and their browser tests (needs emscripten, node and Chromium: scripts/setup.sh --viewer)" OFF)
@@ -38,7 +42,9 @@ ExternalProject_Add(rewind_wasm
   CONFIGURE_COMMAND ${wasm_lock} ${emscripten_env} bash ${PROJECT_SOURCE_DIR}/wasm/configure.sh
                     ${PROJECT_SOURCE_DIR} <BINARY_DIR> ${wasm_deps}
   BUILD_COMMAND ${wasm_lock} ${emscripten_env} ${CMAKE_COMMAND} --build <BINARY_DIR>
-  INSTALL_COMMAND ""
+  # What a game's own browser module builds on (RewindBrowserConfig.cmake),
+  # staged for cmake --install (share/rewind/wasm).
+  INSTALL_COMMAND ${wasm_lock} ${CMAKE_COMMAND} --install <BINARY_DIR> --prefix <BINARY_DIR>/stage
   # The sub-build's ninja knows what changed; ask it every time.
   BUILD_ALWAYS ON
   EXCLUDE_FROM_ALL ON

@@ -80,6 +80,10 @@ function(rewind_install_package)
   # game copies or `npm install`s it from there.
   install(DIRECTORY ${CMAKE_BINARY_DIR}/client_web/ DESTINATION ${CMAKE_INSTALL_DATADIR}/rewind/client
     OPTIONAL)
+  # And what a game's own browser module is built with (find_package(
+  # RewindBrowser) in an Emscripten build; docs/writing-a-game.md).
+  install(DIRECTORY ${CMAKE_BINARY_DIR}/wasm/stage/ DESTINATION ${CMAKE_INSTALL_DATADIR}/rewind/wasm
+    OPTIONAL)
 
   set(cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/Rewind)
   install(EXPORT RewindTargets NAMESPACE Rewind:: DESTINATION ${cmake_dir})

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "rewind/cli/json_text.h"
+#include "rewind/client/browser_games.h"
 #include "rewind/client/client_protocol.h"
 #include "rewind/core/debug_draw.h"
 #include "rewind/core/input_spec.h"
@@ -48,11 +49,30 @@ struct Clients {
   int next = 1;
   std::string error;
   std::string text;
+  rwd::Status games;  ///< what register_browser_games() answered
 };
 
 Clients& clients() {
-  static Clients c;
+  static Clients c = [] {
+    Clients made;
+    made.games = rwd::client::register_browser_games();
+    return made;
+  }();
   return c;
+}
+
+/// Whether this module plays `game`; otherwise rc_error says why.
+bool plays(const std::string& game) {
+  Clients& all = clients();
+  if (!all.games.ok()) {
+    all.error = "the module's games did not register: " + all.games.message();
+    return false;
+  }
+  if (!rwd::game::make_builtin_game(game)) {
+    all.error = "no game named '" + game + "' in this module";
+    return false;
+  }
+  return true;
 }
 
 Client* find(int handle) {
@@ -145,14 +165,12 @@ RC_EXPORT const char* rc_error() {
   return clients().error.c_str();
 }
 
-/// The input a built-in game takes, as JSON: {"name", "size", "fields":
+/// The input a game of this module takes (a built-in one, or one its
+/// register_browser_games() added), as JSON: {"name", "size", "fields":
 /// [{"name", "type", "offset", "min", "max"}]}; "" for an unknown game.
 RC_EXPORT const char* rc_input_spec(const char* game) {
+  if (!plays(game)) return hand_out("");
   const std::unique_ptr<rwd::game::Game> made = rwd::game::make_builtin_game(game);
-  if (!made) {
-    clients().error = std::string("no game named '") + game + "' in this module";
-    return hand_out("");
-  }
   const rwd::InputSpec& spec = made->input_spec();
   std::string json = "{\"name\":" + rwd::cli::json_string(spec.name) +
                      ",\"size\":" + std::to_string(spec.size) + ",\"fields\":[";
@@ -178,10 +196,7 @@ RC_EXPORT int rc_create(const char* game, const char* name, const uint8_t* token
   config.connect_token.assign(token, token + token_size);
   config.spectator = spectator != 0;
   if (snapshot_ticks > 0) config.snapshot_ticks = snapshot_ticks;
-  if (!rwd::game::make_builtin_game(config.game)) {
-    clients().error = "no game named '" + config.game + "' in this module";
-    return -1;
-  }
+  if (!plays(config.game)) return -1;
   auto protocol =
       ClientProtocol::create(config, (static_cast<uint64_t>(nonce_high) << 32) | nonce_low);
   if (!protocol.ok()) {
