@@ -4,7 +4,7 @@
 //  - a face contact: the reference face is the face of the best face axis,
 //    the incident face is the other box's face most anti-parallel to it; the
 //    incident quad is clipped against the reference face's side planes
-//    (Sutherland-Hodgman) and points within the speculative distance are
+//    (polygon_clip.h) and points within the speculative distance are
 //    kept, reduced to four when clipping leaves more; or
 //  - an edge contact: one point between the closest points of the two edges.
 // GJK/EPA was rejected for this pair: SAT is exact for boxes, cheaper, and
@@ -13,6 +13,7 @@
 #include <limits>
 
 #include "d3/manifold.h"
+#include "d3/polygon_clip.h"
 
 namespace rwd::sim::d3 {
 namespace {
@@ -57,29 +58,19 @@ struct ClipVertex {
 constexpr int kMaxClip = 12;
 
 // Keeps the part of `in` where sign * c[coord] <= limit (side plane `side`).
-int clip_polygon(const ClipVertex* in, int count, int coord, float sign, float limit, int side,
-                 ClipVertex* out) {
+int clip_side(const ClipVertex* in, int count, int coord, float sign, float limit, int side,
+              ClipVertex* out) {
   float dist[kMaxClip];
   for (int m = 0; m < count; ++m) dist[m] = sign * in[m].c[coord] - limit;
-  int n = 0;
-  for (int m = 0; m < count; ++m) {
-    const int next = m + 1 == count ? 0 : m + 1;
-    const ClipVertex& p = in[m];
-    const ClipVertex& q = in[next];
-    const float dp = dist[m];
-    const float dq = dist[next];
-    if (dp <= 0.0f) out[n++] = p;
-    if ((dp <= 0.0f) != (dq <= 0.0f)) {
-      const float t = dp / (dp - dq);  // signs differ, so dp - dq != 0
-      ClipVertex x;
-      for (int k = 0; k < 3; ++k) x.c[k] = p.c[k] + (q.c[k] - p.c[k]) * t;
-      x.incident_edges = static_cast<uint8_t>(p.incident_edges & q.incident_edges);
-      x.reference_sides =
-          static_cast<uint8_t>((p.reference_sides & q.reference_sides) | (1u << side));
-      out[n++] = x;
-    }
-  }
-  return n;
+  return clip_polygon<kMaxClip>(
+      in, dist, count, out, [side](const ClipVertex& p, const ClipVertex& q, float t, bool) {
+        ClipVertex x;
+        for (int k = 0; k < 3; ++k) x.c[k] = p.c[k] + (q.c[k] - p.c[k]) * t;
+        x.incident_edges = static_cast<uint8_t>(p.incident_edges & q.incident_edges);
+        x.reference_sides =
+            static_cast<uint8_t>((p.reference_sides & q.reference_sides) | (1u << side));
+        return x;
+      });
 }
 
 struct Candidate {
@@ -201,7 +192,7 @@ void face_contact(const BoxFrame& ref, const BoxFrame& inc, int ref_axis, bool r
   ClipVertex* src = a;
   ClipVertex* dst = b;
   for (int s = 0; s < 4 && count > 0; ++s) {
-    count = clip_polygon(src, count, coord[s], sign[s], half[s] + kClipTolerance, s, dst);
+    count = clip_side(src, count, coord[s], sign[s], half[s] + kClipTolerance, s, dst);
     ClipVertex* t = src;
     src = dst;
     dst = t;

@@ -4,7 +4,7 @@
 // edge queries (hull_sat_queries.cpp) give the best axis, then either
 //  - a face contact: the incident face (the other hull's face most
 //    anti-parallel to the reference face) is clipped against the reference
-//    face's side planes (Sutherland-Hodgman), points within the speculative
+//    face's side planes (polygon_clip.h), points within the speculative
 //    distance are kept, midway between the surfaces, and reduced to four; or
 //  - an edge contact: one point midway between the closest points of the
 //    two edges.
@@ -32,6 +32,7 @@
 #include <cmath>
 
 #include "d3/hull_sat_queries.h"
+#include "d3/polygon_clip.h"
 
 namespace rwd::sim::d3 {
 namespace {
@@ -66,7 +67,7 @@ constexpr float kDepthTie = 0.0005f;  // metres
 constexpr float kSpreadTie = 0.01f;
 // Clipping a convex polygon by a plane adds at most one vertex: 64 incident
 // vertices clipped by a 64-sided reference face end with at most 128.
-// Rounding can make a nearly degenerate polygon gain more; clip_polygon
+// Rounding can make a nearly degenerate polygon gain more; clip_by_plane
 // drops vertices past the capacity instead of writing beyond it.
 constexpr int kMaxClip = 2 * static_cast<int>(kHullMaxVertices) + 2;
 constexpr uint32_t kReferenceSide = 64;  // line label of reference side s: 64 + s
@@ -116,33 +117,22 @@ struct ClipVertex {
 };
 
 // Keeps the part of `in` where dot(plane, x) <= offset; the plane is line
-// `label`. A crossing is made only where the two ends are strictly on
-// opposite sides: an end exactly on the plane is kept as it is rather than
-// doubled by a crossing at the same place.
-int clip_polygon(const ClipVertex* in, int count, Vec3 plane, float offset, uint8_t label,
-                 ClipVertex* out) {
+// `label`.
+int clip_side(const ClipVertex* in, int count, Vec3 plane, float offset, uint8_t label,
+              ClipVertex* out) {
   float dist[kMaxClip];
   for (int m = 0; m < count; ++m) dist[m] = dot(plane, in[m].p) - offset;
-  int n = 0;
-  for (int m = 0; m < count; ++m) {
-    const int next = m + 1 == count ? 0 : m + 1;
-    const ClipVertex& p = in[m];
-    const ClipVertex& q = in[next];
-    const float dp = dist[m];
-    const float dq = dist[next];
-    if (dp <= 0.0f && n < kMaxClip) out[n++] = p;
-    if (((dp < 0.0f && dq > 0.0f) || (dp > 0.0f && dq < 0.0f)) && n < kMaxClip) {
-      const float t = dp / (dp - dq);  // signs differ strictly, so dp - dq != 0
-      ClipVertex x;
-      x.p = p.p + (q.p - p.p) * t;
-      // The side p -> q is p.out; leaving, the polygon continues along the
-      // plane, entering it comes off the plane onto that side.
-      x.in = dp < 0.0f ? p.out : label;
-      x.out = dp < 0.0f ? label : p.out;
-      out[n++] = x;
-    }
-  }
-  return n;
+  return clip_polygon<kMaxClip>(
+      in, dist, count, out,
+      [label](const ClipVertex& p, const ClipVertex& q, float t, bool leaving) {
+        ClipVertex x;
+        x.p = p.p + (q.p - p.p) * t;
+        // The side p -> q is p.out; leaving, the polygon continues along the
+        // plane, entering it comes off the plane onto that side.
+        x.in = leaving ? p.out : label;
+        x.out = leaving ? label : p.out;
+        return x;
+      });
 }
 
 struct Candidate {
@@ -282,7 +272,7 @@ void face_contact(const HullView& ref, uint32_t ref_face, const HullView& inc,
     // of each side and (q - p) x n points out of it.
     const Vec3 side = normalize_or_zero(cross(q - p, n));
     const float offset = dot(side, p) + kClipTolerance;
-    count = clip_polygon(src, count, side, offset, static_cast<uint8_t>(kReferenceSide + s), dst);
+    count = clip_side(src, count, side, offset, static_cast<uint8_t>(kReferenceSide + s), dst);
     ClipVertex* t = src;
     src = dst;
     dst = t;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "d3/manifold_triangles.h"
+#include "d3/polygon_clip.h"
 
 namespace rwd::sim::d3 {
 namespace {
@@ -79,45 +80,27 @@ uint32_t outline_hull(OutlinePoint* p, uint32_t count) {
 
 // Clips the outline (1, 2 or >= 3 points, counter-clockwise) to the
 // triangle (q, oriented by `orient` so that inside is >= 0), in place;
-// returns the count left.
+// returns the count left. A crossing is coded kCrossCode + 2 e where the
+// outline enters over edge e and one more where it leaves.
 uint32_t clip_outline(OutlinePoint* poly, uint32_t n, const float q[3][2], float orient) {
   OutlinePoint tmp[kMaxOutline];
+  float dist[kMaxOutline];
   for (uint32_t e = 0; e < 3 && n > 0; ++e) {
     const float ax = q[e][0];
     const float ay = q[e][1];
     const float ex = q[(e + 1) % 3][0] - ax;
     const float ey = q[(e + 1) % 3][1] - ay;
-    auto side = [&](const OutlinePoint& p) { return orient * cross2(ex, ey, p.u - ax, p.v - ay); };
-    if (n == 1) {
-      if (!(side(poly[0]) >= 0.0f)) n = 0;
-      continue;
-    }
-    if (n == 2) {  // a segment: move its outside end to the crossing
-      const float s0 = side(poly[0]);
-      const float s1 = side(poly[1]);
-      if (!(s0 >= 0.0f) && !(s1 >= 0.0f)) {
-        n = 0;
-      } else if (!(s0 >= 0.0f)) {
-        poly[0] = lerp(poly[0], poly[1], s0 / (s0 - s1), kCrossCode + 2 * e);
-      } else if (!(s1 >= 0.0f)) {
-        poly[1] = lerp(poly[0], poly[1], s0 / (s0 - s1), kCrossCode + 2 * e + 1);
-      }
-      continue;
-    }
-    uint32_t m = 0;  // Sutherland-Hodgman
+    // Distance outward: minus the side, which is positive inside.
     for (uint32_t i = 0; i < n; ++i) {
-      const OutlinePoint& prev = poly[(i + n - 1) % n];
-      const OutlinePoint& cur = poly[i];
-      const float sp = side(prev);
-      const float sc = side(cur);
-      if (sc >= 0.0f) {
-        if (!(sp >= 0.0f)) tmp[m++] = lerp(prev, cur, sp / (sp - sc), kCrossCode + 2 * e);
-        tmp[m++] = cur;
-      } else if (sp >= 0.0f) {
-        tmp[m++] = lerp(prev, cur, sp / (sp - sc), kCrossCode + 2 * e + 1);
-      }
+      dist[i] = -(orient * cross2(ex, ey, poly[i].u - ax, poly[i].v - ay));
     }
-    n = m;
+    const uint32_t code = kCrossCode + 2 * e;
+    const int m = clip_polygon<static_cast<int>(kMaxOutline)>(
+        poly, dist, static_cast<int>(n), tmp,
+        [code](const OutlinePoint& a, const OutlinePoint& b, float t, bool leaving) {
+          return lerp(a, b, t, leaving ? code + 1 : code);
+        });
+    n = static_cast<uint32_t>(m);
     for (uint32_t i = 0; i < n; ++i) poly[i] = tmp[i];
   }
   return n;

@@ -76,7 +76,12 @@ inline constexpr std::string_view kEngineName = "rewind-sim";
 ///  20  a box meets a mesh's or a height field's triangles by separating
 ///      axes (the triangle's normal preferred, then the box's faces, then
 ///      edge pairs) instead of GJK and EPA
-inline constexpr uint32_t kSimRevision = 20;
+///  21  one polygon clipping rule for box-box, hull-hull and a shape's
+///      outline on a triangle: a vertex on a side plane is kept once, never
+///      doubled by a crossing at the same place (box-box and the triangle
+///      outline doubled it); the outline's clipped points come in the
+///      polygon's order from its first point
+inline constexpr uint32_t kSimRevision = 21;
 
 /// "rewind-sim r11": the engine identity a replay records.
 inline std::string engine_version() {
