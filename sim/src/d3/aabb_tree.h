@@ -205,13 +205,13 @@ struct SegmentSlabs {
     }
   }
 
-  // Whether the segment, t in [0, max_t], touches the box, and from which t
-  // (entry; 0 when the origin is inside). Each axis narrows [t_lo, t_hi]
-  // by its slab; max and min are exact, so the order of the axes and of
-  // the comparisons changes neither answer.
-  bool enters(const Aabb& box, float max_t, float& entry) const {
-    float t_lo = 0.0f;
-    float t_hi = max_t;
+  // The part [t_lo, t_hi] of the segment, t in [0, max_t], within the
+  // closed box; false when none. Each axis narrows the range by its slab;
+  // max and min are exact, so the order of the axes and of the comparisons
+  // changes neither answer.
+  bool interval(const Aabb& box, float max_t, float& t_lo, float& t_hi) const {
+    t_lo = 0.0f;
+    t_hi = max_t;
     for (int i = 0; i < 3; ++i) {
       const float o = component(origin, i);
       const float lo = component(box.lower, i);
@@ -226,8 +226,13 @@ struct SegmentSlabs {
       t_lo = std::max(t_lo, std::min(t0, t1));
       t_hi = std::min(t_hi, std::max(t0, t1));
     }
-    entry = t_lo;
     return t_lo <= t_hi;
+  }
+  // Whether the segment touches the box, and from which t (entry; 0 when
+  // the origin is inside).
+  bool enters(const Aabb& box, float max_t, float& entry) const {
+    float exit = 0.0f;
+    return interval(box, max_t, entry, exit);
   }
   bool hits(const Aabb& box, float max_t) const {
     float entry = 0.0f;

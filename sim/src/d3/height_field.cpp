@@ -12,6 +12,7 @@
 // segment.
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "d3/height_field.h"
 
@@ -186,34 +187,6 @@ TriangleRef height_field_triangle(const HeightField& hf, uint32_t id) {
   return t;
 }
 
-namespace {
-
-// The part [t_lo, t_hi] of the segment origin + t dir, 0 <= t <= max_t,
-// within the closed box; false when none.
-bool clip_segment(const Aabb& box, Vec3 origin, Vec3 dir, float max_t, float& t_lo, float& t_hi) {
-  t_lo = 0.0f;
-  t_hi = max_t;
-  for (int i = 0; i < 3; ++i) {
-    const float o = component(origin, i);
-    const float d = component(dir, i);
-    const float lo = component(box.lower, i);
-    const float hi = component(box.upper, i);
-    if (d == 0.0f) {
-      if (o < lo || o > hi) return false;
-      continue;
-    }
-    float t0 = (lo - o) / d;
-    float t1 = (hi - o) / d;
-    if (t0 > t1) std::swap(t0, t1);
-    if (t0 > t_lo) t_lo = t0;
-    if (t1 < t_hi) t_hi = t1;
-    if (!(t_lo <= t_hi)) return false;
-  }
-  return true;
-}
-
-}  // namespace
-
 bool height_field_raycast(const HeightField& hf, Vec3 origin, Vec3 dir, float max_t, float& t,
                           Vec3& normal, uint32_t& id) {
   if (!(max_t >= 0.0f)) return false;
@@ -226,7 +199,7 @@ bool height_field_raycast(const HeightField& hf, Vec3 origin, Vec3 dir, float ma
       {hf.bounds.upper.x + hf.scale.x, hf.bounds.upper.y + pad_y, hf.bounds.upper.z + hf.scale.z}};
   float s0 = 0.0f;
   float s1 = 0.0f;
-  if (!clip_segment(wide, origin, dir, max_t, s0, s1)) return false;
+  if (!SegmentSlabs(origin, dir).interval(wide, max_t, s0, s1)) return false;
   const float za = origin.z + dir.z * s0;
   const float zb = origin.z + dir.z * s1;
   uint32_t r_first = 0, r_last = 0;

@@ -83,42 +83,16 @@ void build_bvh(TriangleMesh& mesh) {
 
 }  // namespace mesh_detail
 
-namespace {
-
-// Whether the segment origin + t dir, 0 <= t <= max_t, touches the box
-// widened by pad on every side. The widening only adds candidates (every
-// triangle is tested exactly), so rounding in the slab test cannot drop a
-// hit that lies on a node's face.
-bool segment_touches(const Aabb& box, float pad, Vec3 origin, Vec3 dir, float max_t) {
-  float t_lo = 0.0f;
-  float t_hi = max_t;
-  for (int i = 0; i < 3; ++i) {
-    const float o = component(origin, i);
-    const float d = component(dir, i);
-    const float lo = component(box.lower, i) - pad;
-    const float hi = component(box.upper, i) + pad;
-    if (d == 0.0f) {
-      if (o < lo || o > hi) return false;
-      continue;
-    }
-    const float inv = 1.0f / d;
-    float t0 = (lo - o) * inv;
-    float t1 = (hi - o) * inv;
-    if (t0 > t1) std::swap(t0, t1);
-    if (t0 > t_lo) t_lo = t0;
-    if (t1 < t_hi) t_hi = t1;
-    if (t_lo > t_hi) return false;
-  }
-  return true;
-}
-
-}  // namespace
-
 bool mesh_raycast(const TriangleMesh& mesh, Vec3 origin, Vec3 dir, float max_t, float& t,
                   Vec3& normal, uint32_t& triangle) {
   if (mesh.nodes.empty() || !(max_t >= 0.0f)) return false;
   const Vec3 big = max(abs(mesh.bounds.lower), abs(mesh.bounds.upper));
-  const float pad = 1e-5f * (1.0f + std::fmax(big.x, std::fmax(big.y, big.z)));
+  // Node boxes are widened by pad on every side. The widening only adds
+  // candidates (every triangle is tested exactly), so rounding in the slab
+  // test cannot drop a hit that lies on a node's face.
+  const float widen = 1e-5f * (1.0f + std::fmax(big.x, std::fmax(big.y, big.z)));
+  const Vec3 pad{widen, widen, widen};
+  const SegmentSlabs slabs(origin, dir);
   bool hit = false;
   float best_t = max_t;
   uint32_t best = 0;
@@ -130,7 +104,9 @@ bool mesh_raycast(const TriangleMesh& mesh, Vec3 origin, Vec3 dir, float max_t, 
     // Nodes are pruned against the best hit so far, widened a little: the
     // visiting order then cannot change which of two equal hits wins.
     const float reach = hit ? best_t + 1e-6f * (1.0f + best_t) : best_t;
-    if (!segment_touches(node.box, pad, origin, dir, reach < max_t ? reach : max_t)) continue;
+    if (!slabs.hits({node.box.lower - pad, node.box.upper + pad}, reach < max_t ? reach : max_t)) {
+      continue;
+    }
     if (node.count == 0) {
       stack[top++] = node.first + 1;
       stack[top++] = node.first;

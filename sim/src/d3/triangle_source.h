@@ -75,33 +75,6 @@ inline Mat3 to_local_axes(const SourceFrame& f, const Mat3& axes) {
           gjk_detail::mul_transpose(f.axes, axes.c2)};
 }
 
-/// A ray against a source: `cast(origin, dir, max_distance, t, normal)` in
-/// the local frame; the normal comes back in the world frame.
-template <class Cast>
-bool raycast_source(const SourceFrame& f, Vec3 origin, Vec3 dir, float max_distance, float& t,
-                    Vec3& normal, Cast&& cast) {
-  Vec3 n;
-  if (!cast(to_local(f, origin), gjk_detail::mul_transpose(f.axes, dir), max_distance, t, n)) {
-    return false;
-  }
-  normal = f.axes * n;
-  return true;
-}
-
-/// ShapeOps::signed_distance of a source: `measure(local_point, local)`
-/// fills the SurfaceDistance in the local frame (or returns false), and
-/// the answer is mapped back to the world frame.
-template <class Measure>
-bool signed_distance_source(const SourceFrame& f, Vec3 point, SurfaceDistance& out,
-                            Measure&& measure) {
-  SurfaceDistance local;
-  if (!measure(to_local(f, point), local)) return false;
-  out.distance = local.distance;
-  out.point = f.origin + f.axes * local.point;
-  out.normal = f.axes * local.normal;
-  return true;
-}
-
 /// The source (A) against the convex `shape` (B) at `pose`: one manifold,
 /// normal from the source to the shape, in the world frame.
 template <class Query>
@@ -155,5 +128,86 @@ ShapeCastOutput sweep_source(const SourceFrame& f, bool one_sided, Query&& query
   out.normal = f.axes * hit.normal;
   return out;
 }
+
+/// The ShapeOps entries and the convex contact of a triangle source,
+/// written once for meshes (shape_mesh.cpp) and height fields
+/// (shape_height_field.cpp), which differ only in how their geometry is
+/// found, cast against, queried and measured. `Source` provides:
+///   using Data (with an Aabb `bounds` in the local frame);
+///   static constexpr const char* kName;
+///   static const Data* find(const GeometryStore&, uint32_t geometry);
+///   static bool one_sided(const Data&);
+///   static bool raycast(const Data&, Vec3 origin, Vec3 dir, float max_t,
+///                       float& t, Vec3& normal)       (local frame);
+///   static void query(const Data&, const Aabb&, Visit&&)  (a `Query`);
+///   static bool signed_distance(const Data&, Vec3 q, SurfaceDistance&)
+///                                                     (local frame).
+template <class Source>
+struct SurfaceShape {
+  using Data = typename Source::Data;
+
+  static const Data& data(const Shape& s, const GeometryStore& store) {
+    return *Source::find(store, s.geometry);
+  }
+  static SourceFrame frame(const Data& d, Vec3 position, const Mat3& axes) {
+    return source_frame(position, axes, bounds_center(d.bounds));
+  }
+  static auto triangles(const Data& d) {
+    return [&d](const Aabb& box, auto&& visit) { Source::query(d, box, visit); };
+  }
+
+  static Status check(const Shape& s, const GeometryStore& store) {
+    return check_surface(Source::find(store, s.geometry) != nullptr, Source::kName, s.geometry);
+  }
+  static void canonical(Shape& s, const GeometryStore& store) {
+    surface_canonical(s, data(s, store).bounds);
+  }
+  /// The ray is cast in the local frame; the normal comes back in the world's.
+  static bool raycast(const Shape& s, const GeometryStore& store, Vec3 position, Quat rotation,
+                      Vec3 origin, Vec3 dir, float max_distance, float& t, Vec3& normal) {
+    const Data& d = data(s, store);
+    const SourceFrame f = frame(d, position, mat3_from_quat(rotation));
+    Vec3 n;
+    if (!Source::raycast(d, to_local(f, origin), gjk_detail::mul_transpose(f.axes, dir),
+                         max_distance, t, n)) {
+      return false;
+    }
+    normal = f.axes * n;
+    return true;
+  }
+  static ShapeCastOutput sweep(const Shape& s, const GeometryStore& store, Vec3 position,
+                               const Mat3& axes, const ConvexProxy& swept, Vec3 translation,
+                               float max_fraction) {
+    const Data& d = data(s, store);
+    return sweep_source(frame(d, position, axes), Source::one_sided(d), triangles(d), swept,
+                        translation, max_fraction);
+  }
+  /// Measured in the local frame and mapped back to the world's.
+  static bool signed_distance(const Shape& s, const GeometryStore& store, Vec3 position,
+                              const Mat3& axes, Vec3 point, SurfaceDistance& out) {
+    const Data& d = data(s, store);
+    const SourceFrame f = frame(d, position, axes);
+    SurfaceDistance local;
+    if (!Source::signed_distance(d, to_local(f, point), local)) return false;
+    out.distance = local.distance;
+    out.point = f.origin + f.axes * local.point;
+    out.normal = f.axes * local.normal;
+    return true;
+  }
+  /// The source (A, mass-frame pose `pose`) against the convex `shape` (B).
+  static void collide_convex(const Shape& surface, const ShapePose& pose, const Shape& shape,
+                             const ShapePose& shape_pose, float speculative_m,
+                             const GeometryStore& store, Manifold& out) {
+    const Data& d = data(surface, store);
+    collide_source_convex(frame(d, pose.position, pose.axes), Source::one_sided(d), triangles(d),
+                          shape, shape_pose, store, speculative_m, out);
+  }
+  /// The table entry: a surface (not solid), with no convex proxy.
+  static constexpr ShapeOps ops() {
+    return {Source::kName,  false,          check,           canonical,
+            surface_extent, surface_volume, surface_inertia, surface_half_bounds,
+            raycast,        nullptr,        sweep,           signed_distance};
+  }
+};
 
 }  // namespace rwd::sim::d3
