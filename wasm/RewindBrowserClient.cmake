@@ -21,7 +21,8 @@ include_guard(GLOBAL)
 # the static library RewindBrowser::client: naming them pulls them in).
 set(REWIND_BROWSER_EXPORTS
     _malloc _free _rc_error _rc_input_spec _rc_create _rc_disconnect _rc_destroy _rc_connect
-    _rc_receive _rc_update _rc_next_datagram _rc_set_input _rc_poll_event _rc_status _rc_draw)
+    _rc_receive _rc_update _rc_next_datagram _rc_set_input _rc_poll_event _rc_status _rc_draw
+    _rc_warm_up)
 
 function(rewind_add_browser_client)
   cmake_parse_arguments(arg "" "TARGET;OUTPUT_DIRECTORY" "SOURCES" ${ARGN})

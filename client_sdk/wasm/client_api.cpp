@@ -44,8 +44,18 @@ struct Client {
   rwd::DebugDrawBuffers draw;
 };
 
+// A throwaway match of one game that rc_warm_up() steps in slices.
+struct WarmUp {
+  std::unique_ptr<rwd::game::Simulation> sim;
+  rwd::game::SimSnapshot snapshot;
+  std::vector<rwd::PlayerInput> inputs;
+  std::vector<uint8_t> bytes;
+  uint64_t draws = 0;
+};
+
 struct Clients {
   std::map<int, std::unique_ptr<Client>> open;
+  std::map<std::string, WarmUp> warm_ups;  ///< by game
   int next = 1;
   std::string error;
   std::string text;
@@ -207,6 +217,59 @@ RC_EXPORT int rc_create(const char* game, const char* name, const uint8_t* token
   const int handle = all.next++;
   all.open.emplace(handle, std::make_unique<Client>(std::move(*protocol)));
   return handle;
+}
+
+/// Steps a throwaway match of `game` (`players` slots, random inputs within
+/// its input spec) `ticks` ticks further, the way a client does: a snapshot
+/// restored and 8 ticks re-simulated every 8, the state serialized and
+/// checksummed. Browsers run WebAssembly first as quickly compiled baseline
+/// code and optimize what runs hot later; a match's first seconds on
+/// baseline code re-simulate several times slower and stall the page. Called
+/// in slices before joining, it leaves the step's code optimized. Returns the
+/// ticks stepped so far in this game's warm-up, or -1 (rc_error says why).
+RC_EXPORT int rc_warm_up(const char* game, int players, int ticks) {
+  if (!plays(game)) return -1;
+  if (players < 1 || players > static_cast<int>(rwd::game::kMaxPlayers) || ticks < 0) {
+    clients().error =
+        "warm up: players in [1, " + std::to_string(rwd::game::kMaxPlayers) + "] and ticks >= 0";
+    return -1;
+  }
+  WarmUp& warm = clients().warm_ups[game];
+  if (!warm.sim) {
+    auto sim =
+        rwd::game::Simulation::create(game, {static_cast<uint32_t>(players), /*seed=*/0x5eed});
+    if (!sim.ok()) {
+      clients().error = sim.status().message();
+      return -1;
+    }
+    warm.sim = std::move(*sim);
+    warm.inputs.resize(static_cast<size_t>(players));
+    warm.sim->save(warm.snapshot);
+  }
+  rwd::game::Simulation& sim = *warm.sim;
+  const rwd::InputSpec& spec = sim.game().input_spec();
+  for (int t = 0; t < ticks; ++t) {
+    if (sim.tick() % 8 == 0 && sim.tick() > 0) {
+      // Back to the last snapshot and forward again, as a rollback does.
+      const rwd::Tick target = sim.tick();
+      sim.restore(warm.snapshot);
+      while (sim.tick() < target) {
+        if (!sim.step(warm.inputs).ok()) break;
+      }
+      sim.save(warm.snapshot);
+      sim.serialize(warm.bytes);
+      (void)sim.checksum();
+    }
+    for (rwd::PlayerInput& input : warm.inputs) {
+      input = rwd::random_input(spec, ++warm.draws * 0x9e3779b97f4a7c15ull);
+    }
+    if (!sim.step(warm.inputs).ok()) {
+      // The rules refused the state: start over from a fresh match.
+      warm.sim.reset();
+      break;
+    }
+  }
+  return warm.sim ? static_cast<int>(warm.sim->tick()) : 0;
 }
 
 /// Closes the client (a Disconnect is queued first when it is connected:

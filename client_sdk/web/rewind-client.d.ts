@@ -112,8 +112,20 @@ export interface RewindClient {
   close(reason?: string): void;
 }
 
+export interface WarmUpOptions {
+  /** Ticks to step, 600 by default. */
+  ticks?: number;
+  /** Player slots of the throwaway match, 4 by default. */
+  players?: number;
+  /** Ticks per slice between yields to the page, 8 by default. */
+  sliceTicks?: number;
+}
+
 export interface Rewind {
   inputSpec(game: string): InputSpec;
+  /** Steps a throwaway match of `game` in slices before a match, so the
+   *  browser has optimized the step's code when the match needs it. */
+  warmUp(game: string, options?: WarmUpOptions): Promise<void>;
   connect(options: ConnectOptions): RewindClient;
 }
 

@@ -84,6 +84,26 @@ class Rewind {
     return this.specs.get(game);
   }
 
+  /**
+   * Runs `game`'s simulation for a while before a match, in slices that keep
+   * the page responsive, so the browser has optimized the step's code by the
+   * time a match needs it (until then, re-simulating after a late input runs
+   * several times slower and can stall the page for a second or more).
+   * Resolves once `ticks` ticks were stepped; call it while the player is in
+   * a menu, before connect().
+   */
+  async warmUp(game, { ticks = 600, players = 4, sliceTicks = 8 } = {}) {
+    let stepped = 0;
+    while (stepped < ticks) {
+      const n = Math.min(sliceTicks, ticks - stepped);
+      if (this.#call("rc_warm_up", "number", ["string", "number", "number"], [game, players, n]) < 0) {
+        throw new Error(this.#error());
+      }
+      stepped += n;
+      await new Promise((resolve) => setTimeout(resolve, 0));
+    }
+  }
+
   /** Opens a client and starts joining; see rewind-client.d.ts for the options. */
   connect(options) {
     return new RewindClient(this, options);

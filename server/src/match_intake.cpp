@@ -205,8 +205,13 @@ void MatchHost::handle_input(Seat& peer, uint32_t player, const v1::InputFrame& 
         // needs exactly that (negative) lead to jump ahead.
         newest = std::max(newest, tick);
         // Resends of inputs the server had are normal; an input that only
-        // arrives after its tick was finalized without it is rejected.
-        if (finalizer_.substituted(tick, player)) ++stats_.rejected_inputs;
+        // arrives after its tick was finalized without it is rejected, and
+        // counted once: the client resends it until it hears the tick is
+        // final, and those copies are the same refusal.
+        if (finalizer_.substituted(tick, player) && tick > peer.late_counted) {
+          ++stats_.rejected_inputs;
+          peer.late_counted = tick;
+        }
         break;
       }
       case net::InputResult::kConflict:

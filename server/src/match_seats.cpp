@@ -12,6 +12,7 @@ void Seat::restart_progress() {
   standalone_from = 0;
   left = false;
   last_lead = 0;
+  late_counted = kNoTick;
   sent_input = false;
 }
 

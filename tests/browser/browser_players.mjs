@@ -30,6 +30,8 @@ const random = () => { seed = (Math.imul(seed, 1664525) + 1013904223) >>> 0; ret
 try {
   const rewind = await loadRewind();
   const spec = rewind.inputSpec(settings.game);
+  // As a game's menu would: the step's code optimized before the match.
+  await rewind.warmUp(settings.game);
   const client = rewind.connect({ url: settings.url, token: settings.token, game: settings.game,
                                   name: settings.name, faults: settings.faults });
   window.rewindClient = client;

@@ -18,6 +18,7 @@ import type {
 export async function play(token: string, url: string): Promise<ClientStatus | null> {
   const rewind: Rewind = await loadRewind();
   const spec: InputSpec = rewind.inputSpec("crates");
+  await rewind.warmUp("crates", { ticks: 300, players: 2 });
   const names: string[] = spec.fields.map((field) => `${field.name}:${field.type}[${field.min},${field.max}]`);
   console.log(spec.size, names.join(" "));
 
@@ -63,6 +64,8 @@ export function misuses(rewind: Rewind, client: RewindClient): void {
   client.on("tick", () => {});
   // @ts-expect-error: an input is named fields or bytes, not text
   client.setInput("left");
+  // @ts-expect-error: a warm-up's length is a number of ticks
+  void rewind.warmUp("crates", { ticks: "long" });
   // @ts-expect-error: the faults take numbers
   rewind.connect({ url: "u", game: "crates", faults: { loss: "3%" } });
   const status = client.status();

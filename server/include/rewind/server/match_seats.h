@@ -39,7 +39,8 @@ struct Seat {
   // (the match's first, or a resync snapshot's): sent standalone; later
   // ticks go packed against the tick before.
   Tick standalone_from = 0;
-  int32_t last_lead = 0;  // how far ahead of the server clock its inputs run
+  int32_t last_lead = 0;        // how far ahead of the server clock its inputs run
+  Tick late_counted = kNoTick;  // newest too-late input counted as rejected
   bool sent_input = false;
 
   /// Held, and neither dropped by the peer timeout nor gone.

@@ -14,7 +14,8 @@ struct MatchStats {
   uint64_t resimulated_ticks = 0;
   uint64_t late_inputs = 0;         ///< arrived after their tick was simulated (in time for final)
   uint64_t substituted_inputs = 0;  ///< missing at the deadline; prediction recorded instead
-  uint64_t rejected_inputs = 0;   ///< for final ticks, too far ahead, conflicting, or another slot
+  uint64_t rejected_inputs =
+      0;  ///< for final ticks (once each), too far ahead, conflicting, or another slot
   uint64_t rejected_packets = 0;  ///< undecodable, unknown connection, spoofed address, ...
   uint64_t duplicate_packets = 0;
   uint64_t relayed_inputs = 0;
